@@ -1,0 +1,79 @@
+"""wheelrail — wheel–rail contact mechanics.
+
+Geometry, normal contact (Hertz and non-Hertzian), kinematics and creep
+forces (Carter, Kalker's linear theory, FASTSIM, Shen–Hedrick–Elkins, Polach,
+Kalker's exact theory) behind one API. SI units everywhere; Kalker's sign
+convention (:mod:`wheelrail.conventions`).
+
+Heavy sub-packages (geometry, profiles, half-space solvers, plotting) are
+imported lazily on first use.
+"""
+
+from __future__ import annotations
+
+import importlib
+
+from . import conventions
+from .api import available_methods, creep_forces
+from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError, ProfileError,
+                     WheelrailError)
+from .materials import STEEL, Material, MaterialPair
+from .normal.hertz import (HertzContact, curvatures_from_radii, hertz, hertz_from_penetration,
+                           hertz_from_radii, hertz_from_semiaxes, hertz_line)
+from .results import CreepForces, Status
+
+__version__ = "0.1.0"
+
+# name -> (module, attribute); resolved on first access
+_LAZY = {
+    "kalker_coefficients": ("wheelrail.tangential.linear", "kalker_coefficients"),
+    "load_case": ("wheelrail.casefile", "load_case"),
+    "run_case": ("wheelrail.casefile", "run_case"),
+    "profiles": ("wheelrail.profiles", None),
+    "Profile": ("wheelrail.profiles", "Profile"),
+    "Wheelset": ("wheelrail.geometry", "Wheelset"),
+    "Track": ("wheelrail.geometry", "Track"),
+    "contact_table": ("wheelrail.geometry", "contact_table"),
+    "equivalent_conicity": ("wheelrail.geometry", "equivalent_conicity"),
+    "contact_points": ("wheelrail.geometry", "contact_points"),
+    "elastic_contact": ("wheelrail.geometry", "elastic_contact"),
+    "solve_normal": ("wheelrail.halfspace", "solve_normal"),
+    "solve_gap": ("wheelrail.halfspace", "solve_gap"),
+    "Grid": ("wheelrail.halfspace", "Grid"),
+}
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        module, attr = _LAZY[name]
+        mod = importlib.import_module(module)
+        value = mod if attr is None else getattr(mod, attr)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'wheelrail' has no attribute {name!r}")
+
+
+def citation(method: str | None = None) -> list[str]:
+    """References of the implemented methods (all, or one by name)."""
+    from .api import METHODS, get_method
+
+    names = [method] if method else list(METHODS)
+    refs: list[str] = []
+    for n in names:
+        try:
+            impl = get_method(n)
+        except ImportError:
+            continue
+        refs.extend(r for r in impl.references if r not in refs)
+    return refs
+
+
+__all__ = [
+    "Material", "MaterialPair", "STEEL",
+    "HertzContact", "hertz", "hertz_from_semiaxes", "hertz_from_radii", "hertz_from_penetration",
+    "hertz_line", "curvatures_from_radii",
+    "creep_forces", "available_methods", "CreepForces", "Status", "conventions", "citation",
+    "WheelrailError", "InputError", "ConvergenceError", "NoContactError", "ProfileError",
+    "CaseFileError",
+    *_LAZY,
+]

@@ -1,0 +1,152 @@
+"""Public entry functions: one per problem, the method chosen by name or object."""
+
+from __future__ import annotations
+
+import importlib
+
+import numpy as np
+
+from ._validation import as_float_array, positive
+from .errors import InputError, WheelrailError
+from .results import CreepForces
+from .tangential._base import TangentialMethod
+
+__all__ = ["creep_forces", "METHODS", "get_method", "as_creepage", "available_methods"]
+
+#: Registry of creep-force laws: name -> "module:Class".
+METHODS = {
+    "carter": "wheelrail.tangential.carter:Carter",
+    "linear": "wheelrail.tangential.linear:KalkerLinear",
+    "fastsim": "wheelrail.tangential.fastsim:Fastsim",
+    "shen-hedrick-elkins": "wheelrail.tangential.shen_hedrick_elkins:ShenHedrickElkins",
+    "polach": "wheelrail.tangential.polach:Polach",
+    "exact": "wheelrail.tangential.exact:Exact",
+}
+_ALIASES = {
+    "kalker-linear": "linear",
+    "she": "shen-hedrick-elkins",
+    "shen_hedrick_elkins": "shen-hedrick-elkins",
+    "kalker": "exact",
+    "bem": "exact",
+}
+
+
+def available_methods() -> list[str]:
+    """Names accepted by ``method=`` in :func:`creep_forces`."""
+    return list(METHODS)
+
+
+def get_method(method) -> TangentialMethod:
+    """Resolve ``method`` (name, class or instance) to a :class:`TangentialMethod` instance."""
+    if isinstance(method, TangentialMethod):
+        return method
+    if isinstance(method, type) and issubclass(method, TangentialMethod):
+        return method()
+    if not isinstance(method, str):
+        raise InputError(f"method must be a name or a TangentialMethod, got {method!r}")
+    key = _ALIASES.get(method.lower(), method.lower())
+    if key not in METHODS:
+        raise InputError(f"unknown creep-force method {method!r}; choose one of "
+                         + ", ".join(METHODS))
+    module, cls = METHODS[key].split(":")
+    return getattr(importlib.import_module(module), cls)()
+
+
+def as_creepage(creepage):
+    """Validate creepages and return ``(xi, eta, phi)`` float arrays.
+
+    Parameters
+    ----------
+    creepage : sequence of 3 floats, or array_like, shape (n, 3), or mapping
+        (ξ [-], η [-], φ [1/m]); a mapping may give ``xi``, ``eta``, ``phi``
+        (missing ones are zero).
+
+    Returns
+    -------
+    xi, eta, phi : ndarray
+        0-d arrays for a single case, shape (n,) for a batch.
+    """
+    if isinstance(creepage, dict):
+        unknown = set(creepage) - {"xi", "eta", "phi"}
+        if unknown:
+            raise InputError(f"unknown creepage component(s) {sorted(unknown)}; use xi, eta, phi")
+        creepage = [creepage.get("xi", 0.0), creepage.get("eta", 0.0), creepage.get("phi", 0.0)]
+    arr = as_float_array("creepage", creepage)
+    if arr.ndim == 1 and arr.shape[0] == 3:
+        return arr[0], arr[1], arr[2]
+    if arr.ndim == 2 and arr.shape[1] == 3:
+        return arr[:, 0].copy(), arr[:, 1].copy(), arr[:, 2].copy()
+    raise InputError(f"creepage must be (xi, eta, phi) or an array of shape (n, 3), "
+                     f"got shape {arr.shape}")
+
+
+def _check_contact(contact):
+    for attr in ("a", "b", "load", "materials"):
+        if not hasattr(contact, attr):
+            raise InputError(f"contact must be a HertzContact (from wheelrail.hertz), "
+                             f"got {type(contact).__name__} without '{attr}'")
+
+
+def creep_forces(contact, creepage, mu, method="fastsim", **options) -> CreepForces:
+    """Creep forces and spin moment on the wheel for given creepages.
+
+    Parameters
+    ----------
+    contact : HertzContact
+        The normal contact (single or a batch of shape (n,)).
+    creepage : array_like
+        (ξ, η, φ) or shape (n, 3): longitudinal and lateral creepage [-] and
+        spin [1/m] of the wheel relative to the rail (Kalker's convention,
+        see :mod:`wheelrail.conventions`).
+    mu : float or array_like
+        Coulomb friction coefficient [-], > 0.
+    method : str or TangentialMethod
+        ``"carter"``, ``"linear"``, ``"fastsim"``, ``"shen-hedrick-elkins"``,
+        ``"polach"``, ``"exact"`` or an instance.
+    **options
+        Method options (e.g. ``nx``, ``ny``, ``bound`` for FASTSIM).
+
+    Returns
+    -------
+    CreepForces
+        ``Fx``, ``Fy`` [N], ``Mz`` [N·m] on the wheel; floats for a single
+        case, arrays of shape (n,) for a batch.
+
+    Raises
+    ------
+    InputError
+        For NaN/inf creepage, μ ≤ 0, an unknown method or option.
+
+    Examples
+    --------
+    >>> import wheelrail as wr
+    >>> c = wr.hertz(7500.0, A=0.5/0.46, B=0.5/0.30, material=wr.Material(2.1e11, 0.28))
+    >>> r = wr.creep_forces(c, creepage=(-1e-3, 0.0, 0.0), mu=0.3, method="linear")
+    >>> r.Fx > 0
+    True
+    """
+    _check_contact(contact)
+    impl = get_method(method)
+    opts = impl.check_options(options)
+    xi, eta, phi = as_creepage(creepage)
+    mu = positive("mu", mu)
+    shape = np.broadcast_shapes(np.shape(contact.a), xi.shape, mu.shape)
+    if len(shape) > 1:
+        raise InputError(f"batch inputs must be one-dimensional, got shape {shape}")
+    xi, eta, phi, mu = (np.broadcast_to(v, shape).astype(float) for v in (xi, eta, phi, mu))
+    if shape != np.shape(contact.a):
+        contact = _broadcast_contact(contact, shape)
+    result = impl.solve(contact, xi, eta, phi, mu, **opts)
+    for name in ("Fx", "Fy", "Mz"):
+        if not np.all(np.isfinite(getattr(result, name))):
+            raise WheelrailError(f"method {impl.name!r} produced a non-finite {name}; "
+                                 "please report this with the input")
+    return result
+
+
+def _broadcast_contact(contact, shape):
+    from dataclasses import replace
+
+    names = ("a", "b", "p0", "penetration", "load", "A", "B")
+    return replace(contact, **{n: np.broadcast_to(np.asarray(getattr(contact, n), float), shape).copy()
+                               for n in names if hasattr(contact, n)})

@@ -1,0 +1,74 @@
+"""Axes, units and sign conventions used everywhere in wheelrail.
+
+This module is the single place where the conventions are written down; every
+kernel docstring refers to it.
+
+Units
+-----
+SI throughout the API: lengths in m, forces in N, moments in N·m, stresses and
+moduli in Pa, angles in rad, time in s, speeds in m/s. Creepages ξ, η are
+dimensionless; the spin creepage φ is in 1/m (rad/m). Profile files written in
+mm are converted to m when they are read.
+
+Contact-plane axes (Kalker)
+---------------------------
+* ``x`` — rolling direction (the direction in which the contact moves over the
+  rail), ``a`` is the semi-axis of the contact patch along ``x``;
+* ``y`` — lateral, in the tangent plane, ``b`` the semi-axis along ``y``;
+* ``z`` — normal to the contact plane, pointing into the lower body (the rail),
+  so that the normal force on the wheel is positive in compression.
+
+Bodies and sign of forces
+-------------------------
+Body 1 is the wheel (upper body), body 2 the rail (lower body). Tangential
+forces ``Fx``, ``Fy`` and the spin moment ``Mz`` are those **acting on the
+wheel**.
+
+Creepages
+---------
+Creepages are the rigid slip velocity of the wheel relative to the rail in
+the contact point, divided by the rolling speed ``V``:
+
+* ξ (``xi``)  = (v_wheel,x − v_rail,x) / V, longitudinal;
+* η (``eta``) = (v_wheel,y − v_rail,y) / V, lateral;
+* φ (``phi``) = (ω_wheel,z − ω_rail,z) / V, spin, in 1/m.
+
+With these signs a positive creepage produces a negative force. In the
+linear (small-creepage) limit, with c = √(ab) and G the combined shear
+modulus,
+
+    Fx = −G c² C11 ξ
+    Fy = −G c² (C22 η + c C23 φ)
+    Mz =  G c³ (C23 η − c C33 φ)
+
+where C11 … C33 are Kalker's creep coefficients (Kalker 1967, 1990).
+
+References
+----------
+.. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+   Kluwer, 1990, ch. 1 and 2.
+.. [2] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+"""
+
+#: Order of the components of a creepage vector.
+CREEPAGE_COMPONENTS = ("xi", "eta", "phi")
+#: Units of the creepage components.
+CREEPAGE_UNITS = {"xi": "1", "eta": "1", "phi": "1/m"}
+#: Units of the result quantities.
+FORCE_UNITS = {"Fx": "N", "Fy": "N", "Mz": "N m", "Fn": "N"}
+
+#: Forces are reported as acting on this body.
+FORCE_ON = "wheel"
+#: Creepage is the velocity of this body relative to the other, divided by V.
+CREEPAGE_OF = "wheel relative to rail"
+#: Sign of the linear creep force relative to creepage (Fx = SIGN * G c^2 C11 xi).
+LINEAR_FORCE_SIGN = -1.0
+
+__all__ = [
+    "CREEPAGE_COMPONENTS",
+    "CREEPAGE_UNITS",
+    "FORCE_UNITS",
+    "FORCE_ON",
+    "CREEPAGE_OF",
+    "LINEAR_FORCE_SIGN",
+]
