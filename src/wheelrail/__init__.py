@@ -40,6 +40,9 @@ _LAZY = {
     "solve_normal": ("wheelrail.halfspace", "solve_normal"),
     "solve_gap": ("wheelrail.halfspace", "solve_gap"),
     "Grid": ("wheelrail.halfspace", "Grid"),
+    "solve_creepages": ("wheelrail.prescribed", "solve_creepages"),
+    "hertz_grid": ("wheelrail.halfspace", "hertz_grid"),
+    "subsurface_stresses": ("wheelrail.halfspace", "subsurface_stresses"),
 }
 
 

@@ -1,0 +1,256 @@
+"""Numba kernels of Kalker's FASTSIM (private; pure array-in/array-out).
+
+The contact patch is a set of strips parallel to the rolling direction x.
+Strip ``j`` lies at lateral position ``y[j]``, has width ``dy[j]`` and runs
+from the leading edge ``x_lead[j]`` to the trailing edge ``x_trail[j]``
+(``x_lead > x_trail``: the contact moves in +x, material enters at the
+leading edge). Each strip is cut into ``nx`` equal elements spanning its own
+length; tractions are evaluated at the element centres.
+
+Simplified theory (Kalker 1982; Kalker 1990, chapter on the simplified theory): the surface
+displacement difference is ``u = L p`` and the (non-dimensional) slip of the
+wheel relative to the rail is ``s = w − ∂u/∂x`` with rigid slip
+``w = (ξ − φ y, η + φ x)``. In the adhesion area s = 0, i.e. along a strip
+``∂p/∂x = g`` with, for three flexibilities (Piotrowski & Chollet 2005,
+seed 003 eq. 11),
+
+    g_x = ξ/L1 − φ y/L3,      g_y = η/L2 + φ x/L3,
+
+which is ``w/L`` when L1 = L2 = L3 = L. Marching from the leading edge
+(p = 0) towards the trailing edge the elastic predictor over a step from
+``x_p`` to ``x_c < x_p`` is (exact for the linear ``g``; the spin term is
+evaluated at the step mid-point)
+
+    p_H = p(x_p) − (x_p − x_c) g((x_p + x_c)/2).
+
+If ``|p_H|`` exceeds the traction bound ``μ p_z(x_c)`` the traction is scaled
+back onto the bound (slip) and the slip is ``s = L_ref (p − p_H)/(x_p − x_c)``,
+opposite to the traction. Forces follow from the mid-point rule over the
+elements; ``Mz = Σ (x p_y − y p_x) dA`` about the coordinate origin.
+
+Sign convention: ``p`` is the traction on the wheel (Kalker's convention,
+:mod:`wheelrail.conventions`), so a positive creepage gives negative traction.
+
+References
+----------
+.. [1] J.J. Kalker, A fast algorithm for the simplified theory of rolling
+   contact, Vehicle System Dynamics 11 (1982) 1–13.
+.. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005), §3.1 eq. (11),
+   §3.3 eqs. (24)–(26) (seed 003).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+__all__ = ["march_strip", "fastsim_strips_kernel", "fastsim_hertz_batch"]
+
+
+@njit(cache=True, fastmath=False)
+def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, nx,
+                store, out_px, out_py, out_sx, out_sy, out_slip):
+    """March along one strip; return its force contributions (Fx, Fy, Mz).
+
+    Parameters
+    ----------
+    y, dy : float
+        Strip position and width [m].
+    x_lead, x_trail : float
+        Leading and trailing edge [m]; a strip with ``x_lead <= x_trail`` is empty.
+    bound : ndarray, shape (nx,)
+        Traction bound μ p_z at the element centres [Pa].
+    L1, L2, L3 : float
+        Flexibilities for ξ, η and φ [m/Pa].
+    L_ref : float
+        Flexibility used to convert the traction defect into slip [m/Pa].
+    xi, eta, phi : float
+        Creepages [-], [-], [1/m].
+    nx : int
+        Number of elements.
+    store : bool
+        Write the fields into ``out_*`` (shape (nx,)); otherwise they are untouched.
+
+    Returns
+    -------
+    fx, fy, mz : float
+        Force [N] and moment about the origin [N m] carried by the strip.
+    """
+    length = x_lead - x_trail
+    if length <= 0.0 or dy <= 0.0:
+        return 0.0, 0.0, 0.0
+    dx = length / nx
+    gx = xi / L1 - phi * y / L3
+    gy0 = eta / L2
+    gs = phi / L3
+    px = 0.0
+    py = 0.0
+    sum_px = 0.0
+    sum_py = 0.0
+    sum_xpy = 0.0
+    xp = x_lead
+    h = 0.5 * dx
+    for i in range(nx):
+        xc = x_lead - (i + 0.5) * dx
+        xm = 0.5 * (xp + xc)
+        pxh = px - h * gx
+        pyh = py - h * (gy0 + gs * xm)
+        g = bound[i]
+        t2 = pxh * pxh + pyh * pyh
+        if t2 > g * g:
+            sc = g / np.sqrt(t2)
+            px = pxh * sc
+            py = pyh * sc
+            if store:
+                out_slip[i] = True
+                out_sx[i] = L_ref * (px - pxh) / h
+                out_sy[i] = L_ref * (py - pyh) / h
+        else:
+            px = pxh
+            py = pyh
+            if store:
+                out_slip[i] = False
+                out_sx[i] = 0.0
+                out_sy[i] = 0.0
+        if store:
+            out_px[i] = px
+            out_py[i] = py
+        sum_px += px
+        sum_py += py
+        sum_xpy += xc * py
+        xp = xc
+        h = dx
+    area = dx * dy
+    return sum_px * area, sum_py * area, (sum_xpy - y * sum_px) * area
+
+
+@njit(cache=True)
+def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi,
+                          px, py, sx, sy, slip):
+    """FASTSIM on a patch given by strips (one case), storing the fields.
+
+    Parameters
+    ----------
+    y, dy, x_lead, x_trail : ndarray, shape (ny,)
+        Strip positions, widths, leading and trailing edges [m].
+    bound : ndarray, shape (ny, nx)
+        Traction bound μ p_z at the element centres [Pa].
+    L1, L2, L3, L_ref : ndarray, shape (ny,)
+        Per-strip flexibilities [m/Pa].
+    xi, eta, phi : float
+        Creepages.
+    px, py, sx, sy : ndarray, shape (ny, nx)
+        Output tractions [Pa] and slip [-] (written).
+    slip : ndarray of bool, shape (ny, nx)
+        Output slip flags (written).
+
+    Returns
+    -------
+    Fx, Fy, Mz : float
+    """
+    ny, nx = bound.shape
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    for j in range(ny):
+        fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound[j], L1[j], L2[j],
+                                 L3[j], L_ref[j], xi, eta, phi, nx, True,
+                                 px[j], py[j], sx[j], sy[j], slip[j])
+        Fx += fx
+        Fy += fy
+        Mz += mz
+    return Fx, Fy, Mz
+
+
+@njit(cache=True)
+def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip_peak, shape):
+    """Forces-only FASTSIM for a batch of elliptic (Hertzian) patches.
+
+    Strips are uniform in y: ``y_j = b t_j`` with ``t`` the normalised strip
+    centres; strip ``j`` spans ``|x| < a half_j``; the traction bound at element
+    ``i`` of strip ``j`` is ``μ peak strip_peak_j shape_i``.
+
+    Same discrete equations as :func:`march_strip`, but all strips of a case
+    are marched together (loop over elements outside, strips inside, without
+    branches) so that the compiler vectorises across the independent strips.
+
+    Parameters
+    ----------
+    a, b, peak, mu, L1, L2, L3, xi, eta, phi : ndarray, shape (n,)
+        Semi-axes [m], peak pressure of the bound distribution [Pa], friction
+        coefficient, flexibilities [m/Pa] and creepages, per case.
+    t, half, strip_peak : ndarray, shape (ny,)
+        Normalised strip centres y/b, half-lengths √(1 − t²) and peak factors.
+    shape : ndarray, shape (nx,)
+        Pressure profile along a strip at the normalised element centres
+        ``1 − (i + ½) 2/nx``.
+
+    Returns
+    -------
+    Fx, Fy, Mz : ndarray, shape (n,)
+    """
+    n = a.shape[0]
+    ny = t.shape[0]
+    nx = shape.shape[0]
+    Fx = np.empty(n)
+    Fy = np.empty(n)
+    Mz = np.empty(n)
+    xl = np.empty(ny)
+    dx = np.empty(ny)
+    gx = np.empty(ny)
+    bq = np.empty(ny)
+    px = np.empty(ny)
+    py = np.empty(ny)
+    spx = np.empty(ny)
+    spy = np.empty(ny)
+    sxp = np.empty(ny)
+    for k in range(n):
+        g1 = xi[k] / L1[k]
+        gy0 = eta[k] / L2[k]
+        gs = phi[k] / L3[k]
+        pk = mu[k] * peak[k]
+        for j in range(ny):
+            xl[j] = a[k] * half[j]
+            dx[j] = 2.0 * xl[j] / nx
+            gx[j] = g1 - gs * b[k] * t[j]
+            bq[j] = pk * strip_peak[j]
+            px[j] = 0.0
+            py[j] = 0.0
+            spx[j] = 0.0
+            spy[j] = 0.0
+            sxp[j] = 0.0
+        for i in range(nx):
+            # step from the previous centre (leading edge for i = 0) to centre i
+            hf = 0.5 if i == 0 else 1.0
+            fm = 1.0 - 0.5 / nx if i == 0 else 1.0 - 2.0 * i / nx   # step mid-point / xl
+            fc = 1.0 - (2.0 * i + 1.0) / nx                          # element centre / xl
+            sh = shape[i]
+            for j in range(ny):
+                h = hf * dx[j]
+                pxh = px[j] - h * gx[j]
+                pyh = py[j] - h * (gy0 + gs * xl[j] * fm)
+                g = bq[j] * sh
+                t2 = pxh * pxh + pyh * pyh
+                g2 = g * g
+                sc = np.sqrt(g2 / t2) if t2 > g2 else 1.0
+                pxn = pxh * sc
+                pyn = pyh * sc
+                px[j] = pxn
+                py[j] = pyn
+                spx[j] += pxn
+                spy[j] += pyn
+                sxp[j] += xl[j] * fc * pyn
+        dyk = 2.0 * b[k] / ny
+        fx = 0.0
+        fy = 0.0
+        mz = 0.0
+        for j in range(ny):
+            area = dx[j] * dyk
+            fx += spx[j] * area
+            fy += spy[j] * area
+            mz += (sxp[j] - b[k] * t[j] * spx[j]) * area
+        Fx[k] = fx
+        Fy[k] = fy
+        Mz[k] = mz
+    return Fx, Fy, Mz

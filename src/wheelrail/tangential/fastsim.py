@@ -1,0 +1,520 @@
+"""FASTSIM: Kalker's fast algorithm for the simplified theory of rolling contact.
+
+The simplified theory replaces the elastic half-space by a bed of independent
+springs, ``u = L p``; with this relation the steady rolling problem decouples
+into strips parallel to the rolling direction, which FASTSIM integrates from
+the leading to the trailing edge, scaling the traction back onto the traction
+bound μ p_z wherever it would exceed it (slip). See
+:mod:`wheelrail.tangential._fastsim_kernel` for the discrete equations.
+
+Choices made here (all documented in the class docstring of :class:`Fastsim`):
+
+* **Strips**: ``ny`` strips of equal width over (−b, b), strip centres
+  ``y_j = −b + (j + ½) 2b/ny``; each strip is cut into ``nx`` elements
+  spanning its own length 2a√(1 − y_j²/b²) (Kalker's choice), tractions at the
+  element centres. The elastic predictor is exact for the linear rigid slip,
+  so in full adhesion the scheme is second-order accurate (mid-point rule);
+  Kalker's original node-based version is first order.
+* **Flexibility**: ``flexibility="three"`` (default) uses one flexibility per
+  creepage, L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a √(a/b)/(4 G C23)
+  (Piotrowski & Chollet 2005, eq. 11, seed 003; Kalker 1982), so that FASTSIM
+  reproduces Kalker's linear theory for pure ξ, pure η and pure φ (forces;
+  the spin moment Mz is only approximated, C33 does not enter).
+  ``flexibility="weighted"`` uses Kalker's single weighted flexibility
+  L = (L1|ξ| + L2|η| + L3 c|φ|)/√(ξ² + η² + c²φ²), c = √(ab)
+  (Kalker 1982).
+* **Traction bound**: ``bound="parabolic"`` (default) is Kalker's FASTSIM
+  bound μ p_z with p_z = 2Fn/(πab) (1 − x²/a² − y²/b²) (the choice of Kalker
+  1982 and of CONTACT's FASTSIM, which gives better qualitative agreement with
+  the exact theory); ``bound="elliptic"`` uses the Hertzian pressure
+  p_z = 3Fn/(2πab) √(1 − x²/a² − y²/b²).
+
+References
+----------
+.. [1] J.J. Kalker, A fast algorithm for the simplified theory of rolling
+   contact, Vehicle System Dynamics 11 (1982) 1–13.
+.. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+   Kluwer 1990 (simplified theory, FASTSIM).
+.. [3] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, eq. (11),
+   eqs. (24)–(26) (seed 003).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validation import as_float_array, positive, scalar_or_array
+from ..errors import InputError
+from ..results import CreepForces, Status
+from . import _fastsim_kernel as _k
+from ._base import TangentialMethod
+
+__all__ = [
+    "Fastsim",
+    "FastsimFields",
+    "fastsim_strips",
+    "flexibilities",
+    "weighted_flexibility",
+    "hertz_strips",
+    "strip_cell_centres",
+]
+
+_BOUNDS = ("parabolic", "elliptic")
+_FLEXIBILITIES = ("three", "weighted")
+
+
+# ---------------------------------------------------------------------------
+# fields
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class FastsimFields:
+    """Surface fields of a FASTSIM solution on a strip grid (frozen).
+
+    All arrays have shape (ny, nx): row ``j`` is strip ``j`` (lateral position
+    ``y``), column ``i`` the ``i``-th element counted from the leading edge.
+
+    Attributes
+    ----------
+    x, y : ndarray
+        Element centres [m].
+    dx, dy : ndarray, shape (ny,)
+        Element length and strip width [m] (element area ``dx[j] * dy[j]``).
+    pressure : ndarray
+        Normal pressure p_z used for the traction bound [Pa].
+    px, py : ndarray
+        Tangential traction on the wheel [Pa].
+    sx, sy : ndarray
+        Slip of the wheel relative to the rail divided by the rolling speed
+        [-] (zero in adhesion), ``s = L_ref (p − p_H)/Δx``.
+    slip : ndarray of bool
+        True where the element slides.
+    mu : ndarray, shape (ny,)
+        Friction coefficient per strip.
+    """
+
+    x: np.ndarray
+    y: np.ndarray
+    dx: np.ndarray
+    dy: np.ndarray
+    pressure: np.ndarray
+    px: np.ndarray
+    py: np.ndarray
+    sx: np.ndarray
+    sy: np.ndarray
+    slip: np.ndarray
+    mu: np.ndarray
+
+    @property
+    def in_contact(self) -> np.ndarray:
+        """True for elements of non-empty strips (shape (ny, nx))."""
+        return np.broadcast_to((self.dx > 0)[:, None], self.x.shape)
+
+    @property
+    def adhesion(self) -> np.ndarray:
+        """True where the element sticks (in contact and not sliding)."""
+        return self.in_contact & ~self.slip
+
+    @property
+    def area(self) -> np.ndarray:
+        """Element areas [m²], shape (ny, nx)."""
+        return np.broadcast_to((self.dx * self.dy)[:, None], self.x.shape)
+
+    @property
+    def traction(self) -> np.ndarray:
+        """|p_t| = √(px² + py²) [Pa]."""
+        return np.hypot(self.px, self.py)
+
+    @property
+    def slip_speed(self) -> np.ndarray:
+        """|s| [-] (slip velocity divided by the rolling speed)."""
+        return np.hypot(self.sx, self.sy)
+
+    @property
+    def slip_direction(self) -> np.ndarray:
+        """Unit vector of the slip, shape (2, ny, nx); zero in adhesion."""
+        mag = self.slip_speed
+        with np.errstate(invalid="ignore", divide="ignore"):
+            d = np.where(mag > 0, np.stack([self.sx, self.sy]) / mag, 0.0)
+        return d
+
+    @property
+    def adhesion_fraction(self) -> float:
+        """Area of adhesion divided by the contact area [-]."""
+        area = self.area
+        return float(np.sum(area[self.adhesion]) / np.sum(area))
+
+
+# ---------------------------------------------------------------------------
+# pure helpers
+# ---------------------------------------------------------------------------
+def flexibilities(a, b, G, C11, C22, C23):
+    """Kalker's three flexibilities of the simplified theory.
+
+    Parameters
+    ----------
+    a, b : array_like
+        Semi-axes along x and y [m] (for a strip of a non-elliptic patch: the
+        semi-axes of its virtual ellipse, seed 003 §3.1).
+    G : float or array_like
+        Combined shear modulus [Pa].
+    C11, C22, C23 : array_like
+        Kalker's creep coefficients for a/b and ν [-].
+
+    Returns
+    -------
+    L1, L2, L3 : ndarray
+        L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a √(a/b)/(4 G C23) [m/Pa].
+
+    References
+    ----------
+    .. [1] Piotrowski & Chollet (2005), eq. (11) (seed 003); Kalker (1982).
+    """
+    a, b, G, C11, C22, C23 = (np.asarray(v, dtype=float) for v in (a, b, G, C11, C22, C23))
+    L1 = 8.0 * a / (3.0 * G * C11)
+    L2 = 8.0 * a / (3.0 * G * C22)
+    L3 = np.pi * a * np.sqrt(a / b) / (4.0 * G * C23)
+    return L1, L2, L3
+
+
+def weighted_flexibility(L1, L2, L3, xi, eta, phi, c):
+    """Kalker's single weighted flexibility.
+
+    L = (L1|ξ| + L2|η| + L3 c|φ|) / √(ξ² + η² + c²φ²), and L = L1 when all
+    creepages vanish (the traction is then zero whatever L).
+
+    Parameters
+    ----------
+    L1, L2, L3 : array_like
+        Flexibilities [m/Pa].
+    xi, eta, phi : array_like
+        Creepages [-], [-], [1/m].
+    c : array_like
+        √(ab) [m].
+
+    Returns
+    -------
+    L : ndarray [m/Pa]
+
+    References
+    ----------
+    .. [1] Kalker (1982).
+    """
+    L1, L2, L3, xi, eta, phi, c = (np.asarray(v, dtype=float) for v in (L1, L2, L3, xi, eta, phi, c))
+    cphi = c * np.abs(phi)
+    norm = np.sqrt(xi * xi + eta * eta + cphi * cphi)
+    num = L1 * np.abs(xi) + L2 * np.abs(eta) + L3 * cphi
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(norm > 0, num / np.where(norm > 0, norm, 1.0), L1)
+
+
+def hertz_strips(a, b, ny):
+    """Strips of an elliptic patch: uniform in y over (−b, b).
+
+    Parameters
+    ----------
+    a, b : float
+        Semi-axes [m].
+    ny : int
+        Number of strips.
+
+    Returns
+    -------
+    y, dy, x_lead, x_trail : ndarray, shape (ny,)
+        Strip centres y_j = −b + (j + ½) 2b/ny, widths 2b/ny, leading edges
+        a√(1 − y_j²/b²) and trailing edges −a√(1 − y_j²/b²) [m].
+    """
+    t = _strip_t(ny)
+    half = np.sqrt(1.0 - t * t)
+    return b * t, np.full(ny, 2.0 * b / ny), a * half, -a * half
+
+
+def strip_cell_centres(x_lead, x_trail, nx):
+    """Element centres x [m], shape (ny, nx), of strips cut into ``nx`` equal elements.
+
+    Element ``i`` of strip ``j`` has its centre at
+    ``x_lead[j] − (i + ½)(x_lead[j] − x_trail[j])/nx``.
+    """
+    x_lead = np.atleast_1d(np.asarray(x_lead, dtype=float))
+    x_trail = np.atleast_1d(np.asarray(x_trail, dtype=float))
+    frac = (np.arange(nx) + 0.5) / nx
+    return x_lead[:, None] - frac[None, :] * (x_lead - x_trail)[:, None]
+
+
+def _strip_t(ny):
+    return -1.0 + (np.arange(ny) + 0.5) * (2.0 / ny)
+
+
+def _profile(kind, s):
+    """Pressure profile along a strip at normalised positions s ∈ (−1, 1)."""
+    if kind == "elliptic":
+        return np.sqrt(np.clip(1.0 - s * s, 0.0, None))
+    return np.clip(1.0 - s * s, 0.0, None)
+
+
+def _check_int(name, value, lo=1):
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise InputError(f"{name} must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
+def _check_choice(name, value, choices):
+    if value not in choices:
+        raise InputError(f"{name} must be one of {', '.join(map(repr, choices))}, got {value!r}")
+    return value
+
+
+# ---------------------------------------------------------------------------
+# general strips (non-elliptic patches)
+# ---------------------------------------------------------------------------
+def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, mu, nx=None, *,
+                   profile=None, L_ref=None, c=None, fields=True):
+    """FASTSIM on a contact patch described by strips (elliptic or not).
+
+    This is the kernel used by the virtual-penetration methods (Linder,
+    Kik–Piotrowski, STRIPES; seed 003 §3): each strip has its own extent,
+    pressure and flexibilities.
+
+    Parameters
+    ----------
+    y, dy : array_like, shape (ny,)
+        Strip centres and widths [m].
+    x_lead, x_trail : array_like, shape (ny,)
+        Leading (larger x) and trailing edges [m]; strips with
+        ``x_lead <= x_trail`` are empty (no contact).
+    pressure : array_like, shape (ny, nx) or (ny,)
+        Normal pressure [Pa] at the element centres (see
+        :func:`strip_cell_centres`), or the peak pressure of each strip
+        together with ``profile``.
+    L1, L2, L3 : float or array_like, shape (ny,)
+        Flexibilities for ξ, η, φ [m/Pa] (e.g. :func:`flexibilities` with the
+        strip's virtual ellipse, seed 003 eqs. 11, 25–26). Pass the same value
+        three times for a single flexibility.
+    xi, eta, phi : float
+        Creepages [-], [-], [1/m] (Kalker's convention).
+    mu : float or array_like, shape (ny,)
+        Friction coefficient [-], > 0.
+    nx : int, optional
+        Elements per strip; required when ``pressure`` has shape (ny,).
+    profile : {"elliptic", "parabolic"}, optional
+        Pressure along each strip when ``pressure`` holds peaks:
+        ``peak √(1 − s²)`` or ``peak (1 − s²)``, s the position along the
+        strip normalised to (−1, 1).
+    L_ref : float or array_like, shape (ny,), optional
+        Flexibility converting traction defects into slip; default: Kalker's
+        weighted mean of L1, L2, L3 per strip with ``c``.
+    c : float, optional
+        Length weighting the spin in the default ``L_ref`` [m]; default
+        √(a_j b_e) with a_j the strip half-length and b_e half the patch width.
+    fields : bool
+        Return the fields (:class:`FastsimFields`) in ``.fields``.
+
+    Returns
+    -------
+    CreepForces
+        ``Fx``, ``Fy`` [N] and ``Mz`` [N m] (about the origin of the
+        coordinates) on the wheel; ``Fn`` = Σ p_z dA; ``fields`` if requested.
+
+    References
+    ----------
+    .. [1] Kalker (1982); Piotrowski & Chollet (2005) eqs. (11), (24)–(26).
+    """
+    y = np.atleast_1d(as_float_array("y", y))
+    ny = y.shape[0]
+    if y.ndim != 1 or ny == 0:
+        raise InputError(f"y must be a non-empty 1-D array of strip centres, got shape {y.shape}")
+
+    def strip_array(name, v, check=None):
+        arr = as_float_array(name, v) if check is None else check(name, v)
+        try:
+            return np.ascontiguousarray(np.broadcast_to(arr, (ny,)), dtype=float)
+        except ValueError:
+            raise InputError(f"{name} must be a scalar or have shape ({ny},), got shape "
+                             f"{np.shape(arr)}") from None
+
+    dy = strip_array("dy", dy)
+    if np.any(dy < 0):
+        raise InputError(f"dy must be >= 0, got {dy[dy < 0][0]!r}")
+    x_lead = strip_array("x_lead", x_lead)
+    x_trail = strip_array("x_trail", x_trail)
+    L1, L2, L3 = (strip_array(n, v, positive) for n, v in (("L1", L1), ("L2", L2), ("L3", L3)))
+    mu_s = strip_array("mu", mu, positive)
+    xi, eta, phi = (float(as_float_array(n, v)) for n, v in (("xi", xi), ("eta", eta), ("phi", phi)))
+
+    p = as_float_array("pressure", pressure)
+    if p.ndim == 2:
+        if p.shape[0] != ny:
+            raise InputError(f"pressure must have shape ({ny}, nx), got {p.shape}")
+        if nx is not None and _check_int("nx", nx) != p.shape[1]:
+            raise InputError(f"nx={nx!r} does not match pressure.shape[1]={p.shape[1]}")
+        nx = p.shape[1]
+        if profile is not None:
+            raise InputError("profile is only used when pressure holds strip peaks (shape (ny,))")
+    else:
+        if nx is None or profile is None:
+            raise InputError("with strip peak pressures (shape (ny,)) give nx and profile")
+        nx = _check_int("nx", nx)
+        _check_choice("profile", profile, _BOUNDS)
+        peaks = strip_array("pressure", p)
+        s = 1.0 - (np.arange(nx) + 0.5) * (2.0 / nx)
+        p = peaks[:, None] * _profile(profile, s)[None, :]
+    if np.any(p < 0):
+        raise InputError(f"pressure must be >= 0, got {p[p < 0].ravel()[0]!r}")
+    p = np.ascontiguousarray(p, dtype=float)
+
+    if L_ref is None:
+        if c is None:
+            half_width = 0.5 * float(np.sum(dy))
+            c_s = np.sqrt(np.clip(0.5 * (x_lead - x_trail), 0.0, None) * half_width)
+        else:
+            c_s = float(positive("c", c))
+        L_ref = weighted_flexibility(L1, L2, L3, xi, eta, phi, c_s)
+    L_ref = strip_array("L_ref", L_ref, positive)
+
+    bound = p * mu_s[:, None]
+    px = np.zeros((ny, nx))
+    py = np.zeros((ny, nx))
+    sx = np.zeros((ny, nx))
+    sy = np.zeros((ny, nx))
+    slip = np.zeros((ny, nx), dtype=bool)
+    Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref,
+                                          xi, eta, phi, px, py, sx, sy, slip)
+    length = np.clip(x_lead - x_trail, 0.0, None)
+    dx = length / nx
+    Fn = float(np.sum(p * (dx * dy)[:, None]))
+    f = None
+    if fields:
+        empty = length <= 0
+        slip[empty] = False
+        x = strip_cell_centres(x_lead, x_trail, nx)
+        x[empty] = (0.5 * (x_lead + x_trail))[empty, None]
+        f = FastsimFields(x=x, y=np.repeat(y[:, None], nx, 1),
+                          dx=dx, dy=dy, pressure=p, px=px, py=py, sx=sx, sy=sy, slip=slip, mu=mu_s)
+    return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz), Fn=Fn,
+                       mu=scalar_or_array(np.asarray(mu, dtype=float)), method="fastsim",
+                       fields=f, info={"nx": nx, "ny": ny})
+
+
+# ---------------------------------------------------------------------------
+# the creep-force law
+# ---------------------------------------------------------------------------
+def _kalker_coefficients(aspect, nu):
+    from .linear import kalker_coefficients
+
+    C11, C22, C23, C33 = kalker_coefficients(aspect, nu)
+    return (np.asarray(C11, dtype=float), np.asarray(C22, dtype=float),
+            np.asarray(C23, dtype=float))
+
+
+class Fastsim(TangentialMethod):
+    """Kalker's FASTSIM on the Hertzian ellipse.
+
+    Options
+    -------
+    nx, ny : int, default 20, 20
+        Elements per strip and number of strips. Strips are uniform in y over
+        (−b, b); each strip's ``nx`` elements span its own length (Kalker 1982).
+        With the element-centred scheme 20×20 gives the forces within about
+        0.2 % of the converged simplified theory in the linear range and
+        ≈ 1 % in partial slip (see ``tests/convergence/test_fastsim_convergence.py``).
+    bound : {"parabolic", "elliptic"}, default "parabolic"
+        Traction bound: Kalker's parabolic pressure 2Fn/(πab)(1 − x²/a² − y²/b²)
+        (as in Kalker's FASTSIM and CONTACT) or the Hertzian (semi-elliptic)
+        pressure.
+    flexibility : {"three", "weighted"}, default "three"
+        Three flexibilities L1, L2, L3 (reproduces Kalker's linear theory for
+        each creepage alone) or Kalker's single weighted flexibility.
+    fields : bool or None, default None
+        Return the surface fields (:class:`FastsimFields`); ``None`` means
+        yes for a single case, no for a batch (forces-only fast path, all cases
+        in one numba call). For a batch with ``fields=True`` ``.fields`` is a
+        tuple with one :class:`FastsimFields` per case.
+
+    Notes
+    -----
+    Kalker's coefficients C11, C22, C23 come from
+    :func:`wheelrail.tangential.linear.kalker_coefficients` for a/b and the
+    combined Poisson's ratio. ``Mz`` is the spin moment about the patch centre.
+
+    Known properties of the variants: with three flexibilities the traction
+    in a slip element follows the elastic predictor, so at full slip under
+    combined ξ, η the force points along (C11 ξ, C22 η) rather than exactly
+    against (ξ, η) (a few degrees for usual a/b); the weighted flexibility
+    gives the Coulomb direction but does not reproduce the linear theory for
+    combined creepage. The spin moment reproduces neither C23 (for η) nor
+    C33 (for φ) of the linear theory. The slip in the fields is computed with
+    the weighted flexibility as ``L_ref`` (exact for ``"weighted"``, an
+    approximation for ``"three"``).
+    """
+
+    name = "fastsim"
+    references = (
+        "J.J. Kalker, A fast algorithm for the simplified theory of rolling contact, "
+        "Vehicle System Dynamics 11 (1982) 1-13.",
+        "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
+        "J. Piotrowski, H. Chollet, Wheel-rail contact models for vehicle system dynamics "
+        "including multi-point contact, Vehicle System Dynamics 43 (2005) 455-483.",
+    )
+    options = {"nx": 20, "ny": 20, "bound": "parabolic", "flexibility": "three", "fields": None}
+
+    def solve(self, contact, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
+              flexibility="three", fields=None):
+        nx = _check_int("nx", nx)
+        ny = _check_int("ny", ny)
+        _check_choice("bound", bound, _BOUNDS)
+        _check_choice("flexibility", flexibility, _FLEXIBILITIES)
+        if fields not in (None, True, False):
+            raise InputError(f"fields must be True, False or None, got {fields!r}")
+        single = np.shape(contact.a) == ()
+        want_fields = single if fields is None else bool(fields)
+
+        a, b, Fn = (np.atleast_1d(np.asarray(v, dtype=float))
+                    for v in (contact.a, contact.b, contact.load))
+        xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))
+        n = a.shape[0]
+        G = float(contact.G)
+        aspect = a / b
+        if np.all(aspect == aspect[0]):  # common for a batch of creepages on one contact
+            aspect = aspect[:1]
+        C11, C22, C23 = (np.broadcast_to(v, (n,)) for v in _kalker_coefficients(aspect, contact.nu))
+        L1, L2, L3 = flexibilities(a, b, G, C11, C22, C23)
+        if flexibility == "weighted":
+            L = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(a * b))
+            L1 = L2 = L3 = L
+        if bound == "parabolic":
+            peak = 2.0 * Fn / (np.pi * a * b)
+        else:
+            peak = 1.5 * Fn / (np.pi * a * b)
+
+        info = {"nx": nx, "ny": ny, "bound": bound, "flexibility": flexibility}
+        t = _strip_t(ny)
+        half = np.sqrt(1.0 - t * t)
+        strip_peak = _profile(bound, t)
+        if not want_fields:
+            c_ = np.ascontiguousarray
+            Fx, Fy, Mz = _k.fastsim_hertz_batch(
+                c_(a), c_(b), c_(peak), c_(mu), c_(L1, dtype=float), c_(L2, dtype=float),
+                c_(L3, dtype=float), c_(xi), c_(eta), c_(phi), t, half, strip_peak,
+                _profile(bound, 1.0 - (np.arange(nx) + 0.5) * (2.0 / nx)))
+            f = None
+        else:
+            Fx, Fy, Mz = (np.empty(n) for _ in range(3))
+            flist = []
+            for k in range(n):
+                ys, dys, xl, xt = hertz_strips(a[k], b[k], ny)
+                r = fastsim_strips(ys, dys, xl, xt, peak[k] * strip_peak, L1[k], L2[k], L3[k],
+                                   xi[k], eta[k], phi[k], mu[k], nx, profile=bound,
+                                   c=np.sqrt(a[k] * b[k]))
+                Fx[k], Fy[k], Mz[k] = r.Fx, r.Fy, r.Mz
+                flist.append(r.fields)
+            f = flist[0] if single else tuple(flist)
+            if single:
+                info["adhesion_fraction"] = f.adhesion_fraction
+        status = Status.CONVERGED
+        if single and f is not None and not np.any(f.adhesion):
+            status = Status.FULL_SLIP
+        out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
+        return CreepForces(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
+                           method=self.name, status=status, iterations=None, fields=f, info=info)
