@@ -1,0 +1,1 @@
+"""Command-line interface ``wheelrail``: one module per sub-command (see :mod:`.main`)."""

@@ -1,0 +1,60 @@
+"""Console output shared by the commands (rich tables)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+#: key -> (label, unit shown, factor from SI)
+ROWS = [
+    ("Fn", "normal force Fn", "N", 1.0),
+    ("a", "semi-axis a", "mm", 1e3),
+    ("b", "semi-axis b", "mm", 1e3),
+    ("p0", "max. Hertz pressure p0", "MPa", 1e-6),
+    ("p_max", "max. pressure", "MPa", 1e-6),
+    ("penetration", "penetration", "µm", 1e6),
+    ("area", "contact area", "mm²", 1e6),
+    ("adhesion_area", "adhesion area", "mm²", 1e6),
+    ("xi", "creepage ξ", "-", 1.0),
+    ("eta", "creepage η", "-", 1.0),
+    ("phi", "spin φ", "1/m", 1.0),
+    ("mu", "friction μ", "-", 1.0),
+    ("Fx", "Fx", "N", 1.0),
+    ("Fy", "Fy", "N", 1.0),
+    ("Mz", "Mz", "N·m", 1.0),
+    ("utilisation", "|Ft| / (μ Fn)", "-", 1.0),
+]
+
+
+def _fmt(v) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def summary_table(summary: dict, title: str):
+    """A rich Table of the main results of :func:`wheelrail.run_case`."""
+    from rich.table import Table
+
+    table = Table(title=title, title_justify="left")
+    table.add_column("quantity")
+    table.add_column("value", justify="right")
+    table.add_column("unit")
+    for key, label, unit, factor in ROWS:
+        v = summary.get(key)
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            table.add_row(label, _fmt(v * factor), unit)
+    it = summary.get("iterations")
+    table.add_row("method", f"{summary.get('normal_method', 'hertz')} + {summary.get('method')}", "")
+    table.add_row("status", f"{summary.get('status')}"
+                  + (f" ({it} iterations)" if it is not None else ""), "")
+    return table
+
+
+def write_json(data: dict, path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", encoding="utf-8") as fh:
+        json.dump(data, fh, indent=2)
+        fh.write("\n")
+    return path

@@ -1,0 +1,245 @@
+"""``wheelrail demo``: run the built-in case with every available method and write figures.
+
+The demo is a list of steps, :data:`STEPS`. A step is a function
+``step(ctx: DemoContext) -> str | None`` that computes something, stores it in
+``ctx.results`` (JSON-ready, SI units), writes files with :meth:`DemoContext.file`
+and returns a one-line note for the console. A step whose module is not
+installed raises ``ImportError`` and is reported as skipped; the demo goes on.
+To add a part (a geometry contact table, a boundary-element solution, ...)
+write a step function and append ``Step("name", "title", function)`` to
+:data:`STEPS`. Keep every step fast: the whole demo must take < 30 s.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Callable
+
+HELP = "run the built-in example with all available methods; write results and figures"
+
+
+@dataclass
+class DemoContext:
+    """What the steps share: output directory, console, the case and the results."""
+
+    out: Path
+    console: object
+    case: object
+    results: dict = field(default_factory=dict)
+    files: list = field(default_factory=list)
+
+    def file(self, name: str, description: str) -> Path:
+        """Path of an output file in :attr:`out`, recorded for the final listing."""
+        path = self.out / name
+        self.files.append((path, description))
+        return path
+
+
+@dataclass(frozen=True)
+class Step:
+    name: str
+    title: str
+    run: Callable[[DemoContext], "str | None"]
+
+
+# --------------------------------------------------------------------------- steps
+def step_case(ctx: DemoContext):
+    """The built-in case as a case file, to edit and run with ``wheelrail solve``."""
+    path = ctx.file("case.toml", "the built-in case (wheelrail solve case.toml)")
+    path.write_text(ctx.case.to_toml(), encoding="utf-8")
+    return f"run it yourself: wheelrail solve {path} --plot fields.png"
+
+
+def step_hertz(ctx: DemoContext):
+    """Hertz solution of the built-in case and a table against the load."""
+    import csv
+
+    import numpy as np
+
+    from ..normal.hertz import hertz
+    from ..plotting import pressure_map
+
+    c = ctx.case.hertz_contact
+    ctx.results["case"] = {"material": {"E": ctx.case.materials.wheel.E,
+                                        "nu": ctx.case.materials.wheel.nu},
+                           "contact": ctx.case.contact.to_dict(), "mu": ctx.case.mu,
+                           "creepage": dict(zip(("xi", "eta", "phi"), ctx.case.creepage))}
+    ctx.results["hertz"] = c.to_dict()
+    loads = np.linspace(2500.0, 20000.0, 8)
+    batch = hertz(loads, c.A, c.B, ctx.case.materials)
+    with open(ctx.file("hertz_table.csv", "Hertz a, b, p0, δ against the load"), "w",
+              newline="", encoding="utf-8") as fh:
+        w = csv.writer(fh)
+        w.writerow(["load_N", "a_m", "b_m", "p0_Pa", "penetration_m", "area_m2"])
+        for row in zip(batch.load, batch.a, batch.b, batch.p0, batch.penetration, batch.area):
+            w.writerow([f"{v:.9g}" for v in row])
+    pressure_map(c, path=ctx.file("hertz_pressure.png", "Hertz pressure on the contact ellipse"),
+                 title="Hertz pressure, built-in case")
+    return f"a = {c.a * 1e3:.3f} mm, b = {c.b * 1e3:.3f} mm, p0 = {c.p0 / 1e6:.0f} MPa"
+
+
+#: Creepage combinations of the force table: (label, (ξ, η, φ [1/m])).
+CREEPAGES = [
+    ("longitudinal", (-1.0e-3, 0.0, 0.0)),
+    ("lateral", (0.0, 1.0e-3, 0.0)),
+    ("spin", (0.0, 0.0, 0.5)),
+    ("combined", (-1.0e-3, 5.0e-4, 0.3)),
+]
+
+
+def step_creep_forces(ctx: DemoContext):
+    """Every available creep-force method at a few creepage combinations."""
+    from ..api import available_methods, creep_forces
+    from ..errors import InputError
+
+    table, skipped = {}, {}
+    for m in available_methods():
+        if m == "exact":
+            continue  # the exact theory is slow; the demo keeps to the fast laws
+        rows = {}
+        for label, cr in CREEPAGES:
+            try:
+                r = creep_forces(ctx.case.hertz_contact, cr, ctx.case.mu, method=m)
+            except ImportError as exc:
+                skipped[m] = f"not available ({exc})"
+                break
+            except InputError as exc:  # e.g. Carter's theory: longitudinal creepage only
+                rows[label] = {"xi": cr[0], "eta": cr[1], "phi": cr[2],
+                               "error": " ".join(str(exc).split())}
+                continue
+            rows[label] = {"xi": cr[0], "eta": cr[1], "phi": cr[2], "Fx": float(r.Fx),
+                           "Fy": float(r.Fy), "Mz": float(r.Mz)}
+        if m not in skipped:
+            table[m] = rows
+    ctx.results["creep_forces"] = table
+    ctx.results["methods_skipped"] = skipped
+    if not table:
+        raise ImportError("no creep-force method is available")
+    from rich.table import Table
+
+    t = Table(title=f"creep forces [N], μ = {ctx.case.mu:g}", title_justify="left")
+    t.add_column("method")
+    for label, cr in CREEPAGES:
+        t.add_column(f"{label}\nξ={cr[0]:g} η={cr[1]:g} φ={cr[2]:g}", justify="right")
+    for m, rows in table.items():
+        t.add_row(m, *(f"Fx {round(rows[lb]['Fx'])}\nFy {round(rows[lb]['Fy'])}" if "Fx" in rows[lb]
+                       else "n/a" for lb, _ in CREEPAGES))
+    ctx.console.print(t)
+    return f"{len(table)} methods" + (f", skipped {', '.join(skipped)}" if skipped else "")
+
+
+def step_creep_curves(ctx: DemoContext):
+    """Creep curves in ξ and η for every available fast method (two panels)."""
+    import numpy as np
+
+    from ..api import available_methods
+    from ..plotting import creep_curves, new_figure
+    from ..plotting._common import finish
+    from .creep_curve import normalised, run_sweep_with_progress
+
+    methods = [m for m in available_methods() if m != "exact"]
+    fig, axes = new_figure(1, 2, size=(12.0, 4.6))
+    case = ctx.case.replace(creepage=(0.0, 0.0, 0.0))
+    curves, notes = {}, []
+    for ax, comp in zip(axes, ("xi", "eta")):
+        values = np.linspace(0.0, 0.01, 51)
+        forces, skipped = run_sweep_with_progress(ctx.console, case, comp, values, methods,
+                                                  warn=False)
+        notes += [f"{m} not in the {comp} panel" for m, why in skipped.items()
+                  if not why.startswith("not available")]
+        if not forces:
+            raise ImportError("no creep-force method is available")
+        norm = normalised(forces, comp)
+        creep_curves(values, norm, component=comp, ax=ax)
+        curves[comp] = {"creepage": values.tolist(), **{m: v.tolist() for m, v in norm.items()}}
+    c = case.hertz_contact
+    finish(fig, ctx.file("creep_curves.png", "creep curves, ξ and η"),
+           title=f"built-in case: Fn = {c.load:.0f} N, μ = {case.mu:g} (force / μFn)")
+    ctx.results["creep_curves"] = curves
+    return ("methods: " + ", ".join(m for m in curves["xi"] if m != "creepage")
+            + (f" ({'; '.join(notes)})" if notes else ""))
+
+
+def step_fastsim_fields(ctx: DemoContext):
+    """FASTSIM traction and adhesion/slip areas of the built-in case."""
+    from ..casefile import solve_case
+    from .solve import plot_result
+
+    case = ctx.case.replace(tangential="fastsim", creepage=(-1.0e-3, 5.0e-4, 0.3))
+    result = solve_case(case)
+    if result.forces.fields is None:
+        raise ImportError("FASTSIM returned no fields")
+    what = plot_result(result, ctx.file("fastsim_fields.png", "FASTSIM traction and slip"))
+    ctx.results["fastsim"] = result.summary
+    return f"{what}; Fx = {result.summary['Fx']:.0f} N, Fy = {result.summary['Fy']:.0f} N"
+
+
+#: The demo, in order. Append a Step to add a part.
+STEPS = [
+    Step("case", "built-in case file", step_case),
+    Step("hertz", "Hertz contact of the built-in case", step_hertz),
+    Step("creep-forces", "creep forces, all fast methods", step_creep_forces),
+    Step("creep-curves", "creep curves in ξ and η", step_creep_curves),
+    Step("fastsim-fields", "FASTSIM traction field", step_fastsim_fields),
+]
+
+
+# --------------------------------------------------------------------------- command
+def add_arguments(p) -> None:
+    p.add_argument("--out", metavar="DIR", default="wheelrail-demo",
+                   help="output directory (default ./wheelrail-demo)")
+    p.add_argument("--steps", default=None,
+                   help="comma-separated subset of steps: " + ", ".join(s.name for s in STEPS))
+
+
+def run(args, console) -> int:
+    import time
+
+    from ..casefile import DEFAULT_CASE, case_from_dict
+    from ..errors import InputError, WheelrailError
+    from ._output import write_json
+
+    steps = STEPS
+    if args.steps:
+        wanted = [s.strip() for s in args.steps.split(",") if s.strip()]
+        names = [s.name for s in STEPS]
+        bad = [w for w in wanted if w not in names]
+        if bad:
+            raise InputError(f"unknown demo step(s) {', '.join(bad)}; steps: {', '.join(names)}")
+        steps = [s for s in STEPS if s.name in wanted]
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    ctx = DemoContext(out=out, console=console,
+                      case=case_from_dict(DEFAULT_CASE, source="<built-in case>"))
+    console.print(f"[bold]wheelrail demo[/bold] → {out.resolve()}")
+    failed = []
+    status = {}
+    for step in steps:
+        t0 = time.perf_counter()
+        try:
+            note = step.run(ctx)
+        except ImportError as exc:
+            status[step.name] = "skipped"
+            console.print(f"[yellow]- {step.title}: skipped ({exc})[/yellow]")
+            continue
+        except WheelrailError as exc:
+            status[step.name] = "failed"
+            failed.append(step.name)
+            console.print(f"[red]✗ {step.title}: {exc}[/red]")
+            continue
+        status[step.name] = "ok"
+        dt = time.perf_counter() - t0
+        console.print(f"[green]✓[/green] {step.title} ({dt:.1f} s)" + (f": {note}" if note else ""))
+    ctx.results["steps"] = status
+    write_json(ctx.results, ctx.file("results.json", "all numbers of the demo (SI units)"))
+    from rich.table import Table
+
+    t = Table(title="files written", title_justify="left")
+    t.add_column("file")
+    t.add_column("content")
+    for path, desc in ctx.files:
+        if path.exists():
+            t.add_row(str(path), desc)
+    console.print(t)
+    return 1 if failed else 0

@@ -1,0 +1,120 @@
+"""Entry point of the ``wheelrail`` command.
+
+Adding a sub-command
+--------------------
+Write a module ``wheelrail/cli/<name>.py`` that defines
+
+* ``HELP`` — a one-line description shown by ``wheelrail --help``;
+* ``add_arguments(parser)`` — adds its arguments to an ``argparse`` parser;
+* ``run(args, console) -> int`` — does the work, prints with the ``rich``
+  ``console`` and returns the exit code (0 on success).
+
+and add one line ``("<command-name>", "wheelrail.cli.<name>")`` to
+:data:`COMMANDS` below. Keep heavy imports (numpy solvers, matplotlib) inside
+``run`` so that ``wheelrail --help`` stays fast.
+
+Errors
+------
+A command raises exceptions; :func:`main` turns them into one line on stderr,
+``wheelrail: error: ...``, and the exit code 2 for bad input
+(:class:`~wheelrail.errors.InputError`, :class:`~wheelrail.errors.CaseFileError`,
+:class:`~wheelrail.errors.ProfileError`, a missing file, bad arguments) or 1
+for anything else. ``--debug`` shows the traceback instead.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+
+#: Sub-commands: (name, module). One line per command.
+COMMANDS = [
+    ("solve", "wheelrail.cli.solve"),
+    ("creep-curve", "wheelrail.cli.creep_curve"),
+    ("demo", "wheelrail.cli.demo"),
+]
+
+EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
+
+
+class _UsageError(Exception):
+    """Bad command-line arguments (exit code 2)."""
+
+
+class _Parser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are one line and do not exit the interpreter."""
+
+    def error(self, message):
+        raise _UsageError(f"{message} (see '{self.prog} --help')")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The ``wheelrail`` parser with every sub-command of :data:`COMMANDS`."""
+    from .. import __version__
+
+    parser = _Parser(prog="wheelrail",
+                     description="Wheel-rail contact mechanics: normal contact, creep forces, "
+                                 "case files (SI units, Kalker's sign convention).")
+    parser.add_argument("--version", action="version", version=f"wheelrail {__version__}")
+    parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    for name, module_name in COMMANDS:
+        module = importlib.import_module(module_name)
+        p = sub.add_parser(name, help=module.HELP, description=module.HELP)
+        p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
+                       help="show tracebacks on errors")
+        module.add_arguments(p)
+        p.set_defaults(_run=module.run)
+    return parser
+
+
+def _exit_code(exc: BaseException) -> int:
+    from ..errors import CaseFileError, InputError, ProfileError
+
+    if isinstance(exc, (_UsageError, InputError, CaseFileError, ProfileError, FileNotFoundError,
+                        IsADirectoryError)):
+        return EXIT_USAGE
+    return EXIT_ERROR
+
+
+def _message(exc: BaseException) -> str:
+    from ..errors import WheelrailError
+
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    if isinstance(exc, (WheelrailError, _UsageError)):
+        return text
+    if isinstance(exc, OSError) and exc.filename is not None:
+        return f"{exc.strerror or text}: {exc.filename}"
+    return f"{type(exc).__name__}: {text} (run with --debug for the traceback)"
+
+
+def main(argv=None) -> int:
+    """Run ``wheelrail`` with ``argv`` (default ``sys.argv[1:]``) and return the exit code."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    debug = "--debug" in argv
+    try:
+        parser = build_parser()
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as exc:  # --help, --version
+            return int(exc.code or 0)
+        if args.command is None:
+            parser.print_help()
+            return EXIT_USAGE
+        from rich.console import Console
+
+        console = Console(highlight=False)
+        return int(args._run(args, console) or 0)
+    except KeyboardInterrupt:
+        print("wheelrail: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # noqa: BLE001 - the CLI boundary
+        if debug:
+            raise
+        print(f"wheelrail: error: {_message(exc)}", file=sys.stderr)
+        return _exit_code(exc)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())
