@@ -1,0 +1,193 @@
+"""Helpers shared by the profile readers (private).
+
+Every reader parses text with ``float()`` only — nothing from a file is ever
+evaluated or executed — and reports problems as :class:`ProfileError` naming
+the file and the line.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from ...errors import ProfileError
+from ..core import KINDS, MAX_PLAUSIBLE_WIDTH, Profile, ProfileWarning
+
+#: Files larger than this are refused (a profile has at most a few 10^4 points).
+MAX_FILE_BYTES = 20 * 1024 * 1024
+#: Largest absolute number accepted in a profile file (any length unit).
+MAX_ABS_VALUE = 1e7
+#: Default minimum distance between consecutive points [m]; closer points are merged.
+POINT_DIST_MIN = 1e-7
+#: Readers refuse a contour when more than this fraction of the points must be dropped
+#: to make it single-valued.
+MAX_DROP_FRACTION = 0.5
+
+
+def read_lines(path) -> tuple[str, list[str]]:
+    """Return (display name, lines) of a text file; undecodable bytes are replaced."""
+    p = Path(os.fspath(path))
+    name = str(p)
+    try:
+        size = p.stat().st_size
+    except OSError as exc:
+        raise ProfileError(f"{name}: cannot read profile file ({exc.strerror or exc})") from exc
+    if size > MAX_FILE_BYTES:
+        raise ProfileError(f"{name}: file of {size} bytes is too large for a profile")
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise ProfileError(f"{name}: cannot read profile file ({exc.strerror or exc})") from exc
+    if b"\x00" in data[:4096]:
+        raise ProfileError(f"{name}: binary file (NUL bytes), not a profile text file")
+    text = data.decode("utf-8", errors="replace")
+    return name, text.splitlines()
+
+
+def number(token: str, where: str, what: str = "value") -> float:
+    """Parse one finite float (``float()`` only) or raise ProfileError at ``where``."""
+    tok = token.strip()
+    try:
+        val = float(tok)
+    except ValueError:
+        raise ProfileError(f"{where}: {what} {tok[:40]!r} is not a number") from None
+    if not math.isfinite(val):
+        raise ProfileError(f"{where}: {what} {tok[:40]!r} is not finite")
+    if abs(val) > MAX_ABS_VALUE:
+        raise ProfileError(f"{where}: {what} {tok[:40]!r} is implausibly large for a profile")
+    return val
+
+
+def resolve_kind(kind, guessed, name: str) -> str:
+    """Explicit kind > guessed kind; raise if neither is known."""
+    if kind is not None:
+        if kind not in KINDS:
+            raise ProfileError(f"kind must be one of {KINDS} or None, got {kind!r}")
+        return kind
+    if guessed in KINDS:
+        return guessed
+    raise ProfileError(f"{name}: cannot tell whether this is a wheel or a rail profile; "
+                       f"pass kind='wheel' or kind='rail'")
+
+
+def kind_from_extension(path) -> str | None:
+    ext = Path(os.fspath(path)).suffix.lower()
+    return {".prw": "wheel", ".whl": "wheel", ".whe": "wheel",
+            ".prr": "rail", ".ban": "rail", ".rai": "rail"}.get(ext)
+
+
+def chord_deviation_is_z_down(y: np.ndarray, z: np.ndarray, kind: str) -> bool:
+    """Guess whether ``z`` points downward, from the shape of the profile.
+
+    A rail head (z up) lies *above* the chord through its end points (the
+    crown); a wheel (z up) has its largest excursion *below* the chord (the
+    flange tip). The test compares the largest positive and negative
+    deviations from that chord.
+    """
+    chord = z[0] + (z[-1] - z[0]) * (y - y[0]) / (y[-1] - y[0]) if y[-1] != y[0] else z[0]
+    d = z - chord
+    up, down = float(np.max(d)), float(-np.min(d))
+    if kind == "rail":
+        return down > up
+    return up > down
+
+
+def single_valued(y: np.ndarray, z: np.ndarray, name: str, *, point_dist_min: float):
+    """Keep the part of a contour that is single-valued as z(y).
+
+    Points are taken in file order after orienting the contour so that ``y``
+    increases overall (``y[-1] > y[0]``); points closer than
+    ``point_dist_min`` to the previous kept point are merged, and a point is
+    kept only if its ``y`` exceeds that of the last kept point. This removes
+    closed-contour parts, vertical faces (flange back, rim face), overhangs
+    and foldbacks (the contour seen from the contact side is kept). More
+    than ``MAX_DROP_FRACTION`` dropped points is an error.
+
+    Returns
+    -------
+    y, z : ndarray
+    info : dict
+        ``n_close`` merged near-duplicates, ``n_foldback`` dropped points.
+    """
+    n = y.size
+    if n < 2:
+        raise ProfileError(f"{name}: needs at least 4 profile points, found {n}")
+    if y[-1] < y[0]:
+        y, z = y[::-1], z[::-1]
+    keep = np.zeros(n, dtype=bool)
+    keep[0] = True
+    ly, lz = y[0], z[0]
+    n_close = n_back = 0
+    for i in range(1, n):
+        if math.hypot(y[i] - ly, z[i] - lz) < point_dist_min:
+            n_close += 1
+            continue
+        if y[i] <= ly:
+            n_back += 1
+            continue
+        keep[i] = True
+        ly, lz = y[i], z[i]
+    if n_back > MAX_DROP_FRACTION * n:
+        raise ProfileError(
+            f"{name}: the contour is not single-valued as z(y) — {n_back} of {n} points would "
+            f"have to be dropped (closed contour or zig-zag data?); pass only the running "
+            f"surface (tread/flange or rail head)")
+    return y[keep], z[keep], {"n_close": n_close, "n_foldback": n_back}
+
+
+def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
+                 point_dist_min=POINT_DIST_MIN, mirror_y=False, wheel_flange_check=True,
+                 tape_circle=None):
+    """Common tail of all readers: orientation, single-valued part, origin, Profile.
+
+    Parameters
+    ----------
+    y_m, z_up_m : ndarray
+        Coordinates already converted to metres and to z up.
+    mirror_y : bool
+        Mirror y (after which y must point to the field side).
+    wheel_flange_check : bool
+        For wheels, mirror automatically when the flange tip lies on the +y
+        side (the convention puts the flange at negative y).
+    tape_circle : float or None
+        y [m] of the tape circle in the (oriented) file frame: the origin is
+        moved there and z shifted so that z(0) = 0.
+    """
+    y = np.asarray(y_m, dtype=float)
+    z = np.asarray(z_up_m, dtype=float)
+    meta = dict(meta)
+    meta.update(source=source, format=fmt)
+    if y.size and (np.ptp(y) > MAX_PLAUSIBLE_WIDTH or np.ptp(z) > MAX_PLAUSIBLE_WIDTH):
+        raise ProfileError(f"{source}: profile of {np.ptp(y):.4g} m x {np.ptp(z):.4g} m is "
+                           f"implausible — wrong length unit? (give units='mm' or 'm')")
+    if mirror_y:
+        y = -y
+    y, z, info = single_valued(y, z, source, point_dist_min=point_dist_min)
+    meta.update(info)
+    if info["n_foldback"]:
+        warnings.warn(f"{source}: dropped {info['n_foldback']} point(s) to keep the "
+                      f"single-valued part z(y) (vertical faces, overhangs or foldbacks)",
+                      ProfileWarning, stacklevel=4)
+    if kind == "wheel" and wheel_flange_check and y.size >= 4 and np.ptp(y) > 0:
+        i = int(np.argmin(z))
+        frac = (y[i] - y[0]) / (y[-1] - y[0])
+        depth = float(np.median(z) - z[i])
+        if frac > 0.6 and depth > 0.010:  # flange found on the +y side: mirror
+            y, z = -y[::-1], z[::-1]
+            meta["auto_mirrored"] = True
+    if tape_circle is not None:
+        yt = float(tape_circle)
+        if not (y[0] <= yt <= y[-1]):
+            raise ProfileError(f"{source}: tape circle y = {yt} m lies outside the profile "
+                               f"[{y[0]:.4g}, {y[-1]:.4g}] m")
+        zt = float(np.interp(yt, y, z))
+        y, z = y - yt, z - zt
+        meta["origin_shift"] = (yt, zt)
+    try:
+        return Profile(y, z, kind=kind, name=name, smoothing=smoothing, meta=meta)
+    except ProfileError as exc:
+        raise ProfileError(f"{source}: {exc}") from None
