@@ -1,0 +1,135 @@
+"""Uniform rectangular grid of piecewise-constant boundary elements.
+
+The contact plane is discretised into ``nx × ny`` equal rectangles of size
+``dx × dy``. Every field on the grid (pressure, traction, gap, displacement)
+is an array of shape ``(nx, ny)`` holding the value at the element centre;
+axis 0 is ``x`` (rolling direction), axis 1 is ``y`` (lateral), i.e. the
+``indexing="ij"`` layout of :func:`numpy.meshgrid`. All lengths in m.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from .._validation import as_float_array, positive
+from ..errors import InputError
+
+__all__ = ["Grid"]
+
+
+def _count(name, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise InputError(f"{name} must be an integer >= 1, got {value!r}")
+    if value < 1:
+        raise InputError(f"{name} must be >= 1, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True)
+class Grid:
+    """A uniform grid of ``nx × ny`` rectangular elements (frozen).
+
+    Parameters
+    ----------
+    x0, y0 : float
+        Centre of element (0, 0) [m].
+    dx, dy : float
+        Element size along x and y [m], > 0.
+    nx, ny : int
+        Number of elements along x and y, >= 1.
+
+    Examples
+    --------
+    >>> g = Grid.from_bounds(-1e-3, 1e-3, -2e-3, 2e-3, nx=4, ny=8)
+    >>> g.x
+    array([-0.00075, -0.00025,  0.00025,  0.00075])
+    >>> g.X.shape
+    (4, 8)
+    """
+
+    x0: float
+    y0: float
+    dx: float
+    dy: float
+    nx: int
+    ny: int
+
+    def __post_init__(self):
+        object.__setattr__(self, "x0", float(as_float_array("x0", self.x0)))
+        object.__setattr__(self, "y0", float(as_float_array("y0", self.y0)))
+        object.__setattr__(self, "dx", float(positive("dx", self.dx)))
+        object.__setattr__(self, "dy", float(positive("dy", self.dy)))
+        object.__setattr__(self, "nx", _count("nx", self.nx))
+        object.__setattr__(self, "ny", _count("ny", self.ny))
+
+    @classmethod
+    def from_bounds(cls, xmin: float, xmax: float, ymin: float, ymax: float,
+                    nx: int, ny: int) -> "Grid":
+        """Grid covering the rectangle [xmin, xmax] × [ymin, ymax] (element edges) [m]."""
+        nx, ny = _count("nx", nx), _count("ny", ny)
+        xmin, xmax, ymin, ymax = (float(as_float_array(n, v)) for n, v in
+                                  (("xmin", xmin), ("xmax", xmax), ("ymin", ymin), ("ymax", ymax)))
+        if not xmax > xmin:
+            raise InputError(f"xmax must be > xmin, got xmin={xmin!r}, xmax={xmax!r}")
+        if not ymax > ymin:
+            raise InputError(f"ymax must be > ymin, got ymin={ymin!r}, ymax={ymax!r}")
+        dx = (xmax - xmin) / nx
+        dy = (ymax - ymin) / ny
+        return cls(xmin + 0.5 * dx, ymin + 0.5 * dy, dx, dy, nx, ny)
+
+    # -- coordinates -------------------------------------------------------
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(nx, ny)``."""
+        return (self.nx, self.ny)
+
+    @property
+    def size(self) -> int:
+        """Number of elements ``nx * ny``."""
+        return self.nx * self.ny
+
+    @cached_property
+    def x(self) -> np.ndarray:
+        """Element-centre x coordinates, shape (nx,) [m]."""
+        return self.x0 + self.dx * np.arange(self.nx)
+
+    @cached_property
+    def y(self) -> np.ndarray:
+        """Element-centre y coordinates, shape (ny,) [m]."""
+        return self.y0 + self.dy * np.arange(self.ny)
+
+    @property
+    def X(self) -> np.ndarray:
+        """Element-centre x coordinates, shape (nx, ny) [m] (``indexing="ij"``)."""
+        return np.broadcast_to(self.x[:, None], self.shape)
+
+    @property
+    def Y(self) -> np.ndarray:
+        """Element-centre y coordinates, shape (nx, ny) [m] (``indexing="ij"``)."""
+        return np.broadcast_to(self.y[None, :], self.shape)
+
+    @property
+    def element_area(self) -> float:
+        """Area of one element dx·dy [m²]."""
+        return self.dx * self.dy
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float]:
+        """Outer element edges ``(xmin, xmax, ymin, ymax)`` [m]."""
+        return (self.x0 - 0.5 * self.dx, self.x0 + (self.nx - 0.5) * self.dx,
+                self.y0 - 0.5 * self.dy, self.y0 + (self.ny - 0.5) * self.dy)
+
+    def check_field(self, name: str, field) -> np.ndarray:
+        """Return ``field`` as a finite float array of shape (nx, ny) or raise InputError."""
+        arr = as_float_array(name, field)
+        if arr.shape != self.shape:
+            raise InputError(f"{name} must have the grid shape {self.shape}, got {arr.shape}")
+        return arr
+
+    def refined(self, factor: int = 2) -> "Grid":
+        """The same window with ``factor`` times more elements along each axis."""
+        factor = _count("factor", factor)
+        return Grid.from_bounds(*self.bounds, self.nx * factor, self.ny * factor)

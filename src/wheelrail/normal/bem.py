@@ -1,0 +1,489 @@
+"""The normal contact problem of two elastic half-spaces on a grid (BEM).
+
+Unknown: the pressure ``p`` (nx, ny) [Pa] on a uniform grid of
+piecewise-constant elements. With ``h0`` the undeformed separation [m],
+``δ`` the approach (penetration) [m] and ``u_n = A_nn * p`` the gap-opening
+normal displacement difference of the two bodies (sign conventions of
+:mod:`wheelrail.halfspace.influence`), the deformed gap is::
+
+    e = h0 − δ + u_n
+
+and the contact conditions (Signorini) are ``p ≥ 0, e ≥ 0, p·e = 0`` on every
+element, with either ``δ`` prescribed or the load ``Fn = Σ p dA`` prescribed
+(then ``δ`` is an unknown). The problem is the minimisation of the
+complementary energy ½ pᵀA p + pᵀ(h0 − δ) over ``p ≥ 0`` (Kalker 1990 §5;
+Kalker's NORM), solved here by the bound-constrained conjugate-gradient method
+of Polonsky & Keer, which handles the load constraint directly and uses the
+FFT influence operator (one convolution for the search direction per
+iteration, plus one for the displacement when the active set changes).
+
+Tangential tractions are not fed back into the normal problem (Johnson's
+process): exact for quasi-identical materials (``K = 0``), an approximation
+otherwise.
+
+References
+----------
+.. [1] I.A. Polonsky, L.M. Keer, A numerical method for solving rough contact
+   problems based on the multi-level multi-summation and conjugate gradient
+   techniques, Wear 231 (1999) 206–219, §3.
+.. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+   Kluwer 1990, §5.
+.. [3] K.L. Johnson, *Contact Mechanics*, CUP 1985, §3.4 (Hertz reference).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validation import as_float_array, positive
+from ..errors import ConvergenceError, InputError, NoContactError
+from ..halfspace.fft import InfluenceOperator
+from ..halfspace.grid import Grid
+from ..materials import MaterialPair, as_material_pair
+from ..results import Status, to_jsonable
+
+__all__ = ["NormalSolution", "ContactTruncatedWarning", "solve_normal", "hertz_grid",
+           "contact_outline", "polonsky_keer"]
+
+
+class ContactTruncatedWarning(UserWarning):
+    """The contact area reaches the edge of the grid: the window is too small."""
+
+
+# --------------------------------------------------------------------------- result
+@dataclass(frozen=True)
+class NormalSolution:
+    """Solution of the normal contact problem on a grid (frozen).
+
+    Attributes
+    ----------
+    grid : Grid
+    pressure : ndarray, shape (nx, ny)
+        Contact pressure [Pa], ≥ 0, compression positive.
+    gap : ndarray, shape (nx, ny)
+        Deformed gap e = h0 − δ + u_n [m] (≈ 0 in contact, > 0 outside).
+    displacement : ndarray, shape (nx, ny)
+        Gap-opening normal displacement difference u_n [m].
+    contact : ndarray of bool, shape (nx, ny)
+        Elements in contact (p > 0).
+    Fn : float
+        Normal force Σ p dA [N].
+    p_max : float
+        Largest element pressure [Pa].
+    penetration : float
+        Approach δ of the bodies [m] (prescribed, or found for a prescribed load).
+    area : float
+        Contact area (number of contact elements × dA) [m²].
+    iterations : int
+    status : Status
+        ``CONVERGED`` or ``NOT_CONVERGED`` (only with ``on_fail="status"``).
+    residual : float
+        Complementarity residual max(max|e| in contact, max(−e) outside) / max(u_n) [-].
+    truncated : bool
+        True if the contact reaches the outer row/column of the grid (the result
+        is then not the solution of the unbounded problem).
+    materials : MaterialPair
+    info : dict
+        Extra scalars (``change``: last relative pressure change).
+    """
+
+    grid: Grid
+    pressure: np.ndarray
+    gap: np.ndarray
+    displacement: np.ndarray
+    contact: np.ndarray
+    Fn: float
+    p_max: float
+    penetration: float
+    area: float
+    iterations: int
+    status: Status
+    residual: float
+    truncated: bool
+    materials: MaterialPair
+    info: dict = field(default_factory=dict)
+
+    @property
+    def centroid(self) -> tuple[float, float]:
+        """Centre of pressure (x, y) [m]."""
+        w = self.pressure.sum()
+        return (float((self.pressure * self.grid.X).sum() / w),
+                float((self.pressure * self.grid.Y).sum() / w))
+
+    def outline(self) -> list[np.ndarray]:
+        """Outline(s) of the contact area, see :func:`contact_outline`."""
+        return contact_outline(self.grid, self.contact)
+
+    def to_dict(self) -> dict:
+        """JSON-friendly scalars (fields left out)."""
+        out = {k: getattr(self, k) for k in ("Fn", "p_max", "penetration", "area", "iterations",
+                                             "status", "residual", "truncated")}
+        out["grid"] = {"x0": self.grid.x0, "y0": self.grid.y0, "dx": self.grid.dx,
+                       "dy": self.grid.dy, "nx": self.grid.nx, "ny": self.grid.ny}
+        out.update(self.info)
+        return to_jsonable(out)
+
+
+# --------------------------------------------------------------------------- outline
+# crossing edges of a dual cell with corners c0=(i,j), c1=(i+1,j), c2=(i+1,j+1), c3=(i,j+1);
+# edge midpoints in doubled index coordinates
+def _edge_points(i, j):
+    return ((2 * i + 1, 2 * j), (2 * i + 2, 2 * j + 1), (2 * i + 1, 2 * j + 2), (2 * i, 2 * j + 1))
+
+
+def contact_outline(grid: Grid, mask) -> list[np.ndarray]:
+    """Closed outline polygon(s) of a set of elements (marching squares, level ½).
+
+    The outline passes through the midpoints between contact and non-contact
+    element centres (resolution one element). Diagonal neighbours are treated as
+    separate regions. Contacts touching the grid edge are closed along the edge.
+
+    Parameters
+    ----------
+    grid : Grid
+    mask : array_like of bool, shape (nx, ny)
+
+    Returns
+    -------
+    list of ndarray, each shape (m, 2)
+        Closed polygons (first point repeated last) of (x, y) vertices [m],
+        largest first.
+    """
+    m = np.asarray(mask, dtype=bool)
+    if m.shape != grid.shape:
+        raise InputError(f"mask must have the grid shape {grid.shape}, got {m.shape}")
+    pad = np.zeros((m.shape[0] + 2, m.shape[1] + 2), dtype=bool)
+    pad[1:-1, 1:-1] = m
+    c0, c1 = pad[:-1, :-1], pad[1:, :-1]
+    c2, c3 = pad[1:, 1:], pad[:-1, 1:]
+    mixed = ~((c0 == c1) & (c1 == c2) & (c2 == c3))
+    neighbours: dict = {}
+
+    def link(a, b):
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+
+    for i, j in zip(*np.nonzero(mixed)):
+        corners = (c0[i, j], c1[i, j], c2[i, j], c3[i, j])
+        pts = _edge_points(i, j)
+        cross = [k for k in range(4) if corners[k] != corners[(k + 1) % 4]]
+        if len(cross) == 2:
+            link(pts[cross[0]], pts[cross[1]])
+        else:  # saddle: cut off the inside corners separately
+            if corners[0]:
+                link(pts[0], pts[3])
+                link(pts[1], pts[2])
+            else:
+                link(pts[0], pts[1])
+                link(pts[2], pts[3])
+    polygons = []
+    unvisited = set(neighbours)
+    while unvisited:
+        start = unvisited.pop()
+        ring = [start]
+        prev, cur = None, start
+        while True:
+            nxt = [q for q in neighbours[cur] if q != prev]
+            nxt = nxt[0] if nxt else neighbours[cur][0]
+            if nxt == start:
+                break
+            ring.append(nxt)
+            unvisited.discard(nxt)
+            prev, cur = cur, nxt
+        ring.append(start)
+        idx = np.asarray(ring, dtype=float) / 2.0 - 1.0     # element-index coordinates
+        xy = np.column_stack([grid.x0 + idx[:, 0] * grid.dx, grid.y0 + idx[:, 1] * grid.dy])
+        polygons.append(xy)
+
+    def _area(poly):
+        x, y = poly[:, 0], poly[:, 1]
+        return abs(np.dot(x[:-1], y[1:]) - np.dot(x[1:], y[:-1])) / 2
+
+    polygons.sort(key=_area, reverse=True)
+    return polygons
+
+
+# --------------------------------------------------------------------------- kernel
+def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol=1e-8,
+                  maxiter=1000):
+    """Bound-constrained conjugate gradients for the discrete Signorini problem (pure kernel).
+
+    Parameters
+    ----------
+    apply : callable
+        ``apply(p) -> u_n``, the symmetric positive-definite influence operator
+        (nx, ny) → (nx, ny) [Pa → m].
+    h : ndarray, shape (nx, ny)
+        Undeformed separation h0 [m].
+    dA : float
+        Element area [m²].
+    load, penetration : float
+        Exactly one: total load [N] > 0 or approach δ [m].
+    p_init : ndarray, optional
+        Initial pressure (≥ 0, not all zero); default: proportional to the rigid
+        interference.
+    tol : float
+        Stop when Σ|p_k − p_{k−1}| / Σ p_k < tol.
+    maxiter : int
+
+    Returns
+    -------
+    p : ndarray
+        Pressure [Pa].
+    delta : float
+        Approach [m] (the prescribed one, or the mean of h0 + u_n over the
+        contact for load control).
+    iterations : int
+    change : float
+        Last relative pressure change.
+
+    References
+    ----------
+    Polonsky & Keer (1999), §3, steps (i)–(x).
+    """
+    if (load is None) == (penetration is None):
+        raise InputError("give exactly one of load= and penetration=")
+    load_control = load is not None
+    if p_init is None:
+        p_init = _initial_pressure(apply, h, dA, load, penetration)
+    p = np.array(p_init, dtype=float)
+    t = np.zeros_like(p)
+    G_old = 1.0
+    restart = True      # δ = 0 in the paper: steepest descent step
+    change = np.inf
+    it = 0
+    u = apply(p)
+    for it in range(1, maxiter + 1):
+        Ic = p > 0.0
+        if not Ic.any():
+            raise NoContactError("the pressure vanished everywhere during the iteration")
+        g = u + h
+        if load_control:
+            g = g - g[Ic].mean()
+        else:
+            g = g - penetration
+        gI = g[Ic]
+        G = float(np.dot(gI, gI))
+        if restart:
+            t = np.where(Ic, g, 0.0)
+        else:
+            t = np.where(Ic, g + (G / G_old) * t, 0.0)
+        G_old = G
+        r_raw = apply(t)
+        r = r_raw - r_raw[Ic].mean() if load_control else r_raw
+        denom = float(np.dot(r[Ic], t[Ic]))
+        if G == 0.0 or denom == 0.0:
+            change = 0.0
+            break
+        tau = float(np.dot(gI, t[Ic])) / denom
+        p_old = p
+        p = p - tau * t
+        clipped = bool((p < 0.0).any())
+        p = np.maximum(p, 0.0)
+        overlap = (p == 0.0) & (g < 0.0)
+        if overlap.any():
+            restart = True
+            p[overlap] -= tau * g[overlap]
+        else:
+            restart = False
+        scale = 1.0
+        if load_control:
+            scale = load / (dA * p.sum())
+            p *= scale
+        if clipped or restart or it % 20 == 0:
+            u = apply(p)
+        else:   # linear step, active set unchanged: A p follows without a convolution
+            u = scale * (u - tau * r_raw)
+        total = p.sum()
+        change = float(np.abs(p - p_old).sum() / total) if total > 0 else np.inf
+        if change < tol:
+            break
+    if load_control:
+        g = apply(p) + h
+        delta = float(g[p > 0].mean())
+    else:
+        delta = float(penetration)
+    return p, delta, it, change
+
+
+# --------------------------------------------------------------------------- entry
+def _initial_pressure(apply, h, dA, load, penetration):
+    """Pressure ∝ rigid interference, scaled by one operator application."""
+    if load is not None:
+        # interference of the rigid bodies pressed to a depth covering ~1/4 of the window
+        depth = np.quantile(h, 0.25) - h.min()
+        if depth <= 0:
+            depth = np.ptp(h) if np.ptp(h) > 0 else 1.0
+        over = np.maximum(h.min() + depth - h, 0.0)
+        if not np.any(over > 0):
+            over = np.ones_like(h)
+        p = np.sqrt(over)
+        return p * (load / (dA * p.sum()))
+    over = np.maximum(penetration - h, 0.0)
+    u = apply(over)
+    k = over.max() / u[over > 0].max()
+    return over * k
+
+
+def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol: float = 1e-8,
+                 maxiter: int = 2000, on_fail: str = "raise", operator=None) -> NormalSolution:
+    """Solve the normal contact problem on a grid (non-Hertzian, half-space).
+
+    Parameters
+    ----------
+    grid : Grid
+        Element grid covering (with some margin) the expected contact area.
+    gap : array_like, shape (nx, ny)
+        Undeformed separation h0 of the surfaces at the element centres [m]
+        (any offset; for ``penetration`` control, contact needs h0 < δ somewhere).
+    materials : Material or MaterialPair
+    load : float, optional
+        Prescribed normal force Fn [N], > 0.
+    penetration : float, optional
+        Prescribed approach δ [m]. Exactly one of ``load`` and ``penetration``.
+    tol : float, optional
+        Relative pressure change Σ|Δp|/Σp at which the iteration stops (1e-8).
+    maxiter : int, optional
+        Iteration limit (2000).
+    on_fail : {"raise", "status"}
+        Non-convergence raises :class:`~wheelrail.errors.ConvergenceError`
+        ("raise", default) or returns the last iterate with
+        ``status = Status.NOT_CONVERGED``.
+    operator : InfluenceOperator, optional
+        Reuse a prebuilt operator of the same grid (e.g. shared with a
+        tangential solver).
+
+    Returns
+    -------
+    NormalSolution
+
+    Raises
+    ------
+    InputError
+        Bad arguments (load ≤ 0, both or none of load/penetration, wrong shape).
+    NoContactError
+        With prescribed penetration, if h0 − δ > 0 everywhere.
+    ConvergenceError
+        If the iteration limit is hit and ``on_fail="raise"``.
+
+    Warns
+    -----
+    ContactTruncatedWarning
+        If the contact reaches the grid boundary (``truncated`` is then True).
+
+    Notes
+    -----
+    Deformed gap e = h0 − δ + u_n, u_n the gap-opening displacement difference
+    (:mod:`wheelrail.halfspace.influence`). Algorithm: Polonsky & Keer (1999).
+
+    Examples
+    --------
+    >>> import wheelrail as wr
+    >>> from wheelrail.halfspace import hertz_grid, solve_normal
+    >>> hc = wr.hertz(10e3, A=1.0, B=1.0, material=wr.STEEL)
+    >>> grid, h0 = hertz_grid(hc, elements=24)
+    >>> sol = solve_normal(grid, h0, wr.STEEL, load=10e3)
+    >>> abs(sol.p_max / hc.p0 - 1) < 0.03
+    True
+    """
+    if not isinstance(grid, Grid):
+        raise InputError(f"grid must be a Grid, got {type(grid).__name__}")
+    pair = as_material_pair(materials)
+    h = grid.check_field("gap", gap)
+    if (load is None) == (penetration is None):
+        raise InputError("give exactly one of load= and penetration= "
+                         f"(got load={load!r}, penetration={penetration!r})")
+    if on_fail not in ("raise", "status"):
+        raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
+    tol = float(positive("tol", tol))
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+        raise InputError(f"maxiter must be an integer >= 1, got {maxiter!r}")
+    if load is not None:
+        load = float(positive("load", load))
+    else:
+        penetration = float(as_float_array("penetration", penetration))
+        if np.all(h - penetration >= 0.0):
+            raise NoContactError(
+                f"no contact: the undeformed gap minus the penetration is >= 0 everywhere "
+                f"(min(gap) = {h.min()!r} m, penetration = {penetration!r} m)")
+    if operator is None:
+        operator = InfluenceOperator(grid, pair)
+    elif not isinstance(operator, InfluenceOperator) or operator.grid != grid:
+        raise InputError("operator must be an InfluenceOperator built on the same grid")
+    block = operator.block(2, 2)
+    apply = block.apply
+    dA = grid.element_area
+
+    p_init = _initial_pressure(apply, h, dA, load, penetration)
+    p, delta, iterations, change = polonsky_keer(apply, h, dA, load=load, penetration=penetration,
+                                                 p_init=p_init, tol=tol, maxiter=maxiter)
+    converged = change < tol
+    if not converged:
+        msg = (f"normal BEM (Polonsky-Keer) did not converge in {iterations} iterations "
+               f"(relative pressure change {change:.3g} > tol={tol:g}, grid {grid.nx}x{grid.ny})")
+        if on_fail == "raise":
+            raise ConvergenceError(msg)
+
+    u = apply(p)
+    e = h - delta + u
+    contact = p > 0.0
+    scale = max(float(np.abs(u).max()), np.finfo(float).tiny)
+    viol_in = float(np.abs(e[contact]).max()) if contact.any() else 0.0
+    viol_out = float(np.maximum(-e[~contact], 0.0).max()) if (~contact).any() else 0.0
+    residual = max(viol_in, viol_out) / scale
+    truncated = bool(contact[0].any() or contact[-1].any() or contact[:, 0].any()
+                     or contact[:, -1].any())
+    if truncated:
+        warnings.warn(
+            f"the contact area reaches the edge of the {grid.nx}x{grid.ny} grid "
+            f"(bounds {tuple(round(b, 9) for b in grid.bounds)} m): enlarge the window; "
+            "the result is truncated", ContactTruncatedWarning, stacklevel=2)
+    for arr in (p, e, u, contact):
+        arr.setflags(write=False)
+    return NormalSolution(
+        grid=grid, pressure=p, gap=e, displacement=u, contact=contact,
+        Fn=float(p.sum() * dA), p_max=float(p.max()), penetration=float(delta),
+        area=float(contact.sum() * dA), iterations=int(iterations),
+        status=Status.CONVERGED if converged else Status.NOT_CONVERGED,
+        residual=float(residual), truncated=truncated, materials=pair,
+        info={"change": float(change)})
+
+
+def hertz_grid(contact, elements: int = 64, margin: float = 1.25):
+    """Grid and quadratic gap h0 = A x² + B y² around a Hertzian contact.
+
+    Parameters
+    ----------
+    contact : HertzContact
+        A single (non-batch) Hertz contact; its ``A``, ``B``, ``a``, ``b`` are used.
+    elements : int
+        Elements across the Hertz patch in each direction (2a/dx = 2b/dy), ≥ 2.
+    margin : float
+        Half-width of the window in units of the semi-axes (> 1): the window is
+        [−margin·a, margin·a] × [−margin·b, margin·b], rounded up to a whole,
+        odd number of elements so that an element is centred on the origin.
+
+    Returns
+    -------
+    grid : Grid
+    gap : ndarray, shape (nx, ny)
+        A x² + B y² at the element centres [m].
+    """
+    if np.shape(contact.a) != ():
+        raise InputError("hertz_grid needs a single HertzContact, got a batch")
+    if isinstance(elements, bool) or not isinstance(elements, (int, np.integer)) or elements < 2:
+        raise InputError(f"elements must be an integer >= 2, got {elements!r}")
+    margin = float(as_float_array("margin", margin))
+    if not margin > 1.0:
+        raise InputError(f"margin must be > 1, got {margin!r}")
+    a, b = float(contact.a), float(contact.b)
+    dx, dy = 2.0 * a / elements, 2.0 * b / elements
+    n = math.ceil(2.0 * margin * a / dx - 1e-9)
+    n += 1 - n % 2
+    grid = Grid(-(n - 1) / 2 * dx, -(n - 1) / 2 * dy, dx, dy, n, n)
+    gap = float(contact.A) * grid.X**2 + float(contact.B) * grid.Y**2
+    return grid, gap
