@@ -25,7 +25,19 @@ evaluated at the step mid-point)
 
 If ``|p_H|`` exceeds the traction bound ``μ p_z(x_c)`` the traction is scaled
 back onto the bound (slip) and the slip is ``s = L_ref (p − p_H)/(x_p − x_c)``,
-opposite to the traction. Forces follow from the mid-point rule over the
+opposite to the traction.
+
+With ``first_order=True`` the kernels use instead the backward-Euler march of
+CONTACT's FASTSIM for steady rolling (Vollebregt, CONTACT user guide, example
+``fastsim.inp``; the steady-state discretisation of Kalker 1990 with
+δq = δx): ``u_i = u_{i−1} − δx w(x_i)``, i.e. a full step ``δx`` into every
+element including the first one (``u = 0`` ahead of it) and the rigid slip at
+the element centre,
+
+    p_H = p(x_{i−1}) − δx g(x_i).
+
+This shifts the adhesion traction by half an element downstream and is first
+order accurate in δx (kept to reproduce published CONTACT/FASTSIM numbers). Forces follow from the mid-point rule over the
 elements; ``Mz = Σ (x p_y − y p_x) dA`` about the coordinate origin.
 
 Sign convention: ``p`` is the traction on the wheel (Kalker's convention,
@@ -50,7 +62,7 @@ __all__ = ["march_strip", "fastsim_strips_kernel", "fastsim_hertz_batch"]
 
 @njit(cache=True, fastmath=False)
 def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, nx,
-                store, out_px, out_py, out_sx, out_sy, out_slip):
+                store, out_px, out_py, out_sx, out_sy, out_slip, first_order=False):
     """March along one strip; return its force contributions (Fx, Fy, Mz).
 
     Parameters
@@ -71,6 +83,9 @@ def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, 
         Number of elements.
     store : bool
         Write the fields into ``out_*`` (shape (nx,)); otherwise they are untouched.
+    first_order : bool
+        Use the first-order backward-Euler march (see the module docstring)
+        instead of the element-centred exact predictor.
 
     Returns
     -------
@@ -90,10 +105,10 @@ def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, 
     sum_py = 0.0
     sum_xpy = 0.0
     xp = x_lead
-    h = 0.5 * dx
+    h = dx if first_order else 0.5 * dx
     for i in range(nx):
         xc = x_lead - (i + 0.5) * dx
-        xm = 0.5 * (xp + xc)
+        xm = xc if first_order else 0.5 * (xp + xc)
         pxh = px - h * gx
         pyh = py - h * (gy0 + gs * xm)
         g = bound[i]
@@ -127,7 +142,7 @@ def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, 
 
 @njit(cache=True)
 def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi,
-                          px, py, sx, sy, slip):
+                          px, py, sx, sy, slip, first_order=False):
     """FASTSIM on a patch given by strips (one case), storing the fields.
 
     Parameters
@@ -144,6 +159,8 @@ def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, 
         Output tractions [Pa] and slip [-] (written).
     slip : ndarray of bool, shape (ny, nx)
         Output slip flags (written).
+    first_order : bool
+        First-order backward-Euler march (see the module docstring).
 
     Returns
     -------
@@ -156,7 +173,7 @@ def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, 
     for j in range(ny):
         fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound[j], L1[j], L2[j],
                                  L3[j], L_ref[j], xi, eta, phi, nx, True,
-                                 px[j], py[j], sx[j], sy[j], slip[j])
+                                 px[j], py[j], sx[j], sy[j], slip[j], first_order)
         Fx += fx
         Fy += fy
         Mz += mz
@@ -164,7 +181,8 @@ def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, 
 
 
 @njit(cache=True)
-def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip_peak, shape):
+def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip_peak, shape,
+                        first_order=False):
     """Forces-only FASTSIM for a batch of elliptic (Hertzian) patches.
 
     Strips are uniform in y: ``y_j = b t_j`` with ``t`` the normalised strip
@@ -185,6 +203,8 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
     shape : ndarray, shape (nx,)
         Pressure profile along a strip at the normalised element centres
         ``1 − (i + ½) 2/nx``.
+    first_order : bool
+        First-order backward-Euler march (see the module docstring).
 
     Returns
     -------
@@ -222,9 +242,13 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
             sxp[j] = 0.0
         for i in range(nx):
             # step from the previous centre (leading edge for i = 0) to centre i
-            hf = 0.5 if i == 0 else 1.0
-            fm = 1.0 - 0.5 / nx if i == 0 else 1.0 - 2.0 * i / nx   # step mid-point / xl
             fc = 1.0 - (2.0 * i + 1.0) / nx                          # element centre / xl
+            if first_order:  # backward Euler: full step, rigid slip at the centre
+                hf = 1.0
+                fm = fc
+            else:
+                hf = 0.5 if i == 0 else 1.0
+                fm = 1.0 - 0.5 / nx if i == 0 else 1.0 - 2.0 * i / nx   # step mid-point / xl
             sh = shape[i]
             for j in range(ny):
                 h = hf * dx[j]
