@@ -319,9 +319,20 @@ def test_strips_reproduce_hertz_method(contact):
     y, dy, xl, xt = hertz_strips(c.a, c.b, n)
     x = strip_cell_centres(xl, xt, n)
     p = c.pressure(x, y[:, None])  # Hertz pressure at the element centres
+    # the method scales the sampled bound so that the discrete pressure carries exactly Fn
+    p = p * c.load / np.sum(p * (xl - xt)[:, None] / n * dy[:, None])
     r = fastsim_strips(y, dy, xl, xt, p, L1, L2, L3, 1e-3, 5e-4, -0.3, 0.3)
     rm = wr.creep_forces(c, (1e-3, 5e-4, -0.3), 0.3, method="fastsim", nx=n, ny=n, bound="elliptic")
     assert (r.Fx, r.Fy, r.Mz) == pytest.approx((rm.Fx, rm.Fy, rm.Mz), rel=1e-12)
+
+
+@pytest.mark.parametrize("bound", ["parabolic", "elliptic"])
+@pytest.mark.parametrize("n", [4, 7, 12])
+def test_full_slip_never_exceeds_coulomb_bound_on_coarse_grids(contact, bound, n):
+    """Coulomb: |F_t| <= mu Fn on every grid (the sampled bound carries exactly Fn)."""
+    r = wr.creep_forces(contact, (0.05, 0.0, 0.0), 0.3, method="fastsim", nx=n, ny=n, bound=bound)
+    assert abs(r.Fx) <= 0.3 * contact.load * (1 + 1e-12)
+    assert abs(r.Fx) == pytest.approx(0.3 * contact.load, rel=1e-9)
 
 
 def test_strips_empty_strips_are_ignored():

@@ -533,6 +533,12 @@ class Fastsim(TangentialMethod):
         t = _strip_t(ny)
         half = np.sqrt(1.0 - t * t)
         strip_peak = _profile(bound, t)
+        # Scale the sampled traction bound so that the discrete pressure carries exactly Fn;
+        # then |F_t| <= mu*Fn holds on every grid, not only in the limit of refinement.
+        s_cells = _profile(bound, 1.0 - (np.arange(nx) + 0.5) * (2.0 / nx))
+        discrete = (4.0 / (nx * ny)) * np.sum(strip_peak * half) * np.sum(s_cells)
+        continuous = np.pi / 2.0 if bound == "parabolic" else 2.0 * np.pi / 3.0
+        peak = peak * (continuous / discrete)
         if not want_fields:
             c_ = np.ascontiguousarray
             Fx, Fy, Mz = _k.fastsim_hertz_batch(
