@@ -33,6 +33,7 @@ COMMANDS = [
     ("solve", "wheelrail.cli.solve"),
     ("creep-curve", "wheelrail.cli.creep_curve"),
     ("demo", "wheelrail.cli.demo"),
+    ("geometry", "wheelrail.cli.geometry"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2

@@ -1,0 +1,277 @@
+"""``wheelrail geometry``: rigid contact table of a wheelset on a track, with figures.
+
+Writes ``contact_table.csv`` and ``contact_table.nc`` (NetCDF-3, scipy engine)
+and the figures ``profiles_in_contact.png``, ``delta_r.png``,
+``contact_angle.png`` and ``contact_positions.png`` (contact-point positions on
+wheel and rail versus the lateral shift, as in fig. 1 of Piotrowski & Chollet
+2005). :func:`geometry_demo` does the same with the default S1002/60E1 pair
+for ``wheelrail demo``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+HELP = "contact table (delta r, contact angles, contact points) of a wheelset on a track"
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--wheel", default="S1002",
+                   help="wheel profile: a built-in name (S1002) or a profile file (default S1002)")
+    p.add_argument("--rail", default="60E1",
+                   help="rail profile: a built-in name (60E1, 54E1) or a file (default 60E1)")
+    p.add_argument("--inclination", default="1/40",
+                   help="rail inclination as a slope, e.g. 1/40, 1/20 or 0 (default 1/40)")
+    p.add_argument("--canted", action="store_true",
+                   help="the rail profile file is already canted (no rotation applied)")
+    p.add_argument("--gauge", type=float, default=1.435, help="track gauge [m] (default 1.435)")
+    p.add_argument("--flange-back", type=float, default=1.360,
+                   help="flange back distance [m] (default 1.360)")
+    p.add_argument("--nominal-radius", type=float, default=0.46,
+                   help="wheel radius at the tape circle [m] (default 0.46)")
+    p.add_argument("--y-range", type=float, nargs=2, default=(-0.01, 0.01), metavar=("YMIN", "YMAX"),
+                   help="range of the lateral shift [m] (default -0.01 0.01)")
+    p.add_argument("--points", type=int, default=201, help="number of lateral shifts (default 201)")
+    p.add_argument("--yaw", type=float, default=0.0, help="yaw angle [rad] (default 0)")
+    p.add_argument("--amplitude", type=float, default=0.003,
+                   help="amplitude for the equivalent conicity [m] (default 0.003)")
+    p.add_argument("--no-plots", action="store_true", help="write the table only")
+    p.add_argument("--out", metavar="DIR", default="wheelrail-geometry",
+                   help="output directory (default ./wheelrail-geometry)")
+
+
+def parse_slope(text) -> float:
+    """'1/40' → 0.025; '0.025' → 0.025 (InputError otherwise)."""
+    from ..errors import InputError
+
+    s = str(text).strip()
+    try:
+        if "/" in s:
+            num, den = s.split("/", 1)
+            return float(num) / float(den)
+        return float(s)
+    except (ValueError, ZeroDivisionError) as exc:
+        raise InputError(f"--inclination must be a slope like 1/40 or 0.025, got {text!r}") from exc
+
+
+def load_profile(spec: str, kind: str):
+    """A built-in profile by name or a profile file by path."""
+    from .. import profiles
+
+    path = Path(spec)
+    if path.exists():
+        return profiles.read(path, kind=kind)
+    if any(c in spec for c in "/\\") or path.suffix:
+        raise FileNotFoundError(2, "profile file not found", spec)
+    return profiles.load(spec)
+
+
+# --------------------------------------------------------------------------- figures
+def plot_profiles_in_contact(ws, tr, ys, path, side="right"):
+    """Wheel and rail cross-sections of ``side`` with the contact points, one panel per y."""
+    import numpy as np
+
+    from ..geometry.contact_search import _SIGMA, contact_points, silhouette
+    from ..plotting._common import finish, new_figure
+
+    n = len(ys)
+    ncols = min(n, 2)
+    nrows = int(np.ceil(n / ncols))
+    fig, axes = new_figure(nrows, ncols, size=(5.0 * ncols, 3.6 * nrows))
+    axes = np.atleast_1d(axes).ravel()
+    sig = _SIGMA[side]
+    wc, rc = ws.curve(side), tr.curve(side)
+    s = np.linspace(wc.u_min, wc.u_max, 1500)
+    p, p1 = wc.eval(s, 1)
+    u_r = np.linspace(rc.u_min, rc.u_max, 800)
+    for ax, y in zip(axes, ys):
+        cp = contact_points(ws, tr, float(y))
+        one = np.ones_like(s)
+        _, Yw, Zw, _ = silhouette(s, p, p1, ws.nominal_radius, ws.e_tape, sig, cp.y * one,
+                                  (ws.nominal_radius + cp.z) * one, cp.roll * one, cp.yaw * one)
+        ax.plot(sig * Yw * 1e3, Zw * 1e3, color="tab:blue", lw=1.2, label="wheel")
+        ax.plot(u_r * 1e3, rc.eval(u_r, 0)[0] * 1e3, color="k", lw=1.2, label="rail")
+        pts = cp.side(side)
+        for k in range(pts.n):
+            prim = k == pts.primary
+            ax.plot(sig * pts.track_y[k] * 1e3, pts.track_z[k] * 1e3, "o" if prim else "s",
+                    color="tab:red" if prim else "tab:orange", ms=6 if prim else 4)
+            ax.annotate(f"{np.degrees(pts.contact_angle[k]):.1f}°\n{pts.separation[k] * 1e6:.0f} µm",
+                        (sig * pts.track_y[k] * 1e3, pts.track_z[k] * 1e3), fontsize=7,
+                        xytext=(4, 4), textcoords="offset points")
+        ax.set_xlim(rc.u_min * 1e3 - 8, rc.u_max * 1e3 + 5)
+        ax.set_ylim(-32, 12)
+        ax.set_aspect("equal")
+        ax.set_title(f"y = {y * 1e3:.1f} mm, Δr = {cp.delta_r * 1e3:.2f} mm", fontsize="small")
+        ax.set_xlabel(f"lateral position, {side} side, towards field side [mm]")
+        ax.set_ylabel("height [mm]")
+    for ax in axes[len(ys):]:
+        ax.set_visible(False)
+    axes[0].legend(fontsize="x-small", loc="lower right")
+    finish(fig, path, title=f"{side} wheel on rail (red: rigid contact point, orange: secondary)")
+
+
+def plot_delta_r(table, path):
+    """Rolling-radius difference Δr(y) with the jumps of the contact point."""
+    from ..plotting._common import finish, new_figure
+
+    fig, ax = new_figure()
+    y = table["y"].values * 1e3
+    ax.plot(y, table["delta_r"].values * 1e3, color="tab:blue")
+    for yj in table["jump_y"].values:
+        ax.axvline(yj * 1e3, color="tab:gray", lw=0.7, ls="--")
+    ax.set_xlabel("lateral shift y [mm]")
+    ax.set_ylabel("Δr = r_right − r_left [mm]")
+    ax.grid(alpha=0.3)
+    finish(fig, path, title="rolling radius difference (dashed: jumps of the contact point)")
+
+
+def plot_contact_angle(table, path):
+    """Contact angles of all points (primary points as lines) versus y."""
+    import numpy as np
+
+    from ..plotting._common import finish, new_figure
+
+    fig, ax = new_figure()
+    y = table["y"].values * 1e3
+    for side, color in (("left", "tab:blue"), ("right", "tab:red")):
+        ax.plot(y, np.degrees(table[f"contact_angle_{side}_primary"].values), color=color,
+                label=f"{side} (rigid contact point)")
+        ga = np.degrees(table[f"contact_angle_{side}"].values)
+        yy = np.broadcast_to(y[:, None], ga.shape)
+        ax.scatter(yy, ga, s=4, color=color, alpha=0.4)
+    ax.set_xlabel("lateral shift y [mm]")
+    ax.set_ylabel("contact angle γ [°]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize="small")
+    finish(fig, path, title="contact angles (dots: all points within the tolerance)")
+
+
+def plot_contact_positions(table, path):
+    """Contact-point positions on wheel and rail versus y (cf. seed 003, fig. 1)."""
+    import numpy as np
+
+    from ..plotting._common import finish, new_figure
+
+    fig, axes = new_figure(2, 2, size=(10, 7), sharex=True)
+    y = table["y"].values * 1e3
+    for j, side in enumerate(("left", "right")):
+        for i, (body, label) in enumerate((("wheel_y", "on the wheel"), ("rail_y", "on the rail"))):
+            ax = axes[i, j]
+            v = table[f"{body}_{side}"].values * 1e3
+            sep = table[f"separation_{side}"].values
+            yy = np.broadcast_to(y[:, None], v.shape)
+            ok = np.isfinite(v)
+            sc = ax.scatter(yy[ok], v[ok], c=np.clip(sep[ok] * 1e6, 0, None), s=5,
+                            cmap="viridis_r", vmin=0, vmax=table.attrs.get("tolerance", 1e-4) * 1e6)
+            ax.plot(y, table[f"{body}_{side}_primary"].values * 1e3, color="tab:red", lw=0.8)
+            ax.set_title(f"{side}: contact position {label}", fontsize="small")
+            ax.set_ylabel("profile y [mm] (field side +)")
+            ax.grid(alpha=0.3)
+            if i == 1:
+                ax.set_xlabel("lateral shift y [mm]")
+    fig.colorbar(sc, ax=axes, label="separation [µm]", shrink=0.6)
+    finish(fig, path, title="contact points versus lateral shift (red: rigid contact point)")
+
+
+# --------------------------------------------------------------------------- work
+def compute(ws, tr, ys, out: Path, *, yaw=0.0, amplitude=0.003, plots=True, figure_ys=None):
+    """Contact table, conicity and figures; returns (table, summary dict, [(path, description)])."""
+    import numpy as np
+
+    from ..geometry import contact_table, equivalent_conicity
+    from ..geometry.contact_table import write_csv, write_netcdf
+
+    out.mkdir(parents=True, exist_ok=True)
+    table = contact_table(ws, tr, ys, yaw)
+    files = [(write_csv(table, out / "contact_table.csv"), "contact table (CSV, SI units)"),
+             (write_netcdf(table, out / "contact_table.nc"), "contact table (NetCDF-3)")]
+    conicity = None
+    try:
+        conicity = equivalent_conicity(ws, tr, amplitude, yaw=yaw)
+    except Exception as exc:  # noqa: BLE001 - conicity is optional in this report
+        conicity = f"not available: {exc}"
+    summary = {
+        "points": int(table.sizes["y"]),
+        "y_range": [float(ys[0]), float(ys[-1])],
+        "delta_r_at_ends": [float(table["delta_r"].values[0]), float(table["delta_r"].values[-1])],
+        "jumps_y": [float(v) for v in table["jump_y"].values],
+        "jumps_side": [("left" if s < 0 else "right") for s in table["jump_side"].values],
+        "max_points_per_side": int(table.sizes["point"]),
+        "equivalent_conicity": conicity,
+        "amplitude": amplitude,
+    }
+    if plots:
+        if figure_ys is None:
+            lim = float(np.max(np.abs(ys)))
+            figure_ys = [0.0, 0.3 * lim, 0.6 * lim, 0.9 * lim]
+        plot_profiles_in_contact(ws, tr, figure_ys, out / "profiles_in_contact.png")
+        files.append((out / "profiles_in_contact.png", "wheel on rail with contact points"))
+        plot_delta_r(table, out / "delta_r.png")
+        files.append((out / "delta_r.png", "rolling radius difference"))
+        plot_contact_angle(table, out / "contact_angle.png")
+        files.append((out / "contact_angle.png", "contact angles"))
+        plot_contact_positions(table, out / "contact_positions.png")
+        files.append((out / "contact_positions.png", "contact-point positions vs y"))
+    return table, summary, files
+
+
+def geometry_demo(out_dir) -> dict:
+    """Geometry part of ``wheelrail demo``: S1002 on 60E1 1:40, gauge 1435, flange back 1360.
+
+    Writes the contact table (CSV, NetCDF) and four figures into ``out_dir``.
+
+    Returns
+    -------
+    dict
+        ``results`` (JSON-ready summary, SI), ``files`` (list of (Path,
+        description)) and ``note`` (one line for the console).
+    """
+    import numpy as np
+
+    from ..geometry import Track, Wheelset
+    from ..profiles import load
+
+    ws = Wheelset(load("S1002"))
+    tr = Track(load("60E1"), inclination=1 / 40)
+    ys = np.linspace(-0.01, 0.01, 201)
+    _, summary, files = compute(ws, tr, ys, Path(out_dir), figure_ys=[0.0, 0.003, 0.005, 0.008])
+    con = summary["equivalent_conicity"]
+    con_txt = f"{con:.3f}" if isinstance(con, float) else str(con)
+    note = (f"S1002/60E1 1:40: equivalent conicity at 3 mm = {con_txt}, "
+            f"{len(summary['jumps_y'])} contact-point jumps")
+    return {"results": summary, "files": files, "note": note}
+
+
+def run(args, console) -> int:
+    import numpy as np
+
+    from ..errors import InputError
+    from ..geometry import Track, Wheelset
+    from ._output import write_json
+
+    if args.points < 2:
+        raise InputError(f"--points must be >= 2, got {args.points}")
+    lo, hi = args.y_range
+    if not hi > lo:
+        raise InputError(f"--y-range must be increasing, got {lo} {hi}")
+    ws = Wheelset(load_profile(args.wheel, "wheel"), nominal_radius=args.nominal_radius,
+                  flange_back=args.flange_back)
+    tr = Track(load_profile(args.rail, "rail"), gauge=args.gauge,
+               inclination=parse_slope(args.inclination), canted=args.canted)
+    ys = np.linspace(lo, hi, args.points)
+    out = Path(args.out)
+    table, summary, files = compute(ws, tr, ys, out, yaw=args.yaw, amplitude=args.amplitude,
+                                    plots=not args.no_plots)
+    files.append((write_json(summary, out / "geometry_summary.json"), "summary (JSON, SI)"))
+    con = summary["equivalent_conicity"]
+    con_txt = f"{con:.4f}" if isinstance(con, float) else con
+    console.print(f"[bold]contact table[/bold]: {len(ys)} lateral shifts "
+                  f"{lo * 1e3:g} … {hi * 1e3:g} mm; equivalent conicity "
+                  f"(ŷ = {args.amplitude * 1e3:g} mm) = {con_txt}")
+    if summary["jumps_y"]:
+        console.print("jumps of the contact point at y = " + ", ".join(
+            f"{v * 1e3:.3f} mm ({s})" for v, s in zip(summary["jumps_y"], summary["jumps_side"])))
+    for path, desc in files:
+        console.print(f"  {path}  — {desc}")
+    return 0

@@ -1,0 +1,18 @@
+"""Wheel–rail geometry: wheelset and track, contact search, contact tables, conicity.
+
+Public names: :class:`Wheelset`, :class:`Track`, :func:`contact_points`,
+:func:`contact_table`, :func:`equivalent_conicity`, :func:`elastic_contact`,
+:func:`separation`, :func:`undeformed_distance`.
+"""
+
+from .contact_search import ContactPoints, SideContacts, contact_points
+from .conicity import equivalent_conicity
+from .contact_table import contact_table
+from .elastic import ElasticContact, elastic_contact
+from .separation import Separation, separation, undeformed_distance
+from .track import Track
+from .wheelset import Wheelset
+
+__all__ = ["Wheelset", "Track", "contact_points", "ContactPoints", "SideContacts", "contact_table",
+           "equivalent_conicity", "elastic_contact", "ElasticContact",
+           "separation", "undeformed_distance", "Separation"]

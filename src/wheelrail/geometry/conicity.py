@@ -1,0 +1,193 @@
+"""Equivalent conicity of a wheelset on a track (EN 15302).
+
+Principle (EN 15302:2008+A1:2010, §4): the equivalent conicity ``tan γ_e``
+at amplitude ``ŷ`` is the conicity of the *conical* wheelset whose kinematic
+(Klingel) oscillation has the same wavelength as that of the real wheelset
+oscillating with lateral amplitude ``ŷ`` (half the peak-to-peak value).
+
+Kinematic oscillation of a wheelset with rolling-radius difference Δr(y)
+(Klingel 1883; Δr = r_right − r_left, e half the contact-point distance, r0
+the nominal radius)::
+
+    y''(x) = −Δr(y) / (2 e r0).
+
+With ``U(y) = ∫_{y0}^{y} Δr dy'`` (y0 the equilibrium, Δr(y0) = 0) energy
+conservation gives ``y'² = (U* − U(y)) / (e r0)``, so the wavelength is
+``L = 2 √(e r0) I`` with ``I = ∫_{y_min}^{y_max} dy / √(U* − U(y))``, where
+``y_min``, ``y_max`` are the turning points (``U(y_min) = U(y_max) = U*``,
+``y_max − y_min = 2ŷ``). Klingel's formula for a cone, ``L = 2π √(e r0 / tan γ_e)``,
+then gives
+
+    tan γ_e = π² / I²                           (``method="integration"``)
+
+independent of e and r0 (for a cone, Δr = 2λy, ``I = π/√λ`` and tan γ_e = λ).
+This is the method of EN 15302 annex B (integration of the non-linear
+differential equation), evaluated here by quadrature of the period instead of
+time-stepping (substitution ``y = c + ŷ sin t`` removes the end singularities;
+Gauss–Legendre in t).
+
+``method="regression"`` implements annex C (linear regression of the Δr
+function over one harmonic oscillation ``y = y0 + ŷ sin t``, equally spaced
+in phase), i.e. the harmonic linearisation
+``tan γ_e = ∫ Δr(y0 + ŷ sin t) sin t dt / (2π ŷ)``; it coincides with the
+integration method for a cone and differs slightly for non-linear Δr.
+
+References
+----------
+.. [1] EN 15302:2008+A1:2010, *Railway applications — Method for determining
+   the equivalent conicity*, §4 and annexes B, C.
+.. [2] J. Klingel, Über den Lauf der Eisenbahnwagen auf gerader Bahn,
+   Organ für die Fortschritte des Eisenbahnwesens 38 (1883) 113–123.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import brentq
+
+from .._validation import as_float_array, positive
+from ..errors import InputError
+
+__all__ = ["equivalent_conicity", "conicity_from_delta_r", "METHODS"]
+
+METHODS = ("integration", "regression")
+_NODES = 256
+
+
+def _equilibrium(y, dr):
+    """Zero crossing of Δr nearest to y = 0 (linear interpolation)."""
+    sign = np.sign(dr)
+    zero = np.flatnonzero(sign == 0)
+    cross = np.flatnonzero(sign[:-1] * sign[1:] < 0)
+    cand = list(y[zero])
+    for i in cross:
+        cand.append(y[i] - dr[i] * (y[i + 1] - y[i]) / (dr[i + 1] - dr[i]))
+    if not cand:
+        raise InputError("delta_r has no zero crossing in the given range: no equilibrium "
+                         "position (widen the y range)")
+    cand = np.asarray(cand)
+    return float(cand[np.argmin(np.abs(cand))])
+
+
+def conicity_from_delta_r(y, delta_r, amplitude, method: str = "integration") -> float:
+    """Equivalent conicity from a rolling-radius-difference function (pure kernel).
+
+    Parameters
+    ----------
+    y : array_like, shape (n,)
+        Lateral shifts [m], strictly increasing.
+    delta_r : array_like, shape (n,)
+        Δr = r_right − r_left [m] at ``y`` (linearly interpolated between the
+        points, so jumps are resolved to the sampling step).
+    amplitude : float
+        Amplitude ŷ of the lateral oscillation [m], > 0.
+    method : {"integration", "regression"}
+        See the module docstring (EN 15302 annexes B and C).
+
+    Returns
+    -------
+    float
+        tan γ_e [-].
+    """
+    y = as_float_array("y", y)
+    dr = as_float_array("delta_r", delta_r)
+    amp = float(positive("amplitude", amplitude))
+    if y.ndim != 1 or y.shape != dr.shape or y.size < 3:
+        raise InputError(f"y and delta_r must be 1-D of equal length >= 3, got {y.shape}, {dr.shape}")
+    if np.any(np.diff(y) <= 0):
+        raise InputError("y must be strictly increasing")
+    if method not in METHODS:
+        raise InputError(f"method must be one of {METHODS}, got {method!r}")
+    y0 = _equilibrium(y, dr)
+    t, w = np.polynomial.legendre.leggauss(_NODES)
+    if method == "regression":
+        if y0 - amp < y[0] or y0 + amp > y[-1]:
+            raise InputError(f"amplitude {amp!r} m exceeds the range of y "
+                             f"[{y[0]!r}, {y[-1]!r}] around the equilibrium {y0!r}")
+        phase = np.pi * (t + 1.0)  # Gauss nodes on (0, 2π)
+        s = np.sin(phase)
+        val = np.interp(y0 + amp * s, y, dr)
+        return float(np.pi * np.sum(w * val * s) / (2.0 * np.pi * amp))
+    # integration: U(y) = ∫ Δr dy, exact for piecewise-linear Δr
+    U = np.concatenate(([0.0], np.cumsum(0.5 * (dr[1:] + dr[:-1]) * np.diff(y))))
+    U = U - np.interp(y0, y, U)
+
+    def Uf(v):
+        v = np.asarray(v, dtype=float)
+        i = np.clip(np.searchsorted(y, v) - 1, 0, y.size - 2)
+        dx = v - y[i]
+        slope = (dr[i + 1] - dr[i]) / (y[i + 1] - y[i])
+        return U[i] + dr[i] * dx + 0.5 * slope * dx * dx
+
+    if y0 - 2 * amp < y[0] or y0 + 2 * amp > y[-1]:
+        raise InputError(f"the y range [{y[0]!r}, {y[-1]!r}] m must cover ±2·amplitude "
+                         f"({2 * amp!r} m) around the equilibrium {y0!r} m")
+    g = lambda top: float(Uf(top) - Uf(top - 2 * amp))  # noqa: E731
+    ga, gb = g(y0), g(y0 + 2 * amp)
+    if not (ga <= 0 <= gb):
+        raise InputError("delta_r does not increase through its equilibrium: the kinematic "
+                         "oscillation is unstable and has no conicity")
+    top = brentq(g, y0, y0 + 2 * amp, xtol=1e-15, rtol=1e-14) if ga < 0 < gb else \
+        (y0 if ga == 0 else y0 + 2 * amp)
+    centre = top - amp
+    Ustar = float(Uf(top))
+    tt = 0.5 * np.pi * t                      # (−π/2, π/2)
+    yy = centre + amp * np.sin(tt)
+    gap = Ustar - Uf(yy)
+    if np.any(gap <= 0):
+        raise InputError("delta_r is not monotone enough between the turning points to define "
+                         "an oscillation (U has an interior maximum)")
+    integrand = amp * np.cos(tt) / np.sqrt(gap)
+    integral = 0.5 * np.pi * np.sum(w * integrand)
+    return float(np.pi ** 2 / integral ** 2)
+
+
+def equivalent_conicity(wheelset, track, amplitude=0.003, method: str = "integration", yaw=0.0,
+                        *, dy: float = 1e-4, step: float = 2e-4):
+    """Equivalent conicity tan γ_e of a wheelset on a track (EN 15302).
+
+    Parameters
+    ----------
+    wheelset : Wheelset
+    track : Track
+    amplitude : float or array_like
+        Lateral amplitude(s) ŷ [m] (default 3 mm), > 0.
+    method : {"integration", "regression"}
+        ``"integration"`` (default): wavelength of the non-linear kinematic
+        oscillation (EN 15302 §4 / annex B); ``"regression"``: harmonic
+        linear regression of Δr (annex C).
+    yaw : float
+        Yaw angle [rad] of the contact table (0 in EN 15302).
+    dy : float
+        Spacing of the contact table in y [m] (default 0.1 mm).
+    step : float
+        Search-grid spacing along the wheel [m], see :func:`contact_table`.
+
+    Returns
+    -------
+    float or ndarray
+        tan γ_e [-] (an array if ``amplitude`` is an array).
+
+    Examples
+    --------
+    >>> import wheelrail as wr
+    >>> ws = wr.Wheelset(wr.profiles.load("S1002"))
+    >>> tr = wr.Track(wr.profiles.load("60E1"))
+    >>> 0.05 < wr.equivalent_conicity(ws, tr, 0.003) < 0.4
+    True
+    """
+    from .contact_table import contact_table
+
+    amp = positive("amplitude", amplitude)
+    if method not in METHODS:
+        raise InputError(f"method must be one of {METHODS}, got {method!r}")
+    dy = float(positive("dy", dy))
+    if np.max(amp) > 0.012:
+        raise InputError(f"amplitude must be <= 0.012 m, got {np.max(amp)!r}")
+    half = 2.0 * float(np.max(amp)) + 2e-3
+    n = int(np.ceil(2 * half / dy)) + 1
+    ys = np.linspace(-half, half, n)
+    tab = contact_table(wheelset, track, ys, yaw, step=step, refine_jumps=0)
+    dr = tab["delta_r"].values
+    out = np.array([conicity_from_delta_r(ys, dr, a, method) for a in np.ravel(amp)])
+    return float(out[0]) if np.ndim(amp) == 0 else out.reshape(np.shape(amp))

@@ -1,0 +1,632 @@
+"""Rigid wheel–rail contact search: wheelset roll and height, all contact points.
+
+Problem (seed 002, §2.1.1, eqs. 2.1–2.3)
+-----------------------------------------
+For a prescribed lateral shift ``y`` and yaw angle ``ψ`` of the wheelset the
+rigid contact constraint ``min d = 0`` on **both** sides fixes the roll angle
+``θ(y, ψ)`` (eq. 2.1) and the vertical position ``z(y, ψ)`` (eq. 2.2). The
+distance ``d`` is evaluated on the whole profile, and *every* local minimum of
+``d`` is reported with its separation, so that two- and three-point contact
+(seed 003, fig. 1) is detected: points whose separation is below a tolerance
+are potential contact points (they carry load in an elastic model).
+
+Frames and signs (see :mod:`wheelrail.geometry.wheelset`, :mod:`~wheelrail.geometry.track`)
+--------------------------------------------------------------------------------------------
+Track frame: ``x`` running direction, ``y`` lateral to the right, ``z`` up;
+wheelset pose: lateral shift ``y`` [m], height ``z`` [m] of the axle centre
+above ``r0`` over the top-of-rail plane (``z = 0`` when a wheel of radius r0
+stands on top of rail), roll ``θ`` [rad] positive when the **right wheel is
+higher**, yaw ``ψ`` [rad] positive when the wheelset turns clockwise seen from
+above (the right wheel moves backwards, the axle's front points to the right).
+The orientation is ``R = R_z(ψ) R_x(θ)``. Contact angles ``γ`` are measured in
+each side's own profile orientation: positive when the contact normal on the
+wheel points towards the field side (flange contact: large positive γ; a
+1:40 inclined rail under a 1:40 tread: γ ≈ +0.025).
+
+Yaw — contact locus
+-------------------
+A wheel is a body of revolution about the axle and the rail a prismatic body
+along ``x``; at contact the wheel normal must therefore have no
+``x``-component. On the circle of wheel profile coordinate ``s`` (radius
+``r(s) = r0 − z_w(s)``, axial position ``a``) with surface normal
+``(sin φ, −r'(a), −cos φ)`` in wheelset axes, this gives after the rotation
+
+    sin φ cos ψ − cos φ sin θ sin ψ = −r'(a) cos θ sin ψ,
+
+one angle ``φ(s)`` per circle: the *contact locus* (Wang 1984; Duffek 1982).
+Its projection on the (y, z) plane is the silhouette of the yawed wheel seen
+along the rail, which is compared with the rail profile. To first order the
+contact point lies ``x_c ≈ r sin φ ≈ r tan ψ (θ − r'(a))`` ahead of the
+vertical plane through the wheel centre, i.e. ``x_c ≈ −r tan ψ tan γ_a`` with
+``tan γ_a = r'(a)`` the slope of the radius along the axle (for zero roll);
+for ψ = 0 the contact lies in the plane x = 0 and the problem is exactly 2-D.
+
+Distance and curvatures
+-----------------------
+``d`` is the vertical distance from each wheel (silhouette) point to the rail
+below it; at a local minimum the tangents are parallel and the normal
+separation is ``d cos γ`` (reported as ``separation``; exact at contact,
+first order in d for secondary points). Principal curvatures at a point:
+wheel along the rolling direction ``cos β / r`` (β = atan z_w' the profile
+slope; Meusnier), wheel across ``κ_w = z_w''/(1 + z_w'²)^{3/2}`` (convex wheel
+positive, a hollow tread or the flange root negative), rail across
+``κ_r = −z_r''/(1 + z_r'²)^{3/2}`` (crowned head positive), rail along 0
+(straight track). Hertz input: ``A = ½ cos β / r``, ``B = ½(κ_w + κ_r)``.
+The wheel's cross curvature is the profile curvature also under yaw (error
+O(ψ)).
+
+Profiles are represented by interpolating cubic splines (re-sampled every
+0.05 mm), so the distance is smooth and the location of a minimum does not
+jump between grid points; minima are located on a grid of step ``step``
+along the wheel profile and refined by successive parabolic interpolation.
+
+References
+----------
+.. [1] Review of wheel–rail contact models (seed 002), §2.1.1, eqs. (2.1)–(2.3).
+.. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, fig. 1
+   (seed 003).
+.. [3] K. Wang, The track of wheel contact points and the calculation of
+   wheel/rail geometric contact parameters, J. Southwest Jiaotong Univ. 1
+   (1984) 89–99 (contact locus); W. Kik, J. Piotrowski, A fast approximate
+   method to calculate normal load at contact between wheel and rail and
+   creep forces during rolling, 2nd Mini-Conf. on Contact Mechanics, 1996.
+.. [4] K.L. Johnson, Contact Mechanics, CUP 1985, §4.1 (principal curvatures).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+from numba import njit
+
+from .._validation import as_float_array, non_negative, positive
+from ..errors import ConvergenceError, InputError
+from .track import Track
+from .wheelset import Wheelset
+
+__all__ = ["ContactPoints", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS"]
+
+SIDES = ("left", "right")
+_SIGMA = {"left": -1.0, "right": 1.0}
+_BIG = 1.0          # gap [m] assigned where no rail lies below the wheel
+_EDGE = 2e-4        # distance [m] kept from the ends of the wheel profile
+_MERGE = 1e-7       # minima separated by a hump lower than this [m] are one minimum
+_MAX_YAW = 0.2      # |yaw| limit [rad]
+
+#: Per-point quantities (name, unit, description); arrays of shape (n,) or (n_y, n_point).
+POINT_FIELDS = {
+    "wheel_y": ("m", "lateral position on the wheel profile (profile frame)"),
+    "wheel_z": ("m", "height on the wheel profile (profile frame)"),
+    "rail_y": ("m", "lateral position on the rail profile (profile frame, uncanted)"),
+    "rail_z": ("m", "height on the rail profile (profile frame, uncanted)"),
+    "track_y": ("m", "lateral position of the contact point in the track frame"),
+    "track_z": ("m", "height of the wheel contact point in the track frame"),
+    "x": ("m", "longitudinal offset of the contact point ahead of the wheel circle centre"),
+    "contact_angle": ("rad", "contact angle, positive towards the flange"),
+    "rolling_radius": ("m", "wheel radius at the contact point"),
+    "wheel_curvature_x": ("1/m", "wheel curvature along the rolling direction cos(beta)/r"),
+    "wheel_curvature_y": ("1/m", "wheel profile curvature (convex positive)"),
+    "rail_curvature_y": ("1/m", "rail profile curvature (convex positive)"),
+    "A": ("1/m", "Hertz combined curvature along x"),
+    "B": ("1/m", "Hertz combined curvature along y"),
+    "separation": ("m", "undeformed normal separation (0 at the rigid contact point)"),
+    "gap": ("m", "vertical distance wheel - rail"),
+}
+
+
+# --------------------------------------------------------------------------- kernels
+def silhouette(s, p, p1, r0, e_tape, sigma, y, zc, theta, psi):
+    """Wheel contact locus (silhouette seen along x) in the track frame (pure kernel).
+
+    Parameters
+    ----------
+    s, p, p1 : ndarray
+        Wheel profile coordinate [m], profile height z_w(s) [m] and slope.
+    r0, e_tape, sigma : float
+        Nominal radius [m], tape-circle half distance [m], +1 right / −1 left.
+    y, zc, theta, psi : ndarray
+        Pose: lateral shift [m], height of the axle centre [m], roll, yaw [rad];
+        all arrays broadcast together.
+
+    Returns
+    -------
+    x_rel, Y, Z, r : ndarray
+        Longitudinal offset from the circle centre [m], lateral position and
+        height in the track frame [m], radius of the circle [m].
+    """
+    r = r0 - p
+    a = sigma * (e_tape + s)
+    st, ct = np.sin(theta), np.cos(theta)
+    if np.all(psi == 0.0):
+        yp = a * ct + r * st
+        zp = a * st - r * ct
+        return np.zeros(np.broadcast(yp, zp).shape), y + yp, zc + zp, r
+    sp, cp = np.sin(psi), np.cos(psi)
+    r_a = -sigma * p1
+    Bc = -st * sp
+    C = -r_a * ct * sp
+    R = np.hypot(cp, Bc)
+    phi = np.arcsin(np.clip(C / R, -1.0, 1.0)) - np.arctan2(Bc, cp)
+    sf, cf = np.sin(phi), np.cos(phi)
+    xb = r * sf
+    yp = a * ct + r * cf * st
+    zp = a * st - r * cf * ct
+    X_rel = xb * cp - r * cf * st * sp
+    return X_rel, y + xb * sp + yp * cp, zc + zp, r
+
+
+def _gap(ws, tr, side, s, y, zc, th, psi):
+    """Vertical gap wheel − rail at wheel coordinates ``s`` (arrays broadcast)."""
+    wc = ws.curve(side)
+    p, p1 = wc.eval(s, 1)
+    sig = _SIGMA[side]
+    _, Y, Z, _ = silhouette(s, p, p1, ws.nominal_radius, ws.e_tape, sig, y, zc, th, psi)
+    rc = tr.curve(side)
+    u = sig * Y
+    (zr,) = rc.eval(u, 0)
+    d = Z - zr
+    return np.where((u < rc.u_min) | (u > rc.u_max), _BIG, d)
+
+
+def _gapfun(ws, tr, side, y, zc, th, psi):
+    """Gap as a function of stacked wheel coordinates (length a multiple of the pose length)."""
+    n = np.size(y)
+    y, zc, th, psi = (np.broadcast_to(np.asarray(v, dtype=float), (n,)) for v in (y, zc, th, psi))
+
+    def fun(s):
+        k = s.size // n
+        return _gap(ws, tr, side, s, np.tile(y, k), np.tile(zc, k), np.tile(th, k),
+                    np.tile(psi, k))
+    return fun
+
+
+def _refine(fun, s0, h, lo, hi, levels=5):
+    """Successive parabolic interpolation of a minimum of ``fun`` near ``s0`` (vectorised).
+
+    Each level fits a parabola through ``s − h, s, s + h`` (one call of ``fun``
+    on the stacked points), moves to its vertex (at most ``h``) and divides
+    ``h`` by 8; five levels from the grid step 0.2 mm reach ~0.1 µm. The best
+    point evaluated so far is returned, so a kink of the distance (a jump of
+    a profile's curvature) cannot make the result worse than the grid point.
+    """
+    s = np.asarray(s0, dtype=float).copy()
+    n = s.size
+    best_s = s.copy()
+    best_f = np.full(n, np.inf)
+    for _ in range(levels):
+        sm, sp = np.maximum(s - h, lo), np.minimum(s + h, hi)
+        f = fun(np.concatenate([sm, s, sp]))
+        fm, f0, fp = f[:n], f[n:2 * n], f[2 * n:]
+        for cand_s, cand_f in ((s, f0), (sm, fm), (sp, fp)):
+            better = cand_f < best_f
+            best_s = np.where(better, cand_s, best_s)
+            best_f = np.where(better, cand_f, best_f)
+        den = fm - 2.0 * f0 + fp
+        with np.errstate(divide="ignore", invalid="ignore"):
+            shift = np.where(den > 0.0, 0.5 * h * (fm - fp) / den, np.where(fm < fp, -h, h))
+        # continue from the best point if the parabola's vertex left it behind
+        s = np.clip(best_s + np.clip(np.where(best_s == s, shift, 0.0), -h, h), lo, hi)
+        h = h / 8.0
+    f = fun(s)
+    return np.where(f <= best_f, s, best_s)
+
+
+def _grid(ws, side, step):
+    wc = ws.curve(side)
+    lo, hi = wc.u_min + _EDGE, wc.u_max - _EDGE
+    n = max(int(np.ceil((hi - lo) / step)) + 1, 16)
+    s = np.linspace(lo, hi, n)
+    return s, lo, hi, s[1] - s[0]
+
+
+_GRID_CACHE: dict = {}
+
+
+def _grid_profile(ws, side, step):
+    """Wheel height and slope on the search grid (cached per wheel curve and step)."""
+    wc = ws.curve(side)
+    key = (id(wc), step)
+    hit = _GRID_CACHE.get(key)
+    if hit is None or hit[0] is not wc:
+        s = _grid(ws, side, step)[0]
+        hit = (wc, *wc.eval(s, 1))
+        if len(_GRID_CACHE) > 64:
+            _GRID_CACHE.clear()
+        _GRID_CACHE[key] = hit
+    return hit[1], hit[2]
+
+
+@dataclass(frozen=True)
+class _Pose:
+    y: np.ndarray
+    z: np.ndarray
+    roll: np.ndarray
+    yaw: np.ndarray
+
+    def zc(self, ws):
+        return ws.nominal_radius + self.z
+
+
+@njit(cache=True)
+def _grid_gap_kernel(s, p, p1, r0, e_tape, sig, y, zc, th, psi, u0, hu, c, big):  # pragma: no cover
+    """Vertical gap on the search grid for many poses (numba kernel; see :func:`silhouette`).
+
+    ``u0``, ``hu`` and ``c`` (4, m) describe the rail spline on an equidistant grid.
+    """
+    nrow, ns, m = y.size, s.size, c.shape[1]
+    u1 = u0 + hu * m
+    out = np.empty((nrow, ns))
+    for k in range(nrow):
+        st, ct = np.sin(th[k]), np.cos(th[k])
+        sp, cp = np.sin(psi[k]), np.cos(psi[k])
+        Bc = -st * sp
+        R = np.sqrt(cp * cp + Bc * Bc)
+        beta = np.arctan2(Bc, cp)
+        for j in range(ns):
+            r = r0 - p[j]
+            a = sig * (e_tape + s[j])
+            if psi[k] == 0.0:
+                sf, cf = 0.0, 1.0
+            else:
+                q = (sig * p1[j]) * ct * sp / R
+                q = min(1.0, max(-1.0, q))
+                phi = np.arcsin(q) - beta
+                sf, cf = np.sin(phi), np.cos(phi)
+            xb = r * sf
+            yp = a * ct + r * cf * st
+            Y = y[k] + xb * sp + yp * cp
+            Z = zc[k] + a * st - r * cf * ct
+            u = sig * Y
+            if u < u0 or u > u1:
+                out[k, j] = big
+                continue
+            i = int((u - u0) / hu)
+            if i > m - 1:
+                i = m - 1
+            dx = u - (u0 + i * hu)
+            zr = ((c[0, i] * dx + c[1, i]) * dx + c[2, i]) * dx + c[3, i]
+            out[k, j] = Z - zr
+    return out
+
+
+def _grid_gap(ws, tr, side, pose, step):
+    """Gap on the search grid, shape (n_rows, n_grid), and the grid (s, lo, hi, h)."""
+    s, lo, hi, h = _grid(ws, side, step)
+    p, p1 = _grid_profile(ws, side, step)
+    n = np.size(pose.y)
+    arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
+    rc = tr.curve(side)
+    d = _grid_gap_kernel(s, p, p1, ws.nominal_radius, ws.e_tape, _SIGMA[side], arr(pose.y),
+                         arr(pose.zc(ws)), arr(pose.roll), arr(pose.yaw), rc.u_min, rc._h,
+                         np.ascontiguousarray(rc.c), _BIG)
+    return d, (s, lo, hi, h)
+
+
+def _global_min(ws, tr, side, pose, step, levels=5):
+    """Refined global minimum of the gap per row: (s*, d*, lever) (see :func:`solve_rigid`)."""
+    d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
+    zc = pose.zc(ws)
+    # the two lowest local minima of the grid are refined: near a jump of the contact point
+    # the lower grid value may belong to the branch whose refined minimum is higher
+    dm = np.full_like(d, np.inf)
+    inner = ((d[:, 1:-1] < d[:, :-2]) & (d[:, 1:-1] <= d[:, 2:])
+             & (d[:, :-2] < _BIG) & (d[:, 2:] < _BIG))
+    dm[:, 1:-1] = np.where(inner, d[:, 1:-1], np.inf)
+    rows = np.arange(d.shape[0])
+    dm[rows, np.argmin(d, axis=1)] = d[rows, np.argmin(d, axis=1)]
+    two = np.argpartition(dm, 1, axis=1)[:, :2]
+    n = rows.size
+    fun = _gapfun(ws, tr, side, pose.y, zc, pose.roll, pose.yaw)
+    sab = _refine(fun, np.concatenate([s[two[:, 0]], s[two[:, 1]]]), h, lo, hi, levels)
+    dab = fun(sab)
+    sa, sb, da, db = sab[:n], sab[n:], dab[:n], dab[n:]
+    s1 = np.where(db < da, sb, sa)
+    d1 = np.minimum(da, db)
+    wc = ws.curve(side)
+    p, p1 = wc.eval(s1, 1)
+    sig = _SIGMA[side]
+    _, Y, Z, _ = silhouette(s1, p, p1, ws.nominal_radius, ws.e_tape, sig,
+                            pose.y, zc, pose.roll, pose.yaw)
+    _, t = tr.curve(side).eval(sig * Y, 1)
+    # sensitivity of the gap to the roll angle: the point moves by (−(Z − zc), Y − y) dθ
+    # in (y, z); the rail below it rises by its slope times the lateral motion
+    lever = (Y - pose.y) + sig * t * (Z - zc)
+    return s1, d1, lever
+
+
+def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxiter=60,
+                z0=None, roll0=None):
+    """Roll and height satisfying ``min d = 0`` on both sides (seed 002, eqs. 2.1–2.3).
+
+    Newton iteration on (z, θ): raising the wheelset by Δz and rolling it by Δθ
+    about its centre moves a wheel point by ``(−(Z − zc)Δθ, Δz + (Y − y)Δθ)``
+    in (y, z); the gap to a rail of slope ``t`` changes by
+    ``Δz + [(Y − y) + t (Z − zc)]Δθ`` (envelope theorem: the minimising point
+    may be held fixed).
+
+    Parameters
+    ----------
+    y, yaw : ndarray, shape (n,)
+
+    z0, roll0 : ndarray, optional
+        Starting values (e.g. from neighbouring table rows).
+
+    Returns
+    -------
+    z, roll : ndarray, shape (n,)
+    """
+    y = np.asarray(y, dtype=float)
+    yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
+    z = np.zeros_like(y) if z0 is None else np.array(z0, dtype=float)
+    th = np.zeros_like(y) if roll0 is None else np.array(roll0, dtype=float)
+    levels = 3  # three parabolic levels locate the minimum to ~1e-10 m: gap error ~1e-19 m
+    for _ in range(maxiter):
+        pose = _Pose(y, z, th, yaw)
+        _, gL, lL = _global_min(ws, tr, "left", pose, step, levels)
+        _, gR, lR = _global_min(ws, tr, "right", pose, step, levels)
+        if np.any(gL >= _BIG) or np.any(gR >= _BIG):
+            bad = y[(gL >= _BIG) | (gR >= _BIG)][0]
+            raise InputError(f"y = {bad!r} m: a wheel lies entirely beside its rail "
+                             "(lateral shift too large for these profiles)")
+        res = max(np.max(np.abs(gL)), np.max(np.abs(gR)))
+        if res < tol:
+            return z, th
+        dth = -(gR - gL) / (lR - lL)
+        dz = -gR - lR * dth
+        th = th + dth
+        z = z + dz
+    bad = y[np.argmax(np.maximum(np.abs(gL), np.abs(gR)))]
+    raise ConvergenceError(f"rigid contact constraint did not converge for y = {bad!r} m "
+                           f"(residual {max(np.max(np.abs(gL)), np.max(np.abs(gR)))!r} m)")
+
+
+def point_data(ws, tr, side, s, pose: _Pose) -> dict:
+    """All per-point quantities of :data:`POINT_FIELDS` at wheel coordinates ``s`` (pure)."""
+    sig = _SIGMA[side]
+    wc, rc, pl = ws.curve(side), tr.curve(side), tr.placement(side)
+    p, p1, p2 = wc.eval(s)
+    zc = pose.zc(ws)
+    xr, Y, Z, r = silhouette(s, p, p1, ws.nominal_radius, ws.e_tape, sig,
+                             pose.y, zc, pose.roll, pose.yaw)
+    u = sig * Y
+    zr, zr1, zr2 = rc.eval(u)
+    gap = Z - zr
+    gamma = np.arctan(zr1)
+    kwx = 1.0 / (r * np.sqrt(1.0 + p1 * p1))
+    kwy = p2 / (1.0 + p1 * p1) ** 1.5
+    kry = -zr2 / (1.0 + zr1 * zr1) ** 1.5
+    ry, rz = pl.to_profile_frame(u, zr)
+    return {
+        "wheel_y": s, "wheel_z": p, "rail_y": ry, "rail_z": rz,
+        "track_y": Y, "track_z": Z, "x": xr,
+        "contact_angle": gamma, "rolling_radius": r,
+        "wheel_curvature_x": kwx, "wheel_curvature_y": kwy, "rail_curvature_y": kry,
+        "A": 0.5 * kwx, "B": 0.5 * (kwy + kry),
+        "separation": gap * np.cos(gamma), "gap": gap,
+    }
+
+
+def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_points=None):
+    """All local minima of the gap per row with separation ≤ ``tolerance`` (pure kernel).
+
+    The global minimum of each row is always included. Points are ordered
+    from the field side to the flange (decreasing wheel coordinate).
+
+    Returns
+    -------
+    data : dict of ndarray, shape (n_rows, n_points)
+        :data:`POINT_FIELDS`, NaN-padded.
+    count : ndarray of int, shape (n_rows,)
+    """
+    d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
+    nrow = d.shape[0]
+    gmin = np.argmin(d, axis=1)
+    interior = np.zeros_like(d, dtype=bool)
+    interior[:, 1:-1] = ((d[:, 1:-1] < d[:, :-2]) & (d[:, 1:-1] <= d[:, 2:])
+                         & (d[:, :-2] < _BIG) & (d[:, 2:] < _BIG))  # not at the rail's ends
+    # vertical gap of a point with normal separation <= tolerance is at most tolerance/cos(80°)
+    interior &= d <= 6.0 * tolerance + 1e-9
+    interior[np.arange(nrow), gmin] = True
+    rows, idx = np.nonzero(interior)
+    # merge neighbouring minima separated by a negligible hump
+    keep = np.ones(rows.size, dtype=bool)
+    for k in range(1, rows.size):
+        if rows[k] != rows[k - 1]:
+            continue
+        j = k - 1
+        while j >= 0 and not keep[j] and rows[j] == rows[k]:
+            j -= 1
+        if j < 0 or rows[j] != rows[k]:
+            continue
+        i1, i2 = idx[j], idx[k]
+        hump = np.max(d[rows[k], i1:i2 + 1])
+        if hump - max(d[rows[k], i1], d[rows[k], i2]) < _MERGE:
+            if d[rows[k], i2] < d[rows[k], i1]:
+                keep[j] = False
+            else:
+                keep[k] = False
+    rows, idx = rows[keep], idx[keep]
+    sub = _Pose(*(np.asarray(v)[rows] for v in (pose.y, pose.z, pose.roll, pose.yaw)))
+    zsub = sub.zc(ws)
+    fun = _gapfun(ws, tr, side, sub.y, zsub, sub.roll, sub.yaw)
+    sref = _refine(fun, s[idx], h, lo, hi)
+    data = point_data(ws, tr, side, sref, sub)
+    # drop duplicates (two grid minima refined to the same point) and distant minima
+    sep = data["separation"]
+    rowmin = np.full(nrow, np.inf)
+    np.minimum.at(rowmin, rows, sep)
+    ok = (sep <= tolerance) | (sep == rowmin[rows])
+    order = np.lexsort((-sref, rows))
+    last_row, last_s = -1, np.nan
+    for k in order:
+        if not ok[k]:
+            continue
+        if rows[k] == last_row and abs(sref[k] - last_s) < 1e-6:
+            ok[k] = False
+            continue
+        last_row, last_s = rows[k], sref[k]
+    order = order[ok[order]]
+    rows_o = rows[order]
+    count = np.bincount(rows_o, minlength=nrow)
+    npt = int(max(count.max(initial=1), 1))
+    if max_points is not None:
+        npt = max(npt, int(max_points))
+    slot = np.zeros(order.size, dtype=int)
+    for k in range(1, order.size):
+        slot[k] = slot[k - 1] + 1 if rows_o[k] == rows_o[k - 1] else 0
+    out = {}
+    for key, val in data.items():
+        arr = np.full((nrow, npt), np.nan)
+        arr[rows_o, slot] = np.broadcast_to(val, sref.shape)[order]
+        out[key] = arr
+    return out, count
+
+
+# --------------------------------------------------------------------------- results
+@dataclass(frozen=True)
+class SideContacts:
+    """Contact points on one side (arrays of shape (n,), field side first).
+
+    See :data:`POINT_FIELDS` for the meaning and units of every attribute;
+    ``primary`` is the index of the point with the smallest separation (the
+    rigid contact point).
+    """
+
+    wheel_y: np.ndarray
+    wheel_z: np.ndarray
+    rail_y: np.ndarray
+    rail_z: np.ndarray
+    track_y: np.ndarray
+    track_z: np.ndarray
+    x: np.ndarray
+    contact_angle: np.ndarray
+    rolling_radius: np.ndarray
+    wheel_curvature_x: np.ndarray
+    wheel_curvature_y: np.ndarray
+    rail_curvature_y: np.ndarray
+    A: np.ndarray
+    B: np.ndarray
+    separation: np.ndarray
+    gap: np.ndarray
+
+    @property
+    def n(self) -> int:
+        """Number of reported points."""
+        return int(np.size(self.separation))
+
+    @property
+    def primary(self) -> int:
+        """Index of the point with the smallest separation."""
+        return int(np.argmin(self.separation))
+
+    def in_contact(self, tolerance: float = 1e-6) -> np.ndarray:
+        """Mask of the points with separation ≤ ``tolerance`` [m]."""
+        return self.separation <= tolerance
+
+
+@dataclass(frozen=True)
+class ContactPoints:
+    """Rigid contact of a wheelset at one lateral shift and yaw (frozen).
+
+    Attributes
+    ----------
+    y, yaw : float
+        Prescribed lateral shift [m] and yaw [rad].
+    z, roll : float
+        Height of the axle centre above r0 over the top of rail [m] and roll
+        angle [rad] from the rigid constraint (positive: right wheel higher).
+    left, right : SideContacts
+        All points with separation ≤ ``tolerance``.
+    tolerance : float
+        Reporting tolerance on the separation [m].
+    """
+
+    y: float
+    yaw: float
+    z: float
+    roll: float
+    left: SideContacts
+    right: SideContacts
+    tolerance: float
+
+    def side(self, side: str) -> SideContacts:
+        """``left`` or ``right``."""
+        if side not in SIDES:
+            raise InputError(f"side must be 'left' or 'right', got {side!r}")
+        return getattr(self, side)
+
+    @property
+    def delta_r(self) -> float:
+        """Rolling radius difference r_right − r_left of the primary points [m]."""
+        return float(self.right.rolling_radius[self.right.primary]
+                     - self.left.rolling_radius[self.left.primary])
+
+
+def _side_from_row(data, count, row) -> SideContacts:
+    n = int(count[row])
+    return SideContacts(**{f.name: np.array(data[f.name][row, :n]) for f in fields(SideContacts)})
+
+
+def check_inputs(ws, tr, yaw, tolerance, step):
+    """Validate the common arguments of the contact functions."""
+    if not isinstance(ws, Wheelset):
+        raise InputError(f"wheelset must be a Wheelset, got {type(ws).__name__}")
+    if not isinstance(tr, Track):
+        raise InputError(f"track must be a Track, got {type(tr).__name__}")
+    yaw = as_float_array("yaw", yaw)
+    if np.any(np.abs(yaw) > _MAX_YAW):
+        raise InputError(f"|yaw| must be <= {_MAX_YAW} rad, got {yaw!r}")
+    tolerance = float(non_negative("tolerance", tolerance))
+    step = float(positive("step", step))
+    if step > 2e-3:
+        raise InputError(f"step must be <= 2e-3 m (search grid on the wheel), got {step!r}")
+    return yaw, tolerance, step
+
+
+def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e-4,
+                   step=2e-4) -> ContactPoints:
+    """All wheel–rail contact points of a wheelset at lateral shift ``y`` and yaw ``yaw``.
+
+    Parameters
+    ----------
+    wheelset : Wheelset
+    track : Track
+    y : float
+        Lateral shift of the wheelset [m], positive to the right.
+    yaw : float
+        Yaw angle [rad] (|ψ| ≤ 0.2).
+    tolerance : float
+        Report every local minimum of the distance with separation ≤
+        ``tolerance`` [m] (default 0.1 mm): secondary / potential contact points.
+    step : float
+        Search grid spacing along the wheel profile [m] (default 0.2 mm);
+        minima are refined far below it.
+
+    Returns
+    -------
+    ContactPoints
+
+    Examples
+    --------
+    >>> import wheelrail as wr
+    >>> ws = wr.Wheelset(wr.profiles.load("S1002"))
+    >>> tr = wr.Track(wr.profiles.load("60E1"))
+    >>> cp = wr.contact_points(ws, tr, 0.0)
+    >>> abs(cp.delta_r) < 1e-9
+    True
+    """
+    yaw, tolerance, step = check_inputs(wheelset, track, yaw, tolerance, step)
+    y = as_float_array("y", y)
+    if y.ndim != 0 or yaw.ndim != 0:
+        raise InputError("contact_points takes a scalar y and yaw; use contact_table for arrays")
+    yv, psi = y.reshape(1), yaw.reshape(1)
+    z, th = solve_rigid(wheelset, track, yv, psi, step=step)
+    pose = _Pose(yv, z, th, psi)
+    sides = {}
+    for side in SIDES:
+        data, count = find_points(wheelset, track, side, pose, step=step, tolerance=tolerance)
+        sides[side] = _side_from_row(data, count, 0)
+    return ContactPoints(float(y), float(yaw), float(z[0]), float(th[0]), sides["left"],
+                         sides["right"], tolerance)
