@@ -175,6 +175,16 @@ def step_fastsim_fields(ctx: DemoContext):
     return f"{what}; Fx = {result.summary['Fx']:.0f} N, Fy = {result.summary['Fy']:.0f} N"
 
 
+def step_geometry(ctx: DemoContext):
+    """S1002 wheelset on 60E1 rails 1:40: contact table over y = −10…10 mm and figures."""
+    from .geometry import geometry_demo
+
+    out = geometry_demo(ctx.out)
+    ctx.results["geometry"] = out["results"]
+    ctx.files.extend(out["files"])
+    return out["note"]
+
+
 #: The demo, in order. Append a Step to add a part.
 STEPS = [
     Step("case", "built-in case file", step_case),
@@ -182,6 +192,7 @@ STEPS = [
     Step("creep-forces", "creep forces, all fast methods", step_creep_forces),
     Step("creep-curves", "creep curves in ξ and η", step_creep_curves),
     Step("fastsim-fields", "FASTSIM traction field", step_fastsim_fields),
+    Step("geometry", "S1002/60E1 1:40 contact table", step_geometry),
 ]
 
 
