@@ -1,0 +1,1125 @@
+"""Kalker's exact theory of tangential contact on a half-space grid (kernels).
+
+Two problems with a **given** normal pressure ``pn`` on a uniform grid of
+``nx × ny`` piecewise-constant elements (:class:`~wheelrail.halfspace.grid.Grid`):
+
+* **steady-state rolling** with prescribed creepages (ξ, η, φ)
+  (:func:`solve_rolling`);
+* **shift** (static, Cattaneo–Mindlin) with a prescribed rigid shift or total
+  tangential force (:func:`solve_shift`).
+
+Sign conventions (those of :mod:`wheelrail.halfspace.influence`)
+----------------------------------------------------------------
+``p = (px, py)`` is the tangential traction **on the wheel** [Pa];
+``u = u(wheel) − u(rail)`` the displacement difference [m]. The contact moves
+along +x over the rail, so material particles cross the patch from the leading
+edge (largest x) to the trailing edge. In a frame moving with the contact the
+material time derivative is ``d/dt = −V ∂/∂x`` and the slip velocity of the
+wheel relative to the rail, divided by V, is (Kalker 1990, eq. 2.7)::
+
+    s = w − ∂u/∂x,      w = (ξ − φ y, η + φ x).
+
+Discretisation (Kalker's, 1990 §5.2): ``∂u/∂x`` at element I is the backward
+difference towards the element *upstream* of it (``I + e_x``, where the
+particle was one element length earlier), i.e. the transient problem with time
+step ``dx / V``::
+
+    s_I = w_I + (u_I − u_{I+e_x}) / dx = w_I + Σ_J M(I − J) p_J,
+    M(m) = (C(m) − C(m + e_x)) / dx,
+
+with ``C`` the influence kernel. For the shift problem the slip is a
+displacement [m]: ``s_I = W + u_I`` (rigid shift ``W`` of the wheel relative
+to the rail, starting from the unloaded state), ``M = C``.
+
+Coulomb's law with the traction bound ``g = μ pn``::
+
+    |p_I| ≤ g_I;   |p_I| < g_I ⇒ s_I = 0 (adhesion);   s_I ≠ 0 ⇒ p_I = −g_I s_I/|s_I|.
+
+Solvers
+-------
+``solver="newton"`` (default): an active-set semismooth Newton method in the
+variables of Zhao, Vollebregt & Oosterlee (tractions in the adhesion area,
+traction *angles* in the slip area, ``p = g (cos θ, sin θ)``). Each Newton
+system is solved by restarted GMRES with FFT matrix–vector products
+(O(N log N)), right-preconditioned by an exact solve of the strong
+nearest-neighbour coupling along the rolling direction (self + upstream
+element): for rolling this inverts the backward difference, i.e. a running
+sum from the leading edge, which makes the number of Krylov iterations grow
+only slowly with the grid. After each step elements whose traction exceeds
+the bound move to the slip area, slip elements whose slip points along their
+traction move back to adhesion. Converged when no element changes state and
+the largest residual of the slip equations is below ``tol · max|w|``.
+
+``solver="gs"`` (shift problem only): Kalker's block Gauss–Seidel (ConvexGS
+without relaxation) with the exact 2×2 local problem per element (adhesion
+trial, else ``p = −(D + λI)⁻¹ b`` with ``|p| = g`` by Newton on λ); O(N²)
+per sweep (numba), kept as an independent check of the Newton solver. For
+steady rolling the element-wise Gauss–Seidel iteration diverges on fine grids
+(the inverse of the backward difference amplifies the lagged downstream
+influence), which is why the default is the preconditioned Newton method.
+
+References
+----------
+.. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+   Kluwer 1990, ch. 2 (eqs. 2.7–2.12) and ch. 5 (discretisation, §5.2;
+   algorithm KOMBI, §5.3).
+.. [2] E.A.H. Vollebregt, A Gauss–Seidel type solver for special convex
+   programs, with application to frictional contact mechanics, J. Optim.
+   Theory Appl. 87 (1995) 47–67 (ConvexGS).
+.. [3] L. Baeza et al., seed paper 001, §2.2–2.4, eqs. (2.9)–(2.20).
+.. [4] Review of wheel–rail contact models, seed paper 002, §2.2 (Johnson
+   process; Panagiotopoulos process for K ≠ 0).
+.. [5] J. Zhao, E.A.H. Vollebregt, C.W. Oosterlee, A fast nonlinear conjugate
+   gradient based method for 3D frictional contact problems, J. Comput. Phys.
+   288 (2015) 86–100 (azimuth-angle variables of the slip area).
+.. [6] Y. Saad, M.H. Schultz, GMRES: a generalized minimal residual algorithm
+   for solving nonsymmetric linear systems, SIAM J. Sci. Stat. Comput. 7
+   (1986) 856–869.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.fft as sfft
+from numba import njit
+
+from .._validation import as_float_array, positive
+from ..errors import ConvergenceError, InputError, NoContactError
+from ..materials import as_material_pair
+from .grid import Grid
+from .influence import influence_kernel
+
+__all__ = [
+    "TangentialSolution",
+    "rolling_kernel",
+    "shift_kernel",
+    "solve_rolling",
+    "solve_shift",
+    "solve_tangential",
+    "GapSolution",
+    "solve_gap",
+]
+
+
+# --------------------------------------------------------------------------
+# numba kernels
+# --------------------------------------------------------------------------
+@njit(cache=True)
+def _local_problem(bx, by, dxx, dxy, dyx, dyy, g):
+    """Exact solution of one element's problem ``s = b + D p`` under ``|p| ≤ g``.
+
+    Returns ``(px, py, sx, sy)``; ``s = (0, 0)`` in adhesion.
+    """
+    det = dxx * dyy - dxy * dyx
+    px = -(dyy * bx - dxy * by) / det
+    py = -(-dyx * bx + dxx * by) / det
+    if px * px + py * py <= g * g:
+        return px, py, 0.0, 0.0
+    if g <= 0.0:
+        return 0.0, 0.0, bx, by
+    # slip: p = -(D + lam I)^-1 b with |p| = g, lam >= 0; Newton on 1/|p| - 1/g
+    lam = 0.0
+    for _ in range(60):
+        axx = dxx + lam
+        ayy = dyy + lam
+        det = axx * ayy - dxy * dyx
+        px = -(ayy * bx - dxy * by) / det
+        py = -(-dyx * bx + axx * by) / det
+        qx = -(ayy * px - dxy * py) / det   # dp/dlam
+        qy = -(-dyx * px + axx * py) / det
+        n = math.sqrt(px * px + py * py)
+        phi = 1.0 / n - 1.0 / g
+        dphi = -(px * qx + py * qy) / (n * n * n)
+        if dphi <= 0.0:
+            break
+        new = lam - phi / dphi
+        if new < 0.0:
+            new = 0.5 * lam
+        if abs(new - lam) <= 1e-14 * (new + abs(dxx) + abs(dyy)):
+            lam = new
+            break
+        lam = new
+    axx = dxx + lam
+    ayy = dyy + lam
+    det = axx * ayy - dxy * dyx
+    px = -(ayy * bx - dxy * by) / det
+    py = -(-dyx * bx + axx * by) / det
+    n = math.sqrt(px * px + py * py)
+    px *= g / n
+    py *= g / n
+    sx = bx + dxx * px + dxy * py
+    sy = by + dyx * px + dyy * py
+    return px, py, sx, sy
+
+
+@njit(cache=True)
+def _gs_sweep(mxx, mxy, myx, myy, order_i, order_j, g, px, py, sx, sy,
+              i0, i1, j0, j1, skip):
+    """One block Gauss–Seidel sweep (in place); returns the largest traction change.
+
+    ``m..`` are the 2-D kernel blocks (2nx−1, 2ny−1); ``sx, sy`` hold the
+    current slip ``b + M p`` on the grid and are kept consistent inside the
+    box ``[i0, i1) × [j0, j1)`` (changes smaller than ``skip`` are not
+    propagated; the caller resynchronises after the sweep).
+    """
+    nx, ny = px.shape
+    cx = nx - 1
+    cy = ny - 1
+    dxx = mxx[cx, cy]
+    dxy = mxy[cx, cy]
+    dyx = myx[cx, cy]
+    dyy = myy[cx, cy]
+    maxdp = 0.0
+    for k in range(order_i.shape[0]):
+        i = order_i[k]
+        j = order_j[k]
+        pxo = px[i, j]
+        pyo = py[i, j]
+        bx = sx[i, j] - dxx * pxo - dxy * pyo
+        by = sy[i, j] - dyx * pxo - dyy * pyo
+        pxn, pyn, sxn, syn = _local_problem(bx, by, dxx, dxy, dyx, dyy, g[i, j])
+        dpx = pxn - pxo
+        dpy = pyn - pyo
+        px[i, j] = pxn
+        py[i, j] = pyn
+        d = max(abs(dpx), abs(dpy))
+        if d > maxdp:
+            maxdp = d
+        if d > skip:
+            for a in range(i0, i1):
+                ka = a - i + cx
+                for c in range(j0, j1):
+                    kc = c - j + cy
+                    sx[a, c] += mxx[ka, kc] * dpx + mxy[ka, kc] * dpy
+                    sy[a, c] += myx[ka, kc] * dpx + myy[ka, kc] * dpy
+        else:
+            sx[i, j] += dxx * dpx + dxy * dpy
+            sy[i, j] += dyx * dpx + dyy * dpy
+    return maxdp
+
+
+@njit(cache=True)
+def _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy):
+    """Apply the line preconditioner (in place into ``z``).
+
+    Solves, in upwind order, the part of the Newton system that couples each
+    element to itself (``d0 = M(0)``) and to its upstream neighbour
+    (``dup = M(−e_x)``): for rolling this is the backward difference along x,
+    whose exact inverse is a running sum from the leading edge. ``kind`` is
+    1 (adhesion, unknowns δp) or 2 (slip, unknown δθ); ``vx, vy`` receive the
+    traction perturbation of each element.
+    """
+    nx, ny = kind.shape
+    for k in range(order_i.shape[0]):
+        i = order_i[k]
+        j = order_j[k]
+        ux = 0.0
+        uy = 0.0
+        if i + 1 < nx and kind[i + 1, j] > 0:
+            ux = dup[0, 0] * vx[i + 1, j] + dup[0, 1] * vy[i + 1, j]
+            uy = dup[1, 0] * vx[i + 1, j] + dup[1, 1] * vy[i + 1, j]
+        q = pos[i, j]
+        if kind[i, j] == 1:
+            rx = r[q] - ux
+            ry = r[q + 1] - uy
+            det = d0[0, 0] * d0[1, 1] - d0[0, 1] * d0[1, 0]
+            ax = (d0[1, 1] * rx - d0[0, 1] * ry) / det
+            ay = (-d0[1, 0] * rx + d0[0, 0] * ry) / det
+            z[q] = ax
+            z[q + 1] = ay
+            vx[i, j] = ax
+            vy[i, j] = ay
+        else:
+            t0 = tx[i, j]
+            t1 = ty[i, j]
+            tdt = (t0 * (d0[0, 0] * t0 + d0[0, 1] * t1) + t1 * (d0[1, 0] * t0 + d0[1, 1] * t1))
+            den = tdt * g[i, j] + diag_s[i, j]
+            dth = (r[q] - (t0 * ux + t1 * uy)) / den
+            z[q] = dth
+            vx[i, j] = g[i, j] * t0 * dth
+            vy[i, j] = g[i, j] * t1 * dth
+
+
+@njit(cache=True)
+def _orthogonalise(V, k, w, h):
+    """Modified Gram–Schmidt of ``w`` against rows ``V[:k+1]``; fills ``h[:k+2]``."""
+    n = w.shape[0]
+    for i in range(k + 1):
+        acc = 0.0
+        for q in range(n):
+            acc += V[i, q] * w[q]
+        h[i] = acc
+        for q in range(n):
+            w[q] -= acc * V[i, q]
+    acc = 0.0
+    for q in range(n):
+        acc += w[q] * w[q]
+    h[k + 1] = math.sqrt(acc)
+
+
+@njit(cache=True)
+def _givens(H, cs, sn, e, k):
+    """Apply the previous Givens rotations to column k of H and add a new one."""
+    for i in range(k):
+        t = cs[i] * H[i, k] + sn[i] * H[i + 1, k]
+        H[i + 1, k] = -sn[i] * H[i, k] + cs[i] * H[i + 1, k]
+        H[i, k] = t
+    den = math.hypot(H[k, k], H[k + 1, k])
+    if den == 0.0:
+        cs[k] = 1.0
+        sn[k] = 0.0
+    else:
+        cs[k] = H[k, k] / den
+        sn[k] = H[k + 1, k] / den
+    H[k, k] = den
+    H[k + 1, k] = 0.0
+    e[k + 1] = -sn[k] * e[k]
+    e[k] = cs[k] * e[k]
+
+
+def _gmres(matvec, rhs, rtol, maxiter, restart=60):
+    """Restarted GMRES for ``A x = rhs`` from x = 0 (private; Saad & Schultz 1986).
+
+    Written out (numba Gram–Schmidt) because the BLAS-2 calls of
+    :func:`scipy.sparse.linalg.gmres` dominate for these small, many systems.
+    Returns ``x, iterations``.
+    """
+    n = rhs.shape[0]
+    x = np.zeros(n)
+    beta0 = float(np.sqrt(rhs @ rhs))
+    if beta0 == 0.0:
+        return x, 0
+    total = 0
+    r = rhs.copy()
+    m = min(restart, n)
+    while total < maxiter:
+        beta = float(np.sqrt(r @ r))
+        V = np.zeros((m + 1, n))
+        H = np.zeros((m + 1, m))
+        cs = np.zeros(m)
+        sn = np.zeros(m)
+        e = np.zeros(m + 1)
+        e[0] = beta
+        V[0] = r / beta
+        h = np.zeros(m + 1)
+        k_used = 0
+        for k in range(m):
+            w = matvec(V[k])
+            _orthogonalise(V, k, w, h)
+            total += 1
+            H[: k + 2, k] = h[: k + 2]
+            if h[k + 1] > 0:
+                V[k + 1] = w / h[k + 1]
+            _givens(H, cs, sn, e, k)
+            k_used = k + 1
+            if abs(e[k + 1]) <= rtol * beta0 or total >= maxiter or h[k + 1] == 0:
+                break
+        y = np.linalg.solve(np.triu(H[:k_used, :k_used]), e[:k_used]) if k_used else np.zeros(0)
+        x += V[:k_used].T @ y
+        if abs(e[k_used]) <= rtol * beta0 or total >= maxiter:
+            break
+        r = rhs - matvec(x)
+    return x, total
+
+
+# --------------------------------------------------------------------------
+# operators
+# --------------------------------------------------------------------------
+class _BlockConvolution:
+    """FFT convolution with a block kernel (m, k, 2nx−1, 2ny−1) on an (nx, ny) grid (private).
+
+    Same zero-padded wrap-around layout as
+    :class:`~wheelrail.halfspace.fft.ConvolutionOperator`, but for a block of
+    kernels sharing the forward transforms of the ``k`` input fields.
+    """
+
+    def __init__(self, kernel):
+        k = np.asarray(kernel, dtype=float)
+        self.nx = (k.shape[-2] + 1) // 2
+        self.ny = (k.shape[-1] + 1) // 2
+        self.shape = (sfft.next_fast_len(2 * self.nx - 1, real=True),
+                      sfft.next_fast_len(2 * self.ny - 1, real=True))
+        pad = np.zeros(k.shape[:2] + self.shape)
+        pad[..., : k.shape[-2], : k.shape[-1]] = k
+        pad = np.roll(pad, (-(self.nx - 1), -(self.ny - 1)), axis=(-2, -1))
+        self.hat = sfft.rfft2(pad, axes=(-2, -1))
+
+    def __call__(self, p):
+        """``u[i] = Σ_j K[i, j] * p[j]`` for ``p`` of shape (k, nx, ny) -> (m, nx, ny)."""
+        ph = sfft.rfft2(p, s=self.shape, axes=(-2, -1))
+        if self.hat.shape[:2] == (2, 2):
+            uh = np.empty((2,) + ph.shape[1:], dtype=complex)
+            uh[0] = self.hat[0, 0] * ph[0] + self.hat[0, 1] * ph[1]
+            uh[1] = self.hat[1, 0] * ph[0] + self.hat[1, 1] * ph[1]
+        else:
+            uh = np.einsum("ijab,jab->iab", self.hat, ph)
+        return sfft.irfft2(uh, s=self.shape, axes=(-2, -1))[:, : self.nx, : self.ny]
+
+
+def rolling_kernel(grid: Grid, materials) -> np.ndarray:
+    """Kernel of the discretised steady-rolling slip, shape (3, 3, 2nx−1, 2ny−1).
+
+    ``M(m) = (C(m) − C(m + e_x)) / dx`` [m/Pa / m = 1/Pa]: the slip
+    ``s_I = w_I + Σ_J M(I − J) p_J`` (module docstring). Built from the
+    influence kernel of a grid one element longer so that the offset
+    ``m + e_x = nx`` is available.
+    """
+    ext = Grid(grid.x0, grid.y0, grid.dx, grid.dy, grid.nx + 1, grid.ny)
+    C = influence_kernel(ext, materials)
+    nx = grid.nx
+    return (C[:, :, 1:2 * nx, :] - C[:, :, 2:2 * nx + 1, :]) / grid.dx
+
+
+def shift_kernel(grid: Grid, materials) -> np.ndarray:
+    """Kernel of the shift problem: the influence kernel ``C`` itself [m/Pa]."""
+    return influence_kernel(grid, materials)
+
+
+# --------------------------------------------------------------------------
+# results
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class TangentialSolution:
+    """Tangential tractions and slip on a grid (frozen).
+
+    Attributes
+    ----------
+    grid : Grid
+    pressure : ndarray, shape (nx, ny)
+        Normal pressure used [Pa].
+    px, py : ndarray, shape (nx, ny)
+        Tangential traction on the wheel [Pa].
+    sx, sy : ndarray, shape (nx, ny)
+        Slip of the wheel relative to the rail: dimensionless slip velocity
+        (rolling) or slip distance [m] (shift); zero in adhesion and outside
+        the contact.
+    ux, uy : ndarray, shape (nx, ny)
+        Tangential displacement difference u(wheel) − u(rail) [m].
+    adhesion, slip : ndarray of bool, shape (nx, ny)
+        Elements in contact that stick / slide.
+    Fx, Fy : float
+        Tangential force on the wheel [N].
+    Mz : float
+        Moment of the tangential tractions about the grid origin [N·m].
+    mu : float
+    kind : str
+        ``"rolling"`` or ``"shift"``.
+    creepage : tuple
+        (ξ, η, φ) for rolling; the rigid shift (Wx, Wy) [m] for shift.
+    iterations : int
+        Newton iterations (``solver="newton"``; for a prescribed shift force,
+        summed over the outer iterations) or Gauss–Seidel sweeps.
+    converged : bool
+    residual : float
+        Newton: largest slip-equation residual / max |rigid slip|;
+        Gauss–Seidel: largest traction change of the last sweep / max μ·pn.
+    info : dict
+        ``solver``, ``krylov_iterations`` (rolling), ``outer_iterations`` (shift).
+    """
+
+    grid: Grid
+    pressure: np.ndarray
+    px: np.ndarray
+    py: np.ndarray
+    sx: np.ndarray
+    sy: np.ndarray
+    ux: np.ndarray
+    uy: np.ndarray
+    adhesion: np.ndarray
+    slip: np.ndarray
+    Fx: float
+    Fy: float
+    Mz: float
+    mu: float
+    kind: str
+    creepage: tuple
+    iterations: int
+    converged: bool
+    residual: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def contact(self) -> np.ndarray:
+        """Elements with positive pressure, shape (nx, ny)."""
+        return self.pressure > 0.0
+
+    @property
+    def adhesion_area(self) -> float:
+        """Area of the adhesion zone [m²]."""
+        return float(np.count_nonzero(self.adhesion)) * self.grid.element_area
+
+    @property
+    def Ft(self) -> float:
+        """|F_t| = √(Fx² + Fy²) [N]."""
+        return float(np.hypot(self.Fx, self.Fy))
+
+
+# --------------------------------------------------------------------------
+# driver
+# --------------------------------------------------------------------------
+def _sweep_order(contact):
+    """Element indices in contact, leading edge (largest x index) first."""
+    ii, jj = np.nonzero(contact)
+    order = np.lexsort((jj, -ii))
+    return ii[order].astype(np.int64), jj[order].astype(np.int64)
+
+
+def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
+    """Solve ``s = b + M p``, Coulomb with bound ``g`` (nx, ny); returns p, s, sweeps, res."""
+    contact = g > 0.0
+    order_i, order_j = _sweep_order(contact)
+    gmax = float(g.max())
+    mxx, mxy, myx, myy = (np.ascontiguousarray(kernel[a, c]) for a, c in
+                          ((0, 0), (0, 1), (1, 0), (1, 1)))
+    p = np.zeros((2,) + g.shape) if p0 is None else np.array(p0, dtype=float)
+    p[:, ~contact] = 0.0
+    # project the initial guess onto the friction discs
+    norm = np.hypot(p[0], p[1])
+    over = norm > g
+    if np.any(over):
+        scale = np.where(over, g / np.where(norm > 0, norm, 1.0), 1.0)
+        p *= scale
+    px, py = np.ascontiguousarray(p[0]), np.ascontiguousarray(p[1])
+    ii, jj = np.nonzero(contact)
+    i0, i1, j0, j1 = int(ii.min()), int(ii.max()) + 1, int(jj.min()), int(jj.max()) + 1
+    tol_abs = tol * gmax
+    skip = skip_fraction * tol_abs
+    res = np.inf
+    sweeps = 0
+    for sweeps in range(1, maxiter + 1):
+        s = b + conv(np.stack((px, py)))
+        sx, sy = np.ascontiguousarray(s[0]), np.ascontiguousarray(s[1])
+        dp = _gs_sweep(mxx, mxy, myx, myy, order_i, order_j, g, px, py, sx, sy,
+                       i0, i1, j0, j1, skip)
+        res = dp / gmax
+        if dp <= tol_abs:
+            break
+    p = np.stack((px, py))
+    s = b + conv(p)
+    return p, s, sweeps, res
+
+
+def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
+            gmres_maxiter=400):
+    """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
+
+    Unknowns are the tractions of the adhesion elements (H) and the traction
+    angles θ of the slip elements (S, ``p = g (cos θ, sin θ)``; Zhao, Vollebregt
+    & Oosterlee 2014). Equations: ``s_I = 0`` on H, ``t_I · s_I = 0`` on S with
+    ``t`` the unit vector normal to ``p``. Each Newton system is solved by
+    GMRES with FFT matrix–vector products, right-preconditioned by
+    :func:`_precondition`. After each step elements with ``|p| > g`` move to S
+    and slip elements whose slip points along their traction move to H.
+
+    Returns ``p, s, newton_iterations, residual, gmres_iterations``; the
+    residual is the largest equation residual divided by the slip scale
+    ``max |b|`` (dimensionless).
+    """
+    contact = g > 0.0
+    shape = g.shape
+    order_i, order_j = _sweep_order(contact)
+    nx, ny = shape
+    cx, cy = nx - 1, ny - 1
+    d0 = np.ascontiguousarray(kernel[:, :, cx, cy])
+    if upwind and nx > 1:
+        dup = np.ascontiguousarray(kernel[:, :, cx - 1, cy])
+    else:
+        dup = np.zeros((2, 2))
+    p = np.zeros((2,) + shape) if p0 is None else np.array(p0, dtype=float)
+    p[:, ~contact] = 0.0
+    norm = np.hypot(p[0], p[1])
+    slip = contact & (norm >= g * (1 - 1e-12)) & (norm > 0)
+    p = np.where(norm > g, p * (g / np.where(norm > 0, norm, 1.0)), p)
+    s_scale = float(np.max(np.hypot(b[0], b[1])[contact]))
+    if s_scale == 0.0:
+        return np.zeros((2,) + shape), b.copy(), 0, 0.0, 0
+    if s_scale < 1e-100 or s_scale > 1e100:
+        # the problem is positively homogeneous in (b, g, p): solve it rescaled
+        p, s, it, res, kry = _newton(kernel, conv, b / s_scale, g / s_scale,
+                                     None if p0 is None else np.asarray(p0) / s_scale, tol,
+                                     maxiter, upwind, gmres_rtol, gmres_maxiter)
+        return p * s_scale, s * s_scale, it, res, kry
+    total_krylov = 0
+    res = np.inf
+    it = 0
+    vx = np.zeros(shape)
+    vy = np.zeros(shape)
+    for it in range(1, maxiter + 1):
+        s = b + conv(p)
+        # --- active-set update
+        norm = np.hypot(p[0], p[1])
+        to_slip = contact & ~slip & (norm > g * (1 + 1e-10))
+        safe = np.where(norm > 0, norm, 1.0)
+        ex, ey = p[0] / safe, p[1] / safe
+        sigma = ex * s[0] + ey * s[1]
+        to_stick = slip & (sigma > 0.0)
+        changed = bool(np.any(to_slip) or np.any(to_stick))
+        if changed:
+            slip = (slip | to_slip) & ~to_stick
+            p = np.where(to_slip, p * (g / safe), p)
+            s = b + conv(p)
+            norm = np.hypot(p[0], p[1])
+            safe = np.where(norm > 0, norm, 1.0)
+            ex, ey = p[0] / safe, p[1] / safe
+            sigma = ex * s[0] + ey * s[1]
+        stick = contact & ~slip
+        tx, ty = -ey, ex
+        # --- residual
+        kind = np.zeros(shape, dtype=np.int64)
+        kind[stick] = 1
+        kind[slip] = 2
+        pos = np.zeros(shape, dtype=np.int64)
+        # positions in the unknown vector, in upwind order
+        width = np.where(kind[order_i, order_j] == 1, 2, 1)
+        starts = np.concatenate(([0], np.cumsum(width)[:-1]))
+        pos[order_i, order_j] = starts
+        n_unknowns = int(width.sum())
+        F = np.empty(n_unknowns)
+        hi, hj = order_i[kind[order_i, order_j] == 1], order_j[kind[order_i, order_j] == 1]
+        si, sj = order_i[kind[order_i, order_j] == 2], order_j[kind[order_i, order_j] == 2]
+        ph, ps = pos[hi, hj], pos[si, sj]
+        F[ph] = s[0, hi, hj]
+        F[ph + 1] = s[1, hi, hj]
+        F[ps] = tx[si, sj] * s[0, si, sj] + ty[si, sj] * s[1, si, sj]
+        res = float(np.max(np.abs(F))) / s_scale if n_unknowns else 0.0
+        if res <= tol and not changed:
+            return p, s, it - 1, res, total_krylov
+        diag_s = np.where(slip, np.maximum(-sigma, 0.0), 0.0)
+        gtx, gty = g * tx, g * ty
+
+        def fields_of(z):
+            v = np.zeros((2,) + shape)
+            v[0, hi, hj] = z[ph]
+            v[1, hi, hj] = z[ph + 1]
+            v[0, si, sj] = gtx[si, sj] * z[ps]
+            v[1, si, sj] = gty[si, sj] * z[ps]
+            return v
+
+        def matvec(z):
+            v = fields_of(z)
+            mv = conv(v)
+            out = np.empty(n_unknowns)
+            out[ph] = mv[0, hi, hj]
+            out[ph + 1] = mv[1, hi, hj]
+            out[ps] = (tx[si, sj] * mv[0, si, sj] + ty[si, sj] * mv[1, si, sj]
+                       + diag_s[si, sj] * z[ps])
+            return out
+
+        def pinv(r):
+            z = np.empty(n_unknowns)
+            _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup,
+                          np.ascontiguousarray(r, dtype=float), z, vx, vy)
+            return z
+
+        y, count = _gmres(lambda v: matvec(pinv(v)), -F, gmres_rtol, gmres_maxiter)
+        total_krylov += count
+        dz = pinv(y)
+        # --- update
+        p[0, hi, hj] += dz[ph]
+        p[1, hi, hj] += dz[ph + 1]
+        dth = np.clip(dz[ps], -0.5 * np.pi, 0.5 * np.pi)
+        c, sn = np.cos(dth), np.sin(dth)
+        gi = g[si, sj]
+        nxv = gi * (ex[si, sj] * c + tx[si, sj] * sn)
+        nyv = gi * (ey[si, sj] * c + ty[si, sj] * sn)
+        p[0, si, sj] = nxv
+        p[1, si, sj] = nyv
+    s = b + conv(p)
+    return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov
+
+
+def _check_problem(grid, pressure, mu):
+    if not isinstance(grid, Grid):
+        raise InputError(f"grid must be a wheelrail.halfspace.Grid, got {type(grid).__name__}")
+    pressure = grid.check_field("pressure", pressure)
+    if np.any(pressure < 0):
+        raise InputError(f"pressure must be >= 0 (compression positive), got {pressure.min()!r} Pa")
+    if not np.any(pressure > 0):
+        raise NoContactError("the pressure is zero everywhere: there is no contact to solve "
+                             "the tangential problem on")
+    mu = float(positive("mu", mu))
+    return pressure, mu
+
+
+def _finish(grid, pressure, p, s, u, mu, kind, creepage, sweeps, res, tol, on_fail, info):
+    converged = bool(res <= tol)
+    if not converged and on_fail == "raise":
+        raise ConvergenceError(
+            f"the tangential {kind} problem ({info.get('solver', 'newton')} solver) did not "
+            f"converge in {sweeps} iterations (residual {res:.2e} > tol={tol:.1e}); increase "
+            "maxiter or loosen tol, or pass on_fail='status'")
+    contact = pressure > 0.0
+    g = mu * pressure
+    norm = np.hypot(p[0], p[1])
+    slipping = contact & (np.hypot(s[0], s[1]) > 0.0) & (norm >= g * (1 - 1e-9))
+    adhesion = contact & ~slipping
+    s = np.where(slipping, s, 0.0)
+    dA = grid.element_area
+    X, Y = grid.X, grid.Y
+    Fx = float(p[0].sum() * dA)
+    Fy = float(p[1].sum() * dA)
+    Mz = float((X * p[1] - Y * p[0]).sum() * dA)
+    pressure = np.array(pressure)
+    p = np.array(p)
+    u = np.array(u)
+    for arr in (pressure, p, s, u, adhesion, slipping):
+        arr.setflags(write=False)
+    return TangentialSolution(
+        grid=grid, pressure=pressure, px=p[0], py=p[1], sx=s[0], sy=s[1],
+        ux=u[0], uy=u[1], adhesion=adhesion, slip=slipping, Fx=Fx, Fy=Fy, Mz=Mz, mu=mu,
+        kind=kind, creepage=tuple(float(c) for c in creepage), iterations=int(sweeps),
+        converged=converged, residual=float(res), info=dict(info))
+
+
+def _check_solver_options(tol, maxiter, on_fail):
+    tol = float(positive("tol", tol))
+    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
+        raise InputError(f"maxiter must be an integer >= 1, got {maxiter!r}")
+    if on_fail not in ("raise", "status"):
+        raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
+    return tol, int(maxiter), on_fail
+
+
+def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=100,
+                  initial=None, on_fail="raise", solver="newton") -> TangentialSolution:
+    """Steady-state rolling with prescribed creepages (Kalker's exact theory).
+
+    Parameters
+    ----------
+    grid : Grid
+        Element grid; the contact must not touch the leading (largest x) edge
+        for the rolling difference to be meaningful.
+    pressure : ndarray, shape (nx, ny)
+        Normal pressure [Pa], ≥ 0; zero marks elements out of contact.
+    materials : Material or MaterialPair
+        Combined constants; with ``K ≠ 0`` the tangential displacements caused
+        by the pressure are included (one step of the Panagiotopoulos process;
+        see :func:`wheelrail.halfspace.solve_gap` for the full loop).
+    creepage : sequence of 3 floats
+        (ξ [-], η [-], φ [1/m]), wheel relative to rail.
+    mu : float
+        Friction coefficient [-], > 0.
+    tol : float
+        Converged when no element changes between adhesion and slip and the
+        largest residual of the slip equations is below ``tol · max|w|``
+        (``w`` the rigid slip over the contact).
+    maxiter : int
+        Largest number of Newton iterations.
+    initial : ndarray, shape (2, nx, ny), optional
+        Starting tractions (e.g. the solution for nearby creepages).
+    on_fail : {"raise", "status"}
+        Raise :class:`~wheelrail.errors.ConvergenceError` or return the last
+        iterate with ``converged=False``.
+    solver : {"newton"}
+        The preconditioned Newton–GMRES method (module docstring).
+
+    Returns
+    -------
+    TangentialSolution
+        ``sx, sy`` are dimensionless slip velocities; ``iterations`` counts
+        Newton iterations, ``info["krylov_iterations"]`` the GMRES ones.
+
+    Examples
+    --------
+    >>> import wheelrail as wr
+    >>> from wheelrail.halfspace import hertz_grid, solve_normal, solve_rolling
+    >>> hc = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
+    >>> grid, gap = hertz_grid(hc, elements=20, margin=1.1)
+    >>> pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    >>> sol = solve_rolling(grid, pn, wr.STEEL, (1e-3, 0.0, 0.0), mu=0.3)
+    >>> bool(sol.Fx < 0), bool(sol.adhesion.any()), bool(sol.slip.any())
+    (True, True, True)
+
+    References
+    ----------
+    Kalker (1990) eqs. (2.7)–(2.12) and §5.2–5.3.
+    """
+    pressure, mu = _check_problem(grid, pressure, mu)
+    tol, maxiter, on_fail = _check_solver_options(tol, maxiter, on_fail)
+    cr = as_float_array("creepage", creepage)
+    if cr.shape != (3,):
+        raise InputError(f"creepage must be (xi, eta, phi), got shape {cr.shape}")
+    xi, eta, phi = (float(v) for v in cr)
+    pair = as_material_pair(materials)
+    R = rolling_kernel(grid, pair)
+    conv = _BlockConvolution(R[:2, :2])
+    conv_n = _BlockConvolution(R[:2, 2:3]) if pair.K else None
+    conv_u = _BlockConvolution(influence_kernel(grid, pair)[:2, :])
+    X, Y = grid.X, grid.Y
+    b = np.stack((xi - phi * Y, eta + phi * X))
+    if conv_n is not None:
+        b = b + conv_n(pressure[None])
+    g = mu * pressure
+    if solver != "newton":
+        raise InputError(f"solver must be 'newton' for steady rolling, got {solver!r} "
+                         "(Gauss–Seidel is available for the shift problem only)")
+    p, s, its, res, krylov = _newton(R[:2, :2], conv, b, g, initial, tol, maxiter)
+    info = {"solver": "newton", "krylov_iterations": krylov}
+    u = conv_u(np.concatenate((p, pressure[None])))
+    return _finish(grid, pressure, p, s, u, mu, "rolling", (xi, eta, phi), its, res, tol,
+                   on_fail, info)
+
+
+def solve_shift(grid, pressure, materials, mu, *, shift=None, force=None, tol=1e-6,
+                maxiter=100, force_tol=1e-6, initial=None, on_fail="raise",
+                solver="newton") -> TangentialSolution:
+    """Shift (Cattaneo–Mindlin) problem: tangential loading from rest at fixed pressure.
+
+    Give either the rigid ``shift`` W = (Wx, Wy) [m] of the wheel relative to
+    the rail, or the total tangential ``force`` (Fx, Fy) [N] on the wheel
+    (then W is found by an outer secant/Broyden iteration).
+
+    Parameters
+    ----------
+    grid : Grid
+    pressure : ndarray, shape (nx, ny)
+        Normal pressure [Pa].
+    materials : Material or MaterialPair
+    mu : float
+        Friction coefficient, > 0.
+    shift : sequence of 2 floats, optional
+        Rigid shift [m].
+    force : sequence of 2 floats, optional
+        Prescribed (Fx, Fy) [N]; ``|F| < μ Fn`` is required.
+    tol, maxiter, initial, on_fail
+        As in :func:`solve_rolling` (for ``solver="gs"``: ``maxiter`` sweeps,
+        converged when the largest traction change of a sweep is below
+        ``tol · μ max(pn)``).
+    solver : {"newton", "gs"}
+        Preconditioned Newton–GMRES (default) or block Gauss–Seidel.
+    force_tol : float
+        Relative tolerance of the total force (outer iteration), relative to μFn.
+
+    Returns
+    -------
+    TangentialSolution
+        ``kind="shift"``, ``creepage`` holds the shift (Wx, Wy) [m]; ``sx, sy``
+        are slip distances [m].
+
+    References
+    ----------
+    Kalker (1990) §2.1 and §5.3; Johnson (1985) §7.2 (Cattaneo–Mindlin).
+    """
+    pressure, mu = _check_problem(grid, pressure, mu)
+    tol, maxiter, on_fail = _check_solver_options(tol, maxiter, on_fail)
+    if (shift is None) == (force is None):
+        raise InputError("give exactly one of shift=(Wx, Wy) [m] or force=(Fx, Fy) [N]")
+    pair = as_material_pair(materials)
+    C = influence_kernel(grid, pair)
+    conv = _BlockConvolution(C[:2, :2])
+    conv_u = _BlockConvolution(C[:2, :])
+    base = conv_u(np.concatenate((np.zeros((2,) + grid.shape), pressure[None])))
+    g = mu * pressure
+    dA = grid.element_area
+    Fn = float(pressure.sum() * dA)
+
+    if solver not in ("newton", "gs"):
+        raise InputError(f"solver must be 'newton' or 'gs', got {solver!r}")
+
+    def run(W, p0):
+        b = base + np.asarray(W, float)[:, None, None]
+        if solver == "gs":
+            return _gauss_seidel(C[:2, :2], conv, b, g, p0, tol, maxiter)
+        p, s, its, res, _ = _newton(C[:2, :2], conv, b, g, p0, tol, maxiter, upwind=False)
+        return p, s, its, res
+
+    total_sweeps = 0
+    if shift is not None:
+        W = as_float_array("shift", shift)
+        if W.shape != (2,):
+            raise InputError(f"shift must be (Wx, Wy), got shape {W.shape}")
+        p, s, total_sweeps, res = run(W, initial)
+        outer = 0
+    else:
+        F = as_float_array("force", force)
+        if F.shape != (2,):
+            raise InputError(f"force must be (Fx, Fy), got shape {F.shape}")
+        Fmag = float(np.hypot(*F))
+        if Fmag >= mu * Fn:
+            raise InputError(f"|force| = {Fmag!r} N must be < μ·Fn = {mu * Fn!r} N: no shift "
+                             "transmits it (the patch slides)")
+        W, p, s, total_sweeps, res, outer = _shift_for_force(run, F, Fn, mu, dA, force_tol,
+                                                             initial, pair, pressure, grid)
+    u = conv_u(np.concatenate((p, pressure[None])))
+    return _finish(grid, pressure, p, s, u, mu, "shift", tuple(W), total_sweeps, res, tol,
+                   on_fail, {"outer_iterations": outer, "solver": solver})
+
+
+def _shift_for_force(run, F, Fn, mu, dA, force_tol, initial, pair, pressure, grid):
+    """Find the shift W that transmits the force F (|F| < μFn) by secant + Broyden."""
+    Fmag = float(np.hypot(*F))
+    total = 0
+    if Fmag == 0.0:
+        W = np.zeros(2)
+        p, s, sw, res = run(W, initial)
+        return W, p, s, sw, res, 0
+    e = F / Fmag
+    # stiffness estimate: Mindlin, equivalent circle of the contact area
+    area = float(np.count_nonzero(pressure > 0)) * dA
+    a_eq = math.sqrt(area / math.pi)
+    k = 4.0 * pair.G * a_eq / (2.0 - pair.nu)
+    ftol = force_tol * mu * Fn
+
+    def force_of(W, p0):
+        nonlocal total
+        p, s, sw, res = run(W, p0)
+        total += sw
+        return np.array([p[0].sum(), p[1].sum()]) * dA, p, s, res
+
+    # scalar bracketing + Illinois along −e (traction opposes the shift), started from
+    # Cattaneo–Mindlin's shift of the equivalent circle (Johnson 1985, eq. 7.42)
+    ratio = min(Fmag / (mu * Fn), 0.999)
+    t = 1.5 * mu * Fn / k * (1.0 - (1.0 - ratio) ** (2.0 / 3.0))
+    p = initial
+    Fv, p, s, res = force_of(-t * e, p)
+    f = float(Fv @ e) - Fmag
+    if f < 0:
+        t_lo, f_lo = t, f
+        while f < 0:
+            t_lo, f_lo = t, f
+            t *= 1.1
+            Fv, p, s, res = force_of(-t * e, p)
+            f = float(Fv @ e) - Fmag
+        t_hi, f_hi = t, f
+    else:
+        t_hi, f_hi = t, f
+        while f >= 0 and abs(f) > ftol:
+            t_hi, f_hi = t, f
+            t *= 0.9
+            Fv, p, s, res = force_of(-t * e, p)
+            f = float(Fv @ e) - Fmag
+        t_lo, f_lo = t, f
+    outer = 0
+    for outer in range(1, 100):
+        if abs(f) <= ftol:
+            break
+        # regula falsi (Illinois) inside the bracket
+        t_new = t_hi - f_hi * (t_hi - t_lo) / (f_hi - f_lo)
+        Fv, p, s, res = force_of(-t_new * e, p)
+        f = float(Fv @ e) - Fmag
+        if f < 0:
+            t_lo, f_lo = t_new, f
+            f_hi *= 0.5
+        else:
+            t_hi, f_hi = t_new, f
+            f_lo *= 0.5
+        t = t_new
+    W = -t * e
+    # Broyden correction for a force component perpendicular to the shift
+    J = -k * np.eye(2)
+    r = Fv - F
+    for _ in range(20):
+        if np.hypot(*r) <= ftol:
+            break
+        dW = -np.linalg.solve(J, r)
+        W = W + dW
+        Fv, p, s, res = force_of(W, p)
+        r_new = Fv - F
+        dr = r_new - r
+        J = J + np.outer(dr - J @ dW, dW) / (dW @ dW)
+        r = r_new
+        outer += 1
+    if np.hypot(*r) > 10 * ftol:
+        raise ConvergenceError(f"the shift for force {F.tolist()} N was not found "
+                               f"(residual {np.hypot(*r):.3e} N)")
+    return W, p, s, total, res, outer
+
+
+def solve_tangential(grid, pressure, materials, mu, *, creepage=None, shift=None, force=None,
+                     **options) -> TangentialSolution:
+    """Rolling (``creepage=``) or shift (``shift=`` / ``force=``) problem, chosen by keyword."""
+    if creepage is not None:
+        if shift is not None or force is not None:
+            raise InputError("give creepage= (rolling) or shift=/force= (shift), not both")
+        return solve_rolling(grid, pressure, materials, creepage, mu, **options)
+    return solve_shift(grid, pressure, materials, mu, shift=shift, force=force, **options)
+
+
+# --------------------------------------------------------------------------
+# normal + tangential (Johnson's process / Panagiotopoulos' process)
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class GapSolution:
+    """Normal and tangential solution of one contact on a grid (frozen).
+
+    Attributes
+    ----------
+    normal : NormalSolution
+        The (last) normal solution (:func:`wheelrail.halfspace.solve_normal`).
+    tangential : TangentialSolution or None
+        ``None`` when no tangential problem was asked for.
+    outer_iterations : int
+        Normal–tangential alternations (1 for quasi-identical bodies,
+        Johnson's process; more with ``K ≠ 0``, Panagiotopoulos' process).
+    outer_change : float
+        Last relative change of the tractions between alternations.
+    """
+
+    normal: object
+    tangential: object
+    outer_iterations: int
+    outer_change: float
+
+    # convenient views (grid, pressure, contact, Fn from the normal solution; tractions,
+    # slip, adhesion, tangential displacements and forces from the tangential one) ---------
+    @property
+    def grid(self) -> Grid:
+        return self.normal.grid
+
+    @property
+    def pressure(self) -> np.ndarray:
+        return self.normal.pressure
+
+    @property
+    def contact(self) -> np.ndarray:
+        return self.normal.contact
+
+    @property
+    def Fn(self) -> float:
+        return self.normal.Fn
+
+    def _t(self, name, default=0.0):
+        return default if self.tangential is None else getattr(self.tangential, name)
+
+    @property
+    def px(self):
+        return self._t("px", np.zeros(self.grid.shape))
+
+    @property
+    def py(self):
+        return self._t("py", np.zeros(self.grid.shape))
+
+    @property
+    def sx(self):
+        return self._t("sx", np.zeros(self.grid.shape))
+
+    @property
+    def sy(self):
+        return self._t("sy", np.zeros(self.grid.shape))
+
+    @property
+    def adhesion(self):
+        return self._t("adhesion", self.contact.copy())
+
+    @property
+    def ux(self):
+        """Tangential displacement difference along x [m]."""
+        return self._t("ux", np.zeros(self.grid.shape))
+
+    @property
+    def uy(self):
+        """Tangential displacement difference along y [m]."""
+        return self._t("uy", np.zeros(self.grid.shape))
+
+    @property
+    def un(self):
+        """Gap-opening normal displacement difference [m] (of the last normal solve)."""
+        return self.normal.displacement
+
+    @property
+    def Fx(self) -> float:
+        return float(self._t("Fx"))
+
+    @property
+    def Fy(self) -> float:
+        return float(self._t("Fy"))
+
+    @property
+    def Mz(self) -> float:
+        return float(self._t("Mz"))
+
+
+def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=None, mu=None,
+              shift=None, force=None, tol=1e-6, maxiter=100, normal_tol=1e-8,
+              normal_maxiter=2000, outer_tol=1e-5, outer_maxiter=30, on_fail="raise",
+              solver="newton") -> GapSolution:
+    """Normal and tangential contact of two half-spaces from the undeformed gap.
+
+    The normal problem (:func:`wheelrail.halfspace.solve_normal`) is solved
+    first; then the rolling (``creepage``) or shift (``shift`` / ``force``)
+    problem at that pressure. For quasi-identical materials (``K = 0``) the
+    two problems are uncoupled and this is Johnson's process. For ``K ≠ 0`` the
+    tangential tractions change the normal displacements and vice versa; the
+    problems are alternated (Panagiotopoulos' process, seed 002 §2.3: normal
+    with the current tangential tractions, tangential with the new pressure)
+    until the tractions change by less than ``outer_tol`` (relative).
+
+    Parameters
+    ----------
+    grid : Grid
+    gap : ndarray, shape (nx, ny)
+        Undeformed separation h0 [m].
+    materials : Material or MaterialPair
+    load, penetration : float
+        Exactly one: normal force [N] or approach [m].
+    creepage : sequence of 3 floats, optional
+        (ξ, η, φ) for steady rolling.
+    mu : float
+        Friction coefficient (needed with a tangential problem).
+    shift, force : sequence of 2 floats, optional
+        Shift problem: rigid shift [m] or total tangential force [N].
+    tol, maxiter, solver
+        Tangential solver (see :func:`solve_rolling`).
+    normal_tol, normal_maxiter
+        Normal solver.
+    outer_tol, outer_maxiter
+        Panagiotopoulos loop (only used when ``K ≠ 0``).
+    on_fail : {"raise", "status"}
+
+    Returns
+    -------
+    GapSolution
+
+    References
+    ----------
+    .. [1] P.D. Panagiotopoulos, A nonlinear programming approach to the
+       unilateral contact- and friction-boundary value problem, Ing.-Arch. 44
+       (1975) 421–432.
+    .. [2] Kalker (1990) §5.3 (KOMBI: alternation of NORM and TANG).
+    .. [3] Seed paper 002, §2.3, steps 1–4.
+    """
+    from ..normal.bem import solve_normal
+
+    pair = as_material_pair(materials)
+    h0 = grid.check_field("gap", gap)
+    tangential = creepage is not None or shift is not None or force is not None
+    if not tangential:
+        normal = solve_normal(grid, h0, pair, load=load, penetration=penetration, tol=normal_tol,
+                              maxiter=normal_maxiter, on_fail=on_fail)
+        return GapSolution(normal, None, 1, 0.0)
+    if mu is None:
+        raise InputError("mu is required for a tangential problem (creepage=, shift= or force=)")
+    mu = float(positive("mu", mu))
+    opts = dict(tol=tol, maxiter=maxiter, on_fail=on_fail, solver=solver)
+    coupled = pair.K != 0.0
+    conv_nt = _BlockConvolution(influence_kernel(grid, pair)[2:3, :2]) if coupled else None
+    pt = np.zeros((2,) + grid.shape)
+    normal = tang = None
+    change = 0.0
+    outer = 0
+    for outer in range(1, (outer_maxiter if coupled else 1) + 1):
+        h = h0 if not coupled else h0 + conv_nt(pt)[0]
+        normal = solve_normal(grid, h, pair, load=load, penetration=penetration, tol=normal_tol,
+                              maxiter=normal_maxiter, on_fail=on_fail)
+        init = None if tang is None else np.stack((tang.px, tang.py))
+        if creepage is not None:
+            if shift is not None or force is not None:
+                raise InputError("give creepage= (rolling) or shift=/force= (shift), not both")
+            tang = solve_rolling(grid, normal.pressure, pair, creepage, mu, initial=init, **opts)
+        else:
+            tang = solve_shift(grid, normal.pressure, pair, mu, shift=shift, force=force,
+                               initial=init, **opts)
+        new = np.stack((tang.px, tang.py))
+        scale = max(float(np.abs(new).max()), mu * normal.p_max * 1e-12)
+        change = float(np.abs(new - pt).max()) / scale if outer > 1 else np.inf
+        pt = new
+        if not coupled or change <= outer_tol:
+            break
+    if coupled and change > outer_tol and on_fail == "raise":
+        raise ConvergenceError(f"Panagiotopoulos' normal–tangential alternation did not converge "
+                               f"in {outer} iterations (relative change {change:.2e} > "
+                               f"outer_tol={outer_tol:.1e})")
+    return GapSolution(normal, tang, outer, 0.0 if not coupled else change)

@@ -1,0 +1,168 @@
+"""Kalker's exact theory of steady rolling contact on a half-space grid (creep-force law).
+
+For each Hertzian contact the window around the ellipse is discretised
+(:func:`wheelrail.halfspace.hertz_grid`), the normal problem is solved with
+the boundary-element solver (so the pressure is that of the discretised
+half-space, not the analytic Hertz one) and then the steady-rolling problem
+with Coulomb friction (:mod:`wheelrail.halfspace.tangential`). For
+dissimilar materials (``K ≠ 0``) the two problems are alternated
+(Panagiotopoulos' process, :func:`wheelrail.halfspace.solve_gap`).
+
+This is the reference method of the library; accuracy is controlled by
+``elements`` (elements across the contact in each direction): the creep
+forces converge roughly with the first order of the element size.
+
+References
+----------
+.. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+   Kluwer 1990, ch. 2 and 5.
+.. [2] Seed paper 002 (review), §2.2–2.3; seed paper 001 (Baeza et al.),
+   §2.2–2.4.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validation import scalar_or_array
+from ..errors import InputError
+from ..results import CreepForces, Status
+from ._base import TangentialMethod
+
+__all__ = ["Exact", "exact_single"]
+
+
+def _check_int(name, value, lo):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise InputError(f"{name} must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
+def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6, maxiter=100,
+                 on_fail="raise"):
+    """Solve one Hertzian contact with the exact theory; returns a :class:`GapSolution`.
+
+    Parameters
+    ----------
+    contact : HertzContact
+        A single contact.
+    xi, eta, phi : float
+        Creepages (ξ, η [-], φ [1/m]).
+    mu : float
+        Friction coefficient.
+    elements, margin, tol, maxiter, on_fail
+        See :class:`Exact`.
+    """
+    from ..halfspace import hertz_grid
+    from ..halfspace.tangential import solve_gap
+
+    grid, gap = hertz_grid(contact, elements=elements, margin=margin)
+    return solve_gap(grid, gap, contact.materials, load=float(contact.load),
+                     creepage=(float(xi), float(eta), float(phi)), mu=float(mu), tol=tol,
+                     maxiter=maxiter, on_fail=on_fail)
+
+
+class Exact(TangentialMethod):
+    """Kalker's exact (half-space, boundary-element) theory of steady rolling.
+
+    Options
+    -------
+    elements : int, default 40
+        Elements across the Hertz contact in each direction (≥ 4).
+    margin : float, default 1.1
+        Half-width of the grid window in semi-axes (> 1).
+    tol : float, default 1e-6
+        Tangential solver tolerance (largest slip residual / largest rigid slip).
+    maxiter : int, default 100
+        Newton iterations of the tangential solver.
+    on_fail : {"raise", "status"}, default "raise"
+        Raise :class:`~wheelrail.errors.ConvergenceError`, or return the last
+        iterate with ``status=NOT_CONVERGED``.
+    progress : bool or None, default None
+        Show a progress bar for batches (``None``: only for more than 20 cases).
+
+    Results
+    -------
+    ``fields`` is the :class:`~wheelrail.halfspace.tangential.GapSolution`
+    (grid, pressure, px, py, slip sx, sy, adhesion mask, displacements) for a
+    single case, a tuple of them for a batch. ``info`` holds ``area``,
+    ``p_max``, ``adhesion_area`` [m², Pa, m²], ``normal_iterations``,
+    ``tangential_iterations``, ``outer_iterations``; ``iterations`` is the
+    number of tangential Newton iterations.
+    """
+
+    name = "exact"
+    references = (
+        "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990 "
+        "(exact theory, program CONTACT).",
+        "P.D. Panagiotopoulos, A nonlinear programming approach to the unilateral contact- "
+        "and friction-boundary value problem, Ing.-Arch. 44 (1975) 421-432.",
+        "J. Zhao, E.A.H. Vollebregt, C.W. Oosterlee, A fast nonlinear conjugate gradient based "
+        "method for 3D frictional contact problems, J. Comput. Phys. 288 (2015) 86-100.",
+    )
+    options = {"elements": 40, "margin": 1.1, "tol": 1e-6, "maxiter": 100,
+               "on_fail": "raise", "progress": None}
+
+    def solve(self, contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6,
+              maxiter=100, on_fail="raise", progress=None):
+        """Creep forces of a (batch of) Hertzian contact(s); see the class docstring."""
+        elements = _check_int("elements", elements, 4)
+        maxiter = _check_int("maxiter", maxiter, 1)
+        if on_fail not in ("raise", "status"):
+            raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
+        shape = np.shape(contact.a)
+        n = int(np.prod(shape)) if shape else 1
+        xs, es, ps, ms = (np.broadcast_to(np.asarray(v, float), shape).reshape(-1)
+                          for v in (xi, eta, phi, mu))
+        cases = [contact] if not shape else [contact[i] for i in range(n)]
+        show = (n > 20) if progress is None else bool(progress)
+        sols = []
+        iterator = range(n)
+        bar = None
+        if show:
+            from rich.progress import Progress
+
+            bar = Progress(transient=True)
+            bar.start()
+            task = bar.add_task("exact theory", total=n)
+        try:
+            for i in iterator:
+                sols.append(exact_single(cases[i], xs[i], es[i], ps[i], ms[i], elements=elements,
+                                         margin=margin, tol=tol, maxiter=maxiter,
+                                         on_fail=on_fail))
+                if bar is not None:
+                    bar.advance(task)
+        finally:
+            if bar is not None:
+                bar.stop()
+        return _to_creep_forces(sols, shape, ms, self.name)
+
+
+def _to_creep_forces(sols, shape, mu, name):
+    def arr(f):
+        v = np.array([f(s) for s in sols], dtype=float)
+        return scalar_or_array(v.reshape(shape)) if shape else float(v[0])
+
+    def iarr(f):
+        v = np.array([f(s) for s in sols], dtype=int)
+        return v.reshape(shape) if shape else int(v[0])
+
+    converged = all(s.tangential.converged for s in sols)
+    full_slip = all(not s.tangential.adhesion.any() for s in sols)
+    status = (Status.NOT_CONVERGED if not converged
+              else Status.FULL_SLIP if full_slip else Status.CONVERGED)
+    info = {
+        "area": arr(lambda s: s.normal.area),
+        "p_max": arr(lambda s: s.normal.p_max),
+        "adhesion_area": arr(lambda s: s.tangential.adhesion_area),
+        "normal_iterations": iarr(lambda s: s.normal.iterations),
+        "tangential_iterations": iarr(lambda s: s.tangential.iterations),
+        "outer_iterations": iarr(lambda s: s.outer_iterations),
+        "converged": (np.array([s.tangential.converged for s in sols]).reshape(shape)
+                      if shape else bool(sols[0].tangential.converged)),
+    }
+    return CreepForces(
+        Fx=arr(lambda s: s.Fx), Fy=arr(lambda s: s.Fy), Mz=arr(lambda s: s.Mz),
+        Fn=arr(lambda s: s.Fn), mu=scalar_or_array(mu.reshape(shape)) if shape else float(mu[0]),
+        method=name, status=status, iterations=iarr(lambda s: s.tangential.iterations),
+        fields=tuple(sols) if shape else sols[0], info=info)
