@@ -27,7 +27,6 @@ _ALIASES = {
     "she": "shen-hedrick-elkins",
     "shen_hedrick_elkins": "shen-hedrick-elkins",
     "kalker": "exact",
-    "bem": "exact",
 }
 
 

@@ -556,7 +556,14 @@ def solve_case(case: Case) -> CaseResult:
 
     contact = case.hertz_contact
     normal = grid = None
-    if case.normal == "bem":
+    opts = dict(case.tangential_options)
+    # The exact theory solves its own boundary-element normal problem: with normal = "bem"
+    # it takes the grid size of [method.bem] (unless [method.exact] sets one) and its normal
+    # solution is reported, instead of solving the same normal problem twice.
+    shared_bem = case.normal == "bem" and case.tangential == "exact"
+    if shared_bem:
+        opts.setdefault("elements", case.normal_options["elements"])
+    elif case.normal == "bem":
         try:
             from .halfspace import hertz_grid, solve_normal
         except ImportError as exc:
@@ -564,7 +571,6 @@ def solve_case(case: Case) -> CaseResult:
         grid, gap = hertz_grid(contact, case.normal_options["elements"])
         normal = solve_normal(grid, gap, case.materials, load=case.contact.load)
 
-    opts = case.tangential_options
     xi, eta, phi = case.creepage
     try:
         if case.forces:
@@ -584,6 +590,9 @@ def solve_case(case: Case) -> CaseResult:
         raise _missing(f"tangential = {case.tangential!r}",
                        f"the module of method {case.tangential!r}", exc) from None
 
+    if shared_bem and forces.fields is not None:
+        normal = forces.fields.normal
+        grid = normal.grid
     summary = _summary(case, contact, forces, normal, xi, eta, phi)
     return CaseResult(case, contact, forces, normal, grid, summary)
 

@@ -329,3 +329,35 @@ def test_exact_method_runs():
     res = solve_case(load_case(text))
     assert res.summary["method"] == "exact"
     assert res.summary["Fx"] > 0
+
+
+def test_bem_with_exact_uses_bem_grid_and_reports_its_normal_solution():
+    """Issue 'exact half-space': normal = "bem" + tangential = "exact" with [method.bem] elements.
+
+    The exact theory solves the normal problem itself; its grid size comes from
+    [method.bem] and the JSON reports its BEM normal solution (area, p_max,
+    adhesion area, iterations). Reference: Hertz (Johnson 1985, eq. 3.64) for p_max.
+    """
+    text = (_edit(_edit(FULL, 'normal = "hertz"', 'normal = "bem"'),
+                  'tangential = "linear"', 'tangential = "exact"')
+            + "[method.bem]\nelements = 31\n")
+    res = solve_case(load_case(text))
+    out = res.summary
+    sol = res.forces.fields
+    # the grid of the exact solve holds 31 elements across the contact (plus its margin)
+    assert 31 <= sol.grid.nx <= 40
+    assert res.normal is sol.normal
+    c = wr.hertz(7500.0, 1.0869565, 1.6666667, wr.Material(2.1e11, 0.28))
+    assert out["p_max"] == pytest.approx(c.p0, rel=0.02)
+    assert out["area"] == pytest.approx(np.pi * c.a * c.b, rel=0.05)
+    for key in ("adhesion_area", "iterations", "normal_iterations"):
+        assert key in out
+    assert 0 < out["adhesion_area"] < out["area"]
+
+
+def test_prescribed_force_with_exact_reports_creepage():
+    text = (_edit(FULL, 'tangential = "linear"', 'tangential = "exact"\n[method.exact]\nelements = 16')
+            + "\n[force]\nFx = -600.0\n")
+    out = run_case(load_case(text))
+    assert out["Fx"] == pytest.approx(-600.0, rel=1e-4)
+    assert out["xi"] > 0

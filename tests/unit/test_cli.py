@@ -98,6 +98,20 @@ def test_solve_plot_fastsim_fields(tmp_path, capsys):
     assert 0.0 < res["adhesion_area"] < res["area"]
 
 
+def test_solve_bem_exact_writes_traction_and_pressure_figures(tmp_path):
+    text = (SPHERE.format(method="exact").replace("[method]\n", '[method]\nnormal = "bem"\n')
+            + "[method.bem]\nelements = 21\n")
+    assert 'normal = "bem"' in text
+    case = _write(tmp_path, text)
+    png = tmp_path / "t.png"
+    assert main(["solve", case, "--plot", str(png), "--json", str(tmp_path / "t.json"), "-q"]) == 0
+    assert png.read_bytes()[:8] == PNG
+    assert (tmp_path / "t_pressure.png").read_bytes()[:8] == PNG
+    res = json.loads((tmp_path / "t.json").read_text())
+    for key in ("area", "p_max", "adhesion_area", "iterations"):
+        assert key in res, key
+
+
 def test_bad_case_file_exit_2_one_line(tmp_path, capsys):
     case = _write(tmp_path, SPHERE.format(method="linear").replace("load = 10000.0",
                                                                     "load = -5.0"))

@@ -18,17 +18,26 @@ def plot_result(result, path) -> str:
     """Draw the traction field if the method returned one, else the pressure; return which."""
     from ..plotting import field_arrays, pressure_map, traction_field
 
+    from pathlib import Path
+
     fields = result.forces.fields
     title = f"{result.case.source}: {result.case.normal} + {result.summary['method']}"
-    if fields is not None and field_arrays(fields) is not None:
-        traction_field(fields, mu=result.case.mu, contact=result.contact, path=path, title=title)
-        return "traction field"
     normal, grid = result.normal, result.grid
     p = None
     if normal is not None:
         p = getattr(normal, "pressure", None)
         p = getattr(normal, "p", None) if p is None else p
-    if p is not None and getattr(grid, "x", None) is not None and getattr(grid, "y", None) is not None:
+    has_bem = (p is not None and getattr(grid, "x", None) is not None
+               and getattr(grid, "y", None) is not None)
+    if fields is not None and field_arrays(fields) is not None:
+        traction_field(fields, mu=result.case.mu, contact=result.contact, path=path, title=title)
+        if has_bem:  # the boundary-element pressure goes beside the traction figure
+            path = Path(path)
+            extra = path.with_name(f"{path.stem}_pressure{path.suffix}")
+            pressure_map(result.contact, x=grid.x, y=grid.y, p=p, path=extra, title=title)
+            return f"traction field; pressure map in {extra}"
+        return "traction field"
+    if has_bem:
         try:
             pressure_map(result.contact, x=grid.x, y=grid.y, p=p, path=path, title=title)
             return "pressure (boundary elements)"

@@ -1031,6 +1031,20 @@ class GapSolution:
     def Mz(self) -> float:
         return float(self._t("Mz"))
 
+    def as_arrays(self) -> dict:
+        """Plain arrays on the grid, indexed ``[i_x, i_y]``, for plotting and export.
+
+        Keys: ``x``, ``y`` (element centres, m), ``px``, ``py``, ``p`` (Pa),
+        ``adhesion``, ``inside`` (bool), ``dA`` (element areas, m²), ``sx``, ``sy``
+        (slip, m/m).
+        """
+        g = self.grid
+        return {"x": g.X, "y": g.Y, "px": np.asarray(self.px), "py": np.asarray(self.py),
+                "p": np.asarray(self.pressure), "adhesion": np.asarray(self.adhesion, bool),
+                "inside": np.asarray(self.contact, bool),
+                "dA": np.full(g.shape, g.element_area), "sx": np.asarray(self.sx),
+                "sy": np.asarray(self.sy)}
+
 
 def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=None, mu=None,
               shift=None, force=None, tol=1e-6, maxiter=100, normal_tol=1e-8,
