@@ -78,3 +78,25 @@ def test_traction_field_and_pressure_map(tmp_path):
     assert f"{c.p0 / 1e6:.0f} MPa" in fig.axes[0].get_title()
     with pytest.raises(ValueError, match="one grid"):
         pressure_map(x=np.zeros(3), y=np.zeros(2), p=np.zeros((2, 2)))
+
+
+def test_subsurface_section_marks_the_hertz_maximum(tmp_path):
+    """Circular Hertz contact: the section's von Mises maximum lies on the axis at z ≈ 0.48 a
+    (Johnson 1985, fig. 3.7, ν = 0.3), and the figure is written."""
+    import numpy as np
+
+    import wheelrail as wr
+    from wheelrail.halfspace import Grid, subsurface_stresses
+    from wheelrail.plotting import subsurface_section
+
+    mat = wr.Material(2.1e11, 0.3)
+    c = wr.hertz(1e4, 1.0, 1.0, mat)
+    g = Grid.from_bounds(-c.a, c.a, -c.a, c.a, 25, 25)
+    p = c.pressure(g.X, g.Y)
+    s = subsurface_stresses(g, None, None, p, mat, np.linspace(0.1, 1.5, 29) * c.a)
+    fig = subsurface_section(s, path=tmp_path / "s.png")
+    assert (tmp_path / "s.png").stat().st_size > 0
+    _, z, x, _ = s.max_location("von_mises")
+    assert abs(x) < 0.1 * c.a
+    assert z / c.a == pytest.approx(0.48, abs=0.06)
+    assert fig.axes

@@ -175,6 +175,41 @@ def step_fastsim_fields(ctx: DemoContext):
     return f"{what}; Fx = {result.summary['Fx']:.0f} N, Fy = {result.summary['Fy']:.0f} N"
 
 
+def step_exact(ctx: DemoContext):
+    """Kalker's exact theory on the built-in case: fields, BEM pressure, subsurface stresses."""
+    import numpy as np
+
+    from ..api import creep_forces
+    from ..halfspace import subsurface_stresses
+    from ..plotting import pressure_map, subsurface_section, traction_field
+
+    case = ctx.case
+    contact = case.hertz_contact
+    creepage = (-1.0e-3, 5.0e-4, 0.3)
+    exact = creep_forces(contact, creepage, case.mu, method="exact", elements=40)
+    fast = creep_forces(contact, creepage, case.mu, method="fastsim", nx=40, ny=40)
+    sol = exact.fields
+    grid = sol.grid
+    title = "built-in case, Kalker's exact theory (40 elements across)"
+    traction_field(sol, mu=case.mu, contact=contact, title=title,
+                   path=ctx.file("exact_fields.png", "exact theory: traction, adhesion/slip"))
+    pressure_map(contact, x=grid.x, y=grid.y, p=sol.pressure, title=title,
+                 path=ctx.file("exact_pressure.png", "boundary-element pressure"))
+    depth = np.linspace(0.05, 2.0, 40) * float(contact.b)
+    stresses = subsurface_stresses(grid, sol.px, sol.py, sol.pressure, case.materials, depth)
+    subsurface_section(stresses, title=title,
+                       path=ctx.file("subsurface_von_mises.png", "von Mises stress below y = 0"))
+    vm, z, _, _ = stresses.max_location("von_mises")
+    ctx.results["exact"] = {
+        "creepage": list(creepage), "Fx": exact.Fx, "Fy": exact.Fy, "Mz": exact.Mz,
+        "fastsim_40x40": {"Fx": fast.Fx, "Fy": fast.Fy, "Mz": fast.Mz},
+        "p_max": float(sol.normal.p_max), "iterations": exact.iterations,
+        "von_mises_max": vm, "von_mises_depth": z, **{k: v for k, v in exact.info.items()
+                                                      if np.ndim(v) == 0}}
+    return (f"Fx = {exact.Fx:.0f} N, Fy = {exact.Fy:.0f} N (FASTSIM {fast.Fx:.0f}, "
+            f"{fast.Fy:.0f} N); max von Mises {vm / 1e6:.0f} MPa at {z * 1e3:.2f} mm depth")
+
+
 def step_geometry(ctx: DemoContext):
     """S1002 wheelset on 60E1 rails 1:40: contact table over y = −10…10 mm and figures."""
     from .geometry import geometry_demo
@@ -192,6 +227,7 @@ STEPS = [
     Step("creep-forces", "creep forces, all fast methods", step_creep_forces),
     Step("creep-curves", "creep curves in ξ and η", step_creep_curves),
     Step("fastsim-fields", "FASTSIM traction field", step_fastsim_fields),
+    Step("exact", "Kalker's exact theory (boundary elements)", step_exact),
     Step("geometry", "S1002/60E1 1:40 contact table", step_geometry),
 ]
 

@@ -10,6 +10,7 @@ function               draws
 :func:`creep_curves`   normalised creep force against creepage, several methods
 :func:`traction_field` tangential traction and adhesion/slip areas (FASTSIM, exact)
 :func:`pressure_map`   normal pressure: Hertz ellipse or a pressure grid
+:func:`subsurface_section` von Mises / maximum shear stress in a section below the contact
 =====================  =========================================================
 """
 
@@ -17,12 +18,14 @@ from __future__ import annotations
 
 import importlib
 
-__all__ = ["creep_curves", "traction_field", "pressure_map", "field_arrays", "new_figure"]
+__all__ = ["creep_curves", "traction_field", "pressure_map", "subsurface_section", "field_arrays",
+           "new_figure"]
 
 _LAZY = {
     "creep_curves": "wheelrail.plotting.creep",
     "traction_field": "wheelrail.plotting.fields",
     "pressure_map": "wheelrail.plotting.fields",
+    "subsurface_section": "wheelrail.plotting.subsurface",
     "field_arrays": "wheelrail.plotting._fields",
     "new_figure": "wheelrail.plotting._common",
 }
