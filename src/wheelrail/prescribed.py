@@ -48,7 +48,7 @@ def _stiffness(contact):
     return gc2 * C11, gc2 * C22
 
 
-def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), method="exact",
+def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), method="fastsim",
                     *, force_tol=1e-6, maxiter=60, **options) -> CreepForces:
     """Creepages that produce prescribed tangential forces, and the resulting creep forces.
 
@@ -66,7 +66,8 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
         (ξ, η, φ): φ [1/m] is always kept; ξ (η) is kept when ``Fx`` (``Fy``)
         is not prescribed and is the starting value otherwise.
     method : str or TangentialMethod
-        Any creep-force law accepted by :func:`wheelrail.creep_forces`.
+        Any creep-force law accepted by :func:`wheelrail.creep_forces`
+        (the same default, ``"fastsim"``; ``"exact"`` for the reference solution).
     force_tol : float
         Stop when the force residual is below ``force_tol · μ Fn``.
     maxiter : int
