@@ -18,6 +18,16 @@ Contact-plane axes (Kalker)
 * ``z`` — normal to the contact plane, pointing into the lower body (the rail),
   so that the normal force on the wheel is positive in compression.
 
+(x, y, z) is right-handed: with z pointing down into the rail, y points to the
+**right** when looking in the rolling direction. The rigid slip of the wheel
+relative to the rail at (x, y) is then V·(ξ − φ y, η + φ x).
+
+Track frame (:mod:`wheelrail.geometry`): x along the track, y lateral to the
+right (the same y as the contact frame), z **up**; this triad is left-handed,
+which matters only when kinematics (creepages from wheelset motion) are
+derived from it. Profile frames are described in :mod:`wheelrail.profiles.core`.
+The user documentation of all conventions is ``docs/conventions.md``.
+
 Bodies and sign of forces
 -------------------------
 Body 1 is the wheel (upper body), body 2 the rail (lower body). Tangential
