@@ -361,7 +361,11 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
     yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
     z = np.zeros_like(y) if z0 is None else np.array(z0, dtype=float)
     th = np.zeros_like(y) if roll0 is None else np.array(roll0, dtype=float)
-    levels = 3  # three parabolic levels locate the minimum to ~1e-10 m: gap error ~1e-19 m
+    # Three parabolic levels locate the minimum well enough for the Newton iterations; in
+    # nearly conformal zones (flange root) the gap is so flat that only the five levels of
+    # the point search (find_points) pin its minimum, so the converged pose is polished
+    # with those: every reported contact point then has separation >= -tol.
+    levels = 3
     for _ in range(maxiter):
         pose = _Pose(y, z, th, yaw)
         _, gL, lL = _global_min(ws, tr, "left", pose, step, levels)
@@ -372,7 +376,10 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
                              "(lateral shift too large for these profiles)")
         res = max(np.max(np.abs(gL)), np.max(np.abs(gR)))
         if res < tol:
-            return z, th
+            if levels == 5:
+                return z, th
+            levels = 5
+            continue
         dth = -(gR - gL) / (lR - lL)
         dz = -gR - lR * dth
         th = th + dth
