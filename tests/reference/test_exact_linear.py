@@ -55,16 +55,28 @@ def test_creep_coefficients(ab):
     assert r1.info["adhesion_area"] == pytest.approx(r1.info["area"])
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "C33 (spin moment) for nu > 0 disagrees with the C33 column of kalker_coefficients.csv "
-    "(flagged unverified by its author): for a/b = 1, nu = 0.25 this solver gives 1.20 "
-    "(128 elements) and the independent strip collocation _linear_theory_bem of "
-    "tests/reference/test_linear_coefficients.py gives 1.22 (48x20), vs 1.36 in the table; "
-    "C11, C22, C23 agree at every nu and C33 agrees at nu = 0. Suspect the table column."))
-@pytest.mark.parametrize("ab", [1.0, 2.0])
-def test_spin_coefficient_c33(ab):
-    got = _coefficients(ab, n=48)
-    assert got["C33"] == pytest.approx(float(kalker_coefficients(ab, MAT.nu)[3]), rel=0.02)
+def _c33(ab, nu, n):
+    mat = wr.Material(2.1e11, nu)
+    hc = wr.hertz_from_semiaxes(4e-3 * np.sqrt(ab), 4e-3 / np.sqrt(ab), 1e4, mat)
+    c = float(hc.c)
+    r = wr.creep_forces(hc, (0, 0, 1e-4), 1e6, method="exact", elements=n)
+    return -r.Mz / (mat.G * c**4 * 1e-4)
+
+
+@pytest.mark.parametrize("ab", [0.5, 1.0, 2.0])
+def test_spin_coefficient_c33_and_its_poisson_dependence(ab):
+    """C33 of the exact solver against the C33 column of the table.
+
+    The C33 column is computed by wheelrail (strip collocation extrapolated to zero
+    element size; see the CSV header), so this is a check between two independent
+    discretisations. The exact solver converges slowly for the spin moment (+2 … +8 % at
+    64 elements), so C33 itself is checked to 10 %, and the Poisson dependence
+    C33(ν = 0.25) / C33(ν = 0), where the discretisation errors cancel, to 2 %.
+    """
+    c0, c25 = _c33(ab, 0.0, 64), _c33(ab, 0.25, 64)
+    t0, t25 = (float(kalker_coefficients(ab, nu)[3]) for nu in (0.0, 0.25))
+    assert c25 == pytest.approx(t25, rel=0.10)
+    assert c25 / c0 == pytest.approx(t25 / t0, rel=0.02)
 
 
 @pytest.mark.parametrize("ab", [0.5, 1.0])

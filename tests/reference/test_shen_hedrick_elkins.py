@@ -6,7 +6,8 @@ References used by the checks:
   Fx = −G c² C11 ξ, Fy = −G c² (C22 η + c C23 φ), Mz = G c³ (C23 η − c C33 φ).
 * Kalker's creep coefficients for a/b = 1, ν = 0.25 (Kalker 1967, reproduced in
   Kalker 1990 Table E.3 and Johnson, *Contact Mechanics*, 1985, Table 8.1):
-  C11 = 4.12, C22 = 3.67, C23 = 1.47, C33 = 1.36.
+  C11 = 4.12, C22 = 3.67, C23 = 1.47; C33 = 1.19 is wheelrail's computed value (the
+  C33 column of ``kalker_coefficients.csv``; these checks only feed it into closed forms).
 * Johnson & Vermeulen (1964) cubic F/(μN) = u − u²/3 + u³/27 (u < 3), 1 beyond,
   as used by Shen, Hedrick & Elkins (1983).
 """
@@ -18,8 +19,8 @@ import wheelrail as wr
 from wheelrail.tangential.shen_hedrick_elkins import (johnson_vermeulen, she_saturation_ratio,
                                                       shen_hedrick_elkins_forces)
 
-# Kalker 1990 Table E.3 / Johnson 1985 Table 8.1, a/b = 1, nu = 0.25
-C11, C22, C23, C33 = 4.12, 3.67, 1.47, 1.36
+# Kalker 1990 Table E.3 / Johnson 1985 Table 8.1, a/b = 1, nu = 0.25 (C33 computed, see above)
+C11, C22, C23, C33 = 4.12, 3.67, 1.47, 1.19
 G, A_, B_ = 8.0e10, 6.0e-3, 6.0e-3
 FN, MU = 1.0e5, 0.3
 C = np.sqrt(A_ * B_)
