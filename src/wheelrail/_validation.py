@@ -27,7 +27,7 @@ def as_float_array(name: str, value) -> np.ndarray:
         raise InputError(f"{name} must be numeric, got {value!r}") from exc
     if not np.all(np.isfinite(arr)):
         bad = arr[~np.isfinite(arr)]
-        raise InputError(f"{name} must be finite, got {bad.ravel()[0]!r}"
+        raise InputError(f"{name} must be finite, got {bad.ravel()[0].item()!r}"
                          + ("" if arr.ndim == 0 else f" in {_describe(arr)}"))
     return arr
 
@@ -36,7 +36,7 @@ def positive(name: str, value) -> np.ndarray:
     """Finite and strictly positive (e.g. a load, a modulus, a friction coefficient)."""
     arr = as_float_array(name, value)
     if np.any(arr <= 0.0):
-        bad = arr[arr <= 0.0].ravel()[0]
+        bad = arr[arr <= 0.0].ravel()[0].item()
         raise InputError(f"{name} must be > 0, got {bad!r}")
     return arr
 
@@ -45,7 +45,7 @@ def non_negative(name: str, value) -> np.ndarray:
     """Finite and >= 0."""
     arr = as_float_array(name, value)
     if np.any(arr < 0.0):
-        bad = arr[arr < 0.0].ravel()[0]
+        bad = arr[arr < 0.0].ravel()[0].item()
         raise InputError(f"{name} must be >= 0, got {bad!r}")
     return arr
 
@@ -59,7 +59,7 @@ def in_range(name: str, value, lo: float, hi: float, *, lo_open=False, hi_open=F
     if np.any(bad):
         lb = "(" if lo_open else "["
         hb = ")" if hi_open else "]"
-        raise InputError(f"{name} must lie in {lb}{lo}, {hi}{hb}, got {arr[bad].ravel()[0]!r}")
+        raise InputError(f"{name} must lie in {lb}{lo}, {hi}{hb}, got {arr[bad].ravel()[0].item()!r}")
     return arr
 
 

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .._validation import as_float_array, non_negative, positive, scalar_or_array
+from .._validation import as_float_array, positive, scalar_or_array
 from ..errors import InputError
 from ..materials import MaterialPair, as_material_pair
 
@@ -178,14 +178,17 @@ def curvatures_from_radii(wheel_rolling_radius, wheel_profile_radius=np.inf,
                     ("rail_profile_radius", rail_profile_radius),
                     ("rail_longitudinal_radius", rail_longitudinal_radius)):
         r = np.asarray(r, dtype=float)
-        if np.any(np.isnan(r)) or np.any(r == 0):
-            raise InputError(f"{name} must be non-zero and not NaN (use inf for flat), got {r!r}")
+        bad = np.isnan(r) | (r == 0)
+        if np.any(bad):
+            raise InputError(f"{name} must be non-zero and not NaN (use inf for flat), "
+                             f"got {_first(bad, r)!r}")
         inv.append(1.0 / r)
     A = 0.5 * (1.0 / r1x + inv[2])
     B = 0.5 * (inv[0] + inv[1])
     if np.any(A <= 0) or np.any(B <= 0):
+        bad = ("A", _first(A <= 0, A)) if np.any(A <= 0) else ("B", _first(B <= 0, B))
         raise InputError(
-            f"the radii give non-positive combined curvature (A={A!r}, B={B!r} 1/m): "
+            f"the radii give a non-positive combined curvature {bad[0]} = {bad[1]!r} 1/m: "
             "the surfaces do not form a Hertzian (convex) contact; a concave wheel radius must "
             "be larger in magnitude than the rail radius")
     return scalar_or_array(A), scalar_or_array(B)
@@ -286,18 +289,24 @@ class HertzContact:
         return out
 
 
+def _first(mask, values) -> float:
+    """The first value where ``mask`` holds, as a Python float (for error messages)."""
+    return np.broadcast_to(values, np.shape(mask))[mask].ravel()[0].item()
+
+
 def _checked_curvatures(A, B):
     A = as_float_array("A", A)
     B = as_float_array("B", B)
-    if np.any(A < 0) or np.any(B < 0):
-        bad = ("A", A) if np.any(A < 0) else ("B", B)
-        raise InputError(f"curvature {bad[0]} must be >= 0 for a Hertzian contact, got {bad[1]!r} 1/m")
-    if np.any(A == 0) or np.any(B == 0):
-        raise InputError(
-            f"a zero curvature (A={A!r}, B={B!r} 1/m) means a line contact: use hertz_line()")
-    if np.any(np.maximum(A, B) / np.minimum(A, B) > 1e12):
-        raise InputError(f"curvature ratio A/B = {np.max(A / B)!r} is beyond the elliptic range "
-                         "(1e-12 … 1e12): use hertz_line() for a line contact")
+    for name, v in (("A", A), ("B", B)):
+        if np.any(v < 0):
+            raise InputError(f"curvature {name} must be >= 0 for a Hertzian contact, "
+                             f"got {_first(v < 0, v)!r} 1/m")
+        if np.any(v == 0):
+            raise InputError(f"curvature {name} = 0 1/m means a line contact: use hertz_line()")
+    ratio = np.maximum(A, B) / np.minimum(A, B)
+    if np.any(ratio > 1e12):
+        raise InputError(f"curvature ratio {_first(ratio > 1e12, ratio)!r} is beyond the elliptic "
+                         "range (1e-12 … 1e12): use hertz_line() for a line contact")
     return A, B
 
 
@@ -369,8 +378,9 @@ def hertz_from_semiaxes(a, b, load, material) -> HertzContact:
     b = positive("b", b)
     load = positive("load", load)
     ratio = a / b
-    if np.any(ratio < _K_MIN) or np.any(ratio > 1 / _K_MIN):
-        raise InputError(f"a/b = {ratio!r} is outside the valid range [1e-9, 1e9]")
+    out = (ratio < _K_MIN) | (ratio > 1 / _K_MIN)
+    if np.any(out):
+        raise InputError(f"a/b = {_first(out, ratio)!r} is outside the valid range [1e-9, 1e9]")
     A, B = curvatures_from_semiaxes(a, b, load, pair.E_star)
     a2, b2, p0, delta = hertz_kernel(load, A, B, pair.E_star)
     a, b, load = np.broadcast_arrays(a, b, load)
