@@ -23,7 +23,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from .._validation import as_float_array, positive, scalar_or_array
 from ..errors import InputError
@@ -46,6 +45,8 @@ _K_MIN = 1e-9  # smallest semi-axis ratio handled before the line-contact limit
 
 def _elliptic(k):
     """K(e), E(e) and (K − E)/e² for e² = 1 − k², accurate for k → 0 and k → 1."""
+    from scipy import special  # imported here: keeps ``import wheelrail`` fast
+
     p = k * k  # complementary parameter 1 - m
     m = 1.0 - p
     K = special.ellipkm1(p)
