@@ -10,9 +10,14 @@ References used by the checks:
 * Kalker's linear theory and coefficients for a/b = 1, ν = 0.25 (Kalker 1990 Table E.3,
   Johnson 1985 Table 8.1): C11 = 4.12, C22 = 3.67, C23 = 1.47.
 
-No numeric values of Polach's published figures are used (none could be read reliably);
-the 2005 curve features are checked in closed form (initial slope (kA + kS)/2 of
-Kalker's, limit μ∞ = A μ0 at large slip velocity, interior maximum between μ∞ and μ0).
+No numeric values of Polach's published figures are used (none could be retrieved; the
+papers themselves could not be read, see the *Verification* section of
+``wheelrail.tangential.polach``); the 2005 curve features are checked in closed form
+(initial slope (kA + kS)/2 of Kalker's, limit μ∞ = A μ0 at large slip velocity, interior
+maximum between μ∞ and μ0). The spin term is checked against the formulas written
+literally (K_M with √((1 − δ²)³), the s_yC switch, the signs FX = −Q·MI·SX/SC,
+FY = −Q(MI·SY + FYS·OM)/SC of the transcription of Polach's 1999 FORTRAN listing [S1 in
+the module docstring]); the parameter sets against the Open Rails interpolation [S4].
 """
 
 import numpy as np
@@ -110,7 +115,75 @@ def test_spin_switch_is_continuous():
     np.testing.assert_allclose(lo, hi, rtol=1e-6)
 
 
+def literal_polach(xi, eta, phi, a=A_, b=B_, mu=MU, spin_creep="sC"):
+    """Polach (1999) written literally, in the variables of the FORTRAN listing.
+
+    Sources: the formulas as transcribed in the module docstring (*Verification*, S1–S3):
+    s_yC switch, EP = π G a b c_jj s_C/(4 Q μ), MI = (2μ/π)[EP/(1+EP²) + atan EP],
+    FYS = −(9/16) a μ KS K_M, K_M = |ε_M|(δ³/3 − δ²/2 + 1/6) − (1/3)√((1−δ²)³),
+    FX = −Q·MI·SX/SC, FY = −Q(MI·SY + FYS·OM)/SC. ``spin_creep`` selects the creepage in
+    ε_M: "sC" (our choice) or "syC" (|s_yC|, as in the transcriptions S1–S3).
+    """
+    syc = eta + phi * a if abs(eta + phi * a) > abs(eta) else eta
+    sc = np.hypot(xi, syc)
+    s = np.hypot(xi, eta)
+    cj = np.hypot(C11 * xi / s, C22 * eta / s) if s > 0 else 0.0
+    ep = np.pi * G * a * b * cj * sc / (4.0 * Q * mu)
+    mi = (ep / (1.0 + ep**2) + np.arctan(ep)) * 2.0 * mu / np.pi
+    ks = 1.0 + 6.3 * (1.0 - np.exp(-a / b))
+    x = sc if spin_creep == "sC" else abs(syc)
+    epm = 8.0 * b * np.sqrt(a * b) * G * C23 * x / (3.0 * ks * Q * mu)
+    de = (epm**2 - 1.0) / (epm**2 + 1.0)
+    km = abs(epm) * (de**3 / 3.0 - de**2 / 2.0 + 1.0 / 6.0) - np.sqrt((1.0 - de**2) ** 3) / 3.0
+    fys = -9.0 * a * mu * ks * km / 16.0
+    return -Q * mi * xi / sc, -Q * (mi * eta + fys * phi) / sc
+
+
+@pytest.mark.parametrize("xi,eta,phi", [
+    (0.0, 1e-3, 0.3), (0.0, -2e-3, -0.5), (0.0, 1e-3, -0.1),   # xi = 0: s_C = |s_yC|
+    (0.0, 0.0, 2.0), (0.0, 5e-4, 40.0), (0.0, -4e-3, 1.0),
+    (2e-3, 1e-3, 0.3), (-5e-3, 0.0, 1.5), (1e-2, -3e-3, -2.0),  # xi != 0: our s_C choice
+])
+def test_matches_literal_formulas(xi, eta, phi):
+    # nonlinear range (eps up to ~10): checks the rearranged K_M/s_C kernel, the s_yC
+    # switch and the signs against the formulas written out literally
+    Fx, Fy, _, _ = pol(xi, eta, phi)
+    rx, ry = literal_polach(xi, eta, phi)
+    assert Fx == pytest.approx(rx, rel=1e-11, abs=1e-9)
+    assert Fy == pytest.approx(ry, rel=1e-11, abs=1e-9)
+    if xi == 0.0:  # both readings of eps_M coincide (module docstring, Verification)
+        assert np.allclose(literal_polach(xi, eta, phi, spin_creep="syC"), (rx, ry),
+                           rtol=1e-13, atol=0)
+
+
+def test_spin_creepage_in_eps_m_is_s_c():
+    # Pins our (unconfirmed) reading eps_M ~ s_C: with xi != 0 the small-creepage spin
+    # force stays Kalker's G c^3 C23 phi. The |s_yC| reading of the transcriptions
+    # would give G c^3 C23 phi |phi a|/s_C (here ~0.51 of it).
+    xi, phi = 1e-9, 1e-7
+    Fy = pol(xi, 0.0, phi)[1]
+    assert Fy == pytest.approx(-G * C**3 * C23 * phi, rel=1e-6)
+    alt = literal_polach(xi, 0.0, phi, spin_creep="syC")[1]
+    ratio = abs(phi * A_) / np.hypot(xi, phi * A_)
+    assert alt == pytest.approx(-G * C**3 * C23 * phi * ratio, rel=1e-6)
+    assert abs(Fy - alt) > 0.4 * abs(Fy)
+
+
 # ---------------------------------------------------------------- 2005 extension
+def test_parameter_sets_match_open_rails_interpolation():
+    # Open Rails, Source/Orts.Simulation/.../Axle.cs, PolachCalculator.Update:
+    # kA = 2.8 mu0 - 0.54, kS = 1.2 mu0 - 0.26, B = 1.6 mu0 - 0.28, A = 0.4, straight
+    # lines through Polach's (2005) dry and wet parameter sets.
+    for p in POLACH_2005_PARAMETERS.values():
+        mu0 = p["mu0"]
+        assert p["kA"] == pytest.approx(2.8 * mu0 - 0.54, abs=1e-12)
+        assert p["kS"] == pytest.approx(1.2 * mu0 - 0.26, abs=1e-12)
+        assert p["B"] == pytest.approx(1.6 * mu0 - 0.28, abs=1e-12)
+        assert p["A"] == 0.4
+    assert (POLACH_2005_PARAMETERS["dry"]["mu0"], POLACH_2005_PARAMETERS["wet"]["mu0"]) == (
+        0.55, 0.30)
+
+
 def test_extension_defaults_reduce_to_1999():
     xi = np.array([1e-5, 1e-3, 2e-2])
     eta = np.array([-2e-4, 5e-3, 0.0])

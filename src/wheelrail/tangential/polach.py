@@ -1,9 +1,11 @@
 """Polach's creep-force law (1999) with the 2005 extension for large creepages.
 
 Notation of Polach: wheel load Q = Fn, semi-axes a (rolling direction) and
-b, creepages sx = ξ, sy = η, spin φ [1/m]. Polach's forces are positive for
-positive creepage; with Kalker's convention (:mod:`wheelrail.conventions`)
-the forces on the wheel are their negatives, Fx = −Fx_P, Fy = −Fy_P.
+b, creepages sx = ξ, sy = η, spin φ [1/m]. The formulas below give forces
+Fx_P, Fy_P in the direction of the creepage; the forces on the wheel in
+Kalker's convention (:mod:`wheelrail.conventions`) are their negatives,
+Fx = −Fx_P, Fy = −Fy_P, which is also what the transcription of Polach's
+FORTRAN listing returns (see *Verification*).
 
 Longitudinal and lateral creep (Polach 1999, 2005)
 --------------------------------------------------
@@ -15,7 +17,8 @@ Longitudinal and lateral creep (Polach 1999, 2005)
 
 with C = 3 G c_jj / (8 a) taken from Kalker's linear coefficients so that
 the initial slope equals Kalker's linear theory (for kA = kS = 1); s_C is
-the spin-corrected creepage below (s_C = s without spin). The 1999 law is the case kA = kS = 1. The direction is that of the creepage:
+the spin-corrected creepage below (s_C = s without spin). The 1999 law is
+the case kA = kS = 1. The direction is that of the creepage:
 Fx_P = F sx/s_C, Fy_P = F sy/s_C + F_yS.
 
 Spin (Polach 1999)
@@ -34,14 +37,16 @@ direction::
     ε_M  = (8/3) G b √(ab) C23 s_C / (Q μ [1 + 6.3 (1 − e^(−a/b))])
 
 K_M ≈ −(2/3) ε_M for small creepage, so F_yS → G c³ C23 φ, Kalker's linear
-spin term. ε_M is taken proportional to s_C (as written by Polach); with it the
-small-creepage spin force is G c³ C23 φ whatever ξ and η are, as in Kalker's
-linear theory. (Some transcriptions use |s_yC| instead of s_C in ε_M, which
-lowers the spin force when ξ ≠ 0.) For combined ξ and η the small-creepage
-force is G ab c_jj s, Polach's blend of C11 and C22, not exactly Kalker's
-C11 ξ, C22 η. Here K_M / s_C is evaluated in the algebraically equivalent form
-ε_M/s_C · [h(δ) − (8/3) ε_M² / (1 + ε_M²)³], h(δ) = δ³/3 − δ²/2 + 1/6, which
-has no 0/0 at zero creepage and no cancellation in √(1 − δ²).
+spin term. ε_M is taken proportional to s_C; with it the small-creepage spin
+force is G c³ C23 φ whatever ξ and η are, as in Kalker's linear theory. The
+public transcriptions we could read use |s_yC| instead of s_C in ε_M (see
+*Verification*), which lowers the spin force when ξ ≠ 0; the two agree for
+ξ = 0. Which one Polach's papers print could not be checked. For combined
+ξ and η the small-creepage force is G ab c_jj s, Polach's blend of C11 and
+C22, not exactly Kalker's C11 ξ, C22 η. Here K_M / s_C is evaluated in the
+algebraically equivalent form ε_M/s_C · [h(δ) − (8/3) ε_M² / (1 + ε_M²)³],
+h(δ) = δ³/3 − δ²/2 + 1/6, which has no 0/0 at zero creepage and no
+cancellation in √(1 − δ²).
 
 Friction decreasing with slip velocity (Polach 2005)
 ----------------------------------------------------
@@ -54,6 +59,57 @@ with A = μ∞/μ0 and B [s/m]; μ0 is the ``mu`` passed to
 Polach requires kS ≤ kA ≤ 1; with these limits F ≤ μ Q (the bracket is
 below π/2). That the spin term keeps √(Fx² + Fy²) ≤ μ Q is not proven here;
 it holds on dense parameter scans and in the property tests.
+
+Verification
+------------
+The papers themselves could not be read (the review seed 002 only names the
+method, refs. [4, 24, 5] there, and states that the friction of [5] varies
+with velocity); no formula above is confirmed against Polach's printed text.
+What was checked, against independent public implementations (secondary
+sources, listed so that the check can be repeated):
+
+* [S1] a Cython transcription of the FORTRAN listing of [1] (L. Baruffaldi,
+  2024, ``polachContactForces.pyx``); [S2] a C++ multibody code
+  (``WRcontForce::..._Creepforce``); [S3] a Python Polach routine with kA, kS
+  (``polach(a, b, xix, ...)``, 2025); [S4] Open Rails ``Axle.cs``
+  ``PolachCalculator`` (longitudinal only); [S5] a Python traction model
+  citing "Wear 2005 eqs. (4), (9), (11), Table 2".
+* Confirmed by S1, S2, S4 (and S3 for C): ε = π G a b c_jj s_C / (4 Q μ)
+  with c_jj from C11, C22 and the *uncorrected* s (c_jj uses sx/s, sy/s,
+  ε uses s_C); equivalently ε = (2/3) C π a² b s_C/(Q μ), C = 3 G c_jj/(8 a)
+  (S3 writes exactly this C). C11 goes with sx, C22 with sy.
+* Confirmed by S1 (1999) and S3, S5 (2005): F = (2Qμ/π)[ε/(1+ε²) + arctan ε]
+  and its extension with kA ε/(1 + (kA ε)²) + arctan(kS ε); S5 and S3 keep
+  kS ≤ kA ≤ 1. (S4 has a misprint, 1 + kA ε², in the denominator.)
+* Confirmed by S2, S3: s_yC = sy + φ a when |sy + φ a| > |sy|, else sy.
+  (S1 has the inequality the other way round, which we take for a
+  transcription error: it would add the spin only where it opposes η; S4
+  always adds φ a.)
+* Confirmed by S1, S2 (S3 with a sign slip in the first term of K_M):
+  F_yS = −(9/16) a Q μ K_M [1 + 6.3(1 − e^(−a/b))] φ/s_C,
+  K_M = |ε_M|(δ³/3 − δ²/2 + 1/6) − (1/3)√((1 − δ²)³),
+  δ = (ε_M² − 1)/(ε_M² + 1) and ε_M = (8/3) G b √(ab) C23 (·)/(Q μ
+  [1 + 6.3(1 − e^(−a/b))]).
+* Signs, confirmed by S1: FX = −Q·MI·SX/SC, FY = −Q(MI·SY + FYS·OM)/SC,
+  which is Fx = −F sx/s_C, Fy = −(F sy/s_C + F_yS) with the *uncorrected* sy
+  in the first term (also in S2): forces opposite to the creepage, Kalker's
+  convention of :mod:`wheelrail.conventions`, and spin acting like positive
+  η. (S2 adds F_yS with the opposite sign to the creep term, which would
+  contradict Kalker's linear Fy = −G c²(C22 η + c C23 φ).)
+* **Not confirmed**: the creepage in ε_M. S1, S2 and S3 all use |s_yC|
+  (S2 the signed s_yC, which is the same since only ε_M² and |ε_M| enter);
+  we use s_C (see *Spin*). The two differ only when ξ ≠ 0 and φ ≠ 0.
+* Confirmed by S4, S5: μ = μ0[(1 − A)e^(−Bw) + A] with A = μ∞/μ0, B in
+  s/m. **Not confirmed**: whether Polach's w is s·V or s_C·V (S4, S5 are
+  longitudinal only, w = sx V); we use s_C V. Also not confirmed: that the
+  2005 method keeps the spin term of 1999 unreduced by kA, kS (done here).
+* Parameter sets: S5 gives dry kA 1.00, kS 0.40, A 0.40, B 0.60 s/m and wet
+  kA 0.30, kS 0.10, A 0.40, B 0.20 s/m as "Wear 2005 Table 2"; S4
+  interpolates kA = 2.8 μ0 − 0.54, kS = 1.2 μ0 − 0.26, B = 1.6 μ0 − 0.28,
+  A = 0.4, lines that pass exactly through both sets at μ0 = 0.55 and
+  μ0 = 0.30, which supports the μ0 values. The table number is from S5 only.
+* No published numeric creep-force values (figures of [2]) could be
+  retrieved, so none are pinned in the tests.
 
 Spin moment
 -----------
@@ -84,9 +140,10 @@ from ._base import TangentialMethod
 
 __all__ = ["Polach", "polach_forces", "polach_friction", "POLACH_2005_PARAMETERS"]
 
-#: Parameters of the extended Polach method fitted to locomotive measurements
-#: (Polach, Wear 258 (2005) 992–1000, parameter table for the comparison with
-#: measured creep-force curves): kA, kS reduction factors [-], mu0 maximum
+#: Parameters recommended by Polach for typical dry and wet rail conditions
+#: (Wear 258 (2005) 992–1000, Table 2 according to a secondary source; values
+#: checked against two independent implementations, see the module
+#: docstring, *Verification*): kA, kS reduction factors [-], mu0 maximum
 #: friction [-], A = μ∞/μ0 [-], B [s/m].
 POLACH_2005_PARAMETERS = {
     "dry": {"kA": 1.00, "kS": 0.40, "mu0": 0.55, "A": 0.40, "B": 0.60},
