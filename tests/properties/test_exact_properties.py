@@ -11,17 +11,15 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
-from wheelrail.halfspace import hertz_grid, solve_normal, solve_rolling
+from wheelrail.halfspace import solve_rolling
 
 HC = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
 MU = 0.3
 
 
 @pytest.fixture(scope="module")
-def patch():
-    grid, gap = hertz_grid(HC, elements=16, margin=1.1)
-    normal = solve_normal(grid, gap, wr.STEEL, load=1e4)
-    return grid, normal.pressure
+def patch(hertz_patch16):
+    return hertz_patch16  # grid and pressure of HC (tests/conftest.py)
 
 
 @settings(max_examples=15, deadline=None)

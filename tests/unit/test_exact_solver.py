@@ -5,7 +5,7 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.errors import ConvergenceError, InputError, NoContactError
-from wheelrail.halfspace import Grid, hertz_grid, solve_normal, solve_rolling, solve_shift
+from wheelrail.halfspace import Grid, solve_rolling, solve_shift
 from wheelrail.results import Status
 
 HC = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
@@ -13,10 +13,8 @@ MU = 0.3
 
 
 @pytest.fixture(scope="module")
-def patch():
-    grid, gap = hertz_grid(HC, elements=16, margin=1.1)
-    normal = solve_normal(grid, gap, wr.STEEL, load=1e4)
-    return grid, normal.pressure
+def patch(hertz_patch16):
+    return hertz_patch16  # grid and pressure of HC (tests/conftest.py)
 
 
 def test_full_sliding_gives_mu_fn():
