@@ -24,3 +24,7 @@ __all__ = ["Grid", "influence_kernel", "point_influence", "rectangle_influence",
 from .subsurface import SubsurfaceStresses, subsurface_stresses  # noqa: E402
 
 __all__ += ["subsurface_stresses", "SubsurfaceStresses"]
+
+from .window import contact_patches, potential_contact_grid, solve_gap_auto
+
+__all__ += ["contact_patches", "potential_contact_grid", "solve_gap_auto"]
