@@ -200,3 +200,46 @@ def test_conicity_kernel_cubic_against_time_integration():
     lam_ref = e_r0 * (2 * np.pi / L) ** 2
     assert conicity_from_delta_r(y, dr, amp) == pytest.approx(lam_ref, rel=1e-5)
     assert lam_ref > lam * 1.1  # the cubic term matters at this amplitude
+
+
+def test_conicity_kernel_dead_zone_closed_form():
+    """Δr = 0 for |y| < p and 2λ(|y| − p) sign(y) outside (a cylindrical band, cf. the
+    E4 reference case of EN 15302 annex E whose Δr vanishes for |y| < 1.65 mm).
+
+    Closed form of Klingel's y'' = −Δr/(2 e r0): outside the band the motion is
+    harmonic with k² = λ/(e r0) (half a period π/k on each side, entry speed
+    v = k(ŷ − p)); the band is crossed at constant speed, 2p/v each way, so
+    L = (2π + 4p/(ŷ − p))/k and tan γ_e = e r0 (2π/L)² = λ / (1 + 2p/(π(ŷ − p)))².
+    Inside the band (ŷ <= p) there is no restoring term: tan γ_e = 0.
+    """
+    lam, p = 0.15, 0.0015
+    y = np.unique(np.r_[np.linspace(-0.012, 0.012, 2401), -p, p])
+    dr = np.where(np.abs(y) > p, 2 * lam * (np.abs(y) - p) * np.sign(y), 0.0)
+    for amp in (0.002, 0.003, 0.005):
+        ref = lam / (1 + 2 * p / (np.pi * (amp - p))) ** 2
+        assert conicity_from_delta_r(y, dr, amp) == pytest.approx(ref, rel=1e-5)
+    assert conicity_from_delta_r(y, dr, 0.001) == 0.0
+    assert conicity_from_delta_r(y, dr, 0.001, "regression") == 0.0
+
+
+def test_conicity_regression_centres_the_cycle_on_zero_mean_delta_r():
+    """Δr = 2λy + κy² (asymmetric): the harmonic cycle c + ŷ sin t with zero mean Δr has
+    2λc + κ(c² + ŷ²/2) = 0, and the regression slope gives tan γ_e = λ + κc (closed form).
+    Centring on the zero of Δr instead (c = 0) would give λ.
+    """
+    lam, kap, amp = 0.1, 20.0, 0.003
+    y = np.linspace(-0.008, 0.008, 16001)
+    dr = 2 * lam * y + kap * y**2
+    c = (-2 * lam + np.sqrt(4 * lam**2 - 2 * kap**2 * amp**2)) / (2 * kap)
+    got = conicity_from_delta_r(y, dr, amp, "regression")
+    assert got == pytest.approx(lam + kap * c, rel=1e-6)
+    assert abs(got - lam) > 0.005
+
+
+def test_conicity_kernel_amplitude_range():
+    """The table must contain both turning points, no more (symmetric case: ±ŷ)."""
+    y = np.linspace(-0.01, 0.01, 201)
+    for method in ("integration", "regression"):
+        assert conicity_from_delta_r(y, 0.3 * y, 0.0095, method) == pytest.approx(0.15, rel=1e-9)
+        with pytest.raises(wr.errors.InputError, match="range"):
+            conicity_from_delta_r(y, 0.3 * y, 0.0105, method)

@@ -144,3 +144,42 @@ def test_mbench_miniprof_rail_equals_simpack_rail(shared_profiles):
     ban = wr.profiles.read(shared_profiles / "MBench_UIC60_v3.ban")
     y = np.linspace(max(prr.y_min, ban.y_min), min(prr.y_max, ban.y_max), 400)[1:-1]
     assert np.max(np.abs(_normal_deviation(prr, y, ban(y)))) < 1e-3 * MM
+
+
+# ----------------------------------------------------------------------------- published
+# EN 13674-1 section table (British Steel rail catalogue, as tabulated in the open FE code
+# xc: github.com/xcfem/xc, python_modules/materials/sections/structural_shapes/aux/
+# bs_en_13674-1_rail_sections.json, entries RAIL_EN60E1 / RAIL_EN54E1):
+#   60E1: height 172 mm, head width 72 mm, foot 150 mm, web 16.5 mm
+#   54E1: height 159 mm, head width 70 mm, foot 140 mm, web 16.0 mm
+# Crown radius R300 and 1:20 head side: EN 13674-1 60E1 drawing (54E1: assumed, see
+# wheelrail.profiles.standard).
+PUBLISHED = {"60E1": (172.0, 72.0, 150.0, 16.5), "54E1": (159.0, 70.0, 140.0, 16.0)}
+
+
+@pytest.mark.parametrize("name", ["60E1", "54E1"])
+def test_rail_head_matches_published_section(name):
+    height, head_width, foot, web = PUBLISHED[name]
+    r = wr.profiles.load(name, step=0.05e-3)
+    # head width measured on the generated points: the 1:20 side starts at the R13 tangent
+    # (located to ~0.01 mm: the slope is -20 there, and z(y) is steep)
+    y = np.linspace(30 * MM, r.y_max - 0.1 * MM, 20001)
+    side = y[np.abs(r.slope(y) + 20.0) < 1e-3]
+    assert 2 * side.min() == pytest.approx(head_width * MM, abs=0.05 * MM)
+    # symmetric: same width on the gauge side
+    ym = -y[::-1]
+    side_m = ym[np.abs(r.slope(ym) - 20.0) < 1e-3]
+    assert -2 * side_m.max() == pytest.approx(head_width * MM, abs=0.05 * MM)
+    # crown radius from a least-squares circle through the points |y| <= 8 mm
+    m = np.abs(r.y) <= 8 * MM
+    yc, zc = r.y[m], r.z[m]
+    A = np.c_[yc, zc, np.ones_like(yc)]
+    a, b, c = np.linalg.lstsq(A, -(yc**2 + zc**2), rcond=None)[0]
+    R = np.sqrt(a * a / 4 + b * b / 4 - c)
+    assert R == pytest.approx(0.300, rel=1e-6)
+    assert -b / 2 == pytest.approx(-0.300, rel=1e-6)  # centre on the rail axis below the top
+    # section data carried in the metadata (the generated profile is the head only)
+    assert r.meta["rail_height"] == pytest.approx(height * MM)
+    assert r.meta["foot_width"] == pytest.approx(foot * MM)
+    assert r.meta["web_thickness"] == pytest.approx(web * MM)
+    assert r.meta["head_width"] == pytest.approx(head_width * MM)

@@ -30,6 +30,23 @@ R80 arc centres of the Manchester-benchmark UIC60 profile [3]_ to 1 µm (see
 ``tests/reference/test_standard_profiles.py``). 54E1: ``w = 35 mm`` (head
 width 70 mm) with the same radii; ``y1 = 10.5 mm`` is assumed (not verified).
 
+Status of the rail data (public sources searched for this module):
+
+* confirmed — rail height 172 mm (60E1) / 159 mm (54E1), head width 72 / 70
+  mm, foot width 150 / 140 mm, web 16.5 / 16 mm: the EN 13674-1 section table
+  of the British Steel rail catalogue as tabulated in the open FE code xc
+  (github.com/xcfem/xc, ``bs_en_13674-1_rail_sections.json``; RAIL_EN60E1,
+  RAIL_EN54E1); heights 172 / 159 mm also in trade literature. These values are
+  stored in ``meta`` (``rail_height``, ``foot_width``, ``web_thickness``; the
+  generated profile is the head only) and checked in the tests.
+* confirmed for 60E1 only, indirectly — radii 300 / 80 / 13 mm, side 1:20,
+  ``w = 36 mm``, ``y1 = 10.5 mm``: the whole head agrees with the
+  Manchester-benchmark UIC60 profile within 0.05 mm.
+* not confirmed for 54E1 — radii 300 / 80 / 13 mm, side 1:20 and
+  ``y1 = 10.5 mm`` (no public drawing, data sheet or profile file with the
+  54E1 head arcs was found). With these values the head width (70 mm) and
+  height are right; the arc layout is an assumption.
+
 References
 ----------
 .. [1] EN 13715:2006+A1:2010, *Railway applications — Wheelsets and bogies —
@@ -182,6 +199,11 @@ def _rail_head(radii, y1, half_width, side_slope, depth, ds):
     return half, geom
 
 
+#: EN 13674-1 section data [mm] (British Steel catalogue, see the module docstring)
+_SECTION = {"60E1": {"rail_height": 172.0, "foot_width": 150.0, "web_thickness": 16.5},
+            "54E1": {"rail_height": 159.0, "foot_width": 140.0, "web_thickness": 16.0}}
+
+
 def _rail(name, half_width_mm, y1_mm=10.5, *, depth=0.030, step=0.2e-3, aliases=()):
     radii = (300.0, 80.0, 13.0)
     if not (np.isfinite(depth) and 0.016 < depth < 0.045):
@@ -194,6 +216,7 @@ def _rail(name, half_width_mm, y1_mm=10.5, *, depth=0.030, step=0.2e-3, aliases=
             "R300_half_width": y1_mm * _MM,
             "R80_centre": tuple(v * _MM for v in geom["R80_centre"]),
             "R13_centre": tuple(v * _MM for v in geom["R13_centre"]), "aliases": aliases}
+    meta.update({k: v * _MM for k, v in _SECTION.get(name, {}).items()})
     return Profile(y * _MM, z * _MM, kind="rail", name=name, meta=meta)
 
 
@@ -212,7 +235,8 @@ def rail_60e1(*, depth: float = 0.030, step: float = 0.2e-3) -> Profile:
     -------
     Profile
         ``kind="rail"``, ``name="60E1"``, symmetric, top of rail at (0, 0),
-        head width 72 mm; metadata lists the radii and arc centres.
+        head width 72 mm; metadata lists the radii and arc centres and the
+        section data (``rail_height`` 0.172 m, ``foot_width``, ``web_thickness``).
 
     References
     ----------
@@ -224,8 +248,11 @@ def rail_60e1(*, depth: float = 0.030, step: float = 0.2e-3) -> Profile:
 def rail_54e1(*, depth: float = 0.030, step: float = 0.2e-3) -> Profile:
     """54E1 (UIC54) rail head, uncanted (R300/R80/R13, 1:20, head width 70 mm).
 
-    Same construction and parameters as :func:`rail_60e1`; the R300 half-width
-    of 10.5 mm is assumed equal to 60E1 (not checked against the standard).
+    Same construction and parameters as :func:`rail_60e1`. Head width 70 mm
+    and rail height 159 mm (``meta["rail_height"]``) are confirmed by the
+    EN 13674-1 section table; the radii 300 / 80 / 13 mm, the 1:20 side and
+    the R300 half-width of 10.5 mm are taken over from 60E1 and are not
+    confirmed by a public 54E1 drawing (see the module docstring).
     """
     return _rail("54E1", 35.0, depth=depth, step=step, aliases=("UIC54",))
 
