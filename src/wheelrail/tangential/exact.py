@@ -56,6 +56,9 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     from ..halfspace import hertz_grid
     from ..halfspace.tangential import solve_gap
 
+    # at least one row of elements outside the Hertz ellipse, also on coarse grids where the
+    # discrete contact area reaches the ellipse's edge elements
+    margin = max(float(margin), 1.0 + 3.0 / elements)
     grid, gap = hertz_grid(contact, elements=elements, margin=margin)
     return solve_gap(grid, gap, contact.materials, load=float(contact.load),
                      creepage=(float(xi), float(eta), float(phi)), mu=float(mu), tol=tol,
@@ -70,7 +73,9 @@ class Exact(TangentialMethod):
     elements : int, default 40
         Elements across the Hertz contact in each direction (≥ 4).
     margin : float, default 1.1
-        Half-width of the grid window in semi-axes (> 1).
+        Half-width of the grid window in semi-axes (> 1); raised to
+        1 + 3/elements on coarse grids so that a row of elements lies outside
+        the ellipse.
     tol : float, default 1e-6
         Tangential solver tolerance (largest slip residual / largest rigid slip).
     maxiter : int, default 100
