@@ -62,6 +62,20 @@ def number(token: str, where: str, what: str = "value") -> float:
     return val
 
 
+def append_row(rows: list, toks: list, ncol: int, where: str, hint: str = "") -> None:
+    """Append one data row of ``ncol`` numbers to ``rows`` (ProfileError naming the line)."""
+    if len(toks) != ncol:
+        raise ProfileError(f"{where}: row has {len(toks)} columns, expected {ncol}{hint}")
+    rows.append([number(t, where, "column value") for t in toks])
+
+
+def check_row_count(rows: list, name: str) -> None:
+    """A profile needs at least four points."""
+    if len(rows) < 4:
+        raise ProfileError(f"{name}: {len(rows)} data row(s) found, at least 4 profile points "
+                           f"are needed")
+
+
 def resolve_kind(kind, guessed, name: str) -> str:
     """Explicit kind > guessed kind; raise if neither is known."""
     if kind is not None:

@@ -33,8 +33,8 @@ import numpy as np
 
 from ...errors import ProfileError
 from ..core import Profile
-from ._common import (POINT_DIST_MIN, chord_deviation_is_z_down, kind_from_extension,
-                      make_profile, number, read_lines, resolve_kind)
+from ._common import (POINT_DIST_MIN, append_row, check_row_count, chord_deviation_is_z_down,
+                      kind_from_extension, make_profile, read_lines, resolve_kind)
 
 __all__ = ["read_miniprof", "looks_like_miniprof"]
 
@@ -87,13 +87,8 @@ def parse_miniprof(lines: list[str], name: str):
             ncol = len(toks)
             if ncol < 2:
                 raise ProfileError(f"{where}: data row needs at least 2 columns, got {s[:60]!r}")
-        elif len(toks) != ncol:
-            raise ProfileError(f"{where}: data row has {len(toks)} columns, expected {ncol} "
-                               f"like the first row")
-        rows.append([number(t, where, "column value") for t in toks])
-    if len(rows) < 4:
-        raise ProfileError(f"{name}: {len(rows)} data row(s) found, at least 4 profile points "
-                           f"are needed")
+        append_row(rows, toks, ncol, where, " like the first row")
+    check_row_count(rows, name)
     cols = [c.strip().upper() for c in keys.get("columndef", "X,Y").split(",")]
     try:
         ix, iy = cols.index("X"), cols.index("Y")

@@ -29,8 +29,8 @@ import numpy as np
 
 from ...errors import ProfileError
 from ..core import Profile, ProfileWarning
-from ._common import (POINT_DIST_MIN, kind_from_extension, make_profile, number, read_lines,
-                      resolve_kind)
+from ._common import (POINT_DIST_MIN, append_row, check_row_count, kind_from_extension,
+                      make_profile, read_lines, resolve_kind)
 
 __all__ = ["read_text", "write_text"]
 
@@ -88,13 +88,9 @@ def parse_text(lines: list[str], name: str):
         toks = _split(s, delim)
         if delim == ";":
             toks = [t.replace(",", ".") for t in toks]
-        if len(toks) != ncol:
-            raise ProfileError(f"{where}: row has {len(toks)} columns, expected {ncol} "
-                               f"(delimiter {'blank' if delim == 'ws' else repr(delim)})")
-        rows.append([number(t, where, "column value") for t in toks])
-    if len(rows) < 4:
-        raise ProfileError(f"{name}: {len(rows)} data row(s) found, at least 4 profile points "
-                           f"are needed")
+        append_row(rows, toks, ncol, where,
+                   f" (delimiter {'blank' if delim == 'ws' else repr(delim)})")
+    check_row_count(rows, name)
     return directives, header, np.array(rows, dtype=float)
 
 
