@@ -185,6 +185,23 @@ def test_bad_input_is_rejected(s1002_60e1):
         wr.contact_table(ws, tr, [0.0, 10.0])
 
 
+def test_side_and_scalar_checks_are_shared(s1002_60e1):
+    """Every side-taking accessor rejects a bad side; array y or yaw is refused by name."""
+    ws, tr = s1002_60e1
+    for fn in (ws.profile, ws.curve, tr.profile, tr.placement, tr.curve,
+               wr.contact_points(ws, tr, 0.0).side):
+        with pytest.raises(InputError, match="side must be 'left' or 'right', got 'lft'"):
+            fn("lft")
+    with pytest.raises(InputError, match="yaw must be a scalar"):
+        wr.contact_table(ws, tr, [0.0, 0.001], yaw=[0.0, 0.0])
+    with pytest.raises(InputError, match="yaw must be a scalar"):
+        wr.contact_points(ws, tr, 0.0, yaw=[0.0])
+    with pytest.raises(InputError, match="elastic_contact takes a scalar y"):
+        wr.elastic_contact(ws, tr, [0.0, 0.001], 1e5)
+    with pytest.raises(InputError, match="tape_circle_offset"):
+        wr.Wheelset(ws.wheel, tape_circle_offset="70mm")
+
+
 def test_shared_profile_files_make_a_table(shared_profiles):
     """Manchester benchmark S1002 / UIC60 (file already canted 1:40) read from the shared data."""
     try:

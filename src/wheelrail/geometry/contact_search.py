@@ -83,12 +83,13 @@ from numba import njit
 
 from .._validation import as_float_array, non_negative, positive
 from ..errors import ConvergenceError, InputError
+from ._checks import SIDES, check_side
+from ._curves import curvature
 from .track import Track
 from .wheelset import Wheelset
 
 __all__ = ["ContactPoints", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS"]
 
-SIDES = ("left", "right")
 _SIGMA = {"left": -1.0, "right": 1.0}
 _BIG = 1.0          # gap [m] assigned where no rail lies below the wheel
 _EDGE = 2e-4        # distance [m] kept from the ends of the wheel profile
@@ -304,6 +305,12 @@ def _grid_gap(ws, tr, side, pose, step):
     return d, (s, lo, hi, h)
 
 
+def _interior_minima(d):
+    """Mask (n_rows, n_grid − 2) of the interior grid minima of ``d`` off the rail ends."""
+    return ((d[:, 1:-1] < d[:, :-2]) & (d[:, 1:-1] <= d[:, 2:])
+            & (d[:, :-2] < _BIG) & (d[:, 2:] < _BIG))
+
+
 def _global_min(ws, tr, side, pose, step, levels=5):
     """Refined global minimum of the gap per row: (s*, d*, lever) (see :func:`solve_rigid`)."""
     d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
@@ -311,9 +318,7 @@ def _global_min(ws, tr, side, pose, step, levels=5):
     # the two lowest local minima of the grid are refined: near a jump of the contact point
     # the lower grid value may belong to the branch whose refined minimum is higher
     dm = np.full_like(d, np.inf)
-    inner = ((d[:, 1:-1] < d[:, :-2]) & (d[:, 1:-1] <= d[:, 2:])
-             & (d[:, :-2] < _BIG) & (d[:, 2:] < _BIG))
-    dm[:, 1:-1] = np.where(inner, d[:, 1:-1], np.inf)
+    dm[:, 1:-1] = np.where(_interior_minima(d), d[:, 1:-1], np.inf)
     rows = np.arange(d.shape[0])
     dm[rows, np.argmin(d, axis=1)] = d[rows, np.argmin(d, axis=1)]
     two = np.argpartition(dm, 1, axis=1)[:, :2]
@@ -356,6 +361,9 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
     Returns
     -------
     z, roll : ndarray, shape (n,)
+    wheel_y : dict
+        ``{"left": s, "right": s}``: wheel coordinate [m] of the rigid contact
+        point (refined global minimum of the gap) of each side, shape (n,).
     """
     y = np.asarray(y, dtype=float)
     yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
@@ -368,8 +376,8 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
     levels = 3
     for _ in range(maxiter):
         pose = _Pose(y, z, th, yaw)
-        _, gL, lL = _global_min(ws, tr, "left", pose, step, levels)
-        _, gR, lR = _global_min(ws, tr, "right", pose, step, levels)
+        sL, gL, lL = _global_min(ws, tr, "left", pose, step, levels)
+        sR, gR, lR = _global_min(ws, tr, "right", pose, step, levels)
         if np.any(gL >= _BIG) or np.any(gR >= _BIG):
             bad = y[(gL >= _BIG) | (gR >= _BIG)][0]
             raise InputError(f"y = {bad!r} m: a wheel lies entirely beside its rail "
@@ -377,7 +385,7 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
         res = max(np.max(np.abs(gL)), np.max(np.abs(gR)))
         if res < tol:
             if levels == 5:
-                return z, th
+                return z, th, {"left": sL, "right": sR}
             levels = 5
             continue
         dth = -(gR - gL) / (lR - lL)
@@ -402,8 +410,8 @@ def point_data(ws, tr, side, s, pose: _Pose) -> dict:
     gap = Z - zr
     gamma = np.arctan(zr1)
     kwx = 1.0 / (r * np.sqrt(1.0 + p1 * p1))
-    kwy = p2 / (1.0 + p1 * p1) ** 1.5
-    kry = -zr2 / (1.0 + zr1 * zr1) ** 1.5
+    kwy = curvature(p1, p2)
+    kry = -curvature(zr1, zr2)
     ry, rz = pl.to_profile_frame(u, zr)
     return {
         "wheel_y": s, "wheel_z": p, "rail_y": ry, "rail_z": rz,
@@ -431,8 +439,7 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
     nrow = d.shape[0]
     gmin = np.argmin(d, axis=1)
     interior = np.zeros_like(d, dtype=bool)
-    interior[:, 1:-1] = ((d[:, 1:-1] < d[:, :-2]) & (d[:, 1:-1] <= d[:, 2:])
-                         & (d[:, :-2] < _BIG) & (d[:, 2:] < _BIG))  # not at the rail's ends
+    interior[:, 1:-1] = _interior_minima(d)
     # vertical gap of a point with normal separation <= tolerance is at most tolerance/cos(80°)
     interior &= d <= 6.0 * tolerance + 1e-9
     interior[np.arange(nrow), gmin] = True
@@ -560,9 +567,7 @@ class ContactPoints:
 
     def side(self, side: str) -> SideContacts:
         """``left`` or ``right``."""
-        if side not in SIDES:
-            raise InputError(f"side must be 'left' or 'right', got {side!r}")
-        return getattr(self, side)
+        return getattr(self, check_side(side))
 
     @property
     def delta_r(self) -> float:
@@ -576,20 +581,37 @@ def _side_from_row(data, count, row) -> SideContacts:
     return SideContacts(**{f.name: np.array(data[f.name][row, :n]) for f in fields(SideContacts)})
 
 
+def solve_rows(ws, tr, y, yaw, tolerance, step):
+    """Rigid pose and all contact points of both sides for the shifts ``y`` (shape (n,)).
+
+    Returns ``z, roll`` (shape (n,)) and ``{side: (data, count)}`` of :func:`find_points`.
+    """
+    yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
+    z, th, _ = solve_rigid(ws, tr, y, yaw, step=step)
+    pose = _Pose(y, z, th, yaw)
+    return z, th, {side: find_points(ws, tr, side, pose, step=step, tolerance=tolerance)
+                   for side in SIDES}
+
+
 def check_inputs(ws, tr, yaw, tolerance, step):
-    """Validate the common arguments of the contact functions."""
+    """Validate the common arguments of the contact functions; returns (yaw, tolerance, step).
+
+    ``yaw`` must be a scalar (returned as a float).
+    """
     if not isinstance(ws, Wheelset):
         raise InputError(f"wheelset must be a Wheelset, got {type(ws).__name__}")
     if not isinstance(tr, Track):
         raise InputError(f"track must be a Track, got {type(tr).__name__}")
     yaw = as_float_array("yaw", yaw)
+    if yaw.ndim != 0:
+        raise InputError(f"yaw must be a scalar, got an array of shape {yaw.shape}")
     if np.any(np.abs(yaw) > _MAX_YAW):
         raise InputError(f"|yaw| must be <= {_MAX_YAW} rad, got {yaw!r}")
     tolerance = float(non_negative("tolerance", tolerance))
     step = float(positive("step", step))
     if step > 2e-3:
         raise InputError(f"step must be <= 2e-3 m (search grid on the wheel), got {step!r}")
-    return yaw, tolerance, step
+    return float(yaw), tolerance, step
 
 
 def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e-4,
@@ -626,14 +648,9 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
     """
     yaw, tolerance, step = check_inputs(wheelset, track, yaw, tolerance, step)
     y = as_float_array("y", y)
-    if y.ndim != 0 or yaw.ndim != 0:
-        raise InputError("contact_points takes a scalar y and yaw; use contact_table for arrays")
-    yv, psi = y.reshape(1), yaw.reshape(1)
-    z, th = solve_rigid(wheelset, track, yv, psi, step=step)
-    pose = _Pose(yv, z, th, psi)
-    sides = {}
-    for side in SIDES:
-        data, count = find_points(wheelset, track, side, pose, step=step, tolerance=tolerance)
-        sides[side] = _side_from_row(data, count, 0)
-    return ContactPoints(float(y), float(yaw), float(z[0]), float(th[0]), sides["left"],
+    if y.ndim != 0:
+        raise InputError("contact_points takes a scalar y; use contact_table for arrays")
+    z, th, rows = solve_rows(wheelset, track, y.reshape(1), yaw, tolerance, step)
+    sides = {side: _side_from_row(*rows[side], 0) for side in SIDES}
+    return ContactPoints(float(y), yaw, float(z[0]), float(th[0]), sides["left"],
                          sides["right"], tolerance)

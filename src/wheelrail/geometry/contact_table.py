@@ -18,19 +18,9 @@ import numpy as np
 
 from .._validation import as_float_array, positive
 from ..errors import InputError
-from .contact_search import (POINT_FIELDS, SIDES, _global_min, _Pose, check_inputs,
-                             find_points, solve_rigid)
+from .contact_search import POINT_FIELDS, SIDES, check_inputs, solve_rigid, solve_rows
 
 __all__ = ["contact_table", "locate_jumps", "write_csv", "write_netcdf"]
-
-
-def _solve_rows(ws, tr, y, yaw, tolerance, step):
-    z, th = solve_rigid(ws, tr, y, yaw, step=step)
-    pose = _Pose(y, z, th, np.broadcast_to(yaw, y.shape))
-    sides = {}
-    for side in SIDES:
-        sides[side] = find_points(ws, tr, side, pose, step=step, tolerance=tolerance)
-    return z, th, sides
 
 
 def _primary(data):
@@ -43,9 +33,7 @@ def _primary_wheel_y(ws, tr, y, yaw, step, side, z0=None, roll0=None):
     """Wheel coordinate of the rigid contact point of ``side`` for each shift in ``y``."""
     y = np.atleast_1d(np.asarray(y, dtype=float))
     yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
-    z, th = solve_rigid(ws, tr, y, yaw, step=step, z0=z0, roll0=roll0)
-    s, _, _ = _global_min(ws, tr, side, _Pose(y, z, th, yaw), step)
-    return s
+    return solve_rigid(ws, tr, y, yaw, step=step, z0=z0, roll0=roll0)[2][side]
 
 
 def locate_jumps(ws, tr, y, primary_wheel_y, side, *, threshold, yaw=0.0, step=2e-4,
@@ -138,9 +126,7 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
     """
     import xarray as xr
 
-    yaw_a, tolerance, step = check_inputs(wheelset, track, yaw, tolerance, step)
-    if yaw_a.ndim != 0:
-        raise InputError(f"yaw must be a scalar, got {yaw!r}")
+    yaw_f, tolerance, step = check_inputs(wheelset, track, yaw, tolerance, step)
     y = np.linspace(-0.01, 0.01, 201) if y is None else as_float_array("y", y)
     if y.ndim != 1 or y.size < 1:
         raise InputError(f"y must be a 1-D array of lateral shifts, got shape {y.shape}")
@@ -152,9 +138,8 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
     refine_jumps = int(refine_jumps)
     if refine_jumps < 0:
         raise InputError(f"refine_jumps must be >= 0, got {refine_jumps!r}")
-    yaw_f = float(yaw_a)
 
-    z, th, sides = _solve_rows(wheelset, track, y, yaw_f, tolerance, step)
+    z, th, sides = solve_rows(wheelset, track, y, yaw_f, tolerance, step)
     npt = max(sides[s][0]["separation"].shape[1] for s in SIDES)
     rows = np.arange(y.size)
     coords = {"y": ("y", y, {"units": "m", "long_name": "lateral shift of the wheelset (right +)"}),

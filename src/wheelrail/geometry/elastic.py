@@ -57,7 +57,8 @@ from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
 from ..materials import STEEL, as_material_pair
 from ..normal.hertz import hertz_kernel
-from .contact_search import (SIDES, _SIGMA, SideContacts, _gap, _grid_gap, _Pose,
+from ._checks import check_side
+from .contact_search import (SIDES, _SIGMA, SideContacts, _gapfun, _grid_gap, _Pose,
                              _side_from_row, check_inputs, find_points, point_data, solve_rigid)
 
 __all__ = ["ElasticContact", "elastic_contact", "METHODS"]
@@ -114,7 +115,7 @@ class ElasticContact:
 
     def normal_force(self, side: str) -> np.ndarray:
         """Normal forces of ``side`` [N]."""
-        return getattr(self, f"normal_force_{side}")
+        return getattr(self, f"normal_force_{check_side(side)}")
 
 
 def _unit_approach(A, B, E_star, where):
@@ -143,12 +144,11 @@ def _regularised_B(ws, tr, side, pts, pose, zc):
     if np.any(bad):
         s = pts.wheel_y[bad]
         k = s.size
-        arg = lambda v: np.full(3 * k, float(np.asarray(v).ravel()[0]))  # noqa: E731
-        ss = np.concatenate([s - _B_SPAN, s, s + _B_SPAN])
-        d = _gap(ws, tr, side, ss, arg(pose.y), arg(zc), arg(pose.roll), arg(pose.yaw))
+        gap = _gapfun(ws, tr, side, pose.y, zc, pose.roll, pose.yaw)
+        d = gap(np.concatenate([s - _B_SPAN, s, s + _B_SPAN]))
         d2 = (d[:k] - 2 * d[k:2 * k] + d[2 * k:]) / _B_SPAN ** 2
         B[bad] = 0.5 * d2 * np.cos(pts.contact_angle[bad]) ** 3
-    return B, int(np.sum(bad))
+    return B
 
 
 def _forces(ws, tr, side, data, count, pose, zc, E_star):
@@ -158,7 +158,7 @@ def _forces(ws, tr, side, data, count, pose, zc, E_star):
     N = np.zeros_like(pen)
     act = pen > 0
     if np.any(act):
-        B, _ = _regularised_B(ws, tr, side, pts, pose, zc)
+        B = _regularised_B(ws, tr, side, pts, pose, zc)
         d1 = _unit_approach(pts.A[act], B[act], E_star, f"{side} wheel")
         N[act] = (pen[act] / d1) ** 1.5
     sig = _SIGMA[side]
@@ -245,7 +245,7 @@ def _elastic(ws, tr, y, yaw, load, E_star, step, z0, th0, maxiter=60):
     return x, out, {"iterations": it, "evaluations": nev}
 
 
-def _soft_min(d, eps, ds):
+def _soft_min(d, eps):
     """−ε ln(mean exp(−d/ε)) over the finite part of d (rows), and the normalised weights."""
     finite = d < 0.5
     a = np.where(finite, -d / eps, -np.inf)
@@ -265,7 +265,7 @@ def _quasi_elastic(ws, tr, y, yaw, load, eps, step, z0, th0):
         out = []
         for side in SIDES:
             d, _ = _grid_gap(ws, tr, side, pose, step)
-            out.append(_soft_min(d, eps, step)[0][0])
+            out.append(_soft_min(d, eps)[0][0])
         return np.array(out)
 
     def residual(x):
@@ -281,7 +281,7 @@ def _quasi_elastic(ws, tr, y, yaw, load, eps, step, z0, th0):
     sides = {}
     for side in SIDES:
         d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
-        _, w = _soft_min(d, eps, step)
+        _, w = _soft_min(d, eps)
         w = w[0]
         sbar = float(np.sum(w * s))
         data = point_data(ws, tr, side, s, _Pose(*(np.broadcast_to(v, s.shape) for v in
@@ -345,14 +345,16 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
     >>> round(res.vertical_force_left + res.vertical_force_right)
     100000
     """
-    yaw_a, _, step = check_inputs(wheelset, track, yaw, 0.0, step)
-    y = float(as_float_array("y", y))
+    yaw, _, step = check_inputs(wheelset, track, yaw, 0.0, step)
+    y = as_float_array("y", y)
+    if y.ndim != 0:
+        raise InputError("elastic_contact takes a scalar y")
+    y = float(y)
     load = float(positive("load", load))
     if method not in METHODS:
         raise InputError(f"method must be one of {METHODS}, got {method!r}")
     pair = as_material_pair(material)
-    yaw = float(yaw_a)
-    z0, th0 = solve_rigid(wheelset, track, np.array([y]), np.array([yaw]), step=step)
+    z0, th0, _ = solve_rigid(wheelset, track, np.array([y]), np.array([yaw]), step=step)
     if method == "elastic":
         x, out, info = _elastic(wheelset, track, y, yaw, load, pair.E_star, step,
                                 float(z0[0]), float(th0[0]))

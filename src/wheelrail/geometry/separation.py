@@ -41,7 +41,8 @@ from scipy.interpolate import CubicSpline
 
 from .._validation import as_float_array, non_negative, positive
 from ..errors import InputError
-from .contact_search import SIDES, _SIGMA, contact_points, silhouette
+from ._checks import check_side
+from .contact_search import _SIGMA, contact_points, silhouette
 
 __all__ = ["Separation", "separation", "undeformed_distance", "interpenetration",
            "undeformed_distance_kernel"]
@@ -132,7 +133,7 @@ class Separation:
         return undeformed_distance_kernel(self.f, self.wheel_radius, self.cos_factor, np.ravel(x))
 
 
-def _monotone_window(eta, zeta, centre_index):
+def _monotone_window(eta, centre_index):
     """Largest run of strictly increasing eta containing ``centre_index``."""
     inc = np.diff(eta) > 0
     lo = centre_index
@@ -179,8 +180,7 @@ def separation(wheelset, track, y, yaw=0.0, *, side="right", point=None, width=0
     >>> bool(abs(sep.f[len(sep.f) // 2]) < 1e-9)
     True
     """
-    if side not in SIDES:
-        raise InputError(f"side must be 'left' or 'right', got {side!r}")
+    check_side(side)
     width = float(positive("width", width))
     if width > 0.2:
         raise InputError(f"width must be <= 0.2 m, got {width!r}")
@@ -213,8 +213,8 @@ def separation(wheelset, track, y, yaw=0.0, *, side="right", point=None, width=0
     (zr,) = rc.eval(ur, 0)
     ew, zw = (uw - C[0]) * t[0] + (Zw - C[1]) * t[1], (uw - C[0]) * nrm[0] + (Zw - C[1]) * nrm[1]
     er, zrr = (ur - C[0]) * t[0] + (zr - C[1]) * t[1], (ur - C[0]) * nrm[0] + (zr - C[1]) * nrm[1]
-    sw = _monotone_window(ew, zw, int(np.argmin(np.abs(ew))))
-    sr = _monotone_window(er, zrr, int(np.argmin(np.abs(er))))
+    sw = _monotone_window(ew, int(np.argmin(np.abs(ew))))
+    sr = _monotone_window(er, int(np.argmin(np.abs(er))))
     lo = max(-0.5 * width, ew[sw][0], er[sr][0])
     hi = min(0.5 * width, ew[sw][-1], er[sr][-1])
     eta = np.linspace(lo, hi, n)

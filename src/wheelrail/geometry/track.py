@@ -31,6 +31,7 @@ import numpy as np
 
 from .._validation import as_float_array, non_negative, positive
 from ..errors import InputError, ProfileError
+from ._checks import SIDES, check_profile, check_side
 from ._curves import SAMPLE_STEP, PiecewiseCubic, rotate, sample_profile
 
 __all__ = ["Track", "RailPlacement"]
@@ -123,17 +124,11 @@ class Track:
     canted: bool = False
 
     def __post_init__(self):
-        for name in ("rail", "rail_right"):
-            p = getattr(self, name)
-            if p is None and name == "rail_right":
-                continue
-            if p is None or not (hasattr(p, "y_min") and callable(p)):
-                raise InputError(f"{name} must be a wheelrail.profiles.Profile, got {type(p).__name__}")
-            if getattr(p, "kind", "rail") != "rail":
-                raise ProfileError(f"{name} must be a rail profile, got a {p.kind!r} profile "
-                                   f"{getattr(p, 'name', '')!r}")
+        check_profile("rail", self.rail, "rail")
         if self.rail_right is None:
             object.__setattr__(self, "rail_right", self.rail)
+        else:
+            check_profile("rail_right", self.rail_right, "rail")
         object.__setattr__(self, "gauge", float(positive("gauge", self.gauge)))
         if not 0.5 < self.gauge < 2.0:
             raise InputError(f"gauge must lie in (0.5, 2.0) m, got {self.gauge!r} (mm given?)")
@@ -160,17 +155,11 @@ class Track:
 
     def profile(self, side: str):
         """Rail profile of ``side`` ("left" or "right")."""
-        if side == "left":
-            return self.rail
-        if side == "right":
-            return self.rail_right
-        raise InputError(f"side must be 'left' or 'right', got {side!r}")
+        return self.rail if check_side(side) == "left" else self.rail_right
 
     def placement(self, side: str) -> RailPlacement:
         """Placement of the rail of ``side`` (cached)."""
-        if side not in ("left", "right"):
-            raise InputError(f"side must be 'left' or 'right', got {side!r}")
-        return self._placements[side]
+        return self._placements[check_side(side)]
 
     def curve(self, side: str) -> PiecewiseCubic:
         """Rail surface Z(u) of ``side`` in side-local coordinates."""
@@ -179,7 +168,7 @@ class Track:
     @cached_property
     def _placements(self) -> dict:
         out = {}
-        for side in ("left", "right"):
+        for side in SIDES:
             prof = self.profile(side)
             if side == "right" and prof is self.rail:
                 out[side] = out["left"]

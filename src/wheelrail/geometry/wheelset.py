@@ -24,22 +24,12 @@ from functools import cached_property
 
 import numpy as np
 
-from .._validation import positive
+from .._validation import in_range, positive
 from ..errors import InputError, ProfileError
+from ._checks import check_profile, check_side
 from ._curves import PiecewiseCubic, sample_profile
 
 __all__ = ["Wheelset"]
-
-
-def _check_wheel(name, profile):
-    if profile is None:
-        return
-    if not (hasattr(profile, "y_min") and callable(profile)):
-        raise InputError(f"{name} must be a wheelrail.profiles.Profile, got {type(profile).__name__}")
-    kind = getattr(profile, "kind", "wheel")
-    if kind != "wheel":
-        raise ProfileError(f"{name} must be a wheel profile, got a {kind!r} profile "
-                           f"{getattr(profile, 'name', '')!r}")
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,19 +67,18 @@ class Wheelset:
     tape_circle_offset: float = 0.070
 
     def __post_init__(self):
-        _check_wheel("wheel", self.wheel)
         if self.wheel is None:
             raise InputError("wheel must be a wheel Profile, got None")
-        _check_wheel("wheel_right", self.wheel_right)
+        check_profile("wheel", self.wheel, "wheel")
         if self.wheel_right is None:
             object.__setattr__(self, "wheel_right", self.wheel)
+        else:
+            check_profile("wheel_right", self.wheel_right, "wheel")
         object.__setattr__(self, "nominal_radius",
                            float(positive("nominal_radius", self.nominal_radius)))
         object.__setattr__(self, "flange_back", float(positive("flange_back", self.flange_back)))
-        off = float(np.asarray(self.tape_circle_offset, dtype=float))
-        if not np.isfinite(off) or off < 0 or off > 0.5:
-            raise InputError(f"tape_circle_offset must lie in [0, 0.5] m, got {self.tape_circle_offset!r}")
-        object.__setattr__(self, "tape_circle_offset", off)
+        object.__setattr__(self, "tape_circle_offset",
+                           float(in_range("tape_circle_offset", self.tape_circle_offset, 0.0, 0.5)))
         if self.nominal_radius > 2.0:
             raise InputError(f"nominal_radius = {self.nominal_radius!r} m is implausible (mm given?)")
         if self.flange_back > 3.0:
@@ -112,15 +101,11 @@ class Wheelset:
 
     def profile(self, side: str):
         """Wheel profile of ``side`` ("left" or "right")."""
-        if side == "left":
-            return self.wheel
-        if side == "right":
-            return self.wheel_right
-        raise InputError(f"side must be 'left' or 'right', got {side!r}")
+        return self.wheel if check_side(side) == "left" else self.wheel_right
 
     def curve(self, side: str) -> PiecewiseCubic:
         """Spline of the wheel profile z(s) of ``side`` in its profile frame (cached)."""
-        return self._curves[side]
+        return self._curves[check_side(side)]
 
     @cached_property
     def _curves(self) -> dict:
