@@ -185,7 +185,7 @@ def _rail_head(radii, y1, half_width, side_slope, depth, ds):
     pts = []
     for c, R, lo, hi in ((c1, R1, 0.0, a1), (c2, R2, a1, a2), (c3, R3, a2, a3)):
         n = max(int(np.ceil(R * (hi - lo) / ds)), 2)
-        t = np.linspace(lo, hi, n + 1)[:-1] if pts else np.linspace(lo, hi, n + 1)[:-1]
+        t = np.linspace(lo, hi, n + 1)[:-1]  # the end point starts the next piece
         pts.append(np.c_[c[0] + R * np.sin(t), c[1] + R * np.cos(t)])
     p3 = c3 + R3 * np.array([np.sin(a3), np.cos(a3)])
     # side: from p3 downwards to z = -depth, widening by side_slope per unit depth

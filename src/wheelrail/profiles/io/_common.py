@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from ...errors import ProfileError
-from ..core import KINDS, MAX_PLAUSIBLE_WIDTH, Profile, ProfileWarning
+from ..core import KINDS, MAX_PLAUSIBLE_WIDTH, MIN_POINTS, Profile, ProfileWarning
 
 #: Files larger than this are refused (a profile has at most a few 10^4 points).
 MAX_FILE_BYTES = 20 * 1024 * 1024
@@ -70,10 +70,10 @@ def append_row(rows: list, toks: list, ncol: int, where: str, hint: str = "") ->
 
 
 def check_row_count(rows: list, name: str) -> None:
-    """A profile needs at least four points."""
-    if len(rows) < 4:
-        raise ProfileError(f"{name}: {len(rows)} data row(s) found, at least 4 profile points "
-                           f"are needed")
+    """A profile needs at least :data:`~wheelrail.profiles.core.MIN_POINTS` points."""
+    if len(rows) < MIN_POINTS:
+        raise ProfileError(f"{name}: {len(rows)} data row(s) found, at least {MIN_POINTS} "
+                           f"profile points are needed")
 
 
 def resolve_kind(kind, guessed, name: str) -> str:

@@ -35,7 +35,7 @@ import warnings
 import numpy as np
 
 from ...errors import ProfileError
-from ..core import Profile, ProfileWarning
+from ..core import MIN_POINTS, Profile, ProfileWarning
 from ._common import (POINT_DIST_MIN, kind_from_extension, make_profile, number, read_lines,
                       resolve_kind)
 
@@ -131,9 +131,9 @@ def parse_simpack(lines: list[str], name: str):
                            f"(missing {stack[-1]}.end)")
     if point_line is None:
         raise ProfileError(f"{name}: no 'point.begin' ... 'point.end' section with profile points")
-    if len(pts) < 4:
+    if len(pts) < MIN_POINTS:
         raise ProfileError(f"{name}, line {point_line}: point section holds {len(pts)} point(s), "
-                           f"at least 4 are needed")
+                           f"at least {MIN_POINTS} are needed")
     return header, spline, np.array(pts, dtype=float)
 
 
@@ -183,8 +183,8 @@ def apply_spline_options(points: np.ndarray, opts: dict, name: str) -> tuple[np.
         p[:, 1] = -p[:, 1]
     if _flag(opts, "inversion", where):
         p = p[::-1]
-    if len(p) < 4:
-        raise ProfileError(f"{where}: fewer than 4 points left after bound.y.min/max")
+    if len(p) < MIN_POINTS:
+        raise ProfileError(f"{where}: fewer than {MIN_POINTS} points left after bound.y.min/max")
     if "units.len.f" in opts:
         f = _real(opts, "units.len.f", where)
         if f <= 0.0:
