@@ -383,8 +383,10 @@ def hertz_from_semiaxes(a, b, load, material) -> HertzContact:
     if np.any(out):
         raise InputError(f"a/b = {_first(out, ratio)!r} is outside the valid range [1e-9, 1e9]")
     A, B = curvatures_from_semiaxes(a, b, load, pair.E_star)
-    a2, b2, p0, delta = hertz_kernel(load, A, B, pair.E_star)
     a, b, load = np.broadcast_arrays(a, b, load)
+    short = np.minimum(a, b)
+    p0 = 1.5 * load / (np.pi * a * b)
+    delta = p0 * short * _elliptic(short / np.maximum(a, b))[0] / pair.E_star  # as hertz_kernel
     return _make(a, b, p0, delta, load, A, B, pair)
 
 
@@ -397,8 +399,9 @@ def hertz_from_penetration(penetration, A, B, material) -> HertzContact:
     delta = positive("penetration", penetration)
     A, B = _checked_curvatures(A, B)
     a1, b1, p01, d1 = hertz_kernel(1.0, A, B, pair.E_star)
-    load = (delta / d1) ** 1.5
-    return hertz(load, A, B, pair)
+    s = np.sqrt(delta / d1)  # = load^(1/3): a, b, p0 scale with it, δ with its square
+    delta, A, B = np.broadcast_arrays(delta, A, B)
+    return _make(a1 * s, b1 * s, p01 * s, delta, s**3, A, B, pair)
 
 
 def hertz_line(load_per_length, radius, material):
