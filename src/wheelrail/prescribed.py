@@ -29,23 +29,12 @@ from dataclasses import replace
 import numpy as np
 
 from ._validation import as_float_array, positive
+from .api import _broadcast_contact, as_creepage, creep_forces, get_method
 from .errors import ConvergenceError, InputError
 from .results import CreepForces
+from .tangential.linear import linear_stiffness
 
 __all__ = ["solve_creepages"]
-
-
-def _stiffness(contact):
-    """Linear-theory stiffnesses −dFx/dξ, −dFy/dη [N] used to start the iteration."""
-    try:
-        from .tangential.linear import kalker_coefficients
-
-        C11, C22, _, _ = (float(v) for v in kalker_coefficients(float(contact.a / contact.b),
-                                                                  float(contact.nu)))
-    except Exception:  # pragma: no cover - fallback if the table is unavailable
-        C11, C22 = 4.0, 3.5
-    gc2 = float(contact.G) * float(contact.c) ** 2
-    return gc2 * C11, gc2 * C22
 
 
 def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), method="fastsim",
@@ -98,8 +87,6 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
     >>> abs(r.Fx - 1000.0) < 1e-2, r.info["xi"] < 0
     (True, True)
     """
-    from .api import as_creepage, creep_forces, get_method
-
     if Fx is None and Fy is None:
         raise InputError("give at least one prescribed force, Fx= or Fy= [N]")
     impl = get_method(method)
@@ -120,12 +107,10 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
                       bshape, force_tol, maxiter, options)
     return _single(contact, float(mu), None if fx is None else float(fx),
                    None if fy is None else float(fy), (float(xi0), float(eta0), float(phi0)),
-                   impl, force_tol, maxiter, options, creep_forces)
+                   impl, force_tol, maxiter, options)
 
 
 def _batch(contact, mu, fx, fy, creepage, impl, shape, force_tol, maxiter, options):
-    from .api import _broadcast_contact, creep_forces
-
     n = shape[0]
     if np.shape(contact.a) != shape:
         contact = _broadcast_contact(contact, shape)
@@ -134,7 +119,7 @@ def _batch(contact, mu, fx, fy, creepage, impl, shape, force_tol, maxiter, optio
     fys = None if fy is None else np.broadcast_to(fy, shape)
     res = [_single(contact[i], float(mu[i]), None if fxs is None else float(fxs[i]),
                    None if fys is None else float(fys[i]), creepage, impl, force_tol, maxiter,
-                   options, creep_forces) for i in range(n)]
+                   options) for i in range(n)]
     stack = lambda name: np.array([getattr(r, name) for r in res], dtype=float)  # noqa: E731
     info = {k: np.array([r.info.get(k, np.nan) for r in res], dtype=float)
             for k in ("xi", "eta", "phi", "outer_iterations")}
@@ -144,7 +129,7 @@ def _batch(contact, mu, fx, fy, creepage, impl, shape, force_tol, maxiter, optio
                        info=info)
 
 
-def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options, creep_forces):
+def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options):
     Fn = float(contact.load)
     limit = mu * Fn
     Ft = float(np.hypot(Fx or 0.0, Fy or 0.0))
@@ -159,7 +144,8 @@ def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options, cr
         evals[0] += 1
         return creep_forces(contact, (x, e, phi), mu, method=impl, **options)
 
-    k11, k22 = _stiffness(contact)
+    # linear-theory stiffnesses -dFx/dxi, -dFy/deta [N] start the iteration
+    k11, k22 = (float(k) for k in linear_stiffness(contact.a, contact.b, contact.G, contact.nu)[:2])
     if Fx is not None and Fy is not None:
         r, xi, eta = _broyden(evaluate, Fx, Fy, xi, eta, k11, k22, ftol, maxiter)
     elif Fx is not None:
