@@ -66,11 +66,7 @@ def citation(method: str | None = None) -> list[str]:
     names = [method] if method else list(METHODS)
     refs: list[str] = []
     for n in names:
-        try:
-            impl = get_method(n)
-        except ImportError:
-            continue
-        refs.extend(r for r in impl.references if r not in refs)
+        refs.extend(r for r in get_method(n).references if r not in refs)
     return refs
 
 

@@ -1,6 +1,6 @@
 """Invariants every registered creep-force law must satisfy (hypothesis).
 
-For each law in ``wheelrail.api.METHODS`` whose module exists (others are skipped):
+For each law in ``wheelrail.api.METHODS``:
 
 * Coulomb bound |F_t| ≤ μ Fn to round-off (not for ``linear``, which is unsaturated;
   FASTSIM included);
@@ -33,7 +33,6 @@ BOUND_TOL: dict = {}
 #: relative tolerance (of mu Fn) of the symmetry checks: round-off for closed forms and
 #: FASTSIM; the iterative exact solver converges to its tolerance tol = 1e-6
 SYM_TOL = {"exact": 1e-6}
-SKIP: dict = {}
 LIPSCHITZ = 10.0  # multiple of Kalker's largest coefficient allowed for dF/dcreepage
 
 STEEL = wr.Material(E=2.1e11, nu=0.28)
@@ -53,12 +52,7 @@ contact_index = st.sampled_from(range(len(CONTACTS)))
 
 
 def law(name):
-    """(implementation, options) for ``name``, skipping laws that are not written yet."""
-    if name in SKIP:
-        pytest.skip(SKIP[name])
-    pytest.importorskip(METHODS[name].split(":")[0])
-    if name != "carter":
-        pytest.importorskip("wheelrail.tangential.linear")
+    """(implementation, options) for ``name``."""
     impl = get_method(name)
     opts = {k: v for k, v in SMALL_OPTIONS.get(name, {}).items() if k in impl.options}
     return impl, opts

@@ -253,7 +253,6 @@ def test_2005_wet_below_dry():
 # ---------------------------------------------------------------- API
 @pytest.fixture
 def round_contact():
-    pytest.importorskip("wheelrail.tangential.linear")
     return wr.hertz_from_semiaxes(A_, B_, Q, wr.Material(E=2.0 * G * 1.25, nu=0.25))
 
 
@@ -294,7 +293,6 @@ def test_api_bad_options(round_contact, opts, match):
 
 
 def test_api_batch_with_speed_per_contact():
-    pytest.importorskip("wheelrail.tangential.linear")
     mat = wr.Material(E=2.0 * G * 1.25, nu=0.25)
     contact = wr.hertz_from_semiaxes(np.array([6e-3, 5e-3, 7e-3]), B_, Q, mat)
     speed = np.array([5.0, 20.0, 40.0])

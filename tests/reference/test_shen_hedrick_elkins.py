@@ -102,7 +102,6 @@ def test_sign_convention_positive_creepage_negative_force():
 # ---- through the public API (needs Kalker's coefficients from tangential.linear) ----------
 @pytest.fixture
 def round_contact():
-    pytest.importorskip("wheelrail.tangential.linear")
     return wr.hertz_from_semiaxes(A_, B_, FN, wr.Material(E=2.0 * G * 1.25, nu=0.25))
 
 
