@@ -63,6 +63,13 @@ def in_range(name: str, value, lo: float, hi: float, *, lo_open=False, hi_open=F
     return arr
 
 
+def integer(name: str, value, lo: int = 1) -> int:
+    """A Python/numpy integer (not a bool) >= ``lo`` (e.g. a number of elements), as ``int``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
+        raise InputError(f"{name} must be an integer >= {lo}, got {value!r}")
+    return int(value)
+
+
 def scalar_or_array(arr: np.ndarray):
     """Return a Python float for 0-d arrays, the array otherwise."""
     return float(arr) if np.ndim(arr) == 0 else arr

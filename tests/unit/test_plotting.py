@@ -44,7 +44,6 @@ def test_field_arrays_axes_and_uniform_cells():
 
 
 def test_field_arrays_of_fastsim_match_its_adhesion_fraction():
-    pytest.importorskip("wheelrail.tangential.fastsim")
     c = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.Material(2.1e11, 0.28))
     r = wr.creep_forces(c, (-7e-4, 2e-4, 0.0), 0.3, method="fastsim", nx=10, ny=8)
     f = field_arrays(r.fields)
@@ -52,6 +51,17 @@ def test_field_arrays_of_fastsim_match_its_adhesion_fraction():
     frac = np.sum(f["dA"][f["adhesion"]]) / np.sum(f["dA"][f["inside"]])
     assert frac == pytest.approx(r.info["adhesion_fraction"], rel=1e-12)
     # the traction field integrates to the forces
+    assert np.sum(f["px"] * f["dA"]) == pytest.approx(r.Fx, rel=1e-9)
+
+
+def test_field_arrays_of_fastsim_single_element_strips():
+    """nx = 1: the arrays are still [i_x, i_y] (FASTSIM gives its own layout; guessing the
+    orientation from y being constant along a row fails when a row has one element)."""
+    c = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.Material(2.1e11, 0.28))
+    r = wr.creep_forces(c, (-7e-4, 2e-4, 0.0), 0.3, method="fastsim", nx=1, ny=8)
+    f = field_arrays(r.fields)
+    assert f["x"].shape == f["px"].shape == f["dA"].shape == (1, 8)
+    assert np.all(np.diff(f["y"][0]) > 0)  # y varies along i_y
     assert np.sum(f["px"] * f["dA"]) == pytest.approx(r.Fx, rel=1e-9)
 
 

@@ -1,10 +1,10 @@
 """Normalise the traction fields of the tangential methods to plain arrays (numpy only).
 
-Methods return their fields in different containers (a mapping, an
-``xarray.Dataset`` or a dataclass). A container with an ``as_arrays()`` method
-(the exact theory's :class:`wheelrail.halfspace.GapSolution`) gives its arrays
-itself; otherwise :func:`field_arrays` looks up the usual names so that plots
-and summaries need not know the method.
+The fields of the package's methods know their own layout: a container with an
+``as_arrays()`` method (the exact theory's :class:`wheelrail.halfspace.GapSolution`,
+FASTSIM's :class:`wheelrail.tangential.fastsim.FastsimFields`) gives its arrays
+itself. For other containers (a user's mapping, ``xarray.Dataset`` or object)
+:func:`field_arrays` looks up the usual names and guesses the grid orientation.
 """
 
 from __future__ import annotations
@@ -75,7 +75,7 @@ def field_arrays(fields):
     if fields is None:
         return None
     as_arrays = getattr(fields, "as_arrays", None)
-    if callable(as_arrays):  # the fields know their own layout (exact theory)
+    if callable(as_arrays):  # the fields know their own layout (exact, FASTSIM)
         return as_arrays()
     px, py = _arr(_lookup(fields, _NAMES["px"])), _arr(_lookup(fields, _NAMES["py"]))
     if px is None and py is None:

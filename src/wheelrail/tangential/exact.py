@@ -24,18 +24,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import scalar_or_array
+from .._validation import integer, scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
 from ._base import TangentialMethod
 
 __all__ = ["Exact", "exact_single"]
-
-
-def _check_int(name, value, lo):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < lo:
-        raise InputError(f"{name} must be an integer >= {lo}, got {value!r}")
-    return int(value)
 
 
 def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6, maxiter=100,
@@ -111,8 +105,8 @@ class Exact(TangentialMethod):
     def solve(self, contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6,
               maxiter=100, on_fail="raise", progress=None):
         """Creep forces of a (batch of) Hertzian contact(s); see the class docstring."""
-        elements = _check_int("elements", elements, 4)
-        maxiter = _check_int("maxiter", maxiter, 1)
+        elements = integer("elements", elements, 4)
+        maxiter = integer("maxiter", maxiter, 1)
         if on_fail not in ("raise", "status"):
             raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
         shape = np.shape(contact.a)

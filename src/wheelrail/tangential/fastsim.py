@@ -54,11 +54,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import as_float_array, positive, scalar_or_array
+from .._validation import as_float_array, integer, positive, scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
 from . import _fastsim_kernel as _k
 from ._base import TangentialMethod
+from .linear import kalker_coefficients
 
 __all__ = [
     "Fastsim",
@@ -154,6 +155,17 @@ class FastsimFields:
         """Area of adhesion divided by the contact area [-]."""
         area = self.area
         return float(np.sum(area[self.adhesion]) / np.sum(area))
+
+    def as_arrays(self) -> dict:
+        """Plain arrays indexed ``[i_x, i_y]`` (the strip arrays transposed), for plotting.
+
+        Keys as :meth:`wheelrail.halfspace.GapSolution.as_arrays`: ``x``, ``y`` [m],
+        ``px``, ``py``, ``p`` [Pa], ``adhesion``, ``inside`` (bool), ``dA`` [m²],
+        ``sx``, ``sy`` [-].
+        """
+        return {"x": self.x.T, "y": self.y.T, "px": self.px.T, "py": self.py.T,
+                "p": self.pressure.T, "adhesion": self.adhesion.T, "inside": self.in_contact.T,
+                "dA": self.area.T, "sx": self.sx.T, "sy": self.sy.T}
 
 
 # ---------------------------------------------------------------------------
@@ -263,12 +275,6 @@ def _profile(kind, s):
     return np.clip(1.0 - s * s, 0.0, None)
 
 
-def _check_int(name, value, lo=1):
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < lo:
-        raise InputError(f"{name} must be an integer >= {lo}, got {value!r}")
-    return int(value)
-
-
 def _check_choice(name, value, choices):
     if value not in choices:
         raise InputError(f"{name} must be one of {', '.join(map(repr, choices))}, got {value!r}")
@@ -361,7 +367,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
     if p.ndim == 2:
         if p.shape[0] != ny:
             raise InputError(f"pressure must have shape ({ny}, nx), got {p.shape}")
-        if nx is not None and _check_int("nx", nx) != p.shape[1]:
+        if nx is not None and integer("nx", nx) != p.shape[1]:
             raise InputError(f"nx={nx!r} does not match pressure.shape[1]={p.shape[1]}")
         nx = p.shape[1]
         if profile is not None:
@@ -369,7 +375,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
     else:
         if nx is None or profile is None:
             raise InputError("with strip peak pressures (shape (ny,)) give nx and profile")
-        nx = _check_int("nx", nx)
+        nx = integer("nx", nx)
         _check_choice("profile", profile, _BOUNDS)
         peaks = strip_array("pressure", p)
         s = 1.0 - (np.arange(nx) + 0.5) * (2.0 / nx)
@@ -415,14 +421,6 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
 # ---------------------------------------------------------------------------
 # the creep-force law
 # ---------------------------------------------------------------------------
-def _kalker_coefficients(aspect, nu):
-    from .linear import kalker_coefficients
-
-    C11, C22, C23, C33 = kalker_coefficients(aspect, nu)
-    return (np.asarray(C11, dtype=float), np.asarray(C22, dtype=float),
-            np.asarray(C23, dtype=float))
-
-
 class Fastsim(TangentialMethod):
     """Kalker's FASTSIM on the Hertzian ellipse.
 
@@ -500,8 +498,8 @@ class Fastsim(TangentialMethod):
 
     def solve(self, contact, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
               flexibility="three", scheme="midpoint", fields=None):
-        nx = _check_int("nx", nx)
-        ny = _check_int("ny", ny)
+        nx = integer("nx", nx)
+        ny = integer("ny", ny)
         _check_choice("bound", bound, _BOUNDS)
         _check_choice("flexibility", flexibility, _FLEXIBILITIES)
         _check_choice("scheme", scheme, _SCHEMES)
@@ -516,10 +514,7 @@ class Fastsim(TangentialMethod):
         xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))
         n = a.shape[0]
         G = float(contact.G)
-        aspect = a / b
-        if np.all(aspect == aspect[0]):  # common for a batch of creepages on one contact
-            aspect = aspect[:1]
-        C11, C22, C23 = (np.broadcast_to(v, (n,)) for v in _kalker_coefficients(aspect, contact.nu))
+        C11, C22, C23, _ = kalker_coefficients(a / b, contact.nu)
         L1, L2, L3 = flexibilities(a, b, G, C11, C22, C23)
         if flexibility == "weighted":
             L = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(a * b))
@@ -543,8 +538,8 @@ class Fastsim(TangentialMethod):
             c_ = np.ascontiguousarray
             Fx, Fy, Mz = _k.fastsim_hertz_batch(
                 c_(a), c_(b), c_(peak), c_(mu), c_(L1, dtype=float), c_(L2, dtype=float),
-                c_(L3, dtype=float), c_(xi), c_(eta), c_(phi), t, half, strip_peak,
-                _profile(bound, 1.0 - (np.arange(nx) + 0.5) * (2.0 / nx)), first_order)
+                c_(L3, dtype=float), c_(xi), c_(eta), c_(phi), t, half, strip_peak, s_cells,
+                first_order)
             f = None
         else:
             Fx, Fy, Mz = (np.empty(n) for _ in range(3))

@@ -91,8 +91,7 @@ from pathlib import Path
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
-from .._validation import as_float_array, in_range, scalar_or_array
-from ..errors import InputError
+from .._validation import in_range, positive, scalar_or_array
 from ..results import CreepForces, Status
 from ._base import TangentialMethod
 
@@ -223,15 +222,6 @@ def kalker_asymptotes(aspect, nu):
             np.where(narrow, c23_n, c23_l), np.where(narrow, c33_n, c33_l))
 
 
-def _check_aspect_nu(aspect, nu):
-    aspect = as_float_array("aspect (a/b)", aspect)
-    if np.any(aspect <= 0.0):
-        bad = aspect[aspect <= 0.0].ravel()[0]
-        raise InputError(f"aspect (a/b) must be > 0, got {bad!r}")
-    nu = in_range("nu", nu, 0.0, 0.5)
-    return aspect, nu
-
-
 def kalker_coefficients(aspect, nu):
     """Kalker's creep coefficients C11, C22, C23, C33 of the linear theory.
 
@@ -279,8 +269,11 @@ def kalker_coefficients(aspect, nu):
        Kluwer 1990, Table E.3.
     .. [2] K.L. Johnson, *Contact Mechanics*, CUP 1985, Table 8.1.
     """
-    aspect, nu = _check_aspect_nu(aspect, nu)
-    aspect, nu = np.broadcast_arrays(aspect, nu)
+    aspect, nu = np.broadcast_arrays(positive("aspect (a/b)", aspect), in_range("nu", nu, 0.0, 0.5))
+    if aspect.size > 1 and np.all(aspect == aspect.flat[0]) and np.all(nu == nu.flat[0]):
+        # one contact, many cases (a batch of creepages): interpolate once
+        return tuple(np.full(aspect.shape, c) for c in kalker_coefficients(aspect.flat[0],
+                                                                          nu.flat[0]))
     table = _table_interp(aspect, nu)
     low = aspect < _G_EDGE
     high = aspect > 1.0 / _G_EDGE

@@ -133,10 +133,11 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .._validation import scalar_or_array
+from .._validation import positive, scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
 from ._base import TangentialMethod
+from .linear import kalker_coefficients
 
 __all__ = ["Polach", "polach_forces", "polach_friction", "POLACH_2005_PARAMETERS"]
 
@@ -302,10 +303,7 @@ def _check_extended(kA, kS, speed, A, B, conditions):
             raise InputError("speed (rolling speed V [m/s]) is required when A and B are given: "
                              "the friction depends on the slip velocity w = s*V")
     if speed is not None:
-        sp = np.asarray(speed, dtype=float)
-        if not np.all(np.isfinite(sp)) or np.any(sp <= 0.0):
-            raise InputError(f"speed must be finite and > 0 [m/s], got {speed!r}")
-        speed = sp
+        speed = positive("speed", speed)
     return float(kA), float(kS), speed, A, B
 
 
@@ -349,8 +347,6 @@ class Polach(TangentialMethod):
     def solve(self, contact, xi, eta, phi, mu, kA=None, kS=None, speed=None, A=None, B=None,
               conditions=None):
         kA, kS, speed, A, B = _check_extended(kA, kS, speed, A, B, conditions)
-        from .linear import kalker_coefficients
-
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
         Fn = np.asarray(contact.load, dtype=float)

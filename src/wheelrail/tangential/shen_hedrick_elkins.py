@@ -45,6 +45,7 @@ from .._validation import scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
 from ._base import TangentialMethod
+from .linear import kalker_coefficients
 
 __all__ = ["ShenHedrickElkins", "johnson_vermeulen", "she_saturation_ratio",
            "shen_hedrick_elkins_forces"]
@@ -160,8 +161,6 @@ class ShenHedrickElkins(TangentialMethod):
         if spin_moment not in _SPIN_MOMENT_CHOICES:
             raise InputError(f"spin_moment must be one of {_SPIN_MOMENT_CHOICES}, "
                              f"got {spin_moment!r}")
-        from .linear import kalker_coefficients
-
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
         Fn = np.asarray(contact.load, dtype=float)
