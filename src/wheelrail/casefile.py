@@ -56,6 +56,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .conventions import CREEPAGE_UNITS, FORCE_UNITS
 from .errors import CaseFileError, InputError, WheelrailError
 from .materials import STEEL, Material, MaterialPair
 from .results import to_jsonable
@@ -90,8 +91,8 @@ DEFAULT_CASE = {
 
 #: Units of the quantities written by :func:`run_case`.
 UNITS = {
-    "a": "m", "b": "m", "c": "m", "p0": "Pa", "p_max": "Pa", "penetration": "m", "Fn": "N",
-    "Fx": "N", "Fy": "N", "Mz": "N m", "xi": "1", "eta": "1", "phi": "1/m", "mu": "1",
+    "a": "m", "b": "m", "c": "m", "p0": "Pa", "p_max": "Pa", "penetration": "m",
+    **FORCE_UNITS, **CREEPAGE_UNITS, "mu": "1",
     "area": "m^2", "adhesion_area": "m^2", "utilisation": "1", "A": "1/m", "B": "1/m",
 }
 
@@ -244,10 +245,8 @@ class CaseResult:
         The Hertz ellipse used by the tangential method.
     forces : CreepForces
         Creep forces (``fields`` holds traction fields for FASTSIM / exact).
-    normal : object or None
-        The result of the non-Hertzian normal solver (``normal = "bem"``).
-    grid : object or None
-        Its grid.
+    normal : NormalSolution or None
+        The boundary-element normal solution (``normal = "bem"``).
     summary : dict
         The JSON-ready dictionary returned by :func:`run_case`.
     """
@@ -256,8 +255,12 @@ class CaseResult:
     contact: Any
     forces: Any
     normal: Any
-    grid: Any
     summary: dict
+
+    @property
+    def grid(self):
+        """The grid of :attr:`normal` (None without a boundary-element solution)."""
+        return None if self.normal is None else self.normal.grid
 
 
 def _toml_value(v) -> str:
@@ -555,7 +558,7 @@ def solve_case(case: Case) -> CaseResult:
     from .api import creep_forces
 
     contact = case.hertz_contact
-    normal = grid = None
+    normal = None
     opts = dict(case.tangential_options)
     # The exact theory solves its own boundary-element normal problem: with normal = "bem"
     # it takes the grid size of [method.bem] (unless [method.exact] sets one) and its normal
@@ -592,9 +595,8 @@ def solve_case(case: Case) -> CaseResult:
 
     if shared_bem and forces.fields is not None:
         normal = forces.fields.normal
-        grid = normal.grid
     summary = _summary(case, contact, forces, normal, xi, eta, phi)
-    return CaseResult(case, contact, forces, normal, grid, summary)
+    return CaseResult(case, contact, forces, normal, summary)
 
 
 def run_case(case: Case) -> dict:
@@ -628,39 +630,21 @@ def _summary(case, contact, forces, normal, xi, eta, phi) -> dict:
         "method": forces.method, "normal_method": case.normal,
         "status": forces.status, "iterations": forces.iterations,
     }
-    if normal is not None:
-        for key in ("p_max", "area", "Fn", "penetration"):
-            if getattr(normal, key, None) is not None:
-                out[key] = getattr(normal, key)
-        out["normal_iterations"] = getattr(normal, "iterations", None)
-        out["normal_status"] = getattr(normal, "status", None)
-        if getattr(normal, "truncated", None) is not None:
-            out["truncated"] = bool(normal.truncated)
+    if normal is not None:  # the boundary-element NormalSolution replaces Hertz's numbers
+        out.update(p_max=normal.p_max, area=normal.area, Fn=normal.Fn,
+                   penetration=normal.penetration, normal_iterations=normal.iterations,
+                   normal_status=normal.status, truncated=bool(normal.truncated))
         out["hertz"] = {"a": contact.a, "b": contact.b, "p0": contact.p0,
                         "penetration": contact.penetration}
     for k, v in (forces.info or {}).items():  # method extras (adhesion_area, ...), scalars only
         if k not in out and np.ndim(v) == 0:
             out[k] = v
-    if "adhesion_area" not in out:
-        area = _adhesion_area(forces, contact.area)
-        if area is not None:
-            out["adhesion_area"] = area
+    frac = out.get("adhesion_fraction")  # FASTSIM gives the fraction, the exact theory the area
+    if "adhesion_area" not in out and frac is not None:
+        out["adhesion_area"] = float(frac) * float(contact.area)
     if case.forces:
         out["prescribed"] = dict(case.forces)
     out["source"] = case.source
     out["units"] = {k: u for k, u in UNITS.items() if k in out}
     return {k: (_scalar(v) if isinstance(v, (np.ndarray, np.generic, float, int)) else
                 to_jsonable(v)) for k, v in out.items()}
-
-
-def _adhesion_area(forces, area):
-    """Adhesion area [m²]: from the method's ``adhesion_fraction`` times the contact area,
-    or summed over the fields' element areas (``fields.adhesion``, ``fields.area``)."""
-    frac = (forces.info or {}).get("adhesion_fraction")
-    if frac is not None and np.ndim(frac) == 0:
-        return float(frac) * float(area)
-    f = forces.fields
-    adhesion, dA = getattr(f, "adhesion", None), getattr(f, "area", None)
-    if adhesion is not None and dA is not None and np.shape(adhesion) == np.shape(dA):
-        return float(np.sum(np.asarray(dA, dtype=float)[np.asarray(adhesion, dtype=bool)]))
-    return None

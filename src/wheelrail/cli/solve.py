@@ -16,33 +16,26 @@ def add_arguments(p) -> None:
 
 def plot_result(result, path) -> str:
     """Draw the traction field if the method returned one, else the pressure; return which."""
-    from ..plotting import field_arrays, pressure_map, traction_field
-
     from pathlib import Path
+
+    from ..plotting import field_arrays, pressure_map, traction_field
 
     fields = result.forces.fields
     title = f"{result.case.source}: {result.case.normal} + {result.summary['method']}"
-    normal, grid = result.normal, result.grid
-    p = None
-    if normal is not None:
-        p = getattr(normal, "pressure", None)
-        p = getattr(normal, "p", None) if p is None else p
-    has_bem = (p is not None and getattr(grid, "x", None) is not None
-               and getattr(grid, "y", None) is not None)
+    bem = result.normal  # the boundary-element NormalSolution (normal = "bem") or None
     if fields is not None and field_arrays(fields) is not None:
         traction_field(fields, mu=result.case.mu, contact=result.contact, path=path, title=title)
-        if has_bem:  # the boundary-element pressure goes beside the traction figure
-            path = Path(path)
-            extra = path.with_name(f"{path.stem}_pressure{path.suffix}")
-            pressure_map(result.contact, x=grid.x, y=grid.y, p=p, path=extra, title=title)
-            return f"traction field; pressure map in {extra}"
-        return "traction field"
-    if has_bem:
-        try:
-            pressure_map(result.contact, x=grid.x, y=grid.y, p=p, path=path, title=title)
-            return "pressure (boundary elements)"
-        except ValueError:
-            pass
+        if bem is None:
+            return "traction field"
+        path = Path(path)  # the boundary-element pressure goes beside the traction figure
+        extra = path.with_name(f"{path.stem}_pressure{path.suffix}")
+        pressure_map(result.contact, x=bem.grid.x, y=bem.grid.y, p=bem.pressure, path=extra,
+                     title=title)
+        return f"traction field; pressure map in {extra}"
+    if bem is not None:
+        pressure_map(result.contact, x=bem.grid.x, y=bem.grid.y, p=bem.pressure, path=path,
+                     title=title)
+        return "pressure (boundary elements)"
     pressure_map(result.contact, path=path, title=title)
     return "pressure (Hertz)"
 
