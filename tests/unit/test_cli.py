@@ -57,7 +57,6 @@ def test_version(capsys):
 
 
 def test_solve_writes_json_in_si(tmp_path, capsys):
-    pytest.importorskip("wheelrail.tangential.linear")
     case = _write(tmp_path, SPHERE.format(method="linear"))
     out = tmp_path / "out.json"
     assert main(["solve", case, "--json", str(out)]) == 0
@@ -80,7 +79,6 @@ def test_solve_writes_json_in_si(tmp_path, capsys):
 
 
 def test_solve_plot_pressure_for_closed_form_method(tmp_path):
-    pytest.importorskip("wheelrail.tangential.linear")
     case = _write(tmp_path, SPHERE.format(method="linear"))
     png = tmp_path / "p.png"
     assert main(["solve", case, "--plot", str(png), "-q"]) == 0
@@ -88,7 +86,6 @@ def test_solve_plot_pressure_for_closed_form_method(tmp_path):
 
 
 def test_solve_plot_fastsim_fields(tmp_path, capsys):
-    pytest.importorskip("wheelrail.tangential.fastsim")
     case = _write(tmp_path, SPHERE.format(method="fastsim") + "[method.fastsim]\nnx = 8\nny = 8\n")
     png = tmp_path / "f.png"
     assert main(["solve", case, "--plot", str(png), "--json", str(tmp_path / "f.json")]) == 0
@@ -151,7 +148,6 @@ def test_runtime_error_exit_1_and_debug_traceback(tmp_path, capsys, monkeypatch)
 
 
 def test_creep_curve_png_and_csv(tmp_path, capsys):
-    pytest.importorskip("wheelrail.tangential.linear")
     case = _write(tmp_path, SPHERE.format(method="linear"))
     png, table = tmp_path / "c.png", tmp_path / "c.csv"
     assert main(["creep-curve", case, "--component", "xi", "--max", "0.002", "--points", "11",
@@ -169,7 +165,6 @@ def test_creep_curve_png_and_csv(tmp_path, capsys):
 
 
 def test_creep_curve_default_case_several_methods(tmp_path, capsys):
-    pytest.importorskip("wheelrail.tangential.linear")
     png = tmp_path / "d.png"
     assert main(["creep-curve", "--component", "eta", "--points", "5", "--out", str(png)]) == 0
     out = capsys.readouterr().out
@@ -186,7 +181,6 @@ def test_creep_curve_unknown_method_exit_2(tmp_path, capsys):
 def test_creep_curve_full_slip_limit(tmp_path):
     """Far beyond saturation every bounded law gives |Fx| -> mu Fn (Coulomb); FASTSIM's
     strip sum of the pressure differs from Fn by O(1/nx^2), hence the tolerance."""
-    fastsim = pytest.importorskip("wheelrail.tangential.fastsim")  # noqa: F841
     table = tmp_path / "s.csv"
     assert main(["creep-curve", "--methods", "fastsim", "--min", "0.05", "--max", "0.1",
                  "--points", "3", "--out", str(tmp_path / "s.png"), "--csv", str(table)]) == 0
@@ -196,12 +190,11 @@ def test_creep_curve_full_slip_limit(tmp_path):
 
 
 def test_demo_writes_its_files(tmp_path, capsys):
-    pytest.importorskip("wheelrail.tangential.linear")
     out = tmp_path / "demo"
     code = main(["demo", "--out", str(out)])
     assert code == 0
     res = json.loads((out / "results.json").read_text())
-    assert res["steps"]["hertz"] == "ok" and res["steps"]["creep-forces"] == "ok"
+    assert set(res["steps"].values()) == {"ok"}, res["steps"]  # no step skipped or failed
     c = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.Material(2.1e11, 0.28))
     assert res["hertz"]["a"] == pytest.approx(c.a, rel=1e-12)
     assert "linear" in res["creep_forces"]
@@ -214,8 +207,7 @@ def test_demo_writes_its_files(tmp_path, capsys):
     n0, n1 = (float(rows[i]["load_N"]) for i in (0, -1))
     a0, a1 = (float(rows[i]["a_m"]) for i in (0, -1))
     assert a1 / a0 == pytest.approx((n1 / n0) ** (1 / 3), rel=1e-9)
-    if res["steps"].get("fastsim-fields") == "ok":
-        assert (out / "fastsim_fields.png").read_bytes()[:8] == PNG
+    assert (out / "fastsim_fields.png").read_bytes()[:8] == PNG
     assert str(out) in capsys.readouterr().out.replace("\n", "")
 
 
