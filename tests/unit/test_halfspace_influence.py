@@ -215,3 +215,13 @@ def test_kernel_equals_pointwise_rectangle_formula(materials):
     ref = rectangle_influence(ox[:, None], oy[None, :], 0.5 * g.dx, 0.5 * g.dy,
                               pair.G, pair.nu, pair.K)
     assert np.allclose(k, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
+
+
+@pytest.mark.parametrize("module", ["wheelrail.normal.bem", "wheelrail.halfspace"])
+def test_bem_and_halfspace_import_in_either_order(module):
+    """wheelrail.normal.bem imports the halfspace package, which re-exports its names."""
+    import subprocess
+    import sys
+
+    code = f"import {module}; from wheelrail.halfspace import solve_normal, ContactTruncatedWarning"
+    subprocess.run([sys.executable, "-c", code], check=True)

@@ -8,12 +8,7 @@ down once in :mod:`wheelrail.halfspace.influence`.
 from .fft import ConvolutionOperator, InfluenceOperator
 from .grid import Grid
 from .influence import influence_kernel, point_influence, rectangle_influence
-
-# the grid normal solver lives with the normal methods; re-exported here (public entry)
-from ..normal.bem import (ContactTruncatedWarning, NormalSolution, contact_outline,  # noqa: E402
-                          hertz_grid, solve_normal)
-from .tangential import (GapSolution, TangentialSolution, solve_gap, solve_rolling,  # noqa: E402
-                         solve_shift)
+from .tangential import GapSolution, TangentialSolution, solve_gap, solve_rolling, solve_shift
 
 __all__ = ["Grid", "influence_kernel", "point_influence", "rectangle_influence",
            "ConvolutionOperator", "InfluenceOperator",
@@ -28,3 +23,17 @@ __all__ += ["subsurface_stresses", "SubsurfaceStresses"]
 from .window import contact_patches, potential_contact_grid, solve_gap_auto
 
 __all__ += ["contact_patches", "potential_contact_grid", "solve_gap_auto"]
+
+# the grid normal solver lives with the normal methods (wheelrail.normal.bem, which imports
+# this package); re-exported here (public entry) on first access, so that either module
+# can be imported first
+_FROM_BEM = ("ContactTruncatedWarning", "NormalSolution", "contact_outline", "hertz_grid",
+             "solve_normal")
+
+
+def __getattr__(name):
+    if name in _FROM_BEM:
+        from ..normal import bem
+
+        return getattr(bem, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
