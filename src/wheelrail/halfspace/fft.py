@@ -32,6 +32,20 @@ def _fft_shape(nx: int, ny: int) -> tuple[int, int]:
     return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
 
 
+def _kernel_transform(kernel, shape, workers: int = 1) -> np.ndarray:
+    """rfft2 over the last two axes of kernel(s) (..., 2nx − 1, 2ny − 1) padded to ``shape``.
+
+    Wrap-around order: the kernel entry of offset ``m`` goes to slot ``m mod N``.
+    """
+    k = np.asarray(kernel, dtype=float)
+    nx, ny = (k.shape[-2] + 1) // 2, (k.shape[-1] + 1) // 2
+    wrapped = np.zeros(k.shape[:-2] + tuple(shape))
+    ix = np.arange(-(nx - 1), nx) % shape[0]
+    iy = np.arange(-(ny - 1), ny) % shape[1]
+    wrapped[..., ix[:, None], iy[None, :]] = k
+    return sfft.rfft2(wrapped, axes=(-2, -1), workers=workers)
+
+
 class ConvolutionOperator:
     """Apply one influence kernel to fields on a grid by zero-padded FFT.
 
@@ -60,18 +74,12 @@ class ConvolutionOperator:
         if not np.all(np.isfinite(k)):
             raise InputError("kernel2d must be finite")
         nx, ny = (k.shape[0] + 1) // 2, (k.shape[1] + 1) // 2
-        shape = _fft_shape(nx, ny)
-        # wrap-around order: offset m goes to slot m mod N
-        wrapped = np.zeros(shape)
-        ix = np.arange(-(nx - 1), nx) % shape[0]
-        iy = np.arange(-(ny - 1), ny) % shape[1]
-        wrapped[np.ix_(ix, iy)] = k
         self.nx, self.ny = nx, ny
-        self.fft_shape = shape
+        self.fft_shape = _fft_shape(nx, ny)
         self.workers = int(workers)
         self._kernel = k
         self._kernel.setflags(write=False)
-        self._kernel_hat = sfft.rfft2(wrapped, workers=self.workers)
+        self._kernel_hat = _kernel_transform(k, self.fft_shape, self.workers)
         self._kernel_hat.setflags(write=False)
 
     @property

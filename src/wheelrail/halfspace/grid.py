@@ -14,18 +14,10 @@ from functools import cached_property
 
 import numpy as np
 
-from .._validation import as_float_array, positive
+from .._validation import as_float_array, integer, positive
 from ..errors import InputError
 
 __all__ = ["Grid"]
-
-
-def _count(name, value) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise InputError(f"{name} must be an integer >= 1, got {value!r}")
-    if value < 1:
-        raise InputError(f"{name} must be >= 1, got {value!r}")
-    return int(value)
 
 
 @dataclass(frozen=True)
@@ -62,14 +54,14 @@ class Grid:
         object.__setattr__(self, "y0", float(as_float_array("y0", self.y0)))
         object.__setattr__(self, "dx", float(positive("dx", self.dx)))
         object.__setattr__(self, "dy", float(positive("dy", self.dy)))
-        object.__setattr__(self, "nx", _count("nx", self.nx))
-        object.__setattr__(self, "ny", _count("ny", self.ny))
+        object.__setattr__(self, "nx", integer("nx", self.nx))
+        object.__setattr__(self, "ny", integer("ny", self.ny))
 
     @classmethod
     def from_bounds(cls, xmin: float, xmax: float, ymin: float, ymax: float,
                     nx: int, ny: int) -> "Grid":
         """Grid covering the rectangle [xmin, xmax] × [ymin, ymax] (element edges) [m]."""
-        nx, ny = _count("nx", nx), _count("ny", ny)
+        nx, ny = integer("nx", nx), integer("ny", ny)
         xmin, xmax, ymin, ymax = (float(as_float_array(n, v)) for n, v in
                                   (("xmin", xmin), ("xmax", xmax), ("ymin", ymin), ("ymax", ymax)))
         if not xmax > xmin:
@@ -131,5 +123,5 @@ class Grid:
 
     def refined(self, factor: int = 2) -> "Grid":
         """The same window with ``factor`` times more elements along each axis."""
-        factor = _count("factor", factor)
+        factor = integer("factor", factor)
         return Grid.from_bounds(*self.bounds, self.nx * factor, self.ny * factor)

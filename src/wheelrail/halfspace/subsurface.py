@@ -42,6 +42,7 @@ from .._validation import as_float_array, positive
 from ..errors import InputError
 from ..materials import as_material_pair
 from .fft import ConvolutionOperator
+from .influence import kernel_offsets
 
 __all__ = ["boussinesq_stress", "cerruti_stress", "SubsurfaceStresses", "subsurface_stresses",
            "STRESS_COMPONENTS"]
@@ -278,8 +279,7 @@ def subsurface_stresses(grid, px, py, pz, materials, z, x=None, y=None, *,
     if x is None:
         X, Y = grid.X, grid.Y
         out = np.zeros((6, zs.size) + grid.shape)
-        ox = (np.arange(2 * grid.nx - 1) - (grid.nx - 1)) * grid.dx
-        oy = (np.arange(2 * grid.ny - 1) - (grid.ny - 1)) * grid.dy
+        ox, oy = kernel_offsets(grid)
         for iz, zz in enumerate(zs):
             gx, gy, w = _element_rule(grid, zz)
             m = gx.size
@@ -291,8 +291,10 @@ def subsurface_stresses(grid, px, py, pz, materials, z, x=None, y=None, *,
                     sx = ox[r0:r0 + rows, None, None, None] - gx[None, :, None, None]
                     k[:, r0:r0 + rows] = np.einsum("cambn,mn->cab",
                                                    _point_stress(j, sx, sy, zz, nu), w)
-                for c in range(6):
-                    out[c, iz] += ConvolutionOperator(k[c]).apply(f)
+                ops = [ConvolutionOperator(kc) for kc in k]
+                f_hat = ops[0].forward(f)        # one transform of f for the six components
+                for c, op in enumerate(ops):
+                    out[c, iz] += op.backward(op.multiply(f_hat))
     else:
         X, Y = np.broadcast_arrays(as_float_array("x", x), as_float_array("y", y))
         pts_x, pts_y = X.ravel(), Y.ravel()

@@ -86,19 +86,18 @@ import numpy as np
 import scipy.fft as sfft
 from numba import njit
 
-from .._validation import as_float_array, positive
+from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
 from ..materials import as_material_pair
+from .fft import InfluenceOperator, _fft_shape, _kernel_transform
 from .grid import Grid
 from .influence import influence_kernel
 
 __all__ = [
     "TangentialSolution",
     "rolling_kernel",
-    "shift_kernel",
     "solve_rolling",
     "solve_shift",
-    "solve_tangential",
     "GapSolution",
     "solve_gap",
 ]
@@ -331,21 +330,16 @@ def _gmres(matvec, rhs, rtol, maxiter, restart=60):
 class _BlockConvolution:
     """FFT convolution with a block kernel (m, k, 2nx−1, 2ny−1) on an (nx, ny) grid (private).
 
-    Same zero-padded wrap-around layout as
+    Same zero-padded wrap-around layout (and kernel transform) as
     :class:`~wheelrail.halfspace.fft.ConvolutionOperator`, but for a block of
     kernels sharing the forward transforms of the ``k`` input fields.
     """
 
     def __init__(self, kernel):
-        k = np.asarray(kernel, dtype=float)
-        self.nx = (k.shape[-2] + 1) // 2
-        self.ny = (k.shape[-1] + 1) // 2
-        self.shape = (sfft.next_fast_len(2 * self.nx - 1, real=True),
-                      sfft.next_fast_len(2 * self.ny - 1, real=True))
-        pad = np.zeros(k.shape[:2] + self.shape)
-        pad[..., : k.shape[-2], : k.shape[-1]] = k
-        pad = np.roll(pad, (-(self.nx - 1), -(self.ny - 1)), axis=(-2, -1))
-        self.hat = sfft.rfft2(pad, axes=(-2, -1))
+        self.nx = (np.shape(kernel)[-2] + 1) // 2
+        self.ny = (np.shape(kernel)[-1] + 1) // 2
+        self.shape = _fft_shape(self.nx, self.ny)
+        self.hat = _kernel_transform(kernel, self.shape)
 
     def __call__(self, p):
         """``u[i] = Σ_j K[i, j] * p[j]`` for ``p`` of shape (k, nx, ny) -> (m, nx, ny)."""
@@ -367,15 +361,20 @@ def rolling_kernel(grid: Grid, materials) -> np.ndarray:
     influence kernel of a grid one element longer so that the offset
     ``m + e_x = nx`` is available.
     """
+    return _rolling_and_influence_kernels(grid, materials)[0]
+
+
+def _rolling_and_influence_kernels(grid: Grid, materials):
+    """``(M, C)``: :func:`rolling_kernel` and the influence kernel ``C`` of ``grid``.
+
+    Both from one influence kernel of the grid one element longer (``C`` is its
+    central part, offsets ``−(nx−1) … nx−1``).
+    """
     ext = Grid(grid.x0, grid.y0, grid.dx, grid.dy, grid.nx + 1, grid.ny)
-    C = influence_kernel(ext, materials)
+    Ce = influence_kernel(ext, materials)
     nx = grid.nx
-    return (C[:, :, 1:2 * nx, :] - C[:, :, 2:2 * nx + 1, :]) / grid.dx
-
-
-def shift_kernel(grid: Grid, materials) -> np.ndarray:
-    """Kernel of the shift problem: the influence kernel ``C`` itself [m/Pa]."""
-    return influence_kernel(grid, materials)
+    C = Ce[:, :, 1:2 * nx, :]
+    return (C - Ce[:, :, 2:2 * nx + 1, :]) / grid.dx, C
 
 
 # --------------------------------------------------------------------------
@@ -467,6 +466,18 @@ def _sweep_order(contact):
     return ii[order].astype(np.int64), jj[order].astype(np.int64)
 
 
+def _initial_traction(p0, g, contact):
+    """Starting tractions (2, nx, ny) and their magnitude before projection.
+
+    ``p0`` (zeros if None), zero outside the contact, scaled back onto the
+    friction disc ``|p| ≤ g`` where it lies outside.
+    """
+    p = np.zeros((2,) + g.shape) if p0 is None else np.array(p0, dtype=float)
+    p[:, ~contact] = 0.0
+    norm = np.hypot(p[0], p[1])
+    return np.where(norm > g, p * (g / np.where(norm > 0, norm, 1.0)), p), norm
+
+
 def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
     """Solve ``s = b + M p``, Coulomb with bound ``g`` (nx, ny); returns p, s, sweeps, res."""
     contact = g > 0.0
@@ -474,14 +485,7 @@ def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
     gmax = float(g.max())
     mxx, mxy, myx, myy = (np.ascontiguousarray(kernel[a, c]) for a, c in
                           ((0, 0), (0, 1), (1, 0), (1, 1)))
-    p = np.zeros((2,) + g.shape) if p0 is None else np.array(p0, dtype=float)
-    p[:, ~contact] = 0.0
-    # project the initial guess onto the friction discs
-    norm = np.hypot(p[0], p[1])
-    over = norm > g
-    if np.any(over):
-        scale = np.where(over, g / np.where(norm > 0, norm, 1.0), 1.0)
-        p *= scale
+    p, _ = _initial_traction(p0, g, contact)
     px, py = np.ascontiguousarray(p[0]), np.ascontiguousarray(p[1])
     ii, jj = np.nonzero(contact)
     i0, i1, j0, j1 = int(ii.min()), int(ii.max()) + 1, int(jj.min()), int(jj.max()) + 1
@@ -528,11 +532,8 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         dup = np.ascontiguousarray(kernel[:, :, cx - 1, cy])
     else:
         dup = np.zeros((2, 2))
-    p = np.zeros((2,) + shape) if p0 is None else np.array(p0, dtype=float)
-    p[:, ~contact] = 0.0
-    norm = np.hypot(p[0], p[1])
+    p, norm = _initial_traction(p0, g, contact)
     slip = contact & (norm >= g * (1 - 1e-12)) & (norm > 0)
-    p = np.where(norm > g, p * (g / np.where(norm > 0, norm, 1.0)), p)
     s_scale = float(np.max(np.hypot(b[0], b[1])[contact]))
     if s_scale == 0.0:
         return np.zeros((2,) + shape), b.copy(), 0, 0.0, 0
@@ -676,11 +677,10 @@ def _finish(grid, pressure, p, s, u, mu, kind, creepage, sweeps, res, tol, on_fa
 
 def _check_solver_options(tol, maxiter, on_fail):
     tol = float(positive("tol", tol))
-    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
-        raise InputError(f"maxiter must be an integer >= 1, got {maxiter!r}")
+    maxiter = integer("maxiter", maxiter)
     if on_fail not in ("raise", "status"):
         raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
-    return tol, int(maxiter), on_fail
+    return tol, maxiter, on_fail
 
 
 def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=100,
@@ -744,10 +744,10 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
         raise InputError(f"creepage must be (xi, eta, phi), got shape {cr.shape}")
     xi, eta, phi = (float(v) for v in cr)
     pair = as_material_pair(materials)
-    R = rolling_kernel(grid, pair)
+    R, C = _rolling_and_influence_kernels(grid, pair)
     conv = _BlockConvolution(R[:2, :2])
     conv_n = _BlockConvolution(R[:2, 2:3]) if pair.K else None
-    conv_u = _BlockConvolution(influence_kernel(grid, pair)[:2, :])
+    conv_u = _BlockConvolution(C[:2, :])
     X, Y = grid.X, grid.Y
     b = np.stack((xi - phi * Y, eta + phi * X))
     if conv_n is not None:
@@ -928,16 +928,6 @@ def _shift_for_force(run, F, Fn, mu, dA, force_tol, initial, pair, pressure, gri
     return W, p, s, total, res, outer
 
 
-def solve_tangential(grid, pressure, materials, mu, *, creepage=None, shift=None, force=None,
-                     **options) -> TangentialSolution:
-    """Rolling (``creepage=``) or shift (``shift=`` / ``force=``) problem, chosen by keyword."""
-    if creepage is not None:
-        if shift is not None or force is not None:
-            raise InputError("give creepage= (rolling) or shift=/force= (shift), not both")
-        return solve_rolling(grid, pressure, materials, creepage, mu, **options)
-    return solve_shift(grid, pressure, materials, mu, shift=shift, force=force, **options)
-
-
 # --------------------------------------------------------------------------
 # normal + tangential (Johnson's process / Panagiotopoulos' process)
 # --------------------------------------------------------------------------
@@ -1106,10 +1096,13 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
         return GapSolution(normal, None, 1, 0.0)
     if mu is None:
         raise InputError("mu is required for a tangential problem (creepage=, shift= or force=)")
+    if creepage is not None and (shift is not None or force is not None):
+        raise InputError("give creepage= (rolling) or shift=/force= (shift), not both")
     mu = float(positive("mu", mu))
     opts = dict(tol=tol, maxiter=maxiter, on_fail=on_fail, solver=solver)
     coupled = pair.K != 0.0
-    conv_nt = _BlockConvolution(influence_kernel(grid, pair)[2:3, :2]) if coupled else None
+    op = InfluenceOperator(grid, pair)      # kernel and its transform: once for all alternations
+    conv_nt = _BlockConvolution(op.kernel[2:3, :2]) if coupled else None
     pt = np.zeros((2,) + grid.shape)
     normal = tang = None
     change = 0.0
@@ -1117,11 +1110,9 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     for outer in range(1, (outer_maxiter if coupled else 1) + 1):
         h = h0 if not coupled else h0 + conv_nt(pt)[0]
         normal = solve_normal(grid, h, pair, load=load, penetration=penetration, tol=normal_tol,
-                              maxiter=normal_maxiter, on_fail=on_fail)
+                              maxiter=normal_maxiter, on_fail=on_fail, operator=op)
         init = None if tang is None else np.stack((tang.px, tang.py))
         if creepage is not None:
-            if shift is not None or force is not None:
-                raise InputError("give creepage= (rolling) or shift=/force= (shift), not both")
             tang = solve_rolling(grid, normal.pressure, pair, creepage, mu, initial=init, **opts)
         else:
             tang = solve_shift(grid, normal.pressure, pair, mu, shift=shift, force=force,

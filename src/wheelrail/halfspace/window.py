@@ -53,7 +53,7 @@ import warnings
 
 import numpy as np
 
-from .._validation import as_float_array, positive
+from .._validation import as_float_array, integer, positive
 from ..errors import InputError, NoContactError
 from .grid import Grid
 
@@ -225,8 +225,7 @@ def _window(gap, penetration, load, materials, elements, margin, search):
     if (load is None) == (penetration is None):
         raise InputError("give exactly one of load= and penetration= "
                          f"(got load={load!r}, penetration={penetration!r})")
-    if isinstance(elements, bool) or not isinstance(elements, (int, np.integer)) or elements < 3:
-        raise InputError(f"elements must be an integer >= 3, got {elements!r}")
+    elements = integer("elements", elements, 3)
     margin = float(positive("margin", margin))
     search = _check_search(search)
     xm, ym, hmin, spacing = _minimum(gap, search)
@@ -245,9 +244,9 @@ def _window(gap, penetration, load, materials, elements, margin, search):
                 f"penetration {delta!r} m)")
     box = _rigid_box(gap, delta_ref, search, xm, ym)
     bounds = _scaled(box, margin, search)
-    grid = _grid_on(bounds, int(elements))
+    grid = _grid_on(bounds, elements)
     return {"grid": grid, "search": search, "rigid_box": box, "minimum": (xm, ym, hmin),
-            "approach": delta_ref, "elements": int(elements)}
+            "approach": delta_ref, "elements": elements}
 
 
 # --------------------------------------------------------------------------- public
@@ -415,11 +414,9 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     (False, 1)
     """
     from ..normal.bem import ContactTruncatedWarning
-    from .tangential import GapSolution, solve_gap
+    from .tangential import solve_gap
 
-    if isinstance(max_enlarge, bool) or not isinstance(max_enlarge, (int, np.integer)) \
-            or max_enlarge < 0:
-        raise InputError(f"max_enlarge must be an integer >= 0, got {max_enlarge!r}")
+    max_enlarge = integer("max_enlarge", max_enlarge, 0)
     w = _window(gap, penetration, load, materials, elements, margin, search)
     grid, search = w["grid"], w["search"]
     enlargements = 0
@@ -459,5 +456,4 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     info.update(window_enlargements=enlargements, contact_patches=int(loads.size),
                 patch_loads=[float(v) for v in loads], approach_estimate=w["approach"],
                 gap_minimum=w["minimum"])
-    normal = dataclasses.replace(sol.normal, info=info)
-    return GapSolution(normal, sol.tangential, sol.outer_iterations, sol.outer_change)
+    return dataclasses.replace(sol, normal=dataclasses.replace(sol.normal, info=info))

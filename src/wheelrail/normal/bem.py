@@ -39,7 +39,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .._validation import as_float_array, positive
+from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
 from ..halfspace.fft import InfluenceOperator
 from ..halfspace.grid import Grid
@@ -400,8 +400,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     if on_fail not in ("raise", "status"):
         raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
     tol = float(positive("tol", tol))
-    if isinstance(maxiter, bool) or not isinstance(maxiter, (int, np.integer)) or maxiter < 1:
-        raise InputError(f"maxiter must be an integer >= 1, got {maxiter!r}")
+    maxiter = integer("maxiter", maxiter)
     if load is not None:
         load = float(positive("load", load))
     else:
@@ -418,9 +417,8 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     apply = block.apply
     dA = grid.element_area
 
-    p_init = _initial_pressure(apply, h, dA, load, penetration)
     p, delta, iterations, change = polonsky_keer(apply, h, dA, load=load, penetration=penetration,
-                                                 p_init=p_init, tol=tol, maxiter=maxiter)
+                                                 tol=tol, maxiter=maxiter)
     converged = change < tol
     if not converged:
         msg = (f"normal BEM (Polonsky-Keer) did not converge in {iterations} iterations "
@@ -475,8 +473,7 @@ def hertz_grid(contact, elements: int = 64, margin: float = 1.25):
     """
     if np.shape(contact.a) != ():
         raise InputError("hertz_grid needs a single HertzContact, got a batch")
-    if isinstance(elements, bool) or not isinstance(elements, (int, np.integer)) or elements < 2:
-        raise InputError(f"elements must be an integer >= 2, got {elements!r}")
+    elements = integer("elements", elements, 2)
     margin = float(as_float_array("margin", margin))
     if not margin > 1.0:
         raise InputError(f"margin must be > 1, got {margin!r}")
