@@ -11,7 +11,8 @@ from .errors import InputError, WheelrailError
 from .results import CreepForces
 from .tangential._base import TangentialMethod
 
-__all__ = ["creep_forces", "METHODS", "get_method", "as_creepage", "available_methods"]
+__all__ = ["creep_forces", "METHODS", "get_method", "method_key", "as_creepage",
+           "available_methods"]
 
 #: Registry of creep-force laws: name -> "module:Class".
 METHODS = {
@@ -30,6 +31,12 @@ _ALIASES = {
 }
 
 
+def method_key(name: str) -> str | None:
+    """Registry name of a creep-force method name or alias (case-insensitive), else ``None``."""
+    key = _ALIASES.get(name.lower(), name.lower())
+    return key if key in METHODS else None
+
+
 def available_methods() -> list[str]:
     """Names accepted by ``method=`` in :func:`creep_forces`."""
     return list(METHODS)
@@ -43,8 +50,8 @@ def get_method(method) -> TangentialMethod:
         return method()
     if not isinstance(method, str):
         raise InputError(f"method must be a name or a TangentialMethod, got {method!r}")
-    key = _ALIASES.get(method.lower(), method.lower())
-    if key not in METHODS:
+    key = method_key(method)
+    if key is None:
         raise InputError(f"unknown creep-force method {method!r}; choose one of "
                          + ", ".join(METHODS))
     module, cls = METHODS[key].split(":")

@@ -470,10 +470,9 @@ def _read_contact(r: _Reader, tbl: Mapping) -> ContactSpec:
 
 
 def _canonical_tangential(name: str) -> str | None:
-    from .api import _ALIASES, METHODS
+    from .api import method_key
 
-    key = _ALIASES.get(name.lower(), name.lower())
-    return key if key in METHODS else None
+    return method_key(name)
 
 
 def _read_methods(r: _Reader, tbl: Mapping):

@@ -37,15 +37,15 @@ def default_case():
 
 def parse_methods(text: str) -> list[str]:
     """Split and resolve method names; unknown names are an InputError."""
-    from ..api import _ALIASES, METHODS
+    from ..api import METHODS, method_key
     from ..errors import InputError
 
     out = []
     for name in (m.strip() for m in text.split(",")):
         if not name:
             continue
-        key = _ALIASES.get(name.lower(), name.lower())
-        if key not in METHODS:
+        key = method_key(name)
+        if key is None:
             raise InputError(f"unknown creep-force method {name!r} in --methods; choose from "
                              + ", ".join(METHODS))
         if key not in out:
