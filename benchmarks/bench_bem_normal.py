@@ -15,7 +15,8 @@ import time
 import tracemalloc
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, InfluenceOperator, solve_normal
+from wheelrail.halfspace import Grid, InfluenceOperator
+from wheelrail.normal.bem import solve_normal
 
 
 def run(n: int) -> dict:

@@ -16,7 +16,8 @@ import time
 import tracemalloc
 
 import wheelrail as wr
-from wheelrail.halfspace import hertz_grid, solve_normal, solve_rolling
+from wheelrail.normal.bem import hertz_grid, solve_normal
+from wheelrail.halfspace import solve_rolling
 
 CASES = {
     "small creep": (2e-4, 0.0, 0.0),

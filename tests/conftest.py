@@ -26,7 +26,7 @@ def shared_profiles():
 @pytest.fixture(scope="module")
 def hertz_patch16():
     """Grid and BEM pressure of the Hertz contact (10 kN, A = 1, B = 2 1/m, steel), 16 elements."""
-    from wheelrail.halfspace import hertz_grid, solve_normal
+    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     hc = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
     grid, gap = hertz_grid(hc, elements=16, margin=1.1)

@@ -40,11 +40,13 @@ _LAZY = {
     "equivalent_conicity": ("wheelrail.geometry", "equivalent_conicity"),
     "contact_points": ("wheelrail.geometry", "contact_points"),
     "elastic_contact": ("wheelrail.geometry", "elastic_contact"),
-    "solve_normal": ("wheelrail.halfspace", "solve_normal"),
-    "solve_gap": ("wheelrail.halfspace", "solve_gap"),
+    "solve_normal": ("wheelrail.normal.bem", "solve_normal"),
+    "solve_gap": ("wheelrail.contact", "solve_gap"),
+    "solve_gap_auto": ("wheelrail.contact", "solve_gap_auto"),
+    "contact": ("wheelrail.contact", None),
     "Grid": ("wheelrail.halfspace", "Grid"),
     "solve_creepages": ("wheelrail.prescribed", "solve_creepages"),
-    "hertz_grid": ("wheelrail.halfspace", "hertz_grid"),
+    "hertz_grid": ("wheelrail.normal.bem", "hertz_grid"),
     "subsurface_stresses": ("wheelrail.halfspace", "subsurface_stresses"),
 }
 

@@ -567,7 +567,7 @@ def solve_case(case: Case) -> CaseResult:
         opts.setdefault("elements", case.normal_options["elements"])
     elif case.normal == "bem":
         try:
-            from .halfspace import hertz_grid, solve_normal
+            from .normal.bem import hertz_grid, solve_normal
         except ImportError as exc:
             raise _missing('normal = "bem"', "wheelrail.halfspace", exc) from None
         grid, gap = hertz_grid(contact, case.normal_options["elements"])

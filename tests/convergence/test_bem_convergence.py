@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace import hertz_grid, solve_normal
+from wheelrail.normal.bem import hertz_grid, solve_normal
 
 STEEL = wr.Material(2.1e11, 0.28)
 LOAD = 10e3

@@ -5,7 +5,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, InfluenceOperator, solve_normal
+from wheelrail.halfspace import Grid, InfluenceOperator
+from wheelrail.normal.bem import solve_normal
 
 materials = st.sampled_from([
     wr.MaterialPair.same(wr.Material(2.1e11, 0.28)),

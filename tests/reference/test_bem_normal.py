@@ -12,8 +12,8 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.errors import ConvergenceError, InputError, NoContactError
-from wheelrail.halfspace import (ContactTruncatedWarning, Grid, InfluenceOperator, hertz_grid,
-                                 solve_normal)
+from wheelrail.normal.bem import ContactTruncatedWarning, hertz_grid, solve_normal
+from wheelrail.halfspace import Grid, InfluenceOperator
 from wheelrail.results import Status
 
 STEEL = wr.Material(2.1e11, 0.28)

@@ -11,7 +11,8 @@ from scipy import integrate
 
 import wheelrail as wr
 from wheelrail.errors import InputError
-from wheelrail.halfspace import Grid, hertz_grid, solve_normal, subsurface_stresses
+from wheelrail.halfspace import Grid, subsurface_stresses
+from wheelrail.normal.bem import hertz_grid, solve_normal
 from wheelrail.halfspace.subsurface import boussinesq_stress, cerruti_stress
 
 NU = 0.3

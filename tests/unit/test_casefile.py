@@ -273,29 +273,6 @@ def test_case_from_dict_rejects_non_table():
         case_from_dict({"contact": 3, "friction": {"mu": 0.3}})
 
 
-# --------------------------------------------------------------------------- pluggable parts
-def test_bem_missing_module_is_a_clear_error(monkeypatch):
-    monkeypatch.setitem(sys.modules, "wheelrail.halfspace", None)
-    case = load_case(_edit(FULL, 'normal = "hertz"', 'normal = "bem"'))
-    with pytest.raises(WheelrailError, match='normal = "bem" needs wheelrail.halfspace'):
-        run_case(case)
-
-
-def test_force_missing_module_is_a_clear_error(monkeypatch):
-    monkeypatch.setitem(sys.modules, "wheelrail.prescribed", None)
-    case = load_case(FULL + "\n[force]\nFx = -500.0\n")
-    assert dict(case.forces) == {"Fx": -500.0}
-    with pytest.raises(WheelrailError, match=r"\[force\] table needs wheelrail.prescribed"):
-        run_case(case)
-
-
-def test_missing_tangential_module_is_a_clear_error(monkeypatch):
-    monkeypatch.setitem(sys.modules, "wheelrail.tangential.polach", None)
-    case = load_case(_edit(FULL, 'tangential = "linear"', 'tangential = "polach"'))
-    with pytest.raises(WheelrailError, match="tangential = 'polach' needs"):
-        run_case(case)
-
-
 def test_bem_normal_close_to_hertz():
     text = _edit(FULL, 'normal = "hertz"', 'normal = "bem"') + "[method.bem]\nelements = 40\n"
     out = run_case(load_case(text))

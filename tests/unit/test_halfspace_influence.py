@@ -217,11 +217,12 @@ def test_kernel_equals_pointwise_rectangle_formula(materials):
     assert np.allclose(k, ref, rtol=0, atol=1e-12 * np.abs(ref).max())
 
 
-@pytest.mark.parametrize("module", ["wheelrail.normal.bem", "wheelrail.halfspace"])
-def test_bem_and_halfspace_import_in_either_order(module):
-    """wheelrail.normal.bem imports the halfspace package, which re-exports its names."""
+@pytest.mark.parametrize("module", ["wheelrail.normal.bem", "wheelrail.halfspace", "wheelrail.contact"])
+def test_bem_halfspace_contact_import_in_any_order(module):
+    """The kernel package, the BEM method and the contact drivers import in any order."""
     import subprocess
     import sys
 
-    code = f"import {module}; from wheelrail.halfspace import solve_normal, ContactTruncatedWarning"
+    code = (f"import {module}; from wheelrail.normal.bem import solve_normal; "
+            "from wheelrail.contact import solve_gap; from wheelrail.halfspace import Grid")
     subprocess.run([sys.executable, "-c", code], check=True)

@@ -383,7 +383,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     Examples
     --------
     >>> import wheelrail as wr
-    >>> from wheelrail.halfspace import hertz_grid, solve_normal
+    >>> from wheelrail.normal.bem import hertz_grid, solve_normal
     >>> hc = wr.hertz(10e3, A=1.0, B=1.0, material=wr.STEEL)
     >>> grid, h0 = hertz_grid(hc, elements=24)
     >>> sol = solve_normal(grid, h0, wr.STEEL, load=10e3)

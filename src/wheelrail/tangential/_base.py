@@ -22,35 +22,35 @@ What an implementation must provide
     :class:`wheelrail.results.CreepForces` whose ``Fx, Fy, Mz`` have that shape
     (0-d arrays or floats for a single case). Forces act on the wheel and
     follow Kalker's sign convention (:mod:`wheelrail.conventions`).
+``solve_patch(patch, xi, eta, phi, mu, **options) -> CreepForces`` (optional)
+    One :class:`~wheelrail.contact.patch.ContactPatch` (any normal method),
+    scalar creepages and μ. The base implementation solves the patch's
+    equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz ellipse of a
+    Hertzian patch, otherwise the ellipse of equal area and length/width
+    ratio) with :meth:`solve`; this is what the closed-form laws (Carter,
+    linear, Shen–Hedrick–Elkins, Polach) do. Strip and grid methods (FASTSIM,
+    the exact theory) override it to use the strips or the pressure field.
+    ``Mz`` is about the patch's centre of pressure.
 """
 
 from __future__ import annotations
 
+from .._method import Method
 from ..errors import InputError
 
 __all__ = ["TangentialMethod"]
 
 
-class TangentialMethod:
+class TangentialMethod(Method):
     """Abstract creep-force law; see the module docstring for the contract."""
-
-    name: str = "abstract"
-    references: tuple = ()
-    options: dict = {}
 
     def solve(self, contact, xi, eta, phi, mu, **options):  # pragma: no cover - abstract
         raise NotImplementedError
 
-    def check_options(self, options: dict) -> dict:
-        """Merge ``options`` into the defaults, rejecting unknown keywords."""
-        unknown = set(options) - set(self.options)
-        if unknown:
-            allowed = ", ".join(sorted(self.options)) or "none"
-            raise InputError(f"method {self.name!r} does not accept option(s) "
-                             f"{', '.join(sorted(unknown))}; allowed: {allowed}")
-        merged = dict(self.options)
-        merged.update(options)
-        return merged
+    def solve_patch(self, patch, xi, eta, phi, mu, **options):
+        """Creep forces on one contact patch; default: its equivalent ellipse (see above)."""
+        import numpy as np
 
-    def __repr__(self) -> str:
-        return f"{type(self).__name__}()"
+        f = np.asarray
+        return self.solve(patch.ellipse(), f(float(xi)), f(float(eta)), f(float(phi)),
+                          f(float(mu)), **options)

@@ -1,12 +1,12 @@
 """Kalker's exact theory of steady rolling contact on a half-space grid (creep-force law).
 
 For each Hertzian contact the window around the ellipse is discretised
-(:func:`wheelrail.halfspace.hertz_grid`), the normal problem is solved with
+(:func:`wheelrail.normal.bem.hertz_grid`), the normal problem is solved with
 the boundary-element solver (so the pressure is that of the discretised
 half-space, not the analytic Hertz one) and then the steady-rolling problem
 with Coulomb friction (:mod:`wheelrail.halfspace.tangential`). For
 dissimilar materials (``K ≠ 0``) the two problems are alternated
-(Panagiotopoulos' process, :func:`wheelrail.halfspace.solve_gap`).
+(Panagiotopoulos' process, :func:`wheelrail.contact.solve_gap`).
 
 This is the reference method of the library; accuracy is controlled by
 ``elements`` (elements across the contact in each direction): the creep
@@ -47,8 +47,8 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     elements, margin, tol, maxiter, on_fail
         See :class:`Exact`.
     """
-    from ..halfspace import hertz_grid
-    from ..halfspace.tangential import solve_gap
+    from ..normal.bem import hertz_grid
+    from ..contact import solve_gap
 
     # at least one row of elements outside the Hertz ellipse, also on coarse grids where the
     # discrete contact area reaches the ellipse's edge elements
@@ -82,7 +82,7 @@ class Exact(TangentialMethod):
 
     Results
     -------
-    ``fields`` is the :class:`~wheelrail.halfspace.tangential.GapSolution`
+    ``fields`` is the :class:`~wheelrail.contact.GapSolution`
     (grid, pressure, px, py, slip sx, sy, adhesion mask, displacements) for a
     single case, a tuple of them for a batch. ``info`` holds ``area``,
     ``p_max``, ``adhesion_area`` [m², Pa, m²], ``normal_iterations``,

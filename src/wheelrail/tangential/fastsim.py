@@ -159,7 +159,7 @@ class FastsimFields:
     def as_arrays(self) -> dict:
         """Plain arrays indexed ``[i_x, i_y]`` (the strip arrays transposed), for plotting.
 
-        Keys as :meth:`wheelrail.halfspace.GapSolution.as_arrays`: ``x``, ``y`` [m],
+        Keys as :meth:`wheelrail.contact.GapSolution.as_arrays`: ``x``, ``y`` [m],
         ``px``, ``py``, ``p`` [Pa], ``adhesion``, ``inside`` (bool), ``dA`` [m²],
         ``sx``, ``sy`` [-].
         """

@@ -1,7 +1,7 @@
 """Automatic choice of the potential contact area (the BEM window) from the gap.
 
-The grid solvers (:func:`~wheelrail.halfspace.solve_normal`,
-:func:`~wheelrail.halfspace.solve_gap`) need a rectangular window that
+The grid solvers (:func:`~wheelrail.normal.bem.solve_normal`,
+:func:`~wheelrail.contact.solve_gap`) need a rectangular window that
 contains the whole contact area. For an arbitrary undeformed gap h(x, y)
 (given as a callable) the window is found as follows:
 
@@ -30,7 +30,7 @@ Several separated minima (e.g. tread and flange contact) are covered by
 then shared by all patches; :func:`contact_patches` counts and separates the
 patches of a solution afterwards.
 
-:func:`solve_gap_auto` chains window → :func:`~wheelrail.halfspace.solve_gap`
+:func:`solve_gap_auto` chains window → :func:`~wheelrail.contact.solve_gap`
 and, when the computed contact touches the window edge (``truncated``; always
 possible for a load-controlled non-Hertzian gap, whose δ is only estimated),
 moves the touched edges outwards by a quarter of the window size and solves
@@ -55,92 +55,22 @@ import numpy as np
 
 from .._validation import as_float_array, integer, positive
 from ..errors import InputError, NoContactError
-from .grid import Grid
+from ..halfspace.grid import Grid
+from ..normal.bem import ContactTruncatedWarning
+from ..normal._gap import (_SAMPLES, DEFAULT_SEARCH, _check_search, _evaluate, _minimum,
+                            _principal_curvatures, _sample)
+from ..normal.hertz import hertz
+from .coupled import solve_gap
 
 __all__ = ["DEFAULT_SEARCH", "contact_patches", "potential_contact_grid", "solve_gap_auto"]
 
-#: Default search box (xmin, xmax, ymin, ymax) [m]: ±20 mm around the origin, i.e. the
-#: default ±20 mm lateral window of :func:`wheelrail.geometry.separation` around the rigid
-#: contact point, and ±20 mm along the rolling direction (twice the largest wheel–rail
-#: semi-axes met in practice).
-DEFAULT_SEARCH = (-0.02, 0.02, -0.02, 0.02)
-
-_SAMPLES = 161          # samples per side of the search / zoom boxes
 _ENLARGE = 0.25         # a touched window edge moves out by this fraction of the window size
 _MIN_ELEMENTS = 5       # fewest elements along the shorter side of a window
 
 
 # --------------------------------------------------------------------------- helpers
-def _evaluate(gap, X, Y) -> np.ndarray:
-    """h(X, Y) as a finite float array of the shape of X (InputError otherwise)."""
-    val = as_float_array("gap(x, y)", gap(X, Y))
-    try:
-        return np.broadcast_to(val, np.shape(X))
-    except ValueError:
-        raise InputError(f"gap(x, y) must return an array of the shape of x {np.shape(X)} "
-                         f"(vectorised callable), got shape {val.shape}") from None
-
-
-def _check_search(search):
-    if search is None:
-        search = DEFAULT_SEARCH
-    box = as_float_array("search", search)
-    if box.shape != (4,):
-        raise InputError(f"search must be (xmin, xmax, ymin, ymax) [m], got {search!r}")
-    xmin, xmax, ymin, ymax = (float(v) for v in box)
-    if not (xmax > xmin and ymax > ymin):
-        raise InputError(f"search must have xmax > xmin and ymax > ymin, got {search!r}")
-    return (xmin, xmax, ymin, ymax)
-
-
-def _sample(gap, box, n=_SAMPLES):
-    """Samples of h on an n × n lattice covering ``box`` (edges included)."""
-    x = np.linspace(box[0], box[1], n)
-    y = np.linspace(box[2], box[3], n)
-    X, Y = np.meshgrid(x, y, indexing="ij")
-    return x, y, _evaluate(gap, X, Y)
-
-
-def _minimum(gap, search):
-    """(x, y, h) at the minimum of h in the search box, refined by zooming."""
-    x, y, H = _sample(gap, search)
-    i, j = np.unravel_index(np.argmin(H), H.shape)
-    if i in (0, x.size - 1) or j in (0, y.size - 1):
-        raise InputError(
-            f"the smallest gap in the search box {search} m lies on its boundary, at "
-            f"(x, y) = ({x[i]!r}, {y[j]!r}) m with h = {H[i, j]!r} m: the box does not "
-            "contain the minimum of the gap; move or enlarge search=")
-    xm, ym, hm = x[i], y[j], H[i, j]
-    sx, sy = x[1] - x[0], y[1] - y[0]
-    for _ in range(4):       # zoom ×10 per step on ±2 lattice spacings
-        box = (max(xm - 2 * sx, search[0]), min(xm + 2 * sx, search[1]),
-               max(ym - 2 * sy, search[2]), min(ym + 2 * sy, search[3]))
-        xz, yz, Hz = _sample(gap, box, 41)
-        k, m = np.unravel_index(np.argmin(Hz), Hz.shape)
-        if Hz[k, m] < hm:
-            xm, ym, hm = xz[k], yz[m], Hz[k, m]
-        sx, sy = sx / 10, sy / 10
-    return float(xm), float(ym), float(hm), (x[1] - x[0], y[1] - y[0])
-
-
-def _principal_curvatures(gap, xm, ym, hx, hy):
-    """Principal curvatures c1 ≤ c2 [1/m] of h at (xm, ym): h ≈ h_min + c1 u² + c2 v².
-
-    Central differences with steps ``hx``, ``hy`` [m].
-    """
-    pts_x = xm + hx * np.array([0, 1, -1, 0, 0, 1, 1, -1, -1])
-    pts_y = ym + hy * np.array([0, 0, 0, 1, -1, 1, -1, 1, -1])
-    h = _evaluate(gap, pts_x, pts_y)
-    hxx = (h[1] + h[2] - 2 * h[0]) / hx**2
-    hyy = (h[3] + h[4] - 2 * h[0]) / hy**2
-    hxy = (h[5] - h[6] - h[7] + h[8]) / (4 * hx * hy)
-    return np.linalg.eigvalsh(0.5 * np.array([[hxx, hxy], [hxy, hyy]]))
-
-
 def _hertz_penetration(gap, load, materials, xm, ym, spacing):
     """Hertz estimate of δ for ``load`` from the curvatures of h at its minimum."""
-    from ..normal.hertz import hertz
-
     hx, hy = spacing
     for _ in range(3):
         c = _principal_curvatures(gap, xm, ym, hx, hy)
@@ -312,7 +242,8 @@ def potential_contact_grid(gap, *, penetration=None, load=None, materials=None, 
     Examples
     --------
     >>> import wheelrail as wr
-    >>> from wheelrail.halfspace import potential_contact_grid, solve_normal
+    >>> from wheelrail.contact import potential_contact_grid
+    >>> from wheelrail.normal.bem import solve_normal
     >>> h = lambda x, y: 1.0 * x**2 + 2.0 * y**2
     >>> grid, h0 = potential_contact_grid(h, load=10e3, materials=wr.STEEL, elements=31)
     >>> sol = solve_normal(grid, h0, wr.STEEL, load=10e3)
@@ -362,7 +293,7 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     """Solve the contact of an arbitrary gap on an automatically chosen window.
 
     Window from :func:`potential_contact_grid`, then
-    :func:`~wheelrail.halfspace.solve_gap`; while the contact touches the
+    :func:`~wheelrail.contact.solve_gap`; while the contact touches the
     window edge (``normal.truncated``), each touched edge is moved out by a
     quarter of the window size (clipped to ``search``; same ``elements`` rule,
     so the elements grow) and the problem is solved again.
@@ -375,13 +306,13 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     load, penetration : float
         Exactly one: normal force [N] or approach δ [m] (same datum as h).
     creepage, mu
-        Tangential problem, as in :func:`~wheelrail.halfspace.solve_gap`.
+        Tangential problem, as in :func:`~wheelrail.contact.solve_gap`.
     elements, margin, search
         First window, as in :func:`potential_contact_grid`.
     max_enlarge : int
         Largest number of enlargements (>= 0).
     **solve_gap_options
-        Passed on to :func:`~wheelrail.halfspace.solve_gap` (``tol``,
+        Passed on to :func:`~wheelrail.contact.solve_gap` (``tol``,
         ``shift``, ``force``, ``on_fail``, ...).
 
     Returns
@@ -408,14 +339,11 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     Examples
     --------
     >>> import wheelrail as wr
-    >>> from wheelrail.halfspace import solve_gap_auto
+    >>> from wheelrail.contact import solve_gap_auto
     >>> sol = solve_gap_auto(lambda x, y: x**2 + 2 * y**2, wr.STEEL, load=10e3, elements=31)
     >>> sol.normal.truncated, sol.normal.info["contact_patches"]
     (False, 1)
     """
-    from ..normal.bem import ContactTruncatedWarning
-    from .tangential import solve_gap
-
     max_enlarge = integer("max_enlarge", max_enlarge, 0)
     w = _window(gap, penetration, load, materials, elements, margin, search)
     grid, search = w["grid"], w["search"]

@@ -1,4 +1,4 @@
-"""Automatic potential contact area (wheelrail.halfspace.window) against closed forms.
+"""Automatic potential contact area (wheelrail.contact.window) against closed forms.
 
 References
 ----------
@@ -20,15 +20,9 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.errors import InputError, NoContactError
-from wheelrail.halfspace import (
-    ContactTruncatedWarning,
-    Grid,
-    contact_patches,
-    potential_contact_grid,
-    solve_gap,
-    solve_gap_auto,
-    solve_normal,
-)
+from wheelrail.normal.bem import ContactTruncatedWarning, solve_normal
+from wheelrail.halfspace import Grid
+from wheelrail.contact import contact_patches, potential_contact_grid, solve_gap, solve_gap_auto
 
 STEEL = wr.Material(2.1e11, 0.28)
 # wheel rolling radius 0.46 m, rail crown radius 0.15 m (flat wheel profile)
