@@ -14,7 +14,7 @@ from __future__ import annotations
 import importlib
 
 from . import conventions
-from .api import available_methods, creep_forces
+from .api import available_methods, creep_forces, normal_methods, solve, tangential_methods
 from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError, ProfileError,
                      WheelrailError)
 from .materials import STEEL, Material, MaterialPair
@@ -43,6 +43,13 @@ _LAZY = {
     "solve_normal": ("wheelrail.normal.bem", "solve_normal"),
     "solve_gap": ("wheelrail.contact", "solve_gap"),
     "solve_gap_auto": ("wheelrail.contact", "solve_gap_auto"),
+    "WheelRailPosition": ("wheelrail.contact.wheelrail", "WheelRailPosition"),
+    "WheelRailResult": ("wheelrail.contact.wheelrail", "WheelRailResult"),
+    "wheelset_sweep": ("wheelrail.contact.sweep", "wheelset_sweep"),
+    "ContactPatch": ("wheelrail.contact.patch", "ContactPatch"),
+    "Motion": ("wheelrail.geometry.kinematics", "Motion"),
+    "GapProblem": ("wheelrail.normal._base", "GapProblem"),
+    "normal": ("wheelrail.normal", None),
     "contact": ("wheelrail.contact", None),
     "Grid": ("wheelrail.halfspace", "Grid"),
     "solve_creepages": ("wheelrail.prescribed", "solve_creepages"),
@@ -76,7 +83,8 @@ __all__ = [
     "Material", "MaterialPair", "STEEL",
     "HertzContact", "hertz", "hertz_from_semiaxes", "hertz_from_radii", "hertz_from_penetration",
     "hertz_line", "curvatures_from_radii",
-    "creep_forces", "available_methods", "CreepForces", "Status", "conventions", "citation",
+    "creep_forces", "available_methods", "solve", "normal_methods", "tangential_methods",
+    "CreepForces", "Status", "conventions", "citation",
     "WheelrailError", "InputError", "ConvergenceError", "NoContactError", "ProfileError",
     "CaseFileError",
     *_LAZY,

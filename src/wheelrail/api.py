@@ -12,7 +12,8 @@ from .results import CreepForces
 from .tangential._base import TangentialMethod
 
 __all__ = ["creep_forces", "METHODS", "get_method", "method_key", "as_creepage",
-           "available_methods"]
+           "available_methods", "solve", "NORMAL_METHODS", "normal_methods", "tangential_methods",
+           "get_normal_method"]
 
 #: Registry of creep-force laws: name -> "module:Class".
 METHODS = {
@@ -156,3 +157,144 @@ def _broadcast_contact(contact, shape):
     names = ("a", "b", "p0", "penetration", "load", "A", "B")
     return replace(contact, **{n: np.broadcast_to(np.asarray(getattr(contact, n), float), shape).copy()
                                for n in names if hasattr(contact, n)})
+
+
+# --------------------------------------------------------------------------- normal methods
+#: Registry of normal-contact methods: name -> "module:Class".
+NORMAL_METHODS = {
+    "hertz": "wheelrail.normal.hertz:Hertz",
+    "bem": "wheelrail.normal.bem:Bem",
+}
+
+
+def normal_methods() -> list[str]:
+    """Names accepted by ``normal=`` in :func:`solve`."""
+    return list(NORMAL_METHODS)
+
+
+def tangential_methods() -> list[str]:
+    """Names accepted by ``tangential=`` in :func:`solve` (and ``method=`` in :func:`creep_forces`)."""
+    return list(METHODS)
+
+
+def get_normal_method(method):
+    """Resolve ``method`` (name, class or instance) to a :class:`~wheelrail.normal.NormalMethod`."""
+    from .normal._base import NormalMethod
+
+    if isinstance(method, NormalMethod):
+        return method
+    if isinstance(method, type) and issubclass(method, NormalMethod):
+        return method()
+    if not isinstance(method, str):
+        raise InputError(f"normal must be a name or a NormalMethod, got {method!r}")
+    key = method.lower()
+    if key not in NORMAL_METHODS:
+        raise InputError(f"unknown normal method {method!r}; choose one of "
+                         + ", ".join(NORMAL_METHODS))
+    module, cls = NORMAL_METHODS[key].split(":")
+    return getattr(importlib.import_module(module), cls)()
+
+
+def _split_options(nimpl, timpl, options):
+    """Route keyword options to the normal and/or tangential method that accepts them."""
+    nopts, topts = {}, {}
+    for k, v in options.items():
+        n_ok, t_ok = k in nimpl.options, k in timpl.options
+        if not (n_ok or t_ok):
+            raise InputError(
+                f"option {k!r} is accepted neither by normal method {nimpl.name!r} (options: "
+                f"{', '.join(sorted(nimpl.options)) or 'none'}) nor by tangential method "
+                f"{timpl.name!r} (options: {', '.join(sorted(timpl.options)) or 'none'})")
+        if n_ok:
+            nopts[k] = v
+        if t_ok:
+            topts[k] = v
+    return nopts, topts
+
+
+def solve(problem, creepage=None, mu=None, *, normal="hertz", tangential="fastsim", motion=None,
+          normal_options=None, tangential_options=None, vertical="total", **options):
+    """Solve a contact problem: normal method, then tangential method, chosen independently.
+
+    Parameters
+    ----------
+    problem : HertzContact, GapProblem or WheelRailPosition
+        A single Hertzian contact (load and curvatures), a gap h(x, y) with a
+        load or approach (:class:`wheelrail.normal.GapProblem`), or a wheelset on
+        a track (:class:`wheelrail.WheelRailPosition`).
+    creepage : (ξ, η, φ)
+        Creepages [-], [-], [1/m] (Kalker's convention) for a contact or a gap;
+        for a wheel–rail position they follow from ``motion``.
+    mu : float
+        Friction coefficient [-], > 0.
+    normal : str or NormalMethod
+        :func:`normal_methods`: ``"hertz"``, ``"bem"``.
+    tangential : str or TangentialMethod
+        :func:`tangential_methods`: ``"fastsim"``, ``"exact"``, ``"polach"``, ...
+    motion : Motion
+        Wheelset velocities (wheel–rail positions only).
+    vertical : {"total", "normal"}
+        Wheel–rail positions: whether the prescribed vertical load is the
+        total vertical force (creep forces included, default) or carried by
+        the normal forces alone (:func:`wheelrail.contact.wheelrail.solve_wheelrail`).
+    normal_options, tangential_options : dict, optional
+        Options for one method explicitly.
+    **options
+        Further options, each given to the method(s) that accept it (an
+        option no chosen method accepts is an error).
+
+    Returns
+    -------
+    ContactResult or WheelRailResult
+        Per-patch results (``patches``) and totals (``Fn``, ``Fx``, ``Fy``,
+        ``Mz``), with a ``status``; a wheel–rail result adds ``force_track``.
+
+    Examples
+    --------
+    >>> import wheelrail as wr
+    >>> c = wr.hertz(load=7500.0, A=1.087, B=1.667, material=wr.STEEL)
+    >>> r = wr.solve(c, creepage=(-7e-4, 0, 0), mu=0.3, normal="hertz", tangential="fastsim")
+    >>> len(r.patches), r.Fx > 0
+    (1, True)
+    """
+    from .contact.wheelrail import WheelRailPosition, solve_wheelrail
+    from .normal._base import GapProblem
+    from .results import ContactResult, PatchResult
+
+    nimpl = get_normal_method(normal)
+    timpl = get_method(tangential)
+    nopts, topts = _split_options(nimpl, timpl, options)
+    nopts.update(normal_options or {})
+    topts.update(tangential_options or {})
+    if mu is None:
+        raise InputError("mu (friction coefficient) is required")
+    if isinstance(problem, WheelRailPosition):
+        if creepage is not None:
+            raise InputError("a wheel-rail position takes motion=, not creepage= (the "
+                             "creepages follow from the wheelset's motion)")
+        if motion is None:
+            raise InputError("a wheel-rail position needs motion=wheelrail.Motion(speed=...)")
+        return solve_wheelrail(problem, motion, mu, nimpl, timpl, nopts, topts, vertical)
+    if motion is not None:
+        raise InputError("motion= is only for a WheelRailPosition; give creepage= here")
+    if creepage is None:
+        raise InputError("creepage=(xi, eta, phi) is required")
+    xi, eta, phi = as_creepage(creepage)
+    if np.ndim(xi) != 0:
+        raise InputError("solve takes one creepage (xi, eta, phi); use creep_forces for batches")
+    mu = float(positive("mu", mu))
+    nopts = nimpl.check_options(nopts)
+    topts = timpl.check_options(topts)
+    if isinstance(problem, GapProblem):
+        patches = nimpl.from_gap(problem, **nopts)
+    elif all(hasattr(problem, k) for k in ("a", "b", "load", "A", "B", "materials")):
+        if np.shape(problem.a) != ():
+            raise InputError("solve takes a single HertzContact; use creep_forces for batches")
+        patches = nimpl.from_contact(problem, **nopts)
+    else:
+        raise InputError(f"problem must be a HertzContact, a GapProblem or a WheelRailPosition, "
+                         f"got {type(problem).__name__}")
+    c = (float(xi), float(eta), float(phi))
+    forces = timpl.solve_patches(patches, [c] * len(patches), mu, **topts)
+    return ContactResult(tuple(PatchResult(p, f, *c) for p, f in zip(patches, forces)),
+                         nimpl.name, timpl.name, info={"mu": mu})

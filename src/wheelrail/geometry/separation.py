@@ -44,7 +44,7 @@ from ..errors import InputError
 from ._checks import check_side
 from .contact_search import _SIGMA, contact_points, silhouette
 
-__all__ = ["Separation", "separation", "undeformed_distance", "interpenetration",
+__all__ = ["Separation", "separation", "separation_at", "undeformed_distance", "interpenetration",
            "undeformed_distance_kernel"]
 
 
@@ -192,22 +192,55 @@ def separation(wheelset, track, y, yaw=0.0, *, side="right", point=None, width=0
     k = pts.primary if point is None else int(point)
     if not 0 <= k < pts.n:
         raise InputError(f"point must lie in [0, {pts.n - 1}] for the {side} side, got {point!r}")
+    return separation_at(wheelset, track, side, y=cp.y, z=cp.z, roll=cp.roll, yaw=cp.yaw,
+                         wheel_y=float(pts.wheel_y[k]), track_y=float(pts.track_y[k]),
+                         contact_angle=float(pts.contact_angle[k]), width=width, n=n, point=k)
+
+
+def separation_at(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, contact_angle,
+                  width=0.04, n=401, point=-1) -> Separation:
+    """Separation around a point of a wheelset at a given pose (kernel of :func:`separation`).
+
+    Parameters
+    ----------
+    wheelset, track, side
+        As in :func:`separation`.
+    y, z, roll, yaw : float
+        Pose of the wheelset [m, m, rad, rad] (as in :func:`contact_points`:
+        ``z`` is the height of the axle centre above r0 over the top of rail).
+    wheel_y : float
+        Wheel profile coordinate of the reference point [m].
+    track_y : float
+        Lateral position of the reference point in the track frame [m].
+    contact_angle : float
+        γ [rad] of the reference point: the contact plane's orientation.
+    width, n
+        Extent [m] and number of η samples.
+    point : int
+        Index stored in the result (−1: not a point of ``contact_points``).
+
+    Returns
+    -------
+    Separation
+        ``f`` is measured from the rail surface at the reference point along
+        its normal (not shifted to zero).
+    """
     sig = _SIGMA[side]
-    gam = float(pts.contact_angle[k])
+    gam = float(contact_angle)
     t = np.array([np.cos(gam), np.sin(gam)])
     nrm = np.array([-np.sin(gam), np.cos(gam)])
     rc = track.curve(side)
-    u_c = sig * float(pts.track_y[k])
+    u_c = sig * float(track_y)
     C = np.array([u_c, float(rc.eval(u_c, 0)[0])])
     # dense samples of both curves around the point
     m = 4001
     wc = wheelset.curve(side)
-    s = np.linspace(max(wc.u_min, pts.wheel_y[k] - width), min(wc.u_max, pts.wheel_y[k] + width), m)
+    s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
     p, p1 = wc.eval(s, 1)
     one = np.ones_like(s)
     _, Yw, Zw, rw = silhouette(s, p, p1, wheelset.nominal_radius, wheelset.e_tape, sig,
-                               cp.y * one, (wheelset.nominal_radius + cp.z) * one, cp.roll * one,
-                               cp.yaw * one)
+                               y * one, (wheelset.nominal_radius + z) * one, roll * one,
+                               yaw * one)
     uw = sig * Yw
     ur = np.linspace(max(rc.u_min, u_c - width), min(rc.u_max, u_c + width), m)
     (zr,) = rc.eval(ur, 0)
@@ -221,8 +254,8 @@ def separation(wheelset, track, y, yaw=0.0, *, side="right", point=None, width=0
     fw = CubicSpline(ew[sw], zw[sw])(eta)
     fr = CubicSpline(er[sr], zrr[sr])(eta)
     r = CubicSpline(ew[sw], rw[sw])(eta)
-    cosf = float(np.cos(gam - sig * cp.roll))
-    return Separation(eta, fw - fr, r, cosf, gam, side, float(cp.y), float(cp.yaw), k)
+    cosf = float(np.cos(gam - sig * roll))
+    return Separation(eta, fw - fr, r, cosf, gam, side, float(y), float(yaw), int(point))
 
 
 def undeformed_distance(wheelset, track, y, x, eta=None, yaw=0.0, *, side="right", point=None,

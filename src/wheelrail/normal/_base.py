@@ -21,12 +21,13 @@ What an implementation must provide
 ``from_gap(problem, **options) -> tuple of ContactPatch``
     A :class:`GapProblem`: an undeformed gap h(x, y) with a prescribed load or
     approach.
-``from_wheel(problem, **options) -> tuple of ContactPatch``
+``from_wheel(problem, **options) -> (tuple of ContactPatch, dict)``
     A :class:`~wheelrail.contact.wheelrail.WheelProblem`: one wheel on its
     rail at a fixed pose, its candidate contact points, and either the
     vertical load the wheel carries or its vertical approach. The patches
     must carry the vertical load through their normal forces
-    (Σ Fn cos γ = Q) and have their :class:`~wheelrail.contact.patch.ContactFrame`.
+    (Σ Fn cos γ = Q) and have their :class:`~wheelrail.contact.patch.ContactFrame`;
+    the dict holds at least ``approach``, the vertical approach dz [m].
 
 A method that cannot treat a kind of problem keeps the base implementation,
 which raises :class:`~wheelrail.errors.InputError` saying why. All inputs

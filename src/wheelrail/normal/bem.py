@@ -45,8 +45,9 @@ from ..halfspace.fft import InfluenceOperator
 from ..halfspace.grid import Grid
 from ..materials import MaterialPair, as_material_pair
 from ..results import Status, to_jsonable
+from ._base import NormalMethod
 
-__all__ = ["NormalSolution", "ContactTruncatedWarning", "solve_normal", "hertz_grid",
+__all__ = ["Bem", "NormalSolution", "ContactTruncatedWarning", "solve_normal", "hertz_grid",
            "contact_outline", "polonsky_keer"]
 
 
@@ -484,3 +485,180 @@ def hertz_grid(contact, elements: int = 64, margin: float = 1.25):
     grid = Grid(-(n - 1) / 2 * dx, -(n - 1) / 2 * dy, dx, dy, n, n)
     gap = float(contact.A) * grid.X**2 + float(contact.B) * grid.Y**2
     return grid, gap
+
+
+# --------------------------------------------------------------------------- normal method
+def _elements_for(length, elements, element_size):
+    """Elements across ``length`` [m]: from ``element_size`` [m] if given, else ``elements``."""
+    if element_size is None:
+        return elements
+    return max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
+
+
+class Bem(NormalMethod):
+    """Boundary elements on the elastic half-space (the exact normal problem).
+
+    * a :class:`~wheelrail.normal.hertz.HertzContact`: the quadratic gap on a
+      window around the ellipse (:func:`hertz_grid`), load prescribed;
+    * a gap h(x, y): the window from the gap (:mod:`wheelrail.contact.window`),
+      enlarged while the contact touches its edge; every connected part of
+      the contact area is a patch, interaction included;
+    * a wheel on its rail: candidate contact points whose contact planes are
+      close (contact angles within ``group_angle``, lateral distance within
+      half of ``width``) share one planar grid in the plane of the point
+      with the smallest separation, so that their elastic interaction is
+      included; the undeformed distance there is the profiles' separation
+      along the normal plus the wheel's drop along x
+      (:func:`wheelrail.geometry.separation`). Groups far apart (tread and
+      flange) have their own grids and interact only through the wheel's
+      vertical approach dz (the approach of a group is dz cos γ); dz is
+      found by Newton's method so that Σ Fn cos γ = Q. With one group the
+      load is prescribed directly (one solve).
+
+    Options
+    -------
+    elements : int, default 40
+        Elements along the longer side of the potential contact area
+        (ignored when ``element_size`` is given).
+    element_size : float or None
+        Element size [m] (square elements), e.g. 2e-4 for a 0.2 mm grid.
+    margin : float, default 1.2
+        Window half-size / half-size of the rigid interpenetration region.
+    tol : float, default 1e-8
+        Polonsky–Keer tolerance.
+    max_enlarge : int, default 4
+        Window enlargements when the contact reaches the window edge.
+    cells : int, default 40
+        Cells per strip of the patch description.
+    group_angle : float, default 0.2
+        Largest contact-angle difference [rad] of points on one grid.
+    width : float, default 0.04
+        Extent [m] of the lateral separation function around a group.
+
+    References
+    ----------
+    .. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+       Kluwer 1990, §5 (NORM, potential contact area).
+    .. [2] I.A. Polonsky, L.M. Keer, A numerical method for solving rough
+       contact problems based on the multi-level multi-summation and
+       conjugate gradient techniques, Wear 231 (1999) 206–219.
+    .. [3] E.A.H. Vollebregt, *User guide for CONTACT*, Vtech CMCC, the
+       wheel–rail module (planar contact per patch, vertical force prescribed).
+    """
+
+    name = "bem"
+    references = (
+        "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
+        "I.A. Polonsky, L.M. Keer, A numerical method for solving rough contact problems based "
+        "on the multi-level multi-summation and conjugate gradient techniques, Wear 231 (1999) "
+        "206-219.",
+    )
+    options = {"elements": 40, "element_size": None, "margin": 1.2, "tol": 1e-8,
+               "max_enlarge": 4, "cells": 40, "group_angle": 0.2, "width": 0.04}
+
+    def from_contact(self, contact, elements=40, element_size=None, margin=1.2, tol=1e-8,
+                     max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
+        from ..contact.patch import ContactPatch
+
+        n = _elements_for(2.0 * max(float(contact.a), float(contact.b)), elements, element_size)
+        grid, gap = hertz_grid(contact, elements=n, margin=max(1.25, 1.0 + 3.0 / n))
+        sol = solve_normal(grid, gap, contact.materials, load=float(contact.load), tol=tol)
+        return (ContactPatch.from_grid(grid, sol.pressure, sol.contact, contact.materials,
+                                       penetration=sol.penetration, A=float(contact.A),
+                                       B=float(contact.B), cells=cells, method="bem",
+                                       info=_solution_info(sol)),)
+
+    def from_gap(self, problem, elements=40, element_size=None, margin=1.2, tol=1e-8,
+                 max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
+        from ._gap import _window
+
+        w = _window(problem.gap, problem.penetration, problem.load, problem.materials,
+                    elements, margin, problem.search)
+        grid = w["grid"]
+        if element_size is not None:
+            grid = _square_grid(grid.bounds, element_size)
+        sol, grid = _solve_enlarging(problem.gap, grid, problem.materials, w["search"],
+                                     load=problem.load, penetration=problem.penetration, tol=tol,
+                                     max_enlarge=max_enlarge)
+        return _patches_of(sol, problem.materials, cells, frames=None)
+
+    def from_wheel(self, problem, elements=40, element_size=None, margin=1.2, tol=1e-8,
+                   max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
+        from ._wheel_bem import solve_wheel
+
+        return solve_wheel(problem, elements=elements, element_size=element_size, margin=margin,
+                           tol=tol, max_enlarge=max_enlarge, cells=cells,
+                           group_angle=float(positive("group_angle", group_angle)),
+                           width=float(positive("width", width)))
+
+
+def _solution_info(sol) -> dict:
+    return {"iterations": sol.iterations, "truncated": sol.truncated, "status": sol.status,
+            "normal_solution": sol}
+
+
+def _square_grid(bounds, element_size) -> Grid:
+    """Grid on ``bounds`` with square elements of ``element_size`` (odd counts, centred)."""
+    d = float(positive("element_size", element_size))
+    cx, cy = 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])
+    nx = max(int(math.ceil((bounds[1] - bounds[0]) / d)), 5)
+    ny = max(int(math.ceil((bounds[3] - bounds[2]) / d)), 5)
+    nx += 1 - nx % 2
+    ny += 1 - ny % 2
+    return Grid(cx - (nx - 1) / 2 * d, cy - (ny - 1) / 2 * d, d, d, nx, ny)
+
+
+def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=None, tol=1e-8,
+                     max_enlarge=4, square=None):
+    """Normal solve on ``grid``; move touched window edges out while the contact is truncated.
+
+    ``square``: keep square elements of this size when enlarging (else the element count).
+    """
+    from ._gap import _ENLARGE, _evaluate
+
+    for it in range(max_enlarge + 1):
+        h0 = np.array(_evaluate(gap, grid.X, grid.Y))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ContactTruncatedWarning)
+            sol = solve_normal(grid, h0, materials, load=load, penetration=penetration, tol=tol)
+        c = sol.contact
+        if not sol.truncated or it == max_enlarge:
+            break
+        b = list(grid.bounds)
+        lx, ly = b[1] - b[0], b[3] - b[2]
+        if c[0].any():
+            b[0] = max(b[0] - _ENLARGE * lx, search[0])
+        if c[-1].any():
+            b[1] = min(b[1] + _ENLARGE * lx, search[1])
+        if c[:, 0].any():
+            b[2] = max(b[2] - _ENLARGE * ly, search[2])
+        if c[:, -1].any():
+            b[3] = min(b[3] + _ENLARGE * ly, search[3])
+        if np.allclose(b, grid.bounds, rtol=0, atol=1e-12 * max(lx, ly)):
+            break
+        grid = (_square_grid(b, grid.dx) if square or grid.dx == grid.dy
+                else Grid.from_bounds(*b, nx=grid.nx, ny=grid.ny))
+    if sol.truncated:
+        warnings.warn(f"the contact still reaches the edge of the window "
+                      f"{tuple(round(v, 9) for v in sol.grid.bounds)} m; the result is truncated",
+                      ContactTruncatedWarning, stacklevel=3)
+    return sol, grid
+
+
+def _patches_of(sol, materials, cells, frames=None, origins=None, A=float("nan"),
+                B=float("nan")):
+    """One :class:`ContactPatch` per connected part of the contact of ``sol``."""
+    from ..contact.patch import ContactPatch
+    from ._gap import contact_patches
+
+    labels, _ = contact_patches(sol)
+    out = []
+    for k in range(1, int(labels.max()) + 1):
+        frame = None if frames is None else frames[k - 1]
+        origin = (0.0, 0.0) if origins is None else origins[k - 1]
+        info = _solution_info(sol)
+        info["origin"] = origin
+        out.append(ContactPatch.from_grid(sol.grid, sol.pressure, labels == k, materials,
+                                          penetration=sol.penetration, A=A, B=B, cells=cells,
+                                          frame=frame, origin=origin, method="bem", info=info))
+    return tuple(out)

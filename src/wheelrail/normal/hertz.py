@@ -27,6 +27,7 @@ import numpy as np
 from .._validation import as_float_array, positive, scalar_or_array
 from ..errors import InputError
 from ..materials import MaterialPair, as_material_pair
+from ._base import NormalMethod
 
 __all__ = [
     "HertzContact",
@@ -38,6 +39,7 @@ __all__ = [
     "curvatures_from_radii",
     "shape_ratio",
     "hertz_coefficients",
+    "Hertz",
 ]
 
 _K_MIN = 1e-9  # smallest semi-axis ratio handled before the line-contact limit
@@ -452,3 +454,127 @@ def hertz_coefficients(theta_deg):
     E_star, load = 1.0, 4.0 / 3.0  # a0 = 1
     a, b, p0, delta = hertz_kernel(load, A, B, E_star)
     return a, b, delta
+
+
+# --------------------------------------------------------------------------- normal method
+def _vertical_approach(Q, sep, cosg, d1):
+    """Vertical approach dz with Σ cos γ_k ((dz cos γ_k − s_k)_+ / δ1_k)^{3/2} = Q (pure kernel).
+
+    Newton from above on the convex, increasing left-hand side (monotone
+    convergence). ``sep``, ``cosg``, ``d1`` have shape (npt,); ``d1`` is the
+    Hertz approach under unit load of each point [m/N^(2/3)].
+    """
+    k = int(np.argmin(sep / cosg))
+    dz = (sep[k] + d1[k] * (Q / cosg[k]) ** (2.0 / 3.0)) / cosg[k]
+    for _ in range(100):
+        pen = np.clip(dz * cosg - sep, 0.0, None)
+        N = (pen / d1) ** 1.5
+        F = float(np.sum(N * cosg)) - Q
+        dF = float(np.sum(1.5 * np.sqrt(pen / d1) / d1 * cosg * cosg))
+        if abs(F) <= 1e-12 * Q or dF <= 0:
+            break
+        dz -= F / dF
+    return dz
+
+
+class Hertz(NormalMethod):
+    """Hertz's theory as a normal method: one ellipse per contact point.
+
+    * a :class:`HertzContact`: its own ellipse;
+    * a gap h(x, y): the ellipse of the principal curvatures of h at its
+      minimum (for a prescribed approach, δ is measured from that minimum);
+    * a wheel on its rail: one ellipse per candidate contact point with the
+      curvatures of the profiles there (A, B of
+      :func:`wheelrail.contact_points`); the penetrations follow from the
+      wheel's vertical approach dz, δ_k = dz cos γ_k − s_k (s_k the
+      undeformed separation), and dz from Σ Fn_k cos γ_k = Q (the vertical
+      load) — the multi-point elastic contact of seed 002 eq. 2.4 with
+      Hertzian stiffness per point, or Piotrowski & Chollet's independent
+      ellipses (seed 003 §2).
+
+    Options
+    -------
+    strips, cells : int, default 40, 40
+        Strips and cells per strip of the patch description (used by strip
+        theories; the closed-form laws and FASTSIM use the ellipse itself).
+
+    References
+    ----------
+    .. [1] K.L. Johnson, *Contact Mechanics*, CUP 1985, §4.2.
+    .. [2] Seed 002, §2.1.2, eq. (2.4); seed 003, §2.
+    """
+
+    name = "hertz"
+    references = ("H. Hertz, Ueber die Berührung fester elastischer Körper, J. reine angew. "
+                  "Math. 92 (1882) 156-171.",
+                  "K.L. Johnson, Contact Mechanics, Cambridge University Press, 1985.")
+    options = {"strips": 40, "cells": 40}
+
+    def from_contact(self, contact, strips=40, cells=40):
+        from ..contact.patch import ContactPatch
+
+        return (ContactPatch.from_hertz(contact, strips=strips, cells=cells),)
+
+    def from_gap(self, problem, strips=40, cells=40):
+        from ..contact.patch import ContactPatch
+        from ..errors import NoContactError
+        from ._gap import _check_search, _minimum, _principal_curvatures
+
+        search = _check_search(problem.search)
+        xm, ym, hmin, spacing = _minimum(problem.gap, search)
+        hx, hy = spacing
+        pair = as_material_pair(problem.materials)
+        c = None
+        for _ in range(3):      # probe the curvatures at the scale of the patch
+            c = _principal_curvatures(problem.gap, xm, ym, hx, hy)
+            if not c[0] > 0:
+                raise InputError(f"the gap is not convex at its minimum (x, y) = ({xm!r}, {ym!r}) m "
+                                 f"(principal curvatures {c.tolist()} 1/m): Hertz cannot "
+                                 "represent it; use normal='bem'")
+            if problem.load is not None:
+                hc = hertz(problem.load, c[0], c[1], pair)
+            else:
+                delta = float(problem.penetration) - hmin
+                if not delta > 0:
+                    raise NoContactError(f"no contact: the penetration {problem.penetration!r} m "
+                                         f"does not exceed the smallest gap {hmin!r} m")
+                hc = hertz_from_penetration(delta, c[0], c[1], pair)
+            hx = hy = 0.5 * float(np.sqrt(hc.a * hc.b))
+        patch = ContactPatch.from_hertz(hc, strips=strips, cells=cells)
+        info = {"centre": (xm, ym), "gap_minimum": hmin,
+                "note": "principal axes of the gap assumed along x and y"}
+        return (type(patch)(**{**patch.__dict__, "info": info}),)
+
+    def from_wheel(self, problem, strips=40, cells=40):
+        from ..contact.patch import ContactPatch
+
+        pts = problem.points
+        pair = as_material_pair(problem.materials)
+        A = np.asarray(problem.A, dtype=float)
+        B = np.asarray(problem.B, dtype=float)
+        bad = ~((A > 0) & (B > 0))
+        cosg = np.cos(pts.contact_angle)
+        sep = np.asarray(pts.separation, dtype=float)
+        d1 = np.full(A.shape, np.inf)
+        d1[~bad] = hertz_kernel(1.0, A[~bad], B[~bad], pair.E_star)[3]
+        if problem.approach is not None:
+            dz = float(problem.approach)
+        else:
+            if np.all(bad):
+                raise InputError(f"{problem.side} wheel: no candidate contact point has convex "
+                                 f"curvatures (A = {A.tolist()}, B = {B.tolist()} 1/m); Hertz "
+                                 "cannot represent this contact, use normal='bem'")
+            dz = _vertical_approach(float(problem.vertical_load), sep[~bad], cosg[~bad], d1[~bad])
+        pen = np.clip(dz * cosg - sep, 0.0, None)
+        patches = []
+        for k in np.nonzero(pen > 0)[0]:
+            if bad[k]:
+                raise InputError(
+                    f"{problem.side} wheel: contact point at wheel y = {float(pts.wheel_y[k])!r} m "
+                    f"penetrates but is not convex (A = {float(A[k])!r}, B = {float(B[k])!r} 1/m); "
+                    "Hertz cannot represent it, use normal='bem'")
+            hc = hertz_from_penetration(float(pen[k]), float(A[k]), float(B[k]), pair)
+            patches.append(ContactPatch.from_hertz(hc, strips=strips, cells=cells,
+                                                   frame=problem.frames[k]))
+        return tuple(patches), {"approach": dz}
+

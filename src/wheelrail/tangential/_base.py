@@ -54,3 +54,13 @@ class TangentialMethod(Method):
         f = np.asarray
         return self.solve(patch.ellipse(), f(float(xi)), f(float(eta)), f(float(phi)),
                           f(float(mu)), **options)
+
+    def solve_patches(self, patches, creepages, mu, **options):
+        """Creep forces on several patches (one :class:`CreepForces` each).
+
+        ``creepages`` has one (ξ, η, φ) per patch, at the patch's reference
+        point. The default solves the patches one by one; the exact theory
+        overrides it to solve patches that share a grid together (their
+        elastic interaction included).
+        """
+        return tuple(self.solve_patch(p, *c, mu, **options) for p, c in zip(patches, creepages))

@@ -136,6 +136,22 @@ class Exact(TangentialMethod):
                 bar.stop()
         return _to_creep_forces(sols, shape, ms, self.name)
 
+    def solve_patch(self, patch, xi, eta, phi, mu, elements=40, margin=1.1, tol=1e-6,
+                    maxiter=100, on_fail="raise", progress=None):
+        """Exact theory on one patch: the patch's own pressure field if it has one
+        (boundary elements; ``elements``/``margin`` then do not apply), else the
+        boundary-element solution of its ellipse (as :meth:`solve`)."""
+        return _solve_patches_exact(self, (patch,), ((xi, eta, phi),), float(mu), tol, maxiter,
+                                    on_fail, elements, margin)[0]
+
+    def solve_patches(self, patches, creepages, mu, elements=40, margin=1.1, tol=1e-6,
+                      maxiter=100, on_fail="raise", progress=None):
+        """Patches on one boundary-element grid are solved together (their interaction
+        included), with the creepages of the patch with the largest normal force, at its
+        reference point (the rigid slip varies over the grid through the spin)."""
+        return _solve_patches_exact(self, patches, creepages, float(mu), tol, maxiter, on_fail,
+                                    elements, margin)
+
 
 def _to_creep_forces(sols, shape, mu, name):
     def arr(f):
@@ -165,3 +181,56 @@ def _to_creep_forces(sols, shape, mu, name):
         Fn=arr(lambda s: s.Fn), mu=scalar_or_array(mu.reshape(shape)) if shape else float(mu[0]),
         method=name, status=status, iterations=iarr(lambda s: s.tangential.iterations),
         fields=tuple(sols) if shape else sols[0], info=info)
+
+
+def _patch_forces(sol, mask, grid, origin, centre):
+    """Fx, Fy, Mz (about ``centre``) and adhesion area of the tractions of ``sol`` on ``mask``."""
+    dA = grid.element_area
+    px = np.where(mask, sol.px, 0.0)
+    py = np.where(mask, sol.py, 0.0)
+    X = grid.X - origin[0] - centre[0]
+    Y = grid.Y - origin[1] - centre[1]
+    Fx, Fy = float(px.sum() * dA), float(py.sum() * dA)
+    Mz = float((X * py - Y * px).sum() * dA)
+    adh = float(np.count_nonzero(sol.adhesion & mask) * dA)
+    return Fx, Fy, Mz, adh
+
+
+def _solve_patches_exact(method, patches, creepages, mu, tol, maxiter, on_fail, elements,
+                         margin):
+    from ..halfspace.tangential import solve_rolling
+
+    out = [None] * len(patches)
+    shared = {}
+    for i, p in enumerate(patches):
+        if p.grid is None:
+            r = exact_single(p.ellipse(), *creepages[i], mu, elements=elements, margin=margin,
+                             tol=tol, maxiter=maxiter, on_fail=on_fail)
+            res = _to_creep_forces([r], (), np.array([mu]), method.name)
+            out[i] = res
+        else:
+            shared.setdefault(id(p.grid), []).append(i)
+    for idx in shared.values():
+        group = [patches[i] for i in idx]
+        grid = group[0].grid
+        pressure = sum(np.asarray(p.pressure) for p in group)
+        main = max(idx, key=lambda i: patches[i].Fn)      # creepage of the largest patch
+        xi, eta, phi = (float(v) for v in creepages[main])
+        ox, oy = patches[main].info.get("origin", (0.0, 0.0))
+        sol = solve_rolling(grid, pressure, group[0].materials, (xi + phi * oy, eta - phi * ox, phi),
+                            mu, tol=tol, maxiter=maxiter, on_fail=on_fail)
+        for i in idx:
+            p = patches[i]
+            origin = p.info.get("origin", (0.0, 0.0))
+            Fx, Fy, Mz, adh = _patch_forces(sol, p.mask, grid, origin, p.centre)
+            full_slip = adh == 0.0
+            status = (Status.NOT_CONVERGED if not sol.converged
+                      else Status.FULL_SLIP if full_slip else Status.CONVERGED)
+            out[i] = CreepForces(Fx=Fx, Fy=Fy, Mz=Mz, Fn=p.Fn, mu=float(mu), method=method.name,
+                                 status=status, iterations=sol.iterations, fields=sol,
+                                 info={"area": p.area, "p_max": p.p_max, "adhesion_area": adh,
+                                       "tangential_iterations": sol.iterations,
+                                       "shared_grid": len(idx) > 1,
+                                       "creepage_used": (xi, eta, phi)})
+    return tuple(out)
+

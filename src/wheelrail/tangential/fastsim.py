@@ -560,3 +560,51 @@ class Fastsim(TangentialMethod):
         out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
         return CreepForces(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
                            method=self.name, status=status, iterations=None, fields=f, info=info)
+
+    def solve_patch(self, patch, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
+                    flexibility="three", scheme="midpoint", fields=None):
+        """FASTSIM on one :class:`~wheelrail.contact.patch.ContactPatch`.
+
+        A Hertzian patch is solved as its ellipse (:meth:`solve`, options as
+        there). A non-elliptic patch is solved strip by strip
+        (:func:`fastsim_strips`) on the patch's own strips with its pressure as
+        the traction bound (``bound`` and ``ny`` do not apply; ``nx`` cells per
+        strip, resampled from the patch), and one set of flexibilities
+        L1, L2, L3 from the patch's equivalent ellipse (Kik & Piotrowski's
+        choice of one flexibility per patch; seed 003 §3.2). ``Mz`` is about
+        the patch's centre of pressure; ``fields`` are returned for single
+        patches unless ``fields=False``.
+        """
+        if patch.is_hertzian:
+            f = np.asarray
+            return self.solve(patch.hertz, f(float(xi)), f(float(eta)), f(float(phi)),
+                              f(float(mu)), nx=nx, ny=ny, bound=bound, flexibility=flexibility,
+                              scheme=scheme, fields=fields)
+        nx = integer("nx", nx)
+        _check_choice("flexibility", flexibility, _FLEXIBILITIES)
+        a, b = patch.a, patch.b
+        C11, C22, C23, _ = kalker_coefficients(a / b, patch.materials.nu)
+        L1, L2, L3 = (float(v) for v in flexibilities(a, b, patch.materials.G, C11, C22, C23))
+        if flexibility == "weighted":
+            L1 = L2 = L3 = float(weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(a * b)))
+        # pressure resampled from the patch's m cells to nx cells per strip
+        m = patch.cells
+        src = (np.arange(m) + 0.5) / m
+        dst = (np.arange(nx) + 0.5) / nx
+        p = np.array([np.interp(dst, src, row) for row in patch.strip_pressure])
+        scale = patch.strip_pressure.sum(axis=1) / m
+        got = p.sum(axis=1) / nx
+        p *= np.where(got > 0, scale / np.where(got > 0, got, 1.0), 0.0)[:, None]
+        r = fastsim_strips(patch.y, patch.dy, patch.x_lead, patch.x_trail, p, L1, L2, L3,
+                           xi, eta, phi, mu, c=np.sqrt(a * b), scheme=scheme,
+                           fields=fields is not False)
+        xc, yc = patch.centre
+        Mz = r.Mz - xc * r.Fy + yc * r.Fx
+        info = dict(r.info, flexibility=flexibility, L=(L1, L2, L3))
+        status = Status.CONVERGED
+        if r.fields is not None:
+            info["adhesion_fraction"] = r.fields.adhesion_fraction
+            if not np.any(r.fields.adhesion):
+                status = Status.FULL_SLIP
+        return CreepForces(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
+                           method=self.name, status=status, fields=r.fields, info=info)

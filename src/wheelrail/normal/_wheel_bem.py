@@ -1,0 +1,174 @@
+"""Boundary-element normal contact of one wheel on its rail (driver of :class:`~wheelrail.normal.bem.Bem`).
+
+Candidate contact points are grouped by contact plane; each group is solved
+on a planar grid in the plane of its reference point, the groups are coupled
+through the wheel's vertical approach (see :class:`~wheelrail.normal.bem.Bem`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ConvergenceError, NoContactError
+from ._gap import _rigid_box, _scaled
+from .bem import _elements_for, _patches_of, _solve_enlarging, _square_grid
+from .hertz import _vertical_approach, hertz_kernel
+
+__all__ = ["solve_wheel"]
+
+_SEARCH_X = 0.03      # half-length [m] of the search box along x
+
+
+def _groups(pts, sigma, group_angle, width):
+    """Indices of candidate points per group; the first of each group is its reference."""
+    order = np.argsort(pts.separation, kind="stable")
+    groups: list[list[int]] = []
+    for k in order:
+        for g in groups:
+            r = g[0]
+            if (abs(pts.contact_angle[k] - pts.contact_angle[r]) < group_angle
+                    and abs(pts.track_y[k] - pts.track_y[r]) < 0.4 * width):
+                g.append(int(k))
+                break
+        else:
+            groups.append([int(k)])
+    return groups
+
+
+def _eta_of(pts, sigma, k, r):
+    """Lateral position of point k in the contact plane of point r [m]."""
+    g = pts.contact_angle[r]
+    du = sigma * (pts.track_y[k] - pts.track_y[r])
+    dz = pts.track_z[k] - pts.track_z[r]
+    return float(du * math.cos(g) + dz * math.sin(g))
+
+
+def _gap_function(sep, roller_radius):
+    eta, f, r, cosf = sep.eta, sep.f, sep.wheel_radius, sep.cos_factor
+    R = roller_radius
+
+    def gap(x, y):
+        x = np.asarray(x, dtype=float)
+        y = np.asarray(y, dtype=float)
+        fy = np.interp(y, eta, f, left=1.0, right=1.0)
+        ry = np.interp(y, eta, r)
+        xx = np.minimum(np.abs(x), 0.999 * ry)
+        h = fy + cosf * (ry - np.sqrt(ry * ry - xx * xx))
+        if R is not None:
+            h = h + (R - np.sqrt(R * R - np.minimum(xx, 0.999 * R) ** 2))
+        return h
+    return gap
+
+
+def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, cells, group_angle,
+                width):
+    """Patches of one wheel (see :class:`~wheelrail.normal.bem.Bem`); returns (patches, info)."""
+    pts = problem.points
+    sigma = 1.0 if problem.side == "right" else -1.0
+    pair = problem.materials
+    sep = np.asarray(pts.separation, dtype=float)
+    cosg = np.cos(np.asarray(pts.contact_angle, dtype=float))
+    A = np.asarray(problem.A, dtype=float)
+    B = np.asarray(problem.B, dtype=float)
+    ok = (A > 0) & (B > 0)
+    # Hertz estimate of the vertical approach: sizes the windows
+    d1 = np.full(A.shape, np.inf)
+    d1[ok] = hertz_kernel(1.0, A[ok], B[ok], pair.E_star)[3]
+    if problem.approach is not None:
+        dz_est = float(problem.approach)
+    elif ok.any():
+        dz_est = _vertical_approach(float(problem.vertical_load), sep[ok], cosg[ok], d1[ok])
+    else:   # conformal everywhere: a rough estimate, the window enlargement corrects it
+        dz_est = float(sep.min() / cosg[np.argmin(sep)]) + 5e-5
+
+    groups = _groups(pts, sigma, group_angle, width)
+    setups = []
+    for g in groups:
+        r = g[0]
+        s = problem.separation(r, width)
+        gap = _gap_function(s, problem.roller_radius)
+        delta_est = dz_est * cosg[r]
+        if not np.min(s.f) < delta_est:
+            continue             # this group does not reach contact at the estimated approach
+        search = (-_SEARCH_X, _SEARCH_X, float(s.eta[0]), float(s.eta[-1]))
+        box = _rigid_box(gap, max(delta_est * 1.3, delta_est + 2e-6), search, 0.0,
+                         _eta_of(pts, sigma, r, r))
+        bounds = _scaled(box, margin, search)
+        if element_size is None:
+            n = _elements_for(max(bounds[1] - bounds[0], bounds[3] - bounds[2]), elements, None)
+            grid = _square_grid(bounds, max(bounds[1] - bounds[0], bounds[3] - bounds[2]) / n)
+        else:
+            grid = _square_grid(bounds, element_size)
+        setups.append({"ref": r, "members": g, "gap": gap, "grid": grid, "search": search,
+                       "cos": float(cosg[r]), "sep": s})
+    if not setups:
+        raise NoContactError(f"{problem.side} wheel: no contact at the estimated vertical "
+                             f"approach {dz_est!r} m")
+
+    def solve_all(dz=None, load=None):
+        sols = []
+        for st in setups:
+            kw = {"load": load / st["cos"]} if load is not None else {"penetration": dz * st["cos"]}
+            try:
+                sol, grid = _solve_enlarging(st["gap"], st["grid"], pair, st["search"], tol=tol,
+                                             max_enlarge=max_enlarge, square=True, **kw)
+                st["grid"] = grid
+            except NoContactError:
+                sol = None
+            sols.append(sol)
+        return sols
+
+    iterations = 1
+    if problem.approach is not None:
+        dz = float(problem.approach)
+        sols = solve_all(dz=dz)
+    elif len(setups) == 1:
+        sols = solve_all(load=float(problem.vertical_load))
+        dz = sols[0].penetration / setups[0]["cos"]
+    else:
+        Q = float(problem.vertical_load)
+        dz = dz_est
+        for iterations in range(1, 31):
+            sols = solve_all(dz=dz)
+            F = dF = 0.0
+            for st, sol in zip(setups, sols):
+                if sol is None:
+                    continue
+                c = st["cos"]
+                hmin = float(np.min(sol.gap + sol.penetration - sol.displacement))
+                F += sol.Fn * c
+                dF += 1.5 * sol.Fn * c * c / max(sol.penetration - hmin, 1e-12)
+            if abs(F - Q) <= 1e-6 * Q:
+                break
+            if dF <= 0:
+                dz *= 1.2
+                continue
+            step = (Q - F) / dF
+            dz = max(dz + step, 0.5 * dz) if step < 0 else dz + step
+        else:
+            raise ConvergenceError(f"{problem.side} wheel: the vertical load {Q!r} N was not "
+                                   f"reached by the boundary-element contact in 30 iterations "
+                                   f"(vertical force {F!r} N)")
+    patches = []
+    for st, sol in zip(setups, sols):
+        if sol is None:
+            continue
+        r = st["ref"]
+        members = st["members"]
+        etas = [_eta_of(pts, sigma, k, r) for k in members]
+        from ._gap import contact_patches
+        labels, _ = contact_patches(sol)
+        frames, origins = [], []
+        for lab in range(1, int(labels.max()) + 1):
+            m = labels == lab
+            w = sol.pressure * m
+            yc = float((w * sol.grid.Y).sum() / w.sum())
+            k = members[int(np.argmin([abs(e - yc) for e in etas]))]
+            frames.append(problem.frames[k])
+            origins.append((0.0, etas[members.index(k)]))
+        patches.extend(_patches_of(sol, pair, cells, frames=frames, origins=origins,
+                                   A=float(A[r]), B=float(B[r])))
+    return tuple(patches), {"approach": float(dz), "iterations": iterations,
+                            "groups": len(setups)}
