@@ -48,7 +48,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .._validation import as_float_array, positive
-from ..errors import InputError
+from ..errors import ConvergenceError, InputError
 from ..materials import STEEL, as_material_pair
 from ..results import ContactResult, PatchResult, to_jsonable
 from .patch import ContactFrame
@@ -341,6 +341,7 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
         zc = ws.nominal_radius + zs[side]
         sig = _SIGMA[side]
         Q = prob.vertical_load
+        history = []            # (normal-load target, total vertical force)
         for outer in range(1, _MAX_VERTICAL + 1):
             found, info = nimpl.from_wheel(prob, **nopts)
             if not found:
@@ -355,12 +356,25 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
                       sig * Fs * np.sin(g) + p.Fn * np.cos(g))
             if Q is None or vertical == "normal" or abs(F[2] - Q) <= _VERTICAL_TOL * Q:
                 break
-            # the creep forces carry part of the vertical load: press the wheel less (or more)
-            q_normal = prob.vertical_load - (F[2] - Q)
-            if not q_normal > 0:
-                raise InputError(f"{side} wheel: the creep forces alone exceed the vertical "
-                                 f"load {Q!r} N (vertical force {F[2]!r} N); no equilibrium")
-            prob = dataclasses.replace(prob, vertical_load=q_normal)
+            # the creep forces carry part of the vertical load: press the wheel less (or
+            # more); secant steps on the normal-load target q, F_z(q) = Q
+            history.append((prob.vertical_load, F[2]))
+            if len(history) == 1:
+                q_new = prob.vertical_load + (Q - F[2])
+            else:
+                (q0, f0), (q1, f1) = history[-2:]
+                slope = (f1 - f0) / (q1 - q0) if q1 != q0 else 1.0
+                q_new = q1 + (Q - f1) / (slope if slope > 0.05 else 1.0)
+            if not q_new > 0:
+                raise ConvergenceError(f"{side} wheel: the creep forces alone exceed the "
+                                       f"vertical load {Q!r} N (vertical force {F[2]!r} N); "
+                                       "no equilibrium")
+            prob = dataclasses.replace(prob, vertical_load=q_new)
+        else:
+            raise ConvergenceError(
+                f"{side} wheel at y = {position.y!r} m: the total vertical force {F[2]!r} N did "
+                f"not reach the vertical load {Q!r} N in {_MAX_VERTICAL} normal/tangential "
+                "passes; use vertical='normal' to let the normal forces alone carry it")
         for p, c, fr in zip(found, cr, forces):
             patches.append(PatchResult(p, fr, *c, side=side))
         force_track[side] = tuple(float(v) for v in F)

@@ -38,15 +38,19 @@ def _groups(pts, sigma, group_angle, width):
 
 
 def _eta_of(pts, sigma, k, r):
-    """Lateral position of point k in the contact plane of point r [m]."""
+    """Contact-plane y (to the right) of point k in the contact plane of point r [m]."""
     g = pts.contact_angle[r]
     du = sigma * (pts.track_y[k] - pts.track_y[r])
     dz = pts.track_z[k] - pts.track_z[r]
-    return float(du * math.cos(g) + dz * math.sin(g))
+    return float(sigma * (du * math.cos(g) + dz * math.sin(g)))
 
 
-def _gap_function(sep, roller_radius):
+def _gap_function(sep, roller_radius, sigma):
+    """h(x, y) in the contact frame (y to the right; the separation's η points to the field
+    side, i.e. y = σ η)."""
     eta, f, r, cosf = sep.eta, sep.f, sep.wheel_radius, sep.cos_factor
+    if sigma < 0:
+        eta, f, r = -eta[::-1], f[::-1], r[::-1]
     R = roller_radius
 
     def gap(x, y):
@@ -88,11 +92,12 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     for g in groups:
         r = g[0]
         s = problem.separation(r, width)
-        gap = _gap_function(s, problem.roller_radius)
+        gap = _gap_function(s, problem.roller_radius, sigma)
         delta_est = dz_est * cosg[r]
         if not np.min(s.f) < delta_est:
             continue             # this group does not reach contact at the estimated approach
-        search = (-_SEARCH_X, _SEARCH_X, float(s.eta[0]), float(s.eta[-1]))
+        ylim = sorted((sigma * float(s.eta[0]), sigma * float(s.eta[-1])))
+        search = (-_SEARCH_X, _SEARCH_X, ylim[0], ylim[1])
         box = _rigid_box(gap, max(delta_est * 1.3, delta_est + 2e-6), search, 0.0,
                          _eta_of(pts, sigma, r, r))
         bounds = _scaled(box, margin, search)

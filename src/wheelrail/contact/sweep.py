@@ -1,0 +1,143 @@
+"""Wheel–rail contact over many wheelset positions: an ``xarray.Dataset``.
+
+:func:`wheelset_sweep` solves :func:`wheelrail.solve` for each lateral shift
+(with its yaw and roll) and collects the per-patch and per-wheel results in
+labelled arrays. A position that fails (no contact, no equilibrium, no
+convergence) is recorded with its status and message; the sweep goes on.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._validation import as_float_array
+from ..errors import InputError, WheelrailError
+from ..results import PATCH_QUANTITIES
+from .wheelrail import SIDES, WheelRailPosition
+
+__all__ = ["wheelset_sweep", "PATCH_VARIABLES"]
+
+#: Per-patch variables of the dataset (name: (unit, description)).
+PATCH_VARIABLES = {
+    "y_rail": ("m", "lateral position on the rail profile"),
+    "y_wheel": ("m", "lateral position on the wheel profile"),
+    "contact_angle": ("rad", "contact angle"),
+    "xi": ("1", "longitudinal creepage"), "eta": ("1", "lateral creepage"),
+    "phi": ("1/m", "spin creepage"),
+    "Fn": ("N", "normal force"), "Fx": ("N", "longitudinal creep force on the wheel"),
+    "Fs": ("N", "lateral creep force on the wheel in the contact plane"),
+    "Mz": ("N m", "spin moment about the patch's centre of pressure"),
+    "p_max": ("Pa", "largest pressure"), "area": ("m^2", "contact area"),
+    "adhesion_area": ("m^2", "adhesion area"),
+}
+
+
+
+def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None, z=None,
+                   motion=None, mu=0.3, normal="hertz", tangential="fastsim", material=None,
+                   max_patches=3, progress=None, **options):
+    """Solve the wheel–rail contact at many lateral shifts.
+
+    Parameters
+    ----------
+    wheelset, track
+        :class:`wheelrail.Wheelset`, :class:`wheelrail.Track`.
+    y : array_like, shape (n,)
+        Lateral shifts [m].
+    yaw : float or array_like, shape (n,)
+        Yaw angles [rad].
+    roll : None, float or array_like, shape (n,)
+        Roll angles [rad]; ``None`` (or NaN entries): from the rigid contact constraint.
+    vertical_load, z
+        As in :class:`wheelrail.WheelRailPosition` (load per wheel [N], or axle height [m]).
+    motion : Motion
+    mu : float
+    normal, tangential : str
+    material : Material or MaterialPair, optional
+    max_patches : int
+        Patches per wheel kept in the dataset (the largest by Fn); more are
+        counted in ``n_patches``.
+    progress : bool or None
+        Progress bar (``None``: for more than 20 positions).
+    **options
+        Method options (see :func:`wheelrail.solve`).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimensions ``y`` (n), ``side`` (left, right), ``patch`` (max_patches).
+        Per patch: the variables of :data:`PATCH_VARIABLES` (NaN where no
+        patch); per wheel: ``Fx_track``, ``Fy_track``, ``Fz_track`` [N],
+        ``n_patches``; per position: ``yaw``, ``roll`` [rad], ``status``
+        ("ok" or "error") and ``message``.
+    """
+    import xarray as xr
+
+    from ..api import solve
+    from ..materials import STEEL
+
+    y = np.atleast_1d(as_float_array("y", y))
+    if y.ndim != 1 or y.size == 0:
+        raise InputError(f"y must be a non-empty 1-D array of lateral shifts, got shape {y.shape}")
+    n = y.size
+    yaw = np.broadcast_to(as_float_array("yaw", yaw), (n,)) if np.ndim(yaw) else np.full(n, yaw)
+    if roll is None:
+        roll = np.full(n, np.nan)
+    roll = np.broadcast_to(np.asarray(roll, dtype=float), (n,))
+    if motion is None:
+        raise InputError("motion=wheelrail.Motion(speed=...) is required")
+    material = STEEL if material is None else material
+    npat = int(max_patches)
+    per_patch = {k: np.full((n, 2, npat), np.nan) for k in PATCH_VARIABLES}
+    ftrack = np.full((n, 2, 3), np.nan)
+    npatches = np.zeros((n, 2), dtype=int)
+    status = np.full(n, "ok", dtype=object)
+    message = np.full(n, "", dtype=object)
+    show = (n > 20) if progress is None else bool(progress)
+    bar = task = None
+    if show:
+        from rich.progress import Progress
+
+        bar = Progress(transient=True)
+        bar.start()
+        task = bar.add_task("wheel-rail contact", total=n)
+    try:
+        for i in range(n):
+            try:
+                pos = WheelRailPosition(wheelset, track, y[i], yaw[i],
+                                        None if np.isnan(roll[i]) else roll[i],
+                                        vertical_load=vertical_load, z=z, material=material)
+                res = solve(pos, motion=motion, mu=mu, normal=normal, tangential=tangential,
+                            **options)
+            except WheelrailError as exc:
+                status[i], message[i] = "error", f"{type(exc).__name__}: {exc}"
+            else:
+                for s, side in enumerate(SIDES):
+                    ps = sorted(res.side(side), key=lambda p: -p.Fn)
+                    npatches[i, s] = len(ps)
+                    for k, p in enumerate(ps[:npat]):
+                        for name in PATCH_VARIABLES:
+                            per_patch[name][i, s, k] = getattr(p, name)
+                    ftrack[i, s] = res.force_track[side]
+            if bar is not None:
+                bar.advance(task)
+    finally:
+        if bar is not None:
+            bar.stop()
+    dims = ("y", "side", "patch")
+    data = {k: (dims, v, {"units": PATCH_VARIABLES[k][0], "long_name": PATCH_VARIABLES[k][1]})
+            for k, v in per_patch.items()}
+    for j, comp in enumerate(("Fx", "Fy", "Fz")):
+        data[f"{comp}_track"] = (("y", "side"), ftrack[:, :, j],
+                                 {"units": "N", "long_name": f"{comp} on the wheel, track frame"})
+    data["n_patches"] = (("y", "side"), npatches, {"long_name": "patches found"})
+    data["yaw"] = ("y", np.asarray(yaw, float), {"units": "rad"})
+    data["roll_prescribed"] = ("y", np.asarray(roll, float), {"units": "rad",
+                                                               "long_name": "NaN: from contact"})
+    data["status"] = ("y", status.astype(str))
+    data["message"] = ("y", message.astype(str))
+    return xr.Dataset(data, coords={"y": ("y", y, {"units": "m"}), "side": list(SIDES),
+                                    "patch": np.arange(npat)},
+                      attrs={"normal": str(normal), "tangential": str(tangential), "mu": mu,
+                             "speed": motion.speed,
+                             "conventions": "Kalker: forces on the wheel; SI units"})
