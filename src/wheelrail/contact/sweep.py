@@ -12,7 +12,7 @@ import numpy as np
 
 from .._validation import as_float_array
 from ..errors import InputError, WheelrailError
-from ..results import PATCH_QUANTITIES
+
 from .wheelrail import SIDES, WheelRailPosition
 
 __all__ = ["wheelset_sweep", "PATCH_VARIABLES"]
@@ -35,7 +35,8 @@ PATCH_VARIABLES = {
 
 def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None, z=None,
                    motion=None, mu=0.3, normal="hertz", tangential="fastsim", material=None,
-                   max_patches=3, progress=None, **options):
+                   max_patches=3, progress=None, vertical="total", tolerance=5e-4,
+                   batch=True, **options):
     """Solve the wheel–rail contact at many lateral shifts.
 
     Parameters
@@ -59,6 +60,15 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         counted in ``n_patches``.
     progress : bool or None
         Progress bar (``None``: for more than 20 positions).
+    vertical : {"total", "normal"}
+        What carries the vertical load (see :func:`wheelrail.solve`).
+    tolerance : float
+        Largest separation of a candidate contact point [m].
+    batch : bool
+        With ``normal="hertz"``: solve all positions at once (array
+        operations; the same model as the per-position path, see
+        :mod:`wheelrail.contact._hertz_batch`). ``False``: one
+        :func:`wheelrail.solve` per position.
     **options
         Method options (see :func:`wheelrail.solve`).
 
@@ -71,8 +81,6 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         ``n_patches``; per position: ``yaw``, ``roll`` [rad], ``status``
         ("ok" or "error") and ``message``.
     """
-    import xarray as xr
-
     from ..api import solve
     from ..materials import STEEL
 
@@ -88,6 +96,26 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         raise InputError("motion=wheelrail.Motion(speed=...) is required")
     material = STEEL if material is None else material
     npat = int(max_patches)
+    from ..api import _split_options, get_method, get_normal_method
+    from ..normal.hertz import Hertz
+    from ._hertz_batch import check_vertical, hertz_sweep
+
+    check_vertical(vertical)
+    nimpl, timpl = get_normal_method(normal), get_method(tangential)
+    nopts, topts = _split_options(nimpl, timpl, options)
+    if batch and isinstance(nimpl, Hertz):
+        # validate the position arguments once, as WheelRailPosition does
+        WheelRailPosition(wheelset, track, float(y[0]), float(yaw[0]),
+                          None if np.isnan(roll[0]) else float(roll[0]),
+                          vertical_load=vertical_load, z=z, material=material,
+                          tolerance=tolerance)
+        loads = None if vertical_load is None else np.broadcast_to(
+            np.asarray(vertical_load, dtype=float), (2,))
+        pp, ft, npc, status, message = hertz_sweep(
+            wheelset, track, y, np.asarray(yaw, float), roll, loads, z, motion, mu, timpl.name,
+            timpl.check_options(topts), material, tolerance, vertical, npat)
+        return _dataset(y, yaw, roll, pp, ft, npc, status, message, nimpl.name, timpl.name, mu,
+                        motion)
     per_patch = {k: np.full((n, 2, npat), np.nan) for k in PATCH_VARIABLES}
     ftrack = np.full((n, 2, 3), np.nan)
     npatches = np.zeros((n, 2), dtype=int)
@@ -106,9 +134,10 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
             try:
                 pos = WheelRailPosition(wheelset, track, y[i], yaw[i],
                                         None if np.isnan(roll[i]) else roll[i],
-                                        vertical_load=vertical_load, z=z, material=material)
-                res = solve(pos, motion=motion, mu=mu, normal=normal, tangential=tangential,
-                            **options)
+                                        vertical_load=vertical_load, z=z, material=material,
+                                        tolerance=tolerance)
+                res = solve(pos, motion=motion, mu=mu, normal=nimpl, tangential=timpl,
+                            vertical=vertical, normal_options=nopts, tangential_options=topts)
             except WheelrailError as exc:
                 status[i], message[i] = "error", f"{type(exc).__name__}: {exc}"
             else:
@@ -124,6 +153,15 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     finally:
         if bar is not None:
             bar.stop()
+    return _dataset(y, yaw, roll, per_patch, ftrack, npatches, status, message, nimpl.name,
+                    timpl.name, mu, motion)
+
+
+def _dataset(y, yaw, roll, per_patch, ftrack, npatches, status, message, normal, tangential, mu,
+             motion):
+    import xarray as xr
+
+    npat = next(iter(per_patch.values())).shape[2]
     dims = ("y", "side", "patch")
     data = {k: (dims, v, {"units": PATCH_VARIABLES[k][0], "long_name": PATCH_VARIABLES[k][1]})
             for k, v in per_patch.items()}

@@ -209,6 +209,8 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
     Returns
     -------
     Fx, Fy, Mz : ndarray, shape (n,)
+    adhesion : ndarray, shape (n,)
+        Area of the sticking elements / area of all elements [-].
     """
     n = a.shape[0]
     ny = t.shape[0]
@@ -216,6 +218,8 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
     Fx = np.empty(n)
     Fy = np.empty(n)
     Mz = np.empty(n)
+    Adh = np.empty(n)
+    stick = np.empty(ny)
     xl = np.empty(ny)
     dx = np.empty(ny)
     gx = np.empty(ny)
@@ -240,6 +244,7 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
             spx[j] = 0.0
             spy[j] = 0.0
             sxp[j] = 0.0
+            stick[j] = 0.0
         for i in range(nx):
             # step from the previous centre (leading edge for i = 0) to centre i
             fc = 1.0 - (2.0 * i + 1.0) / nx                          # element centre / xl
@@ -258,6 +263,7 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
                 t2 = pxh * pxh + pyh * pyh
                 g2 = g * g
                 sc = np.sqrt(g2 / t2) if t2 > g2 else 1.0
+                stick[j] += 0.0 if t2 > g2 else 1.0
                 pxn = pxh * sc
                 pyn = pyh * sc
                 px[j] = pxn
@@ -269,12 +275,17 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
         fx = 0.0
         fy = 0.0
         mz = 0.0
+        adh = 0.0
+        tot = 0.0
         for j in range(ny):
             area = dx[j] * dyk
+            adh += stick[j] * area
+            tot += nx * area
             fx += spx[j] * area
             fy += spy[j] * area
             mz += (sxp[j] - b[k] * t[j] * spx[j]) * area
         Fx[k] = fx
         Fy[k] = fy
         Mz[k] = mz
-    return Fx, Fy, Mz
+        Adh[k] = adh / tot if tot > 0.0 else 0.0
+    return Fx, Fy, Mz, Adh

@@ -536,10 +536,11 @@ class Fastsim(TangentialMethod):
         peak = peak * (continuous / discrete)
         if not want_fields:
             c_ = np.ascontiguousarray
-            Fx, Fy, Mz = _k.fastsim_hertz_batch(
+            Fx, Fy, Mz, adh = _k.fastsim_hertz_batch(
                 c_(a), c_(b), c_(peak), c_(mu), c_(L1, dtype=float), c_(L2, dtype=float),
                 c_(L3, dtype=float), c_(xi), c_(eta), c_(phi), t, half, strip_peak, s_cells,
                 first_order)
+            info["adhesion_fraction"] = adh if not single else float(adh[0])
             f = None
         else:
             Fx, Fy, Mz = (np.empty(n) for _ in range(3))

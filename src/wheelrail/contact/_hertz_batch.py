@@ -1,0 +1,226 @@
+"""Batched wheel–rail contact with Hertzian patches (the fast path of :func:`wheelset_sweep`).
+
+The same model as :func:`~wheelrail.contact.wheelrail.solve_wheelrail` with
+``normal="hertz"`` (candidate points, one ellipse per point, vertical load
+carried in total or by the normal forces), evaluated for all positions at
+once: the rigid poses, the point search, the vertical approach (Newton, one
+row per position), the Hertz ellipses, the creepages and the creep law are
+array operations over all positions and patches. A test checks that it
+agrees with the per-position path.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError, WheelrailError
+from ..normal.hertz import hertz_from_penetration, hertz_kernel
+
+__all__ = ["hertz_sweep"]
+
+_SIDES = ("left", "right")
+_SIGMA = {"left": -1.0, "right": 1.0}
+_TOL = 1e-6      # relative tolerance on the total vertical force (as solve_wheelrail)
+
+
+def _vertical_approach_rows(Q, sep, cosg, d1, valid):
+    """Per-row dz with Σ_k cos γ ((dz cos γ − s)_+ / δ1)^{3/2} = Q (Newton from above)."""
+    big = np.where(valid, sep / cosg, np.inf)
+    k = np.argmin(big, axis=1)
+    r = np.arange(sep.shape[0])
+    dz = (sep[r, k] + d1[r, k] * (Q / cosg[r, k]) ** (2.0 / 3.0)) / cosg[r, k]
+    for _ in range(60):
+        pen = np.where(valid, np.clip(dz[:, None] * cosg - sep, 0.0, None), 0.0)
+        N = (pen / d1) ** 1.5
+        F = np.sum(N * cosg, axis=1) - Q
+        dF = np.sum(1.5 * np.sqrt(pen / d1) / d1 * cosg * cosg, axis=1)
+        step = np.where(dF > 0, F / np.where(dF > 0, dF, 1.0), 0.0)
+        dz = dz - step
+        if np.all(np.abs(F) <= 1e-12 * Q):
+            break
+    return dz
+
+
+def _regularised_B_rows(ws, tr, side, data, pose_y, zc, roll, yaw):
+    """B ≤ 0 replaced by half the normal curvature of the separation over ±1.5 mm (as the
+    elastic model, :func:`wheelrail.geometry.elastic`)."""
+    from ..geometry.contact_search import _gapfun
+    from ..geometry.elastic import _B_SPAN
+
+    B = data["B"].copy()
+    bad = np.isfinite(B) & (B <= 0)
+    if np.any(bad):
+        rows, cols = np.nonzero(bad)
+        s = data["wheel_y"][rows, cols]
+        k = s.size
+        fun = _gapfun(ws, tr, side, np.tile(pose_y[rows], 3), np.tile(zc[rows], 3),
+                      np.tile(roll[rows], 3), np.tile(yaw[rows], 3))
+        d = fun(np.concatenate([s - _B_SPAN, s, s + _B_SPAN]))
+        d2 = (d[:k] - 2 * d[k:2 * k] + d[2 * k:]) / _B_SPAN ** 2
+        B[rows, cols] = 0.5 * d2 * np.cos(data["contact_angle"][rows, cols]) ** 3
+    return B
+
+
+def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, material,
+                tolerance, vertical, max_patches):
+    """All positions at once; returns the arrays of the sweep dataset (see wheelset_sweep)."""
+    from ..api import creep_forces
+    from ..geometry.contact_search import _global_min, _Pose, find_points, solve_rigid
+    from ..geometry.kinematics import creepage_kernel
+    from ..materials import as_material_pair
+
+    pair = as_material_pair(material)
+    n = y.size
+    status = np.full(n, "ok", dtype=object)
+    message = np.full(n, "", dtype=object)
+    zs = {s: np.full(n, np.nan) for s in _SIDES}
+    th = np.array(roll, dtype=float)
+    free = np.isnan(th)
+    ok_rows = np.ones(n, dtype=bool)
+    if free.any():
+        idx = np.nonzero(free)[0]
+        try:
+            zr, tr_, _ = solve_rigid(ws, tr, y[idx], yaw[idx])
+        except WheelrailError:
+            # one bad row must not stop the others: solve the rows one by one
+            zr, tr_ = np.full(idx.size, np.nan), np.full(idx.size, np.nan)
+            for j, i in enumerate(idx):
+                try:
+                    a, b, _ = solve_rigid(ws, tr, y[i:i + 1], yaw[i:i + 1])
+                    zr[j], tr_[j] = a[0], b[0]
+                except WheelrailError as exc:
+                    status[i], message[i] = "error", f"{type(exc).__name__}: {exc}"
+                    ok_rows[i] = False
+        th[idx] = tr_
+        for s in _SIDES:
+            zs[s][idx] = zr
+    if (~free).any():
+        idx = np.nonzero(~free)[0]
+        pose = _Pose(y[idx], np.zeros(idx.size), th[idx], yaw[idx])
+        for s in _SIDES:
+            _, g, _ = _global_min(ws, tr, s, pose, 2e-4, 5)
+            beside = g >= 0.5
+            for i in idx[beside]:
+                status[i], message[i] = "error", (f"InputError: y = {y[i]!r} m: the {s} wheel "
+                                                  "lies entirely beside its rail")
+                ok_rows[i] = False
+            zs[s][idx] = -g
+    rows = np.nonzero(ok_rows)[0]
+    out_patch = {k: np.full((n, 2, max_patches), np.nan) for k in
+                 ("y_rail", "y_wheel", "contact_angle", "xi", "eta", "phi", "Fn", "Fx", "Fs",
+                  "Mz", "p_max", "area", "adhesion_area")}
+    ftrack = np.full((n, 2, 3), np.nan)
+    npatches = np.zeros((n, 2), dtype=int)
+    if rows.size == 0:
+        return out_patch, ftrack, npatches, status, message
+    Omega = motion.angular_velocity(ws.nominal_radius)
+    R = np.inf if motion.roller_radius is None else motion.roller_radius
+    for si, side in enumerate(_SIDES):
+        sig = _SIGMA[side]
+        yr, zr, thr, psr = y[rows], zs[side][rows], th[rows], yaw[rows]
+        pose = _Pose(yr, zr, thr, psr)
+        data, count = find_points(ws, tr, side, pose, tolerance=tolerance)
+        valid = np.isfinite(data["separation"])
+        zc = ws.nominal_radius + zr
+        A = data["A"] + (0.0 if not np.isfinite(R) else 0.5 / R)
+        B = _regularised_B_rows(ws, tr, side, data, yr, zc, thr, psr)
+        convex = valid & (A > 0) & (B > 0)
+        sep = np.where(valid, data["separation"], np.inf)
+        cosg = np.where(valid, np.cos(data["contact_angle"]), 1.0)
+        d1 = np.full(A.shape, np.inf)
+        d1[convex] = hertz_kernel(1.0, A[convex], B[convex], pair.E_star)[3]
+        if z is not None:
+            dz = zr - float(z)
+            Qn = None
+        else:
+            Q = float(loads[si])
+            Qn = np.full(rows.size, Q)
+        # creepages of every candidate point (they do not depend on the load)
+        xi, eta, phi = creepage_kernel(
+            sig, motion.speed, Omega, motion.lateral_velocity, motion.vertical_velocity,
+            motion.yaw_rate, motion.roll_rate, psr[:, None], thr[:, None], data["x"],
+            data["track_y"] - yr[:, None], data["track_z"] - zc[:, None], data["contact_angle"],
+            R, data["track_z"])
+        history = []
+        for outer in range(12):
+            if Qn is not None:
+                dz = _vertical_approach_rows(Qn, sep, cosg, d1, convex)
+            pen = np.where(valid, np.clip(dz[:, None] * cosg - sep, 0.0, None), 0.0)
+            act = pen > 0
+            bad = act & ~convex
+            if bad.any():
+                for r in np.nonzero(bad.any(axis=1))[0]:
+                    i = rows[r]
+                    status[i], message[i] = "error", (
+                        f"InputError: {side} wheel: a penetrating contact point is not convex "
+                        "(Hertz cannot represent it; use normal='bem')")
+                act &= ~bad
+            hc = hertz_from_penetration(pen[act], A[act], B[act], pair)
+            last = (Qn is None or vertical == "normal" or outer == 11)
+            opts = dict(topts)
+            cf = creep_forces(hc, np.stack([xi[act], eta[act], phi[act]], axis=1), mu,
+                              method=tangential, **opts)
+            Fx, Fs, Mz = (np.zeros(A.shape) for _ in range(3))
+            Fx[act], Fs[act], Mz[act] = cf.Fx, cf.Fy, cf.Mz
+            Fn = np.zeros(A.shape)
+            Fn[act] = hc.load
+            g = np.where(valid, data["contact_angle"], 0.0)
+            Fz = np.sum(sig * Fs * np.sin(g) + Fn * np.cos(g), axis=1)
+            if last:
+                break
+            err = Fz - Q
+            if np.all(np.abs(err) <= _TOL * Q):
+                break
+            history.append((Qn.copy(), Fz))
+            if len(history) == 1:
+                Qn = Qn - err
+            else:
+                (q0, f0), (q1, f1) = history[-2:]
+                dq = q1 - q0
+                slope = np.where(np.abs(dq) > 0, (f1 - f0) / np.where(dq != 0, dq, 1.0), 1.0)
+                slope = np.where(slope > 0.05, slope, 1.0)
+                Qn = q1 + (Q - f1) / slope
+            Qn = np.maximum(Qn, 1e-3 * Q)
+        if Qn is not None and vertical == "total":
+            bad_rows = np.abs(Fz - Q) > _TOL * Q
+            for r in np.nonzero(bad_rows)[0]:
+                i = rows[r]
+                if status[i] == "ok":
+                    status[i], message[i] = "error", (
+                        f"ConvergenceError: {side} wheel: the total vertical force {Fz[r]!r} N "
+                        f"did not reach {Q!r} N")
+        adh = np.full(A.shape, np.nan)
+        if "adhesion_fraction" in cf.info:  # FASTSIM's batch kernel counts sticking elements
+            adh[act] = np.asarray(cf.info["adhesion_fraction"]) * np.asarray(hc.area)
+        Ft = np.stack([Fx.sum(axis=1),
+                       np.sum(Fs * np.cos(g) - sig * Fn * np.sin(g), axis=1), Fz], axis=1)
+        a_arr, b_arr = np.zeros(A.shape), np.zeros(A.shape)
+        a_arr[act], b_arr[act] = hc.a, hc.b
+        p0 = np.zeros(A.shape)
+        p0[act] = hc.p0
+        order = np.argsort(-Fn, axis=1, kind="stable")[:, :max_patches]
+        take = lambda v: np.take_along_axis(v, order, axis=1)  # noqa: E731
+        keep = take(act)
+        fields = {"y_rail": data["rail_y"], "y_wheel": data["wheel_y"],
+                  "contact_angle": data["contact_angle"], "xi": xi, "eta": eta, "phi": phi,
+                  "Fn": Fn, "Fx": Fx, "Fs": Fs, "Mz": Mz, "p_max": p0,
+                  "area": np.pi * a_arr * b_arr, "adhesion_area": adh}
+        m = min(max_patches, order.shape[1])
+        for k, v in fields.items():
+            vals = np.where(keep, take(np.broadcast_to(v, A.shape)), np.nan)
+            out_patch[k][rows, si, :m] = vals[:, :m]
+        npatches[rows, si] = act.sum(axis=1)
+        ftrack[rows, si] = Ft
+    for i in range(n):
+        if status[i] != "ok":
+            ftrack[i] = np.nan
+            npatches[i] = 0
+            for v in out_patch.values():
+                v[i] = np.nan
+    return out_patch, ftrack, npatches, status, message
+
+
+def check_vertical(vertical):
+    if vertical not in ("total", "normal"):
+        raise InputError(f"vertical must be 'total' or 'normal', got {vertical!r}")
+    return vertical
