@@ -157,6 +157,13 @@ class PatchResult:
         return float(self.forces.Mz)
 
     @property
+    def Mz_reference(self) -> float:
+        """Spin moment about the patch's reference point (its contact frame / strip origin)
+        [N·m]: Mz + x_c Fs − y_c Fx with (x_c, y_c) the centre of pressure."""
+        xc, yc = self.patch.centre
+        return self.Mz + xc * self.Fs - yc * self.Fx
+
+    @property
     def p_max(self) -> float:
         return self.patch.p_max
 

@@ -68,6 +68,7 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
     from ..geometry.contact_search import _global_min, _Pose, find_points, solve_rigid
     from ..geometry.kinematics import creepage_kernel
     from ..materials import as_material_pair
+    from .wheelrail import axle_offset_x
 
     pair = as_material_pair(material)
     n = y.size
@@ -138,7 +139,8 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
         # creepages of every candidate point (they do not depend on the load)
         xi, eta, phi = creepage_kernel(
             sig, motion.speed, Omega, motion.lateral_velocity, motion.vertical_velocity,
-            motion.yaw_rate, motion.roll_rate, psr[:, None], thr[:, None], data["x"],
+            motion.yaw_rate, motion.roll_rate, psr[:, None], thr[:, None],
+            axle_offset_x(data["x"], data["wheel_y"], sig, ws.e_tape, thr[:, None], psr[:, None]),
             data["track_y"] - yr[:, None], data["track_z"] - zc[:, None], data["contact_angle"],
             R, data["track_z"])
         history = []

@@ -173,17 +173,53 @@ class WheelProblem:
     pose: dict
     wheelset: object = None
     track: object = None
+    cache: dict = field(default_factory=dict, repr=False)
 
-    def separation(self, k: int, width: float = 0.04, n: int = 801):
-        """Profile separation around candidate point ``k`` in its contact plane
-        (:func:`wheelrail.geometry.separation.separation_at`)."""
+    def separation(self, k, width: float = 0.04, n: int = 801):
+        """Profile separation around candidate point ``k`` (or a :class:`ContactFrame`) in its
+        contact plane (:func:`wheelrail.geometry.separation.separation_at`); cached."""
         from ..geometry.separation import separation_at
 
-        p = self.points
-        return separation_at(self.wheelset, self.track, self.side, y=self.pose["y"],
-                             z=self.pose["z"], roll=self.pose["roll"], yaw=self.pose["yaw"],
-                             wheel_y=float(p.wheel_y[k]), track_y=float(p.track_y[k]),
-                             contact_angle=float(p.contact_angle[k]), width=width, n=n, point=k)
+        f = self.frames[k] if not isinstance(k, ContactFrame) else k
+        key = ("separation", f, width, n)
+        if key not in self.cache:
+            self.cache[key] = separation_at(
+                self.wheelset, self.track, self.side, y=self.pose["y"], z=self.pose["z"],
+                roll=self.pose["roll"], yaw=self.pose["yaw"], wheel_y=f.wheel_y,
+                track_y=f.track_y, contact_angle=f.contact_angle, width=width, n=n,
+                point=k if not isinstance(k, ContactFrame) else -1)
+        return self.cache[key]
+
+    def frame_at(self, k: int, eta: float, weights=None, eta_samples=None) -> ContactFrame:
+        """Contact frame at lateral position ``eta`` [m] of the contact plane of point ``k``.
+
+        ``eta`` runs along the plane's tangent towards the field side (as
+        :class:`~wheelrail.geometry.separation.Separation`). The contact angle
+        is the rail's surface angle there, or, with ``weights`` over
+        ``eta_samples``, the weighted mean surface angle (CONTACT's planar
+        contact reference, Vollebregt 2022).
+        """
+        f = self.frames[k]
+        sig = _SIGMA[self.side]
+        rc = self.track.curve(self.side)
+        u_r = sig * f.track_y
+        g = f.contact_angle
+
+        def rail_at(e):
+            u = u_r + np.asarray(e, dtype=float) * np.cos(g)
+            z, z1 = rc.eval(u, 1)
+            return u, z, np.arctan(z1)
+
+        u_c, z_c, ang = rail_at(eta)
+        if weights is not None:
+            _, _, angs = rail_at(eta_samples)
+            ang = float(np.sum(weights * angs) / np.sum(weights))
+        pl = self.track.placement(self.side)
+        rail_y, _ = pl.to_profile_frame(u_c, z_c)
+        sep = self.separation(k)
+        r = float(np.interp(eta, sep.eta, sep.wheel_radius))
+        return ContactFrame(self.side, f.wheel_y + float(u_c - u_r), float(rail_y),
+                            float(sig * u_c), float(z_c), f.x, float(ang), r)
 
 
 @dataclass(frozen=True)
@@ -279,12 +315,24 @@ def wheel_problem(position, side, roll, z, roller_radius=None) -> WheelProblem:
 
 
 # --------------------------------------------------------------------------- solve
+def axle_offset_x(x, wheel_y, sigma, e_tape, roll, yaw):
+    """Longitudinal position of a contact point relative to the axle centre [m].
+
+    ``x`` is the offset ahead of the point's wheel circle centre
+    (:data:`wheelrail.geometry.contact_search.POINT_FIELDS`); under yaw the
+    circle centre itself lies −a cos θ sin ψ ahead of the axle centre, with
+    a = σ (e_tape + wheel_y) its position along the axle.
+    """
+    return x - sigma * (e_tape + wheel_y) * np.cos(roll) * np.sin(yaw)
+
+
 def _creepage_at(frame, sig, motion, Omega, position, roll, zc, R):
     from ..geometry.kinematics import creepage_kernel
 
+    dx = axle_offset_x(frame.x, frame.wheel_y, sig, position.wheelset.e_tape, roll, position.yaw)
     return tuple(float(v) for v in creepage_kernel(
         sig, motion.speed, Omega, motion.lateral_velocity, motion.vertical_velocity,
-        motion.yaw_rate, motion.roll_rate, position.yaw, roll, frame.x,
+        motion.yaw_rate, motion.roll_rate, position.yaw, roll, dx,
         frame.track_y - position.y, frame.track_z - zc, frame.contact_angle,
         np.inf if R is None else R, frame.track_z))
 

@@ -37,14 +37,6 @@ def _groups(pts, sigma, group_angle, width):
     return groups
 
 
-def _eta_of(pts, sigma, k, r):
-    """Contact-plane y (to the right) of point k in the contact plane of point r [m]."""
-    g = pts.contact_angle[r]
-    du = sigma * (pts.track_y[k] - pts.track_y[r])
-    dz = pts.track_z[k] - pts.track_z[r]
-    return float(sigma * (du * math.cos(g) + dz * math.sin(g)))
-
-
 def _gap_function(sep, roller_radius, sigma):
     """h(x, y) in the contact frame (y to the right; the separation's η points to the field
     side, i.e. y = σ η)."""
@@ -91,15 +83,22 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     setups = []
     for g in groups:
         r = g[0]
-        s = problem.separation(r, width)
-        gap = _gap_function(s, problem.roller_radius, sigma)
+        s0 = problem.separation(r, width)
         delta_est = dz_est * cosg[r]
-        if not np.min(s.f) < delta_est:
+        pen0 = np.clip(delta_est - s0.f, 0.0, None)
+        if not pen0.any():
             continue             # this group does not reach contact at the estimated approach
+        # contact reference: interpenetration-weighted centre and mean surface angle of the
+        # group's rigid interpenetration (the planar contact approach of CONTACT)
+        eta_c = float(np.sum(pen0 * s0.eta) / np.sum(pen0))
+        frame = problem.frame_at(r, eta_c, weights=pen0, eta_samples=s0.eta)
+        s = problem.separation(frame, width)
+        gap = _gap_function(s, problem.roller_radius, sigma)
+        c_ref = math.cos(frame.contact_angle)
+        delta_est = dz_est * c_ref
         ylim = sorted((sigma * float(s.eta[0]), sigma * float(s.eta[-1])))
         search = (-_SEARCH_X, _SEARCH_X, ylim[0], ylim[1])
-        box = _rigid_box(gap, max(delta_est * 1.3, delta_est + 2e-6), search, 0.0,
-                         _eta_of(pts, sigma, r, r))
+        box = _rigid_box(gap, max(delta_est * 1.3, delta_est + 2e-6), search, 0.0, 0.0)
         bounds = _scaled(box, margin, search)
         if element_size is None:
             n = _elements_for(max(bounds[1] - bounds[0], bounds[3] - bounds[2]), elements, None)
@@ -107,7 +106,7 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
         else:
             grid = _square_grid(bounds, element_size)
         setups.append({"ref": r, "members": g, "gap": gap, "grid": grid, "search": search,
-                       "cos": float(cosg[r]), "sep": s})
+                       "cos": c_ref, "sep": s, "frame": frame})
     if not setups:
         raise NoContactError(f"{problem.side} wheel: no contact at the estimated vertical "
                              f"approach {dz_est!r} m")
@@ -160,20 +159,12 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     for st, sol in zip(setups, sols):
         if sol is None:
             continue
-        r = st["ref"]
-        members = st["members"]
-        etas = [_eta_of(pts, sigma, k, r) for k in members]
         from ._gap import contact_patches
+
         labels, _ = contact_patches(sol)
-        frames, origins = [], []
-        for lab in range(1, int(labels.max()) + 1):
-            m = labels == lab
-            w = sol.pressure * m
-            yc = float((w * sol.grid.Y).sum() / w.sum())
-            k = members[int(np.argmin([abs(e - yc) for e in etas]))]
-            frames.append(problem.frames[k])
-            origins.append((0.0, etas[members.index(k)]))
-        patches.extend(_patches_of(sol, pair, cells, frames=frames, origins=origins,
-                                   A=float(A[r]), B=float(B[r])))
+        nlab = int(labels.max())
+        r = st["ref"]
+        patches.extend(_patches_of(sol, pair, cells, frames=[st["frame"]] * nlab,
+                                   origins=[(0.0, 0.0)] * nlab, A=float(A[r]), B=float(B[r])))
     return tuple(patches), {"approach": float(dz), "iterations": iterations,
                             "groups": len(setups)}
