@@ -73,10 +73,18 @@ def manchester_a22(inputs, wheel_profile, rail_profile) -> list[ManchesterCase]:
 
     path = Path(inputs)
     try:
-        rows = np.loadtxt(path, delimiter=",", comments="#", dtype=str, ndmin=2)
+        lines = path.read_text(encoding="utf-8").splitlines()
     except OSError as exc:
         raise InputError(f"cannot read the Manchester input table {str(path)!r}: {exc}") from None
-    data = np.array([r for r in rows if not r[0].strip().startswith("case")], dtype=float)
+    body = [ln for ln in lines if ln.strip() and not ln.startswith("#")
+            and not ln.startswith("case")]
+    try:
+        data = np.array([[float(v) for v in ln.split(",")] for ln in body])
+    except ValueError as exc:
+        raise InputError(f"{str(path)!r}: not a Manchester input table ({exc})") from None
+    if data.ndim != 2 or data.shape[1] != 7:
+        raise InputError(f"{str(path)!r}: expected 7 columns (case, y_mm, yaw_rad, roll_rad, "
+                         "Fz_per_wheel_N, V_mm_s, omega_rad_s)")
     ws = Wheelset(wheel=profiles.read(wheel_profile), nominal_radius=0.46, flange_back=1.360)
     tr = Track(rail=profiles.read(rail_profile), gauge=1.435, inclination=1 / 40, canted=True,
                gauge_height=0.014)
