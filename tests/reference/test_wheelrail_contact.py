@@ -95,12 +95,14 @@ def test_centred_wheelset_is_mirror_symmetric_and_carries_the_load(s1002, normal
     res = wr.solve(wp, motion=wr.Motion(speed=20.0, omega=20.0 / 0.46 * 1.002), mu=0.3,
                    normal=normal, tangential=tangential, **opts)
     L, R = res.force_track["left"], res.force_track["right"]
-    assert L[2] == pytest.approx(10e3, rel=1e-5) and R[2] == pytest.approx(10e3, rel=1e-5)
-    assert L[0] == pytest.approx(R[0], rel=1e-6, abs=1e-6)
-    assert L[1] == pytest.approx(-R[1], rel=1e-6, abs=1e-6)
+    assert L[2] == pytest.approx(10e3, rel=2e-5) and R[2] == pytest.approx(10e3, rel=2e-5)
+    # mirror images up to the solvers' tolerances (vertical load 1e-5, BEM pressure 1e-8)
+    assert L[0] == pytest.approx(R[0], rel=1e-4, abs=1e-6)
+    assert L[1] == pytest.approx(-R[1], rel=1e-4, abs=1e-6)
     for pl, pr in zip(res.side("left"), res.side("right")):
-        assert pl.phi == pytest.approx(-pr.phi) and pl.Fs == pytest.approx(-pr.Fs, abs=1e-6)
-        assert pl.Fn == pytest.approx(pr.Fn)
+        assert pl.phi == pytest.approx(-pr.phi, rel=1e-9)
+        assert pl.Fs == pytest.approx(-pr.Fs, rel=1e-4, abs=1e-6)
+        assert pl.Fn == pytest.approx(pr.Fn, rel=1e-4)
     assert res.status in (wr.Status.CONVERGED, wr.Status.FULL_SLIP)
 
 
@@ -110,7 +112,7 @@ def test_vertical_normal_lets_the_normal_forces_carry_the_load(s1002):
     m = wr.Motion(speed=20.0)
     tot = wr.solve(wp, motion=m, mu=0.3)
     nor = wr.solve(wp, motion=m, mu=0.3, vertical="normal")
-    assert tot.force_track["right"][2] == pytest.approx(10e3, rel=1e-5)
+    assert tot.force_track["right"][2] == pytest.approx(10e3, rel=2e-5)
     fz_normal = sum(p.Fn * np.cos(p.contact_angle) for p in nor.side("right"))
     assert fz_normal == pytest.approx(10e3, rel=1e-6)
     # flange contact: the creep forces carry a large share of the vertical load
@@ -234,7 +236,7 @@ def test_manchester_a22_against_contact(case):
         # resolved with the reference angle: within 1.5 % of the vertical load (the reference
         # angle of a wide conformal patch differs by up to 0.01 rad from CONTACT's)
         assert res.force_track[side][1] == pytest.approx(-float(r["FY_TR_N"]), abs=150.0)
-        assert res.force_track[side][2] == pytest.approx(1e4, rel=1e-5)
+        assert res.force_track[side][2] == pytest.approx(1e4, rel=2e-5)
 
 
 def test_no_contact_error_is_clear():
@@ -246,3 +248,33 @@ def test_no_contact_error_is_clear():
         wr.solve(wr.GapProblem(lambda x, y: x**2 + y**2 + 1e-3, wr.STEEL, penetration=1e-4),
                  creepage=(0, 0, 0), mu=0.3, normal="bem")
     assert hc.p0 > 0
+
+
+def test_gap_problem_two_bumps_bem_gives_two_patches_hertz_one():
+    """A gap with two separated minima: BEM finds both patches (interaction included), Hertz
+    only the ellipse at the global minimum (its documented limitation)."""
+    L = 0.012
+
+    def gap(x, y):
+        return np.minimum(x**2 + 2 * (y - L)**2, x**2 + 2 * (y + L)**2 + 2e-6)
+
+    prob = wr.GapProblem(gap, wr.STEEL, penetration=2.5e-5, search=(-0.02, 0.02, -0.03, 0.03))
+    b = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="bem", tangential="fastsim",
+                 elements=120)
+    assert len(b.patches) == 2
+    big, small = sorted(b.patches, key=lambda p: -p.Fn)
+    # reference: two Hertz contacts, each lowered by the far-field (Boussinesq) displacement
+    # of the other's load, u = F / (pi E* d) (Johnson 1985, eq. 3.20)
+    E_star, d = wr.MaterialPair.same(wr.STEEL).E_star, 2 * L
+    F = [0.0, 0.0]
+    for _ in range(50):
+        F = [float(wr.hertz_from_penetration(delta - F[1 - i] / (np.pi * E_star * d), 1.0, 2.0,
+                                             wr.STEEL).load)
+             for i, delta in enumerate((2.5e-5, 2.3e-5))]
+    assert big.Fn == pytest.approx(F[0], rel=0.02)
+    assert small.Fn == pytest.approx(F[1], rel=0.02)
+    # without the interaction the loads would be 6-7 % higher: the test sees it
+    assert big.Fn < 0.96 * float(wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL).load)
+    h = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="hertz", tangential="fastsim")
+    ref = wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL)
+    assert len(h.patches) == 1 and h.Fn == pytest.approx(float(ref.load), rel=1e-3)

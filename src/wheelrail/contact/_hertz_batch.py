@@ -20,7 +20,7 @@ __all__ = ["hertz_sweep"]
 
 _SIDES = ("left", "right")
 _SIGMA = {"left": -1.0, "right": 1.0}
-_TOL = 1e-6      # relative tolerance on the total vertical force (as solve_wheelrail)
+_TOL = 1e-5      # relative tolerance on the total vertical force (as solve_wheelrail)
 
 
 def _vertical_approach_rows(Q, sep, cosg, d1, valid):

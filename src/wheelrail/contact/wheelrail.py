@@ -58,7 +58,7 @@ __all__ = ["WheelRailPosition", "WheelProblem", "WheelRailResult", "solve_wheelr
 SIDES = ("left", "right")
 _SIGMA = {"left": -1.0, "right": 1.0}
 _MAX_VERTICAL = 12      # passes of the normal/tangential loop for the total vertical load
-_VERTICAL_TOL = 1e-6     # relative tolerance on the total vertical force
+_VERTICAL_TOL = 1e-5     # relative tolerance on the total vertical force
 
 
 @dataclass(frozen=True, eq=False)
@@ -358,7 +358,7 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
         What carries the prescribed vertical load: the total vertical force
         on the wheel, creep forces included (default; the normal problem is
         re-solved with the load corrected by the creep forces' vertical
-        component until the two agree within 1e-6 Q), or the normal forces
+        component until the two agree within 1e-5 Q), or the normal forces
         alone (Σ Fn cos γ = Q; one pass).
 
     Returns

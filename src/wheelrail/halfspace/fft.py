@@ -25,7 +25,7 @@ from ..errors import InputError
 from ..materials import as_material_pair
 from .influence import influence_kernel
 
-__all__ = ["ConvolutionOperator", "InfluenceOperator"]
+__all__ = ["ConvolutionOperator", "InfluenceOperator", "influence_operator"]
 
 
 def _fft_shape(nx: int, ny: int) -> tuple[int, int]:
@@ -267,3 +267,14 @@ class InfluenceOperator:
         return (f"InfluenceOperator(grid={self.grid.nx}x{self.grid.ny}, G={self.materials.G:.4g}, "
                 f"nu={self.materials.nu:.4g}, K={self.materials.K:.4g})")
 
+
+def influence_operator(grid, materials) -> "InfluenceOperator":
+    """The :class:`InfluenceOperator` of ``grid`` (shared: same-sized grids reuse one).
+
+    The operator depends only on element size and counts and the materials;
+    it is immutable apart from its lazily built block transforms.
+    """
+    from ._memo import grid_key, memo
+
+    pair = as_material_pair(materials)
+    return memo(("operator",) + grid_key(grid, pair), lambda: InfluenceOperator(grid, pair))

@@ -91,6 +91,7 @@ from ..errors import ConvergenceError, InputError, NoContactError
 from ..materials import as_material_pair
 from .fft import InfluenceOperator, _fft_shape, _kernel_transform
 from .grid import Grid
+from ._memo import grid_key, memo
 from .influence import influence_kernel
 
 __all__ = [
@@ -370,11 +371,23 @@ def _rolling_and_influence_kernels(grid: Grid, materials):
     Both from one influence kernel of the grid one element longer (``C`` is its
     central part, offsets ``−(nx−1) … nx−1``).
     """
-    ext = Grid(grid.x0, grid.y0, grid.dx, grid.dy, grid.nx + 1, grid.ny)
-    Ce = influence_kernel(ext, materials)
-    nx = grid.nx
-    C = Ce[:, :, 1:2 * nx, :]
-    return (C - Ce[:, :, 2:2 * nx + 1, :]) / grid.dx, C
+    pair = as_material_pair(materials)
+
+    def build():
+        ext = Grid(grid.x0, grid.y0, grid.dx, grid.dy, grid.nx + 1, grid.ny)
+        Ce = influence_kernel(ext, pair)
+        nx = grid.nx
+        C = Ce[:, :, 1:2 * nx, :]
+        M = (C - Ce[:, :, 2:2 * nx + 1, :]) / grid.dx
+        for a in (M, C):
+            a.setflags(write=False)
+        return M, C
+    return memo(("rolling",) + grid_key(grid, pair), build)
+
+
+def _block_convolution(grid, pair, which, kernel):
+    """The :class:`_BlockConvolution` of a kernel block of ``grid`` (kept for reuse)."""
+    return memo(("block", which) + grid_key(grid, pair), lambda: _BlockConvolution(kernel))
 
 
 # --------------------------------------------------------------------------
@@ -749,9 +762,9 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
     xi, eta, phi = (float(v) for v in cr)
     pair = as_material_pair(materials)
     R, C = _rolling_and_influence_kernels(grid, pair)
-    conv = _BlockConvolution(R[:2, :2])
-    conv_n = _BlockConvolution(R[:2, 2:3]) if pair.K else None
-    conv_u = _BlockConvolution(C[:2, :])
+    conv = _block_convolution(grid, pair, "R_tt", R[:2, :2])
+    conv_n = _block_convolution(grid, pair, "R_tn", R[:2, 2:3]) if pair.K else None
+    conv_u = _block_convolution(grid, pair, "C_t", C[:2, :])
     X, Y = grid.X, grid.Y
     b = np.stack((xi - phi * Y, eta + phi * X))
     if conv_n is not None:
@@ -813,8 +826,8 @@ def solve_shift(grid, pressure, materials, mu, *, shift=None, force=None, tol=1e
         raise InputError("give exactly one of shift=(Wx, Wy) [m] or force=(Fx, Fy) [N]")
     pair = as_material_pair(materials)
     C = influence_kernel(grid, pair)
-    conv = _BlockConvolution(C[:2, :2])
-    conv_u = _BlockConvolution(C[:2, :])
+    conv = _block_convolution(grid, pair, "C_tt", C[:2, :2])
+    conv_u = _block_convolution(grid, pair, "C_t", C[:2, :])
     base = conv_u(np.concatenate((np.zeros((2,) + grid.shape), pressure[None])))
     g = mu * pressure
     dA = grid.element_area

@@ -58,27 +58,9 @@ def _gap_function(sep, roller_radius, sigma):
     return gap
 
 
-def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, cells, group_angle,
-                width):
-    """Patches of one wheel (see :class:`~wheelrail.normal.bem.Bem`); returns (patches, info)."""
-    pts = problem.points
-    sigma = 1.0 if problem.side == "right" else -1.0
-    pair = problem.materials
-    sep = np.asarray(pts.separation, dtype=float)
-    cosg = np.cos(np.asarray(pts.contact_angle, dtype=float))
-    A = np.asarray(problem.A, dtype=float)
-    B = np.asarray(problem.B, dtype=float)
-    ok = (A > 0) & (B > 0)
-    # Hertz estimate of the vertical approach: sizes the windows
-    d1 = np.full(A.shape, np.inf)
-    d1[ok] = hertz_kernel(1.0, A[ok], B[ok], pair.E_star)[3]
-    if problem.approach is not None:
-        dz_est = float(problem.approach)
-    elif ok.any():
-        dz_est = _vertical_approach(float(problem.vertical_load), sep[ok], cosg[ok], d1[ok])
-    else:   # conformal everywhere: a rough estimate, the window enlargement corrects it
-        dz_est = float(sep.min() / cosg[np.argmin(sep)]) + 5e-5
-
+def _setups(problem, pts, sigma, cosg, dz_est, elements, element_size, margin, group_angle,
+            width):
+    """Grid, gap and contact reference of every group of candidate points that touches."""
     groups = _groups(pts, sigma, group_angle, width)
     setups = []
     for g in groups:
@@ -107,6 +89,38 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
             grid = _square_grid(bounds, element_size)
         setups.append({"ref": r, "members": g, "gap": gap, "grid": grid, "search": search,
                        "cos": c_ref, "sep": s, "frame": frame})
+    return setups
+
+
+def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, cells, group_angle,
+                width):
+    """Patches of one wheel (see :class:`~wheelrail.normal.bem.Bem`); returns (patches, info)."""
+    pts = problem.points
+    sigma = 1.0 if problem.side == "right" else -1.0
+    pair = problem.materials
+    sep = np.asarray(pts.separation, dtype=float)
+    cosg = np.cos(np.asarray(pts.contact_angle, dtype=float))
+    A = np.asarray(problem.A, dtype=float)
+    B = np.asarray(problem.B, dtype=float)
+    ok = (A > 0) & (B > 0)
+    # Hertz estimate of the vertical approach: sizes the windows
+    d1 = np.full(A.shape, np.inf)
+    d1[ok] = hertz_kernel(1.0, A[ok], B[ok], pair.E_star)[3]
+    if problem.approach is not None:
+        dz_est = float(problem.approach)
+    elif ok.any():
+        dz_est = _vertical_approach(float(problem.vertical_load), sep[ok], cosg[ok], d1[ok])
+    else:   # conformal everywhere: a rough estimate, the window enlargement corrects it
+        dz_est = float(sep.min() / cosg[np.argmin(sep)]) + 5e-5
+
+    key = ("bem_setups", elements, element_size, margin, group_angle, width)
+    setups = problem.cache.get(key)
+    if setups is None:
+        setups = _setups(problem, pts, sigma, cosg, dz_est, elements, element_size, margin,
+                         group_angle, width)
+        # kept for the next pass of the vertical-load loop (same pose): windows, reference
+        # points and the last pressure (warm start)
+        problem.cache[key] = setups
     if not setups:
         raise NoContactError(f"{problem.side} wheel: no contact at the estimated vertical "
                              f"approach {dz_est!r} m")
@@ -117,8 +131,10 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
             kw = {"load": load / st["cos"]} if load is not None else {"penetration": dz * st["cos"]}
             try:
                 sol, grid = _solve_enlarging(st["gap"], st["grid"], pair, st["search"], tol=tol,
-                                             max_enlarge=max_enlarge, square=True, **kw)
+                                             max_enlarge=max_enlarge, square=True,
+                                             initial=st.get("pressure"), **kw)
                 st["grid"] = grid
+                st["pressure"] = sol.pressure
             except NoContactError:
                 sol = None
             sols.append(sol)

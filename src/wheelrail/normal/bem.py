@@ -41,7 +41,7 @@ import numpy as np
 
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
-from ..halfspace.fft import InfluenceOperator
+from ..halfspace.fft import InfluenceOperator, influence_operator
 from ..halfspace.grid import Grid
 from ..materials import MaterialPair, as_material_pair
 from ..results import Status, to_jsonable
@@ -331,7 +331,8 @@ def _initial_pressure(apply, h, dA, load, penetration):
 
 
 def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol: float = 1e-8,
-                 maxiter: int = 2000, on_fail: str = "raise", operator=None) -> NormalSolution:
+                 maxiter: int = 2000, on_fail: str = "raise", operator=None,
+                 initial=None) -> NormalSolution:
     """Solve the normal contact problem on a grid (non-Hertzian, half-space).
 
     Parameters
@@ -357,6 +358,8 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     operator : InfluenceOperator, optional
         Reuse a prebuilt operator of the same grid (e.g. shared with a
         tangential solver).
+    initial : ndarray, shape (nx, ny), optional
+        Starting pressure [Pa] (e.g. the solution of a nearby load).
 
     Returns
     -------
@@ -411,14 +414,18 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
                 f"no contact: the undeformed gap minus the penetration is >= 0 everywhere "
                 f"(min(gap) = {h.min()!r} m, penetration = {penetration!r} m)")
     if operator is None:
-        operator = InfluenceOperator(grid, pair)
+        operator = influence_operator(grid, pair)
     elif not isinstance(operator, InfluenceOperator) or operator.grid != grid:
         raise InputError("operator must be an InfluenceOperator built on the same grid")
     block = operator.block(2, 2)
     apply = block.apply
     dA = grid.element_area
 
+    p_init = None if initial is None else np.clip(grid.check_field("initial", initial), 0, None)
+    if p_init is not None and not p_init.any():
+        p_init = None
     p, delta, iterations, change = polonsky_keer(apply, h, dA, load=load, penetration=penetration,
+                                                 p_init=p_init,
                                                  tol=tol, maxiter=maxiter)
     converged = change < tol
     if not converged:
@@ -609,7 +616,7 @@ def _square_grid(bounds, element_size) -> Grid:
 
 
 def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=None, tol=1e-8,
-                     max_enlarge=4, square=None):
+                     max_enlarge=4, square=None, initial=None):
     """Normal solve on ``grid``; move touched window edges out while the contact is truncated.
 
     ``square``: keep square elements of this size when enlarging (else the element count).
@@ -620,7 +627,9 @@ def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=Non
         h0 = np.array(_evaluate(gap, grid.X, grid.Y))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ContactTruncatedWarning)
-            sol = solve_normal(grid, h0, materials, load=load, penetration=penetration, tol=tol)
+            start = initial if initial is not None and np.shape(initial) == grid.shape else None
+            sol = solve_normal(grid, h0, materials, load=load, penetration=penetration, tol=tol,
+                               initial=start)
         c = sol.contact
         if not sol.truncated or it == max_enlarge:
             break

@@ -20,7 +20,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -543,7 +543,7 @@ class Hertz(NormalMethod):
         patch = ContactPatch.from_hertz(hc, strips=strips, cells=cells)
         info = {"centre": (xm, ym), "gap_minimum": hmin,
                 "note": "principal axes of the gap assumed along x and y"}
-        return (type(patch)(**{**patch.__dict__, "info": info}),)
+        return (replace(patch, info=info),)
 
     def from_wheel(self, problem, strips=40, cells=40):
         from ..contact.patch import ContactPatch
