@@ -69,13 +69,18 @@ def __getattr__(name):
 
 
 def citation(method: str | None = None) -> list[str]:
-    """References of the implemented methods (all, or one by name)."""
-    from .api import METHODS, get_method
+    """References of the implemented methods (all, or one normal or tangential method by name)."""
+    from .api import METHODS, NORMAL_METHODS, get_method, get_normal_method, method_key
 
-    names = [method] if method else list(METHODS)
+    if method is None:
+        impls = [get_normal_method(n) for n in NORMAL_METHODS] + [get_method(n) for n in METHODS]
+    elif method_key(method) is not None:
+        impls = [get_method(method)]
+    else:
+        impls = [get_normal_method(method)]
     refs: list[str] = []
-    for n in names:
-        refs.extend(r for r in get_method(n).references if r not in refs)
+    for impl in impls:
+        refs.extend(r for r in impl.references if r not in refs)
     return refs
 
 

@@ -28,6 +28,15 @@ which matters only when kinematics (creepages from wheelset motion) are
 derived from it. Profile frames are described in :mod:`wheelrail.profiles.core`.
 The user documentation of all conventions is ``docs/conventions.md``.
 
+Wheelset motion (:mod:`wheelrail.geometry.kinematics`)
+-----------------------------------------------------
+``Motion.omega`` is the angular velocity about the axle, positive when the
+wheelset rolls forwards. The contact frame of a wheel–rail patch has its y
+axis to the right on both wheels, so a conical tread of contact angle γ has
+spin −sin γ / r on the right wheel and +sin γ / r on the left one. Track-frame
+forces on a wheel (σ = +1 right, −1 left): F_y = Σ(Fs cos γ − σ Fn sin γ),
+F_z = Σ(σ Fs sin γ + Fn cos γ).
+
 Bodies and sign of forces
 -------------------------
 Body 1 is the wheel (upper body), body 2 the rail (lower body). Tangential

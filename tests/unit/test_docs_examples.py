@@ -142,7 +142,18 @@ def check_exact_halfspace(out, v):
     assert exact[-1e-2] == pytest.approx(mu * Fn, rel=5e-3)           # full slip: mu Fn
 
 
+def check_wheelset_on_track(out, v):
+    # each wheel carries its prescribed 10 kN in total (creep forces included)
+    assert v["hertz_Fz_right"] == pytest.approx(10e3, rel=1e-4)
+    assert v["bem_Fz_right"] == pytest.approx(10e3, rel=1e-4)
+    # flange contact on the right wheel pushes it to the left (track frame, y right)
+    assert v["hertz_Fy_right"] < -1e3 and v["bem_Fy_right"] < -1e3
+    assert v["hertz_Fy_right"] == pytest.approx(v["bem_Fy_right"], rel=0.1)
+    assert v["sweep_ok"] == 81 and v["sweep_max_patches"] >= 2   # two-point contact is seen
+
+
 CHECKS = {
+    "wheelset_on_track.py": check_wheelset_on_track,
     "hertz_basics.py": check_hertz_basics,
     "creep_curves.py": check_creep_curves,
     "batch_vehicle_dynamics.py": check_batch_vehicle_dynamics,
