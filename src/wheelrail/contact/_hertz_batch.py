@@ -175,7 +175,7 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
                 break
             history.append((Qn.copy(), Fz))
             if len(history) == 1:
-                Qn = Qn - err
+                Qn = np.where(Fz > 0, Qn * Q / np.where(Fz > 0, Fz, 1.0), Qn - err)
             else:
                 (q0, f0), (q1, f1) = history[-2:]
                 dq = q1 - q0

@@ -390,12 +390,13 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
         sig = _SIGMA[side]
         Q = prob.vertical_load
         history = []            # (normal-load target, total vertical force)
+        forces = None
         for outer in range(1, _MAX_VERTICAL + 1):
             found, info = nimpl.from_wheel(prob, **nopts)
             if not found:
                 raise InputError(f"no contact on the {side} wheel at y = {position.y!r} m")
             cr = [_creepage_at(p.frame, sig, motion, Omega, position, roll, zc, R) for p in found]
-            forces = timpl.solve_patches(found, cr, mu, **topts)
+            forces = timpl.solve_patches(found, cr, mu, previous=forces, **topts)
             F = np.zeros(3)
             for p, fr in zip(found, forces):
                 g = p.frame.contact_angle
@@ -408,7 +409,8 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
             # more); secant steps on the normal-load target q, F_z(q) = Q
             history.append((prob.vertical_load, F[2]))
             if len(history) == 1:
-                q_new = prob.vertical_load + (Q - F[2])
+                # all forces scale with the load at first order: the first step is a scaling
+                q_new = prob.vertical_load * Q / F[2] if F[2] > 0 else prob.vertical_load + Q - F[2]
             else:
                 (q0, f0), (q1, f1) = history[-2:]
                 slope = (f1 - f0) / (q1 - q0) if q1 != q0 else 1.0

@@ -55,12 +55,14 @@ class TangentialMethod(Method):
         return self.solve(patch.ellipse(), f(float(xi)), f(float(eta)), f(float(phi)),
                           f(float(mu)), **options)
 
-    def solve_patches(self, patches, creepages, mu, **options):
+    def solve_patches(self, patches, creepages, mu, previous=None, **options):
         """Creep forces on several patches (one :class:`CreepForces` each).
 
         ``creepages`` has one (ξ, η, φ) per patch, at the patch's reference
-        point. The default solves the patches one by one; the exact theory
-        overrides it to solve patches that share a grid together (their
-        elastic interaction included).
+        point. ``previous`` may hold the results of a nearby problem (e.g. the
+        last pass of a load iteration), which iterative methods use as a
+        starting point; it never changes the converged result. The default
+        solves the patches one by one; the exact theory overrides it to solve
+        patches that share a grid together (their elastic interaction included).
         """
         return tuple(self.solve_patch(p, *c, mu, **options) for p, c in zip(patches, creepages))

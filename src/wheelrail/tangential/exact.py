@@ -144,13 +144,13 @@ class Exact(TangentialMethod):
         return _solve_patches_exact(self, (patch,), ((xi, eta, phi),), float(mu), tol, maxiter,
                                     on_fail, elements, margin)[0]
 
-    def solve_patches(self, patches, creepages, mu, elements=40, margin=1.1, tol=1e-6,
-                      maxiter=100, on_fail="raise", progress=None):
+    def solve_patches(self, patches, creepages, mu, previous=None, elements=40, margin=1.1,
+                      tol=1e-6, maxiter=100, on_fail="raise", progress=None):
         """Patches on one boundary-element grid are solved together (their interaction
         included), with the creepages of the patch with the largest normal force, at its
         reference point (the rigid slip varies over the grid through the spin)."""
         return _solve_patches_exact(self, patches, creepages, float(mu), tol, maxiter, on_fail,
-                                    elements, margin)
+                                    elements, margin, previous)
 
 
 def _to_creep_forces(sols, shape, mu, name):
@@ -197,7 +197,7 @@ def _patch_forces(sol, mask, grid, origin, centre):
 
 
 def _solve_patches_exact(method, patches, creepages, mu, tol, maxiter, on_fail, elements,
-                         margin):
+                         margin, previous=None):
     from ..halfspace.tangential import solve_rolling
 
     out = [None] * len(patches)
@@ -217,8 +217,17 @@ def _solve_patches_exact(method, patches, creepages, mu, tol, maxiter, on_fail, 
         main = max(idx, key=lambda i: patches[i].Fn)      # creepage of the largest patch
         xi, eta, phi = (float(v) for v in creepages[main])
         ox, oy = patches[main].info.get("origin", (0.0, 0.0))
+        start = None
+        for prev in previous or ():
+            f = getattr(prev, "fields", None)
+            if getattr(f, "px", None) is not None and f.grid == grid:
+                # the last pass's tractions, scaled to the new pressure (exact in full slip)
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    ratio = np.where(f.pressure > 0, pressure / f.pressure, 0.0)
+                start = np.stack((f.px * ratio, f.py * ratio))
+                break
         sol = solve_rolling(grid, pressure, group[0].materials, (xi + phi * oy, eta - phi * ox, phi),
-                            mu, tol=tol, maxiter=maxiter, on_fail=on_fail)
+                            mu, tol=tol, maxiter=maxiter, on_fail=on_fail, initial=start)
         for i in idx:
             p = patches[i]
             origin = p.info.get("origin", (0.0, 0.0))
