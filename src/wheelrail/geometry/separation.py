@@ -135,14 +135,12 @@ class Separation:
 
 def _monotone_window(eta, centre_index):
     """Largest run of strictly increasing eta containing ``centre_index``."""
-    inc = np.diff(eta) > 0
-    lo = centre_index
-    while lo > 0 and inc[lo - 1]:
-        lo -= 1
-    hi = centre_index
-    while hi < eta.size - 1 and inc[hi]:
-        hi += 1
-    return slice(lo, hi + 1)
+    dec = np.nonzero(np.diff(eta) <= 0)[0]          # a step k -> k+1 that does not increase
+    lo = dec[dec < centre_index]
+    hi = dec[dec >= centre_index]
+    start = int(lo[-1]) + 1 if lo.size else 0
+    stop = int(hi[0]) if hi.size else eta.size - 1
+    return slice(start, stop + 1)
 
 
 def separation(wheelset, track, y, yaw=0.0, *, side="right", point=None, width=0.04, n=401,
@@ -232,8 +230,8 @@ def separation_at(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, c
     rc = track.curve(side)
     u_c = sig * float(track_y)
     C = np.array([u_c, float(rc.eval(u_c, 0)[0])])
-    # dense samples of both curves around the point
-    m = 4001
+    # dense samples of both curves around the point (0.04 mm apart for the default width)
+    m = 2001
     wc = wheelset.curve(side)
     s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
     p, p1 = wc.eval(s, 1)
