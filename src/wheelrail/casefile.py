@@ -57,7 +57,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from .conventions import CREEPAGE_UNITS, FORCE_UNITS
-from .errors import CaseFileError, InputError, WheelrailError
+from .errors import CaseFileError, InputError
 from .materials import STEEL, Material, MaterialPair
 from .results import to_jsonable
 
@@ -69,10 +69,8 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 __all__ = ["Case", "ContactSpec", "CaseResult", "load_case", "case_from_dict", "run_case",
            "solve_case", "NORMAL_METHODS", "RADII_KEYS", "DEFAULT_CASE"]
 
-#: Normal-contact methods accepted by ``[method] normal``.
+#: Normal-contact methods accepted by ``[method] normal`` (see :func:`wheelrail.normal_methods`).
 NORMAL_METHODS = ("hertz", "bem")
-#: Options of the normal methods, with defaults (``[method.<name>]``).
-NORMAL_OPTIONS = {"hertz": {}, "bem": {"elements": 100}}
 #: Keys of ``[contact]`` that give principal radii [m].
 RADII_KEYS = ("wheel_rolling_radius", "wheel_profile_radius", "rail_profile_radius",
               "rail_longitudinal_radius")
@@ -194,10 +192,9 @@ class Case:
 
     @property
     def normal_options(self) -> dict:
-        """Options for the normal method, defaults filled in."""
-        out = dict(NORMAL_OPTIONS[self.normal])
-        out.update(self.options.get(self.normal, {}))
-        return out
+        """Options for the normal method (``[method.<normal>]``; the method's defaults apply
+        to the others)."""
+        return dict(self.options.get(self.normal, {}))
 
     @cached_property
     def hertz_contact(self):
@@ -249,6 +246,8 @@ class CaseResult:
         The boundary-element normal solution (``normal = "bem"``).
     summary : dict
         The JSON-ready dictionary returned by :func:`run_case`.
+    result : ContactResult or None
+        What :func:`wheelrail.solve` returned (``None`` for a ``[force]`` case).
     """
 
     case: Case
@@ -256,6 +255,7 @@ class CaseResult:
     forces: Any
     normal: Any
     summary: dict
+    result: Any = None
 
     @property
     def grid(self):
@@ -476,15 +476,15 @@ def _canonical_tangential(name: str) -> str | None:
 
 
 def _read_methods(r: _Reader, tbl: Mapping):
-    from .api import METHODS
+    from .api import METHODS, NORMAL_METHODS as NORMALS, get_method, get_normal_method
 
     option_tables = {k: v for k, v in tbl.items() if isinstance(v, Mapping)}
     scalars = {k: v for k, v in tbl.items() if k not in option_tables}
     r.unknown("method", scalars, ("normal", "tangential"))
     normal = r.string("method", tbl, "normal", "hertz").lower()
-    if normal not in NORMAL_METHODS:
+    if normal not in NORMALS:
         r.fail("method", "normal", f"unknown normal method {normal!r}; choose one of "
-               + ", ".join(NORMAL_METHODS))
+               + ", ".join(NORMALS))
     tname = r.string("method", tbl, "tangential", "fastsim")
     tangential = _canonical_tangential(tname)
     if tangential is None:
@@ -492,34 +492,44 @@ def _read_methods(r: _Reader, tbl: Mapping):
                + ", ".join(METHODS))
     options: dict[str, dict] = {}
     for name, opts in option_tables.items():
-        key = name.lower() if name.lower() in NORMAL_METHODS else _canonical_tangential(name)
+        key = name.lower() if name.lower() in NORMALS else _canonical_tangential(name)
         if key is None:
             r.fail("method", None, f"unknown method table [method.{name}]; methods are "
-                   + ", ".join((*NORMAL_METHODS, *METHODS)))
+                   + ", ".join((*NORMALS, *METHODS)))
         options[key] = dict(opts)
-    # options of the chosen methods are checked now (typos), the others are kept as given
-    if normal == "bem":
-        bem = options.get("bem", {})
-        r.unknown("method.bem", bem, tuple(NORMAL_OPTIONS["bem"]))
-        if "elements" in bem:
-            e = bem["elements"]
-            if isinstance(e, bool) or not isinstance(e, int) or e < 2:
-                r.fail("method.bem", "elements", f"must be an integer >= 2, got {e!r}")
-    _check_tangential_options(r, tangential, options.get(tangential, {}))
+    # options of the chosen methods are checked now (typos, types), the others kept as given
+    _check_method_options(r, normal, get_normal_method(normal), options.get(normal, {}))
+    _check_method_options(r, tangential, get_method(tangential), options.get(tangential, {}))
     return normal, tangential, options
 
 
-def _check_tangential_options(r: _Reader, name: str, opts: dict) -> None:
-    from .api import get_method
+#: Integer options that need at least two elements/cells/strips.
+_AT_LEAST_TWO = ("elements", "strips", "cells", "nx", "ny")
 
-    try:
-        impl = get_method(name)
-    except ImportError:  # the method is not available yet: run_case will say so
-        return
+
+def _check_method_options(r: _Reader, name: str, impl, opts: dict) -> None:
+    table = f"method.{name}"
     try:
         impl.check_options(opts)
     except InputError as exc:
-        r.fail(f"method.{name}", None, str(exc))
+        r.fail(table, None, str(exc))
+    for key, v in opts.items():
+        default = impl.options[key]
+        if isinstance(default, bool):
+            if not isinstance(v, bool):
+                r.fail(table, key, f"must be true or false, got {v!r}")
+        elif isinstance(default, int):
+            if isinstance(v, bool) or not isinstance(v, int):
+                r.fail(table, key, f"must be an integer, got {v!r}")
+            if key in _AT_LEAST_TWO and v < 2:
+                r.fail(table, key, f"must be an integer >= 2, got {v!r}")
+        elif isinstance(default, float) or (default is None and key.endswith(("size", "tol"))):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                r.fail(table, key, f"must be a finite number, got {v!r}")
+            if v <= 0 and key.endswith(("size", "tol", "margin", "width", "angle")):
+                r.fail(table, key, f"must be > 0, got {v!r}")
+        elif isinstance(default, str) and not isinstance(v, str):
+            r.fail(table, key, f"must be a string, got {v!r}")
 
 
 def _read_forces(r: _Reader, tbl: Mapping, load: float, mu: float) -> dict:
@@ -534,68 +544,48 @@ def _read_forces(r: _Reader, tbl: Mapping, load: float, mu: float) -> dict:
 
 
 # --------------------------------------------------------------------------- solving
-def _missing(feature: str, module: str, exc: ImportError) -> WheelrailError:
-    return WheelrailError(f"{feature} needs {module}, which is not available in this "
-                          f"installation ({exc})")
-
-
 def solve_case(case: Case) -> CaseResult:
-    """Solve a :class:`Case` and keep every intermediate result.
+    """Solve a :class:`Case` through :func:`wheelrail.solve` and keep its results.
 
-    The normal problem is solved with Hertz's theory (``normal = "hertz"``)
-    or the boundary-element solver of :mod:`wheelrail.halfspace`
-    (``normal = "bem"``, on a grid around the Hertz ellipse); the creep
-    forces with the chosen tangential method on the Hertz ellipse, or, with
-    a ``[force]`` table, the creepages that produce the prescribed forces
-    (:func:`wheelrail.prescribed.solve_creepages`).
+    The case file only chooses: the problem is the Hertzian contact of
+    ``[contact]``, solved by ``wr.solve(contact, creepage, mu, normal=...,
+    tangential=..., normal_options=[method.<normal>],
+    tangential_options=[method.<tangential>])``. With ``normal = "bem"`` the
+    boundary-element patch is what the tangential method reads (FASTSIM its
+    strips, the exact theory its pressure, closed-form laws its equivalent
+    ellipse). A ``[force]`` table prescribes Fx and/or Fy instead:
+    :func:`wheelrail.prescribed.solve_creepages` finds the creepages on the
+    Hertz ellipse.
 
     Returns
     -------
     CaseResult
         ``summary`` is the dictionary returned by :func:`run_case`.
     """
-    from .api import creep_forces
+    from .api import solve
 
+    if not isinstance(case, Case):
+        raise InputError(f"solve_case needs a Case (from load_case), got {type(case).__name__}")
     contact = case.hertz_contact
-    normal = None
-    opts = dict(case.tangential_options)
-    # The exact theory solves its own boundary-element normal problem: with normal = "bem"
-    # it takes the grid size of [method.bem] (unless [method.exact] sets one) and its normal
-    # solution is reported, instead of solving the same normal problem twice.
-    shared_bem = case.normal == "bem" and case.tangential == "exact"
-    if shared_bem:
-        opts.setdefault("elements", case.normal_options["elements"])
-    elif case.normal == "bem":
-        try:
-            from .normal.bem import hertz_grid, solve_normal
-        except ImportError as exc:
-            raise _missing('normal = "bem"', "wheelrail.halfspace", exc) from None
-        grid, gap = hertz_grid(contact, case.normal_options["elements"])
-        normal = solve_normal(grid, gap, case.materials, load=case.contact.load)
-
     xi, eta, phi = case.creepage
-    try:
-        if case.forces:
-            try:
-                from .prescribed import solve_creepages
-            except ImportError as exc:
-                raise _missing("a [force] table", "wheelrail.prescribed", exc) from None
-            forces = solve_creepages(contact, case.mu, Fx=case.forces.get("Fx"),
-                                     Fy=case.forces.get("Fy"), creepage=(xi, eta, phi),
-                                     method=case.tangential, **opts)
-            xi = forces.info.get("xi", xi)
-            eta = forces.info.get("eta", eta)
-        else:
-            forces = creep_forces(contact, (xi, eta, phi), case.mu, method=case.tangential,
-                                  **opts)
-    except ImportError as exc:
-        raise _missing(f"tangential = {case.tangential!r}",
-                       f"the module of method {case.tangential!r}", exc) from None
+    if case.forces:
+        from .prescribed import solve_creepages
 
-    if shared_bem and forces.fields is not None:
-        normal = forces.fields.normal
-    summary = _summary(case, contact, forces, normal, xi, eta, phi)
-    return CaseResult(case, contact, forces, normal, summary)
+        forces = solve_creepages(contact, case.mu, Fx=case.forces.get("Fx"),
+                                 Fy=case.forces.get("Fy"), creepage=(xi, eta, phi),
+                                 method=case.tangential, **case.tangential_options)
+        xi = forces.info.get("xi", xi)
+        eta = forces.info.get("eta", eta)
+        summary = _summary(case, contact, forces, None, None, xi, eta, phi)
+        return CaseResult(case, contact, forces, None, summary)
+    result = solve(contact, (xi, eta, phi), case.mu, normal=case.normal,
+                   tangential=case.tangential, normal_options=case.normal_options,
+                   tangential_options=case.tangential_options)
+    patch = result.patches[0]
+    normal = patch.patch.info.get("normal_solution")
+    summary = _summary(case, contact, patch.forces, patch, normal, xi, eta, phi,
+                       method=result.tangential, normal_method=result.normal)
+    return CaseResult(case, contact, patch.forces, normal, summary, result)
 
 
 def run_case(case: Case) -> dict:
@@ -618,29 +608,38 @@ def _scalar(v):
     return arr.item() if arr.ndim == 0 else arr.tolist()
 
 
-def _summary(case, contact, forces, normal, xi, eta, phi) -> dict:
+def _summary(case, contact, forces, patch, normal, xi, eta, phi, method=None,
+             normal_method=None) -> dict:
+    Fn = contact.load if patch is None else patch.Fn
+    Ft = float(np.hypot(forces.Fx, forces.Fy))
     out = {
         "a": contact.a, "b": contact.b, "c": float(contact.c), "A": contact.A, "B": contact.B,
-        "p0": contact.p0, "penetration": contact.penetration, "Fn": contact.load,
-        "area": float(contact.area), "p_max": contact.p0,
+        "p0": contact.p0, "penetration": contact.penetration, "Fn": Fn,
+        "area": float(contact.area) if patch is None else patch.area,
+        "p_max": contact.p0 if patch is None else patch.p_max,
         "Fx": forces.Fx, "Fy": forces.Fy, "Mz": forces.Mz,
         "xi": xi, "eta": eta, "phi": phi, "mu": case.mu,
-        "utilisation": forces.utilisation,
-        "method": forces.method, "normal_method": case.normal,
+        "utilisation": Ft / (case.mu * Fn),
+        "method": method or forces.method, "normal_method": normal_method or case.normal,
         "status": forces.status, "iterations": forces.iterations,
     }
-    if normal is not None:  # the boundary-element NormalSolution replaces Hertz's numbers
-        out.update(p_max=normal.p_max, area=normal.area, Fn=normal.Fn,
-                   penetration=normal.penetration, normal_iterations=normal.iterations,
-                   normal_status=normal.status, truncated=bool(normal.truncated))
+    if patch is not None and patch.patch.method == "bem":
+        # the boundary-element patch replaces Hertz's numbers; Hertz's are kept beside
+        if np.isfinite(patch.patch.penetration):
+            out["penetration"] = patch.patch.penetration
+        if normal is not None:
+            out.update(normal_iterations=normal.iterations, normal_status=normal.status,
+                       truncated=bool(normal.truncated))
         out["hertz"] = {"a": contact.a, "b": contact.b, "p0": contact.p0,
                         "penetration": contact.penetration}
     for k, v in (forces.info or {}).items():  # method extras (adhesion_area, ...), scalars only
         if k not in out and np.ndim(v) == 0:
             out[k] = v
+    if patch is not None and np.isfinite(patch.adhesion_area):
+        out["adhesion_area"] = patch.adhesion_area
     frac = out.get("adhesion_fraction")  # FASTSIM gives the fraction, the exact theory the area
     if "adhesion_area" not in out and frac is not None:
-        out["adhesion_area"] = float(frac) * float(contact.area)
+        out["adhesion_area"] = float(frac) * float(out["area"])
     if case.forces:
         out["prescribed"] = dict(case.forces)
     out["source"] = case.source
