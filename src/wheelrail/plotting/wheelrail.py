@@ -36,19 +36,28 @@ _SIGMA = {"left": -1.0, "right": 1.0}
 _SIDE_COLOUR = {"left": "tab:blue", "right": "tab:red"}
 
 
-def _strip_cells(patch, sigma):
-    """Cells of a patch's strips as (u, x, du, dx, p) arrays in the rail's side-local frame [m]."""
+def _strip_cells(patch, sigma, max_cells=16):
+    """Cells of a patch's strips as (u, x, du, dx, p) arrays in the rail's side-local frame [m].
+
+    Cells along a strip are merged (pressure averaged) to at most ``max_cells``."""
     fr = patch.frame
     cosg = np.cos(fr.contact_angle) if fr is not None else 1.0
     u0 = sigma * fr.track_y if fr is not None else 0.0
     xc = patch.cell_x() + (fr.x if fr is not None else 0.0)          # (ny, m)
+    pr = patch.strip_pressure
+    m = patch.cells
+    step = int(np.ceil(m / max_cells))
+    starts = np.arange(0, m, step)
+    counts = np.diff(np.append(starts, m))
+    xc = np.add.reduceat(xc, starts, axis=1) / counts
+    pr = np.add.reduceat(pr, starts, axis=1) / counts
     u = u0 + sigma * patch.y * cosg                                    # (ny,)
     du = patch.dy * cosg
-    dx = (patch.x_lead - patch.x_trail) / patch.cells
+    dx = (patch.x_lead - patch.x_trail) / m
     U = np.broadcast_to(u[:, None], xc.shape)
     DU = np.broadcast_to(du[:, None], xc.shape)
-    DX = np.broadcast_to(dx[:, None], xc.shape)
-    return U, xc, DU, DX, patch.strip_pressure
+    DX = dx[:, None] * counts[None, :]
+    return U, xc, DU, DX, pr
 
 
 def _rects(ax, U, X, DU, DX, P, norm, cmap):
