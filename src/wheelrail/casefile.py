@@ -828,7 +828,11 @@ def _read_profile(r: _Reader, table: str, tbl: Mapping, key: str, kind: str, def
     names = {n.lower() for n in profiles.available()}
     try:
         if spec.lower() in names:
-            return profiles.load(spec), spec
+            prof = profiles.load(spec)
+            if getattr(prof, "kind", kind) != kind:
+                r.fail(table, key, f"{spec!r} is a {prof.kind} profile; a {kind} profile is "
+                       "needed here")
+            return prof, spec
         path = Path(spec).expanduser()
         if not path.is_absolute():
             path = _base_dir(r.source) / path

@@ -271,8 +271,11 @@ def adhesion_maps(result, *, path=None, title=None):
                      f"adhesion {100 * frac:.0f} %", fontsize="small")
     for ax in axes[len(pats):]:
         ax.set_visible(False)
-    fig.legend(handles=[Patch(color=(0.23, 0.3, 0.75), label="adhesion"),
-                        Patch(color=(0.7, 0.02, 0.15), label="slip")],
+    from matplotlib import colormaps
+
+    cm = colormaps["coolwarm"]
+    fig.legend(handles=[Patch(color=cm(0.25), label="adhesion"),
+                        Patch(color=cm(0.75), label="slip")],
                loc="lower right", fontsize="small")
     if title is None and hasattr(result, "position") and result.position is not None:
         title = "adhesion/slip, " + _default_title(result)
