@@ -1038,12 +1038,12 @@ def solve_wheelset_case(case: WheelsetCase, progress=None):
                      tangential_options=case.tangential_options)
     from .contact.sweep import wheelset_sweep
 
-    options = {**case.normal_options, **case.tangential_options}
     ds = wheelset_sweep(case.wheelset, case.track, y=case.y, yaw=case.yaw,
                         roll=case.roll, vertical_load=case.vertical_load, z=case.z,
                         motion=case.motion, mu=case.mu, normal=case.normal,
                         tangential=case.tangential, material=case.materials,
-                        progress=progress, **options)
+                        progress=progress, normal_options=case.normal_options,
+                        tangential_options=case.tangential_options)
     ds.attrs["source"] = case.source
     return ds
 
