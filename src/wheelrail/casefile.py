@@ -40,6 +40,39 @@ optional)::
     [force]                 # optional: prescribed Fx and/or Fy [N] replace
     Fx = -1000.0            # the creepage xi and/or eta (solved for)
 
+A **wheelset case** (a wheelset on a track with real profiles) has, instead
+of ``[contact]``, ``[creepage]`` and ``[force]``, the tables::
+
+    [wheelset]
+    profile = "S1002"       # built-in name or a profile file (relative to the case file)
+    # profile_right = "worn.prw"
+    nominal_radius = 0.46   # [m]
+    flange_back = 1.360     # [m]
+    tape_circle_offset = 0.070
+
+    [track]
+    profile = "60E1"        # built-in name or a file; profile_right optional
+    gauge = 1.435           # [m]
+    inclination = "1/40"    # slope, a number or "1/n"
+    canted = false          # true: the rail profile file is already inclined
+
+    [motion]
+    speed = 20.0            # forward speed V [m/s]
+    # omega = 43.5          # [rad/s] about the axle; omitted: free rolling V/r0
+    # lateral_velocity, vertical_velocity [m/s], yaw_rate, roll_rate [rad/s],
+    # roller_radius [m] (a wheel on a roller rig)
+
+    [position]
+    y = 0.005               # lateral shift [m], or a list, or a sweep:
+    # y = {start = -0.008, stop = 0.008, num = 81}
+    yaw = 0.0               # [rad] (or a list, one per y), or yaw_per_y [rad/m]
+    # roll = 0.0            # [rad]; omitted: from the rigid contact constraint
+    vertical_load = 10e3    # [N] per wheel, or [left, right]; or z [m]
+
+with ``[friction]``, ``[method]`` and ``[material]`` as above. Every solve
+goes through :func:`wheelrail.solve` (:func:`solve_case`,
+:func:`solve_wheelset_case`); this module only reads and validates.
+
 Unknown tables and keys are errors (they are usually typos). Every error is a
 :class:`wheelrail.errors.CaseFileError` whose one-line message names the file,
 the table, the key and the bad value.
@@ -57,7 +90,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from .conventions import CREEPAGE_UNITS, FORCE_UNITS
-from .errors import CaseFileError, InputError, WheelrailError
+from .errors import CaseFileError, InputError
 from .materials import STEEL, Material, MaterialPair
 from .results import to_jsonable
 
@@ -69,10 +102,8 @@ except ModuleNotFoundError:  # pragma: no cover - Python 3.10
 __all__ = ["Case", "ContactSpec", "CaseResult", "load_case", "case_from_dict", "run_case",
            "solve_case", "NORMAL_METHODS", "RADII_KEYS", "DEFAULT_CASE"]
 
-#: Normal-contact methods accepted by ``[method] normal``.
+#: Normal-contact methods accepted by ``[method] normal`` (see :func:`wheelrail.normal_methods`).
 NORMAL_METHODS = ("hertz", "bem")
-#: Options of the normal methods, with defaults (``[method.<name>]``).
-NORMAL_OPTIONS = {"hertz": {}, "bem": {"elements": 100}}
 #: Keys of ``[contact]`` that give principal radii [m].
 RADII_KEYS = ("wheel_rolling_radius", "wheel_profile_radius", "rail_profile_radius",
               "rail_longitudinal_radius")
@@ -194,10 +225,9 @@ class Case:
 
     @property
     def normal_options(self) -> dict:
-        """Options for the normal method, defaults filled in."""
-        out = dict(NORMAL_OPTIONS[self.normal])
-        out.update(self.options.get(self.normal, {}))
-        return out
+        """Options for the normal method (``[method.<normal>]``; the method's defaults apply
+        to the others)."""
+        return dict(self.options.get(self.normal, {}))
 
     @cached_property
     def hertz_contact(self):
@@ -249,6 +279,8 @@ class CaseResult:
         The boundary-element normal solution (``normal = "bem"``).
     summary : dict
         The JSON-ready dictionary returned by :func:`run_case`.
+    result : ContactResult or None
+        What :func:`wheelrail.solve` returned (``None`` for a ``[force]`` case).
     """
 
     case: Case
@@ -256,6 +288,7 @@ class CaseResult:
     forces: Any
     normal: Any
     summary: dict
+    result: Any = None
 
     @property
     def grid(self):
@@ -278,8 +311,8 @@ def _toml_value(v) -> str:
 
 
 # --------------------------------------------------------------------------- reading
-def load_case(path_or_str) -> Case:
-    """Read and validate a case file.
+def load_case(path_or_str):
+    """Read and validate a case file: a single contact or a wheelset on a track.
 
     Parameters
     ----------
@@ -289,7 +322,9 @@ def load_case(path_or_str) -> Case:
 
     Returns
     -------
-    Case
+    Case or WheelsetCase
+        A :class:`WheelsetCase` when the file has a ``[wheelset]``, ``[track]``,
+        ``[motion]`` or ``[position]`` table.
 
     Raises
     ------
@@ -331,11 +366,17 @@ def load_case(path_or_str) -> Case:
     return case_from_dict(data, source=source)
 
 
-def case_from_dict(data: Mapping, source: str = "<dict>") -> Case:
-    """Validate a parsed case (the dictionary ``tomllib`` returns) into a :class:`Case`."""
+def case_from_dict(data: Mapping, source: str = "<dict>"):
+    """Validate a parsed case (the dictionary ``tomllib`` returns).
+
+    Returns a :class:`Case` (a single contact, ``[contact]``) or a
+    :class:`WheelsetCase` (``[wheelset]``, ``[track]``, ``[motion]``, ``[position]``).
+    """
     r = _Reader(source)
     if not isinstance(data, Mapping):
         raise CaseFileError(f"{source}: a case must be a table, got {type(data).__name__}")
+    if _is_wheelset_case(data):
+        return _wheelset_case_from_dict(r, data)
     r.unknown("", data, _TOP_TABLES)
     for name in _TOP_TABLES:
         if name in data and not isinstance(data[name], Mapping):
@@ -476,15 +517,15 @@ def _canonical_tangential(name: str) -> str | None:
 
 
 def _read_methods(r: _Reader, tbl: Mapping):
-    from .api import METHODS
+    from .api import METHODS, NORMAL_METHODS as NORMALS, get_method, get_normal_method
 
     option_tables = {k: v for k, v in tbl.items() if isinstance(v, Mapping)}
     scalars = {k: v for k, v in tbl.items() if k not in option_tables}
     r.unknown("method", scalars, ("normal", "tangential"))
     normal = r.string("method", tbl, "normal", "hertz").lower()
-    if normal not in NORMAL_METHODS:
+    if normal not in NORMALS:
         r.fail("method", "normal", f"unknown normal method {normal!r}; choose one of "
-               + ", ".join(NORMAL_METHODS))
+               + ", ".join(NORMALS))
     tname = r.string("method", tbl, "tangential", "fastsim")
     tangential = _canonical_tangential(tname)
     if tangential is None:
@@ -492,34 +533,44 @@ def _read_methods(r: _Reader, tbl: Mapping):
                + ", ".join(METHODS))
     options: dict[str, dict] = {}
     for name, opts in option_tables.items():
-        key = name.lower() if name.lower() in NORMAL_METHODS else _canonical_tangential(name)
+        key = name.lower() if name.lower() in NORMALS else _canonical_tangential(name)
         if key is None:
             r.fail("method", None, f"unknown method table [method.{name}]; methods are "
-                   + ", ".join((*NORMAL_METHODS, *METHODS)))
+                   + ", ".join((*NORMALS, *METHODS)))
         options[key] = dict(opts)
-    # options of the chosen methods are checked now (typos), the others are kept as given
-    if normal == "bem":
-        bem = options.get("bem", {})
-        r.unknown("method.bem", bem, tuple(NORMAL_OPTIONS["bem"]))
-        if "elements" in bem:
-            e = bem["elements"]
-            if isinstance(e, bool) or not isinstance(e, int) or e < 2:
-                r.fail("method.bem", "elements", f"must be an integer >= 2, got {e!r}")
-    _check_tangential_options(r, tangential, options.get(tangential, {}))
+    # options of the chosen methods are checked now (typos, types), the others kept as given
+    _check_method_options(r, normal, get_normal_method(normal), options.get(normal, {}))
+    _check_method_options(r, tangential, get_method(tangential), options.get(tangential, {}))
     return normal, tangential, options
 
 
-def _check_tangential_options(r: _Reader, name: str, opts: dict) -> None:
-    from .api import get_method
+#: Integer options that need at least two elements/cells/strips.
+_AT_LEAST_TWO = ("elements", "strips", "cells", "nx", "ny")
 
-    try:
-        impl = get_method(name)
-    except ImportError:  # the method is not available yet: run_case will say so
-        return
+
+def _check_method_options(r: _Reader, name: str, impl, opts: dict) -> None:
+    table = f"method.{name}"
     try:
         impl.check_options(opts)
     except InputError as exc:
-        r.fail(f"method.{name}", None, str(exc))
+        r.fail(table, None, str(exc))
+    for key, v in opts.items():
+        default = impl.options[key]
+        if isinstance(default, bool):
+            if not isinstance(v, bool):
+                r.fail(table, key, f"must be true or false, got {v!r}")
+        elif isinstance(default, int):
+            if isinstance(v, bool) or not isinstance(v, int):
+                r.fail(table, key, f"must be an integer, got {v!r}")
+            if key in _AT_LEAST_TWO and v < 2:
+                r.fail(table, key, f"must be an integer >= 2, got {v!r}")
+        elif isinstance(default, float) or (default is None and key.endswith(("size", "tol"))):
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                r.fail(table, key, f"must be a finite number, got {v!r}")
+            if v <= 0 and key.endswith(("size", "tol", "margin", "width", "angle")):
+                r.fail(table, key, f"must be > 0, got {v!r}")
+        elif isinstance(default, str) and not isinstance(v, str):
+            r.fail(table, key, f"must be a string, got {v!r}")
 
 
 def _read_forces(r: _Reader, tbl: Mapping, load: float, mu: float) -> dict:
@@ -534,80 +585,72 @@ def _read_forces(r: _Reader, tbl: Mapping, load: float, mu: float) -> dict:
 
 
 # --------------------------------------------------------------------------- solving
-def _missing(feature: str, module: str, exc: ImportError) -> WheelrailError:
-    return WheelrailError(f"{feature} needs {module}, which is not available in this "
-                          f"installation ({exc})")
-
-
 def solve_case(case: Case) -> CaseResult:
-    """Solve a :class:`Case` and keep every intermediate result.
+    """Solve a :class:`Case` through :func:`wheelrail.solve` and keep its results.
 
-    The normal problem is solved with Hertz's theory (``normal = "hertz"``)
-    or the boundary-element solver of :mod:`wheelrail.halfspace`
-    (``normal = "bem"``, on a grid around the Hertz ellipse); the creep
-    forces with the chosen tangential method on the Hertz ellipse, or, with
-    a ``[force]`` table, the creepages that produce the prescribed forces
-    (:func:`wheelrail.prescribed.solve_creepages`).
+    The case file only chooses: the problem is the Hertzian contact of
+    ``[contact]``, solved by ``wr.solve(contact, creepage, mu, normal=...,
+    tangential=..., normal_options=[method.<normal>],
+    tangential_options=[method.<tangential>])``. With ``normal = "bem"`` the
+    boundary-element patch is what the tangential method reads (FASTSIM its
+    strips, the exact theory its pressure, closed-form laws its equivalent
+    ellipse). A ``[force]`` table prescribes Fx and/or Fy instead:
+    :func:`wheelrail.prescribed.solve_creepages` finds the creepages on the
+    Hertz ellipse.
 
     Returns
     -------
     CaseResult
         ``summary`` is the dictionary returned by :func:`run_case`.
     """
-    from .api import creep_forces
+    from .api import solve
 
+    if not isinstance(case, Case):
+        raise InputError(f"solve_case needs a Case (from load_case), got {type(case).__name__}")
     contact = case.hertz_contact
-    normal = None
-    opts = dict(case.tangential_options)
-    # The exact theory solves its own boundary-element normal problem: with normal = "bem"
-    # it takes the grid size of [method.bem] (unless [method.exact] sets one) and its normal
-    # solution is reported, instead of solving the same normal problem twice.
-    shared_bem = case.normal == "bem" and case.tangential == "exact"
-    if shared_bem:
-        opts.setdefault("elements", case.normal_options["elements"])
-    elif case.normal == "bem":
-        try:
-            from .normal.bem import hertz_grid, solve_normal
-        except ImportError as exc:
-            raise _missing('normal = "bem"', "wheelrail.halfspace", exc) from None
-        grid, gap = hertz_grid(contact, case.normal_options["elements"])
-        normal = solve_normal(grid, gap, case.materials, load=case.contact.load)
-
     xi, eta, phi = case.creepage
-    try:
-        if case.forces:
-            try:
-                from .prescribed import solve_creepages
-            except ImportError as exc:
-                raise _missing("a [force] table", "wheelrail.prescribed", exc) from None
-            forces = solve_creepages(contact, case.mu, Fx=case.forces.get("Fx"),
-                                     Fy=case.forces.get("Fy"), creepage=(xi, eta, phi),
-                                     method=case.tangential, **opts)
-            xi = forces.info.get("xi", xi)
-            eta = forces.info.get("eta", eta)
-        else:
-            forces = creep_forces(contact, (xi, eta, phi), case.mu, method=case.tangential,
-                                  **opts)
-    except ImportError as exc:
-        raise _missing(f"tangential = {case.tangential!r}",
-                       f"the module of method {case.tangential!r}", exc) from None
+    if case.forces:
+        from .prescribed import solve_creepages
 
-    if shared_bem and forces.fields is not None:
-        normal = forces.fields.normal
-    summary = _summary(case, contact, forces, normal, xi, eta, phi)
-    return CaseResult(case, contact, forces, normal, summary)
+        forces = solve_creepages(contact, case.mu, Fx=case.forces.get("Fx"),
+                                 Fy=case.forces.get("Fy"), creepage=(xi, eta, phi),
+                                 method=case.tangential, **case.tangential_options)
+        xi = forces.info.get("xi", xi)
+        eta = forces.info.get("eta", eta)
+        summary = _summary(case, contact, forces, None, None, xi, eta, phi)
+        return CaseResult(case, contact, forces, None, summary)
+    result = solve(contact, (xi, eta, phi), case.mu, normal=case.normal,
+                   tangential=case.tangential, normal_options=case.normal_options,
+                   tangential_options=case.tangential_options)
+    patch = result.patches[0]
+    normal = patch.patch.info.get("normal_solution")
+    summary = _summary(case, contact, patch.forces, patch, normal, xi, eta, phi,
+                       method=result.tangential, normal_method=result.normal)
+    return CaseResult(case, contact, patch.forces, normal, summary, result)
 
 
-def run_case(case: Case) -> dict:
+def run_case(case) -> dict:
     """Solve a case and return a JSON-ready dictionary (SI units).
 
-    Keys: ``a, b`` [m], ``p0`` [Pa], ``penetration`` [m], ``Fn, Fx, Fy`` [N],
-    ``Mz`` [N·m], ``xi, eta`` [-], ``phi`` [1/m] (the creepages used, solved
-    ones for prescribed forces), ``mu``, ``method`` (tangential),
-    ``normal_method``, ``status``, ``iterations``, ``area`` [m²] and, when
-    the methods provide them, ``p_max`` [Pa] and ``adhesion_area`` [m²];
-    ``units`` maps each key to its unit.
+    A :class:`Case` gives the keys ``a, b`` [m], ``p0`` [Pa], ``penetration`` [m],
+    ``Fn, Fx, Fy`` [N], ``Mz`` [N·m], ``xi, eta`` [-], ``phi`` [1/m] (the
+    creepages used, solved ones for prescribed forces), ``mu``, ``method``
+    (tangential), ``normal_method``, ``status``, ``iterations``, ``area`` [m²]
+    and, when the methods provide them, ``p_max`` [Pa] and ``adhesion_area``
+    [m²]; ``units`` maps each key to its unit.
+
+    A :class:`WheelsetCase` at one position gives
+    :meth:`wheelrail.contact.WheelRailResult.to_dict` (per-patch results,
+    ``force_track``, ``pose``) with the validated input under ``case``; a
+    sweep is solved with :func:`solve_wheelset_case` (an ``xarray.Dataset``).
     """
+    if isinstance(case, WheelsetCase):
+        if case.sweep:
+            raise InputError(f"{case.source}: [position] y is a sweep; solve it with "
+                             "solve_wheelset_case (an xarray.Dataset) or 'wheelrail wheelset'")
+        out = solve_wheelset_case(case).to_dict()
+        out["case"] = case.to_dict()
+        return out
     if not isinstance(case, Case):
         raise InputError(f"run_case needs a Case (from load_case), got {type(case).__name__}")
     return solve_case(case).summary
@@ -618,32 +661,391 @@ def _scalar(v):
     return arr.item() if arr.ndim == 0 else arr.tolist()
 
 
-def _summary(case, contact, forces, normal, xi, eta, phi) -> dict:
+def _summary(case, contact, forces, patch, normal, xi, eta, phi, method=None,
+             normal_method=None) -> dict:
+    Fn = contact.load if patch is None else patch.Fn
+    Ft = float(np.hypot(forces.Fx, forces.Fy))
     out = {
         "a": contact.a, "b": contact.b, "c": float(contact.c), "A": contact.A, "B": contact.B,
-        "p0": contact.p0, "penetration": contact.penetration, "Fn": contact.load,
-        "area": float(contact.area), "p_max": contact.p0,
+        "p0": contact.p0, "penetration": contact.penetration, "Fn": Fn,
+        "area": float(contact.area) if patch is None else patch.area,
+        "p_max": contact.p0 if patch is None else patch.p_max,
         "Fx": forces.Fx, "Fy": forces.Fy, "Mz": forces.Mz,
         "xi": xi, "eta": eta, "phi": phi, "mu": case.mu,
-        "utilisation": forces.utilisation,
-        "method": forces.method, "normal_method": case.normal,
+        "utilisation": Ft / (case.mu * Fn),
+        "method": method or forces.method, "normal_method": normal_method or case.normal,
         "status": forces.status, "iterations": forces.iterations,
     }
-    if normal is not None:  # the boundary-element NormalSolution replaces Hertz's numbers
-        out.update(p_max=normal.p_max, area=normal.area, Fn=normal.Fn,
-                   penetration=normal.penetration, normal_iterations=normal.iterations,
-                   normal_status=normal.status, truncated=bool(normal.truncated))
+    if patch is not None and patch.patch.method == "bem":
+        # the boundary-element patch replaces Hertz's numbers; Hertz's are kept beside
+        if np.isfinite(patch.patch.penetration):
+            out["penetration"] = patch.patch.penetration
+        if normal is not None:
+            out.update(normal_iterations=normal.iterations, normal_status=normal.status,
+                       truncated=bool(normal.truncated))
         out["hertz"] = {"a": contact.a, "b": contact.b, "p0": contact.p0,
                         "penetration": contact.penetration}
     for k, v in (forces.info or {}).items():  # method extras (adhesion_area, ...), scalars only
         if k not in out and np.ndim(v) == 0:
             out[k] = v
+    if patch is not None and np.isfinite(patch.adhesion_area):
+        out["adhesion_area"] = patch.adhesion_area
     frac = out.get("adhesion_fraction")  # FASTSIM gives the fraction, the exact theory the area
     if "adhesion_area" not in out and frac is not None:
-        out["adhesion_area"] = float(frac) * float(contact.area)
+        out["adhesion_area"] = float(frac) * float(out["area"])
     if case.forces:
         out["prescribed"] = dict(case.forces)
     out["source"] = case.source
     out["units"] = {k: u for k, u in UNITS.items() if k in out}
     return {k: (_scalar(v) if isinstance(v, (np.ndarray, np.generic, float, int)) else
                 to_jsonable(v)) for k, v in out.items()}
+
+
+# =========================================================================== wheelset cases
+#: Top-level tables of a wheelset case (a wheelset on a track, real profiles).
+_WHEELSET_TABLES = ("material", "wheelset", "track", "motion", "position", "friction", "method")
+_WHEELSET_KEYS = ("profile", "profile_right", "nominal_radius", "flange_back",
+                  "tape_circle_offset")
+_TRACK_KEYS = ("profile", "profile_right", "gauge", "inclination", "gauge_height", "canted")
+_MOTION_KEYS = ("speed", "omega", "lateral_velocity", "vertical_velocity", "yaw_rate",
+                "roll_rate", "roller_radius")
+_POSITION_KEYS = ("y", "yaw", "yaw_per_y", "roll", "vertical_load", "z", "tolerance")
+#: Largest number of positions of a sweep read from a case file.
+MAX_POSITIONS = 100_001
+
+
+@dataclass(frozen=True, eq=False)
+class WheelsetCase:
+    """A validated wheelset-on-track case (``[wheelset]``, ``[track]``, ``[motion]``,
+    ``[position]``; see the module docstring and ``docs/cli.md``). SI units.
+
+    Attributes
+    ----------
+    wheelset : Wheelset
+    track : Track
+    motion : Motion
+    y : ndarray, shape (n,)
+        Lateral shifts [m] (one for a single position).
+    yaw : ndarray, shape (n,)
+        Yaw angle at each shift [rad].
+    roll : float or None
+        Roll angle [rad]; ``None``: from the rigid contact constraint.
+    vertical_load : tuple of float or None
+        Vertical force on the (left, right) wheel [N] ...
+    z : float or None
+        ... or the height of the axle centre [m].
+    tolerance : float
+        Largest separation of a candidate contact point [m].
+    sweep : bool
+        True when ``[position] y`` is a range or a list (even of one value).
+    materials : MaterialPair
+    mu : float
+    normal, tangential : str
+    options : mapping
+        ``[method.<name>]`` tables.
+    source : str
+    tables : mapping
+        The tables as read (for the JSON output).
+    """
+
+    wheelset: Any
+    track: Any
+    motion: Any
+    y: np.ndarray
+    yaw: np.ndarray
+    roll: float | None
+    vertical_load: tuple | None
+    z: float | None
+    tolerance: float
+    sweep: bool
+    materials: MaterialPair
+    mu: float
+    normal: str = "hertz"
+    tangential: str = "fastsim"
+    options: Mapping[str, Mapping[str, Any]] = field(default_factory=lambda: MappingProxyType({}))
+    source: str = "<case>"
+    tables: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
+
+    @property
+    def normal_options(self) -> dict:
+        """``[method.<normal>]``."""
+        return dict(self.options.get(self.normal, {}))
+
+    @property
+    def tangential_options(self) -> dict:
+        """``[method.<tangential>]``."""
+        return dict(self.options.get(self.tangential, {}))
+
+    def position(self, i: int = 0):
+        """The :class:`wheelrail.WheelRailPosition` of shift number ``i``."""
+        from .contact.wheelrail import WheelRailPosition
+
+        return WheelRailPosition(self.wheelset, self.track, float(self.y[i]), float(self.yaw[i]),
+                                 self.roll, vertical_load=self.vertical_load, z=self.z,
+                                 material=self.materials, tolerance=self.tolerance)
+
+    def to_dict(self) -> dict:
+        """The validated input (JSON-ready, SI)."""
+        return to_jsonable({**{k: dict(v) if isinstance(v, Mapping) else v
+                               for k, v in self.tables.items()},
+                            "y": self.y, "yaw": self.yaw, "source": self.source})
+
+
+def _is_wheelset_case(data: Mapping) -> bool:
+    return any(k in data for k in ("wheelset", "track", "position", "motion"))
+
+
+def load_wheelset_case(path_or_str) -> WheelsetCase:
+    """Read and validate a wheelset case file (see :func:`load_case`)."""
+    case = load_case(path_or_str)
+    if not isinstance(case, WheelsetCase):
+        raise CaseFileError(f"{case.source}: not a wheelset case: it has no [wheelset], "
+                            "[track], [motion] and [position] tables (run it with "
+                            "'wheelrail solve')")
+    return case
+
+
+def load_contact_case(path_or_str) -> Case:
+    """Read and validate a single-contact case file (``[contact]``; see :func:`load_case`)."""
+    case = load_case(path_or_str)
+    if isinstance(case, WheelsetCase):
+        raise CaseFileError(f"{case.source}: this is a wheelset case ([wheelset], [track], "
+                            "[motion], [position]); run it with 'wheelrail wheelset'")
+    return case
+
+
+def _base_dir(source: str) -> Path:
+    return Path(source).parent if not source.startswith("<") else Path.cwd()
+
+
+def _read_profile(r: _Reader, table: str, tbl: Mapping, key: str, kind: str, default):
+    from . import profiles
+    from .errors import ProfileError
+
+    if key not in tbl and default is None:
+        return None, None
+    spec = r.string(table, tbl, key, default)
+    names = {n.lower() for n in profiles.available()}
+    try:
+        if spec.lower() in names:
+            prof = profiles.load(spec)
+            if getattr(prof, "kind", kind) != kind:
+                r.fail(table, key, f"{spec!r} is a {prof.kind} profile; a {kind} profile is "
+                       "needed here")
+            return prof, spec
+        path = Path(spec).expanduser()
+        if not path.is_absolute():
+            path = _base_dir(r.source) / path
+        if not path.exists():
+            r.fail(table, key, f"{spec!r} is neither a built-in profile ("
+                   + ", ".join(profiles.available()) + f") nor an existing file ({path})")
+        return profiles.read(path, kind=kind), str(path)
+    except (ProfileError, InputError) as exc:
+        r.fail(table, key, f"{spec!r}: {' '.join(str(exc).split())}")
+
+
+def _construct(r: _Reader, table: str, make):
+    from .errors import ProfileError
+
+    try:
+        return make()
+    except (InputError, ProfileError) as exc:
+        r.fail(table, None, " ".join(str(exc).split()))
+
+
+def _read_slope(r: _Reader, table: str, tbl: Mapping, key: str, default: float) -> float:
+    if key not in tbl:
+        return default
+    v = tbl[key]
+    if isinstance(v, str):
+        s = v.strip()
+        try:
+            if "/" in s:
+                num, den = s.split("/", 1)
+                out = float(num) / float(den)
+            else:
+                out = float(s)
+        except (ValueError, ZeroDivisionError):
+            r.fail(table, key, f"must be a slope like \"1/40\" or 0.025, got {v!r}")
+        if not math.isfinite(out):
+            r.fail(table, key, f"must be finite, got {v!r}")
+        return out
+    return r.number(table, tbl, key)
+
+
+def _read_y(r: _Reader, tbl: Mapping):
+    """``[position] y``: a number, a list, or a range {start, stop, num}; -> (array, sweep)."""
+    if "y" not in tbl:
+        r.fail("position", "y", "missing (required): a lateral shift [m], a list of shifts or "
+               "a range {start = ..., stop = ..., num = ...}")
+    v = tbl["y"]
+    if isinstance(v, Mapping):
+        r.unknown("position.y", v, ("start", "stop", "num"))
+        start = r.number("position.y", v, "start")
+        stop = r.number("position.y", v, "stop")
+        num = v.get("num")
+        if isinstance(num, bool) or not isinstance(num, int) or not 1 <= num <= MAX_POSITIONS:
+            r.fail("position.y", "num", f"must be an integer in 1..{MAX_POSITIONS}, got {num!r}")
+        if num > 1 and stop <= start:
+            r.fail("position.y", "stop", f"must be > start = {start!r}, got {stop!r}")
+        return np.linspace(start, stop, num), True
+    if isinstance(v, list):
+        if not v:
+            r.fail("position", "y", "the list of lateral shifts is empty")
+        vals = [r.number("position", {"y": x}, "y") for x in v]
+        return np.array(vals, dtype=float), True
+    return np.array([r.number("position", tbl, "y")]), False
+
+
+def _read_position(r: _Reader, tbl: Mapping):
+    r.unknown("position", tbl, _POSITION_KEYS)
+    y, sweep = _read_y(r, tbl)
+    if np.any(np.abs(y) > 0.05):
+        bad = float(y[np.argmax(np.abs(y))])
+        r.fail("position", "y", f"lateral shifts are in metres and |y| <= 0.05 m, got {bad!r}")
+    if "yaw" in tbl and "yaw_per_y" in tbl:
+        r.fail("position", None, "give yaw [rad] or yaw_per_y [rad/m], not both")
+    if isinstance(tbl.get("yaw"), list):
+        yaw = np.array([r.number("position", {"yaw": x}, "yaw") for x in tbl["yaw"]], float)
+        if yaw.shape != y.shape:
+            r.fail("position", "yaw", f"a list of yaw angles needs one per lateral shift "
+                   f"({y.size}), got {yaw.size}")
+    elif "yaw_per_y" in tbl:
+        yaw = r.number("position", tbl, "yaw_per_y") * y
+    else:
+        yaw = np.full(y.shape, r.number("position", tbl, "yaw", default=0.0))
+    if np.any(np.abs(yaw) > 0.2):
+        bad = float(yaw[np.argmax(np.abs(yaw))])
+        r.fail("position", "yaw_per_y" if "yaw_per_y" in tbl else "yaw",
+               f"gives a yaw angle of {bad!r} rad; |yaw| must be <= 0.2 rad")
+    roll = None
+    if "roll" in tbl:
+        roll = r.number("position", tbl, "roll")
+        if abs(roll) > 0.2:
+            r.fail("position", "roll", f"|roll| must be <= 0.2 rad, got {roll!r}")
+    if ("vertical_load" in tbl) == ("z" in tbl):
+        r.fail("position", None, "give exactly one of vertical_load (N per wheel, or "
+               "[left, right]) and z (height of the axle centre, m)")
+    load = z = None
+    if "vertical_load" in tbl:
+        v = tbl["vertical_load"]
+        if isinstance(v, list):
+            if len(v) != 2:
+                r.fail("position", "vertical_load", f"must be one number or [left, right], "
+                       f"got {v!r}")
+            load = tuple(r.number("position", {"vertical_load": x}, "vertical_load",
+                                  positive=True) for x in v)
+        else:
+            q = r.number("position", tbl, "vertical_load", positive=True)
+            load = (q, q)
+    else:
+        z = r.number("position", tbl, "z")
+    tol = r.number("position", tbl, "tolerance", default=5e-4, positive=True)
+    return y, sweep, yaw, roll, load, z, tol
+
+
+def _wheelset_case_from_dict(r: _Reader, data: Mapping) -> WheelsetCase:
+    from .geometry import Track, Wheelset
+    from .geometry.kinematics import Motion
+
+    for name in ("contact", "creepage", "force"):
+        if name in data:
+            r.fail(name, None, "a wheelset case ([wheelset], [track], [motion], [position]) "
+                   "takes no [contact], [creepage] or [force] table: the contact follows from "
+                   "the profiles, the creepages from [motion]")
+    r.unknown("", data, _WHEELSET_TABLES)
+    for name in _WHEELSET_TABLES:
+        if name in data and not isinstance(data[name], Mapping):
+            raise CaseFileError(f"{r.source}: '{name}' must be a table [{name}], "
+                                f"got {data[name]!r}")
+    materials = _read_materials(r, data.get("material", {}))
+
+    wt = data.get("wheelset", {})
+    r.unknown("wheelset", wt, _WHEELSET_KEYS)
+    wheel, wheel_src = _read_profile(r, "wheelset", wt, "profile", "wheel", "S1002")
+    wheel_r, wheel_r_src = _read_profile(r, "wheelset", wt, "profile_right", "wheel", None)
+    wkw = {k: r.number("wheelset", wt, k, positive=True) for k in _WHEELSET_KEYS[2:] if k in wt}
+    ws = _construct(r, "wheelset", lambda: Wheelset(wheel, wheel_right=wheel_r, **wkw))
+
+    tt = data.get("track", {})
+    r.unknown("track", tt, _TRACK_KEYS)
+    rail, rail_src = _read_profile(r, "track", tt, "profile", "rail", "60E1")
+    rail_r, rail_r_src = _read_profile(r, "track", tt, "profile_right", "rail", None)
+    tkw = {k: r.number("track", tt, k, positive=True) for k in ("gauge",) if k in tt}
+    if "gauge_height" in tt:
+        tkw["gauge_height"] = r.number("track", tt, "gauge_height", lo=0.0)
+    tkw["inclination"] = _read_slope(r, "track", tt, "inclination", 1.0 / 40.0)
+    if "canted" in tt:
+        if not isinstance(tt["canted"], bool):
+            r.fail("track", "canted", f"must be true or false, got {tt['canted']!r}")
+        tkw["canted"] = tt["canted"]
+    tr = _construct(r, "track", lambda: Track(rail, rail_right=rail_r, **tkw))
+
+    mt = r.required_table(data, "motion")
+    r.unknown("motion", mt, _MOTION_KEYS)
+    mkw = {"speed": r.number("motion", mt, "speed", positive=True)}
+    if "omega" in mt:
+        mkw["omega"] = r.number("motion", mt, "omega", positive=True)
+    for k in ("lateral_velocity", "vertical_velocity", "yaw_rate", "roll_rate"):
+        if k in mt:
+            mkw[k] = r.number("motion", mt, k)
+    if "roller_radius" in mt:
+        mkw["roller_radius"] = r.number("motion", mt, "roller_radius", positive=True)
+    motion = _construct(r, "motion", lambda: Motion(**mkw))
+
+    y, sweep, yaw, roll, load, z, tol = _read_position(r, r.required_table(data, "position"))
+    fr = r.required_table(data, "friction")
+    r.unknown("friction", fr, ("mu",))
+    mu = r.number("friction", fr, "mu", positive=True)
+    normal, tangential, options = _read_methods(r, data.get("method", {}))
+    tables = {"wheelset": {"profile": wheel_src, "profile_right": wheel_r_src,
+                           "nominal_radius": ws.nominal_radius, "flange_back": ws.flange_back,
+                           "tape_circle_offset": ws.tape_circle_offset},
+              "track": {"profile": rail_src, "profile_right": rail_r_src, "gauge": tr.gauge,
+                        "inclination": tr.inclination, "gauge_height": tr.gauge_height,
+                        "canted": tr.canted},
+              "motion": motion.to_dict(),
+              "position": {"roll": roll, "vertical_load": load, "z": z, "tolerance": tol},
+              "friction": {"mu": mu}, "method": {"normal": normal, "tangential": tangential,
+                                                 **{k: dict(v) for k, v in options.items()}}}
+    case = WheelsetCase(wheelset=ws, track=tr, motion=motion, y=y, yaw=yaw, roll=roll,
+                        vertical_load=load, z=z, tolerance=tol, sweep=sweep,
+                        materials=materials, mu=mu, normal=normal, tangential=tangential,
+                        options=MappingProxyType(options), source=r.source,
+                        tables=MappingProxyType(tables))
+    _construct(r, "position", lambda: case.position(0))   # the remaining checks of the pose
+    return case
+
+
+def solve_wheelset_case(case: WheelsetCase, progress=None):
+    """Solve a :class:`WheelsetCase` through :func:`wheelrail.solve`.
+
+    Returns
+    -------
+    WheelRailResult
+        For a single position (``[position] y`` a number).
+    xarray.Dataset
+        For a sweep (``y`` a range or list): :func:`wheelrail.wheelset_sweep`.
+    """
+    from .api import solve
+
+    if not isinstance(case, WheelsetCase):
+        raise InputError(f"solve_wheelset_case needs a WheelsetCase (from load_case), got "
+                         f"{type(case).__name__}")
+    if not case.sweep:
+        return solve(case.position(0), motion=case.motion, mu=case.mu, normal=case.normal,
+                     tangential=case.tangential, normal_options=case.normal_options,
+                     tangential_options=case.tangential_options)
+    from .contact.sweep import wheelset_sweep
+
+    ds = wheelset_sweep(case.wheelset, case.track, y=case.y, yaw=case.yaw,
+                        roll=case.roll, vertical_load=case.vertical_load, z=case.z,
+                        motion=case.motion, mu=case.mu, normal=case.normal,
+                        tangential=case.tangential, material=case.materials,
+                        progress=progress, normal_options=case.normal_options,
+                        tangential_options=case.tangential_options)
+    ds.attrs["source"] = case.source
+    return ds
+
+
+__all__ += ["WheelsetCase", "load_wheelset_case", "load_contact_case", "solve_wheelset_case"]

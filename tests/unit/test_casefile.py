@@ -303,8 +303,9 @@ def test_exact_method_runs():
 def test_bem_with_exact_uses_bem_grid_and_reports_its_normal_solution():
     """Issue 'exact half-space': normal = "bem" + tangential = "exact" with [method.bem] elements.
 
-    The exact theory solves the normal problem itself; its grid size comes from
-    [method.bem] and the JSON reports its BEM normal solution (area, p_max,
+    The case goes through wr.solve: the BEM normal method's patch (grid size from
+    [method.bem]) carries the pressure that the exact theory reads, and the JSON
+    reports that BEM normal solution (area, p_max,
     adhesion area, iterations). Reference: Hertz (Johnson 1985, eq. 3.64) for p_max.
     """
     text = (_edit(_edit(FULL, 'normal = "hertz"', 'normal = "bem"'),
@@ -315,7 +316,9 @@ def test_bem_with_exact_uses_bem_grid_and_reports_its_normal_solution():
     sol = res.forces.fields
     # the grid of the exact solve holds 31 elements across the contact (plus its margin)
     assert 31 <= sol.grid.nx <= 40
-    assert res.normal is sol.normal
+    # the exact theory reads the pressure of the BEM patch (wr.solve): one grid, one normal solution
+    assert res.normal is res.result.patches[0].patch.info["normal_solution"]
+    assert res.normal.grid.nx == sol.grid.nx and np.array_equal(res.normal.pressure, sol.pressure)
     c = wr.hertz(7500.0, 1.0869565, 1.6666667, wr.Material(2.1e11, 0.28))
     assert out["p_max"] == pytest.approx(c.p0, rel=0.02)
     assert out["area"] == pytest.approx(np.pi * c.a * c.b, rel=0.05)

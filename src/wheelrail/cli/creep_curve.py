@@ -149,7 +149,7 @@ def run_sweep_with_progress(console, case, component, values, methods, *, warn=T
 def run(args, console) -> int:
     import numpy as np
 
-    from ..casefile import load_case
+    from ..casefile import load_contact_case as load_case
     from ..errors import InputError
     from ..plotting import creep_curves
 

@@ -218,6 +218,57 @@ def step_geometry(ctx: DemoContext):
     return out["note"]
 
 
+def step_wheelrail(ctx: DemoContext):
+    """S1002 wheelset on 60E1 rails 1:40: patches and forces (Hertz + FASTSIM sweep over the
+    lateral shift; one position with boundary elements + the exact theory on a coarse grid)."""
+    import numpy as np
+
+    from ..api import solve
+    from ..contact.sweep import wheelset_sweep
+    from ..contact.wheelrail import WheelRailPosition
+    from ..geometry import Track, Wheelset
+    from ..geometry.kinematics import Motion
+    from ..plotting.wheelrail import adhesion_maps, contact_profiles, sweep_forces
+    from ..profiles import load
+    from .wheelset import write_sweep_csv
+
+    ws = Wheelset(load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    tr = Track(load("60E1"), gauge=1.435, inclination=1 / 40)
+    # slightly braked (Ω 0.1 % below free rolling), small yaw: all three creepages present
+    motion = Motion(speed=20.0, omega=20.0 / 0.46 * (1.0 - 1e-3))
+    mu, Q, yaw = 0.3, 10e3, 2e-3
+    pos = WheelRailPosition(ws, tr, y=0.005, yaw=yaw, roll=None, vertical_load=Q)
+    res = solve(pos, motion=motion, mu=mu, normal="hertz", tangential="fastsim")
+    contact_profiles(res, path=ctx.file("wheelrail_profiles.png",
+                                        "S1002/60E1, y = 5 mm: profiles, patches, pressure"))
+    adhesion_maps(res, path=ctx.file("wheelrail_adhesion.png",
+                                     "S1002/60E1, y = 5 mm: adhesion/slip per patch (FASTSIM)"))
+    bem = solve(pos, motion=motion, mu=mu, normal="bem", tangential="exact",
+                element_size=5e-4)
+    contact_profiles(bem, path=ctx.file("wheelrail_profiles_bem.png",
+                                        "y = 5 mm, boundary elements (0.5 mm) + exact theory"))
+    adhesion_maps(bem, path=ctx.file("wheelrail_adhesion_bem.png",
+                                     "y = 5 mm: adhesion/slip per patch (exact theory)"))
+    ys = np.linspace(-0.008, 0.008, 21)
+    ds = wheelset_sweep(ws, tr, y=ys, yaw=yaw, vertical_load=Q, motion=motion, mu=mu,
+                        progress=False)
+    write_sweep_csv(ds, ctx.file("wheelrail_sweep.csv", "Hertz + FASTSIM over y (CSV, SI)"))
+    sweep_forces(ds, path=ctx.file("wheelrail_sweep.png",
+                                   "forces and patch positions against the lateral shift"))
+    ctx.results["wheelrail"] = {
+        "position": {"y": 0.005, "yaw": yaw, "vertical_load": Q, "mu": mu,
+                     "motion": motion.to_dict()},
+        "hertz_fastsim": res.to_dict(), "bem_exact_0.5mm": bem.to_dict(),
+        "sweep_y": ys.tolist(),
+        "sweep_Fy_track": {s: ds["Fy_track"].sel(side=s).values.tolist() for s in ("left", "right")},
+        "sweep_failed": int(np.sum(ds["status"].values != "ok")),
+    }
+    two = [f"{side} {len(res.side(side))}" for side in ("left", "right")]
+    return (f"y = 5 mm: patches {', '.join(two)}; right-wheel F_y = "
+            f"{res.force_track['right'][1]:.0f} N (Hertz+FASTSIM), "
+            f"{bem.force_track['right'][1]:.0f} N (BEM+exact); sweep of {ys.size} shifts")
+
+
 #: The demo, in order. Append a Step to add a part.
 STEPS = [
     Step("case", "built-in case file", step_case),
@@ -227,6 +278,7 @@ STEPS = [
     Step("fastsim-fields", "FASTSIM traction field", step_fastsim_fields),
     Step("exact", "Kalker's exact theory (boundary elements)", step_exact),
     Step("geometry", "S1002/60E1 1:40 contact table", step_geometry),
+    Step("wheelrail", "S1002/60E1 wheelset: patches and forces", step_wheelrail),
 ]
 
 

@@ -41,7 +41,7 @@ def plot_result(result, path) -> str:
 
 
 def run(args, console) -> int:
-    from ..casefile import load_case, solve_case
+    from ..casefile import load_contact_case as load_case, solve_case
     from ._output import summary_table, write_json
 
     case = load_case(args.case)

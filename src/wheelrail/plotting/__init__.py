@@ -11,6 +11,9 @@ function               draws
 :func:`traction_field` tangential traction and adhesion/slip areas (FASTSIM, exact)
 :func:`pressure_map`   normal pressure: Hertz ellipse or a pressure grid
 :func:`subsurface_section` von Mises / maximum shear stress in a section below the contact
+:func:`contact_profiles` wheel–rail profiles at the solved pose, patches and pressure on the rail
+:func:`adhesion_maps`  adhesion/slip areas of every wheel–rail patch
+:func:`sweep_forces`   patch forces and positions over a lateral-shift sweep
 =====================  =========================================================
 """
 
@@ -19,7 +22,7 @@ from __future__ import annotations
 import importlib
 
 __all__ = ["creep_curves", "traction_field", "pressure_map", "subsurface_section", "field_arrays",
-           "new_figure"]
+           "new_figure", "contact_profiles", "adhesion_maps", "sweep_forces"]
 
 _LAZY = {
     "creep_curves": "wheelrail.plotting.creep",
@@ -28,6 +31,9 @@ _LAZY = {
     "subsurface_section": "wheelrail.plotting.subsurface",
     "field_arrays": "wheelrail.plotting._fields",
     "new_figure": "wheelrail.plotting._common",
+    "contact_profiles": "wheelrail.plotting.wheelrail",
+    "adhesion_maps": "wheelrail.plotting.wheelrail",
+    "sweep_forces": "wheelrail.plotting.wheelrail",
 }
 
 
