@@ -157,6 +157,13 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
                         f"InputError: {side} wheel: a penetrating contact point is not convex "
                         "(Hertz cannot represent it; use normal='bem')")
                 act &= ~bad
+            for r in np.nonzero(~act.any(axis=1))[0]:
+                i = rows[r]
+                if status[i] == "ok":
+                    what = (f"z = {float(z)!r} m leaves the {side} wheel out of contact (it "
+                            f"touches at z = {float(zr[r])!r} m)" if Qn is None else
+                            f"no contact on the {side} wheel")
+                    status[i], message[i] = "error", f"InputError: {what}"
             hc = hertz_from_penetration(pen[act], A[act], B[act], pair)
             last = (Qn is None or vertical == "normal" or outer == 11)
             opts = dict(topts)

@@ -36,7 +36,7 @@ PATCH_VARIABLES = {
 def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None, z=None,
                    motion=None, mu=0.3, normal="hertz", tangential="fastsim", material=None,
                    max_patches=3, progress=None, vertical="total", tolerance=5e-4,
-                   batch=True, **options):
+                   batch=True, normal_options=None, tangential_options=None, **options):
     """Solve the wheel–rail contact at many lateral shifts.
 
     Parameters
@@ -69,6 +69,8 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         operations; the same model as the per-position path, see
         :mod:`wheelrail.contact._hertz_batch`). ``False``: one
         :func:`wheelrail.solve` per position.
+    normal_options, tangential_options : dict, optional
+        Options for one method explicitly (as :func:`wheelrail.solve`).
     **options
         Method options (see :func:`wheelrail.solve`).
 
@@ -103,6 +105,9 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     check_vertical(vertical)
     nimpl, timpl = get_normal_method(normal), get_method(tangential)
     nopts, topts = _split_options(nimpl, timpl, options)
+    nopts.update(normal_options or {})
+    topts.update(tangential_options or {})
+    nopts = nimpl.check_options(nopts)
     if batch and isinstance(nimpl, Hertz):
         # validate the position arguments once, as WheelRailPosition does
         WheelRailPosition(wheelset, track, float(y[0]), float(yaw[0]),
