@@ -52,9 +52,15 @@ def summary_table(summary: dict, title: str):
 
 
 def write_json(data: dict, path) -> Path:
+    """Write ``data`` as JSON atomically (a full disk leaves no half-written file).
+
+    The text is produced completely before the file is opened; NaN and inf
+    are refused (they are not JSON).
+    """
+    from .._atomic import atomic_open
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", encoding="utf-8") as fh:
-        json.dump(data, fh, indent=2)
-        fh.write("\n")
+    text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+    with atomic_open(path, "w", encoding="utf-8") as fh:
+        fh.write(text)
     return path
