@@ -445,7 +445,8 @@ def _bracketed(ws, tr, y, yaw, th0, step, tol):
     is searched on a grid of roll angles in ±:data:`_ROLL_BRACKET` (the one
     nearest to ``th0``), then bisected. Returns z, θ, wheel coordinates,
     residual and a code per row (0 solved, 3 a wheel beside its rail at every
-    roll of the bracket, 4 no sign change).
+    roll of the bracket, 5 no sign change: wherever both wheels lie above
+    their rails, one of them cannot touch).
     """
     n = y.size
     grid = np.linspace(-_ROLL_BRACKET, _ROLL_BRACKET, 35)
@@ -459,7 +460,7 @@ def _bracketed(ws, tr, y, yaw, th0, step, tol):
     for i in range(n):
         cand = np.flatnonzero(valid[i, :-1] & valid[i, 1:] & (np.sign(f[i, :-1]) != np.sign(f[i, 1:])))
         if cand.size == 0:
-            code[i] = 3 if not np.any(valid[i]) else 4
+            code[i] = 3 if not np.any(valid[i]) else 5
             continue
         k = cand[np.argmin(np.abs(0.5 * (grid[cand] + grid[cand + 1]) - th0[i]))]
         lo[i], hi[i] = grid[k], grid[k + 1]
@@ -538,6 +539,12 @@ def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, m
     for i in range(y.size):
         if code[i] == 0:
             reason.append("")
+        elif code[i] == 5:
+            code[i] = 3
+            reason.append(f"y = {float(y[i]):.6g} m: no contact on both sides — at every roll "
+                          f"angle within ±{_ROLL_BRACKET} rad at which both wheels lie above "
+                          "their rails, one wheel cannot touch its rail (a wheel beside its "
+                          "rail, or a wheel profile origin not on the tape circle?)")
         elif code[i] == 3:
             reason.append(f"y = {float(y[i]):.6g} m: a wheel lies entirely beside its rail "
                           "(lateral shift too large for these profiles)")

@@ -103,7 +103,9 @@ def _gauge_point(y, z, depth, polish=True):
     if i == 0:
         raise ProfileError(
             f"rail profile does not reach {depth * 1e3:.1f} mm below the top of rail on the gauge "
-            f"side (lowest gauge-side point z = {z[0] * 1e3:.2f} mm); the gauge cannot be placed")
+            f"side (lowest gauge-side point z = {z[0] * 1e3:.2f} mm); the gauge cannot be placed "
+            "(a flat or shallow profile has no gauge face: use a rail-head profile, or a smaller "
+            "gauge_height)")
     t = (-depth - z[i - 1]) / (z[i] - z[i - 1])
     yg = y[i - 1] + t * (y[i] - y[i - 1])
     if not polish:
