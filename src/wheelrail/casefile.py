@@ -349,6 +349,7 @@ def case_from_dict(data: Mapping, source: str = "<dict>") -> Case:
     fr = r.required_table(data, "friction")
     r.unknown("friction", fr, ("mu",))
     mu = r.number("friction", fr, "mu", positive=True)
+    _check_plausible(r, "friction", "mu", mu)
     normal, tangential, options = _read_methods(r, data.get("method", {}))
     forces = _read_forces(r, data.get("force", {}), contact.load, mu)
     case = Case(materials=materials, contact=contact, creepage=creepage, mu=mu, normal=normal,
@@ -359,6 +360,16 @@ def case_from_dict(data: Mapping, source: str = "<dict>") -> Case:
     except InputError as exc:
         raise CaseFileError(f"{source}: [contact]: {exc}") from None
     return case
+
+
+def _check_plausible(r, table: str, key: str, value) -> None:
+    """Plausibility check of one value at read time (see :mod:`wheelrail.plausibility`)."""
+    from .plausibility import check_friction
+
+    try:
+        check_friction(value)
+    except InputError as exc:
+        r.fail(table, key, str(exc))
 
 
 class _Reader:

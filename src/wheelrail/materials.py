@@ -36,6 +36,9 @@ class Material:
 
     def __post_init__(self):
         object.__setattr__(self, "E", float(positive("E", self.E)))
+        from .plausibility import check_modulus
+
+        check_modulus(self.E)
         object.__setattr__(self, "nu", float(in_range("nu", self.nu, 0.0, 0.5, hi_open=True)))
 
     @property

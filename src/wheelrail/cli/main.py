@@ -59,6 +59,9 @@ def build_parser() -> argparse.ArgumentParser:
                                  "case files (SI units, Kalker's sign convention).")
     parser.add_argument("--version", action="version", version=f"wheelrail {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    parser.add_argument("--no-plausibility-checks", action="store_true",
+                        help="accept values outside the wheel-rail range (e.g. mu > 2, a patch "
+                             "larger than the radii) without warning or refusal")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, module_name in COMMANDS:
         module = importlib.import_module(module_name)
@@ -138,6 +141,11 @@ def _main(argv, debug) -> int:
             parser.print_help()
             return EXIT_USAGE
         console = make_console()
+        if getattr(args, "no_plausibility_checks", False):
+            from ..plausibility import disabled
+
+            with disabled():
+                return int(args._run(args, console) or 0)
         return int(args._run(args, console) or 0)
     except KeyboardInterrupt:
         print("wheelrail: interrupted", file=sys.stderr)
