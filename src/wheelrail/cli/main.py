@@ -59,6 +59,9 @@ def build_parser() -> argparse.ArgumentParser:
                                  "case files (SI units, Kalker's sign convention).")
     parser.add_argument("--version", action="version", version=f"wheelrail {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    parser.add_argument("--memory-limit", metavar="SIZE", default=None,
+                        help="refuse boundary-element solves estimated to need more memory "
+                             "(e.g. 8GB, 500MB, off; default min(4 GiB, half the RAM))")
     parser.add_argument("--no-plausibility-checks", action="store_true",
                         help="accept values outside the wheel-rail range (e.g. mu > 2, a patch "
                              "larger than the radii) without warning or refusal")
@@ -140,13 +143,20 @@ def _main(argv, debug) -> int:
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
-        console = make_console()
-        if getattr(args, "no_plausibility_checks", False):
-            from ..plausibility import disabled
+        import contextlib
 
-            with disabled():
-                return int(args._run(args, console) or 0)
-        return int(args._run(args, console) or 0)
+        from .. import _resources
+
+        console = make_console()
+        with contextlib.ExitStack() as stack:
+            if args.memory_limit is not None:
+                stack.enter_context(_resources.limit(_resources.parse_size(args.memory_limit)))
+            if getattr(args, "no_plausibility_checks", False):
+                from ..plausibility import disabled
+
+                stack.enter_context(disabled())
+            stack.enter_context(_resources.reporting(console))
+            return int(args._run(args, console) or 0)
     except KeyboardInterrupt:
         print("wheelrail: interrupted", file=sys.stderr)
         return 130

@@ -1085,6 +1085,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     .. [2] Kalker (1990) §5.3 (KOMBI: alternation of NORM and TANG).
     .. [3] Seed paper 002, §2.3, steps 1–4.
     """
+    from .._resources import guard as _guard
     from ..normal.bem import solve_normal
 
     pair = as_material_pair(materials)
@@ -1094,6 +1095,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
         normal = solve_normal(grid, h0, pair, load=load, penetration=penetration, tol=normal_tol,
                               maxiter=normal_maxiter, on_fail=on_fail)
         return GapSolution(normal, None, 1, 0.0)
+    _guard("exact", grid.size, f"exact theory on a {grid.nx}x{grid.ny} grid")  # memory/time
     if mu is None:
         raise InputError("mu is required for a tangential problem (creepage=, shift= or force=)")
     if creepage is not None and (shift is not None or force is not None):
