@@ -508,6 +508,7 @@ def _read_methods(r: _Reader, tbl: Mapping):
             r.fail("method", None, f"unknown method table [method.{name}]; methods are "
                    + ", ".join((*NORMAL_METHODS, *METHODS)))
         options[key] = dict(opts)
+        _check_option_values(r, name, key, options[key])
     # options of the chosen methods are checked now (typos), the others are kept as given
     if normal == "bem":
         bem = options.get("bem", {})
@@ -518,6 +519,19 @@ def _read_methods(r: _Reader, tbl: Mapping):
                 r.fail("method.bem", "elements", f"must be an integer >= 2, got {e!r}")
     _check_tangential_options(r, tangential, options.get(tangential, {}))
     return normal, tangential, options
+
+
+def _check_option_values(r: _Reader, table: str, method: str, opts: dict) -> None:
+    """Validate every value of a [method.<name>] table now (see :mod:`wheelrail._options`)."""
+    from ._options import VALIDATORS
+
+    checks = VALIDATORS.get(method, {})
+    for k, v in opts.items():
+        if k in checks:
+            try:
+                checks[k](k, v)
+            except InputError as exc:
+                r.fail(f"method.{table}", k, str(exc))
 
 
 def _check_tangential_options(r: _Reader, name: str, opts: dict) -> None:

@@ -42,7 +42,10 @@ class TangentialMethod:
         raise NotImplementedError
 
     def check_options(self, options: dict) -> dict:
-        """Merge ``options`` into the defaults, rejecting unknown keywords."""
+        """Merge ``options`` into the defaults, rejecting unknown keywords and bad values.
+
+        Values are checked with the table of :mod:`wheelrail._options`.
+        """
         unknown = set(options) - set(self.options)
         if unknown:
             allowed = ", ".join(sorted(self.options)) or "none"
@@ -50,6 +53,9 @@ class TangentialMethod:
                              f"{', '.join(sorted(unknown))}; allowed: {allowed}")
         merged = dict(self.options)
         merged.update(options)
+        from .._options import validate
+
+        validate(self.name, merged)  # every value, before any solve; nothing is clamped
         return merged
 
     def __repr__(self) -> str:
