@@ -17,6 +17,16 @@ from pathlib import Path
 __all__ = ["atomic_path", "atomic_open", "check_output_path"]
 
 
+def _file_mode(path: Path) -> int:
+    """Mode of the file being replaced, else 0o666 less the umask (mkstemp uses 0o600)."""
+    try:
+        return os.stat(path).st_mode & 0o7777
+    except OSError:
+        mask = os.umask(0)
+        os.umask(mask)
+        return 0o666 & ~mask
+
+
 @contextlib.contextmanager
 def atomic_path(path):
     """Yield a temporary path beside ``path``; rename it to ``path`` if the block succeeds.
@@ -31,6 +41,7 @@ def atomic_path(path):
     os.close(fd)
     try:
         yield Path(tmp)
+        os.chmod(tmp, _file_mode(path))
         os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(OSError):
@@ -79,6 +90,12 @@ def check_output_path(path, *, what="output", suffixes=None) -> Path:
         existing = existing.parent
     if not existing.is_dir():
         raise InputError(f"{what} {str(path)!r}: {str(existing)!r} is not a directory")
-    if not os.access(existing, os.W_OK | os.X_OK):
-        raise InputError(f"{what} {str(path)!r}: directory {str(existing)!r} is not writable")
+    try:  # the only reliable test (root, read-only mounts, /proc): create a file there
+        fd, probe = tempfile.mkstemp(prefix=".wheelrail-probe.", dir=existing)
+    except OSError as exc:
+        raise InputError(f"{what} {str(path)!r}: cannot write in directory {str(existing)!r} "
+                         f"({exc.strerror or exc})") from None
+    os.close(fd)
+    with contextlib.suppress(OSError):
+        os.unlink(probe)
     return path

@@ -51,6 +51,32 @@ def summary_table(summary: dict, title: str):
     return table
 
 
+#: Figure formats of matplotlib's Agg/vector backends (checked before any work).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif",
+                   ".tiff", ".webp", ".pgf")
+
+
+def check_outputs(**outputs) -> None:
+    """Check output options before solving: ``name=path`` (None skipped).
+
+    Names ending in ``plot``/``out``/``figure`` must have a figure suffix of
+    :data:`FIGURE_SUFFIXES`; ``json`` a ``.json`` suffix; ``csv`` ``.csv``.
+    Every path must be a writable file location (not a directory).
+    """
+    from .._atomic import check_output_path
+
+    for name, path in outputs.items():
+        if path is None:
+            continue
+        opt = "--" + name.replace("_", "-")
+        if name in ("plot", "out", "figure"):
+            check_output_path(path, what=opt, suffixes=FIGURE_SUFFIXES)
+        elif name in ("json", "csv"):
+            check_output_path(path, what=opt, suffixes=(f".{name}",))
+        else:
+            check_output_path(path, what=opt)
+
+
 def write_json(data: dict, path) -> Path:
     """Write ``data`` as JSON atomically (a full disk leaves no half-written file).
 
