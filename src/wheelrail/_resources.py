@@ -77,7 +77,7 @@ def _duration(s: float) -> str:
 def parse_size(text) -> float | None:
     """'8GB' → 8e9, '500MB' → 5e8, '2e9' → 2e9 bytes; 'off'/'none' → None (no limit)."""
     s = str(text).strip().lower().replace(" ", "")
-    if s in ("off", "none", "inf", "unlimited", "0"):
+    if s in ("off", "none", "inf", "unlimited"):
         return None
     factors = {"tb": 1e12, "gb": 1e9, "mb": 1e6, "kb": 1e3, "gib": 2**30, "mib": 2**20,
                "g": 1e9, "m": 1e6, "k": 1e3, "b": 1.0}

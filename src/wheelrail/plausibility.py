@@ -182,9 +182,12 @@ def check_patch(a, b, A, B) -> None:
     with np.errstate(divide="ignore", invalid="ignore"):
         ra = a * 2.0 * A   # a / R_x
         rb = b * 2.0 * B   # b / R_y
-    worst = float(np.nanmax(np.maximum(ra, rb)))
-    if not np.isfinite(worst):
+    if not (np.all(np.isfinite(a)) and np.all(np.isfinite(b))):
+        _refuse("contact patch size is not finite (a modulus or load beyond the range of "
+                "floating-point numbers?)")
+    if np.all(np.isnan(np.maximum(ra, rb))):
         return
+    worst = float(np.nanmax(np.maximum(ra, rb)))
     i = int(np.nanargmax(np.maximum(ra, rb)))
     ai, bi = a.ravel()[i % a.size], b.ravel()[i % b.size]
     Rx = 1.0 / (2.0 * A.ravel()[i % A.size])
