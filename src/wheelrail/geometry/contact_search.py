@@ -489,6 +489,25 @@ def _bracketed(ws, tr, y, yaw, th0, step, tol):
     return z, th, sLo, sRo, res, code
 
 
+def _edge_hint(ws, tr, y, z, th, psi, s, margin=5e-4):
+    """Reason suffix when a contact point lies at the end of a rail profile (an edge)."""
+    hints = []
+    for side in SIDES:
+        if not np.isfinite(s[side]) or not np.isfinite(z) or not np.isfinite(th):
+            continue
+        p, p1 = ws.curve(side).eval(np.array([s[side]]), 1)
+        _, Y, _, _ = silhouette(np.array([s[side]]), p, p1, ws.nominal_radius, ws.e_tape,
+                                _SIGMA[side], y, ws.nominal_radius + z, th, psi)
+        u = float(_SIGMA[side] * Y[0])
+        rc = tr.curve(side)
+        if u - rc.u_min < margin or rc.u_max - u < margin:
+            hints.append(side)
+    if not hints:
+        return ""
+    return (f"; the {' and '.join(hints)} wheel touches the end of its rail profile (an edge "
+            "where the profile data stop: extend the rail profile)")
+
+
 def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxiter=60,
                      z0=None, roll0=None) -> RigidRows:
     """Roll and height satisfying ``min d = 0`` on both sides, row by row, never raising.
@@ -550,7 +569,9 @@ def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, m
                           "(lateral shift too large for these profiles)")
         else:
             reason.append(f"y = {float(y[i]):.6g} m: rigid contact constraint did not converge "
-                          f"(residual {float(res[i]):.3g} m)")
+                          f"(residual {float(res[i]):.3g} m)"
+                          + _edge_hint(ws, tr, y[i], z[i], th[i], yaw[i],
+                                       {"left": sL[i], "right": sR[i]}))
     bad = code != 0
     for arr in (z, th, sL, sR):
         arr[bad] = np.nan
