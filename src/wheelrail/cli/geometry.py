@@ -351,8 +351,14 @@ def run(args, console) -> int:
     tr = Track(load_profile(args.rail, "rail"), gauge=args.gauge,
                inclination=parse_slope(args.inclination), canted=args.canted)
     out = Path(args.out)
-    table, summary, files = compute(ws, tr, ys, out, yaw=args.yaw, amplitude=args.amplitude,
-                                    plots=not args.no_plots)
+    import contextlib
+
+    # about 1 ms per lateral shift: show a spinner for long tables (terminal only)
+    busy = (console.status(f"contact table: {len(ys)} lateral shifts (about {len(ys) // 1000} s)")
+            if len(ys) > 3000 and console.is_terminal else contextlib.nullcontext())
+    with busy:
+        table, summary, files = compute(ws, tr, ys, out, yaw=args.yaw, amplitude=args.amplitude,
+                                        plots=not args.no_plots)
     files.append((write_json(summary, out / "geometry_summary.json"), "summary (JSON, SI)"))
     con = summary["equivalent_conicity"]
     con_txt = f"{con:.4f}" if isinstance(con, float) else con
