@@ -130,3 +130,34 @@ def test_measured_wheel_avg_wheel_full_range(shared_profiles):
     st = _check_table(t)
     assert np.all(st[9:12] == 0)  # |y| <= 5 mm
     assert st[0] == STATUS_CODE["derailed"] and st[-1] == STATUS_CODE["derailed"]
+
+
+def test_flange_climb_between_flange_contact_and_derailment():
+    """S1002/60E1 1:40: tread contact at 5 mm, flange climbing (contact past the steepest
+    flank point, contact angle falling) at 9 mm, flange tip at 30 mm; only derailment warns."""
+    ws = wr.Wheelset(wr.profiles.load("S1002"))
+    tr = wr.Track(wr.profiles.load("60E1"))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert wr.contact_points(ws, tr, 0.005).status == "ok"
+        cp = wr.contact_points(ws, tr, 0.009)
+    assert cp.status == "flange_climb" and "right wheel climbs its flange" in cp.reason
+    fg = wr.geometry.contact_search.flange_geometry(ws, "right")
+    gamma = np.degrees(cp.right.contact_angle[cp.right.primary])
+    assert 45.0 < gamma < fg[4] - 2.0   # below the 70° of the S1002 flank
+    with pytest.warns(wr.geometry.contact_search.ContactWarning):
+        assert wr.contact_points(ws, tr, 0.03).status == "derailed"
+
+
+@pytest.mark.parametrize("rail", ["60E1", "54E1"])
+def test_rail_at_1_in_20_keeps_the_part_seen_from_above(rail):
+    """At 1:20 the 1:20 head side is vertical: it is dropped, the gauge is still exact."""
+    tr = wr.Track(wr.profiles.load(rail), inclination=1 / 20)
+    for side in ("left", "right"):
+        pl = tr.placement(side)
+        assert pl.gauge_point == pytest.approx(tr.gauge / 2)
+        u = pl.curve.u
+        assert np.all(np.diff(u) > 0)
+        # the kept surface is the upper envelope: steepest slope below 100 (89.4°)
+        slope = pl.curve.eval(np.linspace(u[0], u[-1], 2001), 1)[1]
+        assert np.max(np.abs(slope)) < 150.0

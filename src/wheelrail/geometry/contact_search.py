@@ -988,8 +988,8 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
     Returns
     -------
     ContactPoints
-        With ``status`` ``"ok"``, ``"flange_climb"`` or ``"derailed"``; the
-        latter two also issue a :class:`ContactWarning`.
+        With ``status`` ``"ok"``, ``"flange_climb"`` or ``"derailed"``;
+        ``"derailed"`` also issues a :class:`ContactWarning`.
 
     Raises
     ------
@@ -1016,7 +1016,7 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
     if status[0] >= 3:
         raise (InputError if status[0] == 3 else ConvergenceError)(reasons[0])
     sides = {side: _side_from_row(*rows[side], 0) for side in SIDES}
-    if status[0]:
+    if status[0] == STATUS_CODE["derailed"]:
         import warnings
 
         warnings.warn(reasons[0], ContactWarning, stacklevel=2)
