@@ -49,12 +49,12 @@ def test_existing_file_is_kept_on_failure(tmp_path, full_disk):
     assert [p.name for p in tmp_path.iterdir()] == ["r.json"]
 
 
-def test_nan_is_refused_before_the_file_is_opened(tmp_path):
+def test_nan_is_written_as_null_not_as_invalid_json(tmp_path):
     from wheelrail.cli._output import write_json
 
-    with pytest.raises(ValueError):
-        write_json({"a": float("nan")}, tmp_path / "r.json")
-    assert list(tmp_path.iterdir()) == []
+    write_json({"a": float("nan"), "b": [1.0, float("inf")], "c": {"d": 2.0}}, tmp_path / "r.json")
+    assert json.loads((tmp_path / "r.json").read_text()) == {"a": None, "b": [1.0, None],
+                                                             "c": {"d": 2.0}}
 
 
 @pytest.mark.parametrize("writer", ["csv", "netcdf", "figure", "profile-text", "profile-simpack"])

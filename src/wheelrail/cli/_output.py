@@ -77,16 +77,29 @@ def check_outputs(**outputs) -> None:
             check_output_path(path, what=opt)
 
 
+def _finite_or_null(obj):
+    """Replace NaN and ±inf floats by None, recursively (JSON has no NaN)."""
+    import math
+
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {k: _finite_or_null(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite_or_null(v) for v in obj]
+    return obj
+
+
 def write_json(data: dict, path) -> Path:
     """Write ``data`` as JSON atomically (a full disk leaves no half-written file).
 
     The text is produced completely before the file is opened; NaN and inf
-    are refused (they are not JSON).
+    (not valid JSON) are written as ``null``.
     """
     from .._atomic import atomic_open
 
     path = Path(path)
-    text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+    text = json.dumps(_finite_or_null(data), indent=2, allow_nan=False) + "\n"
     with atomic_open(path, "w", encoding="utf-8") as fh:
         fh.write(text)
     return path
