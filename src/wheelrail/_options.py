@@ -96,7 +96,7 @@ def _polach_all(opts):
 #: method -> (option -> validator(name, value)), and an optional check of the whole set.
 VALIDATORS = {
     "fastsim": {
-        "nx": _integer(1, 100_000), "ny": _integer(1, 100_000),
+        "nx": _integer(1, 2000), "ny": _integer(1, 2000),  # 4e6 cells: ~100 MB per field
         "bound": _choice("parabolic", "elliptic"),
         "flexibility": _choice("three", "weighted"),
         "scheme": _choice("midpoint", "euler"),
