@@ -703,7 +703,7 @@ def classify_rows(ws, y, z, wheel_y, status, roll=None):
         for i in np.flatnonzero(beyond):
             tip = bool(ang[i] < 45.0 or sc[i] <= s_tip)
             code = 2 if tip else 1
-            above = (zc[i] - z_tip) * 1e3
+            above = max(0.0, (zc[i] - z_tip) * 1e3)
             what = (f"{side} wheel rides on its flange tip ({above:.1f} mm above the tip, "
                     f"profile slope {ang[i]:.1f}°): derailed" if tip else
                     f"{side} wheel climbs its flange (contact {above:.1f} mm above the flange "

@@ -215,13 +215,16 @@ class Track:
                     f"rail {getattr(prof, 'name', '')!r}: after the inclination of "
                     f"{self.inclination!r} less than 4 points of the rail are visible from above")
             try:
-                yg = _gauge_point(yr[keep], zr[keep], self.gauge_height)
-            except ProfileError:
-                if keep.size == yr.size:
-                    raise
-                # the gauge point lies on a vertical or overhanging part that is hidden from
-                # above: locate it on the whole contour (linear interpolation)
-                yg = _gauge_point(yr, zr, self.gauge_height, polish=False)
+                try:
+                    yg = _gauge_point(yr[keep], zr[keep], self.gauge_height)
+                except ProfileError:
+                    if keep.size == yr.size:
+                        raise
+                    # the gauge point lies on a vertical or overhanging part that is hidden
+                    # from above: locate it on the whole contour (linear interpolation)
+                    yg = _gauge_point(yr, zr, self.gauge_height, polish=False)
+            except ProfileError as exc:
+                raise ProfileError(f"rail {getattr(prof, 'name', '')!r}: {exc}") from None
             yr, zr = yr[keep], zr[keep]
             offset = 0.5 * self.gauge - yg
             curve = PiecewiseCubic.through(yr + offset, zr, uniform_step=SAMPLE_STEP)
