@@ -17,7 +17,11 @@ class Method:
     family: str = ""
 
     def check_options(self, options: dict) -> dict:
-        """Merge ``options`` into the defaults, rejecting unknown keywords."""
+        """Merge ``options`` into the defaults, rejecting unknown keywords and bad values.
+
+        Values are checked with the table of :mod:`wheelrail._options` (before any
+        solve; nothing is clamped).
+        """
         unknown = set(options) - set(self.options)
         if unknown:
             allowed = ", ".join(sorted(self.options)) or "none"
@@ -25,6 +29,9 @@ class Method:
                              f"{', '.join(sorted(unknown))}; allowed: {allowed}")
         merged = dict(self.options)
         merged.update(options)
+        from ._options import validate
+
+        validate(self.name, merged)
         return merged
 
     def __repr__(self) -> str:

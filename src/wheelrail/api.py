@@ -8,6 +8,7 @@ import numpy as np
 
 from ._validation import as_float_array, positive
 from .errors import InputError, WheelrailError
+from .plausibility import check_friction
 from .results import CreepForces
 from .tangential._base import TangentialMethod
 
@@ -137,6 +138,7 @@ def creep_forces(contact, creepage, mu, method="fastsim", **options) -> CreepFor
     opts = impl.check_options(options)
     xi, eta, phi = as_creepage(creepage)
     mu = positive("mu", mu)
+    check_friction(mu)  # a percentage or a typo: warn above 1, refuse above 2 (plausibility)
     shape = np.broadcast_shapes(np.shape(contact.a), xi.shape, mu.shape)
     if len(shape) > 1:
         raise InputError(f"batch inputs must be one-dimensional, got shape {shape}")

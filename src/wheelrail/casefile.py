@@ -390,6 +390,7 @@ def case_from_dict(data: Mapping, source: str = "<dict>"):
     fr = r.required_table(data, "friction")
     r.unknown("friction", fr, ("mu",))
     mu = r.number("friction", fr, "mu", positive=True)
+    _check_plausible(r, "friction", "mu", mu)
     normal, tangential, options = _read_methods(r, data.get("method", {}))
     forces = _read_forces(r, data.get("force", {}), contact.load, mu)
     case = Case(materials=materials, contact=contact, creepage=creepage, mu=mu, normal=normal,
@@ -400,6 +401,16 @@ def case_from_dict(data: Mapping, source: str = "<dict>"):
     except InputError as exc:
         raise CaseFileError(f"{source}: [contact]: {exc}") from None
     return case
+
+
+def _check_plausible(r, table: str, key: str, value) -> None:
+    """Plausibility check of one value at read time (see :mod:`wheelrail.plausibility`)."""
+    from .plausibility import check_friction
+
+    try:
+        check_friction(value)
+    except InputError as exc:
+        r.fail(table, key, str(exc))
 
 
 class _Reader:
@@ -538,10 +549,24 @@ def _read_methods(r: _Reader, tbl: Mapping):
             r.fail("method", None, f"unknown method table [method.{name}]; methods are "
                    + ", ".join((*NORMALS, *METHODS)))
         options[key] = dict(opts)
+        _check_option_values(r, name, key, options[key])
     # options of the chosen methods are checked now (typos, types), the others kept as given
     _check_method_options(r, normal, get_normal_method(normal), options.get(normal, {}))
     _check_method_options(r, tangential, get_method(tangential), options.get(tangential, {}))
     return normal, tangential, options
+
+
+def _check_option_values(r: _Reader, table: str, method: str, opts: dict) -> None:
+    """Validate every value of a [method.<name>] table now (see :mod:`wheelrail._options`)."""
+    from ._options import VALIDATORS
+
+    checks = VALIDATORS.get(method, {})
+    for k, v in opts.items():
+        if k in checks:
+            try:
+                checks[k](k, v)
+            except InputError as exc:
+                r.fail(f"method.{table}", k, str(exc))
 
 
 #: Integer options that need at least two elements/cells/strips.

@@ -14,8 +14,24 @@ __all__ = [
 ]
 
 
+import re
+
+_NUMPY_SCALAR = re.compile(r"np\.(?:float|int|uint|complex|bool_|str_)\w*\(([^()]*)\)")
+
+
+def tidy(text: str) -> str:
+    """``np.float64(0.5)`` → ``0.5`` in a message (NumPy ≥ 2 scalar reprs)."""
+    return _NUMPY_SCALAR.sub(r"\1", text)
+
+
 class WheelrailError(Exception):
-    """Base class of every error raised by wheelrail."""
+    """Base class of every error raised by wheelrail.
+
+    The message is shown without NumPy scalar wrappers (``np.float64(…)``).
+    """
+
+    def __str__(self):
+        return tidy(super().__str__())
 
 
 class InputError(WheelrailError, ValueError):

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 from ._validation import in_range, positive
+from .errors import InputError
 
 __all__ = ["Material", "MaterialPair", "STEEL", "as_material_pair"]
 
@@ -36,7 +37,12 @@ class Material:
 
     def __post_init__(self):
         object.__setattr__(self, "E", float(positive("E", self.E)))
+        from .plausibility import check_modulus
+
+        check_modulus(self.E)
         object.__setattr__(self, "nu", float(in_range("nu", self.nu, 0.0, 0.5, hi_open=True)))
+        if not (1e-300 < self.E < 1e300):  # G, 1/G and E* must be representable
+            raise InputError(f"E must lie in (1e-300, 1e300) Pa, got {self.E!r}")
 
     @property
     def G(self) -> float:

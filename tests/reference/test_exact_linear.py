@@ -20,6 +20,13 @@ MAT = wr.Material(2.1e11, 0.25)
 N = 64
 
 
+@pytest.fixture(autouse=True)
+def _huge_mu_allowed():
+    """μ = 1e6 (the no-slip limit) is deliberately outside the plausible range."""
+    with wr.plausibility.disabled():
+        yield
+
+
 def _contact(ab):
     return wr.hertz_from_semiaxes(4e-3 * np.sqrt(ab), 4e-3 / np.sqrt(ab), 1e4, MAT)
 

@@ -51,10 +51,55 @@ def summary_table(summary: dict, title: str):
     return table
 
 
+#: Figure formats of matplotlib's Agg/vector backends (checked before any work).
+FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".svgz", ".eps", ".ps", ".jpg", ".jpeg", ".tif",
+                   ".tiff", ".webp", ".pgf")
+
+
+def check_outputs(**outputs) -> None:
+    """Check output options before solving: ``name=path`` (None skipped).
+
+    Names ending in ``plot``/``out``/``figure`` must have a figure suffix of
+    :data:`FIGURE_SUFFIXES`; ``json`` a ``.json`` suffix; ``csv`` ``.csv``.
+    Every path must be a writable file location (not a directory).
+    """
+    from .._atomic import check_output_path
+
+    for name, path in outputs.items():
+        if path is None:
+            continue
+        opt = "--" + name.replace("_", "-")
+        if name in ("plot", "out", "figure"):
+            check_output_path(path, what=opt, suffixes=FIGURE_SUFFIXES)
+        elif name in ("json", "csv"):
+            check_output_path(path, what=opt, suffixes=(f".{name}",))
+        else:
+            check_output_path(path, what=opt)
+
+
+def _finite_or_null(obj):
+    """Replace NaN and ±inf floats by None, recursively (JSON has no NaN)."""
+    import math
+
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {k: _finite_or_null(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite_or_null(v) for v in obj]
+    return obj
+
+
 def write_json(data: dict, path) -> Path:
+    """Write ``data`` as JSON atomically (a full disk leaves no half-written file).
+
+    The text is produced completely before the file is opened; NaN and inf
+    (not valid JSON) are written as ``null``.
+    """
+    from .._atomic import atomic_open
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", encoding="utf-8") as fh:
-        json.dump(data, fh, indent=2)
-        fh.write("\n")
+    text = json.dumps(_finite_or_null(data), indent=2, allow_nan=False) + "\n"
+    with atomic_open(path, "w", encoding="utf-8") as fh:
+        fh.write(text)
     return path

@@ -122,9 +122,10 @@ def write_csv(path, component, values, forces) -> None:
     for m, r in forces.items():
         header += [f"{m}_Fx", f"{m}_Fy", f"{m}_Mz", f"{m}_{FORCE_OF[component]}_norm"]
         cols += [np.asarray(r.Fx), np.asarray(r.Fy), np.asarray(r.Mz), norm[m]]
+    from .._atomic import atomic_open
+
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "w", newline="", encoding="utf-8") as fh:
+    with atomic_open(path, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(header)
         for row in np.column_stack(cols):
@@ -153,17 +154,21 @@ def run(args, console) -> int:
     from ..errors import InputError
     from ..plotting import creep_curves
 
-    if args.points < 2:
-        raise InputError(f"--points must be >= 2, got {args.points}")
+    if not 2 <= args.points <= 1_000_000:
+        raise InputError(f"--points must lie in [2, 1000000], got {args.points}")
     vmax = DEFAULT_MAX[args.component] if args.max is None else args.max
     if not np.isfinite(vmax) or not np.isfinite(args.min) or vmax == args.min:
         raise InputError(f"--min and --max must be finite and differ, got {args.min!r}, {vmax!r}")
     methods = parse_methods(args.methods)
+    from ._output import check_outputs
+
+    check_outputs(out=args.out, csv=args.csv)
     case = load_case(args.case) if args.case else default_case()
     values = np.linspace(args.min, vmax, args.points)
     forces, skipped = run_sweep_with_progress(console, case, args.component, values, methods)
     if not forces:
-        raise ImportError("none of the methods " + ", ".join(methods) + " is available")
+        why = "; ".join(f"{m}: {r}" for m, r in skipped.items())
+        raise InputError(f"no curve to plot: every method was skipped ({why})")
     c = case.hertz_contact
     title = (f"{case.source}: Fn = {c.load:.0f} N, a = {c.a * 1e3:.2f} mm, "
              f"b = {c.b * 1e3:.2f} mm, μ = {case.mu:g}")

@@ -36,22 +36,31 @@ def add_arguments(p) -> None:
     p.add_argument("--amplitude", type=float, default=0.003,
                    help="amplitude for the equivalent conicity [m] (default 0.003)")
     p.add_argument("--no-plots", action="store_true", help="write the table only")
+    p.add_argument("--strict", action="store_true",
+                   help="exit with code 1 if any row is flagged (flange climb, derailed, no "
+                        "contact, not converged); by default flagged rows are only summarised")
     p.add_argument("--out", metavar="DIR", default="wheelrail-geometry",
                    help="output directory (default ./wheelrail-geometry)")
 
 
 def parse_slope(text) -> float:
     """'1/40' → 0.025; '0.025' → 0.025 (InputError otherwise)."""
+    import math
+
     from ..errors import InputError
 
     s = str(text).strip()
     try:
         if "/" in s:
             num, den = s.split("/", 1)
-            return float(num) / float(den)
-        return float(s)
+            val = float(num) / float(den)
+        else:
+            val = float(s)
     except (ValueError, ZeroDivisionError) as exc:
         raise InputError(f"--inclination must be a slope like 1/40 or 0.025, got {text!r}") from exc
+    if not math.isfinite(val):
+        raise InputError(f"--inclination must be a finite slope like 1/40, got {text!r}")
+    return val
 
 
 def load_profile(spec: str, kind: str):
@@ -84,8 +93,20 @@ def plot_profiles_in_contact(ws, tr, ys, path, side="right"):
     s = np.linspace(wc.u_min, wc.u_max, 1500)
     p, p1 = wc.eval(s, 1)
     u_r = np.linspace(rc.u_min, rc.u_max, 800)
+    import warnings
+
+    from ..errors import WheelrailError
+
     for ax, y in zip(axes, ys):
-        cp = contact_points(ws, tr, float(y))
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                cp = contact_points(ws, tr, float(y))
+        except WheelrailError as exc:
+            ax.set_title(f"y = {y * 1e3:.1f} mm: no contact", fontsize="small")
+            ax.text(0.5, 0.5, str(exc), transform=ax.transAxes, ha="center", va="center",
+                    fontsize=6, wrap=True)
+            continue
         one = np.ones_like(s)
         _, Yw, Zw, _ = silhouette(s, p, p1, ws.nominal_radius, ws.e_tape, sig, cp.y * one,
                                   (ws.nominal_radius + cp.z) * one, cp.roll * one, cp.yaw * one)
@@ -102,7 +123,9 @@ def plot_profiles_in_contact(ws, tr, ys, path, side="right"):
         ax.set_xlim(rc.u_min * 1e3 - 8, rc.u_max * 1e3 + 5)
         ax.set_ylim(-32, 12)
         ax.set_aspect("equal")
-        ax.set_title(f"y = {y * 1e3:.1f} mm, Δr = {cp.delta_r * 1e3:.2f} mm", fontsize="small")
+        flag = "" if cp.status == "ok" else f" — {cp.status.upper()}"
+        ax.set_title(f"y = {y * 1e3:.1f} mm, Δr = {cp.delta_r * 1e3:.2f} mm{flag}",
+                     fontsize="small")
         ax.set_xlabel(f"lateral position, {side} side, towards field side [mm]")
         ax.set_ylabel("height [mm]")
     for ax in axes[len(ys):]:
@@ -175,6 +198,29 @@ def plot_contact_positions(table, path):
 
 
 # --------------------------------------------------------------------------- work
+def _plot(fn, path, *args):
+    """Draw one figure to a temporary file and rename it (crash-safe)."""
+    from .._atomic import atomic_path
+
+    with atomic_path(path) as tmp:
+        fn(*args, tmp)
+    return path
+
+
+def row_summary(table) -> dict:
+    """Counts per row status and the flagged rows [(y, status, reason)] of a contact table."""
+    import numpy as np
+
+    from ..geometry.contact_search import STATUS
+
+    st = np.asarray(table["status"].values)
+    counts = {name: int(np.count_nonzero(st == code)) for code, name in STATUS.items()}
+    flagged = [{"y": float(table["y"].values[i]), "status": STATUS[int(st[i])],
+                "reason": str(table["status_reason"].values[i])}
+               for i in np.flatnonzero(st)]
+    return {"counts": counts, "flagged": flagged}
+
+
 def compute(ws, tr, ys, out: Path, *, yaw=0.0, amplitude=0.003, plots=True, figure_ys=None):
     """Contact table, conicity and figures; returns (table, summary dict, [(path, description)])."""
     import numpy as np
@@ -191,29 +237,49 @@ def compute(ws, tr, ys, out: Path, *, yaw=0.0, amplitude=0.003, plots=True, figu
         conicity = equivalent_conicity(ws, tr, amplitude, yaw=yaw)
     except Exception as exc:  # noqa: BLE001 - conicity is optional in this report
         conicity = f"not available: {exc}"
+    ok = np.asarray(table["status"].values) < 3
+    dr = table["delta_r"].values
     summary = {
         "points": int(table.sizes["y"]),
         "y_range": [float(ys[0]), float(ys[-1])],
-        "delta_r_at_ends": [float(table["delta_r"].values[0]), float(table["delta_r"].values[-1])],
+        "delta_r_at_ends": [float(dr[0]) if ok[0] else None, float(dr[-1]) if ok[-1] else None],
         "jumps_y": [float(v) for v in table["jump_y"].values],
         "jumps_side": [("left" if s < 0 else "right") for s in table["jump_side"].values],
         "max_points_per_side": int(table.sizes["point"]),
         "equivalent_conicity": conicity,
         "amplitude": amplitude,
+        "rows": row_summary(table),
     }
     if plots:
         if figure_ys is None:
             lim = float(np.max(np.abs(ys)))
             figure_ys = [0.0, 0.3 * lim, 0.6 * lim, 0.9 * lim]
-        plot_profiles_in_contact(ws, tr, figure_ys, out / "profiles_in_contact.png")
+        _plot(lambda p: plot_profiles_in_contact(ws, tr, figure_ys, p),
+              out / "profiles_in_contact.png")
         files.append((out / "profiles_in_contact.png", "wheel on rail with contact points"))
-        plot_delta_r(table, out / "delta_r.png")
+        _plot(plot_delta_r, out / "delta_r.png", table)
         files.append((out / "delta_r.png", "rolling radius difference"))
-        plot_contact_angle(table, out / "contact_angle.png")
+        _plot(plot_contact_angle, out / "contact_angle.png", table)
         files.append((out / "contact_angle.png", "contact angles"))
-        plot_contact_positions(table, out / "contact_positions.png")
+        _plot(plot_contact_positions, out / "contact_positions.png", table)
         files.append((out / "contact_positions.png", "contact-point positions vs y"))
     return table, summary, files
+
+
+def print_row_summary(console, rows: dict, limit: int = 8) -> int:
+    """Print the flagged rows of a table (at most ``limit`` reasons); return their number."""
+    flagged = rows["flagged"]
+    if not flagged:
+        return 0
+    counts = ", ".join(f"{n} {name.replace('_', ' ')}" for name, n in rows["counts"].items()
+                       if n and name != "ok")
+    console.print(f"[yellow]{len(flagged)} of {sum(rows['counts'].values())} rows flagged: "
+                  f"{counts}[/yellow]")
+    for row in flagged[:limit]:
+        console.print(f"  {row['status']}: {row['reason']}")
+    if len(flagged) > limit:
+        console.print(f"  … {len(flagged) - limit} more (column status_reason of the table)")
+    return len(flagged)
 
 
 def geometry_demo(out_dir) -> dict:
@@ -243,26 +309,56 @@ def geometry_demo(out_dir) -> dict:
     return {"results": summary, "files": files, "note": note}
 
 
-def run(args, console) -> int:
+def check_arguments(args):
+    """Validate the arguments that need no profile (before any work); returns the y values."""
     import numpy as np
 
+    from .._atomic import check_output_path
     from ..errors import InputError
-    from ..geometry import Track, Wheelset
-    from ._output import write_json
 
     if args.points < 2:
         raise InputError(f"--points must be >= 2, got {args.points}")
+    if args.points > 100_000:
+        raise InputError(f"--points must be <= 100000, got {args.points}")
     lo, hi = args.y_range
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        raise InputError(f"--y-range must be finite, got {lo:g} {hi:g}")
     if not hi > lo:
-        raise InputError(f"--y-range must be increasing, got {lo} {hi}")
+        raise InputError(f"--y-range must be increasing, got {lo:g} {hi:g}")
+    if max(abs(lo), abs(hi)) > 0.05:
+        raise InputError(f"--y-range is in metres and |y| must be <= 0.05 m, got {lo:g} {hi:g}"
+                         + (" (mm given?)" if max(abs(lo), abs(hi)) >= 1.0 else ""))
+    if not (np.isfinite(args.yaw) and abs(args.yaw) <= 0.2):
+        raise InputError(f"--yaw is in rad and must lie in [-0.2, 0.2], got {args.yaw:g}")
+    if not (np.isfinite(args.amplitude) and 0.0 < args.amplitude <= 0.012):
+        raise InputError(f"--amplitude is in metres and must lie in (0, 0.012], got "
+                         f"{args.amplitude:g}")
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out {str(out)!r} exists and is not a directory")
+    check_output_path(out / "contact_table.csv", what="--out")
+    return np.linspace(lo, hi, args.points)
+
+
+def run(args, console) -> int:
+    from ..geometry import Track, Wheelset
+    from ._output import write_json
+
+    ys = check_arguments(args)
+    lo, hi = float(ys[0]), float(ys[-1])
     ws = Wheelset(load_profile(args.wheel, "wheel"), nominal_radius=args.nominal_radius,
                   flange_back=args.flange_back)
     tr = Track(load_profile(args.rail, "rail"), gauge=args.gauge,
                inclination=parse_slope(args.inclination), canted=args.canted)
-    ys = np.linspace(lo, hi, args.points)
     out = Path(args.out)
-    table, summary, files = compute(ws, tr, ys, out, yaw=args.yaw, amplitude=args.amplitude,
-                                    plots=not args.no_plots)
+    import contextlib
+
+    # about 1 ms per lateral shift: show a spinner for long tables (terminal only)
+    busy = (console.status(f"contact table: {len(ys)} lateral shifts (about {len(ys) // 1000} s)")
+            if len(ys) > 3000 and console.is_terminal else contextlib.nullcontext())
+    with busy:
+        table, summary, files = compute(ws, tr, ys, out, yaw=args.yaw, amplitude=args.amplitude,
+                                        plots=not args.no_plots)
     files.append((write_json(summary, out / "geometry_summary.json"), "summary (JSON, SI)"))
     con = summary["equivalent_conicity"]
     con_txt = f"{con:.4f}" if isinstance(con, float) else con
@@ -274,4 +370,8 @@ def run(args, console) -> int:
             f"{v * 1e3:.3f} mm ({s})" for v, s in zip(summary["jumps_y"], summary["jumps_side"])))
     for path, desc in files:
         console.print(f"  {path}  — {desc}")
+    n_flagged = print_row_summary(console, summary["rows"])
+    if n_flagged and args.strict:
+        console.print(f"[red]--strict: {n_flagged} flagged row(s)[/red]")
+        return 1
     return 0

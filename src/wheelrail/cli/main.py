@@ -60,6 +60,12 @@ def build_parser() -> argparse.ArgumentParser:
                                  "case files (SI units, Kalker's sign convention).")
     parser.add_argument("--version", action="version", version=f"wheelrail {__version__}")
     parser.add_argument("--debug", action="store_true", help="show tracebacks on errors")
+    parser.add_argument("--memory-limit", metavar="SIZE", default=None,
+                        help="refuse boundary-element solves estimated to need more memory "
+                             "(e.g. 8GB, 500MB, off; default min(4 GiB, half the RAM))")
+    parser.add_argument("--no-plausibility-checks", action="store_true",
+                        help="accept values outside the wheel-rail range (e.g. mu > 2, a patch "
+                             "larger than the radii) without warning or refusal")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, module_name in COMMANDS:
         module = importlib.import_module(module_name)
@@ -81,9 +87,9 @@ def _exit_code(exc: BaseException) -> int:
 
 
 def _message(exc: BaseException) -> str:
-    from ..errors import WheelrailError
+    from ..errors import WheelrailError, tidy
 
-    text = " ".join(str(exc).split()) or type(exc).__name__
+    text = tidy(" ".join(str(exc).split())) or type(exc).__name__
     if isinstance(exc, (WheelrailError, _UsageError)):
         return text
     if isinstance(exc, OSError) and exc.filename is not None:
@@ -91,10 +97,44 @@ def _message(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {text} (run with --debug for the traceback)"
 
 
+def _show_warning(message, category, filename, lineno, file=None, line=None):
+    """One line per warning on stderr, without the source line Python would print."""
+    from ..errors import tidy
+
+    text = tidy(" ".join(str(message).split()))
+    print(f"wheelrail: warning: {text} ({category.__name__})", file=file or sys.stderr)
+
+
+def make_console():
+    """The rich console of the commands: no highlighting; no wrapping when piped.
+
+    On a terminal rich wraps at the terminal width; in a pipe or file it
+    would wrap at 80 columns and split long lines (suggested commands, file
+    names), so there the output is not wrapped.
+    """
+    from rich.console import Console
+
+    if sys.stdout.isatty():
+        return Console(highlight=False)
+    return Console(highlight=False, soft_wrap=True, width=200)
+
+
 def main(argv=None) -> int:
     """Run ``wheelrail`` with ``argv`` (default ``sys.argv[1:]``) and return the exit code."""
+    import warnings
+
     argv = list(sys.argv[1:] if argv is None else argv)
     debug = "--debug" in argv
+    saved = warnings.showwarning
+    if not debug:
+        warnings.showwarning = _show_warning
+    try:
+        return _main(argv, debug)
+    finally:
+        warnings.showwarning = saved
+
+
+def _main(argv, debug) -> int:
     try:
         parser = build_parser()
         try:
@@ -104,10 +144,20 @@ def main(argv=None) -> int:
         if args.command is None:
             parser.print_help()
             return EXIT_USAGE
-        from rich.console import Console
+        import contextlib
 
-        console = Console(highlight=False)
-        return int(args._run(args, console) or 0)
+        from .. import _resources
+
+        console = make_console()
+        with contextlib.ExitStack() as stack:
+            if args.memory_limit is not None:
+                stack.enter_context(_resources.limit(_resources.parse_size(args.memory_limit)))
+            if getattr(args, "no_plausibility_checks", False):
+                from ..plausibility import disabled
+
+                stack.enter_context(disabled())
+            stack.enter_context(_resources.reporting(console))
+            return int(args._run(args, console) or 0)
     except KeyboardInterrupt:
         print("wheelrail: interrupted", file=sys.stderr)
         return 130

@@ -42,8 +42,9 @@ def plot_result(result, path) -> str:
 
 def run(args, console) -> int:
     from ..casefile import load_contact_case as load_case, solve_case
-    from ._output import summary_table, write_json
+    from ._output import check_outputs, summary_table, write_json
 
+    check_outputs(json=args.json, plot=args.plot)  # before the solve: paths and formats
     case = load_case(args.case)
     result = solve_case(case)
     if args.json:

@@ -164,6 +164,8 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
                             f"touches at z = {float(zr[r])!r} m)" if Qn is None else
                             f"no contact on the {side} wheel")
                     status[i], message[i] = "error", f"InputError: {what}"
+            if not act.any():          # no row of this side is in contact (all flagged above)
+                break
             hc = hertz_from_penetration(pen[act], A[act], B[act], pair)
             last = (Qn is None or vertical == "normal" or outer == 11)
             opts = dict(topts)
@@ -190,6 +192,8 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
                 slope = np.where(slope > 0.05, slope, 1.0)
                 Qn = q1 + (Q - f1) / slope
             Qn = np.maximum(Qn, 1e-3 * Q)
+        if not act.any():
+            continue
         if Qn is not None and vertical == "total":
             bad_rows = np.abs(Fz - Q) > _TOL * Q
             for r in np.nonzero(bad_rows)[0]:

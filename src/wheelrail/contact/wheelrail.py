@@ -119,11 +119,14 @@ class WheelRailPosition:
             raise InputError("give exactly one of vertical_load= (N per wheel) and z= (m), got "
                              f"vertical_load={self.vertical_load!r}, z={self.z!r}")
         if self.vertical_load is not None:
+            from ..plausibility import check_load
+
             q = np.broadcast_to(as_float_array("vertical_load", self.vertical_load), (2,))
             for side, v in zip(SIDES, q):
                 if not v > 0:
                     raise InputError(f"vertical_load on the {side} wheel must be > 0 N, got "
                                      f"{float(v)!r}")
+                check_load(float(v), f"vertical_load ({side} wheel)")
             object.__setattr__(self, "vertical_load", (float(q[0]), float(q[1])))
         else:
             object.__setattr__(self, "z", float(as_float_array("z", self.z)))
@@ -381,9 +384,20 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
     roll, zs = touching_poses(position)
     Omega = motion.angular_velocity(ws.nominal_radius)
     R = motion.roller_radius
-    patches, force_track, pose = [], {}, {"y": position.y, "yaw": position.yaw, "roll": roll}
     if vertical not in ("total", "normal"):
         raise InputError(f"vertical must be 'total' or 'normal', got {vertical!r}")
+    from ..plausibility import check_friction, disabled
+
+    check_friction(mu)
+    with disabled():   # the inputs are checked; patches of a few N are normal inside a wheel
+        return _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs,
+                            Omega, R)
+
+
+def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs, Omega,
+                 R) -> WheelRailResult:
+    ws = position.wheelset
+    patches, force_track, pose = [], {}, {"y": position.y, "yaw": position.yaw, "roll": roll}
     for side in SIDES:
         prob = wheel_problem(position, side, roll, zs[side], R)
         zc = ws.nominal_radius + zs[side]

@@ -2,10 +2,11 @@
 
 Public names: :class:`Wheelset`, :class:`Track`, :func:`contact_points`,
 :func:`contact_table`, :func:`equivalent_conicity`, :func:`elastic_contact`,
-:func:`separation`, :func:`undeformed_distance`.
+:func:`separation`, :func:`undeformed_distance`; :class:`ContactWarning` (a
+derailed wheel) and :data:`STATUS` (row status codes of contact tables).
 """
 
-from .contact_search import ContactPoints, SideContacts, contact_points
+from .contact_search import STATUS, ContactPoints, ContactWarning, SideContacts, contact_points
 from .conicity import equivalent_conicity
 from .contact_table import contact_table
 from .elastic import ElasticContact, elastic_contact
@@ -14,5 +15,6 @@ from .track import Track
 from .wheelset import Wheelset
 
 __all__ = ["Wheelset", "Track", "contact_points", "ContactPoints", "SideContacts", "contact_table",
+           "ContactWarning", "STATUS",
            "equivalent_conicity", "elastic_contact", "ElasticContact",
            "separation", "undeformed_distance", "Separation"]

@@ -88,7 +88,12 @@ from ._curves import curvature
 from .track import Track
 from .wheelset import Wheelset
 
-__all__ = ["ContactPoints", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS"]
+__all__ = ["ContactPoints", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS", "STATUS",
+           "ContactWarning", "RigidRows", "solve_rigid_rows", "classify_rows", "flange_geometry"]
+
+
+class ContactWarning(UserWarning):
+    """A contact was found but is flagged: flange climbing or a derailed wheel."""
 
 _SIGMA = {"left": -1.0, "right": 1.0}
 _BIG = 1.0          # gap [m] assigned where no rail lies below the wheel
@@ -341,6 +346,238 @@ def _global_min(ws, tr, side, pose, step, levels=5):
     return s1, d1, lever
 
 
+#: Row status codes of :func:`solve_rigid_rows` and of contact tables (``status`` variable).
+STATUS = {0: "ok", 1: "flange_climb", 2: "derailed", 3: "no_contact", 4: "not_converged"}
+STATUS_CODE = {v: k for k, v in STATUS.items()}
+#: Roll bracket [rad] searched by the fall-back solver (±9.7°: far beyond derailment).
+_ROLL_BRACKET = 0.17
+#: Largest Newton step in roll [rad] and height [m] (damping).
+_MAX_DTH, _MAX_DZ = 0.02, 0.01
+
+
+@dataclass(frozen=True)
+class RigidRows:
+    """Rigid pose of many rows with a per-row status (frozen; see :func:`solve_rigid_rows`).
+
+    Attributes
+    ----------
+    z, roll : ndarray, shape (n,)
+        Height of the axle centre [m] and roll [rad]; NaN where not solved.
+    wheel_y : dict
+        ``{"left": s, "right": s}`` wheel coordinates of the rigid contact
+        points [m], shape (n,); NaN where not solved.
+    status : ndarray of int, shape (n,)
+        :data:`STATUS` code: 0 ok, 3 no contact (a wheel lies entirely beside
+        its rail), 4 not converged. (Codes 1 and 2 are set by
+        :func:`classify_rows`.)
+    reason : tuple of str, length n
+        Empty for ok rows, else one line naming the row and the cause.
+    residual : ndarray, shape (n,)
+        Largest |min gap| of the two sides at the returned pose [m].
+    """
+
+    z: np.ndarray
+    roll: np.ndarray
+    wheel_y: dict
+    status: np.ndarray
+    reason: tuple
+    residual: np.ndarray
+
+    @property
+    def ok(self) -> np.ndarray:
+        """Mask of the solved rows."""
+        return self.status < 3
+
+
+def _newton(ws, tr, y, yaw, z, th, step, tol, maxiter):
+    """Damped Newton iteration on (z, θ) for the rows ``y`` (see :func:`solve_rigid`).
+
+    Returns z, θ, wheel coordinates, residual and a code per row (0 converged,
+    3 a wheel beside its rail at some iterate, 4 not converged).
+    """
+    n = y.size
+    code = np.full(n, 4, dtype=np.int8)
+    sL_out, sR_out, res_out = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.inf)
+    act = np.arange(n)
+    levels = np.full(n, 3)
+    z, th = z.copy(), th.copy()
+    for _ in range(maxiter):
+        if act.size == 0:
+            break
+        pose = _Pose(y[act], z[act], th[act], yaw[act])
+        lev = int(levels[act].max())
+        sL, gL, lL = _global_min(ws, tr, "left", pose, step, lev)
+        sR, gR, lR = _global_min(ws, tr, "right", pose, step, lev)
+        beside = (gL >= _BIG) | (gR >= _BIG)
+        res = np.maximum(np.abs(gL), np.abs(gR))
+        done = ~beside & (res < tol) & (levels[act] == 5)
+        code[act[beside]] = 3
+        code[act[done]] = 0
+        sL_out[act], sR_out[act], res_out[act] = sL, sR, np.where(beside, np.inf, res)
+        levels[act[~beside & (res < tol)]] = 5
+        keep = ~beside & ~done
+        with np.errstate(divide="ignore", invalid="ignore"):
+            dth = -(gR - gL) / (lR - lL)
+        dth = np.clip(np.nan_to_num(dth, nan=0.0, posinf=0.0, neginf=0.0), -_MAX_DTH, _MAX_DTH)
+        dz = np.clip(-gR - lR * dth, -_MAX_DZ, _MAX_DZ)
+        move = keep & (res >= tol)
+        th[act[move]] += dth[move]
+        z[act[move]] += dz[move]
+        act = act[keep]
+    return z, th, sL_out, sR_out, res_out, code
+
+
+def _min_gaps(ws, tr, y, yaw, th, step, levels=5):
+    """Refined minimum gaps (left, right) and wheel coordinates at z = 0 for the poses."""
+    pose = _Pose(y, np.zeros_like(y), th, yaw)
+    sL, gL, _ = _global_min(ws, tr, "left", pose, step, levels)
+    sR, gR, _ = _global_min(ws, tr, "right", pose, step, levels)
+    return sL, gL, sR, gR
+
+
+def _bracketed(ws, tr, y, yaw, th0, step, tol):
+    """Fall-back solver: root of f(θ) = g_left(θ) − g_right(θ) by bisection (vectorised).
+
+    The vertical gaps of both sides shift equally with the height z, so the
+    roll satisfying the constraint is a root of f alone, after which
+    ``z = −g_left``. f is continuous (a minimum over the profile) and
+    decreases overall with θ (rolling lifts the right wheel); a sign change
+    is searched on a grid of roll angles in ±:data:`_ROLL_BRACKET` (the one
+    nearest to ``th0``), then bisected. Returns z, θ, wheel coordinates,
+    residual and a code per row (0 solved, 3 a wheel beside its rail at every
+    roll of the bracket, 5 no sign change: wherever both wheels lie above
+    their rails, one of them cannot touch).
+    """
+    n = y.size
+    grid = np.linspace(-_ROLL_BRACKET, _ROLL_BRACKET, 35)
+    m = grid.size
+    Y, P, T = np.repeat(y, m), np.repeat(yaw, m), np.tile(grid, n)
+    _, gL, _, gR = _min_gaps(ws, tr, Y, P, T, step, levels=3)
+    valid = ((gL < _BIG) & (gR < _BIG)).reshape(n, m)
+    f = (gL - gR).reshape(n, m)
+    code = np.full(n, 4, dtype=np.int8)
+    lo, hi = np.zeros(n), np.zeros(n)
+    for i in range(n):
+        cand = np.flatnonzero(valid[i, :-1] & valid[i, 1:] & (np.sign(f[i, :-1]) != np.sign(f[i, 1:])))
+        if cand.size == 0:
+            code[i] = 3 if not np.any(valid[i]) else 5
+            continue
+        k = cand[np.argmin(np.abs(0.5 * (grid[cand] + grid[cand + 1]) - th0[i]))]
+        lo[i], hi[i] = grid[k], grid[k + 1]
+        code[i] = 0
+    idx = np.flatnonzero(code == 0)
+    z, th = np.full(n, np.nan), np.full(n, np.nan)
+    sLo, sRo, res = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.inf)
+    if idx.size:
+        a, b = lo[idx], hi[idx]
+        _, gLa, _, gRa = _min_gaps(ws, tr, y[idx], yaw[idx], a, step)
+        fa = gLa - gRa
+        for _ in range(48):
+            mid = 0.5 * (a + b)
+            _, gLm, _, gRm = _min_gaps(ws, tr, y[idx], yaw[idx], mid, step)
+            fm = gLm - gRm
+            same = np.sign(fm) == np.sign(fa)
+            a, fa = np.where(same, mid, a), np.where(same, fm, fa)
+            b = np.where(same, b, mid)
+        t = 0.5 * (a + b)
+        sL, gL1, sR, gR1 = _min_gaps(ws, tr, y[idx], yaw[idx], t, step)
+        bad = (gL1 >= _BIG) | (gR1 >= _BIG)
+        th[idx], z[idx] = t, -0.5 * (gL1 + gR1)
+        sLo[idx], sRo[idx] = sL, sR
+        res[idx] = np.where(bad, np.inf, 0.5 * np.abs(gL1 - gR1))
+        code[idx[bad]] = 3
+    return z, th, sLo, sRo, res, code
+
+
+def _edge_hint(ws, tr, y, z, th, psi, s, margin=5e-4):
+    """Reason suffix when a contact point lies at the end of a rail profile (an edge)."""
+    hints = []
+    for side in SIDES:
+        if not np.isfinite(s[side]) or not np.isfinite(z) or not np.isfinite(th):
+            continue
+        p, p1 = ws.curve(side).eval(np.array([s[side]]), 1)
+        _, Y, _, _ = silhouette(np.array([s[side]]), p, p1, ws.nominal_radius, ws.e_tape,
+                                _SIGMA[side], y, ws.nominal_radius + z, th, psi)
+        u = float(_SIGMA[side] * Y[0])
+        rc = tr.curve(side)
+        if u - rc.u_min < margin or rc.u_max - u < margin:
+            hints.append(side)
+    if not hints:
+        return ""
+    return (f"; the {' and '.join(hints)} wheel touches the end of its rail profile (an edge "
+            "where the profile data stop: extend the rail profile)")
+
+
+def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxiter=60,
+                     z0=None, roll0=None) -> RigidRows:
+    """Roll and height satisfying ``min d = 0`` on both sides, row by row, never raising.
+
+    The same problem as :func:`solve_rigid` (seed 002, eqs. 2.1–2.3); every
+    row gets a status instead of one bad row aborting all of them. A damped
+    Newton iteration is tried first; rows where it fails are solved by the
+    bracketed fall-back (bisection on the roll angle, see :func:`_bracketed`),
+    which converges wherever a pose with both wheels on their rails exists
+    within ±0.17 rad of roll. Rows whose wheel lies beside its rail at every
+    roll get status 3 (``"no_contact"``), rows without a solution status 4
+    (``"not_converged"``), both with a reason.
+
+    Parameters
+    ----------
+    y, yaw : ndarray, shape (n,)
+        Lateral shifts [m] and yaw angles [rad].
+    z0, roll0 : ndarray, optional
+        Starting values [m], [rad] (e.g. from neighbouring rows).
+
+    Returns
+    -------
+    RigidRows
+    """
+    y = np.atleast_1d(np.asarray(y, dtype=float))
+    yaw = np.ascontiguousarray(np.broadcast_to(np.asarray(yaw, dtype=float), y.shape))
+    z = np.zeros_like(y) if z0 is None else np.array(z0, dtype=float).reshape(y.shape)
+    th = np.zeros_like(y) if roll0 is None else np.array(roll0, dtype=float).reshape(y.shape)
+    z, th, sL, sR, res, code = _newton(ws, tr, y, yaw, z, th, step, tol, maxiter)
+    retry = np.flatnonzero(code != 0)
+    if retry.size and (z0 is not None or roll0 is not None):
+        # a poor starting value (e.g. between two rows on both sides of a jump): restart at zero
+        z1, th1, sL1, sR1, res1, code1 = _newton(ws, tr, y[retry], yaw[retry],
+                                                 np.zeros(retry.size), np.zeros(retry.size),
+                                                 step, tol, maxiter)
+        for arr, new in ((z, z1), (th, th1), (sL, sL1), (sR, sR1), (res, res1), (code, code1)):
+            arr[retry] = new
+        retry = np.flatnonzero(code != 0)
+    if retry.size:
+        z2, th2, sL2, sR2, res2, code2 = _bracketed(ws, tr, y[retry], yaw[retry],
+                                                    np.nan_to_num(th[retry]), step, tol)
+        solved = code2 == 0
+        # the bisection's residual is limited by the refinement of the gap minimum
+        code2 = np.where(solved & (res2 > max(1e3 * tol, 1e-8)), 4, code2)
+        for arr, new in ((z, z2), (th, th2), (sL, sL2), (sR, sR2), (res, res2), (code, code2)):
+            arr[retry] = new
+    reason = []
+    for i in range(y.size):
+        if code[i] == 0:
+            reason.append("")
+        elif code[i] == 5:
+            code[i] = 3
+            reason.append(f"y = {float(y[i]):.6g} m: no contact on both sides — at every roll "
+                          f"angle within ±{_ROLL_BRACKET} rad at which both wheels lie above "
+                          "their rails, one wheel cannot touch its rail (a wheel beside its "
+                          "rail, or a wheel profile origin not on the tape circle?)")
+        elif code[i] == 3:
+            reason.append(f"y = {float(y[i]):.6g} m: a wheel lies entirely beside its rail "
+                          "(lateral shift too large for these profiles)")
+        else:
+            reason.append(f"y = {float(y[i]):.6g} m: rigid contact constraint did not converge "
+                          f"(residual {float(res[i]):.3g} m)"
+                          + _edge_hint(ws, tr, y[i], z[i], th[i], yaw[i],
+                                       {"left": sL[i], "right": sR[i]}))
+    bad = code != 0
+    for arr in (z, th, sL, sR):
+        arr[bad] = np.nan
+    return RigidRows(z, th, {"left": sL, "right": sR}, code.astype(np.int8), tuple(reason), res)
+
+
 def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxiter=60,
                 z0=None, roll0=None):
     """Roll and height satisfying ``min d = 0`` on both sides (seed 002, eqs. 2.1–2.3).
@@ -349,7 +586,9 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
     about its centre moves a wheel point by ``(−(Z − zc)Δθ, Δz + (Y − y)Δθ)``
     in (y, z); the gap to a rail of slope ``t`` changes by
     ``Δz + [(Y − y) + t (Z − zc)]Δθ`` (envelope theorem: the minimising point
-    may be held fixed).
+    may be held fixed). The steps are damped, and rows where Newton fails are
+    solved by bisection on the roll angle (see :func:`solve_rigid_rows`,
+    which returns a per-row status instead of raising).
 
     Parameters
     ----------
@@ -364,37 +603,119 @@ def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxite
     wheel_y : dict
         ``{"left": s, "right": s}``: wheel coordinate [m] of the rigid contact
         point (refined global minimum of the gap) of each side, shape (n,).
+
+    Raises
+    ------
+    InputError
+        A wheel lies entirely beside its rail for some row.
+    ConvergenceError
+        No pose satisfies the constraint for some row.
     """
-    y = np.asarray(y, dtype=float)
-    yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
-    z = np.zeros_like(y) if z0 is None else np.array(z0, dtype=float)
-    th = np.zeros_like(y) if roll0 is None else np.array(roll0, dtype=float)
-    # Three parabolic levels locate the minimum well enough for the Newton iterations; in
-    # nearly conformal zones (flange root) the gap is so flat that only the five levels of
-    # the point search (find_points) pin its minimum, so the converged pose is polished
-    # with those: every reported contact point then has separation >= -tol.
-    levels = 3
-    for _ in range(maxiter):
-        pose = _Pose(y, z, th, yaw)
-        sL, gL, lL = _global_min(ws, tr, "left", pose, step, levels)
-        sR, gR, lR = _global_min(ws, tr, "right", pose, step, levels)
-        if np.any(gL >= _BIG) or np.any(gR >= _BIG):
-            bad = y[(gL >= _BIG) | (gR >= _BIG)][0]
-            raise InputError(f"y = {bad!r} m: a wheel lies entirely beside its rail "
-                             "(lateral shift too large for these profiles)")
-        res = max(np.max(np.abs(gL)), np.max(np.abs(gR)))
-        if res < tol:
-            if levels == 5:
-                return z, th, {"left": sL, "right": sR}
-            levels = 5
+    rows = solve_rigid_rows(ws, tr, y, yaw, step=step, tol=tol, maxiter=maxiter, z0=z0,
+                            roll0=roll0)
+    bad = np.flatnonzero(rows.status != 0)
+    if bad.size:
+        i = bad[0]
+        err = InputError if rows.status[i] == 3 else ConvergenceError
+        raise err(rows.reason[i])
+    return rows.z, rows.roll, rows.wheel_y
+
+
+_FLANGE_CACHE: dict = {}
+
+
+def flange_geometry(ws, side):
+    """Flange of the wheel of ``side``: (s_tip, s_steep, z_tip, height, max_angle).
+
+    ``s_tip`` is the lowest point of the profile (the flange tip), ``s_steep``
+    the point of the flange flank nearest to the tip whose slope is within 1°
+    of the steepest slope of the flank (Nadal's limit is reached there: beyond
+    it, towards the tip, the contact angle decreases and the flange climbs),
+    ``height`` the depth of the tip below the profile origin (tape circle)
+    (all [m], profile frame) and ``max_angle`` the steepest flank slope [°].
+    Returns ``None`` for a wheel without a flange (height < 5 mm).
+    """
+    wc = ws.curve(side)
+    hit = _FLANGE_CACHE.get(id(wc))
+    if hit is not None and hit[0] is wc:
+        return hit[1]
+    s = np.linspace(wc.u_min, wc.u_max, 4001)
+    z, z1 = wc.eval(s, 1)
+    i_tip = int(np.argmin(z))
+    height = float(wc.eval(np.array([min(max(0.0, wc.u_min), wc.u_max)]), 0)[0][0] - z[i_tip])
+    out = None
+    if height >= 5e-3 and i_tip < s.size - 2:
+        ang = np.arctan(z1[i_tip:])
+        flank = s[i_tip:] <= min(0.0, s[-1])
+        if np.any(flank):
+            a_max = float(np.max(ang[flank]))
+            steep = np.flatnonzero(flank & (ang >= a_max - np.radians(1.0)))
+            out = (float(s[i_tip]), float(s[i_tip + steep[0]]), float(z[i_tip]), height,
+                   float(np.degrees(a_max)))
+    if len(_FLANGE_CACHE) > 64:
+        _FLANGE_CACHE.clear()
+    _FLANGE_CACHE[id(wc)] = (wc, out)
+    return out
+
+
+def classify_rows(ws, y, z, wheel_y, status, roll=None):
+    """Flag rows whose rigid contact lies on the flange beyond Nadal's limit.
+
+    Per side, with the flange geometry of :func:`flange_geometry`: a contact
+    point between the flange tip and the steepest point of the flank (by more
+    than 0.1 mm) where the profile slope has fallen more than 2° below the
+    steepest slope means the flange is climbing the rail: the contact angle
+    decreases as the wheel rises (status 1, ``"flange_climb"``); where the profile slope at the contact point is below
+    45° (the rounded flange tip, or beyond the tip) the wheel rides on its
+    flange tip: derailed (status 2, ``"derailed"``).
+
+    Parameters
+    ----------
+    y, z : ndarray, shape (n,)
+        Lateral shifts and heights of the rows [m].
+    wheel_y : dict of ndarray
+        Wheel coordinates of the rigid contact points per side [m].
+    status : ndarray of int, shape (n,)
+        Codes from :func:`solve_rigid_rows` (rows with code ≥ 3 are left alone).
+    roll : ndarray, shape (n,), optional
+        Roll angles [rad]; used to report the lift of the flagged wheel.
+
+    Returns
+    -------
+    status : ndarray of int8, shape (n,)
+    reasons : list of str
+        Empty where a row was not flagged here.
+    """
+    status = np.array(status, dtype=np.int8)
+    reasons = [""] * status.size
+    for side in SIDES:
+        fg = flange_geometry(ws, side)
+        if fg is None:
             continue
-        dth = -(gR - gL) / (lR - lL)
-        dz = -gR - lR * dth
-        th = th + dth
-        z = z + dz
-    bad = y[np.argmax(np.maximum(np.abs(gL), np.abs(gR)))]
-    raise ConvergenceError(f"rigid contact constraint did not converge for y = {bad!r} m "
-                           f"(residual {max(np.max(np.abs(gL)), np.max(np.abs(gR)))!r} m)")
+        s_tip, s_steep, z_tip, height, a_max = fg
+        sc = np.asarray(wheel_y[side], dtype=float)
+        ok = (status < 3) & np.isfinite(sc)
+        zc, z1 = ws.curve(side).eval(np.where(ok, sc, 0.0), 1)
+        ang = np.degrees(np.arctan(np.abs(z1)))
+        beyond = ok & (sc < s_steep - 1e-4) & (ang < a_max - 2.0)
+        if not np.any(beyond):
+            continue
+        for i in np.flatnonzero(beyond):
+            tip = bool(ang[i] < 45.0 or sc[i] <= s_tip)
+            code = 2 if tip else 1
+            above = max(0.0, (zc[i] - z_tip) * 1e3)
+            what = (f"{side} wheel rides on its flange tip ({above:.1f} mm above the tip, "
+                    f"profile slope {ang[i]:.1f}°): derailed" if tip else
+                    f"{side} wheel climbs its flange (contact {above:.1f} mm above the flange "
+                    f"tip, slope {ang[i]:.1f}° < steepest {a_max:.1f}°)")
+            lift = float(z[i]) + (0.0 if roll is None else _SIGMA[side] * float(roll[i]) * ws.e_tape)
+            msg = f"y = {float(y[i]):.6g} m: {what}; {side} wheel lifted {lift * 1e3:.1f} mm"
+            if code > status[i]:
+                status[i] = code
+                reasons[i] = msg
+            elif code == status[i] and reasons[i]:
+                reasons[i] += "; " + what
+    return status, reasons
 
 
 def point_data(ws, tr, side, s, pose: _Pose) -> dict:
@@ -555,6 +876,12 @@ class ContactPoints:
         All points with separation ≤ ``tolerance``.
     tolerance : float
         Reporting tolerance on the separation [m].
+    status : str
+        ``"ok"``, ``"flange_climb"`` (the rigid contact lies on the flange
+        beyond its steepest point) or ``"derailed"`` (the wheel rides on its
+        flange tip); see :func:`classify_rows`.
+    reason : str
+        One line explaining a status other than ``"ok"``.
     """
 
     y: float
@@ -564,6 +891,8 @@ class ContactPoints:
     left: SideContacts
     right: SideContacts
     tolerance: float
+    status: str = "ok"
+    reason: str = ""
 
     def side(self, side: str) -> SideContacts:
         """``left`` or ``right``."""
@@ -581,16 +910,39 @@ def _side_from_row(data, count, row) -> SideContacts:
     return SideContacts(**{f.name: np.array(data[f.name][row, :n]) for f in fields(SideContacts)})
 
 
-def solve_rows(ws, tr, y, yaw, tolerance, step):
+def solve_rows(ws, tr, y, yaw, tolerance, step, *, detail=False):
     """Rigid pose and all contact points of both sides for the shifts ``y`` (shape (n,)).
 
-    Returns ``z, roll`` (shape (n,)) and ``{side: (data, count)}`` of :func:`find_points`.
+    Returns ``z, roll`` (shape (n,)) and ``{side: (data, count)}`` of :func:`find_points`
+    (rows that could not be solved are NaN with count 0). With ``detail=True`` also
+    ``status`` (int8 codes of :data:`STATUS`, shape (n,)) and ``reasons`` (list of str).
+    Without it, a row without contact or solution raises (InputError, ConvergenceError).
     """
     yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
-    z, th, _ = solve_rigid(ws, tr, y, yaw, step=step)
-    pose = _Pose(y, z, th, yaw)
-    return z, th, {side: find_points(ws, tr, side, pose, step=step, tolerance=tolerance)
-                   for side in SIDES}
+    rows = solve_rigid_rows(ws, tr, y, yaw, step=step)
+    if not detail and np.any(rows.status >= 3):
+        i = int(np.flatnonzero(rows.status >= 3)[0])
+        raise (InputError if rows.status[i] == 3 else ConvergenceError)(rows.reason[i])
+    status, reasons = classify_rows(ws, y, rows.z, rows.wheel_y, rows.status, rows.roll)
+    reasons = [r or rr for r, rr in zip(reasons, rows.reason)]
+    good = np.flatnonzero(rows.status < 3)
+    pose = _Pose(y[good], rows.z[good], rows.roll[good], yaw[good])
+    sides = {}
+    for side in SIDES:
+        if good.size:
+            data, count = find_points(ws, tr, side, pose, step=step, tolerance=tolerance)
+        else:
+            data, count = {k: np.full((0, 1), np.nan) for k in POINT_FIELDS}, np.zeros(0, int)
+        npt = data["separation"].shape[1]
+        full = {k: np.full((y.size, npt), np.nan) for k in data}
+        for k in data:
+            full[k][good] = data[k]
+        cnt = np.zeros(y.size, dtype=int)
+        cnt[good] = count
+        sides[side] = (full, cnt)
+    if detail:
+        return rows.z, rows.roll, sides, status, reasons
+    return rows.z, rows.roll, sides
 
 
 def check_inputs(ws, tr, yaw, tolerance, step):
@@ -636,6 +988,15 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
     Returns
     -------
     ContactPoints
+        With ``status`` ``"ok"``, ``"flange_climb"`` or ``"derailed"``;
+        ``"derailed"`` also issues a :class:`ContactWarning`.
+
+    Raises
+    ------
+    InputError
+        A wheel lies entirely beside its rail at this shift.
+    ConvergenceError
+        No pose satisfies the rigid constraint.
 
     Examples
     --------
@@ -650,7 +1011,14 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
     y = as_float_array("y", y)
     if y.ndim != 0:
         raise InputError("contact_points takes a scalar y; use contact_table for arrays")
-    z, th, rows = solve_rows(wheelset, track, y.reshape(1), yaw, tolerance, step)
+    z, th, rows, status, reasons = solve_rows(wheelset, track, y.reshape(1), yaw, tolerance,
+                                              step, detail=True)
+    if status[0] >= 3:
+        raise (InputError if status[0] == 3 else ConvergenceError)(reasons[0])
     sides = {side: _side_from_row(*rows[side], 0) for side in SIDES}
+    if status[0] == STATUS_CODE["derailed"]:
+        import warnings
+
+        warnings.warn(reasons[0], ContactWarning, stacklevel=2)
     return ContactPoints(float(y), yaw, float(z[0]), float(th[0]), sides["left"],
-                         sides["right"], tolerance)
+                         sides["right"], tolerance, STATUS[int(status[0])], reasons[0])

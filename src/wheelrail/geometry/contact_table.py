@@ -18,7 +18,8 @@ import numpy as np
 
 from .._validation import as_float_array, positive
 from ..errors import InputError
-from .contact_search import POINT_FIELDS, SIDES, check_inputs, solve_rigid, solve_rows
+from .contact_search import (POINT_FIELDS, SIDES, STATUS, check_inputs, solve_rigid_rows,
+                             solve_rows)
 
 __all__ = ["contact_table", "locate_jumps", "write_csv", "write_netcdf"]
 
@@ -33,7 +34,7 @@ def _primary_wheel_y(ws, tr, y, yaw, step, side, z0=None, roll0=None):
     """Wheel coordinate of the rigid contact point of ``side`` for each shift in ``y``."""
     y = np.atleast_1d(np.asarray(y, dtype=float))
     yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
-    return solve_rigid(ws, tr, y, yaw, step=step, z0=z0, roll0=roll0)[2][side]
+    return solve_rigid_rows(ws, tr, y, yaw, step=step, z0=z0, roll0=roll0).wheel_y[side]
 
 
 def locate_jumps(ws, tr, y, primary_wheel_y, side, *, threshold, yaw=0.0, step=2e-4,
@@ -52,7 +53,8 @@ def locate_jumps(ws, tr, y, primary_wheel_y, side, *, threshold, yaw=0.0, step=2
     -------
     list of (y_jump, size) : float [m], float [m] (signed change of wheel_y)
     """
-    idx = np.flatnonzero(np.abs(np.diff(primary_wheel_y)) > threshold)
+    with np.errstate(invalid="ignore"):
+        idx = np.flatnonzero(np.abs(np.diff(primary_wheel_y)) > threshold)
     if idx.size == 0:
         return []
     lo, hi = np.asarray(y, float)[idx].copy(), np.asarray(y, float)[idx + 1].copy()
@@ -62,6 +64,8 @@ def locate_jumps(ws, tr, y, primary_wheel_y, side, *, threshold, yaw=0.0, step=2
     for _ in range(refine):
         mid = 0.5 * (lo + hi)
         wm = _primary_wheel_y(ws, tr, mid, yaw, step, side, z0, r0)
+        if not np.all(np.isfinite(wm)):  # a row that cannot be solved: stop refining it
+            wm = np.where(np.isfinite(wm), wm, wlo)
         left = np.abs(wm - wlo) <= np.abs(wm - whi)
         lo, wlo = np.where(left, mid, lo), np.where(left, wm, wlo)
         hi, whi = np.where(left, hi, mid), np.where(left, whi, wm)
@@ -73,6 +77,13 @@ def locate_jumps(ws, tr, y, primary_wheel_y, side, *, threshold, yaw=0.0, step=2
 def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4,
                   jump_threshold=1e-3, refine_jumps=6):
     """Rigid contact geometry of a wheelset on a track versus lateral shift.
+
+    The table never aborts for one row: every row carries a ``status`` —
+    ``ok``, ``flange_climb`` (the contact lies on the flange beyond its
+    steepest point), ``derailed`` (the wheel rides on its flange tip),
+    ``no_contact`` (a wheel lies entirely beside its rail) or
+    ``not_converged`` — and ``status_reason`` explains every flagged row.
+    Rows with ``no_contact`` or ``not_converged`` hold NaN.
 
     Parameters
     ----------
@@ -113,7 +124,10 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
           ``A``, ``B``, ``separation``, …), NaN where a row has fewer points;
         * ``rolling_radius_left/right_primary``, ``contact_angle_..._primary`` (y);
         * ``jump_y`` (jump): lateral shifts of the jumps [m], ``jump_side``
-          (−1 left, +1 right), ``jump_size`` (change of wheel_y [m]).
+          (−1 left, +1 right), ``jump_size`` (change of wheel_y [m]);
+        * ``status`` (y): int8 code, meanings in ``attrs["flag_meanings"]``
+          (0 ok, 1 flange_climb, 2 derailed, 3 no_contact, 4 not_converged);
+          ``status_reason`` (y): one line per flagged row, empty if ok.
 
     Examples
     --------
@@ -133,13 +147,14 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
     if y.size > 1 and np.any(np.diff(y) <= 0):
         raise InputError("y must be strictly increasing")
     if np.max(np.abs(y)) > 0.05:
-        raise InputError(f"|y| must be <= 0.05 m, got {np.max(np.abs(y))!r} (mm given?)")
+        raise InputError(f"|y| must be <= 0.05 m, got {float(np.max(np.abs(y))):.6g} (mm given?)")
     jump_threshold = float(positive("jump_threshold", jump_threshold))
     refine_jumps = int(refine_jumps)
     if refine_jumps < 0:
         raise InputError(f"refine_jumps must be >= 0, got {refine_jumps!r}")
 
-    z, th, sides = solve_rows(wheelset, track, y, yaw_f, tolerance, step)
+    z, th, sides, status, reasons = solve_rows(wheelset, track, y, yaw_f, tolerance, step,
+                                               detail=True)
     npt = max(sides[s][0]["separation"].shape[1] for s in SIDES)
     rows = np.arange(y.size)
     coords = {"y": ("y", y, {"units": "m", "long_name": "lateral shift of the wheelset (right +)"}),
@@ -147,6 +162,10 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
     data_vars = {
         "z": ("y", z, {"units": "m", "long_name": "height of the axle centre above r0 over top of rail"}),
         "roll": ("y", th, {"units": "rad", "long_name": "roll angle (right wheel higher +)"}),
+        "status": ("y", status.astype(np.int8),
+                   {"long_name": "row status", "flag_values": np.arange(len(STATUS), dtype=np.int8),
+                    "flag_meanings": " ".join(STATUS.values())}),
+        "status_reason": ("y", np.array(reasons, dtype=str), {"long_name": "why a row is flagged"}),
     }
     prim = {}
     jumps = []
@@ -154,13 +173,15 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
         data, count = sides[side]
         pad = npt - data["separation"].shape[1]
         p = _primary(data)
+        p = np.where(status >= 3, 0, p)
         prim[side] = p
         sep = data["separation"]
         n_contact = np.sum(np.nan_to_num(sep, nan=np.inf) <= tolerance, axis=1)
         data_vars[f"n_contact_{side}"] = ("y", n_contact.astype(np.int32),
                                           {"long_name": f"points with separation <= {tolerance} m"})
-        data_vars[f"primary_{side}"] = ("y", p.astype(np.int32),
-                                        {"long_name": "index of the rigid contact point"})
+        data_vars[f"primary_{side}"] = ("y", np.where(status >= 3, -1, p).astype(np.int32),
+                                        {"long_name": "index of the rigid contact point "
+                                                      "(-1: row not solved)"})
         for key, (unit, desc) in POINT_FIELDS.items():
             arr = data[key]
             if pad:
@@ -173,7 +194,8 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
                                                   {"units": unit,
                                                    "long_name": f"{key} of the rigid contact point"})
         if y.size > 1:
-            for yj, size in locate_jumps(wheelset, track, y, data["wheel_y"][rows, p], side,
+            wy = np.where(status >= 3, np.nan, data["wheel_y"][rows, p])
+            for yj, size in locate_jumps(wheelset, track, y, wy, side,
                                          threshold=jump_threshold, yaw=yaw_f, step=step,
                                          refine=refine_jumps, z=z, roll=th):
                 jumps.append((yj, -1 if side == "left" else 1, size))
@@ -198,6 +220,8 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
         "gauge": track.gauge, "inclination": track.inclination, "canted": int(track.canted),
         "gauge_height": track.gauge_height, "yaw": yaw_f, "tolerance": tolerance,
         "step": step, "jump_threshold": jump_threshold,
+        "rows_flagged": int(np.count_nonzero(status)),
+        "rows_failed": int(np.count_nonzero(status >= 3)),
         "conventions": "SI; y right, z up; roll + = right wheel higher; contact angle + towards "
                        "the flange; delta_r = r_right - r_left",
     }
@@ -205,28 +229,43 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
 
 
 def write_netcdf(table, path) -> Path:
-    """Write a contact table to NetCDF-3 with the scipy engine (no netCDF4 needed)."""
+    """Write a contact table to NetCDF-3 with the scipy engine (no netCDF4 needed), atomically."""
+    from .._atomic import atomic_path
+
     path = Path(path)
-    table.to_netcdf(path, engine="scipy")
+    with atomic_path(path) as tmp:
+        table.to_netcdf(tmp, engine="scipy")
     return path
 
 
 def write_csv(table, path) -> Path:
-    """Write a contact table as CSV: one row per ``y``, per-point columns suffixed ``_<point>``."""
+    """Write a contact table as CSV: one row per ``y``, per-point columns suffixed ``_<point>``.
+
+    The file is written atomically (temporary file, then rename); text
+    variables (``status_reason``) are written as quoted strings.
+    """
+    from .._atomic import atomic_open
+
     path = Path(path)
-    cols, names = [table["y"].values], ["y"]
+    cols, names = [np.asarray(table["y"].values, dtype=object)], ["y"]
     for name, var in table.data_vars.items():
         if var.dims == ("y",):
-            cols.append(np.asarray(var.values, dtype=float))
+            cols.append(np.asarray(var.values, dtype=object))
             names.append(name)
         elif var.dims == ("y", "point"):
             for k in range(var.shape[1]):
-                cols.append(np.asarray(var.values[:, k], dtype=float))
+                cols.append(np.asarray(var.values[:, k], dtype=object))
                 names.append(f"{name}_{k}")
-    arr = np.column_stack(cols)
-    with open(path, "w", newline="") as fh:
+
+    def cell(v):
+        if isinstance(v, str):
+            return v
+        v = float(v)
+        return "" if np.isnan(v) else repr(v)
+
+    with atomic_open(path, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(names)
-        for row in arr:
-            w.writerow(["" if np.isnan(v) else repr(float(v)) for v in row])
+        for i in range(len(cols[0])):
+            w.writerow([cell(c[i]) for c in cols])
     return path

@@ -12,7 +12,10 @@ head centre line, ``z = 0`` top of rail). It is first inclined towards the
 track centre by ``atan(inclination)`` (a counter-clockwise rotation about the
 profile origin, which makes the running surface rise towards the field side),
 unless ``canted=True`` says that the profile file is already given in its
-inclined position. It is then lifted so that its highest point is at ``z = 0``
+inclined position. Parts of the rotated contour that are hidden from above
+(a head side that becomes vertical or overhanging, e.g. the 1:20 side of
+60E1 under a 1:20 inclination) are dropped; the gauge point may still lie on
+such a part. It is then lifted so that its highest point is at ``z = 0``
 and placed laterally so that the gauge — the distance between the gauge
 faces measured ``gauge_height`` below the top of rail — equals ``gauge``. The
 right rail keeps its profile orientation; the left rail is mirrored.
@@ -67,7 +70,31 @@ class RailPlacement:
         return rotate(yr, zr, -self.angle)
 
 
-def _gauge_point(y, z, depth):
+def _seen_from_above(y, z, max_slope=100.0):
+    """Indices of the rail contour points visible from above (sorted, y strictly increasing).
+
+    Walking outwards from the highest point, a point is kept only if it lies
+    further out than the last kept point by more than ``1/max_slope`` of the
+    drop between them: vertical faces (a 1:20 head side under a 1:20
+    inclination), overhangs (a steeper inclination, measured profiles) and
+    faces steeper than ``max_slope`` (89.4°), which a wheel coming from above
+    cannot touch and which a spline z(y) cannot follow, are dropped.
+    """
+    top = int(np.argmax(z))
+    left = [top]
+    for i in range(top - 1, -1, -1):
+        j = left[-1]
+        if y[j] - y[i] > max(1e-9, abs(z[j] - z[i]) / max_slope):
+            left.append(i)
+    right = [top]
+    for i in range(top + 1, y.size):
+        j = right[-1]
+        if y[i] - y[j] > max(1e-9, abs(z[j] - z[i]) / max_slope):
+            right.append(i)
+    return np.array(left[::-1] + right[1:], dtype=int)
+
+
+def _gauge_point(y, z, depth, polish=True):
     """Innermost (smallest y) point of the rail at height −depth (first crossing from the gauge side)."""
     above = z >= -depth
     if not np.any(above):
@@ -76,9 +103,13 @@ def _gauge_point(y, z, depth):
     if i == 0:
         raise ProfileError(
             f"rail profile does not reach {depth * 1e3:.1f} mm below the top of rail on the gauge "
-            f"side (lowest gauge-side point z = {z[0] * 1e3:.2f} mm); the gauge cannot be placed")
+            f"side (lowest gauge-side point z = {z[0] * 1e3:.2f} mm); the gauge cannot be placed "
+            "(a flat or shallow profile has no gauge face: use a rail-head profile, or a smaller "
+            "gauge_height)")
     t = (-depth - z[i - 1]) / (z[i] - z[i - 1])
     yg = y[i - 1] + t * (y[i] - y[i - 1])
+    if not polish:
+        return float(yg)
     # polish on the cubic spline through the points (Newton, bracketed by the two samples)
     spline = PiecewiseCubic.through(y, z)
     for _ in range(4):
@@ -176,14 +207,25 @@ class Track:
             y, z = sample_profile(prof)
             angle = self.cant_angle
             yr, zr = rotate(y, z, angle)
-            if np.any(np.diff(yr) <= 0):
-                raise ProfileError(
-                    f"rail {getattr(prof, 'name', '')!r}: after the inclination of "
-                    f"{self.inclination!r} the profile is no longer single-valued (overhanging "
-                    "gauge face); trim the profile")
             z_top = float(np.max(zr))
             zr = zr - z_top
-            yg = _gauge_point(yr, zr, self.gauge_height)
+            keep = _seen_from_above(yr, zr)
+            if keep.size < 4:
+                raise ProfileError(
+                    f"rail {getattr(prof, 'name', '')!r}: after the inclination of "
+                    f"{self.inclination!r} less than 4 points of the rail are visible from above")
+            try:
+                try:
+                    yg = _gauge_point(yr[keep], zr[keep], self.gauge_height)
+                except ProfileError:
+                    if keep.size == yr.size:
+                        raise
+                    # the gauge point lies on a vertical or overhanging part that is hidden
+                    # from above: locate it on the whole contour (linear interpolation)
+                    yg = _gauge_point(yr, zr, self.gauge_height, polish=False)
+            except ProfileError as exc:
+                raise ProfileError(f"rail {getattr(prof, 'name', '')!r}: {exc}") from None
+            yr, zr = yr[keep], zr[keep]
             offset = 0.5 * self.gauge - yg
             curve = PiecewiseCubic.through(yr + offset, zr, uniform_step=SAMPLE_STEP)
             out[side] = RailPlacement(angle, z_top, offset, 0.5 * self.gauge, curve)

@@ -79,8 +79,9 @@ class Wheelset:
         object.__setattr__(self, "flange_back", float(positive("flange_back", self.flange_back)))
         object.__setattr__(self, "tape_circle_offset",
                            float(in_range("tape_circle_offset", self.tape_circle_offset, 0.0, 0.5)))
-        if self.nominal_radius > 2.0:
-            raise InputError(f"nominal_radius = {self.nominal_radius!r} m is implausible (mm given?)")
+        from ..plausibility import check_rolling_radius
+
+        check_rolling_radius(self.nominal_radius, "nominal_radius")
         if self.flange_back > 3.0:
             raise InputError(f"flange_back = {self.flange_back!r} m is implausible (mm given?)")
         for name, p in (("wheel", self.wheel), ("wheel_right", self.wheel_right)):

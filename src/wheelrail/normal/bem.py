@@ -39,6 +39,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._resources import guard
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
 from ..halfspace.fft import InfluenceOperator, influence_operator
@@ -413,6 +414,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
             raise NoContactError(
                 f"no contact: the undeformed gap minus the penetration is >= 0 everywhere "
                 f"(min(gap) = {h.min()!r} m, penetration = {penetration!r} m)")
+    guard("bem_normal", grid.size, f"normal BEM on a {grid.nx}x{grid.ny} grid")  # memory/time
     if operator is None:
         operator = influence_operator(grid, pair)
     elif not isinstance(operator, InfluenceOperator) or operator.grid != grid:

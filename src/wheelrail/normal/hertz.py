@@ -28,6 +28,7 @@ from .._validation import as_float_array, positive, scalar_or_array
 from ..errors import InputError
 from ..materials import MaterialPair, as_material_pair
 from ._base import NormalMethod
+from ..plausibility import check_hertz, check_rolling_radius
 
 __all__ = [
     "HertzContact",
@@ -315,7 +316,9 @@ def _checked_curvatures(A, B):
 
 def _make(a, b, p0, delta, load, A, B, pair) -> HertzContact:
     s = scalar_or_array
-    return HertzContact(s(a), s(b), s(p0), s(delta), s(load), s(A), s(B), pair)
+    contact = HertzContact(s(a), s(b), s(p0), s(delta), s(load), s(A), s(B), pair)
+    check_hertz(contact)  # wrong-unit inputs: warn, or refuse a patch larger than the radii
+    return contact
 
 
 def hertz(load, A, B, material) -> HertzContact:
@@ -357,6 +360,7 @@ def hertz_from_radii(load, wheel_rolling_radius, wheel_profile_radius=np.inf,
                      rail_profile_radius=np.inf, rail_longitudinal_radius=np.inf,
                      *, material) -> HertzContact:
     """Hertz solution from principal radii (see :func:`curvatures_from_radii`), all in m."""
+    check_rolling_radius(wheel_rolling_radius)  # radii in mm are refused (plausibility)
     A, B = curvatures_from_radii(wheel_rolling_radius, wheel_profile_radius,
                                  rail_profile_radius, rail_longitudinal_radius)
     return hertz(load, A, B, material)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from pathlib import Path
 
 __all__ = ["new_figure", "finish"]
@@ -38,7 +39,12 @@ def finish(fig, path=None, title=None, dpi: int = 130):
     if title:
         fig.suptitle(title, fontsize="medium")
     if path is not None:
+        from .._atomic import atomic_path
+
         path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(path, dpi=dpi)
+        fmt = path.suffix.lstrip(".").lower() or None
+        with atomic_path(path) as tmp, warnings.catch_warnings():  # no half-written figure
+            # matplotlib's quiver divides by its auto scale, zero for an all-zero field
+            warnings.filterwarnings("ignore", category=RuntimeWarning, module="matplotlib")
+            fig.savefig(tmp, dpi=dpi, format=fmt)
     return fig

@@ -153,9 +153,49 @@ def single_valued(y: np.ndarray, z: np.ndarray, name: str, *, point_dist_min: fl
     return y[keep], z[keep], {"n_close": n_close, "n_foldback": n_back}
 
 
+#: A profile narrower than this [m] was almost certainly read in the wrong length unit.
+MIN_PLAUSIBLE_WIDTH = 0.005
+#: An isolated point further than this [m] from the mean of its neighbours may be a spike.
+SPIKE_HEIGHT = 0.002
+
+
+def check_damage(y, z, source: str) -> None:
+    """Detect damaged profile data (values in the wrong unit, spikes) with the likely cause.
+
+    * width below :data:`MIN_PLAUSIBLE_WIDTH` (5 mm): values in metres in a
+      file read as millimetres (e.g. 0.07 mm wide instead of 70 mm);
+    * a spike: one point more than :data:`SPIKE_HEIGHT` (2 mm) above or below
+      the mean of its two neighbours, while the neighbours differ from each
+      other by less than a fifth of that — a single bad reading; a real
+      vertical face (flange back, gauge face) changes monotonically.
+
+    Raises
+    ------
+    ProfileError
+        Naming the source, the values and the probable cause.
+    """
+    if y.size >= 2 and 0.0 < np.ptp(y) < MIN_PLAUSIBLE_WIDTH and np.ptp(z) < MIN_PLAUSIBLE_WIDTH:
+        raise ProfileError(
+            f"{source}: profile is only {np.ptp(y) * 1e3:.3g} mm wide and {np.ptp(z) * 1e3:.3g} mm "
+            f"high — values in metres in a file read as millimetres? (Simpack: set "
+            f"units.len.f = 1; text: units='m')")
+    if y.size >= 3:
+        mid = 0.5 * (z[:-2] + z[2:])
+        dev = z[1:-1] - mid
+        step = np.abs(z[2:] - z[:-2])
+        spike = np.flatnonzero((np.abs(dev) > SPIKE_HEIGHT) & (np.abs(dev) > 5.0 * step))
+        if spike.size:
+            i = int(spike[0]) + 1
+            raise ProfileError(
+                f"{source}: point {i + 1} (y = {y[i] * 1e3:.3f} mm, z = {z[i] * 1e3:.3f} mm) is a "
+                f"spike {abs(dev[i - 1]) * 1e3:.3g} mm {'above' if dev[i - 1] > 0 else 'below'} its "
+                f"neighbours — a damaged measurement? Remove or correct that point"
+                + (f" ({spike.size} such points)" if spike.size > 1 else ""))
+
+
 def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
                  point_dist_min=POINT_DIST_MIN, mirror_y=False, wheel_flange_check=True,
-                 tape_circle=None):
+                 tape_circle=None, auto_tape_circle=True):
     """Common tail of all readers: orientation, single-valued part, origin, Profile.
 
     Parameters
@@ -170,6 +210,15 @@ def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
     tape_circle : float or None
         y [m] of the tape circle in the (oriented) file frame: the origin is
         moved there and z shifted so that z(0) = 0.
+    auto_tape_circle : bool
+        Wheels without ``tape_circle``: when every y is ≥ 0 and the flange
+        tip lies within 35 mm of y = 0 (origin on the flange back), move the
+        origin to the tape circle 70 mm from it, with a ProfileWarning.
+
+    Raises
+    ------
+    ProfileError
+        See :func:`check_damage` (values in the wrong unit, spikes).
     """
     y = np.asarray(y_m, dtype=float)
     z = np.asarray(z_up_m, dtype=float)
@@ -178,6 +227,7 @@ def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
     if y.size and (np.ptp(y) > MAX_PLAUSIBLE_WIDTH or np.ptp(z) > MAX_PLAUSIBLE_WIDTH):
         raise ProfileError(f"{source}: profile of {np.ptp(y):.4g} m x {np.ptp(z):.4g} m is "
                            f"implausible — wrong length unit? (give units='mm' or 'm')")
+    check_damage(y, z, source)
     if mirror_y:
         y = -y
     y, z, info = single_valued(y, z, source, point_dist_min=point_dist_min)
@@ -193,6 +243,16 @@ def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
         if frac > 0.6 and depth > 0.010:  # flange found on the +y side: mirror
             y, z = -y[::-1], z[::-1]
             meta["auto_mirrored"] = True
+    if (tape_circle is None and kind == "wheel" and auto_tape_circle and y.size >= 4
+            and y[0] >= -0.001 and y[-1] > 0.080 and y[int(np.argmin(z))] < 0.035):
+        # all y >= 0 with the flange tip near y = 0: the origin is on the back of the flange
+        # (as in MiniProf wheels and some Simpack files); the tape circle is 70 mm from it
+        tape_circle = 0.070
+        warnings.warn(f"{source}: wheel profile starts at the flange back (all y >= 0, flange "
+                      f"tip at y = {y[int(np.argmin(z))] * 1e3:.1f} mm); the tape circle is "
+                      f"assumed 70 mm from it (pass tape_circle= to override)",
+                      ProfileWarning, stacklevel=4)
+        meta["tape_circle_assumed"] = 0.070
     if tape_circle is not None:
         yt = float(tape_circle)
         if not (y[0] <= yt <= y[-1]):

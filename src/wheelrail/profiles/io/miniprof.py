@@ -60,6 +60,21 @@ def _strip(line: str) -> str:
     return line.strip()
 
 
+def _is_switched_off_point(line: str) -> bool:
+    """A data row switched off with a leading double quote (``" 43.7 38.5``)."""
+    s = line.strip()
+    if not s.startswith('"'):
+        return False
+    toks = s[1:].replace(",", " ").replace(";", " ").split()
+    if len(toks) < 2:
+        return False
+    try:
+        [float(t) for t in toks]
+    except ValueError:
+        return False
+    return True
+
+
 def parse_miniprof(lines: list[str], name: str):
     """Return (keys dict, data (n, ncol), x column, y column)."""
     old = any("MINIPROF" in ln.upper() for ln in lines[:3])
@@ -89,6 +104,19 @@ def parse_miniprof(lines: list[str], name: str):
                 raise ProfileError(f"{where}: data row needs at least 2 columns, got {s[:60]!r}")
         append_row(rows, toks, ncol, where, " like the first row")
     check_row_count(rows, name)
+    declared = keys.get("xypoints")
+    if declared is not None:
+        try:
+            n_decl = int(float(declared))
+        except ValueError:
+            raise ProfileError(f"{name}: XYPoints={declared!r} is not a number") from None
+        # MiniProf switches points off with a leading '"'; they count as declared points
+        n_off = sum(1 for ln in lines if _is_switched_off_point(ln))
+        if n_decl != len(rows) + n_off:
+            cause = ("truncated file (incomplete copy or download?)" if len(rows) + n_off < n_decl
+                     else "extra rows after the declared points?")
+            raise ProfileError(f"{name}: XYPoints={n_decl} declares {n_decl} points but the file "
+                               f"holds {len(rows) + n_off} data rows — {cause}")
     cols = [c.strip().upper() for c in keys.get("columndef", "X,Y").split(",")]
     try:
         ix, iy = cols.index("X"), cols.index("Y")
@@ -143,4 +171,5 @@ def read_miniprof(path, kind=None, *, smoothing=0.0, mirror_y=None, z_down=None,
     return make_profile(yy, -yv if down else yv, kind=kind, name=name.rsplit("/", 1)[-1],
                         source=name, fmt="miniprof", meta=meta, smoothing=smoothing,
                         point_dist_min=point_dist_min, mirror_y=False,
-                        wheel_flange_check=mirror_y is None, tape_circle=tc)
+                        wheel_flange_check=mirror_y is None, tape_circle=tc,
+                        auto_tape_circle=tape_circle is not False)

@@ -270,5 +270,7 @@ def write_simpack(profile: Profile, path, *, comment: str | None = None) -> None
            "  point.begin"]
     out += [f"    {y * 1e3:+.9e}  {-z * 1e3:+.9e}" for y, z in zip(profile.y, profile.z)]
     out += ["  point.end", "spline.end", ""]
-    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+    from ..._atomic import atomic_open
+
+    with atomic_open(path, "w", encoding="utf-8", newline="\n") as fh:
         fh.write("\n".join(out))

@@ -157,5 +157,7 @@ def write_text(profile: Profile, path, *, units: str = "mm", delimiter: str = ",
         out.append(f"# name: {name}")
     out.append(delimiter.join((f"y [{units}]", f"z [{units}]")))
     out += [delimiter.join((f"{y * f:.9e}", f"{z * f:.9e}")) for y, z in zip(profile.y, profile.z)]
-    with open(path, "w", encoding="utf-8", newline="\n") as fh:
+    from ..._atomic import atomic_open
+
+    with atomic_open(path, "w", encoding="utf-8", newline="\n") as fh:
         fh.write("\n".join(out) + "\n")

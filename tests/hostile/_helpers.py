@@ -1,0 +1,50 @@
+"""Shared checks of the hostile-input suite: one-line errors, no tracebacks, no debris."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from wheelrail.cli.main import main
+
+
+def run_cli(argv, capsys):
+    """Run ``wheelrail argv`` in-process; returns (exit code, stdout, stderr lines)."""
+    code = main([str(a) for a in argv])
+    out, err = capsys.readouterr()
+    return code, out, [ln for ln in err.splitlines() if ln.strip()]
+
+
+def assert_clean_failure(code, err, *must_name):
+    """Non-zero exit, exactly one error line naming every string in ``must_name``, no traceback.
+
+    Warning lines (``wheelrail: warning: ...``) may precede the error line.
+    """
+    assert code in (1, 2), (code, err)
+    text = "\n".join(err)
+    assert "Traceback" not in text
+    errors = [ln for ln in err if ln.startswith("wheelrail: error: ")]
+    others = [ln for ln in err if not ln.startswith(("wheelrail: error: ", "wheelrail: warning: "))]
+    assert len(errors) == 1 and not others, err
+    assert "np.float64" not in errors[0]
+    for token in must_name:
+        assert token.lower() in errors[0].lower(), (token, errors[0])
+
+
+def assert_clean_warnings(err):
+    """Every stderr line is a one-line ``wheelrail: warning:`` (no source lines, no tracebacks)."""
+    for ln in err:
+        assert ln.startswith("wheelrail: warning: "), ln
+
+
+def assert_no_debris(directory: Path):
+    """No temporary files left and every JSON file in ``directory`` parses."""
+    directory = Path(directory)
+    if not directory.exists():
+        return
+    for p in directory.rglob("*"):
+        assert ".tmp" not in p.name, f"temporary file left behind: {p}"
+        if p.suffix == ".json":
+            json.loads(p.read_text())
+        if p.is_file():
+            assert p.stat().st_size > 0, f"empty output file {p}"
