@@ -86,6 +86,7 @@ import numpy as np
 import scipy.fft as sfft
 from numba import njit
 
+from .._resources import guard
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
 from ..materials import as_material_pair
@@ -760,6 +761,7 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
     if cr.shape != (3,):
         raise InputError(f"creepage must be (xi, eta, phi), got shape {cr.shape}")
     xi, eta, phi = (float(v) for v in cr)
+    guard("exact", grid.size, f"exact theory on a {grid.nx}x{grid.ny} grid")  # memory/time
     pair = as_material_pair(materials)
     R, C = _rolling_and_influence_kernels(grid, pair)
     conv = _block_convolution(grid, pair, "R_tt", R[:2, :2])
