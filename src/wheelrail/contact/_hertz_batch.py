@@ -211,7 +211,9 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
         a_arr[act], b_arr[act] = hc.a, hc.b
         p0 = np.zeros(A.shape)
         p0[act] = hc.p0
-        order = np.argsort(-Fn, axis=1, kind="stable")[:, :max_patches]
+        # active patches first, in the candidates' order (field side to flange), so that a
+        # patch keeps its index along a sweep
+        order = np.argsort(~act, axis=1, kind="stable")[:, :max_patches]
         take = lambda v: np.take_along_axis(v, order, axis=1)  # noqa: E731
         keep = take(act)
         fields = {"y_rail": data["rail_y"], "y_wheel": data["wheel_y"],

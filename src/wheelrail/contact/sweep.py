@@ -56,7 +56,8 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     normal, tangential : str
     material : Material or MaterialPair, optional
     max_patches : int
-        Patches per wheel kept in the dataset (the largest by Fn); more are
+        Patches per wheel kept in the dataset, ordered from the field side to
+        the flange (so that a patch keeps its index along the sweep); more are
         counted in ``n_patches``.
     progress : bool or None
         Progress bar (``None``: for more than 20 positions).
@@ -151,7 +152,7 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
                 status[i], message[i] = "error", f"{type(exc).__name__}: {exc}"
             else:
                 for s, side in enumerate(SIDES):
-                    ps = sorted(res.side(side), key=lambda p: -p.Fn)
+                    ps = sorted(res.side(side), key=lambda p: -p.y_wheel)  # field side first
                     npatches[i, s] = len(ps)
                     for k, p in enumerate(ps[:npat]):
                         for name in PATCH_VARIABLES:
