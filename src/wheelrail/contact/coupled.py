@@ -133,6 +133,8 @@ class GapSolution:
         ``adhesion``, ``inside`` (bool), ``dA`` (element areas, m²), ``sx``, ``sy``
         (slip, m/m).
         """
+        if self.tangential is not None:
+            return self.tangential.as_arrays()
         g = self.grid
         return {"x": g.X, "y": g.Y, "px": np.asarray(self.px), "py": np.asarray(self.py),
                 "p": np.asarray(self.pressure), "adhesion": np.asarray(self.adhesion, bool),

@@ -469,6 +469,20 @@ class TangentialSolution:
         """|F_t| = √(Fx² + Fy²) [N]."""
         return float(np.hypot(self.Fx, self.Fy))
 
+    def as_arrays(self) -> dict:
+        """Plain arrays on the grid, indexed ``[i_x, i_y]``, for plotting and export.
+
+        Keys as :meth:`wheelrail.contact.GapSolution.as_arrays`: ``x``, ``y``
+        (element centres, m), ``px``, ``py``, ``p`` (Pa), ``adhesion``,
+        ``inside`` (bool), ``dA`` (element areas, m²), ``sx``, ``sy``.
+        """
+        g = self.grid
+        return {"x": g.X, "y": g.Y, "px": np.asarray(self.px), "py": np.asarray(self.py),
+                "p": np.asarray(self.pressure), "adhesion": np.asarray(self.adhesion, bool),
+                "inside": np.asarray(self.contact, bool),
+                "dA": np.full(g.shape, g.element_area), "sx": np.asarray(self.sx),
+                "sy": np.asarray(self.sy)}
+
 
 # --------------------------------------------------------------------------
 # driver

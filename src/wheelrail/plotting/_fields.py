@@ -1,7 +1,8 @@
 """Normalise the traction fields of the tangential methods to plain arrays (numpy only).
 
 The fields of the package's methods know their own layout: a container with an
-``as_arrays()`` method (the exact theory's :class:`wheelrail.contact.GapSolution`,
+``as_arrays()`` method (the exact theory's :class:`wheelrail.contact.GapSolution` and
+:class:`wheelrail.halfspace.TangentialSolution`,
 FASTSIM's :class:`wheelrail.tangential.fastsim.FastsimFields`) gives its arrays
 itself. For other containers (a user's mapping, ``xarray.Dataset`` or object)
 :func:`field_arrays` looks up the usual names and guesses the grid orientation.
@@ -77,14 +78,6 @@ def field_arrays(fields):
     as_arrays = getattr(fields, "as_arrays", None)
     if callable(as_arrays):  # the fields know their own layout (exact, FASTSIM)
         return as_arrays()
-    grid = getattr(fields, "grid", None)
-    if grid is not None and hasattr(grid, "X") and hasattr(fields, "px"):
-        # a tangential solution on a boundary-element grid (wheelrail.halfspace)
-        p = np.asarray(getattr(fields, "pressure", np.zeros(grid.shape)), dtype=float)
-        return {"x": np.asarray(grid.X, float), "y": np.asarray(grid.Y, float),
-                "px": np.asarray(fields.px, float), "py": np.asarray(fields.py, float), "p": p,
-                "adhesion": np.asarray(fields.adhesion, bool), "inside": p > 0,
-                "dA": np.full(grid.shape, grid.element_area)}
     px, py = _arr(_lookup(fields, _NAMES["px"])), _arr(_lookup(fields, _NAMES["py"]))
     if px is None and py is None:
         return None
