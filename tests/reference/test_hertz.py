@@ -103,3 +103,12 @@ def test_batch(steel):
     assert c.a.shape == (3,)
     np.testing.assert_allclose(c.a[1] / c.a[0], 10 ** (1 / 3), rtol=1e-12)
     assert c[2].load == 1e5
+
+
+def test_shape_ratio_secant_equals_bisection():
+    """The secant solve of the Hertz shape equation agrees with plain bisection (1e-12)."""
+    from wheelrail.normal.hertz import _shape_ratio_bisection, shape_ratio
+
+    r = np.concatenate([[1.0, 1 + 1e-12, 1 + 1e-6, 1.001], np.logspace(0, 12, 500)])
+    # near k = 1 the shape equation is flat: both agree to its own round-off (~2e-13)
+    np.testing.assert_allclose(shape_ratio(r), _shape_ratio_bisection(r), rtol=1e-12)

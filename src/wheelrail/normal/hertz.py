@@ -75,8 +75,11 @@ def _curvature_ratio(k):
 def shape_ratio(ratio):
     """Semi-axis ratio k = short/long ≤ 1 for a curvature ratio ``ratio`` = large/small ≥ 1.
 
-    Solves (E(e)/k² − K(e)) / (K(e) − E(e)) = ratio, e² = 1 − k², by bisection
-    in log k (vectorised, 60 steps, relative accuracy ~1e-15).
+    Solves (E(e)/k² − K(e)) / (K(e) − E(e)) = ratio, e² = 1 − k², for
+    t = log k by the secant method on log(ratio(k)) − log(ratio) (a monotone
+    function of t), starting from Greenwood's k ≈ ratio^(−2/3) and kept in the
+    bracket [log k_min, 0]; relative accuracy ~1e-14 in 4–8 steps
+    (vectorised). A test compares it with bisection.
 
     Parameters
     ----------
@@ -89,13 +92,35 @@ def shape_ratio(ratio):
         min(a, b) / max(a, b), same shape as ``ratio``.
     """
     ratio = np.asarray(ratio, dtype=float)
+    target = np.log(ratio)
+    lo = np.log(_K_MIN)
+
+    def F(t):
+        return np.log(_curvature_ratio(np.exp(t))) - target
+
+    t0 = np.clip(-(2.0 / 3.0) * target, lo, 0.0)
+    t1 = np.clip(t0 - 1e-3, lo, 0.0)
+    f0, f1 = F(t0), F(t1)
+    for _ in range(40):
+        df = f1 - f0
+        ok = (df != 0.0) & np.isfinite(df)
+        step = np.where(ok, f1 * (t1 - t0) / np.where(ok, df, 1.0), 0.0)
+        t0, f0 = t1, f1
+        t1 = np.clip(t1 - step, lo, 0.0)
+        if np.all(np.abs(t1 - t0) <= 1e-15 * np.maximum(1.0, np.abs(t1))):
+            break
+        f1 = F(t1)
+    return np.exp(t1)
+
+
+def _shape_ratio_bisection(ratio):
+    """Reference for tests: bisection in log k (64 steps)."""
+    ratio = np.asarray(ratio, dtype=float)
     lo = np.full(ratio.shape, np.log(_K_MIN))
     hi = np.zeros(ratio.shape)
     for _ in range(64):
         mid = 0.5 * (lo + hi)
-        f = _curvature_ratio(np.exp(mid))
-        # ratio(k) decreases with k: f > target -> k too small
-        too_small = f > ratio
+        too_small = _curvature_ratio(np.exp(mid)) > ratio   # ratio(k) decreases with k
         lo = np.where(too_small, mid, lo)
         hi = np.where(too_small, hi, mid)
     return np.exp(0.5 * (lo + hi))
