@@ -43,7 +43,10 @@ def contact_reference(path=REF):
             "p_max": f("pmax_MPa") * 1e6, "area": f("area_mm2") * 1e-6,
             "adhesion_area": f("adhesion_area_mm2") * 1e-6,
             "Fy_track": -f("FY_TR_N"), "Fx_track": -f("FX_TR_N"),
+            "Fz_track": f("FZ_TR_N"),   # CONTACT: z down and on the rail; ours: z up, on the wheel
             "contact_angle": abs(f("deltcp_rad")),
+            # CONTACT prints the left side's rail position towards the track centre
+            "y_rail": f("y_rail_mm") * 1e-3 * (-1.0 if r["wheel"] == "left" else 1.0),
         }
     return out
 
@@ -86,6 +89,8 @@ def main(argv=None):
                                                        str(HERE.parent.parent / "shared")))
     ap.add_argument("--cases", default="")
     ap.add_argument("--out", default="", help="also write the Markdown report to this file")
+    ap.add_argument("--methods", default="bem+exact,hertz+fastsim",
+                    help="comma-separated normal+tangential pairs")
     args = ap.parse_args(argv)
     shared = Path(args.shared) / "data"
     cases = manchester_a22(shared / "benchmarks" / "manchester_a22_inputs.csv",
@@ -98,8 +103,9 @@ def main(argv=None):
     # warm-up (numba cache load, first FFT plans) outside the timings
     wr.solve(cases[0].position, motion=cases[0].motion, mu=0.3, normal="bem",
              tangential="exact", element_size=2e-4)
-    for normal, tangential, opts in (("bem", "exact", {"element_size": 2e-4}),
-                                     ("hertz", "fastsim", {})):
+    pairs = [m.split("+") for m in args.methods.split(",")]
+    for normal, tangential in pairs:
+        opts = {"element_size": 2e-4} if normal == "bem" else {}
         rows, times = run(cases, normal, tangential, **opts)
         say(f"\n## {normal} + {tangential} {opts or ''}: {len(cases)} cases, "
             f"{times.mean() / 2 * 1e3:.1f} ms per wheel (mean), "
@@ -123,6 +129,20 @@ def main(argv=None):
                     errs[k].append(rel)
                     cells.append(f"{t[k]:.4g} ({r[k]:.4g})")
                 say(f"| {case} | {side} | {t['n']} | " + " | ".join(cells) + " |")
+        say("\nContact reference point, creepages and track-frame forces (wheelrail (CONTACT); "
+            "position on the rail profile, field side positive; the largest patch):\n")
+        say("| case | side | y_rail [mm] | gamma [deg] | xi | eta | phi [1/m] | Fx_track [N] | "
+            "Fy_track [N] | Fz_track [N] |")
+        say("|" + "---|" * 10)
+        for case, res in rows:
+            for side in ("left", "right"):
+                t, r = totals(res, side), ref[(case, side)]
+                say(f"| {case} | {side} | {t['y_rail'] * 1e3:.2f} ({r['y_rail'] * 1e3:.2f}) | "
+                    f"{np.degrees(t['contact_angle']):.2f} ({np.degrees(r['contact_angle']):.2f})"
+                    f" | {t['xi']:.3e} ({r['xi']:.3e}) | {t['eta']:.3e} ({r['eta']:.3e}) | "
+                    f"{t['phi']:.4f} ({r['phi']:.4f}) | {t['Fx_track']:.0f} ({r['Fx_track']:.0f})"
+                    f" | {t['Fy_track']:.0f} ({r['Fy_track']:.0f}) | {t['Fz_track']:.0f} "
+                    f"({r['Fz_track']:.0f}) |")
         say("\nDifferences to CONTACT (Mz about the contact reference point; Fx, Fs scaled by "
             "mu Fn, Mz by mu Fn times the patch radius, Fy_track by 10 kN, the others by "
             "CONTACT's value):\n")
