@@ -279,3 +279,12 @@ def test_gap_problem_two_bumps_bem_gives_two_patches_hertz_one():
     h = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="hertz", tangential="fastsim")
     ref = wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL)
     assert len(h.patches) == 1 and h.Fn == pytest.approx(float(ref.load), rel=1e-3)
+
+
+@pytest.mark.parametrize("normal", ["hertz", "bem"])
+def test_a_load_the_profiles_cannot_carry_is_named(s1002, normal):
+    ws, tr = s1002
+    with pytest.warns(wr.plausibility.PlausibilityWarning):
+        wp = wr.WheelRailPosition(ws, tr, 0.0, vertical_load=3e7)
+    with pytest.raises(InputError, match="30000000.0 N.*cannot carry"):
+        wr.solve(wp, motion=wr.Motion(speed=10.0), mu=0.3, normal=normal)

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ..errors import ConvergenceError, NoContactError
+from ..errors import ConvergenceError, InputError, NoContactError
 from ._gap import _rigid_box, _scaled
 from .bem import _elements_for, _patches_of, _solve_enlarging, _square_grid
 from .hertz import _vertical_approach, hertz_kernel
@@ -116,8 +116,18 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     key = ("bem_setups", elements, element_size, margin, group_angle, width)
     setups = problem.cache.get(key)
     if setups is None:
-        setups = _setups(problem, pts, sigma, cosg, dz_est, elements, element_size, margin,
-                         group_angle, width)
+        try:
+            setups = _setups(problem, pts, sigma, cosg, dz_est, elements, element_size, margin,
+                             group_angle, width)
+        except InputError as exc:
+            if "search box" not in str(exc):
+                raise
+            what = (f"vertical load {problem.vertical_load!r} N"
+                    if problem.vertical_load is not None
+                    else f"vertical approach {problem.approach!r} m")
+            raise InputError(f"{problem.side} wheel: with the {what} the interpenetration "
+                             f"reaches beyond the {width!r} m of profile around the contact: "
+                             "these profiles cannot carry that load (or raise width=)") from None
         # kept for the next pass of the vertical-load loop (same pose): windows, reference
         # points and the last pressure (warm start)
         problem.cache[key] = setups

@@ -506,6 +506,22 @@ def _vertical_approach(Q, sep, cosg, d1):
     return dz
 
 
+def _check_on_rail(problem, k, b):
+    """The patch of half-width ``b`` around point ``k`` must lie on the rail profile."""
+    rail = problem.track.profile(problem.side) if problem.track is not None else None
+    if rail is None:
+        return
+    y = float(problem.points.rail_y[k])
+    lo, hi = float(np.min(rail.y)), float(np.max(rail.y))
+    if y - b < lo or y + b > hi:
+        what = (f"vertical load {problem.vertical_load!r} N" if problem.vertical_load is not None
+                else f"vertical approach {problem.approach!r} m")
+        raise InputError(
+            f"{problem.side} wheel: the {what} gives a Hertz patch of half-width b = {b:.4g} m "
+            f"around y = {y:.4g} m on the rail profile, which spans only [{lo:.4g}, {hi:.4g}] m: "
+            "these profiles cannot carry that load")
+
+
 class Hertz(NormalMethod):
     """Hertz's theory as a normal method: one ellipse per contact point.
 
@@ -603,6 +619,7 @@ class Hertz(NormalMethod):
                     f"penetrates but is not convex (A = {float(A[k])!r}, B = {float(B[k])!r} 1/m); "
                     "Hertz cannot represent it, use normal='bem'")
             hc = hertz_from_penetration(float(pen[k]), float(A[k]), float(B[k]), pair)
+            _check_on_rail(problem, k, float(hc.b))
             patches.append(ContactPatch.from_hertz(hc, strips=strips, cells=cells,
                                                    frame=problem.frames[k]))
         return tuple(patches), {"approach": dz}
