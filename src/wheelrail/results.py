@@ -191,6 +191,17 @@ class PatchResult:
         return float("nan") if self.patch.frame is None else self.patch.frame.rail_y
 
     @property
+    def y_rail_centre(self) -> float:
+        """Lateral position of the patch's centre of pressure on the rail profile [m].
+
+        Equal to :attr:`y_rail` for a Hertzian patch; a boundary-element patch
+        reports the reference point of its grid (where its creepages are
+        given, shared by the patches of one grid) as ``y_rail`` and its own
+        centre here.
+        """
+        return float(self.patch.info.get("centre_rail_y", self.y_rail))
+
+    @property
     def y_wheel(self) -> float:
         return float("nan") if self.patch.frame is None else self.patch.frame.wheel_y
 

@@ -108,7 +108,7 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
             zs[s][idx] = -g
     rows = np.nonzero(ok_rows)[0]
     out_patch = {k: np.full((n, 2, max_patches), np.nan) for k in
-                 ("y_rail", "y_wheel", "contact_angle", "xi", "eta", "phi", "Fn", "Fx", "Fs",
+                 ("y_rail", "y_rail_centre", "y_wheel", "contact_angle", "xi", "eta", "phi", "Fn", "Fx", "Fs",
                   "Mz", "p_max", "area", "adhesion_area")}
     ftrack = np.full((n, 2, 3), np.nan)
     npatches = np.zeros((n, 2), dtype=int)
@@ -216,7 +216,8 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
         order = np.argsort(~act, axis=1, kind="stable")[:, :max_patches]
         take = lambda v: np.take_along_axis(v, order, axis=1)  # noqa: E731
         keep = take(act)
-        fields = {"y_rail": data["rail_y"], "y_wheel": data["wheel_y"],
+        fields = {"y_rail": data["rail_y"], "y_rail_centre": data["rail_y"],
+                  "y_wheel": data["wheel_y"],
                   "contact_angle": data["contact_angle"], "xi": xi, "eta": eta, "phi": phi,
                   "Fn": Fn, "Fx": Fx, "Fs": Fs, "Mz": Mz, "p_max": p0,
                   "area": np.pi * a_arr * b_arr, "adhesion_area": adh}

@@ -19,7 +19,8 @@ __all__ = ["wheelset_sweep", "PATCH_VARIABLES"]
 
 #: Per-patch variables of the dataset (name: (unit, description)).
 PATCH_VARIABLES = {
-    "y_rail": ("m", "lateral position on the rail profile"),
+    "y_rail": ("m", "lateral position of the contact reference point on the rail profile"),
+    "y_rail_centre": ("m", "lateral position of the centre of pressure on the rail profile"),
     "y_wheel": ("m", "lateral position on the wheel profile"),
     "contact_angle": ("rad", "contact angle"),
     "xi": ("1", "longitudinal creepage"), "eta": ("1", "lateral creepage"),

@@ -193,16 +193,18 @@ class WheelProblem:
                 point=k if not isinstance(k, ContactFrame) else -1)
         return self.cache[key]
 
-    def frame_at(self, k: int, eta: float, weights=None, eta_samples=None) -> ContactFrame:
-        """Contact frame at lateral position ``eta`` [m] of the contact plane of point ``k``.
+    def frame_at(self, k, eta: float, weights=None, eta_samples=None,
+                 angle=None) -> ContactFrame:
+        """Contact frame at lateral position ``eta`` [m] of the contact plane of point ``k``
+        (an index of :attr:`frames`, or a :class:`ContactFrame`).
 
         ``eta`` runs along the plane's tangent towards the field side (as
         :class:`~wheelrail.geometry.separation.Separation`). The contact angle
         is the rail's surface angle there, or, with ``weights`` over
         ``eta_samples``, the weighted mean surface angle (CONTACT's planar
-        contact reference, Vollebregt 2022).
+        contact reference, Vollebregt 2022), or ``angle`` if given.
         """
-        f = self.frames[k]
+        f = self.frames[k] if not isinstance(k, ContactFrame) else k
         sig = _SIGMA[self.side]
         rc = self.track.curve(self.side)
         u_r = sig * f.track_y
@@ -217,6 +219,8 @@ class WheelProblem:
         if weights is not None:
             _, _, angs = rail_at(eta_samples)
             ang = float(np.sum(weights * angs) / np.sum(weights))
+        if angle is not None:
+            ang = float(angle)
         pl = self.track.placement(self.side)
         rail_y, _ = pl.to_profile_frame(u_c, z_c)
         sep = self.separation(k)

@@ -190,7 +190,15 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
         labels, _ = contact_patches(sol)
         nlab = int(labels.max())
         r = st["ref"]
-        patches.extend(_patches_of(sol, pair, cells, frames=[st["frame"]] * nlab,
-                                   origins=[(0.0, 0.0)] * nlab, A=float(A[r]), B=float(B[r])))
+        found = _patches_of(sol, pair, cells, frames=[st["frame"]] * nlab,
+                            origins=[(0.0, 0.0)] * nlab, A=float(A[r]), B=float(B[r]))
+        for p in found:
+            # where the patch lies: its centre of pressure on the rail (the creepages refer
+            # to the group's reference point, the frame, which all patches of a grid share)
+            xc, yc = p.centre
+            at = problem.frame_at(st["frame"], sigma * yc, angle=st["frame"].contact_angle)
+            p.info.update(centre_rail_y=at.rail_y, centre_wheel_y=at.wheel_y,
+                          centre_track_y=at.track_y)
+        patches.extend(found)
     return tuple(patches), {"approach": float(dz), "iterations": iterations,
                             "groups": len(setups)}
