@@ -288,3 +288,20 @@ def test_a_load_the_profiles_cannot_carry_is_named(s1002, normal):
         wp = wr.WheelRailPosition(ws, tr, 0.0, vertical_load=3e7)
     with pytest.raises(InputError, match="30000000.0 N.*cannot carry"):
         wr.solve(wp, motion=wr.Motion(speed=10.0), mu=0.3, normal=normal)
+
+
+def test_bem_second_patch_grows_from_zero(s1002):
+    """Boundary elements (0.5 mm) where the flange-root patch appears (y = 4.70…4.80 mm): it
+    starts with a small load and grows continuously; the total stays the vertical load."""
+    ws, tr = s1002
+    ds = wr.wheelset_sweep(ws, tr, np.linspace(0.0047, 0.0048, 6), vertical_load=10e3,
+                           motion=wr.Motion(speed=20.0), normal="bem", tangential="fastsim",
+                           element_size=5e-4)
+    assert (ds.status == "ok").all()
+    second = np.nan_to_num(ds.Fn.sel(side="right").isel(patch=1).values)
+    first = np.argmax(second > 0)
+    assert 0 < first and second[first] < 300.0
+    assert np.all(np.diff(second[first:]) > 0) and np.max(np.diff(second)) < 800.0
+    # its centre lies at the flange root, 10.5 mm from the tread patch (Hertz: 10.6 mm)
+    c = ds.y_rail_centre.sel(side="right").values[-1]
+    assert c[0] - c[1] == pytest.approx(0.0106, abs=1e-3)
