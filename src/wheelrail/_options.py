@@ -131,7 +131,6 @@ VALIDATORS = {
         "conditions": _polach_conditions,
     },
     "linear": {},
-    "bem": {"elements": _integer(2)},
 }
 #: method -> check of the combination of its options (after the single values)
 COMBINED = {"polach": _polach_all}

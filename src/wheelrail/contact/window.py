@@ -48,17 +48,14 @@ References
 from __future__ import annotations
 
 import dataclasses
-import math
 import warnings
 
 import numpy as np
 
-from .._validation import as_float_array, integer, positive
-from ..errors import InputError, NoContactError
-from ..halfspace.grid import Grid
+from .._validation import integer
 from ..normal.bem import ContactTruncatedWarning
-from ..normal._gap import (_ENLARGE, DEFAULT_SEARCH, _evaluate, _grid_on, _window, contact_patches,
-                           potential_contact_grid)
+from ..normal._gap import (DEFAULT_SEARCH, _enlarged_bounds, _evaluate, _grid_on, _window,
+                           contact_patches, potential_contact_grid)
 from .coupled import solve_gap
 
 __all__ = ["DEFAULT_SEARCH", "contact_patches", "potential_contact_grid", "solve_gap_auto"]
@@ -135,19 +132,10 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
         c = sol.normal.contact
         if not sol.normal.truncated or enlargements >= max_enlarge:
             break
-        b = list(grid.bounds)
-        lx, ly = b[1] - b[0], b[3] - b[2]
-        if c[0].any():
-            b[0] = max(b[0] - _ENLARGE * lx, search[0])
-        if c[-1].any():
-            b[1] = min(b[1] + _ENLARGE * lx, search[1])
-        if c[:, 0].any():
-            b[2] = max(b[2] - _ENLARGE * ly, search[2])
-        if c[:, -1].any():
-            b[3] = min(b[3] + _ENLARGE * ly, search[3])
-        if np.allclose(b, grid.bounds, rtol=0, atol=1e-12 * max(lx, ly)):
-            break           # the touched edges are on the search box: cannot grow
-        grid = _grid_on(tuple(b), w["elements"])
+        b = _enlarged_bounds(grid, c, search)
+        if b is None:
+            break
+        grid = _grid_on(b, w["elements"])
         enlargements += 1
     if sol.normal.truncated:
         g = sol.grid

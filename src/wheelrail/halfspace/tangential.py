@@ -90,7 +90,7 @@ from .._resources import guard
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
 from ..materials import as_material_pair
-from .fft import InfluenceOperator, _fft_shape, _kernel_transform
+from .fft import _fft_shape, _kernel_transform
 from .grid import Grid
 from ._memo import grid_key, memo
 from .influence import influence_kernel
@@ -100,8 +100,6 @@ __all__ = [
     "rolling_kernel",
     "solve_rolling",
     "solve_shift",
-    "GapSolution",
-    "solve_gap",
 ]
 
 

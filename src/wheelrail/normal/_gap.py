@@ -316,3 +316,19 @@ def contact_patches(solution):
     return relabel[raw], np.asarray(loads)[order]
 
 
+def _enlarged_bounds(grid, contact, search):
+    """Window bounds with each edge that the ``contact`` mask touches moved out by
+    ``_ENLARGE`` of the window size (clipped to ``search``); ``None`` if nothing can move."""
+    b = list(grid.bounds)
+    lx, ly = b[1] - b[0], b[3] - b[2]
+    if contact[0].any():
+        b[0] = max(b[0] - _ENLARGE * lx, search[0])
+    if contact[-1].any():
+        b[1] = min(b[1] + _ENLARGE * lx, search[1])
+    if contact[:, 0].any():
+        b[2] = max(b[2] - _ENLARGE * ly, search[2])
+    if contact[:, -1].any():
+        b[3] = min(b[3] + _ENLARGE * ly, search[3])
+    if np.allclose(b, grid.bounds, rtol=0, atol=1e-12 * max(lx, ly)):
+        return None             # the touched edges are on the search box: cannot grow
+    return tuple(b)

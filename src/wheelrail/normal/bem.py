@@ -623,7 +623,7 @@ def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=Non
 
     ``square``: keep square elements of this size when enlarging (else the element count).
     """
-    from ._gap import _ENLARGE, _evaluate
+    from ._gap import _enlarged_bounds, _evaluate
 
     for it in range(max_enlarge + 1):
         h0 = np.array(_evaluate(gap, grid.X, grid.Y))
@@ -635,17 +635,8 @@ def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=Non
         c = sol.contact
         if not sol.truncated or it == max_enlarge:
             break
-        b = list(grid.bounds)
-        lx, ly = b[1] - b[0], b[3] - b[2]
-        if c[0].any():
-            b[0] = max(b[0] - _ENLARGE * lx, search[0])
-        if c[-1].any():
-            b[1] = min(b[1] + _ENLARGE * lx, search[1])
-        if c[:, 0].any():
-            b[2] = max(b[2] - _ENLARGE * ly, search[2])
-        if c[:, -1].any():
-            b[3] = min(b[3] + _ENLARGE * ly, search[3])
-        if np.allclose(b, grid.bounds, rtol=0, atol=1e-12 * max(lx, ly)):
+        b = _enlarged_bounds(grid, c, search)
+        if b is None:
             break
         grid = (_square_grid(b, grid.dx) if square or grid.dx == grid.dy
                 else Grid.from_bounds(*b, nx=grid.nx, ny=grid.ny))

@@ -36,7 +36,6 @@ What an implementation must provide
 from __future__ import annotations
 
 from .._method import Method
-from ..errors import InputError
 
 __all__ = ["TangentialMethod"]
 
