@@ -169,3 +169,16 @@ def test_hertz_grid_layout():
         hertz_grid(hc, margin=0.9)
     with pytest.raises(InputError, match="elements"):
         hertz_grid(hc, elements=1)
+
+
+@pytest.mark.parametrize("factor", [0.9, 0.98, 1.02, 1.3])
+def test_warm_start_from_another_load_gives_the_same_solution(factor):
+    """A start pressure carrying another load (a previous pass of a load iteration) must not
+    change the solution: the discrete Signorini problem has one solution."""
+    hc = wr.hertz(1e4, 1.0, 2.0, wr.STEEL)
+    grid, gap = hertz_grid(hc, elements=30)
+    first = solve_normal(grid, gap, wr.STEEL, load=1e4)
+    cold = solve_normal(grid, gap, wr.STEEL, load=1e4 * factor)
+    warm = solve_normal(grid, gap, wr.STEEL, load=1e4 * factor, initial=first.pressure)
+    assert np.array_equal(cold.contact, warm.contact)
+    np.testing.assert_allclose(warm.pressure, cold.pressure, rtol=0, atol=1e-6 * cold.p_max)

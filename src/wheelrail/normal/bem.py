@@ -253,6 +253,10 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
     if p_init is None:
         p_init = _initial_pressure(apply, h, dA, load, penetration)
     p = np.array(p_init, dtype=float)
+    if load_control:
+        # a start carrying another load (e.g. the solution of a nearby load) is scaled to
+        # this one first: otherwise the iteration can stall on the start's contact area
+        p *= load / (dA * p.sum())
     t = np.zeros_like(p)
     G_old = 1.0
     restart = True      # δ = 0 in the paper: steepest descent step
