@@ -55,7 +55,11 @@ class RollingResult:
         wheel, global axes: x rolling, y the profiles' lateral axis, z up), Fn [N]
         (sum of the normal nodal forces), kinetic, internal, contact (penalty),
         friction (dissipated), damping (dissipated), external (load work) energies
-        [J] and energy_error [J].
+        [J] and energy_error [J]. Explicit: energies of step 2 (rolling), counted from
+        its start (``internal`` is the change of the strain energy);
+        ``contact_work`` is the work of the contact forces on the elastic motion, and
+        energy_error = kinetic + internal + damping − external − contact_work (the
+        balance of the elastic bodies; trapezoidal rule).
     patch : xarray.Dataset
         Contact nodes at the end (see :func:`wheelrail.fe.patch.patch_from_contact`).
     Fx, Fy : float
@@ -258,6 +262,8 @@ def _solve_explicit(case, progress, output_every):
 
     # ---- step 2: rolling (energies counted from here)
     ft = c["ft"].copy()
+    e_int0 = e_int
+    fd = np.zeros_like(fd)
     for k in range(n2):
         t_half = t + 0.5 * dt
         V = speed(t_half)
@@ -271,18 +277,20 @@ def _solve_explicit(case, progress, output_every):
         psi += V * (1.0 - case.xi) / R * dt
         t += dt
         xs_prev, xm_prev = c["xs"], c["xm"]
-        E["damping"] += float(np.sum(fd * du))
-        E["contact_work"] += float(np.sum(fc * du)) + fcw * dw
+        E["damping"] += 0.5 * float(np.sum(fd * du))
+        E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
         E["external"] += -load * dw
         acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, mu,
                                                alpha)
-        E["contact_work"] += 0.0
+        # trapezoidal rule: the other half with the forces at the end of the step
+        E["damping"] += 0.5 * float(np.sum(fd * du))
+        E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
         E["friction"] += float(np.sum(c["ft"] * 0.0)) + float(
             np.sum(np.linalg.norm(c["ft"], axis=1) * c["slip"]))
         ft = c["ft"]
         if k % every == 0 or k == n2 - 1:
             E["kinetic"] = 0.5 * float(np.sum(m[:, None] * v * v)) + 0.5 * M_w * vw * vw
-            E["internal"] = e_int
+            E["internal"] = e_int - e_int0
             E["contact"] = float(c["energy"].sum())
             rows.append([t, s, *_forces_row(c), E["kinetic"], E["internal"], E["contact"],
                          E["friction"], E["damping"], E["external"], E["contact_work"]])
