@@ -33,6 +33,7 @@ _LAZY = {
     "geometry": ("wheelrail.geometry", None),
     "halfspace": ("wheelrail.halfspace", None),
     "plotting": ("wheelrail.plotting", None),
+    "fe": ("wheelrail.fe", None),
     "Profile": ("wheelrail.profiles", "Profile"),
     "Wheelset": ("wheelrail.geometry", "Wheelset"),
     "Track": ("wheelrail.geometry", "Track"),

@@ -44,7 +44,7 @@ def contact_tangent(model, c, psi, mu, n_dof):
             ftr = fmag + kt[sl] * c["slip"][act][sl]
             ratio = fmag / np.maximum(ftr, 1e-300)
             C[sl] += (kt[sl] * ratio)[:, None, None] * (Pt[sl] - t[:, :, None] * t[:, None, :])
-            C[sl] += mu * kn[sl, None, None] * t[:, :, None] * n[:, None, :]
+            C[sl] += mu * kn[sl, None, None] * t[:, :, None] * n[sl][:, None, :]
     na = act.size
     T = np.zeros((na, 3, 16))
     dofs = np.zeros((na, 16), np.int64)
@@ -70,7 +70,7 @@ def contact_tangent(model, c, psi, mu, n_dof):
 
 
 #: Systems with more unknowns than this use AMG-preconditioned GMRES instead of SuperLU.
-DIRECT_LIMIT = 30000
+DIRECT_LIMIT = 200000
 
 
 def solve_linear(A, b):
