@@ -125,3 +125,21 @@ def test_friction_stick_then_return_to_cone():
 def test_open_node_carries_no_force():
     out = _contact(np.array([[0.0, 0.0, 1e-6]]), np.zeros((1, 3)), np.ones((1, 3)), 0.3)
     assert out["status"][0] == 0 and np.all(out["fs"] == 0) and np.all(out["fm"] == 0)
+
+
+def test_real_profiles_s1002_on_inclined_60e1_mesh():
+    """S1002 on 60E1 at 1:40: contact point where the gap between the profiles is smallest."""
+    rail = wr.profiles.load("60E1").rotated(np.arctan(1 / 40))
+    wheel = wr.profiles.load("S1002")
+    case = RollingCase(wheel=wheel, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+                       inclination=np.arctan(1 / 40), mesh_size=1.5e-3, depth=4, half_width=4,
+                       half_length=4)
+    m = build_model(case, rolling=False)
+    y = np.linspace(-0.03, 0.03, 60001)
+    gap = wheel(y) - rail(y)
+    assert m.geometry["y_c"] == pytest.approx(y[np.nanargmin(gap)], abs=2e-5)
+    top = m.rail.nodes[m.rail.surface_nodes.ravel()]
+    np.testing.assert_allclose(top[:, 2], rail(top[:, 1]), atol=1e-12)
+    ws = m.wheel.nodes[m.wheel.surface_nodes.ravel()]
+    np.testing.assert_allclose(np.hypot(ws[:, 0], ws[:, 2]), 0.46 - wheel(ws[:, 1]), atol=1e-12)
+    assert m.geometry["hertz"] is not None and m.geometry["hertz"].a > m.geometry["hertz"].b

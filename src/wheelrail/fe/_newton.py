@@ -100,7 +100,7 @@ def solve_linear(A, b):
 
 
 def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *,
-           dyn=None, tol=1e-4, max_iter=40):
+           dyn=None, tol=3e-3, max_iter=40):
     """Solve one (quasi-)static or implicit-dynamic step.
 
     Parameters
@@ -111,6 +111,13 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
     dyn : callable, optional
         ``dyn(q) -> r_dyn`` extra residual (inertia, damping) on the full vector;
         its constant Jacobian must already be in ``Kff``.
+
+    tol : float
+        Convergence: the largest residual force below ``tol * load`` with an unchanged
+        active set. The interpolated (continuous) contact normals make the contact
+        forces not exactly the gradient of the penalty energy, which limits the
+        attainable residual to about 0.1-0.2 % of the load on curved, inclined
+        surfaces; hence 3e-3 by default.
 
     Returns
     -------

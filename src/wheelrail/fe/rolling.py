@@ -297,7 +297,10 @@ def _solve_explicit(case, progress, output_every):
             np.sum(np.linalg.norm(c["ft"], axis=1) * c["slip"]))
         ft = c["ft"]
         if k % every == 0 or k == n2 - 1:
-            E["kinetic"] = 0.5 * float(np.sum(m[:, None] * v * v)) + 0.5 * M_w * vw * vw
+            # kinetic energy at the full step: v_n = v_{n-1/2} + dt/2 a_n
+            vn = v + 0.5 * dt * acc
+            vwn = vw + 0.5 * dt * aw
+            E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
             E["internal"] = e_int - e_int0
             E["contact"] = float(c["energy"].sum())
             rows.append([t, s, *_forces_row(c), E["kinetic"], E["internal"], E["contact"],
