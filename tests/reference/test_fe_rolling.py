@@ -3,7 +3,7 @@
 Seed 000 (Toumi et al. 2016, §4.1.3, Fig. 8) compares the FE creep force with CONTACT.
 Here: a cylindrical wheel (R = 0.46 m) on the 60E1 crown, 7.5 kN, μ = 0.2, steel,
 ξ = 7e-4 (no spin), a 2 mm mesh (a/h ≈ 1.5) with mass scaling so that the explicit run
-takes seconds. Exact solver: Fx = -1228 N. Measured here: -1238 N (0.8 %); tolerance 10 %
+takes seconds. Exact solver: Fx = -1228 N. Measured here: -1248 N (+1.6 %); tolerance 10 %
 (the issue's target for the 1 mm mesh).
 """
 
@@ -47,7 +47,7 @@ def test_load_carried_and_patch_has_stick_and_slip(rolled):
 def test_energy_balance_closes(rolled):
     ds = rolled.dataset
     scale = float(abs(ds.contact_work).max())
-    assert float(abs(ds.energy_error).max()) < 0.1 * scale   # measured 5 %
+    assert float(abs(ds.energy_error).max()) < 0.1 * scale   # measured 2.6 %
 
 
 def test_frictionless_rolling_conserves_energy_and_has_no_traction():
