@@ -46,3 +46,11 @@ def test_fe_bad_key_is_a_usage_error(tmp_path, capsys):
     case.write_text(CASE + "mesh_sise = 1.0\n")
     assert main(["fe", str(case)]) == 2
     assert "mesh_sise" in capsys.readouterr().err
+
+
+def test_fe_indent_figure(tmp_path):
+    case = tmp_path / "case.toml"
+    case.write_text(CASE)
+    out = tmp_path / "out"
+    assert main(["fe", str(case), "--out", str(out)]) == 0
+    assert (out / "patch.png").stat().st_size > 10_000

@@ -51,7 +51,7 @@ def plot_patch(patch, mu: float, reference=None, path=None):
     cs = ax[1].contourf(X, Y, ratio[sl], np.linspace(0, 1, 11), cmap="magma")
     fig.colorbar(cs, ax=ax[1], label="|q| / (μ p)")
     st = patch.status.values[sl]
-    ax[1].plot(X[st == 2], Y[st == 2], "w.", ms=3, label="slip")
+    ax[1].plot(X[st == 2], Y[st == 2], "k.", ms=3, label="slip")
     ax[1].plot(X[st == 1], Y[st == 1], "c.", ms=3, label="stick")
     ax[1].legend(loc="upper right", fontsize=8)
     ax[1].set_title("shear / traction bound")
