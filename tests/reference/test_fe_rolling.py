@@ -64,3 +64,13 @@ def test_unstable_time_step_is_rejected():
     from wheelrail.errors import InputError
     with pytest.raises(InputError, match="time_step 0.001"):
         solve(RollingCase(creepage=(7e-4, 0.0, 0.0), **dict(KW, time_step=1e-3)), progress=False)
+
+
+def test_hht_agrees_with_quasi_static_when_inertia_is_negligible():
+    """Steps (72 µs) far longer than the bodies' periods (~20 µs): HHT-α tends to the static solution."""
+    kw = dict(KW, travel=0.003, mass_scaling=1.0)
+    qs = solve(RollingCase(creepage=(7e-4, 0, 0), integrator="implicit-qs", **kw), progress=False)
+    hht = solve(RollingCase(creepage=(7e-4, 0, 0), integrator="implicit-hht", **kw),
+                progress=False)
+    np.testing.assert_allclose(hht.dataset.Fx.values, qs.dataset.Fx.values, rtol=0.02, atol=5.0)
+    np.testing.assert_allclose(hht.dataset.Fn.values, 7500.0, rtol=5e-3)

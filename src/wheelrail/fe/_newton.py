@@ -100,7 +100,7 @@ def solve_linear(A, b):
 
 
 def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *,
-           dyn=None, tol=3e-3, max_iter=40):
+           dyn=None, static_scale=1.0, diag=None, tol=3e-3, max_iter=40):
     """Solve one (quasi-)static or implicit-dynamic step.
 
     Parameters
@@ -109,8 +109,12 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
         Stiffness restricted to the free generalized dofs (``free`` indexes into
         ``[u.ravel(), w]``), including any constant dynamic terms.
     dyn : callable, optional
-        ``dyn(q) -> r_dyn`` extra residual (inertia, damping) on the full vector;
-        its constant Jacobian must already be in ``Kff``.
+        ``dyn(q) -> r_dyn`` extra residual (inertia) on the full vector.
+    static_scale : float
+        Factor on the static residual and its tangent (1 + α for HHT-α).
+    diag : ndarray, optional
+        Constant diagonal added to the tangent (over the free dofs): the
+        Jacobian of ``dyn`` (lumped mass / (β Δt²) for HHT-α).
 
     tol : float
         Convergence: the largest residual force below ``tol * load`` with an unchanged
@@ -132,7 +136,7 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
         c = model.contact(uu, q[-1], psi, s, xs_prev, xm_prev, ft_old, mu)
         f_int, _ = model.internal_force(uu)
         fc, fcw = model.generalized_contact_force(c, psi)
-        r = np.concatenate([(f_int - fc).ravel(), [load - fcw]])
+        r = static_scale * np.concatenate([(f_int - fc).ravel(), [load - fcw]])
         if dyn is not None:
             r += dyn(q)
         c["potential"] = 0.5 * float(q[:-1] @ f_int.ravel()) + float(c["energy"].sum()) \
@@ -150,7 +154,11 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
         if same and np.max(np.abs(rf)) < tol * scale:
             return q[:-1].reshape(-1, 3).copy(), float(q[-1]), c, it
         Kc = contact_tangent(model, c, psi, mu, n_dof)
-        J = Kff + Kc[free][:, free]
+        J = static_scale * (Kff + Kc[free][:, free])
+        if diag is not None:
+            import scipy.sparse as sp
+
+            J = J + sp.diags(diag)
         dq = solve_linear(J, -rf)
         # backtracking line search on the residual norm (the penalty contact is only
         # piecewise smooth: a full step can flip the active set back and forth)

@@ -21,9 +21,18 @@ with the friction history carried from step to step (backward-Euler
 incremental slip); time step ``time_step`` (default: the contact moves half an
 element per step).
 
+Implicit dynamic (``"implicit-hht"``): the HHT-α method (α = ``hht_alpha`` in
+[−1/3, 0], β = (1 − α)²/4, γ = ½ − α) with lumped mass, Newton iterations on the
+equilibrium at t_{n+1+α} (internal and contact forces weighted (1 + α) at the new
+and −α at the old step; contact evaluated at the new positions), same default
+step as quasi-static; no Rayleigh damping (numerical dissipation only).
+
 References
 ----------
 .. [1] Toumi et al., Wear 366-367 (2016) 157-166 (seed 000), §2-3, eq. (1).
+.. [3] H.M. Hilber, T.J.R. Hughes, R.L. Taylor, "Improved numerical dissipation for
+   time integration algorithms in structural dynamics", Earthquake Eng. Struct.
+   Dyn. 5 (1977) 283-292, eqs. (9)-(11).
 .. [2] T. Belytschko, W.K. Liu, B. Moran, *Nonlinear Finite Elements for
    Continua and Structures*, Wiley 2000, §6.2 (central differences, stable step,
    energy balance).
@@ -147,8 +156,7 @@ def solve(case, *, progress: bool = True, output_every: int | None = None) -> Ro
         return _solve_explicit(case, progress, output_every)
     if case.integrator == "implicit-qs":
         return _solve_implicit_qs(case, progress)
-    raise InputError(f"integrator {case.integrator!r} is not available yet (use 'explicit' or "
-                     f"'implicit-qs')")
+    return _solve_implicit_hht(case, progress)
 
 
 def _progress(progress, total, label):
@@ -358,4 +366,80 @@ def _solve_implicit_qs(case, progress):
     patch = patch_from_contact(model, c, psi, dt)
     return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
                          patch.attrs["a"], patch.attrs["b"], model, u,
+                         {"time_step": dt, "steps": nsteps, "newton_iterations": iters})
+
+
+def _solve_implicit_hht(case, progress):
+    model = build_model(case, rolling=True)
+    travel = model.geometry["travel"]
+    K = model.stiffness()
+    free = free_dofs(model)
+    Kff = K[free][:, free].tocsr()
+    u, w, c, _ = static_equilibrium(model, K)
+    speed, t_end = _speed_profile(case, travel)
+    dt = case.time_step if case.time_step is not None else 0.5 * case.mesh_size / case.speed
+    nsteps = int(np.ceil(t_end / dt))
+    R = model.geometry["r_c"]
+    al = case.hht_alpha
+    beta, gamma = (1 - al) ** 2 / 4, 0.5 - al
+    n = model.n_nodes
+    m = model.mass * case.mass_scaling
+    M_w = float(m[:model.nw].sum())
+    mvec = np.concatenate([np.repeat(m, 3), [M_w]])
+    diag = mvec[free] / (beta * dt * dt)
+    q = np.concatenate([u.ravel(), [w]])
+    v = np.zeros_like(q)
+    a = np.zeros_like(q)
+
+    def static_residual(q, c):
+        f_int, _ = model.internal_force(q[:-1].reshape(-1, 3))
+        fc, fcw = model.generalized_contact_force(c, psi)
+        return np.concatenate([(f_int - fc).ravel(), [case.load - fcw]])
+
+    ft = np.zeros((model.slave.size, 3))
+    psi = s = t = 0.0
+    r_old = static_residual(q, c)
+    rows = []
+    E = dict(friction=0.0, external=0.0)
+    bar = _progress(progress, nsteps, f"FE implicit-hht ({model.n_elements} el.)")
+    iters = 0
+    for k in range(nsteps):
+        V = speed(t + 0.5 * dt)
+        s += V * dt
+        psi += V * (1.0 - case.xi) / R * dt
+        t += dt
+        q_n, v_n, a_n = q.copy(), v.copy(), a.copy()
+
+        def acc(qq):
+            return (qq - q_n - dt * v_n) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n
+
+        def dyn(qq, r_old=r_old):
+            return mvec * acc(qq) - al * r_old
+
+        w_old = q[-1]
+        u1, w1, c, it = newton(model, Kff, free, q[:-1].reshape(-1, 3), q[-1], psi, s, c["xs"],
+                               c["xm"], ft, case.mu, case.load, dyn=dyn, static_scale=1.0 + al,
+                               diag=diag)
+        iters += it
+        q = np.concatenate([u1.ravel(), [w1]])
+        a = acc(q)
+        fixed = np.setdiff1d(np.arange(q.size), free)
+        a[fixed] = 0.0
+        v = v_n + dt * ((1 - gamma) * a_n + gamma * a)
+        r_old = static_residual(q, c)
+        ft = c["ft"]
+        E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
+        E["external"] += -case.load * (q[-1] - w_old)
+        _, e_int = model.internal_force(u1)
+        rows.append([t, s, *_forces_row(c), 0.5 * float(np.sum(mvec * v * v)), e_int,
+                     float(c["energy"].sum()), E["friction"], 0.0, E["external"], np.nan])
+        if bar is not None:
+            bar.update(bar.task_ids[0], completed=k + 1)
+    if bar is not None:
+        bar.stop()
+    ds = _dataset(rows, case, model, {"time_step": dt, "steps": nsteps, "hht_alpha": al,
+                                      "newton_iterations": iters})
+    patch = patch_from_contact(model, c, psi, dt)
+    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
+                         patch.attrs["a"], patch.attrs["b"], model, q[:-1].reshape(-1, 3),
                          {"time_step": dt, "steps": nsteps, "newton_iterations": iters})
