@@ -34,6 +34,7 @@ _LAZY = {
     "halfspace": ("wheelrail.halfspace", None),
     "plotting": ("wheelrail.plotting", None),
     "plausibility": ("wheelrail.plausibility", None),
+    "fe": ("wheelrail.fe", None),
     "Profile": ("wheelrail.profiles", "Profile"),
     "Wheelset": ("wheelrail.geometry", "Wheelset"),
     "Track": ("wheelrail.geometry", "Track"),

@@ -35,6 +35,7 @@ COMMANDS = [
     ("demo", "wheelrail.cli.demo"),
     ("geometry", "wheelrail.cli.geometry"),
     ("wheelset", "wheelrail.cli.wheelset"),
+    ("fe", "wheelrail.cli.fe"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2

@@ -1,0 +1,303 @@
+"""The assembled two-body model: meshes, element data, masses, rigid motions, contact.
+
+Kinematics (small strain, large prescribed rigid motion)
+--------------------------------------------------------
+Each body carries its elastic displacement ``u`` in its own frame. The rail
+frame translates by ``-s(t)`` along ``x``; the wheel frame turns by the rolling
+angle ``psi(t)`` about the axle and the axle moves vertically by ``w`` (the
+load degree of freedom). A wheel node's global position is
+
+    x = c0 + w e_z + Q(psi) (X + u),   Q = [[cos, 0, sin], [0, 1, 0], [-sin, 0, cos]],
+
+a rail node's ``x = X + u - s e_x``. This is exact for the elastic response to
+small strains under arbitrary rigid rotation (a co-rotational frame per body);
+the fictitious (centrifugal, Coriolis) body forces of the turning frame are
+neglected (ρ Ω² R ≈ 3 MN/m³ at 50 km/h, i.e. < 0.1 MPa over the kept rim).
+
+The rail's foot plane and the wheel's inner rim (the cut faces of seed 000's
+Fig. 1) are clamped in their body frames.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from . import _kernels as K
+from .elements import Hex8
+from .materials import as_fe_material
+from .mesh import depth_axis, graded_axis, rail_body, wheel_body
+
+__all__ = ["Model", "build_model", "contact_geometry"]
+
+
+def contact_geometry(case):
+    """Initial contact point, rolling radius and Hertz estimate of a case.
+
+    Returns
+    -------
+    dict
+        ``y_c`` lateral position of the contact point [m], ``z_axle`` axle height [m],
+        ``r_c`` rolling radius there [m], ``radius_of_y`` callable r(y) [m],
+        ``rail`` the inclined rail profile, ``hertz`` a :class:`HertzContact`
+        from the local curvatures, or None if they are not Hertzian.
+    """
+    from ..normal.hertz import hertz
+
+    rail = case.rail.rotated(case.inclination) if case.inclination else case.rail
+    wheel = case.wheel
+    lat = case.lateral_position
+    lo = max(rail.y_min, wheel.y_min + lat)
+    hi = min(rail.y_max, wheel.y_max + lat)
+    if hi <= lo:
+        raise InputError(f"lateral_position {lat!r} m puts the wheel profile beside the rail "
+                         f"(no lateral overlap)")
+    ys = np.linspace(lo, hi, 4001)
+    gap = wheel(ys - lat) - rail(ys)
+    k = int(np.nanargmin(gap))
+    if 0 < k < len(ys) - 1:   # parabolic refinement
+        g0, g1, g2 = gap[k - 1:k + 2]
+        den = g0 - 2 * g1 + g2
+        y_c = ys[k] + (0.5 * (g0 - g2) / den if den > 0 else 0.0) * (ys[1] - ys[0])
+    else:
+        y_c = ys[k]
+    s_v = -(wheel(y_c - lat) - rail(y_c))          # vertical shift to touch
+    z_axle = case.radius + s_v
+
+    def radius_of_y(y):
+        return case.radius - wheel(np.asarray(y) - lat)
+
+    r_c = float(radius_of_y(y_c))
+    kw = float(wheel.curvature(y_c - lat))
+    kr = float(rail.curvature(y_c))
+    A = 0.5 / r_c
+    B = 0.5 * (kw - kr)
+    mat = as_fe_material(case.material, case.density)
+    from ..materials import Material
+    hz = hertz(case.load, A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
+    return {"y_c": float(y_c), "z_axle": float(z_axle), "r_c": r_c, "radius_of_y": radius_of_y,
+            "rail": rail, "hertz": hz, "A": A, "B": B}
+
+
+@dataclass(frozen=True, eq=False)
+class Model:
+    """Meshes and precomputed arrays of a case (built by :func:`build_model`).
+
+    Nodes are numbered wheel first, then rail. ``u`` arrays have shape
+    (n_nodes, 3); the generalized vector used by the implicit solvers is
+    ``[u.ravel(), w]`` of length ``3 n_nodes + 1``.
+    """
+
+    case: object
+    wheel: object
+    rail: object
+    material: object
+    element: object
+    edata_w: object
+    edata_r: object
+    conn: np.ndarray
+    mass: np.ndarray            # (n_nodes,) lumped, unscaled [kg]
+    fixed: np.ndarray           # (n_fixed,) node numbers
+    slave: np.ndarray           # wheel surface nodes (flattened)
+    slave_area: np.ndarray
+    master: np.ndarray          # (nx, ny) rail surface node numbers (global)
+    kn: np.ndarray              # (ns,) penalty [Pa/m]
+    geometry: dict
+    z_axle: float
+    g0: float
+    x_rail_span: tuple
+
+    @property
+    def n_nodes(self) -> int:
+        return self.wheel.n_nodes + self.rail.n_nodes
+
+    @property
+    def n_elements(self) -> int:
+        return self.wheel.n_elements + self.rail.n_elements
+
+    @property
+    def nw(self) -> int:
+        return self.wheel.n_nodes
+
+    def reference(self) -> np.ndarray:
+        return np.concatenate([self.wheel.nodes, self.rail.nodes])
+
+    # -------------------------------------------------------------- kernels
+    def internal_force(self, u, f=None):
+        """Internal forces (n_nodes, 3) in the body frames and the strain energy [J]."""
+        if f is None:
+            f = np.zeros_like(u)
+        lam, mu = self.material.lam, self.material.mu
+        nw = self.nw
+        e1 = K.internal_force(u[:nw], self.wheel.elements, self.edata_w.dNdx, self.edata_w.wdet,
+                              lam, mu, self.edata_w.gamma, self.edata_w.khg, f[:nw])
+        e2 = K.internal_force(u[nw:], self.rail.elements, self.edata_r.dNdx, self.edata_r.wdet,
+                              lam, mu, self.edata_r.gamma, self.edata_r.khg, f[nw:])
+        return f, e1 + e2
+
+    def stiffness(self):
+        """Sparse stiffness (CSR) of size 3 n_nodes + 1 (the last row/column, w, is empty)."""
+        import scipy.sparse as sp
+
+        n = 3 * self.n_nodes + 1
+        mats = []
+        lam, mu = self.material.lam, self.material.mu
+        for body, ed, off in ((self.wheel, self.edata_w, 0), (self.rail, self.edata_r, self.nw)):
+            ne = body.n_elements
+            rows = np.empty(ne * 576, np.int64)
+            cols = np.empty(ne * 576, np.int64)
+            vals = np.empty(ne * 576)
+            K.stiffness_triplets(body.elements + off, ed.dNdx, ed.wdet, lam, mu, ed.gamma,
+                                 ed.khg, rows, cols, vals)
+            mats.append(sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr())
+        return (mats[0] + mats[1]).tocsr()
+
+    def von_mises(self, u):
+        """Von Mises stress at the element centres [Pa]: (wheel (ne_w,), rail (ne_r,))."""
+        out = []
+        for body, ed, sl in ((self.wheel, self.edata_w, slice(0, self.nw)),
+                             (self.rail, self.edata_r, slice(self.nw, None))):
+            vm = np.empty(body.n_elements)
+            K.element_von_mises(u[sl], body.elements, ed.dNdx, self.material.lam,
+                                self.material.mu, vm)
+            out.append(vm)
+        return out
+
+    # -------------------------------------------------------------- kinematics
+    @staticmethod
+    def rotation(psi: float) -> np.ndarray:
+        c, s = np.cos(psi), np.sin(psi)
+        return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
+
+    def slave_positions(self, u, w, psi):
+        """Global positions (ns, 3) of the wheel surface nodes."""
+        X = self.wheel.nodes[self.slave] + u[self.slave]
+        return X @ self.rotation(psi).T + np.array([0.0, 0.0, self.z_axle + w])
+
+    def master_positions(self, u, s):
+        """Global positions (nx, ny, 3) of the rail surface nodes."""
+        idx = self.master
+        X = self.rail.nodes[idx - self.nw] + u[idx]
+        X[..., 0] -= s
+        return X
+
+    def contact(self, u, w, psi, s, xs_prev, xm_prev, ft_old, mu):
+        """Evaluate contact; returns a dict of per-slave results and the generalized forces."""
+        xs = self.slave_positions(u, w, psi)
+        xm = self.master_positions(u, s)
+        ns = xs.shape[0]
+        nx, ny = self.master.shape
+        out = {
+            "fs": np.zeros((ns, 3)), "fm": np.zeros((nx, ny, 3)), "gap": np.empty(ns),
+            "pn": np.empty(ns), "ft": np.zeros((ns, 3)), "status": np.zeros(ns, np.int64),
+            "cell": np.zeros((ns, 2), np.int64), "rt": np.zeros((ns, 2)),
+            "normal": np.zeros((ns, 3)), "slip": np.zeros(ns), "energy": np.zeros(ns),
+        }
+        h = self.case.mesh_size
+        K.node_to_surface(xs, xs - xs_prev, self.slave_area, self.kn, self.kn, mu, ft_old,
+                          xm, nodal_normals(xm), xm - xm_prev, self.rail.axes[0], self.rail.axes[1][:], s,
+                          5.0 * h, self.g0, out["energy"], out["fs"], out["fm"], out["gap"], out["pn"], out["ft"],
+                          out["status"], out["cell"], out["rt"], out["normal"], out["slip"])
+        out["xs"] = xs
+        out["xm"] = xm
+        return out
+
+    def generalized_contact_force(self, c, psi):
+        """Contact forces in the body frames (n_nodes, 3) and on the axle dof w."""
+        f = np.zeros((self.n_nodes, 3))
+        f[self.slave] = c["fs"] @ self.rotation(psi)        # Q^T f per row
+        np.add.at(f, self.master.ravel(), c["fm"].reshape(-1, 3))
+        return f, float(c["fs"][:, 2].sum())
+
+
+def nodal_normals(xm):
+    """Unit normals (nx, ny, 3) of a structured surface from differences along both axes."""
+    tx = np.gradient(xm, axis=0)
+    ty = np.gradient(xm, axis=1)
+    n = np.cross(tx, ty)
+    return n / np.linalg.norm(n, axis=-1, keepdims=True)
+
+
+def _axes(case, geo, h):
+    hz = geo["hertz"]
+    if hz is not None:
+        a, b = float(hz.a), float(hz.b)
+        if h > min(a, b):
+            raise InputError(f"mesh_size {h!r} m is larger than the contact patch (Hertz "
+                             f"semi-axes a = {a:.3g} m, b = {b:.3g} m); use mesh_size < "
+                             f"{min(a, b):.3g} m")
+    else:
+        a = b = 5 * h
+    return a, b
+
+
+def build_model(case, *, rolling: bool = True) -> Model:
+    """Mesh both bodies and precompute element data, masses and penalties.
+
+    Parameters
+    ----------
+    case : RollingCase
+    rolling : bool
+        True: the rail and wheel meshes cover the rolled distance (refined all along
+        the path); False: a short static mesh (refined ``±2a`` around the contact,
+        ``half_length`` semi-axes long) for :func:`wheelrail.fe.indent`.
+    """
+    geo = contact_geometry(case)
+    h = case.mesh_size
+    a, b = _axes(case, geo, h)
+    mat = as_fe_material(case.material, case.density)
+    elem = Hex8(case.element)
+    g = case.grading
+    y_c = geo["y_c"]
+    hw = case.half_width * b
+    fine_y = 1.5 * b + 2 * h
+    rail_prof = geo["rail"]
+    wheel_lo = case.wheel.y_min + case.lateral_position
+    wheel_hi = case.wheel.y_max + case.lateral_position
+    y_lo = max(y_c - hw, rail_prof.y_min, wheel_lo)
+    y_hi = min(y_c + hw, rail_prof.y_max, wheel_hi)
+    y_axis = graded_axis(y_lo, y_hi, y_c - fine_y, y_c + fine_y, h, g)
+    depth = case.depth * max(a, b)
+    d_axis = depth_axis(depth, h, 1.5 * a + h, g)
+    L = case.half_length * a
+    if rolling:
+        travel = case.travel if case.travel is not None else default_travel(case, a)
+        x_lo, x_hi = -2.5 * a - L, travel + 2.5 * a + L
+        fx_lo, fx_hi = -2.5 * a, travel + 2.5 * a
+    else:
+        travel = 0.0
+        x_lo, x_hi, fx_lo, fx_hi = -L, L, -2 * a, 2 * a
+    x_axis = graded_axis(x_lo, x_hi, fx_lo, fx_hi, h, g)
+    rail = rail_body(rail_prof, x_axis, y_axis, d_axis)
+    R = geo["r_c"]
+    # wheel: material ahead (theta > 0) rolls into contact; arc lengths mirror the rail's
+    th_axis = graded_axis(x_lo / R, x_hi / R, fx_lo / R, fx_hi / R, h / R, g)
+    if th_axis[-1] - th_axis[0] > np.pi:
+        raise InputError(f"travel {travel!r} m needs more than half the wheel circumference")
+    wheel = wheel_body(geo["radius_of_y"], th_axis, y_axis, d_axis)
+
+    ed_w = elem.precompute(wheel.nodes, wheel.elements, mat)
+    ed_r = elem.precompute(rail.nodes, rail.elements, mat)
+    nw = wheel.n_nodes
+    conn = np.concatenate([wheel.elements, rail.elements + nw])
+    mass = np.zeros(nw + rail.n_nodes)
+    vol = np.concatenate([ed_w.volume, ed_r.volume])
+    np.add.at(mass, conn.ravel(), np.repeat(mat.density * vol / 8.0, 8))
+    fixed = np.concatenate([wheel.fixed, rail.fixed + nw])
+    slave = wheel.surface_nodes.ravel()
+    area = wheel.surface_areas().ravel()
+    master = rail.surface_nodes + nw
+    kn = case.penalty * mat.E / np.sqrt(area)
+    geo = dict(geo, a=a, b=b, travel=travel)
+    p_ref = float(geo["hertz"].p0) if geo["hertz"] is not None else 1e-3 * mat.E
+    g0 = 0.05 * p_ref / float(np.median(kn))
+    return Model(case, wheel, rail, mat, elem, ed_w, ed_r, conn, mass, fixed, slave, area,
+                 master, kn, geo, geo["z_axle"], g0, (x_lo, x_hi))
+
+
+def default_travel(case, a: float) -> float:
+    """Rolled distance: the speed ramp plus 8 semi-axes of steady rolling [m]."""
+    steady = 8.0 * a
+    return steady / (1.0 - case.ramp)

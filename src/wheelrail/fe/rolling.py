@@ -1,0 +1,445 @@
+"""Rolling: seed 000's two steps with the explicit or the implicit quasi-static integrator.
+
+Step 1 establishes the normal contact under the load; step 2 rolls: the rail
+is pulled back with speed V(t) rising by a smooth step over the first
+``ramp`` fraction of the travel, and the wheel turns with
+
+    dψ/dt = V(t) (1 − ξ) / r_c,
+
+so that the rigid longitudinal creepage (v_wheel − v_rail)/V is ξ
+(Toumi et al. 2016, eq. 1, in Kalker's sign convention).
+
+Explicit (``"explicit"``): central differences, lumped mass (times
+``mass_scaling``), step = ``courant`` × the smallest of the element Courant
+limits L_e/c and the contact springs' limit 2√(m/k_c); Rayleigh damping
+C = αM + βK. Step 1 is dynamic relaxation (load held, mass-proportional
+damping tuned to the lowest thickness mode, until the contact force settles).
+
+Implicit quasi-static (``"implicit-qs"``): step 1 the static Newton solve of
+:func:`wheelrail.fe.indent`'s kind, step 2 a sequence of static Newton solves
+with the friction history carried from step to step (backward-Euler
+incremental slip); time step ``time_step`` (default: the contact moves half an
+element per step).
+
+Implicit dynamic (``"implicit-hht"``): the HHT-α method (α = ``hht_alpha`` in
+[−1/3, 0], β = (1 − α)²/4, γ = ½ − α) with lumped mass, Newton iterations on the
+equilibrium at t_{n+1+α} (internal and contact forces weighted (1 + α) at the new
+and −α at the old step; contact evaluated at the new positions), same default
+step as quasi-static; no Rayleigh damping (numerical dissipation only).
+
+References
+----------
+.. [1] Toumi et al., Wear 366-367 (2016) 157-166 (seed 000), §2-3, eq. (1).
+.. [3] H.M. Hilber, T.J.R. Hughes, R.L. Taylor, "Improved numerical dissipation for
+   time integration algorithms in structural dynamics", Earthquake Eng. Struct.
+   Dyn. 5 (1977) 283-292, eqs. (9)-(11).
+.. [2] T. Belytschko, W.K. Liu, B. Moran, *Nonlinear Finite Elements for
+   Continua and Structures*, Wiley 2000, §6.2 (central differences, stable step,
+   energy balance).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ._newton import newton
+from .model import build_model
+from .patch import patch_from_contact
+from .static import free_dofs, static_equilibrium
+
+__all__ = ["RollingResult", "solve", "stable_time_step"]
+
+
+@dataclass(frozen=True, eq=False)
+class RollingResult:
+    """Result of :func:`solve`.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Histories over ``travel`` [m]: Fx, Fy, Fz [N] (contact force on the
+        wheel, global axes: x rolling, y the profiles' lateral axis, z up), Fn [N]
+        (sum of the normal nodal forces), kinetic, internal, contact (penalty),
+        friction (dissipated), damping (dissipated), external (load work) energies
+        [J] and energy_error [J]. Explicit: energies of step 2 (rolling), counted from
+        its start (``internal`` is the change of the strain energy);
+        ``contact_work`` is the work of the contact forces on the elastic motion, and
+        energy_error = kinetic + internal + damping − external − contact_work (the
+        balance of the elastic bodies; trapezoidal rule).
+    patch : xarray.Dataset
+        Contact nodes at the end (see :func:`wheelrail.fe.patch.patch_from_contact`).
+    Fx, Fy : float
+        Steady-state longitudinal and lateral force on the wheel [N] (mean over
+        the last quarter of the travel).
+    p_max, a, b : float
+        Peak pressure [Pa] and equivalent semi-axes [m] of the final patch.
+    """
+
+    dataset: object
+    patch: object
+    Fx: float
+    Fy: float
+    p_max: float
+    a: float
+    b: float
+    model: object
+    u: np.ndarray
+    info: dict
+
+    def __repr__(self):
+        return (f"RollingResult(Fx={self.Fx:.1f} N, Fy={self.Fy:.1f} N, p_max="
+                f"{self.p_max / 1e6:.1f} MPa, a={self.a * 1e3:.3f} mm, b={self.b * 1e3:.3f} mm)")
+
+
+def _smoothstep(tau):
+    tau = np.clip(tau, 0.0, 1.0)
+    return tau ** 3 * (10 - 15 * tau + 6 * tau ** 2)
+
+
+def stable_time_step(model) -> float:
+    """Largest stable central-difference step [s] (before the safety factor), mass scaling included.
+
+    The smaller of the element limit L_e / c (L_e = volume / largest face area, c the
+    dilatational wave speed of the scaled density) and the limit 2 √(m / k) of a surface
+    node on the contact spring k = k_n A, halved for the master node in series.
+    """
+    c = model.material.wave_speed / np.sqrt(model.case.mass_scaling)
+    L = min(model.edata_w.length.min(), model.edata_r.length.min())
+    dt_el = L / c
+    ms = model.mass[model.slave] * model.case.mass_scaling
+    kc = model.kn * model.slave_area
+    # only slaves of the refined lateral band can touch the rail
+    y = model.wheel.nodes[model.slave, 1]
+    band = np.abs(y - model.geometry["y_c"]) <= 1.5 * model.geometry["b"] + 2 * model.case.mesh_size
+    dt_c = float(np.sqrt(ms[band] / kc[band]).min())      # slave and master springs in series
+    return float(min(dt_el, dt_c))
+
+
+def _speed_profile(case, travel):
+    """Rail displacement s(t) by integrating the smooth-step speed (distance-based ramp)."""
+    V = case.speed
+    d_ramp = case.ramp * travel
+    # time to cover the ramp with V(t) = V S(t / t_r): ∫ = V t_r / 2 for the quintic step
+    t_r = 2 * d_ramp / V if d_ramp > 0 else 0.0
+    t_end = t_r + (travel - d_ramp) / V
+
+    def speed(t):
+        return V * (_smoothstep(t / t_r) if t_r > 0 else 1.0)
+
+    return speed, t_end
+
+
+def _forces_row(c):
+    fs = c["fs"]
+    return fs[:, 0].sum(), fs[:, 1].sum(), fs[:, 2].sum(), c["pn"].sum()
+
+
+def solve(case, *, progress: bool = True, output_every: int | None = None) -> RollingResult:
+    """Roll the wheel over the rail: seed 000's two loading steps.
+
+    Parameters
+    ----------
+    case : RollingCase
+    progress : bool
+        Show a rich progress bar.
+    output_every : int, optional
+        Record the histories every this many steps (default: about 400 rows).
+
+    Returns
+    -------
+    RollingResult
+    """
+    if case.integrator == "explicit":
+        return _solve_explicit(case, progress, output_every)
+    if case.integrator == "implicit-qs":
+        return _solve_implicit_qs(case, progress)
+    return _solve_implicit_hht(case, progress)
+
+
+def _progress(progress, total, label):
+    if not progress:
+        return None
+    from rich.progress import (BarColumn, Progress, TextColumn, TimeElapsedColumn,
+                               TimeRemainingColumn)
+
+    p = Progress(TextColumn(label), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
+                 TimeElapsedColumn(), TimeRemainingColumn(), transient=True)
+    p.start()
+    p.add_task(label, total=total)
+    return p
+
+
+def _dataset(rows, case, model, extra):
+    import xarray as xr
+
+    rows = np.array(rows)
+    names = ["time", "travel", "Fx", "Fy", "Fz", "Fn", "kinetic", "internal", "contact",
+             "friction", "damping", "external", "contact_work"]
+    data = {n: ("travel", rows[:, k]) for k, n in enumerate(names) if n != "travel"}
+    ds = xr.Dataset(data, coords={"travel": rows[:, 1]})
+    units = {"time": "s", "Fx": "N", "Fy": "N", "Fz": "N", "Fn": "N"}
+    for n in names[6:]:
+        units[n] = "J"
+    for n, un in units.items():
+        ds[n].attrs["units"] = un
+    ds.travel.attrs["units"] = "m"
+    ds["energy_error"] = ds.kinetic + ds.internal + ds.damping - ds.external - ds.contact_work
+    ds["energy_error"].attrs["units"] = "J"
+    ds.attrs.update({"integrator": case.integrator, "creepage_xi": case.xi, "mu": case.mu,
+                     "load": case.load, "speed": case.speed, "n_elements": model.n_elements,
+                     "mesh_size": case.mesh_size, **extra})
+    return ds
+
+
+def _steady(ds, name):
+    v = ds[name].values
+    n = max(1, len(v) // 4)
+    return float(np.mean(v[-n:]))
+
+
+def _solve_explicit(case, progress, output_every):
+    model = build_model(case, rolling=True)
+    travel = model.geometry["travel"]
+    dt_stable = stable_time_step(model)
+    if case.time_step is not None:
+        if case.time_step > dt_stable:
+            raise InputError(f"time_step {case.time_step!r} s exceeds the stable explicit step "
+                             f"{dt_stable:.3g} s (Courant limit of the {case.mesh_size:g} m mesh)")
+        dt = case.time_step
+    else:
+        dt = case.courant * dt_stable
+    m = model.mass * case.mass_scaling
+    n = model.n_nodes
+    fixed = model.fixed
+    inv_m = np.where(m > 0, 1.0 / np.where(m > 0, m, 1.0), 0.0)
+    inv_m[fixed] = 0.0
+    M_w = float(m[:model.nw].sum())
+    alpha, beta = case.rayleigh
+    load, mu = case.load, case.mu
+    R = model.geometry["r_c"]
+
+    u = np.zeros((n, 3))
+    v = np.zeros((n, 3))
+    hz = model.geometry["hertz"]
+    w = -float(hz.penetration) if hz is not None else 0.0
+    vw = 0.0
+    psi = s = 0.0
+    ft = np.zeros((model.slave.size, 3))
+    xs_prev = model.slave_positions(u, w, psi)
+    xm_prev = model.master_positions(u, s)
+
+    # ---- step 1: dynamic relaxation to the static contact (mass-proportional damping)
+    depth = model.wheel.axes[2][-1]
+    omega1 = np.pi * model.material.wave_speed / (2 * depth) / np.sqrt(case.mass_scaling)
+    a_dr = 2.0 * omega1
+    n1 = int(np.ceil(12 * 2 * np.pi / omega1 / dt))
+    speed, t_end = _speed_profile(case, travel)
+    n2 = int(np.ceil(t_end / dt))
+    every = output_every or max(1, n2 // 400)
+    bar = _progress(progress, n1 + n2, f"FE explicit ({model.n_elements} el.)")
+    rows = []
+    E = dict(kinetic=0.0, internal=0.0, contact=0.0, friction=0.0, damping=0.0, external=0.0,
+             contact_work=0.0)
+    f = np.zeros((n, 3))
+    c = None
+
+    def accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, mu_now, damp_a):
+        f[:] = 0.0
+        _, e_int = model.internal_force(u, f)
+        c = model.contact(u, w, psi, s, xs_prev, xm_prev, ft, mu_now)
+        fc, fcw = model.generalized_contact_force(c, psi)
+        fd = (damp_a * m)[:, None] * v
+        if beta > 0:
+            fb = np.zeros((n, 3))
+            model.internal_force(v, fb)
+            fd += beta * fb
+        acc = (fc - f - fd) * inv_m[:, None]
+        aw = (fcw - load - damp_a * M_w * vw) / M_w
+        return acc, aw, c, e_int, fc, fcw, fd
+
+    t = 0.0
+    acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, 0.0, a_dr)
+    for k in range(n1):
+        v += dt * acc
+        vw += dt * aw
+        u += dt * v
+        w += dt * vw
+        xs_prev, xm_prev = c["xs"], c["xm"]
+        acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, 0.0,
+                                               a_dr)
+        if bar is not None and k % 200 == 0:
+            bar.update(bar.task_ids[0], completed=k)
+    relax_error = abs(c["pn"].sum() * 0 + fcw - load) / load
+    v[:] = 0.0
+    vw = 0.0
+
+    # ---- step 2: rolling (energies counted from here)
+    ft = c["ft"].copy()
+    e_int0 = e_int
+    fd = np.zeros_like(fd)
+    for k in range(n2):
+        t_half = t + 0.5 * dt
+        V = speed(t_half)
+        v += dt * acc
+        vw += dt * aw
+        du = dt * v
+        u += du
+        dw = dt * vw
+        w += dw
+        s += V * dt
+        psi += V * (1.0 - case.xi) / R * dt
+        t += dt
+        xs_prev, xm_prev = c["xs"], c["xm"]
+        E["damping"] += 0.5 * float(np.sum(fd * du))
+        E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
+        E["external"] += -load * dw
+        acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, mu,
+                                               alpha)
+        # trapezoidal rule: the other half with the forces at the end of the step
+        E["damping"] += 0.5 * float(np.sum(fd * du))
+        E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
+        E["friction"] += float(np.sum(c["ft"] * 0.0)) + float(
+            np.sum(np.linalg.norm(c["ft"], axis=1) * c["slip"]))
+        ft = c["ft"]
+        if k % every == 0 or k == n2 - 1:
+            # kinetic energy at the full step: v_n = v_{n-1/2} + dt/2 a_n
+            vn = v + 0.5 * dt * acc
+            vwn = vw + 0.5 * dt * aw
+            E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
+            E["internal"] = e_int - e_int0
+            E["contact"] = float(c["energy"].sum())
+            rows.append([t, s, *_forces_row(c), E["kinetic"], E["internal"], E["contact"],
+                         E["friction"], E["damping"], E["external"], E["contact_work"]])
+            if bar is not None:
+                bar.update(bar.task_ids[0], completed=n1 + k)
+    if bar is not None:
+        bar.stop()
+    ds = _dataset(rows, case, model, {"time_step": dt, "steps": n1 + n2,
+                                      "relaxation_steps": n1, "relaxation_load_error": relax_error})
+    patch = patch_from_contact(model, c, psi, dt)
+    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
+                         patch.attrs["a"], patch.attrs["b"], model, u,
+                         {"time_step": dt, "steps": n1 + n2, "stable_time_step": dt_stable})
+
+
+def _solve_implicit_qs(case, progress):
+    model = build_model(case, rolling=True)
+    travel = model.geometry["travel"]
+    K = model.stiffness()
+    free = free_dofs(model)
+    Kff = K[free][:, free].tocsr()
+    u, w, c, _ = static_equilibrium(model, K)
+    speed, t_end = _speed_profile(case, travel)
+    dt = case.time_step if case.time_step is not None else 0.5 * case.mesh_size / case.speed
+    nsteps = int(np.ceil(t_end / dt))
+    R = model.geometry["r_c"]
+    ft = np.zeros((model.slave.size, 3))
+    psi = s = t = 0.0
+    rows = []
+    E = dict(friction=0.0, external=0.0)
+    bar = _progress(progress, nsteps, f"FE implicit-qs ({model.n_elements} el.)")
+    iters = 0
+    for k in range(nsteps):
+        V = speed(t + 0.5 * dt)
+        s += V * dt
+        psi += V * (1.0 - case.xi) / R * dt
+        t += dt
+        w_old = w
+        u, w, c, it = newton(model, Kff, free, u, w, psi, s, c["xs"], c["xm"], ft, case.mu,
+                             case.load)
+        iters += it
+        ft = c["ft"]
+        E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
+        E["external"] += -case.load * (w - w_old)
+        _, e_int = model.internal_force(u)
+        rows.append([t, s, *_forces_row(c), 0.0, e_int, float(c["energy"].sum()),
+                     E["friction"], 0.0, E["external"], np.nan])
+        if bar is not None:
+            bar.update(bar.task_ids[0], completed=k + 1)
+    if bar is not None:
+        bar.stop()
+    ds = _dataset(rows, case, model, {"time_step": dt, "steps": nsteps,
+                                      "newton_iterations": iters})
+    patch = patch_from_contact(model, c, psi, dt)
+    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
+                         patch.attrs["a"], patch.attrs["b"], model, u,
+                         {"time_step": dt, "steps": nsteps, "newton_iterations": iters})
+
+
+def _solve_implicit_hht(case, progress):
+    model = build_model(case, rolling=True)
+    travel = model.geometry["travel"]
+    K = model.stiffness()
+    free = free_dofs(model)
+    Kff = K[free][:, free].tocsr()
+    u, w, c, _ = static_equilibrium(model, K)
+    speed, t_end = _speed_profile(case, travel)
+    dt = case.time_step if case.time_step is not None else 0.5 * case.mesh_size / case.speed
+    nsteps = int(np.ceil(t_end / dt))
+    R = model.geometry["r_c"]
+    al = case.hht_alpha
+    beta, gamma = (1 - al) ** 2 / 4, 0.5 - al
+    n = model.n_nodes
+    m = model.mass * case.mass_scaling
+    M_w = float(m[:model.nw].sum())
+    mvec = np.concatenate([np.repeat(m, 3), [M_w]])
+    diag = mvec[free] / (beta * dt * dt)
+    q = np.concatenate([u.ravel(), [w]])
+    v = np.zeros_like(q)
+    a = np.zeros_like(q)
+
+    def static_residual(q, c):
+        f_int, _ = model.internal_force(q[:-1].reshape(-1, 3))
+        fc, fcw = model.generalized_contact_force(c, psi)
+        return np.concatenate([(f_int - fc).ravel(), [case.load - fcw]])
+
+    ft = np.zeros((model.slave.size, 3))
+    psi = s = t = 0.0
+    r_old = static_residual(q, c)
+    rows = []
+    E = dict(friction=0.0, external=0.0)
+    bar = _progress(progress, nsteps, f"FE implicit-hht ({model.n_elements} el.)")
+    iters = 0
+    for k in range(nsteps):
+        V = speed(t + 0.5 * dt)
+        s += V * dt
+        psi += V * (1.0 - case.xi) / R * dt
+        t += dt
+        q_n, v_n, a_n = q.copy(), v.copy(), a.copy()
+
+        def acc(qq):
+            return (qq - q_n - dt * v_n) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n
+
+        def dyn(qq, r_old=r_old):
+            return mvec * acc(qq) - al * r_old
+
+        w_old = q[-1]
+        u1, w1, c, it = newton(model, Kff, free, q[:-1].reshape(-1, 3), q[-1], psi, s, c["xs"],
+                               c["xm"], ft, case.mu, case.load, dyn=dyn, static_scale=1.0 + al,
+                               diag=diag)
+        iters += it
+        q = np.concatenate([u1.ravel(), [w1]])
+        a = acc(q)
+        fixed = np.setdiff1d(np.arange(q.size), free)
+        a[fixed] = 0.0
+        v = v_n + dt * ((1 - gamma) * a_n + gamma * a)
+        r_old = static_residual(q, c)
+        ft = c["ft"]
+        E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
+        E["external"] += -case.load * (q[-1] - w_old)
+        _, e_int = model.internal_force(u1)
+        rows.append([t, s, *_forces_row(c), 0.5 * float(np.sum(mvec * v * v)), e_int,
+                     float(c["energy"].sum()), E["friction"], 0.0, E["external"], np.nan])
+        if bar is not None:
+            bar.update(bar.task_ids[0], completed=k + 1)
+    if bar is not None:
+        bar.stop()
+    ds = _dataset(rows, case, model, {"time_step": dt, "steps": nsteps, "hht_alpha": al,
+                                      "newton_iterations": iters})
+    patch = patch_from_contact(model, c, psi, dt)
+    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
+                         patch.attrs["a"], patch.attrs["b"], model, q[:-1].reshape(-1, 3),
+                         {"time_step": dt, "steps": nsteps, "newton_iterations": iters})

@@ -1,0 +1,53 @@
+"""FE static indentation against Hertz (Johnson, Contact Mechanics 1985, eqs. 3.64-3.66).
+
+Seed 000 (Toumi et al. 2016, Table 3) compares its FE p_max, a, b with Hertz; here a
+cylindrical wheel (R = 0.46 m) on the 60E1 crown (R = 0.30 m), 7.5 kN, steel — a Hertzian
+case (a = 3.03 mm, b = 2.28 mm, p0 = 518 MPa). Small kept bodies (4 semi-axes deep and wide)
+and coarse meshes so that the test runs in seconds; the 1 mm figures are in docs/fe.md.
+"""
+
+import numpy as np
+import pytest
+
+import wheelrail as wr
+from wheelrail.fe import RollingCase, indent
+
+FLAT_WHEEL = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
+
+
+def _errors(h):
+    case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
+                       load=7500.0, mesh_size=h, depth=4, half_width=4, half_length=4)
+    r = indent(case)
+    hz = r.hertz
+    assert r.Fn == pytest.approx(7500.0, rel=1e-3)          # equilibrium with the load
+    return np.array([r.p_max / hz.p0 - 1, r.a / hz.a - 1, r.b / hz.b - 1]), r
+
+
+@pytest.fixture(scope="module")
+def two_meshes():
+    return {h: _errors(h) for h in (2e-3, 1.5e-3)}
+
+
+def test_indentation_close_to_hertz_on_the_finer_mesh(two_meshes):
+    err, r = two_meshes[1.5e-3]
+    # measured: p_max -8 %, a +6 %, b +12 % at h = 1.5 mm (a/h = 2); -3 %, +4 %, 0 % at 1 mm
+    assert abs(err[0]) < 0.12 and abs(err[1]) < 0.10 and abs(err[2]) < 0.15
+    assert r.hertz.penetration == pytest.approx(-r.approach, rel=0.3)
+
+
+def test_indentation_peak_pressure_converges(two_meshes):
+    e2, e15 = abs(two_meshes[2e-3][0][0]), abs(two_meshes[1.5e-3][0][0])
+    assert e15 < 0.6 * e2
+    order = np.log(e2 / e15) / np.log(2e-3 / 1.5e-3)
+    assert order > 1.0                                    # measured ~3.9 (pre-asymptotic)
+
+
+def test_pressure_map_symmetric_about_the_centre_line(two_meshes):
+    _, r = two_meshes[1.5e-3]
+    p = r.pressure.values
+    i = int(np.argmax(p.max(axis=1)))
+    row = p[i]
+    on = np.flatnonzero(row > 0)
+    assert on.size >= 3
+    np.testing.assert_allclose(row[on], row[on][::-1], rtol=0.05, atol=0.02 * row.max())
