@@ -46,6 +46,10 @@ _LAZY = {
     "solve_creepages": ("wheelrail.prescribed", "solve_creepages"),
     "hertz_grid": ("wheelrail.halfspace", "hertz_grid"),
     "subsurface_stresses": ("wheelrail.halfspace", "subsurface_stresses"),
+    "sweep": ("wheelrail.sweeps", "sweep"),
+    "sweeps": ("wheelrail.sweeps", None),
+    "SweepSpec": ("wheelrail.sweeps", "SweepSpec"),
+    "open_sweep": ("wheelrail.sweeps", "open_sweep"),
 }
 
 

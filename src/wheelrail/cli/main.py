@@ -34,6 +34,7 @@ COMMANDS = [
     ("creep-curve", "wheelrail.cli.creep_curve"),
     ("demo", "wheelrail.cli.demo"),
     ("geometry", "wheelrail.cli.geometry"),
+    ("sweep", "wheelrail.cli.sweep"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
