@@ -147,20 +147,20 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
         raise InputError(f"output {str(out)!r} exists; pass resume=True (--resume) to continue "
                          "it, or choose another path (nothing is overwritten)")
     methods = ev.methods(spec) if hasattr(ev, "methods") else []
-    if out.exists():
-        store = SweepStore.open(out, spec)
-    else:
-        prov = provenance(spec, methods, {m: ev.options_for(spec, m) for m in methods}
-                          if methods else dict(spec.options))
-        store = SweepStore.create(out, spec, prov)
-    blocks = spec.chunks()
-    done = store.done()
-    todo = [(i, (spec, b)) for i, b in enumerate(blocks) if i not in done]
-    n_todo = sum(int(np.prod([s.stop - s.start for s in blocks[i]])) for i, _ in todo)
-    show = (len(todo) > 1) if progress is None else bool(progress)
-    t0 = time.perf_counter()
-    bar = task = None
-    with execu:
+    with execu:  # connect first: an unreachable scheduler leaves no store behind
+        if out.exists():
+            store = SweepStore.open(out, spec)
+        else:
+            prov = provenance(spec, methods, {m: ev.options_for(spec, m) for m in methods}
+                              if methods else dict(spec.options))
+            store = SweepStore.create(out, spec, prov)
+        blocks = spec.chunks()
+        done = store.done()
+        todo = [(i, (spec, b)) for i, b in enumerate(blocks) if i not in done]
+        n_todo = sum(int(np.prod([s.stop - s.start for s in blocks[i]])) for i, _ in todo)
+        show = (len(todo) > 1) if progress is None else bool(progress)
+        t0 = time.perf_counter()
+        bar = task = None
         if show:
             from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn,
                                        TimeElapsedColumn, TimeRemainingColumn)
