@@ -170,3 +170,30 @@ def test_scheduler_that_does_not_answer_is_named():
 def test_bad_executor_arguments(kwargs, match):
     with pytest.raises(InputError, match=match):
         sweep(SweepSpec.grid(**BASE, xi=[0.0]), **kwargs)
+
+
+def test_method_axis_with_per_method_options():
+    spec = SweepSpec.grid(**{**BASE, "method": ["linear", "fastsim"]}, xi=[-1e-4, -2e-3],
+                          options={"fastsim": {"nx": 30, "ny": 30}})
+    ds = sweep(spec, progress=False)
+    assert list(ds.method.values) == ["linear", "fastsim"]
+    c = wr.hertz(1e4, 1.0, 1.5, STEEL)
+    f = wr.creep_forces(c, (-2e-3, 0, 0), 0.3, method="fastsim", nx=30, ny=30)
+    assert ds.Fx.values[1, 1] == pytest.approx(f.Fx, rel=1e-12)
+    # small creepage: FASTSIM tends to the linear theory (Kalker 1982), within a few per cent
+    assert ds.Fx.values[1, 0] == pytest.approx(ds.Fx.values[0, 0], rel=0.05)
+
+
+def test_geometry_evaluator_over_shift_and_rail_profiles():
+    """Lateral shift x rail profile: equals wr.contact_table and is antisymmetric in y."""
+    y = [-0.006, 0.0, 0.006]
+    spec = SweepSpec.grid(evaluator="geometry", wheel="S1002", rail=["60E1", "54E1"], y=y)
+    ds = sweep(spec, progress=False)
+    assert ds.delta_r.dims == ("rail", "y") and np.all(ds.status.values == 1)
+    tab = wr.contact_table(wr.Wheelset(wr.profiles.load("S1002")),
+                           wr.Track(wr.profiles.load("60E1")), np.array(y))
+    np.testing.assert_allclose(ds.delta_r.values[0], tab.delta_r.values, atol=1e-9)
+    np.testing.assert_allclose(ds.delta_r.values[:, ::-1], -ds.delta_r.values, atol=1e-9)
+    assert np.all(ds.A_left.values > 0) and abs(ds.delta_r.values[1, 1]) < 1e-9
+    with pytest.raises(wr.ProfileError):
+        SweepSpec.grid(evaluator="geometry", rail="61E9", y=[0.0])

@@ -196,8 +196,119 @@ class CreepEvaluator:
         out["message"][idx] = np.where(bad, "not converged (last iterate stored)", "")
 
 
+_GEOM_SIDE = {"contact_angle": ("rad", "contact angle of the primary point"),
+              "rolling_radius": ("m", "rolling radius of the primary point"),
+              "A": ("1/m", "longitudinal combined curvature at the primary point"),
+              "B": ("1/m", "lateral combined curvature at the primary point"),
+              "wheel_y": ("m", "lateral position of the primary point on the wheel profile")}
+
+
+class GeometryEvaluator:
+    """Rigid contact geometry of a wheelset on a track (:func:`wheelrail.contact_points`).
+
+    Inputs: ``y`` lateral shift [m] and ``yaw`` [rad] (default 0); profiles
+    ``wheel`` and ``rail`` (a standard name such as ``"S1002"``/``"60E1"`` or a
+    profile file path; names make them an axis); ``gauge`` [m] (1.435),
+    ``inclination`` [-] (1/40), ``nominal_radius`` [m] (0.46), ``flange_back``
+    [m] (1.360). Options: ``tolerance``, ``step`` [m] of the contact search.
+
+    Outputs: ``delta_r`` [m], ``roll`` [rad], ``z`` [m] and, for the primary
+    (rigid) contact point of each side, ``contact_angle_<side>`` [rad],
+    ``rolling_radius_<side>`` [m], ``A_<side>``, ``B_<side>`` [1/m] (Hertz
+    curvatures: where a wheel–rail creep-force solve plugs in),
+    ``wheel_y_<side>`` [m] and ``n_contact_<side>`` (points within the tolerance).
+    """
+
+    name = "geometry"
+    quantities = ("wheel", "rail", "y", "yaw", "gauge", "inclination", "nominal_radius",
+                  "flange_back")
+    _DEFAULTS = {"wheel": "S1002", "rail": "60E1", "yaw": 0.0, "gauge": 1.435,
+                 "inclination": 1.0 / 40.0, "nominal_radius": 0.46, "flange_back": 1.360}
+    outputs = {
+        "delta_r": ("f8", "m", "rolling radius difference right - left"),
+        "roll": ("f8", "rad", "roll angle of the wheelset"),
+        "z": ("f8", "m", "height of the axle centre"),
+        **{f"{k}_{side}": ("f8", u, f"{d}, {side}") for side in ("left", "right")
+           for k, (u, d) in _GEOM_SIDE.items()},
+        **{f"n_contact_{side}": ("f8", "1", f"contact points within the tolerance, {side}")
+           for side in ("left", "right")},
+    }
+    options = {"tolerance": 1e-4, "step": 2e-4}
+
+    def output_names(self, spec) -> list[str]:
+        return list(self.outputs)
+
+    def methods(self, spec) -> list[str]:
+        return ["contact_points"]
+
+    def options_for(self, spec, method) -> dict:
+        return {**self.options, **dict(spec.options)}
+
+    def check(self, spec) -> None:
+        names = set(spec.fixed) | {n for n, _ in spec.axes}
+        unknown = names - set(self.quantities)
+        if unknown:
+            raise InputError(f"unknown quantity {sorted(unknown)[0]!r}; the geometry evaluator "
+                             f"takes {', '.join(self.quantities)}")
+        if "y" not in names:
+            raise InputError("'y' (lateral shift, m) is required (a value or an axis)")
+        extra = set(spec.options) - set(self.options)
+        if extra:
+            raise InputError(f"the geometry evaluator does not accept option(s) "
+                             f"{', '.join(sorted(extra))}; allowed: tolerance, step")
+        for k in ("wheel", "rail"):
+            values = [spec.fixed[k]] if k in spec.fixed else dict(spec.axes).get(k, [])
+            for v in list(values):
+                if not isinstance(v, str):
+                    raise InputError(f"{k} must be a profile name or file, got {v!r}")
+                self._profile(v)  # unknown names fail now, not in every point
+
+    @staticmethod
+    def _profile(name):
+        from pathlib import Path
+
+        from .. import profiles
+
+        return profiles.read(name) if Path(name).is_file() else profiles.load(name)
+
+    def evaluate(self, spec, cols: dict) -> dict:
+        from ..geometry import Track, Wheelset, contact_points
+
+        m = len(next(iter(cols.values())))
+        out = {k: np.full(m, np.nan) for k in self.outputs}
+        out["status"] = np.full(m, STATUS_CODES["ok"], dtype=np.int8)
+        out["message"] = np.full(m, "", dtype=f"<U{MESSAGE_LENGTH}")
+        val = {k: cols.get(k, np.full(m, v, dtype=object if isinstance(v, str) else float))
+               for k, v in self._DEFAULTS.items()}
+        opts = self.options_for(spec, None)
+        cache = {}
+        for i in range(m):
+            try:
+                key = tuple(val[k][i] for k in ("wheel", "rail", "gauge", "inclination",
+                                                 "nominal_radius", "flange_back"))
+                if key not in cache:
+                    cache[key] = (Wheelset(self._profile(key[0]), nominal_radius=float(key[4]),
+                                           flange_back=float(key[5])),
+                                  Track(self._profile(key[1]), gauge=float(key[2]),
+                                        inclination=float(key[3])))
+                ws, tr = cache[key]
+                cp = contact_points(ws, tr, float(cols["y"][i]), float(val["yaw"][i]), **opts)
+                out["delta_r"][i], out["roll"][i], out["z"][i] = cp.delta_r, cp.roll, cp.z
+                for side in ("left", "right"):
+                    sc = cp.side(side)
+                    j = sc.primary
+                    for k in _GEOM_SIDE:
+                        out[f"{k}_{side}"][i] = getattr(sc, k)[j]
+                    out[f"n_contact_{side}"][i] = sc.n
+            except Exception as exc:  # noqa: BLE001 - recorded per point
+                out["status"][i] = STATUS_CODES["failed"]
+                out["message"][i] = f"{type(exc).__name__}: {' '.join(str(exc).split())}"[
+                    :MESSAGE_LENGTH]
+        return out
+
+
 #: Registry of evaluators: name -> instance.
-EVALUATORS = {"creep": CreepEvaluator()}
+EVALUATORS = {"creep": CreepEvaluator(), "geometry": GeometryEvaluator()}
 
 
 def get_evaluator(name):

@@ -37,7 +37,9 @@ The quantities each evaluator takes are listed in
 (default, ``evaluator = "creep"``) takes ``xi, eta`` [-], ``phi`` [1/m],
 ``mu`` [-], ``load`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
 :data:`wheelrail.casefile.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
-``method`` (names).
+``method`` (names). The geometry evaluator (``evaluator = "geometry"``)
+takes ``y`` [m], ``yaw`` [rad], ``wheel``, ``rail`` (profile names or files),
+``gauge``, ``inclination``, ``nominal_radius``, ``flange_back``.
 """
 
 from __future__ import annotations
