@@ -21,7 +21,7 @@ __all__ = ["sweep", "SweepSummary", "evaluate_chunk"]
 
 @dataclass(frozen=True)
 class SweepSummary:
-    """What one call of :func:`sweep` did (also in ``ds.attrs["last_run"]`` is not kept: see CLI).
+    """What one call of :func:`sweep` did (printed by ``wheelrail sweep``).
 
     Attributes
     ----------
@@ -141,7 +141,8 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
             if not resume:
                 raise InputError(f"output {str(out)!r} exists; pass resume=True (--resume) to "
                                  "continue it, or choose another path (nothing is overwritten)")
-            return _finish(open_sweep(out), None, summary)
+            ds = open_sweep(out)
+            return _finish(ds, _summary(ds, spec, 0, 0.0, "none", 0), summary)
         out = out.with_name(out.name + ".partial.zarr")
     if out.exists() and not resume:
         raise InputError(f"output {str(out)!r} exists; pass resume=True (--resume) to continue "
@@ -190,12 +191,15 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
     if tmpdir is not None:
         ds = ds.load()
         tmpdir.cleanup()
+    return _finish(ds, _summary(ds, spec, n_todo, seconds, execu.name, execu.workers), summary)
+
+
+def _summary(ds, spec, computed, seconds, executor, workers) -> SweepSummary:
     status = np.asarray(ds["status"].values)
-    info = SweepSummary(points=spec.size, computed=n_todo,
+    return SweepSummary(points=spec.size, computed=computed,
                         failed=int((status == STATUS_CODES["failed"]).sum()),
                         not_converged=int((status == STATUS_CODES["not_converged"]).sum()),
-                        seconds=seconds, executor=execu.name, workers=execu.workers)
-    return _finish(ds, info, summary)
+                        seconds=seconds, executor=executor, workers=workers)
 
 
 def _require() -> None:
