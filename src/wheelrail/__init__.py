@@ -57,6 +57,10 @@ _LAZY = {
     "solve_creepages": ("wheelrail.prescribed", "solve_creepages"),
     "hertz_grid": ("wheelrail.normal.bem", "hertz_grid"),
     "subsurface_stresses": ("wheelrail.halfspace", "subsurface_stresses"),
+    "sweep": ("wheelrail.sweeps", "sweep"),
+    "sweeps": ("wheelrail.sweeps", None),
+    "SweepSpec": ("wheelrail.sweeps", "SweepSpec"),
+    "open_sweep": ("wheelrail.sweeps", "open_sweep"),
 }
 
 

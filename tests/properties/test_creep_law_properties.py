@@ -26,7 +26,8 @@ from wheelrail.api import METHODS, get_method
 
 #: small, fast options per method (only keys the method accepts are passed)
 SMALL_OPTIONS = {"fastsim": {"nx": 10, "ny": 10, "fields": False},
-                 "exact": {"elements": 10}}
+                 "exact": {"elements": 10},
+                 "table": {"outside": "fastsim"}}  # contacts/spins beyond the table: FASTSIM
 #: relative tolerance of the Coulomb bound: every law, FASTSIM included (its sampled
 #: traction bound is scaled to carry exactly Fn), must satisfy it to round-off.
 BOUND_TOL: dict = {}

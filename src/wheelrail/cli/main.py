@@ -36,6 +36,7 @@ COMMANDS = [
     ("geometry", "wheelrail.cli.geometry"),
     ("wheelset", "wheelrail.cli.wheelset"),
     ("fe", "wheelrail.cli.fe"),
+    ("sweep", "wheelrail.cli.sweep"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2

@@ -9,6 +9,7 @@ name                   module
 ``"shen-hedrick-elkins"`` :mod:`wheelrail.tangential.shen_hedrick_elkins`
 ``"polach"``           :mod:`wheelrail.tangential.polach`
 ``"exact"``            :mod:`wheelrail.tangential.exact`
+``"table"``            :mod:`wheelrail.tangential.table`
 =====================  ==============================================
 
 Modules are imported lazily by :func:`wheelrail.creep_forces`.

@@ -1,0 +1,456 @@
+"""Table-interpolating creep-force law built from Kalker's exact theory ("book of tables").
+
+Vehicle-dynamics codes do not call an exact contact solver at every time step:
+they interpolate a table of exact results computed once. This module builds
+such a table with the package's own exact solver
+(:mod:`wheelrail.tangential.exact`) and interpolates it, vectorised.
+
+Similarity (what the table is a function of)
+--------------------------------------------
+For quasi-identical bodies (difference parameter K = 0) on an elliptic Hertz
+contact, the steady-rolling problem scaled by the traction bound μp₀, the
+semi-axes and G depends only on the axis ratio a/b, Poisson's ratio ν and the
+creepages scaled by μp₀/G (Kalker 1990, §2.x; Kalker's "book of tables").
+The table therefore stores
+
+    fx = Fx/(μFn),  fy = Fy/(μFn),  mz = Mz/(μFn c),   c = √(ab),
+
+as functions of five dimensionless inputs:
+
+* the creepages in units of the linear theory's saturation (Kalker's C11, C22,
+  C23 of :func:`~wheelrail.tangential.linear.kalker_coefficients`):
+  ξ̂ = G c² C11 ξ/(3μFn), η̂ = G c² C22 η/(3μFn), and the spin's lateral effect
+  φ̂_y = G c³ C23 φ/(3μFn) (linear theory: Fy ∝ η̂ + φ̂_y);
+* spin: φ̂ = G c² ℓ φ/(3μFn) with ℓ = √((c C23)² + (b C11)²) (b C11 measures the
+  longitudinal slip −φy across the half-width b, which saturates Fx of patches wide in y);
+  axis s = φ̂/(1 + |φ̂|), |s| ≤ 0.8 (|φ̂| ≤ 4);
+* ρ̂ = |(ξ̂, η̂ + φ̂_y)| and its direction θ ∈ [0, π/2]; axis r = ρ̂/(1 + |φ̂| + ρ̂)
+  ∈ [0, 1], r = 1 being the full-slip limit (F = −μFn along the creepage, Mz = 0),
+  so *every* creepage magnitude is inside;
+* a/b ∈ [0.2, 5] (log axis) and ν ∈ [0.25, 0.30].
+
+The symmetries of the problem, F(−ξ, η, φ) = (−Fx, Fy, Mz) and
+F(ξ, −η, −φ) = (Fx, −Fy, −Mz), reduce the creepage directions to the quadrant
+ξ, η ≥ 0 (θ ∈ [0, π/2]); both follow from the oddness of the traction problem
+in the creepages and its mirror symmetry in y, and are checked against the
+exact solver in ``tests/reference/test_table_law.py``.
+
+Interpolation is multilinear in (r, θ, s, ln a/b, ν), for the tangential force in the
+frame of the full-slip direction (components along and across it), so that
+|F| = μFn is kept in full slip and |F| ≤ μFn everywhere.
+
+Accuracy
+--------
+Measured on 400 random points *not* in the table, uniform in (ρ̂², θ, φ̂, ln a/b, ν)
+over the domain with loads 2–20 kN and μ 0.1–0.5 (``benchmarks/bench_sweeps.py
+--only table``; docs/sweeps.md):
+
+* against the exact solver on the table's own grid (24 elements), i.e. the
+  interpolation error: max |ΔF_t| = 2.02 % of μFn (99th percentile 1.6 %, rms 0.37 %);
+* against the exact solver at its default 40 elements: max |ΔFx| = 0.7 %,
+  max |ΔFy| = 5.4 % of μFn (rms |ΔF_t| 0.96 %), max |ΔMz| = 2.0 % of μFn c. The
+  larger maximum is the exact solver's own discretisation error in spin-dominated
+  contacts with a/b > 3 (e.g. Fy/μFn = 0.182, 0.216, 0.232 with 24, 40, 60 elements);
+  a table built with ``--elements 40`` would follow the finer solver.
+
+Speed: 5.7·10⁵ evaluations/s in a batch of 10⁵ (FASTSIM 20×20: 4.1·10⁵/s; the
+exact solver with 40 elements: 29/s), i.e. about 2·10⁴ times the exact solver.
+
+Outside the domain (|φ̂| > 4, a/b outside [0.2, 5], ν outside [0.25, 0.30],
+or dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
+naming the value, unless ``outside="exact"`` or ``outside="fastsim"``: then
+those points are computed by that method (documented fallback).
+
+Building the table
+------------------
+``python -m wheelrail.tangential.table --build --workers 2`` recomputes the
+shipped file ``_data/creep_table_v1.npz`` with :func:`wheelrail.sweep`
+(resumable: the Zarr work store is kept until the file is written).
+
+References
+----------
+.. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+   Kluwer 1990, ch. 2 (similarity) and ch. 5 (exact theory, CONTACT).
+.. [2] J.J. Kalker, Book of tables for the Hertzian creep-force law, in:
+   I. Zobory (ed.), Proc. 2nd Mini Conf. on Contact Mechanics and Wear of
+   Wheel/Rail Systems, Budapest, 1996, 11-20.
+"""
+
+from __future__ import annotations
+
+import json
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import InputError
+from ..results import CreepForces, Status
+from ._base import TangentialMethod
+
+__all__ = ["Table", "TableData", "load_table", "table_nodes", "build_table", "DEFAULT_TABLE",
+           "GRID"]
+
+#: The shipped table.
+DEFAULT_TABLE = Path(__file__).with_name("_data") / "creep_table_v1.npz"
+TABLE_VERSION = 1
+
+#: Node grid of the table (version 1). r = ρ̂/(1+ρ̂) (r = 1 analytic), θ, s = φ̂/(1+|φ̂|),
+#: ln(a/b), ν.
+GRID = {
+    "r": np.concatenate([np.linspace(0.0, 0.6, 16), np.linspace(0.64, 0.96, 9), [1.0]]),
+    "theta": np.linspace(0.0, 0.5 * np.pi, 11),
+    "s": np.linspace(-0.8, 0.8, 21),
+    "log_ab": np.log(np.geomspace(0.2, 5.0, 7)),
+    "nu": np.array([0.25, 0.30]),
+}
+_AXES = ("r", "theta", "s", "log_ab", "nu")
+_K_TOL = 1e-3  # |K| below which the bodies count as quasi-identical
+
+#: Parameters of the physical contacts on which the nodes are computed (any
+#: values give the same dimensionless result, by similarity).
+BUILD_CONTACT = {"E": 2.1e11, "load": 1.0e4, "mu": 0.3, "c": 5.0e-3}
+
+
+def _coefficients(ab, nu):
+    from .linear import kalker_coefficients
+
+    C11, C22, C23, _ = kalker_coefficients(ab, nu)
+    return C11, C22, C23
+
+
+def _spin_length(c, b, C11, C23):
+    """Length scaling the spin: √((c C23)² + (b C11)²) [m].
+
+    c C23 measures the lateral force of spin (linear theory, Fy = −G c³ C23 φ); b C11 the
+    longitudinal slip −φ y it causes across the half-width b, which saturates Fx of patches
+    wide in y (a/b < 1) at small spin. With both, the spin axis resolves all a/b alike.
+    """
+    return np.hypot(c * C23, b * C11)
+
+
+def table_nodes(grid=None) -> dict:
+    """Physical inputs of the table's computed nodes (all but the analytic r = 1 plane).
+
+    Returns
+    -------
+    dict
+        ``shape`` (the node grid without r = 1) and columns ``xi, eta`` [-],
+        ``phi`` [1/m], ``a, b`` [m], ``nu`` [-] in C order of
+        (r, θ, s, a/b, ν); the contact has ``E``, ``load``, ``mu`` of
+        :data:`BUILD_CONTACT`.
+    """
+    g = dict(GRID if grid is None else grid)
+    r = g["r"][g["r"] < 1.0]
+    R, T, S, L, N = np.meshgrid(r, g["theta"], g["s"], g["log_ab"], g["nu"], indexing="ij")
+    shape = R.shape
+    R, T, S, L, N = (v.reshape(-1) for v in (R, T, S, L, N))
+    ab = np.exp(L)
+    C11, C22, C23 = _coefficients(ab, N)
+    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "load", "mu"))
+    G = E / (2.0 * (1.0 + N))
+    b = c / np.sqrt(ab)
+    spin_len = _spin_length(c, b, C11, C23)
+    phi_hat = S / (1.0 - np.abs(S))
+    rho = (1.0 + np.abs(phi_hat)) * R / (1.0 - R)
+    unit = 3.0 * mu * load / G
+    eta_hat = rho * np.sin(T) - phi_hat * c * C23 / spin_len  # θ: direction of (ξ̂, η̂ + φ̂_y)
+    return {"shape": shape, "xi": rho * np.cos(T) * unit / (c**2 * C11),
+            "eta": eta_hat * unit / (c**2 * C22),
+            "phi": phi_hat * unit / (c**2 * spin_len),
+            "a": c * np.sqrt(ab), "b": c / np.sqrt(ab), "nu": N}
+
+
+def _full_slip_plane(grid):
+    """fx, fy, mz at r = 1: F = −μFn along the physical creepage direction, Mz = 0."""
+    T, S, L, N = np.meshgrid(grid["theta"], grid["s"], grid["log_ab"], grid["nu"], indexing="ij")
+    C11, C22, _ = _coefficients(np.exp(L), N)
+    alpha = np.arctan2(np.sin(T) / C22, np.cos(T) / C11)
+    return np.stack([-np.cos(alpha), -np.sin(alpha), np.zeros_like(alpha)], axis=-1)
+
+
+def build_table(out=DEFAULT_TABLE, *, elements=24, workers=2, work=None, executor=None,
+                progress=True, grid=None) -> Path:
+    """Compute the table with the exact solver (a resumable :func:`wheelrail.sweep`) and save it.
+
+    Parameters
+    ----------
+    out : path
+        The ``.npz`` file to write.
+    elements : int
+        Elements across the contact of the exact solver.
+    workers : int
+        Local workers of the sweep.
+    work : path, optional
+        Zarr work store (default ``<out>.zarr``); an interrupted build resumes
+        from it; it is deleted when ``out`` is written.
+    executor : str, optional
+        Executor of the sweep (default: serial for 1 worker, Dask otherwise).
+    grid : dict, optional
+        Another node grid (tests use small ones); default :data:`GRID`.
+
+    Returns
+    -------
+    Path
+        ``out``.
+    """
+    import shutil
+
+    from .. import __version__
+    from ..sweeps import STATUS_CODES, SweepSpec, sweep
+
+    grid = {k: np.asarray(v, float) for k, v in (GRID if grid is None else grid).items()}
+    out = Path(out)
+    work = Path(work) if work is not None else out.with_name(out.name + ".zarr")
+    nodes = table_nodes(grid)
+    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "load", "mu"))
+    spec = SweepSpec.from_points({k: nodes[k] for k in ("xi", "eta", "phi", "a", "b", "nu")},
+                                 method="exact", options={"elements": int(elements)}, load=load,
+                                 mu=mu, E=E, chunk=200)
+    ds = sweep(spec, work, workers=workers, executor=executor, resume=work.exists(),
+               progress=progress)
+    status = ds["status"].values
+    failed = (status == STATUS_CODES["pending"]) | (status == STATUS_CODES["failed"])
+    if np.any(failed):
+        bad = int(np.argmax(failed))
+        raise RuntimeError(f"exact solver failed at table node {bad}: {ds['message'].values[bad]}")
+    cn = np.sqrt(nodes["a"] * nodes["b"])
+    vals = np.stack([ds["Fx"].values / (mu * load), ds["Fy"].values / (mu * load),
+                     ds["Mz"].values / (mu * load * cn)], axis=-1).reshape(*nodes["shape"], 3)
+    vals = np.concatenate([vals, _full_slip_plane(grid)[None]], axis=0)
+    meta = {"version": TABLE_VERSION, "wheelrail_version": __version__,
+            "method": "exact", "elements": int(elements), "build_contact": BUILD_CONTACT,
+            "not_converged_nodes": int((status == STATUS_CODES["not_converged"]).sum()),
+            "created": ds.attrs.get("created", ""), "axes": list(_AXES),
+            "quantities": ["Fx/(mu Fn)", "Fy/(mu Fn)", "Mz/(mu Fn c)"]}
+    tmp = out.with_name(out.name + ".tmp.npz")
+    np.savez_compressed(tmp, values=vals.astype(np.float32), meta=json.dumps(meta),
+                        **{k: grid[k] for k in _AXES})
+    tmp.replace(out)
+    ds.close()
+    shutil.rmtree(work, ignore_errors=True)
+    return out
+
+
+class TableData:
+    """A loaded table: node axes, values and metadata (see :func:`load_table`)."""
+
+    def __init__(self, axes: dict, values: np.ndarray, meta: dict):
+        from scipy.interpolate import RegularGridInterpolator
+
+        self.axes = axes
+        self.values = values
+        self.meta = meta
+        # The tangential force is interpolated in the frame of the creepage direction alpha
+        # (components along and across it): full slip then stays at |F| = mu Fn between the
+        # direction nodes instead of cutting the chord (a 0.3 % deficit at 9 degrees).
+        T, L, N = np.meshgrid(axes["theta"], axes["log_ab"], axes["nu"], indexing="ij")
+        C11, C22, _ = _coefficients(np.exp(L), N)
+        alpha = np.arctan2(np.sin(T) / C22, np.cos(T) / C11)[None, :, None]  # (1, θ, 1, ab, ν)
+        ca, sa = np.cos(alpha), np.sin(alpha)
+        v = values.astype(float)
+        local = np.stack([v[..., 0] * ca + v[..., 1] * sa, -v[..., 0] * sa + v[..., 1] * ca,
+                          v[..., 2]], axis=-1)
+        self._interp = RegularGridInterpolator(tuple(axes[k] for k in _AXES), local,
+                                               method="linear", bounds_error=False,
+                                               fill_value=None)
+
+    @property
+    def domain(self) -> dict:
+        """Ranges of the inputs: ``phi_hat`` (|φ̂| max), ``aspect`` (a/b), ``nu``."""
+        smax = float(np.max(np.abs(self.axes["s"])))
+        return {"phi_hat": smax / (1.0 - smax),
+                "aspect": (float(np.exp(self.axes["log_ab"][0])),
+                           float(np.exp(self.axes["log_ab"][-1]))),
+                "nu": (float(self.axes["nu"][0]), float(self.axes["nu"][-1]))}
+
+    def __call__(self, points: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+        """Interpolated (fx, fy, mz), shape (n, 3).
+
+        ``points`` (n, 5) are table coordinates, ``alpha`` (n,) the direction [rad] of the
+        scaled creepage (ξ̂/C11, (η̂ + φ̂)/C22) of each point (see :func:`table_coordinates`).
+        """
+        f = self._interp(points)
+        ca, sa = np.cos(alpha), np.sin(alpha)
+        return np.stack([f[:, 0] * ca - f[:, 1] * sa, f[:, 0] * sa + f[:, 1] * ca, f[:, 2]],
+                        axis=-1)
+
+
+@lru_cache(maxsize=4)
+def load_table(path=None) -> TableData:
+    """Load a table file (default: the shipped one); cached."""
+    path = DEFAULT_TABLE if path is None else Path(path)
+    if not path.exists():
+        raise InputError(f"creep table {str(path)!r} not found; build it with "
+                         "'python -m wheelrail.tangential.table --build'")
+    with np.load(path, allow_pickle=False) as f:
+        axes = {k: np.asarray(f[k], float) for k in _AXES}
+        values = np.asarray(f["values"])
+        meta = json.loads(str(f["meta"]))
+    if meta.get("version") != TABLE_VERSION:
+        raise InputError(f"creep table {str(path)!r} has version {meta.get('version')!r}, "
+                         f"this wheelrail reads version {TABLE_VERSION}")
+    return TableData(axes, values, meta)
+
+
+def table_coordinates(a, b, G, nu, xi, eta, phi, mu, Fn):
+    """Table coordinates of contacts and creepages (pure array function).
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (n,)
+        Semi-axes [m].
+    G, nu : float or ndarray
+        Combined shear modulus [Pa] and Poisson's ratio [-].
+    xi, eta, phi, mu, Fn : ndarray, shape (n,)
+        Creepages [-, -, 1/m], friction [-], normal force [N].
+
+    Returns
+    -------
+    coords : ndarray, shape (n, 5)
+        (r, θ, s, ln a/b, ν) after reflection into ξ, η ≥ 0.
+    sx, sy : ndarray, shape (n,)
+        Signs (±1) of ξ and η used to reflect the results back.
+    phi_hat : ndarray, shape (n,)
+        Scaled spin (signed, after reflection).
+    alpha : ndarray, shape (n,)
+        Direction [rad] of the full-slip force: of (ξ̂/C11, (η̂ + φ̂)/C22).
+    """
+    ab = a / b
+    nu = np.broadcast_to(np.asarray(nu, float), ab.shape)
+    C11, C22, C23 = _coefficients(ab, nu)
+    c2 = a * b
+    unit = G / (3.0 * mu * Fn)
+    c = np.sqrt(c2)
+    spin_len = _spin_length(c, b, C11, C23)
+    xh = unit * c2 * C11 * xi
+    ph = unit * c2 * spin_len * phi
+    eh = unit * c2 * C22 * eta + unit * c2 * c * C23 * phi   # effective lateral η̂ + φ̂_y
+    sx = np.where(xh < 0, -1.0, 1.0)
+    sy = np.where(eh < 0, -1.0, 1.0)
+    xh, eh, ph = np.abs(xh), np.abs(eh), ph * sy
+    rho = np.hypot(xh, eh)
+    theta = np.arctan2(eh, xh)
+    coords = np.stack([rho / (1.0 + np.abs(ph) + rho), theta, ph / (1.0 + np.abs(ph)),
+                       np.log(ab), nu], axis=-1)
+    alpha = np.arctan2(np.sin(theta) / C22, np.cos(theta) / C11)
+    return coords, sx, sy, ph, alpha
+
+
+class Table(TangentialMethod):
+    """Creep forces interpolated in a table of exact-theory results (see the module docstring).
+
+    Options
+    -------
+    outside : {"raise", "exact", "fastsim"}, default "raise"
+        Points outside the table's domain (|φ̂| > 4, a/b ∉ [0.2, 5],
+        ν ∉ [0.25, 0.30], K ≠ 0): raise :class:`~wheelrail.errors.InputError`
+        naming the value, or compute them with that method.
+    table : str or None, default None
+        Path of another table file (built by :func:`build_table`).
+
+    Results
+    -------
+    ``info["outside"]``: boolean mask (batch) or bool of the points computed
+    by the fallback method.
+    """
+
+    name = "table"
+    references = (
+        "J.J. Kalker, Book of tables for the Hertzian creep-force law, Proc. 2nd Mini Conf. "
+        "on Contact Mechanics and Wear of Wheel/Rail Systems, Budapest, 1996, 11-20 "
+        "(tabulated exact theory; table here built with wheelrail's exact solver).",
+    )
+    options = {"outside": "raise", "table": None}
+
+    def solve(self, contact, xi, eta, phi, mu, *, outside="raise", table=None):
+        """Creep forces by interpolation; see the class docstring."""
+        if outside not in ("raise", "exact", "fastsim"):
+            raise InputError(f"outside must be 'raise', 'exact' or 'fastsim', got {outside!r}")
+        data = load_table(table)
+        shape = np.shape(contact.a)
+        a, b, Fn = (np.asarray(getattr(contact, k), float).reshape(-1)
+                    for k in ("a", "b", "load"))
+        xs, es, ps, ms = (np.asarray(v, float).reshape(-1) for v in (xi, eta, phi, mu))
+        pair = contact.materials
+        nu = float(pair.nu)
+        coords, sx, sy, ph, alpha = table_coordinates(a, b, pair.G, nu, xs, es, ps, ms, Fn)
+        dom = data.domain
+        ab = a / b
+        reasons = []
+        K = float(getattr(pair, "K", 0.0))
+        bad_K = abs(K) > _K_TOL
+        checks = [
+            (np.abs(ph) > dom["phi_hat"] * (1 + 1e-12), "scaled spin phi_hat", np.abs(ph),
+             f"|phi_hat| <= {dom['phi_hat']:g}"),
+            ((ab < dom["aspect"][0] * (1 - 1e-12)) | (ab > dom["aspect"][1] * (1 + 1e-12)),
+             "a/b", ab, f"{dom['aspect'][0]:g} <= a/b <= {dom['aspect'][1]:g}"),
+            (np.full(ab.shape, (nu < dom["nu"][0] - 1e-12) or (nu > dom["nu"][1] + 1e-12)),
+             "Poisson's ratio nu", np.full(ab.shape, nu),
+             f"{dom['nu'][0]:g} <= nu <= {dom['nu'][1]:g}"),
+            (np.full(ab.shape, bad_K), "difference parameter K", np.full(ab.shape, K),
+             f"|K| <= {_K_TOL:g} (quasi-identical materials)"),
+        ]
+        out_mask = np.zeros(ab.shape, bool)
+        for mask, what, values, allowed in checks:
+            if np.any(mask):
+                i = int(np.argmax(mask))
+                reasons.append(f"{what} = {values[i]:.6g} at point {i} (table domain: {allowed})")
+                out_mask |= mask
+        if reasons and outside == "raise":
+            raise InputError("outside the creep table's domain: " + "; ".join(reasons)
+                             + ". Use outside='exact' or 'fastsim' to compute such points "
+                               "with that method.")
+        f = data(coords, alpha)
+        # |F_t| <= mu Fn holds at every node; the convex combination keeps it up to the
+        # float32 rounding of the stored values, which is removed here
+        ft = np.hypot(f[:, 0], f[:, 1])
+        over = ft > 1.0
+        f[over, :2] /= ft[over, None]
+        c = np.sqrt(a * b)
+        Fx = sx * f[:, 0] * ms * Fn
+        Fy = sy * f[:, 1] * ms * Fn
+        Mz = sy * f[:, 2] * ms * Fn * c
+        if np.any(out_mask):
+            from ..api import get_method
+
+            idx = np.flatnonzero(out_mask)
+            sub = contact if not shape else contact[idx]
+            r = get_method(outside).solve(sub, *(v[idx] if shape else v[0]
+                                                 for v in (xs, es, ps, ms)))
+            for arr, v in ((Fx, r.Fx), (Fy, r.Fy), (Mz, r.Mz)):
+                arr[idx] = np.asarray(v, float).reshape(-1)
+
+        def shaped(v):
+            return v.reshape(shape) if shape else float(v[0])
+
+        return CreepForces(Fx=shaped(Fx), Fy=shaped(Fy), Mz=shaped(Mz),
+                           Fn=shaped(Fn), mu=shaped(ms), method=self.name, status=Status.CONVERGED,
+                           info={"outside": out_mask.reshape(shape) if shape else bool(out_mask[0]),
+                                 "table_version": data.meta.get("version")})
+
+
+def _main(argv=None) -> int:
+    import argparse
+
+    p = argparse.ArgumentParser(prog="python -m wheelrail.tangential.table",
+                                description="Build the creep-force table with the exact solver.")
+    p.add_argument("--build", action="store_true", help="compute and write the table")
+    p.add_argument("--out", default=str(DEFAULT_TABLE), help="output .npz (default: shipped file)")
+    p.add_argument("--elements", type=int, default=24, help="exact-solver elements (default 24)")
+    p.add_argument("--workers", type=int, default=2, help="local workers (default 2)")
+    p.add_argument("--executor", default=None, help="serial, processes or dask")
+    p.add_argument("--work", default=None, help="Zarr work store (default: <out>.zarr); an "
+                   "interrupted build resumes from it")
+    args = p.parse_args(argv)
+    if not args.build:
+        p.print_help()
+        return 2
+    path = build_table(args.out, elements=args.elements, workers=args.workers,
+                       executor=args.executor, work=args.work)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(_main())
