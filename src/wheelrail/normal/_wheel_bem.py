@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
-from ._gap import _rigid_box, _scaled
+from ._gap import _scaled
 from .bem import _elements_for, _patches_of, _solve_enlarging, _square_grid
 from .hertz import _vertical_approach, hertz_kernel
 
@@ -35,6 +35,29 @@ def _groups(pts, sigma, group_angle, width):
         else:
             groups.append([int(k)])
     return groups
+
+
+def _rigid_box_of(sep, delta, sigma, roller_radius, search):
+    """Bounding box (xmin, xmax, ymin, ymax) of {h < δ} in contact-frame coordinates.
+
+    Direct from the separation: laterally where f(η) < δ, along x up to
+    √(2 (δ − f) / k) with k = cos_factor / r (+ 1/R on a roller), the
+    longitudinal curvature of h (exact to the order of the Hertz gap).
+    """
+    inside = sep.f < delta
+    if not inside.any():
+        raise NoContactError(f"no interpenetration at the approach {delta!r} m")
+    y = sigma * sep.eta[inside]
+    k = sep.cos_factor / sep.wheel_radius[inside]
+    if roller_radius is not None:
+        k = k + 1.0 / roller_radius
+    xmax = float(np.max(np.sqrt(2.0 * (delta - sep.f[inside]) / k)))
+    step = float(np.max(np.abs(np.diff(sep.eta))))
+    lo, hi = float(y.min()) - step, float(y.max()) + step
+    if lo <= search[2] or hi >= search[3]:
+        raise InputError(f"the region where the gap is below the approach δ = {delta!r} m "
+                         f"reaches the edge of the search box {search} m")
+    return (max(-xmax, search[0]), min(xmax, search[1]), lo, hi)
 
 
 def _gap_function(sep, roller_radius, sigma):
@@ -80,7 +103,8 @@ def _setups(problem, pts, sigma, cosg, dz_est, elements, element_size, margin, g
         delta_est = dz_est * c_ref
         ylim = sorted((sigma * float(s.eta[0]), sigma * float(s.eta[-1])))
         search = (-_SEARCH_X, _SEARCH_X, ylim[0], ylim[1])
-        box = _rigid_box(gap, max(delta_est * 1.3, delta_est + 2e-6), search, 0.0, 0.0)
+        box = _rigid_box_of(s, max(delta_est * 1.3, delta_est + 2e-6), sigma,
+                            problem.roller_radius, search)
         bounds = _scaled(box, margin, search)
         if element_size is None:
             n = _elements_for(max(bounds[1] - bounds[0], bounds[3] - bounds[2]), elements, None)
