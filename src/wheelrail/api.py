@@ -165,6 +165,10 @@ def _broadcast_contact(contact, shape):
 #: Registry of normal-contact methods: name -> "module:Class".
 NORMAL_METHODS = {
     "hertz": "wheelrail.normal.hertz:Hertz",
+    "multi-hertz": "wheelrail.normal.multi_hertz:MultiHertz",
+    "linder": "wheelrail.normal.linder:Linder",
+    "kik-piotrowski": "wheelrail.normal.kik_piotrowski:KikPiotrowski",
+    "stripes": "wheelrail.normal.stripes:Stripes",
     "bem": "wheelrail.normal.bem:Bem",
 }
 
