@@ -151,6 +151,7 @@ VALIDATORS = {
         "conditions": _polach_conditions,
     },
     "linear": {},
+    "fastrip": {"ny": _integer(2, 2000)},
     "bem": {"elements": _integer(2)},
 }
 #: method -> check of the combination of its options (after the single values)

@@ -24,6 +24,7 @@ METHODS = {
     "shen-hedrick-elkins": "wheelrail.tangential.shen_hedrick_elkins:ShenHedrickElkins",
     "polach": "wheelrail.tangential.polach:Polach",
     "exact": "wheelrail.tangential.exact:Exact",
+    "fastrip": "wheelrail.tangential.fastrip:FaStrip",
 }
 _ALIASES = {
     "kalker-linear": "linear",

@@ -35,6 +35,7 @@ COMMANDS = [
     ("demo", "wheelrail.cli.demo"),
     ("geometry", "wheelrail.cli.geometry"),
     ("wheelset", "wheelrail.cli.wheelset"),
+    ("compare", "wheelrail.cli.compare"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
