@@ -98,12 +98,47 @@ def kp_integrals(xl, h, j0):
     return I1, I2
 
 
-def hertz_shape(A, B):
-    """Hertz semi-axis ratio a/b and the unit-load solution for curvatures A, B (scalars)."""
-    from .hertz import hertz_kernel
+_TABLE = {}
+_LN_MAX, _LN_STEP = 14.0, 0.005
 
-    a, b, p0, d = hertz_kernel(1.0, float(A), float(B), 1.0)
-    return float(a), float(b), float(p0), float(d)
+
+def _hertz_table():
+    """ln a, ln b, ln p0, ln δ of Hertz (unit load, E* = 1, A·B = 1) on a grid of ln(A/B)."""
+    t = _TABLE.get("hertz")
+    if t is None:
+        from .hertz import hertz_kernel
+
+        n = int(round(2 * _LN_MAX / _LN_STEP)) + 1
+        lam = np.linspace(-_LN_MAX, _LN_MAX, n)
+        A = np.exp(0.5 * lam)
+        a, b, p0, d = hertz_kernel(1.0, A, 1.0 / A, 1.0)
+        t = (lam, np.log(a), np.log(b), np.log(p0), np.log(d))
+        _TABLE["hertz"] = t
+    return t
+
+
+def hertz_shape(A, B):
+    """Hertz's unit-load solution (a, b, p0, δ; load 1 N, E* = 1 Pa) for curvatures A, B [1/m].
+
+    Interpolated (linear in ln(A/B), step 0.005, relative error < 1e-5) in a
+    table of :func:`wheelrail.normal.hertz.hertz_kernel` with A·B = 1, scaled
+    to s = √(AB) by a, b ∝ s^(-1/3), p0 ∝ s^(2/3), δ ∝ s^(1/3) (Johnson
+    1985, eqs. 3.64–3.66).
+    """
+    A, B = float(A), float(B)
+    lam = math.log(A / B)
+    if abs(lam) > _LN_MAX:
+        from .hertz import hertz_kernel
+
+        a, b, p0, d = hertz_kernel(1.0, A, B, 1.0)
+        return float(a), float(b), float(p0), float(d)
+    grid, la, lb, lp, ld = _hertz_table()
+    s = math.sqrt(A * B)                      # curvature scale (table has A·B = 1)
+    a = math.exp(float(np.interp(lam, grid, la))) / s ** (1 / 3)
+    b = math.exp(float(np.interp(lam, grid, lb))) / s ** (1 / 3)
+    p0 = math.exp(float(np.interp(lam, grid, lp))) * s ** (2 / 3)
+    d = math.exp(float(np.interp(lam, grid, ld))) * s ** (1 / 3)
+    return a, b, p0, d
 
 
 def hertz_penetration_factor(A, B):
