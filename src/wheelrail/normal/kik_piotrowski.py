@@ -9,8 +9,11 @@ follows from the deflection condition at the reference point,
     N  = π E* δ I1 / I2,   p0 = N x_l(0) / I1,
     I1 = ∫∫ √(x_l² − x²) dx dy,   I2 = ∫∫ √(x_l² − x²)/√(x² + y²) dx dy
 
-(E* the contact modulus; for identical bodies πE*/1 = πE/(2(1 − σ²)) as in
-eq. 15). The inner x-integral of I2 is done in closed form with complete
+(E* the contact modulus; for identical bodies πE* = πE/(2(1 − σ²)) as in
+eq. 15). δ of a region is its virtual depth over ε, max g/ε: δ itself for the
+region around the rigid contact point; for a separate (secondary) region this
+makes its load grow from zero as it appears (δ − f_min would start it with a
+finite load and a pressure peak on a sliver; a choice of this implementation). The inner x-integral of I2 is done in closed form with complete
 elliptic integrals (:func:`wheelrail.normal._strips.kp_integrals`).
 
 Penetration factor ε: the original method uses ε = 0.55; the default here
@@ -151,9 +154,10 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
             gi = g[i0:i1]
             xl = np.sqrt(gi / line.Ax[i0:i1])
             j = int(np.argmax(gi))
-            real = delta - float(line.f[i0 + j])
-            if not real > 0:
-                continue
+            # penetration of the region consistent with its virtual depth: g_max / ε
+            # (= δ − f_min for the region of the rigid contact point, where f_min = 0; for a
+            # separate region the load then vanishes with the region instead of jumping)
+            real = float(gi[j]) / eps
             eta = line.eta[i0:i1]
             h = line.h
             alpha = None

@@ -101,7 +101,10 @@ class Linder(VirtualPenetration, NormalMethod):
             c = np.sqrt(np.clip(be * be - yi * yi, (0.25 * h) ** 2, None))
             ae = xl * be / c                                # eq. (7)
             zm = (be * be - yi * yi - gi * gi) / (2.0 * gi)  # eq. (8)
-            de = np.sqrt(be * be + zm * zm) - zm + (1.0 - LINDER_FACTOR) * delta
+            # eq. (8): + 0.45 δ; for a separate region the 0.45 δ is taken relative to its own
+            # virtual depth, 0.45/0.55 max g (= 0.45 δ for the region of the contact point)
+            de = np.sqrt(be * be + zm * zm) - zm + (1.0 - LINDER_FACTOR) / LINDER_FACTOR * float(
+                gi.max())
             Ni = hertz_load_from_axes(ae, be, de, E_star)
             p0 = 1.5 * Ni / (math.pi * ae * be) * c / be    # eq. (9)
             N = float(np.sum(0.5 * math.pi * xl * p0) * h)  # eq. (10)
