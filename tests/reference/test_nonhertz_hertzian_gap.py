@@ -87,9 +87,14 @@ def test_bad_penetration_factor_named(bad):
         wr.solve(c, creepage=(0, 0, 0), mu=0.3, normal="kik-piotrowski", penetration_factor=bad)
 
 
-def test_non_convex_gap_rejected():
-    g = GapProblem(lambda x, y: 1.0 * x**2 - 0.5 * y**2 + 1e-3 * y**4, wr.STEEL, load=1e4,
-                   search=(-0.01, 0.01, -0.01, 0.01))
-    m = wr.api.get_normal_method("kik-piotrowski")
-    with pytest.raises(Exception):
-        m.from_gap(g, **m.check_options({}))
+def test_unrepresentable_gaps_rejected():
+    """A gap without curvature along x (a line contact) or a saddle: clear InputError."""
+    line = GapProblem(lambda x, y: 0.0 * x + y**2, wr.STEEL, load=1e4,
+                      search=(-0.01, 0.01, -0.01, 0.01))
+    saddle = GapProblem(lambda x, y: x**2 - 0.5 * y**2, wr.STEEL, load=1e4,
+                        search=(-0.01, 0.01, -0.01, 0.01))
+    for name in ("kik-piotrowski", "linder", "stripes", "multi-hertz"):
+        m = wr.api.get_normal_method(name)
+        for g in (line, saddle):
+            with pytest.raises(InputError, match="search|convex|represent"):
+                m.from_gap(g, **m.check_options({}))

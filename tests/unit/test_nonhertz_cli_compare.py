@@ -46,6 +46,14 @@ def test_single_position_table(tmp_path, capsys):
     assert "%" in out          # deviation from the reference
 
 
+def test_patch_figure(tmp_path, capsys):
+    case = _write(tmp_path, "0.0")
+    out = tmp_path / "f"
+    assert main(["compare", case, "--side", "right", "--patches", "--out", str(out),
+                 "--methods", "kik-piotrowski,multi-hertz/sauvage"]) == 0
+    assert (out / "compare_patches.png").read_bytes()[:8] == PNG
+
+
 def test_sweep_csv_and_plot(tmp_path, capsys):
     case = _write(tmp_path, "0.0")
     out = tmp_path / "o"

@@ -51,6 +51,9 @@ def add_arguments(p) -> None:
     p.add_argument("--out", metavar="DIR", default="wheelrail-compare",
                    help="output directory of --sweep (default ./wheelrail-compare)")
     p.add_argument("--no-plots", action="store_true", help="write no figure")
+    p.add_argument("--patches", action="store_true",
+                   help="single position: also write DIR/compare_patches.png, the patches of "
+                        "every method on the rail profile with the pressure in colour")
 
 
 def wheel_quantities(result, side) -> dict:
@@ -62,8 +65,11 @@ def wheel_quantities(result, side) -> dict:
             "Mz": sum(p.Mz for p in ps)}
 
 
-def run_methods(position, motion, mu, methods=METHODS, sides=("left", "right")):
-    """Solve ``position`` with every method; {label: {side: quantities}} (or an error string)."""
+def run_methods(position, motion, mu, methods=METHODS, sides=("left", "right"), keep=None):
+    """Solve ``position`` with every method; {label: {side: quantities}} (or an error string).
+
+    ``keep``: a dict that receives {label: WheelRailResult}.
+    """
     from ..api import solve
 
     out = {}
@@ -77,6 +83,8 @@ def run_methods(position, motion, mu, methods=METHODS, sides=("left", "right")):
             continue
         dt = time.perf_counter() - t0
         out[label] = {s: dict(wheel_quantities(r, s), time=dt) for s in sides}
+        if keep is not None:
+            keep[label] = r
     return out
 
 
@@ -136,11 +144,18 @@ def run(args, console) -> int:
 
     if not args.sweep:
         y, yaw = float(case.y[0]), float(case.yaw[0])
-        res = run_methods(position(y, yaw), case.motion, case.mu, methods, sides)
+        kept = {}
+        res = run_methods(position(y, yaw), case.motion, case.mu, methods, sides, keep=kept)
         for s in sides:
             console.print(_table(res, s, f"wheelrail compare {args.case}: y = {y * 1e3:g} mm, "
                                          f"{s} wheel, μ = {case.mu:g} (deviation from "
                                          f"{REFERENCE})"))
+        if args.patches and not args.no_plots and kept:
+            out = Path(args.out)
+            out.mkdir(parents=True, exist_ok=True)
+            path = patch_figure(kept, sides[-1], out / "compare_patches.png",
+                                title=f"{args.case}: y = {y * 1e3:g} mm, {sides[-1]} wheel")
+            console.print(f"  {path}  — patches of every method, pressure in colour")
         return 0
     if args.y is not None:
         ys = np.linspace(args.y[0], args.y[1], int(args.y[2])) * 1e-3
@@ -215,6 +230,56 @@ def _plot(rows, sides, out):
     from .._atomic import atomic_path
 
     path = out / "compare_sweep.png"
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=110)
+    plt.close(fig)
+    return path
+
+
+def patch_figure(results, side, path, title=""):
+    """Patches of every method on one rail (seed 003 figs. 13, 18–22 in kind).
+
+    One row per method: the rail profile of the side (top of rail, lateral
+    coordinate of the rail profile frame [mm]) and below it every patch in
+    the (lateral, rolling) plane, the pressure in colour (common scale, MPa).
+    Strip y is laid along the rail at the patch's rail position (y·cos of the
+    contact angle: the plane is tilted by γ).
+    """
+    import math
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    labels = list(results)
+    pmax = max((p.p_max for r in results.values() for p in r.side(side)), default=1.0)
+    fig, axes = plt.subplots(len(labels), 1, figsize=(7, 1.6 * len(labels) + 0.8),
+                             sharex=True, squeeze=False)
+    mappable = None
+    for ax, lab in zip(axes[:, 0], labels):
+        r = results[lab]
+        sig = 1.0 if side == "right" else -1.0
+        for p in r.side(side):
+            pt = p.patch
+            c = math.cos(pt.frame.contact_angle)
+            yc = (pt.frame.rail_y + sig * pt.y * c) * 1e3
+            x = pt.cell_x() * 1e3
+            Y = np.repeat(yc[:, None], x.shape[1], axis=1)
+            mappable = ax.scatter(Y.ravel(), x.ravel(), c=pt.strip_pressure.ravel() / 1e6,
+                                  s=4, marker="s", cmap="viridis", vmin=0, vmax=pmax / 1e6,
+                                  linewidths=0)
+        ax.set_ylabel("x [mm]")
+        ax.set_title(lab, fontsize=8, loc="left")
+        xm = max((float(np.max(np.abs(p.patch.cell_x()))) for p in r.side(side)), default=1e-3)
+        ax.set_ylim(-1.1e3 * xm, 1.1e3 * xm)
+    axes[-1, 0].set_xlabel(f"lateral position on the {side} rail profile [mm]")
+    if mappable is not None:
+        fig.colorbar(mappable, ax=axes[:, 0].tolist(), label="pressure [MPa]", shrink=0.6)
+    fig.suptitle(title, fontsize=9)
+    from .._atomic import atomic_path
+
     with atomic_path(path) as tmp:
         fig.savefig(tmp, dpi=110)
     plt.close(fig)
