@@ -314,7 +314,6 @@ class VirtualPenetration:
         return eta, h0 - hmin, Ax
 
     def from_gap(self, problem, **opts):
-        from ..contact.patch import ContactPatch  # noqa: F401  (import check)
         from ..materials import as_material_pair
         from ._gap import _check_search, _evaluate, _minimum
 

@@ -144,8 +144,6 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             Bs = _smoothed_B(line.eta, line.f, 1e-3)
             floor = 0.05 * line.B if line.B > 0 else 0.05 * float(np.max(np.abs(Bs)) + 1e-12)
             line.extra["Bx"] = np.maximum(Bs, floor)
-            if line.B > 0 and 0 <= line.ref < line.eta.size:
-                pass
         return line.extra["Bx"]
 
     def _ellipses(self, line, delta, opts):
@@ -214,7 +212,6 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         eta, f, Ax = self._gap_line(problem, (xm, ym, hmin),
                                     (search[2] - ym, search[3] - ym), 1601, 1e-3)
         from ._strips import Line
-        from dataclasses import replace as _replace  # noqa: F401
 
         j = int(np.argmin(f))
         Bx0 = (f[j + 1] + f[j - 1] - 2 * f[j]) / (2 * (eta[1] - eta[0]) ** 2)

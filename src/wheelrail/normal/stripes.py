@@ -102,8 +102,6 @@ class Stripes(VirtualPenetration, NormalMethod):
         return line.extra[key]
 
     def _solve_line(self, line, delta, opts):
-        from ..tangential.linear import kalker_coefficients  # noqa: F401  (availability)
-
         eps, comp, kp, Bs = self._line_data(line, opts)
         h0 = eps * delta
         hi_all = h0 - line.f
