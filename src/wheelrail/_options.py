@@ -93,6 +93,17 @@ def _polach_all(opts):
     _check_extended(*(opts.get(k) for k in ("kA", "kS", "speed", "A", "B", "conditions")))
 
 
+def _penetration_factor(name, v):
+    if isinstance(v, str):
+        if v != "hertz":
+            raise InputError(f"{name} must be 'hertz' or a number in (0, 1], got {v!r}")
+        return
+    if isinstance(v, bool) or not (isinstance(v, (int, float)) or _is_np_number(v)):
+        raise InputError(f"{name} must be 'hertz' or a number in (0, 1], got {v!r}")
+    if not (math.isfinite(float(v)) and 0.0 < float(v) <= 1.0):
+        raise InputError(f"{name} must lie in (0, 1], got {v!r}")
+
+
 #: method -> (option -> validator(name, value)), and an optional check of the whole set.
 VALIDATORS = {
     # normal methods
@@ -104,6 +115,15 @@ VALIDATORS = {
         "max_enlarge": _integer(0), "cells": _integer(2, 2000),
         "group_angle": _number(0.0, 3.2, lo_open=True), "width": _number(0.0, 0.2, lo_open=True),
     },
+    "kik-piotrowski": {"penetration_factor": _penetration_factor,
+                       "shape_correction": _choice(True, False),
+                       "strips": _integer(2, 2000), "cells": _integer(2, 2000)},
+    "linder": {"strips": _integer(2, 2000), "cells": _integer(2, 2000)},
+    "stripes": {"smoothing": _number(0.0, lo_open=False), "strips": _integer(2, 2000),
+                "cells": _integer(2, 2000)},
+    "multi-hertz": {"variant": _choice("pascal", "sauvage", "sauvage-half", "ayasse"),
+                    "max_ellipses": _integer(1, 20), "strips": _integer(2, 2000),
+                    "cells": _integer(2, 2000)},
     # tangential methods
     "fastsim": {
         "nx": _integer(1, 2000), "ny": _integer(1, 2000),  # 4e6 cells: ~100 MB per field
@@ -131,6 +151,7 @@ VALIDATORS = {
         "conditions": _polach_conditions,
     },
     "linear": {},
+    "fastrip": {"ny": _integer(2, 2000)},
 }
 #: method -> check of the combination of its options (after the single values)
 COMBINED = {"polach": _polach_all}

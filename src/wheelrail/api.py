@@ -25,6 +25,7 @@ METHODS = {
     "polach": "wheelrail.tangential.polach:Polach",
     "exact": "wheelrail.tangential.exact:Exact",
     "table": "wheelrail.tangential.table:Table",
+    "fastrip": "wheelrail.tangential.fastrip:FaStrip",
 }
 _ALIASES = {
     "kalker-linear": "linear",
@@ -166,6 +167,10 @@ def _broadcast_contact(contact, shape):
 #: Registry of normal-contact methods: name -> "module:Class".
 NORMAL_METHODS = {
     "hertz": "wheelrail.normal.hertz:Hertz",
+    "multi-hertz": "wheelrail.normal.multi_hertz:MultiHertz",
+    "linder": "wheelrail.normal.linder:Linder",
+    "kik-piotrowski": "wheelrail.normal.kik_piotrowski:KikPiotrowski",
+    "stripes": "wheelrail.normal.stripes:Stripes",
     "bem": "wheelrail.normal.bem:Bem",
 }
 

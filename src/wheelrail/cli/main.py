@@ -37,6 +37,7 @@ COMMANDS = [
     ("wheelset", "wheelrail.cli.wheelset"),
     ("fe", "wheelrail.cli.fe"),
     ("sweep", "wheelrail.cli.sweep"),
+    ("compare", "wheelrail.cli.compare"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2

@@ -583,11 +583,28 @@ class Fastsim(TangentialMethod):
                               scheme=scheme, fields=fields)
         nx = integer("nx", nx)
         _check_choice("flexibility", flexibility, _FLEXIBILITIES)
+        # a virtual-penetration patch may prescribe its own flexibilities (seed 003 §3):
+        # one weighted flexibility per patch (Kik-Piotrowski), per-strip virtual ellipses
+        # (Linder, STRIPES), a parabolic traction bound along the strips (Linder)
+        pinfo = patch.info
+        flexibility = pinfo.get("fastsim_flexibility", flexibility)
         a, b = patch.a, patch.b
-        C11, C22, C23, _ = kalker_coefficients(a / b, patch.materials.nu)
-        L1, L2, L3 = (float(v) for v in flexibilities(a, b, patch.materials.G, C11, C22, C23))
-        if flexibility == "weighted":
-            L1 = L2 = L3 = float(weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(a * b)))
+        axes = pinfo.get("strip_semiaxes")
+        if axes is not None:
+            sa, sb = (np.asarray(v, dtype=float) for v in axes)
+            C11, C22, C23, _ = kalker_coefficients(sa / sb, patch.materials.nu)
+            L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
+            if flexibility == "weighted":
+                L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(sa * sb))
+            Lrep = tuple(float(np.median(v)) for v in (L1, L2, L3))
+        else:
+            C11, C22, C23, _ = kalker_coefficients(a / b, patch.materials.nu)
+            L1, L2, L3 = (float(v) for v in flexibilities(a, b, patch.materials.G, C11, C22,
+                                                          C23))
+            if flexibility == "weighted":
+                L1 = L2 = L3 = float(weighted_flexibility(L1, L2, L3, xi, eta, phi,
+                                                          np.sqrt(a * b)))
+            Lrep = (L1, L2, L3)
         # pressure resampled from the patch's m cells to nx cells per strip
         m = patch.cells
         src = (np.arange(m) + 0.5) / m
@@ -596,12 +613,16 @@ class Fastsim(TangentialMethod):
         scale = patch.strip_pressure.sum(axis=1) / m
         got = p.sum(axis=1) / nx
         p *= np.where(got > 0, scale / np.where(got > 0, got, 1.0), 0.0)[:, None]
+        if pinfo.get("traction_bound") == "parabolic":
+            # same force per strip, parabolic along x (Linder: p0' = 3π p0 / 8)
+            par = _profile("parabolic", 1.0 - dst * 2.0)
+            p = (p.sum(axis=1) / par.sum())[:, None] * par[None, :]
         r = fastsim_strips(patch.y, patch.dy, patch.x_lead, patch.x_trail, p, L1, L2, L3,
                            xi, eta, phi, mu, c=np.sqrt(a * b), scheme=scheme,
                            fields=fields is not False)
         xc, yc = patch.centre
         Mz = r.Mz - xc * r.Fy + yc * r.Fx
-        info = dict(r.info, flexibility=flexibility, L=(L1, L2, L3))
+        info = dict(r.info, flexibility=flexibility, L=Lrep)
         status = Status.CONVERGED
         if r.fields is not None:
             info["adhesion_fraction"] = r.fields.adhesion_fraction

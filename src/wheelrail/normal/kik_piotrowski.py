@@ -1,0 +1,176 @@
+"""Kik & Piotrowski's virtual-penetration method for non-Hertzian normal contact.
+
+The bodies are virtually pressed together by δ0 = ε δ; the interpenetration
+region (seed 003 eqs. 4–5) is taken as the contact patch, the pressure is
+semi-elliptic along every strip with one peak p0 (eq. 12), and the load
+follows from the deflection condition at the reference point,
+2 w0 = δ (eqs. 13–16)::
+
+    N  = π E* δ I1 / I2,   p0 = N x_l(0) / I1,
+    I1 = ∫∫ √(x_l² − x²) dx dy,   I2 = ∫∫ √(x_l² − x²)/√(x² + y²) dx dy
+
+(E* the contact modulus; for identical bodies πE* = πE/(2(1 − σ²)) as in
+eq. 15). δ of a region is its virtual depth over ε, max g/ε: δ itself for the
+region around the rigid contact point; for a separate (secondary) region this
+makes its load grow from zero as it appears (δ − f_min would start it with a
+finite load and a pressure peak on a sliver; a choice of this implementation). The inner x-integral of I2 is done in closed form with complete
+elliptic integrals (:func:`wheelrail.normal._strips.kp_integrals`).
+
+Penetration factor ε: the original method uses ε = 0.55; the default here
+(``penetration_factor="hertz"``) takes ε from Hertz's theory for the local
+curvatures A, B at the reference point, ε = a b √(AB)/δ, so that a Hertzian
+gap gives exactly Hertz's area. The shape correction (eqs. 17–22) stretches
+the region across the rail and along it (modified radius, eq. 22) so that
+its length/width ratio is Hertz's ratio for the curvatures 4δ0/L², 4δ0/W² of
+the uncorrected region, keeping its area; with both (the default) a Hertzian
+gap reproduces Hertz's area, maximum pressure and load.
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22) (seed 003).
+.. [2] W. Kik, J. Piotrowski, A fast, approximate method to calculate normal load at
+   contact between wheel and rail and creep forces during rolling, 2nd mini
+   conference on contact mechanics and wear of rail/wheel systems, Budapest 1996.
+.. [3] J. Piotrowski, W. Kik, A simplified model of wheel/rail contact mechanics for
+   non-Hertzian problems and its application in rail vehicle dynamic simulations,
+   VSD 46 (2008) 27–48.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import InputError
+from ._base import NormalMethod
+from ._strips import Region, VirtualPenetration, hertz_penetration_factor, hertz_shape, \
+    kp_integrals, runs
+
+__all__ = ["KikPiotrowski", "penetration_factor"]
+
+#: The constant penetration factor of the original method (and of Linder).
+ORIGINAL_FACTOR = 0.55
+
+
+def penetration_factor(value, A, B):
+    """ε = δ0/δ: ``"hertz"`` (from the curvatures A, B [1/m]) or a number in (0, 1]."""
+    if isinstance(value, str):
+        if value != "hertz":
+            raise InputError(f"penetration_factor must be 'hertz' or a number in (0, 1], got "
+                             f"{value!r}")
+        if A > 0 and B > 0:
+            return hertz_penetration_factor(A, B), "hertz"
+        return ORIGINAL_FACTOR, "0.55 (curvatures at the reference point not convex)"
+    v = float(value)
+    if not (math.isfinite(v) and 0.0 < v <= 1.0):
+        raise InputError(f"penetration_factor must lie in (0, 1], got {value!r}")
+    return v, "given"
+
+
+def shape_correction(eta, xl, h, j0):
+    """Kik & Piotrowski's shape correction of one region (seed 003 eqs. 17–22) (pure kernel).
+
+    Parameters
+    ----------
+    eta, xl : ndarray, shape (n,)
+        Nodes [m] (uniform, spacing ``h``) and strip half-lengths [m].
+    j0 : int
+        Node kept in place (the geometric point of contact).
+
+    Returns
+    -------
+    eta_c, xl_c : ndarray
+        Stretched nodes and half-lengths (W_c/W across, L_c/L along; L_c W_c = L W).
+    h_c : float
+        New node spacing.
+    alpha : float
+        L_c / W_c (Hertz's a/b for A/B = (W/L)²).
+    """
+    L = 2.0 * float(np.max(xl))
+    W = xl.size * h
+    a, b, _, _ = hertz_shape((W / L) ** 2, 1.0)
+    alpha = a / b
+    sy = math.sqrt(L / (alpha * W))          # W_c / W   (eq. 19)
+    sx = 1.0 / sy                            # L_c / L   (area kept)
+    eta_c = eta[j0] + (eta - eta[j0]) * sy   # eq. (20)-(21): stretch about y0
+    return eta_c, xl * sx, h * sy, alpha
+
+
+class KikPiotrowski(VirtualPenetration, NormalMethod):
+    """Kik–Piotrowski virtual penetration as a normal method (see the module docstring).
+
+    Works on a gap h(x, y) (rolling direction x; load or approach prescribed),
+    on a Hertzian contact (its quadratic gap), and on a wheel on its rail:
+    candidate contact points are grouped by contact plane, each plane's
+    profile separation f(η) (:meth:`WheelProblem.separation`) is
+    interpenetrated by ε·dz·cos, every connected region is a patch, and the
+    vertical approach dz follows from Σ Fn cos γ = Q.
+
+    Options
+    -------
+    penetration_factor : "hertz" or float in (0, 1], default "hertz"
+        ε = δ0/δ; 0.55 gives the original method.
+    shape_correction : bool, default True
+        Kik & Piotrowski's correction of the length/width ratio (eqs. 17–22).
+    strips, cells : int, default 40, 40
+        Strips of each patch and cells per strip of the patch description
+        (the integrals use the full line resolution, 0.025 mm on a wheel).
+
+    Tangential: FASTSIM solves these patches strip by strip with one weighted
+    flexibility per patch (Kik & Piotrowski's choice; ``info["fastsim_flexibility"]``).
+
+    References
+    ----------
+    .. [1] Seed 003 §3.2, eqs. (12)–(22); Piotrowski & Kik, VSD 46 (2008).
+    """
+
+    name = "kik-piotrowski"
+    references = (
+        "J. Piotrowski, H. Chollet, Wheel-rail contact models for vehicle system dynamics "
+        "including multi-point contact, Vehicle System Dynamics 43 (2005) 455-483.",
+        "J. Piotrowski, W. Kik, A simplified model of wheel/rail contact mechanics for "
+        "non-Hertzian problems and its application in rail vehicle dynamic simulations, "
+        "Vehicle System Dynamics 46 (2008) 27-48.",
+    )
+    options = {"penetration_factor": "hertz", "shape_correction": True, "strips": 40,
+               "cells": 40}
+
+    def _solve_line(self, line, delta, opts):
+        key = ("eps", opts.get("penetration_factor", "hertz"))
+        if key not in line.extra:
+            line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
+                                                 line.A, line.B)
+        eps, how = line.extra[key]
+        correct = bool(opts.get("shape_correction", True))
+        d0 = eps * delta
+        g = d0 - line.f
+        E_star = line.extra["E_star"]
+        out = []
+        for i0, i1 in runs(g > 0):
+            if i1 - i0 < 3:
+                continue                # narrower than the line's resolution
+            gi = g[i0:i1]
+            xl = np.sqrt(gi / line.Ax[i0:i1])
+            j = int(np.argmax(gi))
+            # penetration of the region consistent with its virtual depth: g_max / ε
+            # (= δ − f_min for the region of the rigid contact point, where f_min = 0; for a
+            # separate region the load then vanishes with the region instead of jumping)
+            real = float(gi[j]) / eps
+            eta = line.eta[i0:i1]
+            h = line.h
+            alpha = None
+            if correct:
+                eta, xl, h, alpha = shape_correction(eta, xl, h, j)
+            I1, I2 = kp_integrals(xl, h, j)
+            N = math.pi * E_star * real * I1 / I2
+            p0 = N * xl[j] / I1
+            out.append(Region(slice(i0, i1), i0 + j, N, eta, xl, p0 * xl / xl[j], gi,
+                              info={"penetration_factor": eps, "factor_from": how,
+                                    "virtual_penetration": d0, "shape_correction": correct,
+                                    "alpha": alpha, "p0": p0}))
+        return out
+
+    def _patch_info(self, reg, opts):
+        return {"fastsim_flexibility": "weighted"}

@@ -1,0 +1,156 @@
+"""Ayasse & Chollet's semi-Hertzian method (STRIPES).
+
+Hertz's relations written with curvatures instead of semi-axes (seed 003
+§3.3, Table 2: λ = A/B, n/m = b/a, δ = r a0²(A+B)). The crude interpenetration
+gives b_g/a_g = √λ instead of Hertz's b/a, so the longitudinal curvature is
+compensated (eq. 23)::
+
+    A_c / A = (n/m)² / λ,     h0 = a² A_c = b² B = n² δ / (r (1 + λ))
+
+(h0/δ = b²B/δ from Hertz for the reference curvatures). Every strip i has the
+interpenetration h_i = h0 − f(y_i) and the length a_i = √(h_i / A_c) (eq. 24);
+its pressure is semi-elliptic with a peak proportional to h_i / a_i (eq. 27)::
+
+    p_i(x) = (p0 a / h0) (h_i / a_i) √(1 − x²/a_i²)
+
+where p0 a / h0 is Hertz's for λ (= (4/(3π)) (1+λ)/n³ · E*-type constant of
+eq. 27, evaluated here from the Hertz kernel), so a Hertzian gap gives
+Hertz's patch exactly. The lateral curvature B used for λ on each strip is the
+local curvature of the separation smoothed over ``smoothing`` (and kept
+positive: between close patches it is often negative, §3.3); each strip gets
+Kalker coefficients for its own n/m (eq. 25–26: flexibilities with the
+virtual semi-axis a_i/k_i = √(h0/A_c), k_i² = h_i/h0).
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.3, eqs. (23)–(27) (seed 003).
+.. [2] J.B. Ayasse, H. Chollet, Determination of the wheel rail contact patch in
+   semi-Hertzian conditions, VSD 43 (2005) 161–172.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ._base import NormalMethod
+from ._strips import Region, VirtualPenetration, hertz_shape, runs
+
+__all__ = ["Stripes", "stripes_constants"]
+
+
+def stripes_constants(A, B):
+    """(h0/δ, A_c/A, p0 a / (h0 E*)) for the curvatures A, B [1/m] (Hertz, seed 003 eq. 23)."""
+    a, b, p0, d = hertz_shape(A, B)          # unit load, E* = 1
+    h0 = b * b * B
+    return h0 / d, (b / a) ** 2 * B / A, p0 * a / h0
+
+
+def _smoothed_B(eta, f, length):
+    """Half the second derivative of f, smoothed with a Gaussian of ``length`` [m] (≥ 0 floor later)."""
+    h = eta[1] - eta[0]
+    d2 = np.gradient(np.gradient(f, h), h) * 0.5
+    if length <= 0:
+        return d2
+    sig = length / h
+    half = int(min(4 * sig, d2.size // 2))
+    if half < 1:
+        return d2
+    k = np.exp(-0.5 * (np.arange(-half, half + 1) / sig) ** 2)
+    k /= k.sum()
+    pad = np.pad(d2, half, mode="edge")
+    return np.convolve(pad, k, mode="valid")
+
+
+class Stripes(VirtualPenetration, NormalMethod):
+    """STRIPES (semi-Hertzian) as a normal method (see the module docstring).
+
+    Options
+    -------
+    smoothing : float, default 0.002
+        Length [m] of the Gaussian smoothing of the lateral curvature B(y).
+    strips, cells : int, default 40, 40
+
+    References
+    ----------
+    .. [1] Seed 003 §3.3, eqs. (23)–(27); Ayasse & Chollet (2005).
+    """
+
+    name = "stripes"
+    references = (
+        "J. Piotrowski, H. Chollet, Wheel-rail contact models for vehicle system dynamics "
+        "including multi-point contact, Vehicle System Dynamics 43 (2005) 455-483.",
+        "J.B. Ayasse, H. Chollet, Determination of the wheel rail contact patch in "
+        "semi-Hertzian conditions, Vehicle System Dynamics 43 (2005) 161-172.",
+    )
+    options = {"smoothing": 0.002, "strips": 40, "cells": 40}
+
+    def _line_data(self, line, opts):
+        key = ("stripes", opts.get("smoothing", 0.002))
+        if key not in line.extra:
+            from ..errors import InputError
+
+            A, B = line.A, line.B
+            if not (A > 0 and B > 0):
+                raise InputError(f"stripes: the curvatures at the reference point are not "
+                                 f"convex (A = {A!r}, B = {B!r} 1/m); use normal='bem'")
+            eps, comp, kp = stripes_constants(A, B)
+            Bs = _smoothed_B(line.eta, line.f, float(opts.get("smoothing", 0.002)))
+            Bs = np.maximum(Bs, 0.05 * B)       # negative between close patches: small positive
+            line.extra[key] = (eps, comp, kp, Bs)
+        return line.extra[key]
+
+    def _solve_line(self, line, delta, opts):
+        eps, comp, kp, Bs = self._line_data(line, opts)
+        h0 = eps * delta
+        hi_all = h0 - line.f
+        E_star = line.extra["E_star"]
+        out = []
+        for i0, i1 in runs(hi_all > 0):
+            if i1 - i0 < 3:
+                continue
+            hi = hi_all[i0:i1]
+            Ac = comp * line.Ax[i0:i1]
+            ai = np.sqrt(hi / Ac)                          # eq. (24)
+            peak = kp * E_star * hi / ai                   # eq. (27), Hertz constant
+            N = float(np.sum(0.5 * math.pi * ai * peak) * line.h)
+            if not N > 0:
+                continue
+            # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i)
+            lam = line.Ax[i0:i1] / Bs[i0:i1]
+            av = np.sqrt(h0 / Ac)
+            nm = np.array([_n_over_m(v) for v in _quantise(lam)])[_qindex(lam)]
+            j = int(np.argmax(hi))
+            out.append(Region(slice(i0, i1), i0 + j, N, line.eta[i0:i1], ai, peak, hi,
+                              strip_axes=(av, av * nm),
+                              info={"virtual_penetration": h0, "h0_over_delta": eps,
+                                    "A_c_over_A": comp}))
+        return out
+
+    def _patch_info(self, reg, opts):
+        return {"fastsim_flexibility": "three"}
+
+
+_NM_CACHE: dict = {}
+
+
+def _quantise(lam):
+    q = np.round(np.log(np.clip(lam, 1e-6, 1e6)) * 50.0) / 50.0
+    return np.exp(np.unique(q))
+
+
+def _qindex(lam):
+    q = np.round(np.log(np.clip(lam, 1e-6, 1e6)) * 50.0) / 50.0
+    return np.searchsorted(np.unique(q), q)
+
+
+def _n_over_m(lam):
+    """Hertz's n/m = b/a for λ = A/B (Table 2), cached on a 2 % grid of ln λ."""
+    key = round(float(lam), 12)
+    v = _NM_CACHE.get(key)
+    if v is None:
+        a, b, _, _ = hertz_shape(lam, 1.0)
+        v = b / a
+        _NM_CACHE[key] = v
+    return v

@@ -1,0 +1,54 @@
+"""Multi-Hertzian methods (seed 003 §2): kernels and the single-ellipse limit.
+
+References: on a Hertzian contact every variant is Hertz's ellipse
+(Johnson 1985 §4.2); Sauvage's subtraction of the Hertzian interpenetration
+section (seed 003 fig. 2) leaves no second ellipse on a parabolic separation
+and finds the second dip of a two-dip separation with its depth; Pascal's
+equivalent ratio is the load-weighted mean (eq. 2).
+"""
+
+import numpy as np
+import pytest
+
+import wheelrail as wr
+from wheelrail.errors import InputError
+from wheelrail.normal.multi_hertz import sauvage_ellipses
+
+
+@pytest.mark.parametrize("variant", ["pascal", "sauvage", "sauvage-half", "ayasse"])
+def test_single_contact_is_hertz(variant):
+    c = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
+    r = wr.solve(c, creepage=(1e-3, 0, 0), mu=0.3, normal="multi-hertz", variant=variant)
+    ref = wr.solve(c, creepage=(1e-3, 0, 0), mu=0.3, normal="hertz")
+    assert r.Fx == pytest.approx(ref.Fx, rel=1e-12)
+    assert r.patches[0].area == pytest.approx(float(c.area), rel=1e-12)
+
+
+def test_sauvage_kernel_parabola_gives_one_ellipse():
+    eta = np.linspace(-0.02, 0.02, 2001)
+    B = 3.0
+    f = B * eta**2
+    ell = sauvage_ellipses(eta, f, np.full_like(eta, 0.5), np.full_like(eta, B), 0.5, 1e-4)
+    assert len(ell) == 1
+    k, h, d = ell[0]
+    assert h == pytest.approx(0.5e-4, rel=1e-9) and d == pytest.approx(1e-4, rel=1e-9)
+
+
+def test_sauvage_kernel_second_dip():
+    eta = np.linspace(-0.02, 0.02, 4001)
+    B = 5.0
+    f = np.minimum(B * eta**2, 2e-5 + B * (eta - 0.012) ** 2)
+    Bx = np.full_like(eta, B)
+    ell = sauvage_ellipses(eta, f, np.full_like(eta, 0.5), Bx, 1.0, 1e-4)
+    assert len(ell) == 2
+    assert eta[ell[1][0]] == pytest.approx(0.012, abs=2e-5)
+    assert ell[1][1] == pytest.approx(1e-4 - 2e-5, rel=1e-3)
+    # h1 = δ/2 variant: the dip 2e-5 below δ/2 = 5e-5 gives a depth of 3e-5, approach 6e-5
+    ell2 = sauvage_ellipses(eta, f, np.full_like(eta, 0.5), Bx, 0.5, 1e-4)
+    assert ell2[1][2] == pytest.approx(6e-5, rel=1e-3)
+
+
+def test_bad_variant_named():
+    c = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
+    with pytest.raises(InputError, match="'kalker'"):
+        wr.solve(c, creepage=(0, 0, 0), mu=0.3, normal="multi-hertz", variant="kalker")
