@@ -181,7 +181,7 @@ def run(args, console) -> int:
     out.mkdir(parents=True, exist_ok=True)
     import csv
 
-    from .._atomic import atomic_open, atomic_path
+    from .._atomic import atomic_open
 
     keys = ["y", "method", "side", *QUANTITIES, "status"]
     with atomic_open(out / "compare.csv", "w", newline="") as fh:

@@ -193,6 +193,27 @@ class WheelProblem:
                 point=k if not isinstance(k, ContactFrame) else -1)
         return self.cache[key]
 
+    def groups(self, group_angle: float, width: float) -> list:
+        """Candidate points grouped by contact plane (indices, each group's reference first).
+
+        Points join the group of an earlier (smaller-separation) point when their
+        contact angles differ by less than ``group_angle`` [rad] and they lie within
+        0.4 ``width`` [m] of it laterally: such points share one contact plane
+        (one BEM grid, one strip line), where they interact.
+        """
+        pts = self.points
+        groups: list[list[int]] = []
+        for k in np.argsort(pts.separation, kind="stable"):
+            for g in groups:
+                r = g[0]
+                if (abs(pts.contact_angle[k] - pts.contact_angle[r]) < group_angle
+                        and abs(pts.track_y[k] - pts.track_y[r]) < 0.4 * width):
+                    g.append(int(k))
+                    break
+            else:
+                groups.append([int(k)])
+        return groups
+
     def frame_at(self, k, eta: float, weights=None, eta_samples=None,
                  angle=None) -> ContactFrame:
         """Contact frame at lateral position ``eta`` [m] of the contact plane of point ``k``

@@ -382,7 +382,6 @@ def _solve_implicit_hht(case, progress):
     R = model.geometry["r_c"]
     al = case.hht_alpha
     beta, gamma = (1 - al) ** 2 / 4, 0.5 - al
-    n = model.n_nodes
     m = model.mass * case.mass_scaling
     M_w = float(m[:model.nw].sum())
     mvec = np.concatenate([np.repeat(m, 3), [M_w]])

@@ -439,20 +439,8 @@ class VirtualPenetration:
         key = ("vp_lines", self.name, group_angle, width)
         if key in problem.cache:
             return problem.cache[key]
-        pts = problem.points
         sigma = 1.0 if problem.side == "right" else -1.0
-        sep = np.asarray(pts.separation, dtype=float)
-        order = np.argsort(sep, kind="stable")
-        groups: list[list[int]] = []
-        for k in order:
-            for g in groups:
-                r = g[0]
-                if (abs(pts.contact_angle[k] - pts.contact_angle[r]) < group_angle
-                        and abs(pts.track_y[k] - pts.track_y[r]) < 0.4 * width):
-                    g.append(int(k))
-                    break
-            else:
-                groups.append([int(k)])
+        groups = problem.groups(group_angle, width)
         rc = problem.track.curve(problem.side)
         lines = []
         for g in groups:

@@ -21,22 +21,6 @@ __all__ = ["solve_wheel"]
 _SEARCH_X = 0.03      # half-length [m] of the search box along x
 
 
-def _groups(pts, sigma, group_angle, width):
-    """Indices of candidate points per group; the first of each group is its reference."""
-    order = np.argsort(pts.separation, kind="stable")
-    groups: list[list[int]] = []
-    for k in order:
-        for g in groups:
-            r = g[0]
-            if (abs(pts.contact_angle[k] - pts.contact_angle[r]) < group_angle
-                    and abs(pts.track_y[k] - pts.track_y[r]) < 0.4 * width):
-                g.append(int(k))
-                break
-        else:
-            groups.append([int(k)])
-    return groups
-
-
 def _rigid_box_of(sep, delta, sigma, roller_radius, search):
     """Bounding box (xmin, xmax, ymin, ymax) of {h < δ} in contact-frame coordinates.
 
@@ -84,7 +68,7 @@ def _gap_function(sep, roller_radius, sigma):
 def _setups(problem, pts, sigma, cosg, dz_est, elements, element_size, margin, group_angle,
             width):
     """Grid, gap and contact reference of every group of candidate points that touches."""
-    groups = _groups(pts, sigma, group_angle, width)
+    groups = problem.groups(group_angle, width)
     setups = []
     for g in groups:
         r = g[0]
