@@ -325,7 +325,8 @@ def _solve_explicit(case, progress, output_every):
                          {"time_step": dt, "steps": n1 + n2, "stable_time_step": dt_stable})
 
 
-def _solve_implicit_qs(case, progress):
+def _implicit_start(case):
+    """Model, stiffness, the loaded static state and the time grid of an implicit run."""
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
     K = model.stiffness()
@@ -335,7 +336,11 @@ def _solve_implicit_qs(case, progress):
     speed, t_end = _speed_profile(case, travel)
     dt = case.time_step if case.time_step is not None else 0.5 * case.mesh_size / case.speed
     nsteps = int(np.ceil(t_end / dt))
-    R = model.geometry["r_c"]
+    return model, K, free, Kff, u, w, c, speed, dt, nsteps, model.geometry["r_c"]
+
+
+def _solve_implicit_qs(case, progress):
+    model, K, free, Kff, u, w, c, speed, dt, nsteps, R = _implicit_start(case)
     ft = np.zeros((model.slave.size, 3))
     psi = s = t = 0.0
     rows = []
@@ -370,16 +375,7 @@ def _solve_implicit_qs(case, progress):
 
 
 def _solve_implicit_hht(case, progress):
-    model = build_model(case, rolling=True)
-    travel = model.geometry["travel"]
-    K = model.stiffness()
-    free = free_dofs(model)
-    Kff = K[free][:, free].tocsr()
-    u, w, c, _ = static_equilibrium(model, K)
-    speed, t_end = _speed_profile(case, travel)
-    dt = case.time_step if case.time_step is not None else 0.5 * case.mesh_size / case.speed
-    nsteps = int(np.ceil(t_end / dt))
-    R = model.geometry["r_c"]
+    model, K, free, Kff, u, w, c, speed, dt, nsteps, R = _implicit_start(case)
     al = case.hht_alpha
     beta, gamma = (1 - al) ** 2 / 4, 0.5 - al
     m = model.mass * case.mass_scaling
