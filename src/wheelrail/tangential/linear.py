@@ -371,6 +371,11 @@ def linear_forces(a, b, G, nu, xi, eta, phi):
 class KalkerLinear(TangentialMethod):
     """Kalker's linear theory: creep forces proportional to the creepages.
 
+    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
+    ellipse of a Hertzian patch, otherwise the ellipse of equal area and
+    length/width ratio).
+
     **No saturation.** The forces are the small-creepage tangent of the
     creep-force law and grow without bound; they exceed the Coulomb limit μ Fn
     beyond |ξ| = (2π/3) μ p0 / (G C11) (≈ 2e-3 for steel, p0 = 1 GPa, μ = 0.3).

@@ -340,6 +340,11 @@ def table_coordinates(a, b, G, nu, xi, eta, phi, mu, Fn):
 class Table(TangentialMethod):
     """Creep forces interpolated in a table of exact-theory results (see the module docstring).
 
+    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
+    ellipse of a Hertzian patch, otherwise the ellipse of equal area and
+    length/width ratio).
+
     Options
     -------
     outside : {"raise", "exact", "fastsim"}, default "raise"
