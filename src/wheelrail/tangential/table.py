@@ -45,16 +45,15 @@ Measured on 400 random points *not* in the table, uniform in (ρ̂², θ, φ̂, 
 over the domain with loads 2–20 kN and μ 0.1–0.5 (``benchmarks/bench_sweeps.py
 --only table``; docs/sweeps.md):
 
-* against the exact solver on the table's own grid (24 elements), i.e. the
-  interpolation error: max |ΔF_t| = 2.02 % of μFn (99th percentile 1.6 %, rms 0.37 %);
-* against the exact solver at its default 40 elements: max |ΔFx| = 0.7 %,
-  max |ΔFy| = 5.4 % of μFn (rms |ΔF_t| 0.96 %), max |ΔMz| = 2.0 % of μFn c. The
-  larger maximum is the exact solver's own discretisation error in spin-dominated
-  contacts with a/b > 3 (e.g. Fy/μFn = 0.182, 0.216, 0.232 with 24, 40, 60 elements);
-  a table built with ``--elements 40`` would follow the finer solver.
+* against the exact solver at its default 40 elements, the grid the shipped
+  table was built with (so this is the interpolation error): max |ΔF_t| = 2.14 %
+  of μFn, rms 0.39 %, max |ΔFx| = 0.84 %, max |ΔMz| = 1.9 % of μFn c. (A first
+  table built with 24 elements was 2.02 % from the 24-element solver but 5.4 %
+  from the 40-element one: the exact solver's own discretisation error in
+  spin-dominated contacts with a/b > 3.)
 
-Speed: 5.7·10⁵ evaluations/s in a batch of 10⁵ (FASTSIM 20×20: 4.1·10⁵/s; the
-exact solver with 40 elements: 29/s), i.e. about 2·10⁴ times the exact solver.
+Speed: 9.4·10⁵ evaluations/s in a batch of 10⁵ (FASTSIM 20×20: 6.5·10⁵/s; the
+exact solver with 40 elements: 47/s), i.e. about 2·10⁴ times the exact solver.
 
 Outside the domain (|φ̂| > 4, a/b outside [0.2, 5], ν outside [0.25, 0.30],
 or dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
@@ -169,7 +168,7 @@ def _full_slip_plane(grid):
     return np.stack([-np.cos(alpha), -np.sin(alpha), np.zeros_like(alpha)], axis=-1)
 
 
-def build_table(out=DEFAULT_TABLE, *, elements=24, workers=2, work=None, executor=None,
+def build_table(out=DEFAULT_TABLE, *, elements=40, workers=2, work=None, executor=None,
                 progress=True, grid=None) -> Path:
     """Compute the table with the exact solver (a resumable :func:`wheelrail.sweep`) and save it.
 
@@ -448,7 +447,7 @@ def _main(argv=None) -> int:
                                 description="Build the creep-force table with the exact solver.")
     p.add_argument("--build", action="store_true", help="compute and write the table")
     p.add_argument("--out", default=str(DEFAULT_TABLE), help="output .npz (default: shipped file)")
-    p.add_argument("--elements", type=int, default=24, help="exact-solver elements (default 24)")
+    p.add_argument("--elements", type=int, default=40, help="exact-solver elements (default 40)")
     p.add_argument("--workers", type=int, default=2, help="local workers (default 2)")
     p.add_argument("--executor", default=None, help="serial, processes or dask")
     p.add_argument("--work", default=None, help="Zarr work store (default: <out>.zarr); an "
