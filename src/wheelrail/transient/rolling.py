@@ -55,6 +55,7 @@ from ..halfspace.influence import influence_kernel, kernel_offsets, rectangle_in
 from ..halfspace.tangential import _BlockConvolution, newton_step
 from ..materials import as_material_pair
 from ..normal.bem import hertz_grid, solve_normal
+from .regularised import dense_block, regularised_step
 
 __all__ = ["TransientResult", "transient_rolling"]
 
@@ -202,10 +203,14 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     tangential_force : float or callable, optional
         F1(x) [N] on the wheel (Kalker's convention: positive creepage gives a
         negative force); ξ becomes the unknown of each step.
-    friction : {"exact"}
-        Coulomb's law with the adhesion/slip split (seed eq. 2.20).
+    friction : {"exact", "regularised"}
+        ``"exact"``: Coulomb's law with the adhesion/slip split (seed eq. 2.20),
+        active-set Newton; ``"regularised"``: the smooth law of eq. (2.21)
+        solved by Newton–Raphson (eq. 2.22), dense over the contact elements
+        (:mod:`wheelrail.transient.regularised`); its ``n_slip`` counts
+        elements with ``|s| > ε``.
     epsilon : float, optional
-        Regularisation width of ``friction="regularised"`` (not available yet).
+        Regularisation slip ε [-] (slip velocity / V) of ``"regularised"``, > 0.
     elements : int
         Elements across 2a (and 2b) of the contact at the first step; the
         grid is fixed to the contact and keeps its size.
@@ -238,13 +243,16 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     ----------
     Seed 001 eqs. (2.8)–(2.13), (2.19)–(2.20); Kalker (1990) §5.2.
     """
-    if friction != "exact":
-        if friction in ("regularised", "regularized"):
-            if epsilon is not None and not float(epsilon) > 0:
-                raise InputError(f"epsilon must be > 0, got {epsilon!r}")
-            raise InputError("friction='regularised' (seed eq. 2.21) is not implemented yet; "
-                             "use friction='exact'")
-        raise InputError(f"friction must be 'exact', got {friction!r}")
+    if friction == "regularized":
+        friction = "regularised"
+    if friction == "regularised":
+        if epsilon is None:
+            raise InputError("friction='regularised' needs epsilon= (regularisation slip, > 0)")
+        epsilon = float(as_float_array("epsilon", epsilon))
+        if not epsilon > 0:
+            raise InputError(f"epsilon must be > 0, got {epsilon!r}")
+    elif friction != "exact":
+        raise InputError(f"friction must be 'exact' or 'regularised', got {friction!r}")
     pair = as_material_pair(contact.materials)
     mu = float(positive("mu", mu))
     travel = float(positive("travel", travel))
@@ -308,11 +316,24 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     p = np.zeros((2,) + nxy)
     total_newton = total_krylov = total_solves = 0
 
+    dense_cache = {}
+
+    def dense_for(mask):
+        key = mask.tobytes()
+        if key not in dense_cache:
+            dense_cache.clear()
+            ii, jj = np.nonzero(mask)
+            dense_cache[key] = dense_block(K_now, ii, jj)
+        return dense_cache[key]
+
     def record(k, x, pn, p, s, nsol, xi, eta, phi):
         g = mu * pn
         contact_ = pn > 0
         norm = np.hypot(p[0], p[1])
-        slip = contact_ & (norm >= g * (1 - 1e-9)) & (np.hypot(s[0], s[1]) > 0)
+        if friction == "regularised":  # no sharp split: slip where |s| > ε (|p| > g/2)
+            slip = contact_ & (np.hypot(s[0], s[1]) > epsilon)
+        else:
+            slip = contact_ & (norm >= g * (1 - 1e-9)) & (np.hypot(s[0], s[1]) > 0)
         hist["xi"][k], hist["eta"][k], hist["phi"][k] = xi, eta, phi
         hist["Fn"][k] = float(pn.sum() * dA)
         hist["Fx"][k] = float(p[0].sum() * dA)
@@ -356,6 +377,17 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                 nonlocal total_newton, total_krylov, total_solves
                 b = base.copy()
                 b[0] += xi
+                if friction == "regularised":
+                    mask = g > 0
+                    Kd = dense_for(mask)
+                    pp = np.zeros((2,) + nxy)
+                    qc, sc, its = regularised_step(Kd, b[:, mask], g[mask], epsilon,
+                                                   p0[:, mask], tol=tol, maxiter=maxiter)
+                    pp[:, mask] = qc
+                    ss = b + conv_now(pp)
+                    total_newton += its
+                    total_solves += 1
+                    return pp, ss
                 pp, ss, its, res, kry = newton_step(K_now, b, g, conv=conv_now, initial=p0,
                                                     tol=tol, maxiter=maxiter, upwind=False)
                 total_newton += its
@@ -395,6 +427,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     xs.setflags(write=False)
     info = {"step": h, "mu": mu, "elements": elements, "nx": grid.nx, "ny": grid.ny,
             "dx": grid.dx, "dy": grid.dy, "a": a, "b": float(contact.b), "friction": friction,
+            "epsilon": float(epsilon) if epsilon is not None else float("nan"),
             "newton": total_newton, "krylov": total_krylov, "solves": total_solves,
             "control": "force" if F1 is not None else "creepage"}
     return TransientResult(x=xs, history=hist, grid=grid, frame_x=frame_x, px=store["px"],

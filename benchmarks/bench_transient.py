@@ -1,0 +1,65 @@
+"""Benchmark: transient rolling, seed 001 §3.1 "Cattaneo to Carter".
+
+Table 1 of the seed: wheel radius 0.5 m, wheel profile radius 0.409 m
+(concave), rail crown radius 0.3 m, steel, μ = 0.4, F3 = 10 kN, F1 = 2 kN
+applied at once, V·Δt = 0.05 mm, 30 elements over 2a, 1801 steps (90 mm).
+
+Prints the grid, the wall time (total and per step), solver counts, the final
+creepage against the steady exact solver on the same grid (force found by
+brentq on ``solve_rolling``), the overshoot of the creepage and the travel
+after which it stays within 1 % of its final value. Also the machine load.
+
+Run:  .venv/bin/python benchmarks/bench_transient.py [ELEMENTS] [STEPS]
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import time
+
+import numpy as np
+from scipy.optimize import brentq
+
+import wheelrail as wr
+from wheelrail.halfspace.tangential import solve_rolling
+from wheelrail.normal.bem import hertz_grid, solve_normal
+
+
+def main(elements=30, steps=1801, h=5e-5):
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    wr.transient_rolling(hc, travel=4e-4, step=2e-4, mu=0.4, tangential_force=2000.0,
+                         elements=6)  # warm-up (numba cache)
+    print(f"load (uptime): {os.getloadavg()}")
+    print(f"a = {hc.a * 1e3:.3f} mm, b = {hc.b * 1e3:.3f} mm; elements over 2a = {elements}, "
+          f"V*dt = {h * 1e3:.3f} mm, steps = {steps}")
+    t0 = time.perf_counter()
+    res = wr.transient_rolling(hc, travel=(steps - 1) * h, step=h, mu=0.4,
+                               tangential_force=2000.0, elements=elements, frames=20)
+    wall = time.perf_counter() - t0
+    info = res.info
+    print(f"grid {info['nx']}x{info['ny']}, dx = {info['dx'] * 1e3:.4f} mm: total {wall:.2f} s, "
+          f"{wall / (steps - 1) * 1e3:.2f} ms/step; tangential solves {info['solves']}, "
+          f"Newton {info['newton']}, GMRES {info['krylov']}")
+    grid, gap = hertz_grid(hc, elements=elements)
+    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0, 0), mu=0.4,
+                                            tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
+    xi = res.xi
+    final = xi[-1]
+    a = float(hc.a)
+    body = xi[2:]  # the first step is the Cattaneo shift (xi = shift / h)
+    k = int(np.argmax(np.abs(body))) + 2
+    outside = np.nonzero(np.abs(xi - final) > 0.01 * abs(final))[0]
+    settle = res.x[outside[-1] + 1] if outside.size else 0.0
+    print(f"final xi = {final:.6e}; steady exact (same grid, dx = {grid.dx * 1e3:.4f} mm) "
+          f"{xi_st:.6e}: difference {100 * (final / xi_st - 1):+.2f} %")
+    print(f"peak |xi| after the first step {xi[k]:.6e} at x = {res.x[k] * 1e3:.2f} mm "
+          f"(overshoot {100 * (abs(xi[k]) / abs(final) - 1):.2f} %); within 1 % of final from "
+          f"x = {settle * 1e3:.2f} mm = {settle / a:.2f} a")
+    print(f"slip elements at the end {int(res.n_slip[-1])} of {int(res.n_contact[-1])}")
+
+
+if __name__ == "__main__":
+    args = [int(v) for v in sys.argv[1:]]
+    main(*args)
