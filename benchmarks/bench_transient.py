@@ -22,7 +22,9 @@ import numpy as np
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import solve_rolling
+from wheelrail.halfspace.influence import influence_kernel
+from wheelrail.halfspace.tangential import newton_step, solve_rolling
+from wheelrail.transient.rolling import shifted_influence_kernel
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 
@@ -45,6 +47,18 @@ def main(elements=30, steps=1801, h=5e-5):
     pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0, 0), mu=0.4,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
+    # steady fixed point of the same time step h (kernel (C − C_h)/h)
+    M = (influence_kernel(grid, wr.STEEL)[:2, :2]
+         - shifted_influence_kernel(grid, wr.STEEL, h)[:2, :2]) / h
+
+    def fx(xi):
+        b = np.zeros((2,) + grid.shape)
+        b[0] = xi
+        return newton_step(M, b, 0.4 * pn, tol=1e-10)[0][0].sum() * grid.element_area - 2000.0
+
+    xi_h = brentq(fx, -3e-3, -1e-5, xtol=1e-13)
+    print(f"steady fixed point with the same V*dt: {xi_h:.6e}: difference "
+          f"{100 * (res.xi[-1] / xi_h - 1):+.4f} %")
     xi = res.xi
     final = xi[-1]
     a = float(hc.a)
@@ -57,6 +71,13 @@ def main(elements=30, steps=1801, h=5e-5):
     print(f"peak |xi| after the first step {xi[k]:.6e} at x = {res.x[k] * 1e3:.2f} mm "
           f"(overshoot {100 * (abs(xi[k]) / abs(final) - 1):.2f} %); within 1 % of final from "
           f"x = {settle * 1e3:.2f} mm = {settle / a:.2f} a")
+    for n2 in (45, 60):
+        g2, gap2 = hertz_grid(hc, elements=n2)
+        pn2 = solve_normal(g2, gap2, wr.STEEL, load=10e3).pressure
+        x2 = brentq(lambda xi: solve_rolling(g2, pn2, wr.STEEL, (xi, 0, 0), mu=0.4,
+                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
+        print(f"steady exact solver on {n2} elements: xi = {x2:.6e} (transient-30 differs "
+              f"{100 * (final / x2 - 1):+.2f} %)")
     print(f"slip elements at the end {int(res.n_slip[-1])} of {int(res.n_contact[-1])}")
 
 

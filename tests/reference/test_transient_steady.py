@@ -12,7 +12,9 @@ import pytest
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import solve_rolling, solve_shift
+from wheelrail.halfspace.influence import influence_kernel
+from wheelrail.halfspace.tangential import newton_step, solve_rolling, solve_shift
+from wheelrail.transient.rolling import shifted_influence_kernel
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 MU = 0.4
@@ -70,7 +72,30 @@ def test_cattaneo_to_carter_final_creepage(table1):
     assert res.xi[-1] == pytest.approx(xi_steady, rel=0.01)
     # Kalker's convention: a positive force on the wheel needs a negative creepage
     assert xi_steady < 0
-    # a finer time step (V·Δt = dx/2) converges to nearly the same steady state
-    res2 = wr.transient_rolling(table1, travel=12 * float(table1.a), step=grid.dx / 2, mu=MU,
-                                tangential_force=2000.0, elements=n)
-    assert res2.xi[-1] == pytest.approx(xi_steady, rel=0.05)
+
+
+def test_any_time_step_ends_on_its_steady_fixed_point(table1):
+    """V·Δt = dx/2: the run ends on the steady problem with kernel (C − C_h)/h (measured 4e-6).
+
+    That steady problem is solved independently (``newton_step`` + brentq on
+    the force); it differs from ``solve_rolling`` (h = dx) by the O(h)
+    discretisation of the time derivative.
+    """
+    n = 10
+    grid, gap = hertz_grid(table1, elements=n)
+    h = grid.dx / 2
+    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    M = (influence_kernel(grid, wr.STEEL)[:2, :2]
+         - shifted_influence_kernel(grid, wr.STEEL, h)[:2, :2]) / h
+
+    def fx(xi):
+        b = np.zeros((2,) + grid.shape)
+        b[0] = xi
+        p, _, _, res, _ = newton_step(M, b, MU * pn, tol=1e-10)
+        assert res <= 1e-10
+        return p[0].sum() * grid.element_area - 2000.0
+
+    xi_h = brentq(fx, -3e-3, -1e-5, xtol=1e-13)
+    res = wr.transient_rolling(table1, travel=16 * float(table1.a), step=h, mu=MU,
+                               tangential_force=2000.0, elements=n)
+    assert res.xi[-1] == pytest.approx(xi_h, rel=1e-4)
