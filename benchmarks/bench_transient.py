@@ -81,6 +81,56 @@ def main(elements=30, steps=1801, h=5e-5):
     print(f"slip elements at the end {int(res.n_slip[-1])} of {int(res.n_contact[-1])}")
 
 
+def _leading_slip(state):
+    """Rows (along y) whose leading contact element slips with adhesion behind it; max depth."""
+    rows = depth = 0
+    for col in np.asarray(state).T:
+        idx = np.nonzero(col)[0]
+        if idx.size < 3:
+            continue
+        d = 0
+        for i in idx[::-1]:
+            if col[i] != 2:
+                break
+            d += 1
+        if 0 < d < idx.size and np.any(col[idx[: idx.size - d]] == 1):
+            rows += 1
+            depth = max(depth, d)
+    return rows, depth
+
+
+def varying_loads(elements=15):
+    """Seed §3.2 (F3 sinusoidal) and §3.3 (F1 sinusoidal), three wavelengths, V·Δt = dx/2."""
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    grid, _ = hertz_grid(hc, elements=elements)
+    h = grid.dx / 2
+    print(f"\n§3.2/§3.3 on {elements} elements over 2a, V*dt = {h * 1e3:.4f} mm, 4 wavelengths; "
+          "statistics over the last 3")
+    for lam in (12.5e-3, 7.1e-3, 5e-3):
+        t0 = time.perf_counter()
+        r = wr.transient_rolling(
+            hc, travel=4 * lam, step=h, mu=0.4, tangential_force=2000.0, elements=elements,
+            normal_force=lambda x: 10e3 + 4.5e3 * np.sin(2 * np.pi * x / lam), frames=10**6)
+        m = r.x >= lam
+        lead = [(_leading_slip(r.state[k]), r.frame_x[k]) for k in range(len(r.frame_x))
+                if r.frame_x[k] >= lam]
+        (rows, depth), xl = max(lead, key=lambda v: v[0])
+        print(f"§3.2 lambda = {lam * 1e3:4.1f} mm: xi in [{r.xi[m].min():.3e}, {r.xi[m].max():.3e}]"
+              f"; isolated leading-edge slip: up to {rows} rows, depth {depth} elements "
+              f"(at x = {xl * 1e3:.2f} mm); {time.perf_counter() - t0:.1f} s")
+        F1 = lambda x: 2000.0 + 1000.0 * np.sin(2 * np.pi * x / lam)  # noqa: E731
+        r = wr.transient_rolling(hc, travel=4 * lam, step=h, mu=0.4, tangential_force=F1,
+                                 elements=elements, frames=10**6)
+        m = r.x >= lam
+        same = np.mean(np.sign(r.xi[m]) == np.sign(F1(r.x[m])))
+        rev = max(int(np.sum((r.state[k] == 2) & (r.px[k] < 0))) for k in np.nonzero(
+            r.frame_x >= lam)[0])
+        print(f"§3.3 lambda = {lam * 1e3:4.1f} mm: xi in [{r.xi[m].min():.3e}, {r.xi[m].max():.3e}]"
+              f"; xi and F1 of the same sign over {100 * same:.1f} % of the travel; "
+              f"reverse-slip elements (px < 0) up to {rev}")
+
+
 if __name__ == "__main__":
     args = [int(v) for v in sys.argv[1:]]
     main(*args)
+    varying_loads()
