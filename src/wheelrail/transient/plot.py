@@ -13,7 +13,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..plotting._common import finish, new_figure
+
+def new_figure(*args, **kwargs):
+    from ..plotting._common import new_figure as _new  # plotting is a leaf: import lazily
+
+    return _new(*args, **kwargs)
+
+
+def finish(*args, **kwargs):
+    from ..plotting._common import finish as _finish
+
+    return _finish(*args, **kwargs)
 
 __all__ = ["plot_creepage", "plot_centreline", "plot_state"]
 
