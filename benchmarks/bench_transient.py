@@ -78,6 +78,9 @@ def main(elements=30, steps=1801, h=5e-5):
                                              tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
         print(f"steady exact solver on {n2} elements: xi = {x2:.6e} (transient-30 differs "
               f"{100 * (final / x2 - 1):+.2f} %)")
+    xi_fs = brentq(lambda xi: float(wr.creep_forces(hc, (xi, 0, 0), 0.4, method="fastsim").Fx)
+                   - 2000.0, -3e-3, -1e-6, xtol=1e-12)
+    print(f"FASTSIM: xi = {xi_fs:.6e} (transient-30 differs {100 * (final / xi_fs - 1):+.2f} %)")
     print(f"slip elements at the end {int(res.n_slip[-1])} of {int(res.n_contact[-1])}")
 
 
