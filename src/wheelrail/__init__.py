@@ -26,6 +26,7 @@ __version__ = "0.1.0"
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {
+    "transient_rolling": ("wheelrail.transient", "transient_rolling"),
     "kalker_coefficients": ("wheelrail.tangential.linear", "kalker_coefficients"),
     "load_case": ("wheelrail.casefile", "load_case"),
     "run_case": ("wheelrail.casefile", "run_case"),

@@ -100,6 +100,7 @@ __all__ = [
     "rolling_kernel",
     "solve_rolling",
     "solve_shift",
+    "newton_step",
 ]
 
 
@@ -661,6 +662,60 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov
 
 
+def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100, upwind=True):
+    """One frictional step on a grid: the shared core of steady and transient rolling.
+
+    Solves the discrete Coulomb problem ``s = b + K p`` with the traction bound
+    ``g`` by the active-set semismooth Newton–GMRES method of the module
+    docstring. Steady rolling (:func:`solve_rolling`) calls it once with the
+    rolling kernel ``M``; the transient stepper
+    (:func:`wheelrail.transient.transient_rolling`) calls it once per time step
+    with ``K = C / (V Δt)`` and the displacement carried from the previous step
+    in ``b`` (seed 001, eq. 2.19).
+
+    Parameters
+    ----------
+    kernel : ndarray, shape (2, 2, 2nx−1, 2ny−1)
+        Slip per unit traction [1/Pa] (offset layout of
+        :func:`~wheelrail.halfspace.influence.influence_kernel`).
+    b : ndarray, shape (2, nx, ny)
+        Slip at zero traction (rigid slip plus carried displacement) [-].
+    g : ndarray, shape (nx, ny)
+        Traction bound μ·pn [Pa]; zero outside the contact.
+    conv : callable, optional
+        ``p (2, nx, ny) -> K p (2, nx, ny)``; built from ``kernel`` if omitted.
+    initial : ndarray, shape (2, nx, ny), optional
+        Starting tractions [Pa] (e.g. the previous time step).
+    tol : float
+        Residual of the slip equations relative to ``max |b|``.
+    maxiter : int
+        Largest number of Newton iterations.
+    upwind : bool
+        Precondition with the upstream neighbour (rolling kernels) or the
+        element itself only.
+
+    Returns
+    -------
+    p : ndarray, shape (2, nx, ny)
+        Tractions on the wheel [Pa].
+    s : ndarray, shape (2, nx, ny)
+        Slip ``b + K p`` [-].
+    iterations : int
+        Newton iterations.
+    residual : float
+        Final scaled residual (``<= tol`` when converged).
+    krylov : int
+        GMRES iterations in total.
+
+    References
+    ----------
+    Zhao, Vollebregt & Oosterlee (2015); seed 001 eqs. (2.19)–(2.20).
+    """
+    if conv is None:
+        conv = _BlockConvolution(kernel)
+    return _newton(kernel, conv, b, g, initial, tol, maxiter, upwind=upwind)
+
+
 def _check_problem(grid, pressure, mu):
     if not isinstance(grid, Grid):
         raise InputError(f"grid must be a wheelrail.halfspace.Grid, got {type(grid).__name__}")
@@ -787,7 +842,8 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
     if solver != "newton":
         raise InputError(f"solver must be 'newton' for steady rolling, got {solver!r} "
                          "(Gauss–Seidel is available for the shift problem only)")
-    p, s, its, res, krylov = _newton(R[:2, :2], conv, b, g, initial, tol, maxiter)
+    p, s, its, res, krylov = newton_step(R[:2, :2], b, g, conv=conv, initial=initial, tol=tol,
+                                         maxiter=maxiter)
     info = {"solver": "newton", "krylov_iterations": krylov}
     u = conv_u(np.concatenate((p, pressure[None])))
     return _finish(grid, pressure, p, s, u, mu, "rolling", (xi, eta, phi), its, res, tol,
