@@ -46,20 +46,26 @@ def available_methods() -> list[str]:
     return list(METHODS)
 
 
-def get_method(method) -> TangentialMethod:
-    """Resolve ``method`` (name, class or instance) to a :class:`TangentialMethod` instance."""
-    if isinstance(method, TangentialMethod):
+def _resolve(method, base, key, registry, what, argname):
+    """An instance of ``base`` from a name (looked up with ``key`` in ``registry``), a
+    subclass or an instance; the one resolver of both method families."""
+    if isinstance(method, base):
         return method
-    if isinstance(method, type) and issubclass(method, TangentialMethod):
+    if isinstance(method, type) and issubclass(method, base):
         return method()
     if not isinstance(method, str):
-        raise InputError(f"method must be a name or a TangentialMethod, got {method!r}")
-    key = method_key(method)
-    if key is None:
-        raise InputError(f"unknown creep-force method {method!r}; choose one of "
-                         + ", ".join(METHODS))
-    module, cls = METHODS[key].split(":")
+        raise InputError(f"{argname} must be a name or a {base.__name__}, got {method!r}")
+    name = key(method)
+    if name is None:
+        raise InputError(f"unknown {what} {method!r}; choose one of " + ", ".join(registry))
+    module, cls = registry[name].split(":")
     return getattr(importlib.import_module(module), cls)()
+
+
+def get_method(method) -> TangentialMethod:
+    """Resolve ``method`` (name, class or instance) to a :class:`TangentialMethod` instance."""
+    return _resolve(method, TangentialMethod, method_key, METHODS, "creep-force method",
+                    "method")
 
 
 def as_creepage(creepage):
@@ -189,18 +195,10 @@ def get_normal_method(method):
     """Resolve ``method`` (name, class or instance) to a :class:`~wheelrail.normal.NormalMethod`."""
     from .normal._base import NormalMethod
 
-    if isinstance(method, NormalMethod):
-        return method
-    if isinstance(method, type) and issubclass(method, NormalMethod):
-        return method()
-    if not isinstance(method, str):
-        raise InputError(f"normal must be a name or a NormalMethod, got {method!r}")
-    key = method.lower()
-    if key not in NORMAL_METHODS:
-        raise InputError(f"unknown normal method {method!r}; choose one of "
-                         + ", ".join(NORMAL_METHODS))
-    module, cls = NORMAL_METHODS[key].split(":")
-    return getattr(importlib.import_module(module), cls)()
+    def key(name):
+        return name.lower() if name.lower() in NORMAL_METHODS else None
+
+    return _resolve(method, NormalMethod, key, NORMAL_METHODS, "normal method", "normal")
 
 
 def _split_options(nimpl, timpl, options):
