@@ -15,9 +15,9 @@ from .fft import ConvolutionOperator, InfluenceOperator
 from .grid import Grid
 from .influence import influence_kernel, point_influence, rectangle_influence
 from .subsurface import SubsurfaceStresses, subsurface_stresses
-from .tangential import TangentialSolution, solve_rolling, solve_shift
+from .tangential import TangentialSolution, newton_step, solve_rolling, solve_shift
 
 __all__ = ["Grid", "influence_kernel", "point_influence", "rectangle_influence",
            "ConvolutionOperator", "InfluenceOperator",
-           "solve_rolling", "solve_shift", "TangentialSolution",
+           "solve_rolling", "solve_shift", "newton_step", "TangentialSolution",
            "subsurface_stresses", "SubsurfaceStresses"]
