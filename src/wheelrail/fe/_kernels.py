@@ -61,6 +61,28 @@ def hourglass_vectors(x: np.ndarray, dNdx0: np.ndarray) -> np.ndarray:
     return 0.125 * (HG[None] - np.einsum("ekj,eaj->eka", hx, dNdx0))
 
 
+@njit(cache=True, inline="always")
+def _strain_stress(dNdx, e, g, ue, lam, mu):
+    """Engineering strains (exx, eyy, ezz, gxy, gyz, gxz) and stresses (sxx, …, sxz) [Pa]
+    at integration point g of element e from its nodal displacements ue (8, 3), linear
+    elasticity σ = λ tr ε I + 2μ ε (shared by the force and the stress kernels)."""
+    exx = eyy = ezz = gxy = gyz = gxz = 0.0
+    for a in range(8):
+        bx = dNdx[e, g, a, 0]
+        by = dNdx[e, g, a, 1]
+        bz = dNdx[e, g, a, 2]
+        exx += bx * ue[a, 0]
+        eyy += by * ue[a, 1]
+        ezz += bz * ue[a, 2]
+        gxy += by * ue[a, 0] + bx * ue[a, 1]
+        gyz += bz * ue[a, 1] + by * ue[a, 2]
+        gxz += bz * ue[a, 0] + bx * ue[a, 2]
+    tr = lam * (exx + eyy + ezz)
+    return (exx, eyy, ezz, gxy, gyz, gxz,
+            tr + 2 * mu * exx, tr + 2 * mu * eyy, tr + 2 * mu * ezz,
+            mu * gxy, mu * gyz, mu * gxz)
+
+
 @njit(cache=True)
 def internal_force(u, conn, dNdx, wdet, lam, mu, gamma, khg, f):
     """f += ∫ Bᵀσ dV (+ hourglass forces), σ = λ tr ε I + 2μ ε; returns the strain energy.
@@ -80,24 +102,8 @@ def internal_force(u, conn, dNdx, wdet, lam, mu, gamma, khg, f):
             ue[a, 1] = u[n, 1]
             ue[a, 2] = u[n, 2]
         for g in range(ng):
-            exx = eyy = ezz = gxy = gyz = gxz = 0.0
-            for a in range(8):
-                bx = dNdx[e, g, a, 0]
-                by = dNdx[e, g, a, 1]
-                bz = dNdx[e, g, a, 2]
-                exx += bx * ue[a, 0]
-                eyy += by * ue[a, 1]
-                ezz += bz * ue[a, 2]
-                gxy += by * ue[a, 0] + bx * ue[a, 1]
-                gyz += bz * ue[a, 1] + by * ue[a, 2]
-                gxz += bz * ue[a, 0] + bx * ue[a, 2]
-            tr = lam * (exx + eyy + ezz)
-            sxx = tr + 2 * mu * exx
-            syy = tr + 2 * mu * eyy
-            szz = tr + 2 * mu * ezz
-            sxy = mu * gxy
-            syz = mu * gyz
-            sxz = mu * gxz
+            (exx, eyy, ezz, gxy, gyz, gxz,
+             sxx, syy, szz, sxy, syz, sxz) = _strain_stress(dNdx, e, g, ue, lam, mu)
             w = wdet[e, g]
             energy += 0.5 * w * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz
                                  + sxz * gxz)
@@ -182,28 +188,16 @@ def element_von_mises(u, conn, dNdx, lam, mu, out):
     """Von Mises stress [Pa] at the element centre (mean over integration points)."""
     ne = conn.shape[0]
     ng = dNdx.shape[1]
+    ue = np.empty((8, 3))
     for e in range(ne):
+        for a in range(8):
+            n = conn[e, a]
+            ue[a, 0] = u[n, 0]
+            ue[a, 1] = u[n, 1]
+            ue[a, 2] = u[n, 2]
         acc = 0.0
         for g in range(ng):
-            exx = eyy = ezz = gxy = gyz = gxz = 0.0
-            for a in range(8):
-                n = conn[e, a]
-                bx = dNdx[e, g, a, 0]
-                by = dNdx[e, g, a, 1]
-                bz = dNdx[e, g, a, 2]
-                exx += bx * u[n, 0]
-                eyy += by * u[n, 1]
-                ezz += bz * u[n, 2]
-                gxy += by * u[n, 0] + bx * u[n, 1]
-                gyz += bz * u[n, 1] + by * u[n, 2]
-                gxz += bz * u[n, 0] + bx * u[n, 2]
-            tr = lam * (exx + eyy + ezz)
-            sxx = tr + 2 * mu * exx
-            syy = tr + 2 * mu * eyy
-            szz = tr + 2 * mu * ezz
-            sxy = mu * gxy
-            syz = mu * gyz
-            sxz = mu * gxz
+            sxx, syy, szz, sxy, syz, sxz = _strain_stress(dNdx, e, g, ue, lam, mu)[6:]
             acc += np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
                            + 3.0 * (sxy ** 2 + syz ** 2 + sxz ** 2))
         out[e] = acc / ng
@@ -259,7 +253,6 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
     nx = x_ref.shape[0]
     ny = y_ref.shape[0]
     c = np.empty((4, 3))
-    p = np.empty(3)
     q = np.empty(3)
     dq = np.empty(3)
     for s in range(ns):
