@@ -14,31 +14,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError, WheelrailError
-from ..normal.hertz import hertz_from_penetration, hertz_kernel
+from ..normal.hertz import _vertical_approach, hertz_from_penetration, hertz_kernel
 
 __all__ = ["hertz_sweep"]
 
 _SIDES = ("left", "right")
 _SIGMA = {"left": -1.0, "right": 1.0}
 _TOL = 1e-5      # relative tolerance on the total vertical force (as solve_wheelrail)
-
-
-def _vertical_approach_rows(Q, sep, cosg, d1, valid):
-    """Per-row dz with Σ_k cos γ ((dz cos γ − s)_+ / δ1)^{3/2} = Q (Newton from above)."""
-    big = np.where(valid, sep / cosg, np.inf)
-    k = np.argmin(big, axis=1)
-    r = np.arange(sep.shape[0])
-    dz = (sep[r, k] + d1[r, k] * (Q / cosg[r, k]) ** (2.0 / 3.0)) / cosg[r, k]
-    for _ in range(60):
-        pen = np.where(valid, np.clip(dz[:, None] * cosg - sep, 0.0, None), 0.0)
-        N = (pen / d1) ** 1.5
-        F = np.sum(N * cosg, axis=1) - Q
-        dF = np.sum(1.5 * np.sqrt(pen / d1) / d1 * cosg * cosg, axis=1)
-        step = np.where(dF > 0, F / np.where(dF > 0, dF, 1.0), 0.0)
-        dz = dz - step
-        if np.all(np.abs(F) <= 1e-12 * Q):
-            break
-    return dz
 
 
 def _regularised_B_rows(ws, tr, side, data, pose_y, zc, roll, yaw):
@@ -146,7 +128,7 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
         history = []
         for outer in range(12):
             if Qn is not None:
-                dz = _vertical_approach_rows(Qn, sep, cosg, d1, convex)
+                dz = _vertical_approach(Qn, sep, cosg, d1, convex)
             pen = np.where(valid, np.clip(dz[:, None] * cosg - sep, 0.0, None), 0.0)
             act = pen > 0
             bad = act & ~convex

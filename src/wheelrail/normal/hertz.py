@@ -486,24 +486,31 @@ def hertz_coefficients(theta_deg):
 
 
 # --------------------------------------------------------------------------- normal method
-def _vertical_approach(Q, sep, cosg, d1):
+def _vertical_approach(Q, sep, cosg, d1, valid=None):
     """Vertical approach dz with Σ cos γ_k ((dz cos γ_k − s_k)_+ / δ1_k)^{3/2} = Q (pure kernel).
 
     Newton from above on the convex, increasing left-hand side (monotone
-    convergence). ``sep``, ``cosg``, ``d1`` have shape (npt,); ``d1`` is the
-    Hertz approach under unit load of each point [m/N^(2/3)].
+    convergence), started where the point of smallest s_k/cos γ_k alone
+    carries Q. ``sep``, ``cosg``, ``d1`` have shape (k,) for one wheel or
+    (n, k) for n wheels at once (``Q`` then a scalar or shape (n,), ``valid``
+    masking padded points); ``d1`` is the Hertz approach under unit load of
+    each point [m/N^(2/3)]. Returns a float, or shape (n,).
     """
-    k = int(np.argmin(sep / cosg))
-    dz = (sep[k] + d1[k] * (Q / cosg[k]) ** (2.0 / 3.0)) / cosg[k]
+    single = np.ndim(sep) == 1
+    sep, cosg, d1 = (np.atleast_2d(np.asarray(v, dtype=float)) for v in (sep, cosg, d1))
+    valid = np.ones(sep.shape, bool) if valid is None else np.atleast_2d(valid)
+    Q = np.broadcast_to(np.asarray(Q, dtype=float), sep.shape[:1])
+    r = np.arange(sep.shape[0])
+    k = np.argmin(np.where(valid, sep / cosg, np.inf), axis=1)
+    dz = (sep[r, k] + d1[r, k] * (Q / cosg[r, k]) ** (2.0 / 3.0)) / cosg[r, k]
     for _ in range(100):
-        pen = np.clip(dz * cosg - sep, 0.0, None)
-        N = (pen / d1) ** 1.5
-        F = float(np.sum(N * cosg)) - Q
-        dF = float(np.sum(1.5 * np.sqrt(pen / d1) / d1 * cosg * cosg))
-        if abs(F) <= 1e-12 * Q or dF <= 0:
+        pen = np.where(valid, np.clip(dz[:, None] * cosg - sep, 0.0, None), 0.0)
+        F = np.sum((pen / d1) ** 1.5 * cosg, axis=1) - Q
+        dF = np.sum(1.5 * np.sqrt(pen / d1) / d1 * cosg * cosg, axis=1)
+        dz = dz - np.where(dF > 0, F / np.where(dF > 0, dF, 1.0), 0.0)
+        if np.all(np.abs(F) <= 1e-12 * Q):
             break
-        dz -= F / dF
-    return dz
+    return float(dz[0]) if single else dz
 
 
 def _check_on_rail(problem, k, b):
