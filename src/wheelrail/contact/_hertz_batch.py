@@ -47,10 +47,10 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
                 tolerance, vertical, max_patches):
     """All positions at once; returns the arrays of the sweep dataset (see wheelset_sweep)."""
     from ..api import creep_forces
-    from ..geometry.contact_search import _global_min, _Pose, find_points, solve_rigid
+    from ..geometry.contact_search import _Pose, find_points, solve_rigid
     from ..geometry.kinematics import creepage_kernel
     from ..materials import as_material_pair
-    from .wheelrail import axle_offset_x
+    from .wheelrail import axle_offset_x, touching_heights
 
     pair = as_material_pair(material)
     n = y.size
@@ -79,15 +79,13 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
             zs[s][idx] = zr
     if (~free).any():
         idx = np.nonzero(~free)[0]
-        pose = _Pose(y[idx], np.zeros(idx.size), th[idx], yaw[idx])
+        zt, beside = touching_heights(ws, tr, y[idx], th[idx], yaw[idx])
         for s in _SIDES:
-            _, g, _ = _global_min(ws, tr, s, pose, 2e-4, 5)
-            beside = g >= 0.5
-            for i in idx[beside]:
+            for i in idx[beside[s]]:
                 status[i], message[i] = "error", (f"InputError: y = {y[i]!r} m: the {s} wheel "
                                                   "lies entirely beside its rail")
                 ok_rows[i] = False
-            zs[s][idx] = -g
+            zs[s][idx] = zt[s]
     rows = np.nonzero(ok_rows)[0]
     out_patch = {k: np.full((n, 2, max_patches), np.nan) for k in
                  ("y_rail", "y_rail_centre", "y_wheel", "contact_angle", "xi", "eta", "phi", "Fn", "Fx", "Fs",

@@ -288,12 +288,32 @@ class WheelRailResult(ContactResult):
 
 
 # --------------------------------------------------------------------------- geometry
+def touching_heights(wheelset, track, y, roll, yaw):
+    """Axle height at which each wheel just touches its rail, for prescribed roll (arrays).
+
+    Raising the axle by dz raises every gap by dz, so the height is minus the
+    smallest gap at height 0. Returns ``{side: z}`` and ``{side: beside}``
+    (shape (n,); ``beside`` marks rows where the wheel lies entirely beside
+    its rail).
+    """
+    from ..geometry.contact_search import _global_min, _Pose
+
+    pose = _Pose(np.asarray(y, float), np.zeros(np.size(y)), np.asarray(roll, float),
+                 np.asarray(yaw, float))
+    z, beside = {}, {}
+    for side in SIDES:
+        _, g, _ = _global_min(wheelset, track, side, pose, 2e-4, 5)
+        beside[side] = g >= 0.5
+        z[side] = -g
+    return z, beside
+
+
 def touching_poses(position):
     """Pose (z of each wheel, roll) at which each wheel just touches its rail.
 
     Returns ``roll`` and ``{side: z}``.
     """
-    from ..geometry.contact_search import _global_min, _Pose, solve_rigid
+    from ..geometry.contact_search import solve_rigid
 
     ws, tr = position.wheelset, position.track
     y = np.array([position.y])
@@ -301,16 +321,12 @@ def touching_poses(position):
     if position.roll is None:
         z, th, _ = solve_rigid(ws, tr, y, yaw)
         return float(th[0]), {s: float(z[0]) for s in SIDES}
-    th = np.array([position.roll])
-    pose = _Pose(y, np.zeros(1), th, yaw)
-    out = {}
+    z, beside = touching_heights(ws, tr, y, np.array([position.roll]), yaw)
     for side in SIDES:
-        _, g, _ = _global_min(ws, tr, side, pose, 2e-4, 5)
-        if not np.all(g < 0.5):
+        if beside[side][0]:
             raise InputError(f"y = {position.y!r} m: the {side} wheel lies entirely beside its "
                              "rail (lateral shift too large for these profiles)")
-        out[side] = -float(g[0])        # raising the axle by dz raises every gap by dz
-    return float(position.roll), out
+    return float(position.roll), {s: float(z[s][0]) for s in SIDES}
 
 
 def wheel_problem(position, side, roll, z, roller_radius=None) -> WheelProblem:
@@ -475,4 +491,4 @@ def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, rol
                            position=position, motion=motion)
 
 
-__all__ += ["touching_poses", "wheel_problem"]
+__all__ += ["touching_poses", "touching_heights", "wheel_problem"]
