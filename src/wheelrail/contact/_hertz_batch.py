@@ -23,31 +23,12 @@ _SIGMA = {"left": -1.0, "right": 1.0}
 _TOL = 1e-5      # relative tolerance on the total vertical force (as solve_wheelrail)
 
 
-def _regularised_B_rows(ws, tr, side, data, pose_y, zc, roll, yaw):
-    """B ≤ 0 replaced by half the normal curvature of the separation over ±1.5 mm (as the
-    elastic model, :func:`wheelrail.geometry.elastic`)."""
-    from ..geometry.contact_search import _gapfun
-    from ..geometry.elastic import _B_SPAN
-
-    B = data["B"].copy()
-    bad = np.isfinite(B) & (B <= 0)
-    if np.any(bad):
-        rows, cols = np.nonzero(bad)
-        s = data["wheel_y"][rows, cols]
-        k = s.size
-        fun = _gapfun(ws, tr, side, np.tile(pose_y[rows], 3), np.tile(zc[rows], 3),
-                      np.tile(roll[rows], 3), np.tile(yaw[rows], 3))
-        d = fun(np.concatenate([s - _B_SPAN, s, s + _B_SPAN]))
-        d2 = (d[:k] - 2 * d[k:2 * k] + d[2 * k:]) / _B_SPAN ** 2
-        B[rows, cols] = 0.5 * d2 * np.cos(data["contact_angle"][rows, cols]) ** 3
-    return B
-
-
 def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, material,
                 tolerance, vertical, max_patches):
     """All positions at once; returns the arrays of the sweep dataset (see wheelset_sweep)."""
     from ..api import creep_forces
     from ..geometry.contact_search import _Pose, find_points, solve_rigid
+    from ..geometry.elastic import regularised_B_rows
     from ..geometry.kinematics import creepage_kernel
     from ..materials import as_material_pair
     from .wheelrail import axle_offset_x, touching_heights
@@ -104,7 +85,8 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
         valid = np.isfinite(data["separation"])
         zc = ws.nominal_radius + zr
         A = data["A"] + (0.0 if not np.isfinite(R) else 0.5 / R)
-        B = _regularised_B_rows(ws, tr, side, data, yr, zc, thr, psr)
+        B = regularised_B_rows(ws, tr, side, data["B"], data["wheel_y"], data["contact_angle"],
+                               yr, zc, thr, psr)
         convex = valid & (A > 0) & (B > 0)
         sep = np.where(valid, data["separation"], np.inf)
         cosg = np.where(valid, np.cos(data["contact_angle"]), 1.0)

@@ -130,7 +130,7 @@ def _unit_approach(A, B, E_star, where):
 _B_SPAN = 1.5e-3  # half-width [m] of the parabola fitted to the gap when the local B <= 0
 
 
-def _regularised_B(ws, tr, side, pts, pose, zc):
+def regularised_B_rows(ws, tr, side, B, wheel_y, contact_angle, y, zc, roll, yaw):
     """Cross curvature from the separation over ±1.5 mm where the point value is ≤ 0.
 
     At a jump of a profile curvature (e.g. the flange flank / flange root
@@ -138,17 +138,38 @@ def _regularised_B(ws, tr, side, pts, pose, zc):
     can give B ≤ 0 although the gap has a minimum; the separation's
     curvature over the scale of a contact patch, ``B = ½ f''`` with
     ``f'' = d''·cos³γ`` for the vertical gap ``d``, is used there instead.
+
+    Parameters
+    ----------
+    B, wheel_y, contact_angle : ndarray, shape (n, k)
+        Points of n poses (NaN-padded): curvature [1/m], wheel coordinate [m], γ [rad].
+    y, zc, roll, yaw : ndarray, shape (n,)
+        The poses (axle-centre height ``zc`` [m]).
+
+    Returns
+    -------
+    ndarray, shape (n, k)
     """
-    B = pts.B.copy()
-    bad = B <= 0
+    B = np.array(B, dtype=float)
+    bad = np.isfinite(B) & (B <= 0)
     if np.any(bad):
-        s = pts.wheel_y[bad]
+        rows, cols = np.nonzero(bad)
+        s = wheel_y[rows, cols]
         k = s.size
-        gap = _gapfun(ws, tr, side, pose.y, zc, pose.roll, pose.yaw)
+        tile = lambda v: np.tile(np.asarray(v, float)[rows], 3)  # noqa: E731
+        gap = _gapfun(ws, tr, side, tile(y), tile(zc), tile(roll), tile(yaw))
         d = gap(np.concatenate([s - _B_SPAN, s, s + _B_SPAN]))
         d2 = (d[:k] - 2 * d[k:2 * k] + d[2 * k:]) / _B_SPAN ** 2
-        B[bad] = 0.5 * d2 * np.cos(pts.contact_angle[bad]) ** 3
+        B[rows, cols] = 0.5 * d2 * np.cos(contact_angle[rows, cols]) ** 3
     return B
+
+
+def _regularised_B(ws, tr, side, pts, pose, zc):
+    """:func:`regularised_B_rows` for the points ``pts`` of one pose (shape (k,))."""
+    one = lambda v: np.atleast_1d(np.asarray(v, float))[:1]  # noqa: E731
+    return regularised_B_rows(ws, tr, side, pts.B[None], pts.wheel_y[None],
+                              pts.contact_angle[None], one(pose.y), one(zc), one(pose.roll),
+                              one(pose.yaw))[0]
 
 
 def _forces(ws, tr, side, data, count, pose, zc, E_star):
