@@ -1,6 +1,7 @@
-"""Vehicle-dynamics style use: 10^5 contacts and creepages in one call per method, timed.
+"""Vehicle-dynamics style use: 10^5 contacts and creepages in one call per method, timed
+=====================================================================================
 
-Run: python batch_vehicle_dynamics.py [OUT_DIR]   (or set WHEELRAIL_OUT; default: current dir)
+Run: ``python batch_vehicle_dynamics.py [OUT_DIR]``   (or set WHEELRAIL_OUT; default: current dir)
 """
 import os
 import sys

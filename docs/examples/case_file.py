@@ -1,6 +1,7 @@
-"""Describe a contact in a TOML case file, load it, solve it, and switch the method.
+"""Describe a contact in a TOML case file, load it, solve it, and switch the method
+================================================================================
 
-Run: python case_file.py [OUT_DIR]   (or set WHEELRAIL_OUT; default: current directory)
+Run: ``python case_file.py [OUT_DIR]``   (or set WHEELRAIL_OUT; default: current directory)
 """
 import json, os, sys
 from pathlib import Path
@@ -8,8 +9,7 @@ from pathlib import Path
 import wheelrail as wr
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else os.environ.get("WHEELRAIL_OUT", "."))
-out.mkdir(parents=True, exist_ok=True)
-path = out / "wheel_on_rail.toml"
+out.mkdir(parents=True, exist_ok=True); path = out / "wheel_on_rail.toml"
 path.write_text("""\
 [material]            # the same steel for wheel and rail (omit the table: this default)
 E = 2.1e11

@@ -1,6 +1,7 @@
-"""Longitudinal creep curves Fx(xi) of the fast creep-force laws on one Hertz contact.
+"""Longitudinal creep curves Fx(xi) of the fast creep-force laws on one Hertz contact
+==================================================================================
 
-Run: python creep_curves.py [OUT_DIR]   (or set WHEELRAIL_OUT; default: current directory)
+Run: ``python creep_curves.py [OUT_DIR]``   (or set WHEELRAIL_OUT; default: current directory)
 """
 import os
 import sys

@@ -1,6 +1,7 @@
-"""Half-space (boundary-element) solution: normal pressure on a grid, then Kalker's exact rolling.
+"""Half-space (boundary-element) solution: normal pressure on a grid, then Kalker's exact rolling
+==============================================================================================
 
-Run: python exact_halfspace.py [OUT_DIR]   (or set WHEELRAIL_OUT; default: current directory)
+Run: ``python exact_halfspace.py [OUT_DIR]``   (or set WHEELRAIL_OUT; default: current directory)
 """
 import os
 import sys
@@ -28,6 +29,7 @@ for xi in (-1e-4, -1e-3, -1e-2):
     fs = wr.creep_forces(contact, (xi, 0.0, 0.0), mu, method="fastsim")
     print(f"xi = {xi:g}: exact Fx = {ex.Fx:.3f} N, fastsim Fx = {fs.Fx:.3f} N, adhesion "
           f"fraction = {ex.info['adhesion_area'] / ex.info['area']:.3f}, status = {ex.status}")
-sol = ex.fields                      # GapSolution: grid, pressure and traction fields
-print("fields:", type(sol).__name__, "on", sol.grid.nx, "x", sol.grid.ny, "elements")
-print("wrote", out / "bem_pressure.npy")
+ex = wr.creep_forces(contact, (-1e-3, 0.0, 0.0), mu, method="exact", elements=30)
+print("fields:", type(ex.fields).__name__, "on", ex.fields.grid.nx, "x", ex.fields.grid.ny)
+wr.plotting.traction_field(ex.fields, mu=mu, contact=contact, path=out / "exact_fields.png",
+                           title="exact theory, xi = -1e-3: traction, adhesion/slip")

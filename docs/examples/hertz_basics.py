@@ -1,6 +1,7 @@
-"""Hertz contact of a wheel on a rail: semi-axes, pressure, approach; batch over loads.
+"""Hertz contact of a wheel on a rail: semi-axes, pressure, approach; batch over loads
+===================================================================================
 
-Run: python hertz_basics.py [OUT_DIR]   (or set WHEELRAIL_OUT; default: current directory)
+Run: ``python hertz_basics.py [OUT_DIR]``   (or set WHEELRAIL_OUT; default: current directory)
 """
 import os
 import sys

@@ -1,6 +1,7 @@
-"""S1002 wheels on 60E1 rails inclined 1:40: rigid contact table, jumps, equivalent conicity.
+"""S1002 wheels on 60E1 rails inclined 1:40: rigid contact table, jumps, equivalent conicity
+=========================================================================================
 
-Run: python profiles_and_contact_table.py [OUT_DIR]   (or set WHEELRAIL_OUT; default: cwd)
+Run: ``python profiles_and_contact_table.py [OUT_DIR]``   (or set WHEELRAIL_OUT; default: cwd)
 """
 import os
 import sys

@@ -1,4 +1,6 @@
-"""A wheelset on a track: contact patches and forces with two method pairs, and a sweep."""
+"""A wheelset on a track: contact patches and forces with two method pairs, and a sweep
+====================================================================================
+"""
 import sys
 from os import environ
 from pathlib import Path
@@ -21,6 +23,7 @@ for normal, tangential, opts in (("hertz", "fastsim", {}),
               f"p_max = {p.p_max / 1e6:.0f} MPa")
     print(f"{normal}_Fz_right = {res.force_track['right'][2]:.2f}")
     print(f"{normal}_Fy_right = {res.force_track['right'][1]:.1f}")
+wr.plotting.contact_profiles(res, path=out / "wheelset_patches.png", title="BEM + exact patches")
 ds = wr.wheelset_sweep(ws, tr, y=np.linspace(-0.008, 0.008, 81), vertical_load=10e3,
                        motion=motion, yaw=0.0)
 ds.to_netcdf(out / "wheelset_sweep.nc")

@@ -29,7 +29,7 @@ derived from it. Profile frames are described in :mod:`wheelrail.profiles.core`.
 The user documentation of all conventions is ``docs/conventions.md``.
 
 Wheelset motion (:mod:`wheelrail.geometry.kinematics`)
------------------------------------------------------
+------------------------------------------------------
 ``Motion.omega`` is the angular velocity about the axle, positive when the
 wheelset rolls forwards. The contact frame of a wheel–rail patch has its y
 axis to the right on both wheels, so a conical tread of contact angle γ has

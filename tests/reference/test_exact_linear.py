@@ -97,3 +97,17 @@ def test_spin_coefficient_c33_nu0(ab):
     r = wr.creep_forces(hc, (0, 0, 1e-4), 1e6, method="exact", elements=48)
     C33 = -r.Mz / (mat.G * c**4 * 1e-4)
     assert C33 == pytest.approx(float(kalker_coefficients(ab, 0.0)[3]), rel=0.05)
+
+
+def test_c23_at_ab_0p8_settles_the_transcription_misprint():
+    """C23(a/b = 0.8, ν = 0.25): the table has 1.25, two public transcriptions of Kalker's
+    Table E.3 have 1.15 (see the header of kalker_coefficients.csv). The exact theory
+    decides: 1.2440, 1.2540, 1.2500 at 32, 64, 128 elements (measured), so 1.25 is right
+    and 1.15 (8 % lower) is a misprint."""
+    hc = _contact(0.8)
+    c, G = float(hc.c), MAT.G
+    r = wr.creep_forces(hc, (0, 1e-6, 0), 1e6, method="exact", elements=N)
+    c23 = r.Mz / (G * c**3 * 1e-6)
+    assert float(kalker_coefficients(0.8, 0.25)[2]) == pytest.approx(1.25, abs=1e-12)
+    assert c23 == pytest.approx(1.25, rel=0.01)
+    assert abs(c23 - 1.15) > 0.08

@@ -56,6 +56,23 @@ def test_version(capsys):
     assert wr.__version__ in capsys.readouterr().out
 
 
+def test_python_dash_m_is_the_console_script():
+    """``python -m wheelrail`` runs the same CLI: version, help and the exit code of bad input."""
+    import subprocess
+    import sys
+
+    run = lambda *a: subprocess.run([sys.executable, "-m", "wheelrail", *a],  # noqa: E731
+                                    capture_output=True, text=True, timeout=120)
+    v = run("--version")
+    assert v.returncode == 0 and v.stdout.strip() == f"wheelrail {wr.__version__}"
+    h = run("--help")
+    assert h.returncode == 0 and "creep-curve" in h.stdout
+    bad = run("solve", "no-such-file.toml")
+    assert bad.returncode == 2 and "no-such-file.toml" in bad.stderr
+    from importlib.metadata import version
+    assert version("wheelrail") == wr.__version__       # one version source (pyproject reads it)
+
+
 def test_solve_writes_json_in_si(tmp_path, capsys):
     case = _write(tmp_path, SPHERE.format(method="linear"))
     out = tmp_path / "out.json"

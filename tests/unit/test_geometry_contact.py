@@ -204,11 +204,8 @@ def test_side_and_scalar_checks_are_shared(s1002_60e1):
 
 def test_shared_profile_files_make_a_table(shared_profiles):
     """Manchester benchmark S1002 / UIC60 (file already canted 1:40) read from the shared data."""
-    try:
-        wheel = wr.profiles.read(shared_profiles / "MBench_S1002_v3.prw")
-        rail = wr.profiles.read(shared_profiles / "MBench_UIC60_v3.prr")
-    except ImportError as exc:  # the profile readers are written concurrently
-        pytest.skip(f"profile readers not available: {exc}")
+    wheel = wr.profiles.read(shared_profiles / "MBench_S1002_v3.prw")
+    rail = wr.profiles.read(shared_profiles / "MBench_UIC60_v3.prr")
     ws = wr.Wheelset(wheel)
     tr = wr.Track(rail, canted=True)
     t = wr.contact_table(ws, tr, np.linspace(-0.006, 0.006, 25))

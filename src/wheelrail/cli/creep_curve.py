@@ -74,7 +74,7 @@ def sweep(case, component: str, values, methods, *, progress=None):
     forces : dict of str to CreepForces
         The methods that ran (batch results of shape (n,)).
     skipped : dict of str to str
-        Methods whose module is not available or that cannot treat this
+        Methods that cannot treat this
         sweep (``InputError``, e.g. Carter's theory and a lateral creepage),
         with the reason.
     """
@@ -91,8 +91,6 @@ def sweep(case, component: str, values, methods, *, progress=None):
     for m in methods:
         try:
             forces[m] = creep_forces(contact, creep, case.mu, method=m, **case.options.get(m, {}))
-        except ImportError as exc:
-            skipped[m] = f"not available ({exc})"
         except InputError as exc:  # e.g. Carter's theory has no lateral creepage
             skipped[m] = " ".join(str(exc).split())
         if progress is not None:

@@ -3,8 +3,10 @@
 The demo is a list of steps, :data:`STEPS`. A step is a function
 ``step(ctx: DemoContext) -> str | None`` that computes something, stores it in
 ``ctx.results`` (JSON-ready, SI units), writes files with :meth:`DemoContext.file`
-and returns a one-line note for the console. A step whose module is not
-installed raises ``ImportError`` and is reported as skipped; the demo goes on.
+and returns a one-line note for the console. A step that fails with a
+:class:`~wheelrail.errors.WheelrailError` is reported as failed and the demo
+goes on (the exit code is then non-zero); any other exception is a bug and
+propagates.
 To add a part (a geometry contact table, a boundary-element solution, ...)
 write a step function and append ``Step("name", "title", function)`` to
 :data:`STEPS`. Keep every step fast: the whole demo must take < 30 s.
@@ -95,7 +97,7 @@ def step_creep_forces(ctx: DemoContext):
     from ..api import available_methods, creep_forces
     from ..errors import InputError
 
-    table, skipped = {}, {}
+    table = {}
     for m in available_methods():
         if m == "exact":
             continue  # the exact theory is slow; the demo keeps to the fast laws
@@ -103,21 +105,14 @@ def step_creep_forces(ctx: DemoContext):
         for label, cr in CREEPAGES:
             try:
                 r = creep_forces(ctx.case.hertz_contact, cr, ctx.case.mu, method=m)
-            except ImportError as exc:
-                skipped[m] = f"not available ({exc})"
-                break
             except InputError as exc:  # e.g. Carter's theory: longitudinal creepage only
                 rows[label] = {"xi": cr[0], "eta": cr[1], "phi": cr[2],
                                "error": " ".join(str(exc).split())}
                 continue
             rows[label] = {"xi": cr[0], "eta": cr[1], "phi": cr[2], "Fx": float(r.Fx),
                            "Fy": float(r.Fy), "Mz": float(r.Mz)}
-        if m not in skipped:
-            table[m] = rows
+        table[m] = rows
     ctx.results["creep_forces"] = table
-    ctx.results["methods_skipped"] = skipped
-    if not table:
-        raise ImportError("no creep-force method is available")
     from rich.table import Table
 
     t = Table(title=f"creep forces [N], μ = {ctx.case.mu:g}", title_justify="left")
@@ -128,7 +123,7 @@ def step_creep_forces(ctx: DemoContext):
         t.add_row(m, *(f"Fx {round(rows[lb]['Fx'])}\nFy {round(rows[lb]['Fy'])}" if "Fx" in rows[lb]
                        else "n/a" for lb, _ in CREEPAGES))
     ctx.console.print(t)
-    return f"{len(table)} methods" + (f", skipped {', '.join(skipped)}" if skipped else "")
+    return f"{len(table)} methods"
 
 
 def step_creep_curves(ctx: DemoContext):
@@ -148,10 +143,7 @@ def step_creep_curves(ctx: DemoContext):
         values = np.linspace(0.0, 0.01, 51)
         forces, skipped = run_sweep_with_progress(ctx.console, case, comp, values, methods,
                                                   warn=False)
-        notes += [f"{m} not in the {comp} panel" for m, why in skipped.items()
-                  if not why.startswith("not available")]
-        if not forces:
-            raise ImportError("no creep-force method is available")
+        notes += [f"{m} not in the {comp} panel" for m in skipped]
         norm = normalised(forces, comp)
         creep_curves(values, norm, component=comp, ax=ax)
         curves[comp] = {"creepage": values.tolist(), **{m: v.tolist() for m, v in norm.items()}}
@@ -316,10 +308,6 @@ def run(args, console) -> int:
         t0 = time.perf_counter()
         try:
             note = step.run(ctx)
-        except ImportError as exc:
-            status[step.name] = "skipped"
-            console.print(f"[yellow]- {step.title}: skipped ({exc})[/yellow]")
-            continue
         except WheelrailError as exc:
             status[step.name] = "failed"
             failed.append(step.name)

@@ -4,17 +4,17 @@ A leaf of the package: nothing in the solvers imports it. Every function
 returns a :class:`matplotlib.figure.Figure` and writes it to ``path`` when one
 is given.
 
-=====================  =========================================================
-function               draws
-=====================  =========================================================
-:func:`creep_curves`   normalised creep force against creepage, several methods
-:func:`traction_field` tangential traction and adhesion/slip areas (FASTSIM, exact)
-:func:`pressure_map`   normal pressure: Hertz ellipse or a pressure grid
-:func:`subsurface_section` von Mises / maximum shear stress in a section below the contact
-:func:`contact_profiles` wheel–rail profiles at the solved pose, patches and pressure on the rail
-:func:`adhesion_maps`  adhesion/slip areas of every wheel–rail patch
-:func:`sweep_forces`   patch forces and positions over a lateral-shift sweep
-=====================  =========================================================
+==========================  ========================================================================
+function                    draws
+==========================  ========================================================================
+:func:`creep_curves`        normalised creep force against creepage, several methods
+:func:`traction_field`      tangential traction and adhesion/slip areas (FASTSIM, exact)
+:func:`pressure_map`        normal pressure: Hertz ellipse or a pressure grid
+:func:`subsurface_section`  von Mises / maximum shear stress in a section below the contact
+:func:`contact_profiles`    wheel–rail profiles at the solved pose, patches and pressure on the rail
+:func:`adhesion_maps`       adhesion/slip areas of every wheel–rail patch
+:func:`sweep_forces`        patch forces and positions over a lateral-shift sweep
+==========================  ========================================================================
 """
 
 from __future__ import annotations

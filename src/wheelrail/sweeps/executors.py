@@ -1,14 +1,14 @@
 """Executors: where the chunks of a sweep are evaluated.
 
-=============  ===========================================================
-name           runs chunks
-=============  ===========================================================
-``"serial"``   in this process, one after the other
+===============  =======================================================
+name             runs chunks
+===============  =======================================================
+``"serial"``     in this process, one after the other
 ``"processes"``  in ``workers`` local processes (``concurrent.futures``)
-``"dask"``     on Dask distributed: a ``LocalCluster`` of ``workers``
-               single-threaded worker processes, or the scheduler at
-               ``scheduler="tcp://host:8786"`` (a cluster)
-=============  ===========================================================
+``"dask"``       on Dask distributed: a ``LocalCluster`` of ``workers``
+                 single-threaded worker processes, or the scheduler at
+                 ``scheduler="tcp://host:8786"`` (a cluster)
+===============  =======================================================
 
 Every executor is a context manager with one method,
 ``run(fn, tasks, on_result)``: it calls ``fn(*args)`` for each
