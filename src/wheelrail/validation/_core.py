@@ -58,6 +58,14 @@ class CheckResult:
         ``known-failure``: a defect recorded in ``note`` (reported, not hidden).
     note : str
         Further explanation (known defect, skip reason, grid sizes).
+    reference_method : str
+        The wheelrail method that computed the reference value, if any (e.g.
+        ``"exact"`` for creep curves, ``"hertz"`` for Hertz's closed form); empty
+        for closed forms written in the check, published tables and other codes.
+        For ``kind == "reference"`` it is never ``method`` (no self-comparison).
+    kind : {"reference", "convergence"}
+        ``convergence``: a fitted order or a limit of the method's own grid
+        sequence (a convergence study, not a comparison with a reference).
     """
 
     method: str
@@ -76,6 +84,8 @@ class CheckResult:
     tolerance_source: str = ""
     status: str = ""
     note: str = ""
+    reference_method: str = ""
+    kind: str = "reference"
 
     def to_dict(self) -> dict:
         """All fields as JSON-ready values (the figure replaced by whether there is one)."""
@@ -192,7 +202,7 @@ def _status(ok, known):
 
 
 def _row(method, reference, quantity, value, ref, error, tol, ok, *, source, tolerance_source,
-         measure, known="", note="", figure=None):
+         measure, known="", note="", figure=None, reference_method="", kind="reference"):
     value = float(value)
     ref = float(ref) if ref is not None else math.nan
     error = float(error)
@@ -201,7 +211,8 @@ def _row(method, reference, quantity, value, ref, error, tol, ok, *, source, tol
     return CheckResult(method=method, reference=reference, quantity=quantity, value=value,
                        reference_value=ref, error=error, tolerance=tol, passed=ok,
                        time=math.nan, figure=figure, source=source, measure=measure,
-                       tolerance_source=tolerance_source, status=_status(ok, known), note=note)
+                       tolerance_source=tolerance_source, status=_status(ok, known), note=note,
+                       reference_method=reference_method, kind=kind)
 
 
 def rel_row(method, reference, quantity, value, ref, tol, **kw):

@@ -136,7 +136,7 @@ def bem_vs_hertz(quick):
 
     mat = wr.Material(STEEL_E, STEEL_NU)
     rows = []
-    kw = dict(source="Hertz1882,Johnson1985",
+    kw = dict(source="Hertz1882,Johnson1985", reference_method="hertz",
               tolerance_source="tests/reference/test_bem_normal.py::test_hertz_load_control")
     ref = "Hertz closed form (Johnson 1985 eqs. 3.64-3.66)"
     for aspect in ((1.0, 2.0) if quick else (1.0, 0.5, 2.0)):
@@ -177,12 +177,13 @@ def bem_convergence(quick):
     q_d = np.polyfit(np.log(h), np.log(e_d), 1)[0]
     q_p = np.polyfit(np.log(h), np.log(e_p), 1)[0]
     fig = convergence_figure(h, e_d, "approach", q_d)
-    kw = dict(source="Hertz1882,Johnson1985",
+    kw = dict(source="Hertz1882,Johnson1985", reference_method="hertz",
               tolerance_source="tests/convergence/test_bem_convergence.py")
     ref = f"Hertz closed form; elements {ns} across the circle"
     return [band_row("bem", ref, "observed order of the approach error", q_d, 1.5, 1.0, 2.5,
-                     figure=fig, **kw),
-            band_row("bem", ref, "observed order of the p_max error", q_p, 2.0, 1.5, 3.0, **kw),
+                     figure=fig, kind="convergence", **kw),
+            band_row("bem", ref, "observed order of the p_max error", q_p, 2.0, 1.5, 3.0,
+                     kind="convergence", **kw),
             abs_row("bem", ref, f"approach error at {ns[-1]} elements", e_d[-1], 0.0, 1e-3, **kw)]
 
 
@@ -229,7 +230,7 @@ def nonhertz_vs_hertz(quick):
         src = {"kik-piotrowski": "PiotrowskiChollet2005,Hertz1882",
                "stripes": "AyasseChollet2005,Hertz1882",
                "multi-hertz": "PiotrowskiChollet2005,Hertz1882"}[name]
-        kw = dict(source=src, tolerance_source=tol_src)
+        kw = dict(source=src, tolerance_source=tol_src, reference_method="hertz")
         rows += [max_row(name, ref, f"{label}: area, a/b in {ratios}", area, carea, 0.02, **kw),
                  max_row(name, ref, f"{label}: p_max, a/b in {ratios}", pmax, cp0, 0.02, **kw)]
     # Linder: constant factor delta0 = 0.55 delta -> documented bias band
@@ -240,7 +241,7 @@ def nonhertz_vs_hertz(quick):
                      normal="linder")
         ar.append(sum(q.area for q in r.patches) / float(c.area))
         pr.append(max(q.p_max for q in r.patches) / float(c.p0))
-    kw = dict(source="Linder1997,PiotrowskiChollet2005",
+    kw = dict(source="Linder1997,PiotrowskiChollet2005", reference_method="hertz",
               tolerance_source=("band of the delta0 = 0.55 delta methods, "
                                 "tests/reference/test_nonhertz_hertzian_gap.py::"
                                 "test_original_factor_is_biased; seed 003 §3.1"))
@@ -261,7 +262,7 @@ def nonhertz_vs_bem(quick):
     m = wr.Motion(speed=10.0, omega=10.0 / 0.46 * 1.001)
     rows = []
     ref = "boundary elements (normal='bem', Kalker's exact normal theory) of the same position"
-    kw = dict(source="Kalker1990",
+    kw = dict(source="Kalker1990", reference_method="bem",
               tolerance_source="tests/reference/test_nonhertz_wheelrail.py (rel 0.15)")
     bem = {}
     for y in (-0.006, 0.004, 0.008):

@@ -33,7 +33,7 @@ def transient_steady(quick):
     MU = 0.4
     hc = _table1()
     rows = []
-    kw = dict(source="Baeza2006,Kalker1990")
+    kw = dict(source="Baeza2006,Kalker1990", reference_method="exact")
     # constant creepage: after 20 semi-axes the tractions are the steady ones (V dt = dx)
     n = 12
     grid, gap = hertz_grid(hc, elements=n)
@@ -92,9 +92,9 @@ def transient_regularised(quick):
     src = dict(source="Baeza2006", tolerance_source="tests/reference/test_transient_regularised.py")
     return [band_row("transient", ref, "observed order of the Fx error in epsilon", q, 1.0, 0.6,
                      1.3, figure=convergence_figure(eps, err, "Fx", q, xlabel="epsilon [m/s]"),
-                     **src),
+                     kind="convergence", reference_method="transient", **src),
             abs_row("transient", ref, "relative Fx error at epsilon = 1e-6", err[-1], 0.0, 3e-3,
-                    **src)]
+                    kind="convergence", reference_method="transient", **src)]
 
 
 # --------------------------------------------------------------------------- FE
@@ -116,7 +116,7 @@ def fe_indentation(quick):
     h = 1.5e-3 if quick else 1.0e-3
     r, hz = _fe_errors(h)
     ref = "Hertz closed form (Johnson 1985 eqs. 3.64-3.66); seed 000 Table 3 compares the same"
-    kw = dict(source="Hertz1882,Toumi2016",
+    kw = dict(source="Hertz1882,Toumi2016", reference_method="hertz",
               tolerance_source="tests/reference/test_fe_hertz.py (1.5 mm mesh: p_max 12 %, "
                                "a 10 %, b 15 %)")
     case = f"R 0.46 m on 60E1, 7.5 kN, {h * 1e3:g} mm mesh"
@@ -131,7 +131,7 @@ def fe_indentation(quick):
         q = np.polyfit(np.log(hs), np.log(e), 1)[0]
         rows.append(band_row("fe", ref, "observed order of the p_max error (2/1.5/1 mm)", q,
                              2.0, 1.0, np.inf, figure=convergence_figure(hs, e, "p_max", q),
-                             source="Hertz1882",
+                             source="Hertz1882", kind="convergence", reference_method="hertz",
                              tolerance_source="tests/reference/test_fe_hertz.py (order > 1)"))
     return rows
 
@@ -153,7 +153,8 @@ def fe_rolling(quick):
     return [rel_row("fe", "Kalker's exact theory (20 elements) on the Hertz patch; seed 000 "
                     "§4.1.3 compares with CONTACT", "Fx, xi = 7e-4, mu = 0.2, 2 mm mesh",
                     r.Fx, ref, 0.10, source="Kalker1990,Toumi2016",
-                    tolerance_source="tests/reference/test_fe_rolling.py (rel 0.10)")]
+                    tolerance_source="tests/reference/test_fe_rolling.py (rel 0.10)",
+                    reference_method="exact")]
 
 
 # --------------------------------------------------------------------------- geometry

@@ -132,7 +132,7 @@ def exact_vs_carter(quick):
     A, P0, MU = 1e-3, 5e8, 0.3
     mat = wr.Material(2.1e11, 0.25)
     rows = []
-    kw = dict(source="Carter1926,Johnson1985",
+    kw = dict(source="Carter1926,Johnson1985", reference_method="carter",
               tolerance_source="tests/reference/test_exact_carter.py")
     ref = "Carter (1926), Johnson (1985) §8.2, eqs. 8.5-8.9 (strip 2a x 40a, centre line)"
     xis = carter_saturation_creepage(MU, P0, mat.G, mat.nu)
@@ -159,7 +159,8 @@ def exact_vs_carter(quick):
         err.append(abs(sol.px[:, grid.ny // 2].sum() * grid.dx / Fref - 1))
     q = np.polyfit(np.log(h), np.log(err), 1)[0]
     rows.append(band_row("exact", ref, "observed order of the force error (20/40/80 el.)", q, 1.0,
-                         0.7, 1.5, figure=convergence_figure(h, err, "Fx per length", q), **kw))
+                         0.7, 1.5, figure=convergence_figure(h, err, "Fx per length", q),
+                         kind="convergence", **kw))
     return rows
 
 
@@ -206,7 +207,7 @@ def exact_vs_cattaneo(quick):
         q = np.polyfit(np.log(h), np.log(err), 1)[0]
         rows.append(band_row("exact", ref, "observed order of the shift error (10/20/40 el.)", q,
                              2.0, 1.0, np.inf, figure=convergence_figure(h, err, "shift", q),
-                             **kw))
+                             kind="convergence", **kw))
     return rows
 
 
@@ -228,6 +229,7 @@ def exact_spin(quick):
                     "pure spin phi = 0.5 1/m: Fy at 40 elements", fy[0], limit, 0.005,
                     source="Kalker1990",
                     tolerance_source="issue 13 target (pure-spin Fy within 0.5 % at 40 elements)",
+                    kind="convergence", reference_method="exact",
                     known="Known defect (issue 13): the spin term's placement in an element "
                           "gives a ~7x larger discretisation error than without spin; being "
                           "fixed in the halfspace solver.")]
@@ -311,7 +313,7 @@ def fastsim_linear(quick):
     rx = wr.creep_forces(c, (1e-7, 0, 0), 0.3, **opts)
     ry = wr.creep_forces(c, (0, 1e-7, 0), 0.3, **opts)
     rs = wr.creep_forces(c, (0, 0, 1e-5), 0.3, **opts)
-    kw = dict(source="Kalker1990,Kalker1982",
+    kw = dict(source="Kalker1990,Kalker1982", reference_method="linear",
               tolerance_source="tests/reference/test_fastsim.py::test_linear_limit_pure_creepages")
     ref = "Kalker's linear theory with Table E.3 coefficients (nu interpolated)"
     case = "a/b = 1.5, nu = 0.28, 50x50"
@@ -381,9 +383,10 @@ def fastsim_convergence(quick):
     kw = dict(source="Kalker1982",
               tolerance_source="tests/convergence/test_fastsim_convergence.py")
     txt = "continuum simplified theory, pure xi, parabolic bound (strip integrals, Kalker 1982)"
-    return [band_row("fastsim", txt, f"observed order, xi = 1e-3, grids {', '.join(str(int(n)) for n in ns)} squared", q, 2.0,
+    return [band_row("fastsim", txt, "observed order, xi = 1e-3, n x n grids, n = " + ", ".join(str(int(n)) for n in ns), q, 2.0,
                      1.7, 2.5, figure=convergence_figure(1.0 / ns, err, "Fx", q,
-                                                         xlabel="1/n (n cells per axis)"), **kw),
+                                                         xlabel="1/n (n cells per axis)"),
+                     kind="convergence", **kw),
             abs_row("fastsim", txt, "relative Fx error on the default 20x20 grid", err[1], 0.0,
                     1.5e-2, **kw)]
 
@@ -404,7 +407,7 @@ def fastsim_combined(quick):
              "(Vollebregt & Voltr 2023).")
     kw = dict(source="Kalker1990,VollebregtVoltr2023",
               tolerance_source="issue 13 target (direction 1 %, magnitude 2 % at 100x100)",
-              known=known)
+              known=known, reference_method="exact")
     ref = f"exact theory ({40 if quick else 80} elements)"
     case = "xi = eta = 3e-3, phi = 0, default contact, 100x100"
     return [rel_row("fastsim", ref, f"force direction [deg], {case}", ang_f, ang_e, 0.01, **kw),
@@ -439,7 +442,7 @@ def creep_curves(quick):
         rows.append(max_row(name, f"Kalker's exact theory ({n} elements, Kalker 1990)",
                             "Fx on the creep curve xi = -2e-4 ... -5e-3 (default contact)", fx, ex,
                             0.05, source=f"Kalker1990,{srcs[name]}", tolerance_source=tol_src,
-                            known=known.get(name, "")))
+                            known=known.get(name, ""), reference_method="exact"))
     # FaStrip: translational creepage in partial slip (its test case)
     cf = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
     errs = []
@@ -451,7 +454,8 @@ def creep_curves(quick):
                         "norm(F_fastrip - F_exact) / norm(F_exact), (xi, eta) = (1e-3, 0), (0, 1e-3), "
                         "(1e-3, 1e-3), 100 kN, A = 1, B = 2 1/m", max(errs), 0.0, 0.03,
                         source="Kalker1990,Sichani2016",
-                        tolerance_source="tests/reference/test_nonhertz_fastrip.py (0.03)"))
+                        tolerance_source="tests/reference/test_nonhertz_fastrip.py (0.03)",
+                        reference_method="exact"))
     ax.set_xlabel("-xi [1e-3]")
     ax.set_ylabel("Fx / (mu Fn)")
     ax.legend(fontsize=7)
@@ -543,5 +547,6 @@ def table_checks(quick):
     rows.append(abs_row("table", f"Kalker's exact theory at {npts} random points off the table "
                         f"nodes ({elements} elements)", "max abs(F_table - F_exact) / (mu Fn)",
                         max(errs), 0.0, 0.02, source="Kalker1990,Kalker1996",
-                        tolerance_source="tests/reference/test_table_law.py (0.02 mu Fn)"))
+                        tolerance_source="tests/reference/test_table_law.py (0.02 mu Fn)",
+                        reference_method="exact"))
     return rows
