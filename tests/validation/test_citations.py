@@ -75,3 +75,18 @@ def test_import_stays_light():
             "print(any(m in sys.modules for m in ('scipy', 'numba', 'matplotlib', 'rich')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_bibtex_covers_the_methods_own_reference_lists():
+    """Every paper a method's ``references`` attribute names (by first author and year)
+    has a BibTeX entry among that method's citations."""
+    from wheelrail.api import get_method, get_normal_method
+
+    impls = [(n, get_normal_method(n)) for n in wr.normal_methods()]
+    impls += [(n, get_method(n)) for n in wr.tangential_methods()]
+    for name, impl in impls:
+        entries = [BIBLIOGRAPHY[k][1] for k in METHOD_REFERENCES[name]]
+        for ref in impl.references:
+            year = re.findall(r"\b(1[89]\d\d|20\d\d)\b", ref)[-1]
+            surname = re.search(r"([A-Z][a-z]+)[,.]", ref.split(",")[0] + ",").group(1)
+            assert any(e["year"] == year and surname in e["author"] for e in entries), (name, ref)

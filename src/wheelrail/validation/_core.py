@@ -95,10 +95,10 @@ class CheckResult:
             if k == "figure":
                 out["has_figure"] = v is not None
                 continue
-            if isinstance(v, float) and not math.isfinite(v):
-                v = None
             if isinstance(v, tuple):
-                v = list(v)
+                v = [x if math.isfinite(x) else None for x in v]
+            elif isinstance(v, float) and not math.isfinite(v):
+                v = None
             out[k] = v
         return out
 

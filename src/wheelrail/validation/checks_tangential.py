@@ -266,37 +266,52 @@ def manchester(quick):
     cases = manchester_a22(shared / "benchmarks" / "manchester_a22_inputs.csv",
                            shared / "profiles" / "MBench_S1002_v3.prw",
                            shared / "profiles" / "MBench_UIC60_v3.prr")
-    refs = {}
+    refs = {}          # (case, wheel) -> totals over CONTACT's patches (one CSV row per patch)
     with open(data, encoding="utf-8") as fh:
         for r in csv.DictReader(line for line in fh if not line.startswith("#")):
-            refs[(int(r["case"]), r["wheel"])] = {k: float(v) for k, v in r.items() if k != "wheel"}
+            t = refs.setdefault((int(r["case"]), r["wheel"]),
+                                {"Fn_N": 0.0, "Fx_N": 0.0, "Fs_N": 0.0, "pmax_MPa": 0.0})
+            for k in ("Fn_N", "Fx_N", "Fs_N"):
+                t[k] += float(r[k])
+            t["pmax_MPa"] = max(t["pmax_MPa"], float(r["pmax_MPa"]))
     numbers = (1, 2, 14, 21) if quick else tuple(range(1, len(cases) + 1))
-    fn, fn_r, fx, fx_r, fs, fs_r, pm, pm_r, sc = ([] for _ in range(9))
+    one, multi = [], []        # per wheel: (label, Fn, Fn_ref, Fx, Fx_ref, Fs, Fs_ref, pm, pm_ref)
     for k in numbers:
         c = cases[k - 1]
         res = wr.solve(c.position, motion=c.motion, mu=c.mu, normal="bem", tangential="exact",
                        element_size=2e-4)
         for side in ("left", "right"):
             r = refs[(k, side)]
-            ps = res.side(side)
-            p = ps[0]
-            fn.append(sum(q.Fn for q in ps))
-            fn_r.append(r["Fn_N"])
-            fx.append(p.Fx)
-            fx_r.append(-r["Fx_N"])
-            fs.append(p.Fs)
-            fs_r.append(-r["Fs_N"])
-            pm.append(p.p_max)
-            pm_r.append(r["pmax_MPa"] * 1e6)
-            sc.append(0.3 * r["Fn_N"])
-    what = f"{len(numbers)} cases x 2 wheels, 0.2 mm grid"
+            ps = res.side(side)                 # totals over the patches of the wheel
+            row = (f"case {k} {side}", sum(q.Fn for q in ps), r["Fn_N"], sum(q.Fx for q in ps),
+                   -r["Fx_N"], sum(q.Fs for q in ps), -r["Fs_N"], max(q.p_max for q in ps),
+                   r["pmax_MPa"] * 1e6)
+            (one if len(ps) == 1 else multi).append(row)
     kw = dict(source="VollebregtCONTACT,Vollebregt2022",
               tolerance_source="tests/reference/test_wheelrail_contact.py::"
                                "test_manchester_a22_against_contact")
-    return [max_row("exact", ref, f"Fn, {what}", fn, fn_r, 5e-3, **kw),
-            max_row("exact", ref, f"Fx / (0.3 Fn), {what}", fx, fx_r, 0.015, scale=sc, **kw),
-            max_row("exact", ref, f"Fs / (0.3 Fn), {what}", fs, fs_r, 0.015, scale=sc, **kw),
-            max_row("bem", ref, f"p_max (bem normal solution), {what}", pm, pm_r, 0.015, **kw)]
+    rows = []
+    for group, what, known in (
+            (one, f"{len(one)} wheels with one patch (cases {numbers[0]}-{numbers[-1]}), "
+                  "0.2 mm grid", ""),
+            (multi, "wheels where wheelrail finds two patches: "
+                    + ", ".join(g[0] for g in multi),
+             "Reported to the lead (found by this report): CONTACT merges contact regions "
+             "closer than D_COMB into one patch, wheelrail keeps two; the totals differ by more "
+             "than the 1.5 % the test holds for single patches (the test checks only cases 1, "
+             "2, 14, 21; its comment says all 21 cases agree within 1.2 %).")):
+        if not group:
+            continue
+        g = np.array([x[1:] for x in group], float)
+        sc = 0.3 * g[:, 1]
+        rows += [max_row("exact", ref, f"Fn, {what}", g[:, 0], g[:, 1], 5e-3, known=known, **kw),
+                 max_row("exact", ref, f"Fx / (0.3 Fn), {what}", g[:, 2], g[:, 3], 0.015,
+                         scale=sc, known=known, **kw),
+                 max_row("exact", ref, f"Fs / (0.3 Fn), {what}", g[:, 4], g[:, 5], 0.015,
+                         scale=sc, known=known, **kw),
+                 max_row("bem", ref, f"p_max (bem normal solution), {what}", g[:, 6], g[:, 7],
+                         0.015, known=known, **kw)]
+    return rows
 
 
 # --------------------------------------------------------------------------- FASTSIM
