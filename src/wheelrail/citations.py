@@ -162,7 +162,8 @@ BIBLIOGRAPHY: dict[str, tuple[str, dict[str, str]]] = {
         "author": "Vollebregt, Edwin A. H. and Voltr, Petr",
         "title": "Improved accuracy for FASTSIM using one or three flexibility values",
         "journal": "Vehicle System Dynamics", "year": "2023",
-        "note": "FASTSIM with three flexibilities saturating in the slip direction"}),
+        "note": "FASTSIM with three flexibilities saturating in the slip direction; cited "
+                "in wheelrail's issue 13, title and venue not confirmed against the paper"}),
     "Vollebregt2022": ("article", {
         "author": "Vollebregt, Edwin A. H.",
         "title": "Detailed wheel/rail geometry processing using the planar contact approach",
@@ -174,13 +175,13 @@ BIBLIOGRAPHY: dict[str, tuple[str, dict[str, str]]] = {
         "organization": "Vtech CMCC", "year": "2025",
         "note": "Program CONTACT, open-source revision 2707 (reference output of the "
                 "Manchester benchmark A-2.2)"}),
-    "Baeza2006": ("misc", {
+    "Baeza": ("misc", {
         "author": "Baeza, L. and Fuenmayor, F. J. and Carballeira, J. and Roda, A.",
         "title": "Influence of the wheel-rail contact instationary process on contact "
                  "parameters",
         "howpublished": "Universidad Polit{\\'e}cnica de Valencia",
-        "note": "Seed paper 001 of wheelrail: transient rolling, eqs. (2.5)--(2.22)",
-        "year": "2006"}),
+        "note": "Seed paper 001 of wheelrail: transient rolling, eqs. (2.5)--(2.22); "
+                "year and venue not confirmed"}),
     "Toumi2016": ("article", {
         "author": "Toumi, Moncef and Chollet, Hugues and Yin, Honor{\\'e}",
         "title": "Finite element analysis of the frictional wheel-rail rolling contact using "
@@ -214,7 +215,7 @@ METHOD_REFERENCES: dict[str, tuple[str, ...]] = {
     "table": ("Kalker1996", "Kalker1990"),
     "fastrip": ("Sichani2016", "Kalker1990"),
     # other solvers of the package
-    "transient": ("Baeza2006", "Kalker1990"),
+    "transient": ("Baeza", "Kalker1990"),
     "fe": ("Toumi2016",),
     "geometry": ("Bosso2013", "PiotrowskiChollet2005"),
     "halfspace": ("Johnson1985", "Kalker1990"),

@@ -58,6 +58,17 @@ def _header_lines(report) -> list[str]:
     ]
 
 
+_ACCENTS = {'{\\"u}': "ü", '{\\"o}': "ö", '{\\"a}': "ä", "{\\ss}": "ß", "{\\'e}": "é",
+            "{\\`e}": "è", "{\\`a}": "à"}
+
+
+def _detex(text) -> str:
+    """BibTeX field text as plain Unicode (the accents used in the database)."""
+    for tex, char in _ACCENTS.items():
+        text = text.replace(tex, char)
+    return text.replace("{", "").replace("}", "")
+
+
 def _md_cell(text) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
@@ -104,13 +115,10 @@ def markdown(report) -> str:
         where = f.get("journal") or f.get("booktitle") or f.get("publisher") or \
             f.get("school") or f.get("institution") or f.get("howpublished") or \
             f.get("organization", "")
-        vol = f" {f['volume']}" if "volume" in f else ""
+        vol = f" {f['volume']}" if "volume" in f and kind == "article" else ""
         pages = f", {f['pages'].replace('--', '–')}" if "pages" in f else ""
-        title = f["title"].replace("{", "").replace("}", "").replace("\\\"", "").replace("\\", "")
-        author = f["author"].replace("{", "").replace("}", "").replace("\\\"", "").replace(
-            "\\", "")
-        where = where.replace("{", "").replace("}", "").replace("\\\"", "").replace("\\", "")
-        out.append(f"- [{key}] {author}: {title}. {where}{vol} ({f['year']}){pages}.")
+        out.append(f"- [{key}] {_detex(f['author'])}: {_detex(f['title'])}. {_detex(where)}{vol} "
+                   f"({f.get('year', 'n.d.')}){pages}.")
     out += ["", "BibTeX of all of them: `wr.citation(...)` or `citations.bib` next to this "
             "report.", ""]
     return "\n".join(out)

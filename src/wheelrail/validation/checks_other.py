@@ -33,7 +33,7 @@ def transient_steady(quick):
     MU = 0.4
     hc = _table1()
     rows = []
-    kw = dict(source="Baeza2006,Kalker1990", reference_method="exact")
+    kw = dict(source="Baeza,Kalker1990", reference_method="exact")
     # constant creepage: after 20 semi-axes the tractions are the steady ones (V dt = dx)
     n = 12
     grid, gap = hertz_grid(hc, elements=n)
@@ -89,7 +89,7 @@ def transient_regularised(quick):
         err.append(abs(r.Fx[-1] - exact.Fx[-1]) / abs(exact.Fx[-1]))
     q = np.polyfit(np.log(eps), np.log(err), 1)[0]
     ref = "exact-Coulomb transient solution (seed 001 eqs. 2.21-2.22)"
-    src = dict(source="Baeza2006", tolerance_source="tests/reference/test_transient_regularised.py")
+    src = dict(source="Baeza", tolerance_source="tests/reference/test_transient_regularised.py")
     return [band_row("transient", ref, "observed order of the Fx error in epsilon", q, 1.0, 0.6,
                      1.3, figure=convergence_figure(eps, err, "Fx", q, xlabel="epsilon [m/s]"),
                      kind="convergence", reference_method="transient", **src),
