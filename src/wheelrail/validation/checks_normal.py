@@ -316,3 +316,40 @@ def influence_vs_closed_forms(quick):
                         "centre displacement, 41x61 elements (FFT operator)", u[20, 30], w, 1e-12,
                         **kw))
     return rows
+
+
+@register("subsurface-hertz-axis", ["halfspace"],
+          "Subsurface stresses under a Hertz contact vs Johnson's closed forms")
+def subsurface_vs_hertz(quick):
+    wr = _wr()
+    from wheelrail.halfspace import subsurface_stresses
+    from wheelrail.normal.bem import hertz_grid, solve_normal
+
+    nu = 0.3
+    mat = wr.Material(2.1e11, nu)
+    hc = wr.hertz(10e3, A=1.0, B=1.0, material=mat)
+    grid, h0 = hertz_grid(hc, elements=40)
+    sol = solve_normal(grid, h0, mat, load=10e3)
+    a, p0 = hc.a, hc.p0
+    zr = np.linspace(0.1, 2.0, 20)
+    st = subsurface_stresses(grid, None, None, sol.pressure, mat, zr * a,
+                             x=np.array([0.0]), y=np.array([0.0]))
+    sz = -p0 / (1 + zr**2)
+    sr = p0 * (-(1 + nu) * (1 - zr * np.arctan(1 / zr)) + 0.5 / (1 + zr**2))
+    kw = dict(source="Johnson1985", reference_method="",
+              tolerance_source="tests/reference/test_halfspace_subsurface.py (1e-3 p0; "
+                               "tau_max 1 %, depth 0.01 a)")
+    ref = ("Johnson (1985) eq. 3.72, stresses on the axis of a circular Hertz contact "
+           "(BEM pressure, 40 elements)")
+    zz = np.linspace(0.40, 0.56, 33) * a
+    st2 = subsurface_stresses(grid, None, None, sol.pressure, mat, zz,
+                              x=np.array([0.0]), y=np.array([0.0]))
+    tau, z_at, _, _ = st2.max_location("tau_max")
+    return [max_row("halfspace", ref, "sigma_zz / p0 on the axis, z = 0.1 ... 2 a",
+                    st.szz[:, 0] / p0, sz / p0, 1e-3, scale=1.0, **kw),
+            max_row("halfspace", ref, "sigma_xx / p0 on the axis, z = 0.1 ... 2 a",
+                    st.sxx[:, 0] / p0, sr / p0, 1e-3, scale=1.0, **kw),
+            rel_row("halfspace", "Johnson (1985) §4.2: tau_max = 0.31 p0 (nu = 0.3)",
+                    "maximum shear stress below the centre", tau, 0.31 * p0, 0.01, **kw),
+            abs_row("halfspace", "Johnson (1985) §4.2: depth 0.48 a (nu = 0.3)",
+                    "depth of the maximum shear / a", z_at / a, 0.48, 0.01, **kw)]
