@@ -62,6 +62,7 @@ _LAZY = {
     "sweeps": ("wheelrail.sweeps", None),
     "SweepSpec": ("wheelrail.sweeps", "SweepSpec"),
     "open_sweep": ("wheelrail.sweeps", "open_sweep"),
+    "citation": ("wheelrail.citations", "citation"),
 }
 
 
@@ -75,28 +76,12 @@ def __getattr__(name):
     raise AttributeError(f"module 'wheelrail' has no attribute {name!r}")
 
 
-def citation(method: str | None = None) -> list[str]:
-    """References of the implemented methods (all, or one normal or tangential method by name)."""
-    from .api import METHODS, NORMAL_METHODS, get_method, get_normal_method, method_key
-
-    if method is None:
-        impls = [get_normal_method(n) for n in NORMAL_METHODS] + [get_method(n) for n in METHODS]
-    elif method_key(method) is not None:
-        impls = [get_method(method)]
-    else:
-        impls = [get_normal_method(method)]
-    refs: list[str] = []
-    for impl in impls:
-        refs.extend(r for r in impl.references if r not in refs)
-    return refs
-
-
 __all__ = [
     "Material", "MaterialPair", "STEEL",
     "HertzContact", "hertz", "hertz_from_semiaxes", "hertz_from_radii", "hertz_from_penetration",
     "hertz_line", "curvatures_from_radii",
     "creep_forces", "available_methods", "solve", "normal_methods", "tangential_methods",
-    "CreepForces", "Status", "conventions", "citation",
+    "CreepForces", "Status", "conventions",
     "WheelrailError", "InputError", "ConvergenceError", "NoContactError", "ProfileError",
     "CaseFileError",
     *_LAZY,

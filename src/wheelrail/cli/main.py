@@ -38,6 +38,7 @@ COMMANDS = [
     ("fe", "wheelrail.cli.fe"),
     ("sweep", "wheelrail.cli.sweep"),
     ("compare", "wheelrail.cli.compare"),
+    ("validate", "wheelrail.cli.validate"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2

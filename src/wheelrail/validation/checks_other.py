@@ -1,0 +1,244 @@
+"""Transient rolling, finite elements and wheelset geometry against independent references."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._core import abs_row, band_row, max_row, register, rel_row
+from ._figures import convergence_figure
+
+
+def _wr():
+    import wheelrail as wr
+
+    return wr
+
+
+# --------------------------------------------------------------------------- transient
+def _table1():
+    """Seed 001 §3.1, Table 1: R 0.5 m, wheel profile −0.409 m, rail crown 0.3 m, 10 kN."""
+    wr = _wr()
+    return wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+
+
+@register("transient-steady-limit", ["transient"],
+          "Transient rolling vs the steady exact solver and the shift problem")
+def transient_steady(quick):
+    wr = _wr()
+    from scipy.optimize import brentq
+
+    from wheelrail.halfspace.tangential import solve_rolling, solve_shift
+    from wheelrail.normal.bem import hertz_grid, solve_normal
+
+    MU = 0.4
+    hc = _table1()
+    rows = []
+    kw = dict(source="Baeza,Kalker1990", reference_method="exact")
+    # constant creepage: after 20 semi-axes the tractions are the steady ones (V dt = dx)
+    n = 12
+    grid, gap = hertz_grid(hc, elements=n)
+    pn = solve_normal(grid, gap, wr.STEEL, load=float(hc.load)).pressure
+    st = solve_rolling(grid, pn, wr.STEEL, (-5e-4, 0.0, 0.0), mu=MU, tol=1e-10)
+    res = wr.transient_rolling(hc, travel=20 * float(hc.a), step=grid.dx, mu=MU,
+                               creepage=(-5e-4, 0.0, 0.0), elements=n)
+    err = np.abs(res.px[-1] - st.px).max() / np.abs(st.px).max()
+    ref = "steady rolling, exact theory on the same grid (Kalker 1990 §5.2; seed 001 eq. 2.19)"
+    tsrc = "tests/reference/test_transient_steady.py"
+    rows += [abs_row("transient", ref, "max traction difference / max abs(px) after 20 a, 12 el.",
+                     err, 0.0, 1e-4, tolerance_source=tsrc, **kw),
+             rel_row("transient", ref, "Fx after 20 a (xi = -5e-4, seed 001 Table 1 case)",
+                     res.Fx[-1], st.Fx, 1e-5, tolerance_source=tsrc, **kw)]
+    # first step from rest = Cattaneo shift problem
+    n2, h, xi, eta = 10, 2e-4, -4e-4, 2e-4
+    r1 = wr.transient_rolling(hc, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
+                              elements=n2)
+    g2, gap2 = hertz_grid(hc, elements=n2)
+    pn2 = solve_normal(g2, gap2, wr.STEEL, load=10e3).pressure
+    sh = solve_shift(g2, pn2, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
+    rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (seed 001 §3.1)",
+                        "Fy after the first step from rest, 10 el.", r1.Fy[1], sh.Fy, 1e-6,
+                        tolerance_source=tsrc, **kw))
+    # Cattaneo to Carter: final creepage for a prescribed force
+    n3 = 10
+    g3, gap3 = hertz_grid(hc, elements=n3)
+    pn3 = solve_normal(g3, gap3, wr.STEEL, load=10e3).pressure
+
+    def fx(x):
+        return solve_rolling(g3, pn3, wr.STEEL, (x, 0.0, 0.0), mu=MU, tol=1e-10).Fx - 2000.0
+
+    xi_steady = brentq(fx, -3e-3, -1e-5, xtol=1e-12)
+    r3 = wr.transient_rolling(hc, travel=16 * float(hc.a), step=g3.dx, mu=MU,
+                              tangential_force=2000.0, elements=n3)
+    rows.append(rel_row("transient", "steady exact theory at the same force (seed 001 §3.1, "
+                        "'Cattaneo to Carter')", "final xi for Fx = 2 kN, 10 el.", r3.xi[-1],
+                        xi_steady, 0.01, tolerance_source=tsrc, **kw))
+    return rows
+
+
+@register("transient-regularised", ["transient"],
+          "Regularised Coulomb law: convergence to the exact law as epsilon -> 0")
+def transient_regularised(quick):
+    wr = _wr()
+    hc = _table1()
+    kw = dict(travel=2.5e-3, step=2.5e-4, mu=0.4, creepage=(-5e-4, 0.0, 0.0), elements=10)
+    exact = wr.transient_rolling(hc, **kw)
+    eps = np.array([3e-5, 1e-5, 3e-6, 1e-6])
+    err = []
+    for e in eps:
+        r = wr.transient_rolling(hc, friction="regularised", epsilon=e, **kw)
+        err.append(abs(r.Fx[-1] - exact.Fx[-1]) / abs(exact.Fx[-1]))
+    q = np.polyfit(np.log(eps), np.log(err), 1)[0]
+    ref = "exact-Coulomb transient solution (seed 001 eqs. 2.21-2.22)"
+    src = dict(source="Baeza", tolerance_source="tests/reference/test_transient_regularised.py")
+    return [band_row("transient", ref, "observed order of the Fx error in epsilon", q, 1.0, 0.6,
+                     1.3, figure=convergence_figure(eps, err, "Fx", q, xlabel="epsilon [m/s]"),
+                     kind="convergence", reference_method="transient", **src),
+            abs_row("transient", ref, "relative Fx error at epsilon = 1e-6", err[-1], 0.0, 3e-3,
+                    kind="convergence", reference_method="transient", **src)]
+
+
+# --------------------------------------------------------------------------- FE
+def _fe_errors(h):
+    wr = _wr()
+    from wheelrail.fe import RollingCase, indent
+
+    flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
+    case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+                       mesh_size=h, depth=4, half_width=4, half_length=4)
+    r = indent(case)
+    hz = r.hertz
+    return r, hz
+
+
+@register("fe-indentation-hertz", ["fe"], "FE static indentation vs Hertz",
+          heavy="finite-element runs take 10-60 s")
+def fe_indentation(quick):
+    h = 1.5e-3 if quick else 1.0e-3
+    r, hz = _fe_errors(h)
+    ref = "Hertz closed form (Johnson 1985 eqs. 3.64-3.66); seed 000 Table 3 compares the same"
+    kw = dict(source="Hertz1882,Toumi2016", reference_method="hertz",
+              tolerance_source="tests/reference/test_fe_hertz.py (1.5 mm mesh: p_max 12 %, "
+                               "a 10 %, b 15 %)")
+    case = f"R 0.46 m on 60E1, 7.5 kN, {h * 1e3:g} mm mesh"
+    rows = [rel_row("fe", ref, f"p_max, {case}", r.p_max, hz.p0, 0.12, **kw),
+            rel_row("fe", ref, f"semi-axis a, {case}", r.a, hz.a, 0.10, **kw),
+            rel_row("fe", ref, f"semi-axis b, {case}", r.b, hz.b, 0.15, **kw)]
+    if not quick:
+        r2, hz2 = _fe_errors(2e-3)
+        r15, hz15 = _fe_errors(1.5e-3)
+        e = [abs(r2.p_max / hz2.p0 - 1), abs(r15.p_max / hz15.p0 - 1), abs(r.p_max / hz.p0 - 1)]
+        hs = [2e-3, 1.5e-3, 1e-3]
+        q = np.polyfit(np.log(hs), np.log(e), 1)[0]
+        rows.append(band_row("fe", ref, "observed order of the p_max error (2/1.5/1 mm)", q,
+                             2.0, 1.0, np.inf, figure=convergence_figure(hs, e, "p_max", q),
+                             source="Hertz1882", kind="convergence", reference_method="hertz",
+                             tolerance_source="tests/reference/test_fe_hertz.py (order > 1)"))
+    return rows
+
+
+@register("fe-rolling-exact", ["fe"], "FE steady rolling vs the exact half-space theory",
+          full_only=True)
+def fe_rolling(quick):
+    wr = _wr()
+    from wheelrail.fe import RollingCase, solve
+
+    flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
+    kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
+              mesh_size=2e-3, element="reduced", mass_scaling=400, depth=4, half_width=3,
+              half_length=3, travel=0.02)
+    r = solve(RollingCase(creepage=(7e-4, 0.0, 0.0), **kw), progress=False)
+    g = r.model.geometry
+    hz = wr.hertz(7500.0, g["A"], g["B"], wr.Material(2.1e11, 0.28))
+    ref = wr.creep_forces(hz, (7e-4, 0.0, 0.0), 0.2, method="exact", elements=20).Fx
+    return [rel_row("fe", "Kalker's exact theory (20 elements) on the Hertz patch; seed 000 "
+                    "§4.1.3 compares with CONTACT", "Fx, xi = 7e-4, mu = 0.2, 2 mm mesh",
+                    r.Fx, ref, 0.10, source="Kalker1990,Toumi2016",
+                    tolerance_source="tests/reference/test_fe_rolling.py (rel 0.10)",
+                    reference_method="exact")]
+
+
+# --------------------------------------------------------------------------- geometry
+LAM, R_RAIL, R0 = 1.0 / 20.0, 0.3, 0.46
+
+
+def _cone_case(inclination):
+    wr = _wr()
+    s = np.linspace(-0.05, 0.06, 221)
+    wheel = wr.Profile(s, LAM * s, kind="wheel", name="cone 1:20")
+    y = np.linspace(-0.035, 0.035, 281)
+    rail = wr.Profile(y, np.sqrt(R_RAIL**2 - y * y) - R_RAIL, kind="rail", name="circle R0.3")
+    return (wr.Wheelset(wheel, nominal_radius=R0),
+            wr.Track(rail, inclination=inclination, gauge_height=0.001))
+
+
+def cone_tangency(ws, tr, y):
+    """Closed-form rigid contact of a cone on circular rail heads (seed 002 eqs. 2.1–2.3).
+
+    The contact point is where the rolled generatrix is tangent to the circle; both
+    tangency conditions are linear in the axle height, so the roll angle follows from
+    one scalar equation (brentq).
+    """
+    from scipy.optimize import brentq
+
+    pl = tr.placement("right")
+    a = tr.cant_angle
+    Uc = pl.offset + R_RAIL * np.sin(a)
+    Zc = -R_RAIL * np.cos(a) - pl.z_top
+    e, r0 = ws.e_tape, ws.nominal_radius
+
+    def zc_side(th, sign):
+        yy, tt = sign * y, sign * th
+        g = np.arctan(LAM) + tt
+        up0 = yy + e * np.cos(tt) + r0 * np.sin(tt)
+        return Zc + R_RAIL * np.cos(g) - np.tan(g) * (Uc - R_RAIL * np.sin(g) - up0) \
+            - e * np.sin(tt) + r0 * np.cos(tt)
+
+    th = brentq(lambda t: zc_side(t, 1) - zc_side(t, -1), -0.02, 0.02, xtol=1e-16)
+    out = {"roll": th, "z": zc_side(th, 1) - r0}
+    for side, sign in (("right", 1), ("left", -1)):
+        yy, tt = sign * y, sign * th
+        g = np.arctan(LAM) + tt
+        up0 = yy + e * np.cos(tt) + r0 * np.sin(tt)
+        s = (Uc - R_RAIL * np.sin(g) - up0) / (np.cos(tt) - LAM * np.sin(tt))
+        out[side] = {"s": s, "gamma": g, "r": r0 - LAM * s}
+    out["delta_r"] = out["right"]["r"] - out["left"]["r"]
+    return out
+
+
+@register("geometry-cone-circle", ["geometry"],
+          "Rigid contact search vs closed-form tangency of a cone on a circle")
+def geometry_cone(quick):
+    wr = _wr()
+    rows = []
+    kw = dict(source="Bosso2013",
+              tolerance_source="tests/reference/test_geometry_cone.py")
+    ref = "closed-form tangency of a 1:20 cone on R 300 mm rail heads (seed 002 eqs. 2.1-2.3)"
+    ys = (-0.005, 0.0, 0.0047) if quick else (-0.005, -0.0013, 0.0, 0.002, 0.0047)
+    d_roll, d_dr, d_s, d_g = [], [], [], []
+    for inc in (0.0, 1 / 40):
+        ws, tr = _cone_case(inc)
+        for y in ys:
+            ref_v = cone_tangency(ws, tr, y)
+            cp = wr.contact_points(ws, tr, y)
+            d_roll.append(abs(cp.roll - ref_v["roll"]))
+            d_dr.append(abs(cp.delta_r - ref_v["delta_r"]))
+            for side in ("left", "right"):
+                pts = cp.side(side)
+                d_s.append(abs(pts.wheel_y[0] - ref_v[side]["s"]))
+                d_g.append(abs(pts.contact_angle[0] - ref_v[side]["gamma"]))
+    what = f"y = {', '.join(f'{v * 1e3:g}' for v in ys)} mm, inclination 0 and 1:40"
+    rows += [abs_row("geometry", ref, f"roll angle [rad], max over {what}", max(d_roll), 0.0,
+                     1e-10, **kw),
+             abs_row("geometry", ref, f"rolling-radius difference [m], {what}", max(d_dr), 0.0,
+                     1e-9, **kw),
+             abs_row("geometry", ref, f"contact point on the wheel [m], {what}", max(d_s), 0.0,
+                     1e-7, **kw),
+             abs_row("geometry", ref, f"contact angle [rad], {what}", max(d_g), 0.0, 1e-7, **kw)]
+    # equivalent conicity of the cone: slope of the closed-form delta_r
+    ws, tr = _cone_case(0.0)
+    lam_eff = cone_tangency(ws, tr, 1e-4)["delta_r"] / 2e-4
+    lam_e = wr.equivalent_conicity(ws, tr, 0.003)
+    rows.append(rel_row("geometry", "closed-form tangency: slope of delta_r / (2 y) (EN 15302 on "
+                        "a cone)", "equivalent conicity, amplitude 3 mm", lam_e, lam_eff, 1e-4,
+                        **kw))
+    return rows
