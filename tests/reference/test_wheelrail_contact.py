@@ -216,9 +216,12 @@ def test_manchester_a22_against_contact(case):
         fz = 0.3 * r["Fn_N"]
         assert p.Fn == pytest.approx(r["Fn_N"], rel=5e-3)
         flange = abs(r["deltcp_rad"]) > 0.5
-        # measured over all 21 cases (benchmarks/bench_manchester.py): Fn within 0.2 %, Fx and
-        # Fs within 1.2 % of mu Fn, p_max within 1 %; the flange patches (65 deg) are 10 %
-        # smaller in area (CONTACT discretises the curved surface, we the contact plane)
+        # measured over the 41 single-patch wheels of the 21 cases (benchmarks/
+        # bench_manchester.py): Fn within 0.2 %, Fx and Fs within 1.2 % of mu Fn, p_max within
+        # 1.25 %; case 11 right, where CONTACT merges two regions into one patch and we keep
+        # two, differs by up to 3.6 % of mu Fn (docs/validation/manchester_a22.md). The flange
+        # patches (65 deg) are 10 % smaller in area (CONTACT discretises the curved surface,
+        # we the contact plane)
         assert p.Fx == pytest.approx(-r["Fx_N"], abs=0.015 * fz)
         assert p.Fs == pytest.approx(-r["Fs_N"], abs=0.015 * fz)
         assert p.p_max == pytest.approx(r["pmax_MPa"] * 1e6, rel=0.015)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ._core import abs_row, band_row, max_row, register, rel_row
-from ._figures import convergence_figure, new_figure, to_base64
+from ._figures import convergence_figure
 
 STEEL_E, STEEL_NU = 2.1e11, 0.28
 

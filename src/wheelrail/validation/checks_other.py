@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import abs_row, band_row, max_row, register, rel_row
+from ._core import abs_row, band_row, register, rel_row
 from ._figures import convergence_figure
 
 
