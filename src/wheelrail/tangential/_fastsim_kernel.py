@@ -23,9 +23,23 @@ evaluated at the step mid-point)
 
     p_H = p(x_p) − (x_p − x_c) g((x_p + x_c)/2).
 
-If ``|p_H|`` exceeds the traction bound ``μ p_z(x_c)`` the traction is scaled
-back onto the bound (slip) and the slip is ``s = L_ref (p − p_H)/(x_p − x_c)``,
-opposite to the traction.
+If ``|p_H|`` exceeds the traction bound ``g = μ p_z(x_c)`` the element slips.
+The slip of the element follows from the same discrete equation with the
+traction defect, ``s = D (p − p_H)`` with ``D = diag(L1, L2)/(x_p − x_c)``
+(u = (L1 p_x, L2 p_y); the spin's flexibility L3 only enters the rigid slip
+through ``g``), and Coulomb's law requires ``|p| = g`` and ``p`` opposite to
+``s``. With ``p = −g s/|s|`` this is the small per-element problem
+
+    p_i = L_i p_H,i / (L_i + λ),   Σ_i p_i² = g²,   λ ≥ 0,
+
+(``λ = |s|(x_p − x_c)/g``), solved by Newton's method on the convex,
+decreasing function ``|p(λ)| − g`` from the left (monotone convergence), see
+:func:`saturate`. With one flexibility (L1 = L2, Kalker's FASTSIM) the
+solution is the predictor scaled onto the bound; with three flexibilities it
+is not, and scaling the predictor would let the traction follow (ξ/L1, η/L2)
+instead of opposing the slip: at ξ = η the force of a sliding patch would
+point along (C11, C22) instead of at 45° (Vollebregt & Voltr 2023 make the
+same point for FASTSIM with three flexibilities).
 
 With ``first_order=True`` the kernels use instead the backward-Euler march of
 CONTACT's FASTSIM for steady rolling (Vollebregt, CONTACT user guide, example
@@ -50,6 +64,8 @@ References
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005), §3.1 eq. (11),
    §3.3 eqs. (24)–(26) (seed 003).
+.. [3] E.A.H. Vollebregt, P. Voltr, FASTSIM with three flexibilities (2023):
+   the traction in the slip area must oppose the local slip.
 """
 
 from __future__ import annotations
@@ -57,11 +73,64 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["march_strip", "fastsim_strips_kernel", "fastsim_hertz_batch"]
+__all__ = ["saturate", "march_strip", "fastsim_strips_kernel", "fastsim_hertz_batch"]
 
 
 @njit(cache=True, fastmath=False)
-def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, nx,
+def saturate(pxh, pyh, g, L1, L2):
+    """Traction of a slipping element: opposite to its slip, on the bound (pure kernel).
+
+    Solves ``p_i = L_i p_H,i/(L_i + λ)``, ``|p| = g``, ``λ ≥ 0`` (module
+    docstring) for ``|p_H| > g > 0`` by Newton's method on
+    ``φ(λ) = |p(λ)| − g`` (convex and decreasing, so the iterates starting
+    left of the root increase monotonically to it). The start
+    ``λ0 = min(L1, L2)(|p_H|/g − 1)`` lies left of the root and is the root
+    when L1 = L2. The result is finally scaled onto ``|p| = g`` exactly.
+
+    Parameters
+    ----------
+    pxh, pyh : float
+        Elastic predictor [Pa].
+    g : float
+        Traction bound μ p_z [Pa], ≥ 0.
+    L1, L2 : float
+        Flexibilities along x and y [m/Pa] (> 0).
+
+    Returns
+    -------
+    px, py : float
+        Traction [Pa].
+    """
+    t = np.sqrt(pxh * pxh + pyh * pyh)
+    if g <= 0.0:
+        return 0.0, 0.0
+    lmin = L1 if L1 < L2 else L2
+    lam = lmin * (t / g - 1.0)
+    if L1 != L2:
+        cx = L1 * pxh
+        cy = L2 * pyh
+        for _ in range(30):
+            dx_ = L1 + lam
+            dy_ = L2 + lam
+            qx = cx / dx_
+            qy = cy / dy_
+            q = np.sqrt(qx * qx + qy * qy)
+            phi = q - g
+            if phi <= 1e-13 * g:
+                break
+            dq = -(qx * qx / dx_ + qy * qy / dy_) / q
+            lam -= phi / dq
+    px = L1 * pxh / (L1 + lam)
+    py = L2 * pyh / (L2 + lam)
+    q = np.sqrt(px * px + py * py)
+    if q > 0.0:
+        px *= g / q
+        py *= g / q
+    return px, py
+
+
+@njit(cache=True, fastmath=False)
+def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, xi, eta, phi, nx,
                 store, out_px, out_py, out_sx, out_sy, out_slip, first_order=False):
     """March along one strip; return its force contributions (Fx, Fy, Mz).
 
@@ -75,8 +144,6 @@ def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, 
         Traction bound μ p_z at the element centres [Pa].
     L1, L2, L3 : float
         Flexibilities for ξ, η and φ [m/Pa].
-    L_ref : float
-        Flexibility used to convert the traction defect into slip [m/Pa].
     xi, eta, phi : float
         Creepages [-], [-], [1/m].
     nx : int
@@ -114,13 +181,11 @@ def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, 
         g = bound[i]
         t2 = pxh * pxh + pyh * pyh
         if t2 > g * g:
-            sc = g / np.sqrt(t2)
-            px = pxh * sc
-            py = pyh * sc
+            px, py = saturate(pxh, pyh, g, L1, L2)
             if store:
                 out_slip[i] = True
-                out_sx[i] = L_ref * (px - pxh) / h
-                out_sy[i] = L_ref * (py - pyh) / h
+                out_sx[i] = L1 * (px - pxh) / h
+                out_sy[i] = L2 * (py - pyh) / h
         else:
             px = pxh
             py = pyh
@@ -141,7 +206,7 @@ def march_strip(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi, 
 
 
 @njit(cache=True)
-def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, eta, phi,
+def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, xi, eta, phi,
                           px, py, sx, sy, slip, first_order=False):
     """FASTSIM on a patch given by strips (one case), storing the fields.
 
@@ -151,7 +216,7 @@ def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, 
         Strip positions, widths, leading and trailing edges [m].
     bound : ndarray, shape (ny, nx)
         Traction bound μ p_z at the element centres [Pa].
-    L1, L2, L3, L_ref : ndarray, shape (ny,)
+    L1, L2, L3 : ndarray, shape (ny,)
         Per-strip flexibilities [m/Pa].
     xi, eta, phi : float
         Creepages.
@@ -172,7 +237,7 @@ def fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref, xi, 
     Mz = 0.0
     for j in range(ny):
         fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound[j], L1[j], L2[j],
-                                 L3[j], L_ref[j], xi, eta, phi, nx, True,
+                                 L3[j], xi, eta, phi, nx, True,
                                  px[j], py[j], sx[j], sy[j], slip[j], first_order)
         Fx += fx
         Fy += fy
@@ -234,6 +299,9 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
         gy0 = eta[k] / L2[k]
         gs = phi[k] / L3[k]
         pk = mu[k] * peak[k]
+        l1 = L1[k]
+        l2 = L2[k]
+        equal_flex = l1 == l2
         for j in range(ny):
             xl[j] = a[k] * half[j]
             dx[j] = 2.0 * xl[j] / nx
@@ -262,10 +330,17 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
                 g = bq[j] * sh
                 t2 = pxh * pxh + pyh * pyh
                 g2 = g * g
-                sc = np.sqrt(g2 / t2) if t2 > g2 else 1.0
-                stick[j] += 0.0 if t2 > g2 else 1.0
-                pxn = pxh * sc
-                pyn = pyh * sc
+                if t2 > g2:
+                    if equal_flex:
+                        sc = np.sqrt(g2 / t2)
+                        pxn = pxh * sc
+                        pyn = pyh * sc
+                    else:
+                        pxn, pyn = saturate(pxh, pyh, g, l1, l2)
+                else:
+                    stick[j] += 1.0
+                    pxn = pxh
+                    pyn = pyh
                 px[j] = pxn
                 py[j] = pyn
                 spx[j] += pxn

@@ -98,7 +98,8 @@ class FastsimFields:
         Tangential traction on the wheel [Pa].
     sx, sy : ndarray
         Slip of the wheel relative to the rail divided by the rolling speed
-        [-] (zero in adhesion), ``s = L_ref (p − p_H)/Δx``.
+        [-] (zero in adhesion), ``s = diag(L1, L2)(p − p_H)/Δx``; in
+        slip ``p`` is exactly opposite to ``s``.
     slip : ndarray of bool
         True where the element slides.
     mu : ndarray, shape (ny,)
@@ -285,7 +286,7 @@ def _check_choice(name, value, choices):
 # general strips (non-elliptic patches)
 # ---------------------------------------------------------------------------
 def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, mu, nx=None, *,
-                   profile=None, L_ref=None, c=None, fields=True, scheme="midpoint"):
+                   profile=None, fields=True, scheme="midpoint"):
     """FASTSIM on a contact patch described by strips (elliptic or not).
 
     This is the kernel used by the virtual-penetration methods (Linder,
@@ -317,12 +318,6 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
         Pressure along each strip when ``pressure`` holds peaks:
         ``peak √(1 − s²)`` or ``peak (1 − s²)``, s the position along the
         strip normalised to (−1, 1).
-    L_ref : float or array_like, shape (ny,), optional
-        Flexibility converting traction defects into slip; default: Kalker's
-        weighted mean of L1, L2, L3 per strip with ``c``.
-    c : float, optional
-        Length weighting the spin in the default ``L_ref`` [m]; default
-        √(a_j b_e) with a_j the strip half-length and b_e half the patch width.
     fields : bool
         Return the fields (:class:`FastsimFields`) in ``.fields``.
     scheme : {"midpoint", "euler"}
@@ -384,22 +379,13 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
         raise InputError(f"pressure must be >= 0, got {p[p < 0].ravel()[0]!r}")
     p = np.ascontiguousarray(p, dtype=float)
 
-    if L_ref is None:
-        if c is None:
-            half_width = 0.5 * float(np.sum(dy))
-            c_s = np.sqrt(np.clip(0.5 * (x_lead - x_trail), 0.0, None) * half_width)
-        else:
-            c_s = float(positive("c", c))
-        L_ref = weighted_flexibility(L1, L2, L3, xi, eta, phi, c_s)
-    L_ref = strip_array("L_ref", L_ref, positive)
-
     bound = p * mu_s[:, None]
     px = np.zeros((ny, nx))
     py = np.zeros((ny, nx))
     sx = np.zeros((ny, nx))
     sy = np.zeros((ny, nx))
     slip = np.zeros((ny, nx), dtype=bool)
-    Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref,
+    Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3,
                                           xi, eta, phi, px, py, sx, sy, slip,
                                           scheme == "euler")
     length = np.clip(x_lead - x_trail, 0.0, None)
@@ -460,15 +446,17 @@ class Fastsim(TangentialMethod):
     :func:`wheelrail.tangential.linear.kalker_coefficients` for a/b and the
     combined Poisson's ratio. ``Mz`` is the spin moment about the patch centre.
 
-    Known properties of the variants: with three flexibilities the traction
-    in a slip element follows the elastic predictor, so at full slip under
-    combined ξ, η the force points along (C11 ξ, C22 η) rather than exactly
-    against (ξ, η) (a few degrees for usual a/b); the weighted flexibility
-    gives the Coulomb direction but does not reproduce the linear theory for
-    combined creepage. The spin moment reproduces neither C23 (for η) nor
-    C33 (for φ) of the linear theory. The slip in the fields is computed with
-    the weighted flexibility as ``L_ref`` (exact for ``"weighted"``, an
-    approximation for ``"three"``).
+    Slip rule: in a slipping element the traction lies on the bound and
+    opposes the element's slip s = diag(L1, L2)(p − p_H)/Δx, a small
+    per-element problem solved exactly (:func:`wheelrail.tangential.
+    _fastsim_kernel.saturate`; Vollebregt & Voltr 2023, FASTSIM with three
+    flexibilities). Scaling the elastic predictor back onto the bound (the
+    rule of Kalker's FASTSIM with one flexibility, where both coincide)
+    would make the force of a sliding patch point along (C11 ξ, C22 η)
+    rather than against (ξ, η) with three flexibilities; it is not offered,
+    as no reference supports it for L1 ≠ L2. The weighted flexibility does
+    not reproduce the linear theory for combined creepage. The spin moment
+    reproduces neither C23 (for η) nor C33 (for φ) of the linear theory.
 
     Discretisation and published numbers: for CONTACT's FASTSIM example
     (Vollebregt, *User guide for CONTACT*, §"The use of the FASTSIM
@@ -479,8 +467,8 @@ class Fastsim(TangentialMethod):
     digits elsewhere: −0.636 / −0.596). CONTACT uses the same
     flexibilities L1, L2, L3 and the same Kalker coefficients (1/C quadratic
     in ν) as here, but the first-order march: with ``scheme="euler"`` we get
-    −0.638 / −0.5953 at 200×200; the converged simplified theory (both
-    schemes) is −0.647 / −0.596, and ``"midpoint"`` gives −0.648 / −0.5967
+    −0.639 / −0.5959 at 200×200; the converged simplified theory (both
+    schemes) is −0.648 / −0.597, and ``"midpoint"`` gives −0.649 / −0.5973
     at 200×200. The parabolic case is sensitive because the η and φ
     contributions to Fy nearly cancel.
     """
@@ -549,7 +537,7 @@ class Fastsim(TangentialMethod):
                 ys, dys, xl, xt = hertz_strips(a[k], b[k], ny)
                 r = fastsim_strips(ys, dys, xl, xt, peak[k] * strip_peak, L1[k], L2[k], L3[k],
                                    xi[k], eta[k], phi[k], mu[k], nx, profile=bound,
-                                   c=np.sqrt(a[k] * b[k]), scheme=scheme)
+                                   scheme=scheme)
                 Fx[k], Fy[k], Mz[k] = r.Fx, r.Fy, r.Mz
                 flist.append(r.fields)
             f = flist[0] if single else tuple(flist)
@@ -618,7 +606,7 @@ class Fastsim(TangentialMethod):
             par = _profile("parabolic", 1.0 - dst * 2.0)
             p = (p.sum(axis=1) / par.sum())[:, None] * par[None, :]
         r = fastsim_strips(patch.y, patch.dy, patch.x_lead, patch.x_trail, p, L1, L2, L3,
-                           xi, eta, phi, mu, c=np.sqrt(a * b), scheme=scheme,
+                           xi, eta, phi, mu, scheme=scheme,
                            fields=fields is not False)
         xc, yc = patch.centre
         Mz = r.Mz - xc * r.Fy + yc * r.Fx
