@@ -76,16 +76,56 @@ from numba import njit
 __all__ = ["saturate", "march_strip", "fastsim_strips_kernel", "fastsim_hertz_batch"]
 
 
+@njit(cache=True, fastmath=False, inline="always")
+def _newton_step(lam, cx, cy, g2, L1, L2):
+    """One Newton step on ψ(λ) = Σ (c_i/(L_i + λ))² − g², kept ≥ 0 (two divisions)."""
+    ex = L1 + lam
+    ey = L2 + lam
+    r = 1.0 / (ex * ey)
+    rx = ey * r
+    ry = ex * r
+    qx = cx * rx
+    qy = cy * ry
+    d = -2.0 * (qx * qx * rx + qy * qy * ry)
+    return max(lam - (qx * qx + qy * qy - g2) / d, 0.0)
+
+
+@njit(cache=True, fastmath=False)
+def _lambda(pxh, pyh, g, L1, L2, steps, tol):
+    """λ of the per-element slip problem (see :func:`saturate`); ``tol < 0``: fixed steps."""
+    t2 = pxh * pxh + pyh * pyh
+    t = np.sqrt(t2)
+    # start: the exact λ for one flexibility, the predictor-weighted mean of L1, L2
+    Le = (L1 * pxh * pxh + L2 * pyh * pyh) / t2
+    lam = Le * (t / g - 1.0)
+    cx = L1 * pxh
+    cy = L2 * pyh
+    g2 = g * g
+    for _ in range(steps):
+        rx = 1.0 / (L1 + lam)
+        ry = 1.0 / (L2 + lam)
+        qx = cx * rx
+        qy = cy * ry
+        res = qx * qx + qy * qy - g2
+        d = -2.0 * (qx * qx * rx + qy * qy * ry)
+        lam = max(lam - res / d, 0.0)
+        if tol >= 0.0 and abs(res) <= tol * g2:
+            break
+    return lam
+
+
 @njit(cache=True, fastmath=False)
 def saturate(pxh, pyh, g, L1, L2):
     """Traction of a slipping element: opposite to its slip, on the bound (pure kernel).
 
     Solves ``p_i = L_i p_H,i/(L_i + λ)``, ``|p| = g``, ``λ ≥ 0`` (module
     docstring) for ``|p_H| > g > 0`` by Newton's method on
-    ``φ(λ) = |p(λ)| − g`` (convex and decreasing, so the iterates starting
-    left of the root increase monotonically to it). The start
-    ``λ0 = min(L1, L2)(|p_H|/g − 1)`` lies left of the root and is the root
-    when L1 = L2. The result is finally scaled onto ``|p| = g`` exactly.
+    ``ψ(λ) = Σ p_i(λ)² − g²`` (convex and decreasing on λ ≥ 0; iterates are
+    kept ≥ 0), starting from the exact solution for one flexibility
+    ``L_e = (L1 p_H,x² + L2 p_H,y²)/|p_H|²``, ``λ0 = L_e(|p_H|/g − 1)``
+    (exact when L1 = L2; the start error is second order in L1 − L2, so that
+    4 steps reach round-off for L1/L2 up to 2, 1e-12 at 3). The result is
+    finally scaled onto ``|p| = g`` exactly.
 
     Parameters
     ----------
@@ -101,25 +141,9 @@ def saturate(pxh, pyh, g, L1, L2):
     px, py : float
         Traction [Pa].
     """
-    t = np.sqrt(pxh * pxh + pyh * pyh)
     if g <= 0.0:
         return 0.0, 0.0
-    lmin = L1 if L1 < L2 else L2
-    lam = lmin * (t / g - 1.0)
-    if L1 != L2:
-        cx = L1 * pxh
-        cy = L2 * pyh
-        for _ in range(30):
-            dx_ = L1 + lam
-            dy_ = L2 + lam
-            qx = cx / dx_
-            qy = cy / dy_
-            q = np.sqrt(qx * qx + qy * qy)
-            phi = q - g
-            if phi <= 1e-13 * g:
-                break
-            dq = -(qx * qx / dx_ + qy * qy / dy_) / q
-            lam -= phi / dq
+    lam = _lambda(pxh, pyh, g, L1, L2, 12, 1e-12)
     px = L1 * pxh / (L1 + lam)
     py = L2 * pyh / (L2 + lam)
     q = np.sqrt(px * px + py * py)
@@ -294,6 +318,9 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
     spx = np.empty(ny)
     spy = np.empty(ny)
     sxp = np.empty(ny)
+    hx = np.empty(ny)
+    hy = np.empty(ny)
+    sl = np.zeros(ny, dtype=np.bool_)
     for k in range(n):
         g1 = xi[k] / L1[k]
         gy0 = eta[k] / L2[k]
@@ -302,6 +329,8 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
         l1 = L1[k]
         l2 = L2[k]
         equal_flex = l1 == l2
+        ratio = l1 / l2 if l1 > l2 else l2 / l1
+        steps = 2 if ratio <= 1.2 else (3 if ratio <= 2.0 else 6)
         for j in range(ny):
             xl[j] = a[k] * half[j]
             dx[j] = 2.0 * xl[j] / nx
@@ -323,6 +352,7 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
                 hf = 0.5 if i == 0 else 1.0
                 fm = 1.0 - 0.5 / nx if i == 0 else 1.0 - 2.0 * i / nx   # step mid-point / xl
             sh = shape[i]
+            # pass 1 (vectorises across the strips): predictor and the scaled traction
             for j in range(ny):
                 h = hf * dx[j]
                 pxh = px[j] - h * gx[j]
@@ -330,22 +360,38 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
                 g = bq[j] * sh
                 t2 = pxh * pxh + pyh * pyh
                 g2 = g * g
-                if t2 > g2:
-                    if equal_flex:
-                        sc = np.sqrt(g2 / t2)
-                        pxn = pxh * sc
-                        pyn = pyh * sc
-                    else:
-                        pxn, pyn = saturate(pxh, pyh, g, l1, l2)
-                else:
-                    stick[j] += 1.0
-                    pxn = pxh
-                    pyn = pyh
-                px[j] = pxn
-                py[j] = pyn
-                spx[j] += pxn
-                spy[j] += pyn
-                sxp[j] += xl[j] * fc * pyn
+                slide = t2 > g2
+                sc = np.sqrt(g2 / t2) if slide else 1.0
+                stick[j] += 0.0 if slide else 1.0
+                hx[j] = pxh
+                hy[j] = pyh
+                px[j] = pxh * sc
+                py[j] = pyh * sc
+                sl[j] = slide
+            # pass 2, three flexibilities only: sliding elements oppose their slip (the
+            # rule of saturate(), Newton steps as many as the ratio L1/L2 needs for
+            # round-off: 2 up to 1.2, 3 up to 2, else 6)
+            if not equal_flex:
+                for j in range(ny):
+                    if sl[j]:
+                        ux = hx[j]
+                        uy = hy[j]
+                        gb = bq[j] * sh
+                        u2 = ux * ux + uy * uy
+                        lam = (l1 * ux * ux + l2 * uy * uy) / u2 * (np.sqrt(u2) / gb - 1.0)
+                        cx = l1 * ux
+                        cy = l2 * uy
+                        for _ in range(steps):
+                            lam = _newton_step(lam, cx, cy, gb * gb, l1, l2)
+                        qx = cx / (l1 + lam)
+                        qy = cy / (l2 + lam)
+                        sc = gb / np.sqrt(qx * qx + qy * qy)
+                        px[j] = qx * sc
+                        py[j] = qy * sc
+            for j in range(ny):
+                spx[j] += px[j]
+                spy[j] += py[j]
+                sxp[j] += xl[j] * fc * py[j]
         dyk = 2.0 * b[k] / ny
         fx = 0.0
         fy = 0.0
