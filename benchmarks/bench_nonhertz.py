@@ -17,6 +17,7 @@ Relative errors: Fn, area, p_max |q − q_ref|/q_ref; Fx, Fs |ΔF|/(μ Fn_ref);
 Mz |ΔMz|/(μ Fn_ref √(area_ref/π)).
 
     python benchmarks/bench_nonhertz.py [--shared ../shared] [--out docs/nonhertzian_tables.md]
+    python benchmarks/bench_nonhertz.py --parts 4 --clock cpu --pairs /path/to/main/src
 """
 
 from __future__ import annotations
@@ -198,12 +199,13 @@ def manchester(shared):
                 ("area", "p_max", "Fx", "Fs", "Mz"))
 
 
-def timings():
+def timings(clock=time.perf_counter, record=None):
     from wheelrail.contact.wheelrail import touching_poses, wheel_problem
 
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
     tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
-    say("\n## 4. Timings (one core)\n")
+    kind = "CPU time" if clock is time.process_time else "wall time"
+    say(f"\n## 4. Timings (one core, {kind}; load {os.getloadavg()[0]:.1f})\n")
     say("| normal + tangential | per contact, separation cached (ms) | per contact, cold "
         "(ms) | full wr.solve per position, both wheels (ms) |")
     say("|---|---|---|---|")
@@ -221,29 +223,63 @@ def timings():
             wp = wr.WheelRailPosition(ws, tr, float(y), yaw=0.002, vertical_load=70e3)
             roll, zs = touching_poses(wp)
             prob = wheel_problem(wp, "right", roll, zs["right"])
-            t0 = time.perf_counter()
+            t0 = clock()
             ps, _ = nm.from_wheel(prob, **no)
             tm.solve_patches(ps, [(1e-3, 1e-3, 0.1)] * len(ps), 0.3, **to)
-            cold.append((time.perf_counter() - t0) / len(ps))
+            cold.append((clock() - t0) / len(ps))
             for _ in range(5):
-                t0 = time.perf_counter()
+                t0 = clock()
                 ps, _ = nm.from_wheel(prob, **no)
                 tm.solve_patches(ps, [(1e-3, 1e-3, 0.1)] * len(ps), 0.3, **to)
-                warm.append((time.perf_counter() - t0) / len(ps))
-            t0 = time.perf_counter()
+                warm.append((clock() - t0) / len(ps))
+            t0 = clock()
             wr.solve(wp, motion=motion, mu=0.3, normal=normal, tangential=tangential,
                      vertical="normal")
-            full.append(time.perf_counter() - t0)
+            full.append(clock() - t0)
         say(f"| {normal} + {tangential} | {np.median(warm) * 1e3:.2f} | "
             f"{np.median(cold) * 1e3:.2f} | {np.median(full) * 1e3:.1f} |")
+        if record is not None:
+            record[f"{normal}+{tangential}"] = (float(np.median(warm)) * 1e3,
+                                                float(np.median(cold)) * 1e3)
     y = np.linspace(-0.01, 0.01, 201)
-    t0 = time.perf_counter()
-    wr.wheelset_sweep(ws, tr, y, yaw=0.0, vertical_load=70e3, motion=motion, mu=0.3,
-                      normal="kik-piotrowski", tangential="fastsim", progress=False,
-                      vertical="normal")
-    t = time.perf_counter() - t0
-    say(f"\n201-position wheelset sweep (y = −10 … 10 mm, both wheels) with "
-        f"kik-piotrowski + fastsim: {t:.2f} s ({t / 201 * 1e3:.1f} ms per position)")
+    for normal in ("kik-piotrowski", "stripes"):
+        t0 = clock()
+        wr.wheelset_sweep(ws, tr, y, yaw=0.0, vertical_load=70e3, motion=motion, mu=0.3,
+                          normal=normal, tangential="fastsim", progress=False,
+                          vertical="normal")
+        t = clock() - t0
+        say(f"\n201-position wheelset sweep (y = −10 … 10 mm, both wheels, 70 kN per wheel) "
+            f"with {normal} + fastsim: {t:.2f} s ({t / 201 * 1e3:.1f} ms per position)")
+        if record is not None:
+            record[f"sweep {normal}"] = t
+
+
+def pairs(base_src, rounds):
+    """Interleaved before/after timings: this tree and ``base_src`` (a checkout's src/)
+    alternately in fresh processes, CPU time, with the load beside each run."""
+    import json
+    import subprocess
+
+    rows = []
+    for r in range(rounds):
+        for label, path in (("before", base_src), ("after", str(HERE.parent / "src"))):
+            env = dict(os.environ, PYTHONPATH=path)
+            out = subprocess.run([sys.executable, __file__, "--json-timings"], env=env,
+                                 capture_output=True, text=True, check=True).stdout
+            rec = json.loads(out.strip().splitlines()[-1])
+            rows.append((r, label, rec))
+    keys = [k for k in rows[0][2] if k not in ("load", "src")]
+    say("\n## 4b. Interleaved before/after pairs (CPU time, one process each)\n")
+    say("| round | tree | load | " + " | ".join(keys) + " |")
+    say("|---|---|---|" + "---|" * len(keys))
+    for r, label, rec in rows:
+        cells = []
+        for k in keys:
+            v = rec[k]
+            cells.append(f"{v:.2f} s" if k.startswith("sweep") else
+                         f"{v[0]:.2f} / {v[1]:.2f} ms")
+        say(f"| {r} | {label} | {rec['load']:.1f} | " + " | ".join(cells) + " |")
+    say("\n(per contact: separation cached / cold)")
 
 
 def main(argv=None):
@@ -253,7 +289,27 @@ def main(argv=None):
     ap.add_argument("--out", default="")
     ap.add_argument("--step", type=float, default=1.0, help="shift step [mm] of part 2")
     ap.add_argument("--parts", default="1,2,3,4")
+    ap.add_argument("--clock", choices=("wall", "cpu"), default="wall",
+                    help="timings of part 4: wall-clock or CPU time of this process")
+    ap.add_argument("--pairs", default="", metavar="BASE_SRC",
+                    help="also time the src/ of another checkout (e.g. main before a change) "
+                         "interleaved with this tree, CPU time")
+    ap.add_argument("--rounds", type=int, default=2)
+    ap.add_argument("--json-timings", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
+    if args.json_timings:
+        import contextlib
+        import io
+        import json
+
+        rec = {"load": os.getloadavg()[0], "src": wr.__file__}
+        c = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
+        for n in ("kik-piotrowski", "stripes", "linder"):
+            wr.solve(c, creepage=(1e-3, 0, 0), mu=0.3, normal=n)
+        with contextlib.redirect_stdout(io.StringIO()):
+            timings(time.process_time, rec)
+        print(json.dumps(rec))
+        return
     parts = {int(v) for v in args.parts.split(",")}
     say(f"load: {os.getloadavg()}")
     # warm-up outside the timings (numba caches, FFT plans)
@@ -263,7 +319,9 @@ def main(argv=None):
     if 1 in parts:
         hertzian_gap()
     if 4 in parts:
-        timings()
+        timings(time.process_time if args.clock == "cpu" else time.perf_counter)
+    if args.pairs:
+        pairs(args.pairs, args.rounds)
     if 2 in parts:
         s1002_sweep(np.arange(-10.0, 10.0 + 1e-9, args.step) * 1e-3)
     if 3 in parts:

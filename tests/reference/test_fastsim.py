@@ -108,11 +108,25 @@ def test_weighted_flexibility_formula():
 
 
 def test_weighted_equals_three_for_pure_creepage(contact):
-    """With one creepage the weighted flexibility is that creepage's L: same forces."""
-    for cr in [(2e-3, 0, 0), (0, -2e-3, 0), (0, 0, 0.4)]:
+    """With ξ or η alone the weighted flexibility is that creepage's L: same forces.
+
+    Pure spin loads both traction components; with three flexibilities the
+    slip of a sliding element is diag(L1, L2)(p − p_H)/Δx, not L3 (p − p_H)/Δx,
+    so the traction in the slip area (opposite to the slip) differs slightly
+    from the single-flexibility one; in adhesion both are identical.
+    """
+    for cr in [(2e-3, 0, 0), (0, -2e-3, 0)]:
         r3 = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="three", fields=False)
         rw = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="weighted", fields=False)
         assert (rw.Fx, rw.Fy, rw.Mz) == pytest.approx((r3.Fx, r3.Fy, r3.Mz), rel=1e-12, abs=1e-9)
+    cr = (0, 0, 0.4)
+    r3 = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="three", fields=False)
+    rw = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="weighted", fields=False)
+    assert rw.Fy == pytest.approx(r3.Fy, rel=5e-3) and rw.Fy != r3.Fy
+    small = (0, 0, 1e-5)   # full adhesion: identical
+    r3 = wr.creep_forces(contact, small, 0.3, method="fastsim", flexibility="three", fields=False)
+    rw = wr.creep_forces(contact, small, 0.3, method="fastsim", flexibility="weighted", fields=False)
+    assert (rw.Fx, rw.Fy, rw.Mz) == pytest.approx((r3.Fx, r3.Fy, r3.Mz), rel=1e-12, abs=1e-12)
 
 
 # --------------------------------------------------------------------------- saturation
@@ -120,9 +134,11 @@ def test_weighted_equals_three_for_pure_creepage(contact):
 def test_saturation(contact, bound):
     """Large creepage: the whole patch slides, |F| = μ Fn.
 
-    With Kalker's single (weighted) flexibility the force opposes the creepage
-    (ξ, η); with three flexibilities FASTSIM's traction follows the elastic
-    predictor (ξ/L1, η/L2) ∝ (C11 ξ, C22 η) — a known property of that variant.
+    Coulomb's law: once every element slides the local slip is the rigid
+    slip (ξ, η) wherever the traction no longer varies along x, so the force
+    opposes the creepage with one (weighted) flexibility and with three
+    (the slip rule of the kernel; scaling the elastic predictor instead would
+    point it along (C11 ξ, C22 η), Vollebregt & Voltr 2023).
     """
     c, mu = contact, 0.25
     kw = dict(method="fastsim", nx=50, ny=50, bound=bound)
@@ -132,10 +148,11 @@ def test_saturation(contact, bound):
     assert r.Fx / r.Ft == pytest.approx(-0.6, rel=1e-3)
     assert r.Fy / r.Ft == pytest.approx(-0.8, rel=1e-3)
     r3 = wr.creep_forces(c, (0.03, 0.04, 0.0), mu, flexibility="three", **kw)
-    C11, C22 = _coeffs(c)[:2]
-    d = np.array([0.03 * C11, 0.04 * C22])
     assert r3.Ft == pytest.approx(mu * c.load, rel=2e-3)
-    assert (r3.Fx / r3.Ft, r3.Fy / r3.Ft) == pytest.approx(tuple(-d / np.hypot(*d)), rel=1e-3)
+    assert (r3.Fx / r3.Ft, r3.Fy / r3.Ft) == pytest.approx((-0.6, -0.8), rel=2e-3)
+    C11, C22 = _coeffs(c)[:2]
+    d = np.array([0.03 * C11, 0.04 * C22])   # the predictor's direction: not the answer
+    assert abs(r3.Fx / r3.Ft + d[0] / np.hypot(*d)) > 5e-3
     # discretisation only: the discrete bound integrates to Fn up to the mid-point error
     f = r.fields
     assert float(np.sum(f.pressure * f.area)) == pytest.approx(c.load, rel=2e-3)
@@ -180,8 +197,13 @@ def test_force_grows_monotonically_to_saturation(contact):
 # (≈ 1.5 % below the converged −0.647); we reproduce it to 0.4 % with
 # ``scheme="euler"``, the rest is within the spread of CONTACT's own
 # discretisation details listed above. The elliptic case is insensitive.
+# (Numbers above: with the predictor scaled onto the bound in slip. With the
+# slip-direction rule of the kernel (traction opposite to the slip with
+# L1 ≠ L2, Vollebregt & Voltr 2023) they move by ≈ 0.1 %: midpoint 200×200
+# −0.6487 / −0.5973, 400×400 −0.6483 / −0.5970; euler 200×200 −0.6389 /
+# −0.5959. The guide's own figure is two digits, −0.60, hence 3e-3 below.)
 @pytest.mark.parametrize("bound, n, scheme, expected, rel", [
-    ("elliptic", 200, "midpoint", -0.596, 2e-3),
+    ("elliptic", 200, "midpoint", -0.596, 3e-3),
     ("elliptic", 40, "midpoint", -0.605, 1.5e-2),
     ("elliptic", 200, "euler", -0.596, 2e-3),
     ("parabolic", 200, "euler", -0.636, 5e-3),

@@ -69,7 +69,10 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     batch : bool
         With ``normal="hertz"``: solve all positions at once (array
         operations; the same model as the per-position path, see
-        :mod:`wheelrail.contact._hertz_batch`). ``False``: one
+        :mod:`wheelrail.contact._hertz_batch`). Other methods: the touching
+        poses and candidate points of all positions at once, then the same
+        normal and tangential solution per position
+        (:mod:`wheelrail.contact._strip_batch`). ``False``: one
         :func:`wheelrail.solve` per position.
     normal_options, tangential_options : dict, optional
         Options for one method explicitly (as :func:`wheelrail.solve`).
@@ -140,8 +143,28 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         bar = Progress(transient=True)
         bar.start()
         task = bar.add_task("wheel-rail contact", total=n)
+
+    def record(i, res):
+        if isinstance(res, WheelrailError):
+            status[i], message[i] = "error", f"{type(res).__name__}: {res}"
+            return
+        for s, side in enumerate(SIDES):
+            ps = sorted(res.side(side), key=lambda p: -p.y_wheel)  # field side first
+            npatches[i, s] = len(ps)
+            for k, p in enumerate(ps[:npat]):
+                for name in PATCH_VARIABLES:
+                    per_patch[name][i, s, k] = getattr(p, name)
+            ftrack[i, s] = res.force_track[side]
+
     try:
-        for i in range(n):
+        if batch:
+            # other methods: poses and candidate points of all positions at once
+            from ._strip_batch import strip_sweep
+
+            strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl,
+                        timpl, nopts, timpl.check_options(topts), material, tolerance, vertical,
+                        record, None if bar is None else (lambda: bar.advance(task)))
+        for i in range(0 if batch else n):
             try:
                 pos = WheelRailPosition(wheelset, track, y[i], yaw[i],
                                         None if np.isnan(roll[i]) else roll[i],
@@ -150,15 +173,9 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
                 res = solve(pos, motion=motion, mu=mu, normal=nimpl, tangential=timpl,
                             vertical=vertical, normal_options=nopts, tangential_options=topts)
             except WheelrailError as exc:
-                status[i], message[i] = "error", f"{type(exc).__name__}: {exc}"
+                record(i, exc)
             else:
-                for s, side in enumerate(SIDES):
-                    ps = sorted(res.side(side), key=lambda p: -p.y_wheel)  # field side first
-                    npatches[i, s] = len(ps)
-                    for k, p in enumerate(ps[:npat]):
-                        for name in PATCH_VARIABLES:
-                            per_patch[name][i, s, k] = getattr(p, name)
-                    ftrack[i, s] = res.force_track[side]
+                record(i, res)
             if bar is not None:
                 bar.advance(task)
     finally:

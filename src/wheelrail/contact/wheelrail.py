@@ -215,7 +215,7 @@ class WheelProblem:
         return groups
 
     def frame_at(self, k, eta: float, weights=None, eta_samples=None,
-                 angle=None) -> ContactFrame:
+                 angle=None, separation=None) -> ContactFrame:
         """Contact frame at lateral position ``eta`` [m] of the contact plane of point ``k``
         (an index of :attr:`frames`, or a :class:`ContactFrame`).
 
@@ -224,6 +224,8 @@ class WheelProblem:
         is the rail's surface angle there, or, with ``weights`` over
         ``eta_samples``, the weighted mean surface angle (CONTACT's planar
         contact reference, Vollebregt 2022), or ``angle`` if given.
+        ``separation``: this plane's separation if the caller has it (any
+        resolution; only its rolling radius is read), else :meth:`separation`.
         """
         f = self.frames[k] if not isinstance(k, ContactFrame) else k
         sig = _SIGMA[self.side]
@@ -244,7 +246,7 @@ class WheelProblem:
             ang = float(angle)
         pl = self.track.placement(self.side)
         rail_y, _ = pl.to_profile_frame(u_c, z_c)
-        sep = self.separation(k)
+        sep = self.separation(k) if separation is None else separation
         r = float(np.interp(eta, sep.eta, sep.wheel_radius))
         return ContactFrame(self.side, f.wheel_y + float(u_c - u_r), float(rail_y),
                             float(sig * u_c), float(z_c), f.x, float(ang), r)
@@ -436,11 +438,13 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
 
 
 def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs, Omega,
-                 R) -> WheelRailResult:
+                 R, problems=None) -> WheelRailResult:
     ws = position.wheelset
     patches, force_track, pose = [], {}, {"y": position.y, "yaw": position.yaw, "roll": roll}
     for side in SIDES:
-        prob = wheel_problem(position, side, roll, zs[side], R)
+        # problems: the wheel problems of this pose when the caller has them (batched sweep)
+        prob = (wheel_problem(position, side, roll, zs[side], R) if problems is None
+                else problems[side])
         zc = ws.nominal_radius + zs[side]
         sig = _SIGMA[side]
         Q = prob.vertical_load

@@ -172,6 +172,23 @@ def _rescale(regions, factor):
         r.peak = r.peak * factor
 
 
+def _separation(problem, k, width, n):
+    """``problem.separation(k, width, n)`` computed by the numba-spline twin of
+    :func:`~wheelrail.geometry.separation.separation_at` (same result to round-off,
+    :mod:`wheelrail.normal._fast_separation`) and stored in the problem's cache."""
+    f = problem.frames[k]
+    key = ("separation", f, width, n)
+    if key not in problem.cache:
+        from ._fast_separation import separation_fast
+
+        pose = problem.pose
+        problem.cache[key] = separation_fast(
+            problem.wheelset, problem.track, problem.side, y=pose["y"], z=pose["z"],
+            roll=pose["roll"], yaw=pose["yaw"], wheel_y=f.wheel_y, track_y=f.track_y,
+            contact_angle=f.contact_angle, width=width, n=n, point=k)
+    return problem.cache[key]
+
+
 # --------------------------------------------------------------------------- data
 @dataclass(eq=False)
 class Line:
@@ -241,6 +258,21 @@ class VirtualPenetration:
     def _line_load(self, line, delta, opts):
         regs = self._solve_line(line, delta, opts)
         return regs, float(sum(r.N for r in regs))
+
+    def _line_loads(self, line, delta, opts):
+        """(Σ N, Σ N cos ᾱ) of a line at the real approach ``delta`` (what the load
+        iterations need; ᾱ the interpenetration-weighted surface angle, 0 for gap
+        lines). Methods may override it with a kernel that builds no regions."""
+        regs = self._solve_line(line, delta, opts)
+        N = Nz = 0.0
+        for r in regs:
+            N += r.N
+            if line.angle is None:
+                Nz += r.N
+            else:
+                w = r.weights
+                Nz += r.N * math.cos(float(np.sum(w * line.angle[r.nodes]) / np.sum(w)))
+        return N, Nz
 
     def _iterate(self, total, target, d_start, what):
         """Solve total(d) = target for the approach d (increasing, ~ d^1.5).
@@ -383,7 +415,7 @@ class VirtualPenetration:
             _, _, _, d1 = hertz_shape(line.A, line.B)
             start = d1 * (Q / pair.E_star) ** (2.0 / 3.0) / 1.0
             start = float(start)
-        return self._iterate(lambda d: self._line_load(line, d, opts)[1], Q, start,
+        return self._iterate(lambda d: self._line_loads(line, d, opts)[0], Q, start,
                              f"normal method {self.name!r}")
 
     # ----------------------------------------------------------- patches
@@ -445,7 +477,7 @@ class VirtualPenetration:
         lines = []
         for g in groups:
             r = g[0]
-            s = problem.separation(r, width, _WHEEL_NODES)
+            s = _separation(problem, r, width, _WHEEL_NODES)
             f = problem.frames[r]
             Ax = s.cos_factor / (2.0 * s.wheel_radius)
             if problem.roller_radius is not None:
@@ -457,7 +489,8 @@ class VirtualPenetration:
             lines.append(Line(np.asarray(s.eta, float), np.asarray(s.f, float), np.asarray(Ax),
                               A, B, cos=float(s.cos_factor), angle=ang, sign=sigma, ref=r,
                               extra={"E_star": problem.materials.E_star,
-                                     "materials": problem.materials, "group": g}))
+                                     "materials": problem.materials, "group": g,
+                                     "separation": s}))
         problem.cache[key] = lines
         return lines
 
@@ -491,7 +524,10 @@ class VirtualPenetration:
             else:
                 start = float(np.min(l0.f)) + 5e-5
             start = max(start, 1e-7) / l0.cos
-            dz = self._iterate(lambda d: solve_all(d)[1], Q, start,
+            def vertical(d):
+                return sum(self._line_loads(line, d * line.cos, opts)[1] for line in lines)
+
+            dz = self._iterate(vertical, Q, start,
                                f"{problem.side} wheel, normal method {self.name!r}")
         sols, Fz = solve_all(dz)
         if problem.approach is None:
@@ -502,7 +538,8 @@ class VirtualPenetration:
                 w = reg.weights
                 e_nodes = line.eta[reg.nodes]
                 eta_c = float(np.sum(w * e_nodes) / np.sum(w))
-                frame = problem.frame_at(line.ref, eta_c, weights=w, eta_samples=e_nodes)
+                frame = problem.frame_at(line.ref, eta_c, weights=w, eta_samples=e_nodes,
+                                         separation=line.extra.get("separation"))
                 reg.info["eta_ref"] = self._eta_in_region_coords(reg, eta_c, e_nodes)
                 patches.append(self._make_patch(line, reg, pair, opts, frame, dz * line.cos,
                                                 extra={"group_point": line.ref}))

@@ -45,8 +45,7 @@ import numpy as np
 
 from ..errors import InputError
 from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_penetration_factor, hertz_shape, \
-    kp_integrals, runs
+from ._strips import Region, VirtualPenetration, hertz_penetration_factor, hertz_shape, runs
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
 
@@ -147,6 +146,8 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
         d0 = eps * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]
+        from . import _kp_kernel
+
         out = []
         for i0, i1 in runs(g > 0):
             if i1 - i0 < 3:
@@ -163,7 +164,8 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
             alpha = None
             if correct:
                 eta, xl, h, alpha = shape_correction(eta, xl, h, j)
-            I1, I2 = kp_integrals(xl, h, j)
+            I1, I2 = _kp_kernel.kp_integrals_kernel(np.ascontiguousarray(xl, dtype=float),
+                                                    float(h), j)
             N = math.pi * E_star * real * I1 / I2
             p0 = N * xl[j] / I1
             out.append(Region(slice(i0, i1), i0 + j, N, eta, xl, p0 * xl / xl[j], gi,
@@ -171,6 +173,27 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
                                     "virtual_penetration": d0, "shape_correction": correct,
                                     "alpha": alpha, "p0": p0}))
         return out
+
+    def _line_loads(self, line, delta, opts):
+        # the load iteration's hot path: the same equations as _solve_line in one kernel
+        from . import _kp_kernel
+        from ._strips import _hertz_table
+
+        key = ("eps", opts.get("penetration_factor", "hertz"))
+        if key not in line.extra:
+            line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
+                                                 line.A, line.B)
+        eps = line.extra[key][0]
+        ang = line.angle
+        if ang is None:
+            ang = line.extra.get("zero_angle")
+            if ang is None:
+                ang = line.extra["zero_angle"] = np.zeros_like(line.f)
+        lam, la, lb, _, _ = _hertz_table()
+        N, Nz = _kp_kernel.kp_line_load(line.f, np.asarray(line.Ax, dtype=float), ang, line.h,
+                                        eps * delta, eps, line.extra["E_star"],
+                                        bool(opts.get("shape_correction", True)), lam, la, lb)
+        return float(N), float(Nz)
 
     def _patch_info(self, reg, opts):
         return {"fastsim_flexibility": "weighted"}

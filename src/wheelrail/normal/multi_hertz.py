@@ -268,7 +268,9 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         patches = []
         for line in lines:
             patches += self._hertz_patches(line, dz * line.cos, opts, pair,
-                                           lambda e, line=line: problem.frame_at(line.ref, e))
+                                           lambda e, line=line: problem.frame_at(
+                                               line.ref, e,
+                                               separation=line.extra.get("separation")))
         if not patches:
             raise NoContactError(f"{problem.side} wheel: no contact at the approach {dz!r} m")
         if problem.vertical_load is not None:

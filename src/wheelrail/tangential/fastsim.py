@@ -50,7 +50,9 @@ References
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -74,6 +76,7 @@ __all__ = [
 _BOUNDS = ("parabolic", "elliptic")
 _FLEXIBILITIES = ("three", "weighted")
 _SCHEMES = ("midpoint", "euler")
+_KALKER_GRID = 8001
 
 
 # ---------------------------------------------------------------------------
@@ -98,7 +101,8 @@ class FastsimFields:
         Tangential traction on the wheel [Pa].
     sx, sy : ndarray
         Slip of the wheel relative to the rail divided by the rolling speed
-        [-] (zero in adhesion), ``s = L_ref (p − p_H)/Δx``.
+        [-] (zero in adhesion), ``s = diag(L1, L2)(p − p_H)/Δx``; in
+        slip ``p`` is exactly opposite to ``s``.
     slip : ndarray of bool
         True where the element slides.
     mu : ndarray, shape (ny,)
@@ -285,7 +289,7 @@ def _check_choice(name, value, choices):
 # general strips (non-elliptic patches)
 # ---------------------------------------------------------------------------
 def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, mu, nx=None, *,
-                   profile=None, L_ref=None, c=None, fields=True, scheme="midpoint"):
+                   profile=None, fields=True, scheme="midpoint"):
     """FASTSIM on a contact patch described by strips (elliptic or not).
 
     This is the kernel used by the virtual-penetration methods (Linder,
@@ -317,12 +321,6 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
         Pressure along each strip when ``pressure`` holds peaks:
         ``peak √(1 − s²)`` or ``peak (1 − s²)``, s the position along the
         strip normalised to (−1, 1).
-    L_ref : float or array_like, shape (ny,), optional
-        Flexibility converting traction defects into slip; default: Kalker's
-        weighted mean of L1, L2, L3 per strip with ``c``.
-    c : float, optional
-        Length weighting the spin in the default ``L_ref`` [m]; default
-        √(a_j b_e) with a_j the strip half-length and b_e half the patch width.
     fields : bool
         Return the fields (:class:`FastsimFields`) in ``.fields``.
     scheme : {"midpoint", "euler"}
@@ -383,23 +381,21 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
     if np.any(p < 0):
         raise InputError(f"pressure must be >= 0, got {p[p < 0].ravel()[0]!r}")
     p = np.ascontiguousarray(p, dtype=float)
+    return _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s,
+                         scalar_or_array(np.asarray(mu, dtype=float)), scheme, fields)
 
-    if L_ref is None:
-        if c is None:
-            half_width = 0.5 * float(np.sum(dy))
-            c_s = np.sqrt(np.clip(0.5 * (x_lead - x_trail), 0.0, None) * half_width)
-        else:
-            c_s = float(positive("c", c))
-        L_ref = weighted_flexibility(L1, L2, L3, xi, eta, phi, c_s)
-    L_ref = strip_array("L_ref", L_ref, positive)
 
+def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_out, scheme,
+                  fields):
+    """:func:`fastsim_strips` on checked, contiguous float arrays (shapes (ny,), p (ny, nx))."""
+    ny, nx = p.shape
     bound = p * mu_s[:, None]
     px = np.zeros((ny, nx))
     py = np.zeros((ny, nx))
     sx = np.zeros((ny, nx))
     sy = np.zeros((ny, nx))
     slip = np.zeros((ny, nx), dtype=bool)
-    Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3, L_ref,
+    Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3,
                                           xi, eta, phi, px, py, sx, sy, slip,
                                           scheme == "euler")
     length = np.clip(x_lead - x_trail, 0.0, None)
@@ -414,8 +410,52 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
         f = FastsimFields(x=x, y=np.repeat(y[:, None], nx, 1),
                           dx=dx, dy=dy, pressure=p, px=px, py=py, sx=sx, sy=sy, slip=slip, mu=mu_s)
     return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz), Fn=Fn,
-                       mu=scalar_or_array(np.asarray(mu, dtype=float)), method="fastsim",
+                       mu=mu_out, method="fastsim",
                        fields=f, info={"nx": nx, "ny": ny, "scheme": scheme})
+
+
+@lru_cache(maxsize=16)
+def _kalker_table(nu):
+    """Kalker's C11, C22, C23 on a fine grid of ln(a/b) ∈ [ln 0.01, ln 100] for one ν."""
+    x = np.linspace(np.log(0.01), np.log(100.0), _KALKER_GRID)
+    C11, C22, C23, _ = kalker_coefficients(np.exp(x), nu)
+    return x, np.asarray(C11, float), np.asarray(C22, float), np.asarray(C23, float)
+
+
+def _kalker_scalar(aspect, nu):
+    """C11, C22, C23 of a patch (or its strips): linear interpolation in ln(a/b) of
+    :func:`_kalker_table`.
+
+    The grid step (1.2e-3 in ln(a/b)) keeps the interpolation error below 1e-6
+    relative; a scalar :func:`kalker_coefficients` call costs ~0.3 ms, this ~10 µs.
+    a/b outside the grid goes to :func:`kalker_coefficients`.
+    """
+    a = np.asarray(aspect, dtype=float)
+    if np.ndim(nu) != 0 or not (a.size and np.all(a >= 0.01) and np.all(a <= 100.0)):
+        C11, C22, C23, _ = kalker_coefficients(aspect, nu)
+        return C11, C22, C23
+    x, c11, c22, c23 = _kalker_table(float(nu))
+    if a.ndim == 0:
+        v = math.log(float(a))
+        return (float(np.interp(v, x, c11)), float(np.interp(v, x, c22)),
+                float(np.interp(v, x, c23)))
+    v = np.log(a)
+    return np.interp(v, x, c11), np.interp(v, x, c22), np.interp(v, x, c23)
+
+
+@lru_cache(maxsize=16)
+def _resample_weights(m, nx):
+    """Indices and weights of linear interpolation from m to nx cell centres on (0, 1)
+    (as :func:`numpy.interp`: constant beyond the outer centres)."""
+    src = (np.arange(m) + 0.5) / m
+    dst = (np.arange(nx) + 0.5) / nx
+    i1 = np.clip(np.searchsorted(src, dst), 1, m - 1) if m > 1 else np.zeros(nx, int)
+    i0 = np.maximum(i1 - 1, 0)
+    if m > 1:
+        w = np.clip((dst - src[i0]) / (src[i1] - src[i0]), 0.0, 1.0)
+    else:
+        w = np.zeros(nx)
+    return i0, i1, w
 
 
 # ---------------------------------------------------------------------------
@@ -460,15 +500,17 @@ class Fastsim(TangentialMethod):
     :func:`wheelrail.tangential.linear.kalker_coefficients` for a/b and the
     combined Poisson's ratio. ``Mz`` is the spin moment about the patch centre.
 
-    Known properties of the variants: with three flexibilities the traction
-    in a slip element follows the elastic predictor, so at full slip under
-    combined ξ, η the force points along (C11 ξ, C22 η) rather than exactly
-    against (ξ, η) (a few degrees for usual a/b); the weighted flexibility
-    gives the Coulomb direction but does not reproduce the linear theory for
-    combined creepage. The spin moment reproduces neither C23 (for η) nor
-    C33 (for φ) of the linear theory. The slip in the fields is computed with
-    the weighted flexibility as ``L_ref`` (exact for ``"weighted"``, an
-    approximation for ``"three"``).
+    Slip rule: in a slipping element the traction lies on the bound and
+    opposes the element's slip s = diag(L1, L2)(p − p_H)/Δx, a small
+    per-element problem solved exactly (:func:`wheelrail.tangential.
+    _fastsim_kernel.saturate`; Vollebregt & Voltr 2023, FASTSIM with three
+    flexibilities). Scaling the elastic predictor back onto the bound (the
+    rule of Kalker's FASTSIM with one flexibility, where both coincide)
+    would make the force of a sliding patch point along (C11 ξ, C22 η)
+    rather than against (ξ, η) with three flexibilities; it is not offered,
+    as no reference supports it for L1 ≠ L2. The weighted flexibility does
+    not reproduce the linear theory for combined creepage. The spin moment
+    reproduces neither C23 (for η) nor C33 (for φ) of the linear theory.
 
     Discretisation and published numbers: for CONTACT's FASTSIM example
     (Vollebregt, *User guide for CONTACT*, §"The use of the FASTSIM
@@ -479,8 +521,8 @@ class Fastsim(TangentialMethod):
     digits elsewhere: −0.636 / −0.596). CONTACT uses the same
     flexibilities L1, L2, L3 and the same Kalker coefficients (1/C quadratic
     in ν) as here, but the first-order march: with ``scheme="euler"`` we get
-    −0.638 / −0.5953 at 200×200; the converged simplified theory (both
-    schemes) is −0.647 / −0.596, and ``"midpoint"`` gives −0.648 / −0.5967
+    −0.639 / −0.5959 at 200×200; the converged simplified theory (both
+    schemes) is −0.648 / −0.597, and ``"midpoint"`` gives −0.649 / −0.5973
     at 200×200. The parabolic case is sensitive because the η and φ
     contributions to Fy nearly cancel.
     """
@@ -549,7 +591,7 @@ class Fastsim(TangentialMethod):
                 ys, dys, xl, xt = hertz_strips(a[k], b[k], ny)
                 r = fastsim_strips(ys, dys, xl, xt, peak[k] * strip_peak, L1[k], L2[k], L3[k],
                                    xi[k], eta[k], phi[k], mu[k], nx, profile=bound,
-                                   c=np.sqrt(a[k] * b[k]), scheme=scheme)
+                                   scheme=scheme)
                 Fx[k], Fy[k], Mz[k] = r.Fx, r.Fy, r.Mz
                 flist.append(r.fields)
             f = flist[0] if single else tuple(flist)
@@ -592,34 +634,45 @@ class Fastsim(TangentialMethod):
         axes = pinfo.get("strip_semiaxes")
         if axes is not None:
             sa, sb = (np.asarray(v, dtype=float) for v in axes)
-            C11, C22, C23, _ = kalker_coefficients(sa / sb, patch.materials.nu)
+            C11, C22, C23 = _kalker_scalar(sa / sb, patch.materials.nu)
             L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
             if flexibility == "weighted":
                 L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(sa * sb))
             Lrep = tuple(float(np.median(v)) for v in (L1, L2, L3))
         else:
-            C11, C22, C23, _ = kalker_coefficients(a / b, patch.materials.nu)
-            L1, L2, L3 = (float(v) for v in flexibilities(a, b, patch.materials.G, C11, C22,
-                                                          C23))
+            C11, C22, C23 = _kalker_scalar(a / b, patch.materials.nu)
+            G = float(patch.materials.G)
+            L1 = 8.0 * a / (3.0 * G * C11)          # as flexibilities(), scalar
+            L2 = 8.0 * a / (3.0 * G * C22)
+            L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
             if flexibility == "weighted":
                 L1 = L2 = L3 = float(weighted_flexibility(L1, L2, L3, xi, eta, phi,
                                                           np.sqrt(a * b)))
             Lrep = (L1, L2, L3)
         # pressure resampled from the patch's m cells to nx cells per strip
-        m = patch.cells
-        src = (np.arange(m) + 0.5) / m
-        dst = (np.arange(nx) + 0.5) / nx
-        p = np.array([np.interp(dst, src, row) for row in patch.strip_pressure])
-        scale = patch.strip_pressure.sum(axis=1) / m
+        sp = np.asarray(patch.strip_pressure, dtype=float)
+        m = sp.shape[1]
+        i0, i1, w = _resample_weights(m, nx)
+        p = sp[:, i0] * (1.0 - w) + sp[:, i1] * w
+        scale = sp.sum(axis=1) / m
         got = p.sum(axis=1) / nx
         p *= np.where(got > 0, scale / np.where(got > 0, got, 1.0), 0.0)[:, None]
         if pinfo.get("traction_bound") == "parabolic":
             # same force per strip, parabolic along x (Linder: p0' = 3π p0 / 8)
+            dst = (np.arange(nx) + 0.5) / nx
             par = _profile("parabolic", 1.0 - dst * 2.0)
             p = (p.sum(axis=1) / par.sum())[:, None] * par[None, :]
-        r = fastsim_strips(patch.y, patch.dy, patch.x_lead, patch.x_trail, p, L1, L2, L3,
-                           xi, eta, phi, mu, c=np.sqrt(a * b), scheme=scheme,
-                           fields=fields is not False)
+        mu = float(positive("mu", mu))
+        ny = p.shape[0]
+        xi, eta, phi = float(xi), float(eta), float(phi)
+
+        def strip(v):
+            return np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (ny,)))
+
+        r = _solve_strips(strip(patch.y), strip(patch.dy), strip(patch.x_lead),
+                          strip(patch.x_trail), np.ascontiguousarray(p), strip(L1), strip(L2),
+                          strip(L3), xi, eta, phi, np.full(ny, mu), mu, scheme,
+                          fields is not False)
         xc, yc = patch.centre
         Mz = r.Mz - xc * r.Fy + yc * r.Fx
         info = dict(r.info, flexibility=flexibility, L=Lrep)

@@ -1,0 +1,147 @@
+"""Numba kernels of Kik & Piotrowski's method (private; pure array-in/array-out).
+
+:func:`kp_line_load` is the load of one lateral line at a given virtual
+penetration, the quantity the load iteration of
+:class:`wheelrail.normal.kik_piotrowski.KikPiotrowski` evaluates many times:
+the same discrete equations as its ``_solve_line`` (regions of positive
+interpenetration, shape correction, the integrals of eqs. 13–15), without
+building region objects. :func:`k_minus_e` gives K(m) − E(m) by the
+arithmetic–geometric mean, so that the integrals need no SciPy call.
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22) (seed 003).
+.. [2] M. Abramowitz, I.A. Stegun, *Handbook of mathematical functions*, 17.6
+   (arithmetic–geometric mean for K and E).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+__all__ = ["k_minus_e", "kp_integrals_kernel", "kp_line_load"]
+
+
+@njit(cache=True)
+def k_minus_e(m):
+    """K(m) − E(m) for 0 ≤ m < 1 (parameter m = k²), by the AGM (Abramowitz & Stegun 17.6).
+
+    a₀ = 1, b₀ = √(1 − m), c₀ = √m; K = π/(2 a_N); E = K (1 − Σ 2^(n−1) c_n²),
+    so K − E = K Σ_n 2^(n−1) c_n² (no cancellation for small m).
+    """
+    a = 1.0
+    b = math.sqrt(1.0 - m)
+    s = 0.5 * m
+    w = 0.5
+    for _ in range(40):
+        c = 0.5 * (a - b)
+        a_new = 0.5 * (a + b)
+        b = math.sqrt(a * b)
+        a = a_new
+        w *= 2.0
+        s += w * c * c
+        if abs(c) <= 1e-17 * a:
+            break
+    return 0.5 * math.pi / a * s
+
+
+@njit(cache=True)
+def kp_integrals_kernel(xl, h, j0):
+    """I1, I2 of eqs. (13)–(15) (see :func:`wheelrail.normal._strips.kp_integrals`)."""
+    n = xl.shape[0]
+    s1 = 0.0
+    s2 = 0.0
+    for i in range(n):
+        x = xl[i]
+        s1 += x * x
+        if x > 0.0 and i != j0:
+            y = (i - j0) * h
+            r2 = x * x + y * y
+            s2 += 2.0 * math.sqrt(r2) * k_minus_e(x * x / r2)
+    I1 = 0.5 * math.pi * s1 * h
+    I2 = s2 * h
+    x0 = xl[j0]
+    if x0 > 0.0:
+        I2 += 2.0 * x0 * h * math.log(8.0 * x0 / h)
+    return I1, I2
+
+
+@njit(cache=True)
+def kp_line_load(f, Ax, angle, h, d0, eps, E_star, correct, lam, la, lb):
+    """Normal load of one line at virtual penetration ``d0`` (pure kernel).
+
+    Parameters
+    ----------
+    f, Ax, angle : ndarray, shape (n,)
+        Separation [m], longitudinal curvature [1/m] and surface angle [rad]
+        at the uniformly spaced nodes (spacing ``h`` [m]).
+    d0 : float
+        Virtual penetration ε δ [m].
+    eps : float
+        Penetration factor ε [-].
+    E_star : float
+        Contact modulus [Pa].
+    correct : bool
+        Shape correction (eqs. 17–22).
+    lam, la, lb : ndarray
+        Hertz table: ln(A/B) grid and ln a, ln b at A·B = 1
+        (:func:`wheelrail.normal._strips._hertz_table`).
+
+    Returns
+    -------
+    N : float
+        Σ of the regions' normal forces [N].
+    Nz : float
+        Σ N cos(ᾱ), ᾱ the region's interpenetration-weighted surface angle [N].
+    """
+    n = f.shape[0]
+    N_tot = 0.0
+    Nz = 0.0
+    i = 0
+    while i < n:
+        if d0 - f[i] <= 0.0:
+            i += 1
+            continue
+        i0 = i
+        while i < n and d0 - f[i] > 0.0:
+            i += 1
+        i1 = i
+        m = i1 - i0
+        if m < 3:
+            continue
+        xl = np.empty(m)
+        j = 0
+        gmax = -1.0
+        sw = 0.0
+        swa = 0.0
+        xmax = 0.0
+        for k in range(m):
+            gk = d0 - f[i0 + k]
+            xl[k] = math.sqrt(gk / Ax[i0 + k])
+            if gk > gmax:
+                gmax = gk
+                j = k
+            if xl[k] > xmax:
+                xmax = xl[k]
+            sw += gk
+            swa += gk * angle[i0 + k]
+        real = gmax / eps
+        hh = h
+        if correct:
+            L = 2.0 * xmax
+            W = m * h
+            x = math.log((W / L) ** 2)
+            alpha = math.exp(np.interp(x, lam, la) - np.interp(x, lam, lb))
+            sy = math.sqrt(L / (alpha * W))
+            for k in range(m):
+                xl[k] = xl[k] / sy
+            hh = h * sy
+        I1, I2 = kp_integrals_kernel(xl, hh, j)
+        N = math.pi * E_star * real * I1 / I2
+        N_tot += N
+        Nz += N * math.cos(swa / sw)
+    return N_tot, Nz
