@@ -68,7 +68,7 @@ def test_unstable_time_step_is_rejected():
         solve(RollingCase(creepage=(7e-4, 0.0, 0.0), **dict(KW, time_step=1e-3)), progress=False)
 
 
-IMPLICIT = dict(KW, travel=0.0015, mass_scaling=1.0)         # 2 steps of 72 µs
+IMPLICIT = dict(KW, travel=0.0015, mass_scaling=1.0, depth=3)  # 2 steps of 72 µs
 
 
 def test_implicit_hht_vs_qs_damping_energy_and_restart(tmp_path):

@@ -44,7 +44,8 @@ from .restart import read_restart, write_restart
 from .rolling import RollingResult, saturation_creepage, solve, stable_time_step
 from .static import IndentResult, indent
 
-__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "cone_wheel", "head_arc_rail", "solve", "indent", "RollingResult", "IndentResult",
+__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "cone_wheel", "head_arc_rail",
+           "solve", "indent", "RollingResult", "IndentResult",
            "Hex8", "LinearElastic", "build_model", "write_vtu", "check_quality",
            "MeshQualityError", "stable_time_step", "saturation_creepage", "read_restart",
            "write_restart"]

@@ -206,7 +206,8 @@ def cone_wheel(taper: float = 0.1, half_width: float = 0.04, n: int = 17):
     from ..profiles import Profile
 
     y = np.linspace(-half_width, half_width, integer("n", n))
-    return Profile(y, taper * y, kind="wheel", name=f"cone 1/{1 / taper:g}" if taper else "cylinder")
+    name = f"cone 1/{1 / taper:g}" if taper else "cylinder"
+    return Profile(y, taper * y, kind="wheel", name=name)
 
 
 def head_arc_rail(radius: float = 0.3, half_width: float = 0.025, n: int = 201):

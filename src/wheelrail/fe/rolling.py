@@ -204,7 +204,8 @@ def saturation_creepage(case) -> float | None:
     """
     from .model import contact_geometry
 
-    hz = contact_geometry(case)["hertz"]
+    geo = contact_geometry(case)
+    hz = geo["hertz"]
     if hz is None:
         return None
     from ..tangential.linear import kalker_coefficients
@@ -217,7 +218,7 @@ def saturation_creepage(case) -> float | None:
     if n == 0:
         return None
     stiff = float(np.hypot(c11 * xi / n, c22 * eta / n))
-    return float(3.0 * case.mu * case.load / (mat.mu * hz.a * hz.b * stiff))
+    return float(3.0 * case.mu * geo["normal_load"] / (mat.mu * hz.a * hz.b * stiff))
 
 
 def _warn_saturation(case):
@@ -229,9 +230,10 @@ def _warn_saturation(case):
     xi, eta = case.creepage[0], case.creepage[1]
     n = float(np.hypot(xi, eta))
     if n > sat:
-        warnings.warn(f"creepage (xi, eta) = ({xi!r}, {eta!r}) is past saturation (cubic law on "
-                      f"the linear theory: full sliding beyond |creepage| = {sat:.3g}): the patch slides "
-                      f"entirely and the creep force is mu Fn whatever the creepage",
+        warnings.warn(f"creepage (xi, eta) = ({xi!r}, {eta!r}) is past saturation (cubic "
+                      f"law on the linear theory: full sliding beyond |creepage| = "
+                      f"{sat:.3g}): the patch slides entirely and the creep force is mu Fn "
+                      f"whatever the creepage",
                       UserWarning, stacklevel=3)
 
 
@@ -458,9 +460,10 @@ def _implicit_start(case, io):
     if dt > dt_max * (1 + 1e-9):
         import warnings
 
-        warnings.warn(f"time_step {dt!r} s moves the contact by {dt * case.speed / case.mesh_size:.2g} "
-                      f"elements per step; the implicit friction history needs time_step <= "
-                      f"h/(2V) = {dt_max:.3g} s, or the patch slips spuriously (seed 000 §3)",
+        warnings.warn(f"time_step {dt!r} s moves the contact by "
+                      f"{dt * case.speed / case.mesh_size:.2g} elements per step; the implicit "
+                      f"friction history needs time_step <= h/(2V) = {dt_max:.3g} s, or the "
+                      f"patch slips spuriously (seed 000 §3)",
                       UserWarning, stacklevel=4)
     nsteps = int(np.ceil(t_end / dt))
     if io["restart"] is None:
