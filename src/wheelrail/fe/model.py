@@ -46,7 +46,9 @@ def contact_geometry(case):
         ``r_c`` rolling radius there [m], ``radius_of_y`` callable r(y) [m],
         ``rail`` the inclined rail profile, ``hertz`` a :class:`HertzContact`
         from the local curvatures and the normal load ``load / cos δ`` (δ the contact
-        angle, ``delta`` [rad]), or None if they are not Hertzian.
+        angle, ``delta`` [rad]), or None if they are not Hertzian; ``lateral`` and
+        ``normal`` the unit lateral tangent and normal (3,) of the undeformed contact
+        plane (global axes).
     """
     from ..normal.hertz import hertz
 
@@ -87,6 +89,8 @@ def contact_geometry(case):
     hz = hertz(case.load / np.cos(delta), A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
     return {"y_c": float(y_c), "z_axle": float(z_axle), "r_c": r_c, "radius_of_y": radius_of_y,
             "rail": rail, "hertz": hz, "A": A, "B": B, "delta": delta,
+            "lateral": np.array([0.0, np.cos(delta), np.sin(delta)]),
+            "normal": np.array([0.0, -np.sin(delta), np.cos(delta)]),
             "normal_load": case.load / float(np.cos(delta))}
 
 

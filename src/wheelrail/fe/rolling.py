@@ -71,7 +71,9 @@ class RollingResult:
     dataset : xarray.Dataset
         Histories over ``travel`` [m]: Fx, Fy, Fz [N] (contact force on the
         wheel, global axes: x rolling, y the profiles' lateral axis, z up), Fn [N]
-        (sum of the normal nodal forces), kinetic, internal, contact (penalty),
+        (sum of the normal nodal forces), Fy_contact and Fn_contact [N] (the force on
+        the wheel along the lateral tangent and the normal of the undeformed contact
+        plane, tilted by the contact angle δ), kinetic, internal, contact (penalty),
         friction (dissipated), damping (dissipated), external (load work) energies
         [J] and energy_error [J]. Explicit: energies of step 2 (rolling), counted from
         its start (``internal`` is the change of the strain energy);
@@ -97,6 +99,12 @@ class RollingResult:
     model: object
     u: np.ndarray
     info: dict
+
+    @property
+    def Fy_contact(self) -> float:
+        """Steady lateral force in the contact plane [N] (the creep force to compare with a
+        half-space solution when the contact is inclined; equals ``Fy`` at δ = 0)."""
+        return _steady(self.dataset, "Fy_contact")
 
     def __repr__(self):
         return (f"RollingResult(Fx={self.Fx:.1f} N, Fy={self.Fy:.1f} N, p_max="
@@ -266,6 +274,12 @@ def _dataset(rows, case, model, extra):
     ds.travel.attrs["units"] = "m"
     ds["energy_error"] = ds.kinetic + ds.internal + ds.damping - ds.external - ds.contact_work
     ds["energy_error"].attrs["units"] = "J"
+    # forces in the (undeformed) contact plane: differ from Fy, Fz on an inclined contact
+    t, nv = model.geometry["lateral"], model.geometry["normal"]
+    ds["Fy_contact"] = ds.Fy * t[1] + ds.Fz * t[2]
+    ds["Fn_contact"] = ds.Fy * nv[1] + ds.Fz * nv[2]
+    for name in ("Fy_contact", "Fn_contact"):
+        ds[name].attrs["units"] = "N"
     ds.attrs.update({"integrator": case.integrator, "creepage_xi": case.xi, "mu": case.mu,
                      "load": case.load, "speed": case.speed, "n_elements": model.n_elements,
                      "mesh_size": case.mesh_size, **extra})
