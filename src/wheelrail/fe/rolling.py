@@ -83,8 +83,9 @@ class RollingResult:
     patch : xarray.Dataset
         Contact nodes at the end (see :func:`wheelrail.fe.patch.patch_from_contact`).
     Fx, Fy : float
-        Steady-state longitudinal and lateral force on the wheel [N] (mean over
-        the last quarter of the travel).
+        Steady-state longitudinal and lateral (global y) force on the wheel [N] (mean
+        over the last quarter of the travel); :attr:`Fy_contact` is the lateral force
+        in the tilted contact plane.
     p_max, a, b : float
         Peak pressure [Pa] and equivalent semi-axes [m] of the final patch.
     """
