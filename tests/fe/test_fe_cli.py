@@ -2,6 +2,9 @@
 
 import json
 
+import numpy as np
+import pytest
+
 from wheelrail.cli.main import main
 
 CASE = """
@@ -18,11 +21,12 @@ mode = "indent"
 """
 
 
-def test_fe_indent_writes_summary_vtu_and_patch(tmp_path, capsys):
+def test_fe_indent_writes_summary_vtu_patch_and_figure(tmp_path, capsys):
     case = tmp_path / "case.toml"
     case.write_text(CASE)
     out = tmp_path / "out"
-    assert main(["fe", str(case), "--out", str(out), "--no-figures"]) == 0
+    assert main(["fe", str(case), "--out", str(out)]) == 0
+    assert (out / "patch.png").stat().st_size > 10_000
     summary = json.loads((out / "summary.json").read_text())
     assert summary["mode"] == "indent"
     assert abs(summary["Fn"] - 7500.0) < 10.0
@@ -48,9 +52,61 @@ def test_fe_bad_key_is_a_usage_error(tmp_path, capsys):
     assert "mesh_sise" in capsys.readouterr().err
 
 
-def test_fe_indent_figure(tmp_path):
-    case = tmp_path / "case.toml"
-    case.write_text(CASE)
+ROLL = """
+[fe]
+wheel = "cylinder"
+rail = "60E1"
+radius = 0.46
+load = 7500.0
+mu = 0.2
+creepage = [7e-4, 0.0, 0.0]
+mesh_size = 2e-3
+element = "reduced"
+mass_scaling = 400.0
+depth = 3.0
+half_width = 3.0
+half_length = 3.0
+travel = 0.006
+"""
+
+
+def test_fe_roll_continues_from_a_restart_file(tmp_path):
+    """`--restart FILE` continues a run: the same steady force as the uninterrupted run, and
+    the run writes DIR/restart.npz (the latest state) itself."""
+    from wheelrail.cli.fe import case_from_toml
+    from wheelrail.fe import solve
+
+    case_file = tmp_path / "roll.toml"
+    case_file.write_text(ROLL)
+    case, _ = case_from_toml(case_file)
+    full = solve(case, progress=False, restart_file=tmp_path / "r_{step}.npz", restart_every=300)
+    mid = sorted(tmp_path.glob("r_*.npz"), key=lambda p: int(p.stem[2:]))[0]
     out = tmp_path / "out"
-    assert main(["fe", str(case), "--out", str(out)]) == 0
-    assert (out / "patch.png").stat().st_size > 10_000
+    assert main(["fe", str(case_file), "--out", str(out), "--no-figures",
+                 "--restart", str(mid)]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["restarted_at_step"] == int(mid.stem[2:]) > 0
+    assert summary["Fx"] == full.Fx                       # bit for bit
+    import pandas as pd
+    hist = pd.read_csv(out / "history.csv")
+    for name in ("Fx", "Fy", "Fn", "friction", "contact_work", "energy_error"):
+        np.testing.assert_array_equal(hist[name].values, full.dataset[name].values)
+    assert (out / "restart.npz").is_file()
+    # a restart file of another case is rejected, naming the differing quantity
+    from wheelrail.errors import InputError
+    with pytest.raises(InputError, match="mu = 0.2"):
+        solve(case.replace(mu=0.3), progress=False, restart=mid)
+
+
+def test_fe_seed000_case_file_cone_on_arc(tmp_path):
+    """wheel = "cone", rail = "arc": seed 000's Hertzian set-up from a case file."""
+    from wheelrail.cli.fe import case_from_toml
+    from wheelrail.fe.model import contact_geometry
+
+    f = tmp_path / "seed.toml"
+    f.write_text(CASE.replace('"cylinder"', '"cone"').replace('"60E1"', '"arc"')
+                 + "inclination = 0.09966865249116204\n")
+    case, mode = case_from_toml(f)
+    g = contact_geometry(case)
+    assert mode == "indent" and abs(g["y_c"]) < 1e-6
+    assert g["hertz"].a / g["hertz"].b == pytest.approx(1.334, abs=0.002)

@@ -59,8 +59,12 @@ def test_mesh_larger_than_patch_is_rejected():
                                 load=7500.0, mesh_size=5e-3), rolling=False)
 
 
-@pytest.mark.parametrize("kw, match", [({"creepage": (0.0, 1e-3, 0.0)}, "eta"),
+@pytest.mark.parametrize("kw, match", [({"creepage": (0.0, 0.0, 0.1)}, "phi = 0.1"),
                                        ({"creepage": (0.2, 0.0, 0.0)}, "saturation"),
+                                       ({"creepage": (0.0, -0.06, 0.0)}, "eta = -0.06"),
+                                       ({"integrator": "implicit-qs", "rayleigh": (10.0, 0.0)},
+                                        "alpha = 10.0"),
+                                       ({"linear_solver": "lu"}, "linear_solver"),
                                        ({"integrator": "rk4"}, "integrator"),
                                        ({"load": -1.0}, "load")])
 def test_bad_case_input_named(kw, match):
@@ -143,3 +147,36 @@ def test_real_profiles_s1002_on_inclined_60e1_mesh():
     ws = m.wheel.nodes[m.wheel.surface_nodes.ravel()]
     np.testing.assert_allclose(np.hypot(ws[:, 0], ws[:, 2]), 0.46 - wheel(ws[:, 1]), atol=1e-12)
     assert m.geometry["hertz"] is not None and m.geometry["hertz"].a > m.geometry["hertz"].b
+
+
+def test_saturation_creepage_closed_form_and_warning():
+    """Full sliding beyond 3 μ Fn / (G c² C11) (Vermeulen & Johnson's cubic law on Kalker's
+    linear theory): the run warns naming the creepage; the bad explicit step then stops it."""
+    from wheelrail.fe import saturation_creepage, solve
+    from wheelrail.tangential.linear import kalker_coefficients
+
+    case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
+                       load=7500.0, mu=0.2, creepage=(0.01, 0.0, 0.0), mesh_size=2e-3,
+                       element="reduced", depth=3, half_width=3, half_length=3, time_step=1.0)
+    hz = build_model(case, rolling=False).geometry["hertz"]
+    G = 2.1e11 / (2 * 1.28)
+    c11 = float(kalker_coefficients(hz.a / hz.b, 0.28)[0])
+    sat = saturation_creepage(case)
+    assert sat == pytest.approx(3 * 0.2 * 7500.0 / (G * hz.a * hz.b * c11), rel=1e-12)
+    assert 1e-3 < sat < 3e-3                        # the exact curve saturates near 2e-3 here
+    assert saturation_creepage(case.replace(creepage=(1e-3, 0.0, 0.0))) == pytest.approx(sat)
+    with pytest.warns(UserWarning, match=r"\(0.01, 0.0\) is past saturation"):
+        with pytest.raises(InputError, match="time_step 1.0"):
+            solve(case, progress=False)
+
+
+def test_implicit_step_too_long_warns_naming_it(tmp_path):
+    from wheelrail.fe import solve
+
+    case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
+                       load=7500.0, mu=0.2, creepage=(1e-3, 0.0, 0.0), mesh_size=2e-3,
+                       element="reduced", depth=3, half_width=3, half_length=3,
+                       integrator="implicit-qs", time_step=4e-4)
+    with pytest.warns(UserWarning, match="time_step 0.0004 s"):
+        with pytest.raises(InputError, match="does not exist"):
+            solve(case, progress=False, restart=tmp_path / "none.npz")

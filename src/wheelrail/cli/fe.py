@@ -5,7 +5,10 @@ The case file holds one ``[fe]`` table; every key is a
 
 * ``wheel`` / ``rail`` — a standard profile name (``"S1002"``, ``"60E1"``), a
   profile file path (relative to the case file), or for the wheel
-  ``"cylinder"`` / ``"cone"`` (a straight tread 80 mm wide, taper ``wheel_taper``);
+  ``"cylinder"`` / ``"cone"`` (a straight tread 80 mm wide, taper ``wheel_taper``,
+  default 1/10), for the rail ``"arc"`` (a head arc of ``rail_head_radius`` [m],
+  default 0.3; seed 000's Hertzian case is ``wheel = "cone"``, ``rail = "arc"``,
+  ``inclination = 0.0996686525`` = arctan(1/10));
 * ``E``, ``nu`` — the material (default steel 210 GPa, 0.28);
 * ``mode`` — ``"roll"`` (default) or ``"indent"``.
 
@@ -35,15 +38,21 @@ def add_arguments(p) -> None:
     p.add_argument("case", metavar="CASE.toml", help="case file with an [fe] table")
     p.add_argument("--out", metavar="DIR", default="fe_out",
                    help="output directory (default fe_out): summary.json, history.csv, "
-                        "patch.nc, mesh.vtu, patch.png, history.png")
+                        "patch.nc, mesh.vtu, patch.png, history.png, restart.npz")
     p.add_argument("--mode", choices=("roll", "indent"), default=None,
                    help="override the case's mode")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--estimate-only", action="store_true",
                    help="print the mesh size and the time estimate, then stop")
+    p.add_argument("--restart", metavar="FILE", default=None,
+                   help="continue a rolling run from this restart file (DIR/restart.npz of "
+                        "an earlier run of the same case)")
+    p.add_argument("--restart-every", metavar="N", type=int, default=None,
+                   help="write DIR/restart.npz every N rolling steps (default: a tenth of "
+                        "the steps)")
 
 
-def _profile(value, kind, base, taper=0.0):
+def _profile(value, kind, base, param=0.0):
     import numpy as np
 
     import wheelrail as wr
@@ -53,8 +62,10 @@ def _profile(value, kind, base, taper=0.0):
         raise CaseFileError(f"[fe] {kind} must be a profile name or file, got {value!r}")
     if kind == "wheel" and value.lower() in ("cylinder", "cone"):
         y = np.linspace(-0.04, 0.04, 17)
-        return wr.Profile(y, taper * y if value.lower() == "cone" else 0 * y, kind="wheel",
+        return wr.Profile(y, param * y if value.lower() == "cone" else 0 * y, kind="wheel",
                           name=value)
+    if kind == "rail" and value.lower() == "arc":
+        return wr.fe.head_arc_rail(param)
     path = base / value
     if path.is_file():
         return wr.profiles.read(path, kind=kind)
@@ -88,11 +99,12 @@ def case_from_toml(path):
     if mode not in ("roll", "indent"):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
     taper = float(t.pop("wheel_taper", 0.1))
+    head = float(t.pop("rail_head_radius", 0.3))
     for key in ("wheel", "rail"):
         if key not in t:
             raise CaseFileError(f"{path}: [fe] needs '{key}'")
     t["wheel"] = _profile(t["wheel"], "wheel", path.parent, taper)
-    t["rail"] = _profile(t["rail"], "rail", path.parent)
+    t["rail"] = _profile(t["rail"], "rail", path.parent, head)
     E, nu = t.pop("E", 2.1e11), t.pop("nu", 0.28)
     t["material"] = wr.Material(E=E, nu=nu)
     for key in ("creepage", "rayleigh"):
@@ -147,9 +159,12 @@ def run(args, console) -> int:
         patch, u, mu = r.patch, r.u, case.mu or 0.3
         model = r.model
     else:
-        r = solve(case, progress=True)
+        r = solve(case, progress=True, restart=args.restart, restart_file=out / "restart.npz",
+                  restart_every=args.restart_every)
         summary.update(Fx=r.Fx, Fy=r.Fy, p_max=r.p_max, a=r.a, b=r.b,
                        **{k: float(v) for k, v in r.info.items()})
+        if args.restart:
+            console.print(f"continued from {args.restart} (step {r.info['restarted_at_step']})")
         r.dataset.to_dataframe().to_csv(out / "history.csv")
         patch, u, mu = r.patch, r.u, case.mu
         model = r.model

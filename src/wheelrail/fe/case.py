@@ -10,7 +10,7 @@ from .._validation import as_float_array, in_range, integer, non_negative, posit
 from ..errors import InputError
 from ..materials import STEEL, Material
 
-__all__ = ["RollingCase", "INTEGRATORS"]
+__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "cone_wheel", "head_arc_rail"]
 
 #: Names accepted by ``RollingCase(integrator=...)``.
 INTEGRATORS = ("explicit", "implicit-qs", "implicit-hht")
@@ -31,9 +31,12 @@ class RollingCase:
     load : float
         Vertical wheel load [N] (> 0).
     creepage : (float, float, float)
-        (ξ, η, φ); only the longitudinal creepage ξ [-] is prescribed (through
-        the wheel's angular velocity, Toumi et al. eq. 1); η must be 0 (yaw
-        not implemented yet) and φ must be 0 (spin arises from the geometry).
+        (ξ [-], η [-], φ [1/m]). ξ is prescribed through the wheel's angular
+        velocity (Toumi et al. eq. 1), η through a lateral drift −η V(t) of the
+        rail (the small-angle equivalent of the seed's yaw angle, its eqs. 2-3);
+        φ must be 0: spin arises from the geometry (conicity, rail inclination).
+        |ξ| or |η| >= 0.05 is rejected; a creepage past the saturation estimate
+        of the linear theory gives a warning in :func:`wheelrail.fe.solve`.
     mu : float
         Coulomb friction coefficient [-].
     material : Material or LinearElastic
@@ -69,7 +72,15 @@ class RollingCase:
     mass_scaling : float
         Density multiplier (>= 1) of the explicit run: the step grows by its square root.
     rayleigh : (float, float)
-        Rayleigh damping C = α M + β K, α [1/s], β [s].
+        Rayleigh damping C = α M + β K, α [1/s], β [s]: explicit and implicit-hht;
+        implicit-qs takes only the stiffness part β (a viscous, Kelvin-Voigt term
+        β K u̇ with u̇ = Δu/Δt; α > 0 is rejected there since it needs inertia).
+    linear_solver : {"direct", "reuse"}
+        Implicit Newton systems: ``"direct"`` factorises every iteration (SuperLU,
+        symmetric mode); ``"reuse"`` keeps one factorisation as the GMRES preconditioner
+        across iterations and steps and refactorises only when GMRES needs more than 40
+        iterations (same results to 1e-10; not faster on the meshes measured, see
+        docs/fe.md).
     hht_alpha : float
         HHT-α parameter in [-1/3, 0].
     density : float
@@ -105,6 +116,7 @@ class RollingCase:
     time_step: float | None = None
     mass_scaling: float = 1.0
     rayleigh: tuple = (0.0, 0.0)
+    linear_solver: str = "direct"
     hht_alpha: float = -0.05
     density: float = 7800.0
     meta: dict = field(default_factory=dict, repr=False)
@@ -122,13 +134,15 @@ class RollingCase:
         c = as_float_array("creepage", self.creepage)
         if c.shape != (3,):
             raise InputError(f"creepage must be (xi, eta, phi), got shape {c.shape}")
-        if c[1] != 0.0 or c[2] != 0.0:
-            raise InputError(f"creepage (eta, phi) = ({c[1]!r}, {c[2]!r}): only the longitudinal "
-                             f"creepage can be prescribed in the FE model (yaw for eta is not "
-                             f"implemented; spin follows from the profiles)")
-        if abs(c[0]) >= 0.05:
-            raise InputError(f"creepage xi = {c[0]!r} is past any plausible saturation "
-                             f"(|xi| >= 5 %); full sliding has no steady rolling state to resolve")
+        if c[2] != 0.0:
+            raise InputError(f"creepage phi = {c[2]!r} 1/m: a prescribed spin creepage is not "
+                             f"supported by the FE model; spin follows from the profiles "
+                             f"(e.g. a conical wheel on an inclined rail) — give phi = 0")
+        for k, name in ((0, "xi"), (1, "eta")):
+            if abs(c[k]) >= 0.05:
+                raise InputError(f"creepage {name} = {c[k]!r} is past any plausible saturation "
+                                 f"(|{name}| >= 5 %); full sliding has no steady rolling state "
+                                 f"to resolve")
         s(self, "creepage", tuple(float(v) for v in c))
         s(self, "mu", float(non_negative("mu", self.mu)))
         if not isinstance(self.material, Material):
@@ -159,6 +173,12 @@ class RollingCase:
         if r.shape != (2,) or np.any(r < 0):
             raise InputError(f"rayleigh must be (alpha >= 0, beta >= 0), got {self.rayleigh!r}")
         s(self, "rayleigh", (float(r[0]), float(r[1])))
+        if self.integrator == "implicit-qs" and r[0] > 0:
+            raise InputError(f"rayleigh alpha = {r[0]!r} 1/s (mass-proportional damping) needs "
+                             f"inertia: use integrator 'implicit-hht' or 'explicit', or alpha = 0")
+        if self.linear_solver not in ("reuse", "direct"):
+            raise InputError(f"linear_solver must be 'reuse' or 'direct', got "
+                             f"{self.linear_solver!r}")
         s(self, "hht_alpha", float(in_range("hht_alpha", self.hht_alpha, -1 / 3, 0.0)))
         s(self, "density", float(positive("density", self.density)))
 
@@ -171,5 +191,62 @@ class RollingCase:
         return self.creepage[0]
 
 
-def _unused():  # keep integer imported for later options (steps)
-    return integer
+def cone_wheel(taper: float = 0.1, half_width: float = 0.04, n: int = 17):
+    """A conical (straight) wheel tread: profile z = taper · y [m] over |y| <= half_width.
+
+    Parameters
+    ----------
+    taper : float
+        Conicity [-] (1/10 in Toumi et al. 2016, Table 1); 0 gives a cylinder.
+    half_width : float
+        Half width of the tread [m].
+    n : int
+        Number of profile points.
+    """
+    from ..profiles import Profile
+
+    y = np.linspace(-half_width, half_width, integer("n", n))
+    name = f"cone 1/{1 / taper:g}" if taper else "cylinder"
+    return Profile(y, taper * y, kind="wheel", name=name)
+
+
+def head_arc_rail(radius: float = 0.3, half_width: float = 0.025, n: int = 201):
+    """A rail head made of one circular arc of ``radius`` [m] (crown at y = 0, z = 0).
+
+    Parameters
+    ----------
+    radius : float
+        Head radius [m] (300 mm in Toumi et al. 2016, Table 1).
+    half_width : float
+        Half width of the head [m] (< radius).
+    n : int
+        Number of profile points.
+    """
+    from ..profiles import Profile
+
+    R = float(positive("radius", radius))
+    w = float(in_range("half_width", half_width, 0.0, R, lo_open=True, hi_open=True))
+    y = np.linspace(-w, w, integer("n", n))
+    return Profile(y, -y * y / (R + np.sqrt(R * R - y * y)), kind="rail",
+                   name=f"head arc R{R * 1e3:g}")
+
+
+def seed000_case(**changes) -> RollingCase:
+    """Toumi et al.'s Hertzian elastic case (seed 000, Table 1), as a :class:`RollingCase`.
+
+    A 1/10 conical wheel of rolling radius 460 mm on a rail head arc of 300 mm inclined by
+    1/10 (``inclination = arctan(1/10)``), so that the cone touches the arc at its crown and
+    the contact is Hertzian (A = cos δ / (2 r), B = 1 / (2 · 0.3 m)); 7.5 kN, μ = 0.2,
+    E = 210 GPa, ν = 0.28, ρ = 7800 kg/m³, 50 km/h, ξ = −0.7 ‰. ``changes`` override any
+    field (e.g. ``mesh_size``, ``integrator``, ``lateral_position``; the cone makes the
+    contact point independent of the lateral position, which sets the rolling radius).
+
+    References
+    ----------
+    .. [1] M. Toumi, H. Chollet, H. Yin, Wear 366-367 (2016) 157-166, §2 and Table 1.
+    """
+    args = dict(wheel=cone_wheel(0.1), rail=head_arc_rail(0.3), radius=0.46, load=7500.0,
+                creepage=(-7e-4, 0.0, 0.0), mu=0.2, material=Material(E=2.1e11, nu=0.28),
+                inclination=float(np.arctan(0.1)), speed=50 / 3.6)
+    args.update(changes)
+    return RollingCase(**args)

@@ -9,7 +9,10 @@ load degree of freedom). A wheel node's global position is
 
     x = c0 + w e_z + Q(psi) (X + u),   Q = [[cos, 0, sin], [0, 1, 0], [-sin, 0, cos]],
 
-a rail node's ``x = X + u - s e_x``. This is exact for the elastic response to
+a rail node's ``x = X + u - s e_x - η s e_y``: with a lateral creepage η the rail
+also drifts sideways at −η V(t), so that the rigid lateral creepage (wheel velocity
+relative to the rail / V) is η — the small-angle equivalent of a yaw angle
+α = −η of the wheel (Toumi et al. 2016, eqs. 2-3). This is exact for the elastic response to
 small strains under arbitrary rigid rotation (a co-rotational frame per body);
 the fictitious (centrifugal, Coriolis) body forces of the turning frame are
 neglected (ρ Ω² R ≈ 3 MN/m³ at 50 km/h, i.e. < 0.1 MPa over the kept rim).
@@ -42,7 +45,10 @@ def contact_geometry(case):
         ``y_c`` lateral position of the contact point [m], ``z_axle`` axle height [m],
         ``r_c`` rolling radius there [m], ``radius_of_y`` callable r(y) [m],
         ``rail`` the inclined rail profile, ``hertz`` a :class:`HertzContact`
-        from the local curvatures, or None if they are not Hertzian.
+        from the local curvatures and the normal load ``load / cos δ`` (δ the contact
+        angle, ``delta`` [rad]), or None if they are not Hertzian; ``lateral`` and
+        ``normal`` the unit lateral tangent and normal (3,) of the undeformed contact
+        plane (global axes).
     """
     from ..normal.hertz import hertz
 
@@ -72,13 +78,20 @@ def contact_geometry(case):
     r_c = float(radius_of_y(y_c))
     kw = float(wheel.curvature(y_c - lat))
     kr = float(rail.curvature(y_c))
-    A = 0.5 / r_c
+    # circumferential normal curvature of the wheel (a surface of revolution): cos δ / r,
+    # δ the angle of the tread to the axle (the wheel's profile slope; 1/10 cone: -0.5 %)
+    A = 0.5 * float(np.cos(np.arctan(wheel.slope(y_c - lat)))) / r_c
     B = 0.5 * (kw - kr)
     mat = as_fe_material(case.material, case.density)
     from ..materials import Material
-    hz = hertz(case.load, A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
+    # the vertical wheel load acts along the contact normal with Fn = load / cos(contact angle)
+    delta = float(np.arctan(rail.slope(y_c)))
+    hz = hertz(case.load / np.cos(delta), A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
     return {"y_c": float(y_c), "z_axle": float(z_axle), "r_c": r_c, "radius_of_y": radius_of_y,
-            "rail": rail, "hertz": hz, "A": A, "B": B}
+            "rail": rail, "hertz": hz, "A": A, "B": B, "delta": delta,
+            "lateral": np.array([0.0, np.cos(delta), np.sin(delta)]),
+            "normal": np.array([0.0, -np.sin(delta), np.cos(delta)]),
+            "normal_load": case.load / float(np.cos(delta))}
 
 
 @dataclass(frozen=True, eq=False)
@@ -181,7 +194,12 @@ class Model:
         idx = self.master
         X = self.rail.nodes[idx - self.nw] + u[idx]
         X[..., 0] -= s
+        X[..., 1] -= self.lateral_shift(s)
         return X
+
+    def lateral_shift(self, s):
+        """Lateral rail drift η s [m] after a rail travel s [m] (lateral creepage η)."""
+        return self.case.creepage[1] * s
 
     def contact(self, u, w, psi, s, xs_prev, xm_prev, ft_old, mu):
         """Evaluate contact; returns a dict of per-slave results and the generalized forces."""
@@ -197,7 +215,8 @@ class Model:
         }
         h = self.case.mesh_size
         K.node_to_surface(xs, xs - xs_prev, self.slave_area, self.kn, self.kn, mu, ft_old,
-                          xm, nodal_normals(xm), xm - xm_prev, self.rail.axes[0], self.rail.axes[1][:], s,
+                          xm, nodal_normals(xm), xm - xm_prev, self.rail.axes[0],
+                          self.rail.axes[1] - self.lateral_shift(s), s,
                           5.0 * h, self.g0, out["energy"], out["fs"], out["fm"], out["gap"], out["pn"], out["ft"],
                           out["status"], out["cell"], out["rt"], out["normal"], out["slip"])
         out["xs"] = xs

@@ -19,13 +19,22 @@ Implicit quasi-static (``"implicit-qs"``): step 1 the static Newton solve of
 :func:`wheelrail.fe.indent`'s kind, step 2 a sequence of static Newton solves
 with the friction history carried from step to step (backward-Euler
 incremental slip); time step ``time_step`` (default: the contact moves half an
-element per step).
+element per step); optional viscous term β_R K Δu/Δt (Rayleigh β only).
+
+The lateral creepage η is imposed by a lateral rail drift −η V(t)
+(:meth:`wheelrail.fe.model.Model.lateral_shift`).
 
 Implicit dynamic (``"implicit-hht"``): the HHT-α method (α = ``hht_alpha`` in
 [−1/3, 0], β = (1 − α)²/4, γ = ½ − α) with lumped mass, Newton iterations on the
 equilibrium at t_{n+1+α} (internal and contact forces weighted (1 + α) at the new
 and −α at the old step; contact evaluated at the new positions), same default
-step as quasi-static; no Rayleigh damping (numerical dissipation only).
+step as quasi-static; Rayleigh damping C = α_R M + β_R K enters the same way
+((1 + α) C v_{n+1} − α C v_n), its work is reported as ``damping``.
+
+Implicit Newton systems reuse one sparse LU factorisation as a GMRES
+preconditioner across iterations and steps (``linear_solver="reuse"``), see
+:class:`wheelrail.fe._newton.ReusedFactorSolver`. Every integrator can write
+restart files and continue from them (:mod:`wheelrail.fe.restart`).
 
 References
 ----------
@@ -50,7 +59,7 @@ from .model import build_model
 from .patch import patch_from_contact
 from .static import free_dofs, static_equilibrium
 
-__all__ = ["RollingResult", "solve", "stable_time_step"]
+__all__ = ["RollingResult", "solve", "stable_time_step", "saturation_creepage"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -62,7 +71,9 @@ class RollingResult:
     dataset : xarray.Dataset
         Histories over ``travel`` [m]: Fx, Fy, Fz [N] (contact force on the
         wheel, global axes: x rolling, y the profiles' lateral axis, z up), Fn [N]
-        (sum of the normal nodal forces), kinetic, internal, contact (penalty),
+        (sum of the normal nodal forces), Fy_contact and Fn_contact [N] (the force on
+        the wheel along the lateral tangent and the normal of the undeformed contact
+        plane, tilted by the contact angle δ), kinetic, internal, contact (penalty),
         friction (dissipated), damping (dissipated), external (load work) energies
         [J] and energy_error [J]. Explicit: energies of step 2 (rolling), counted from
         its start (``internal`` is the change of the strain energy);
@@ -72,8 +83,9 @@ class RollingResult:
     patch : xarray.Dataset
         Contact nodes at the end (see :func:`wheelrail.fe.patch.patch_from_contact`).
     Fx, Fy : float
-        Steady-state longitudinal and lateral force on the wheel [N] (mean over
-        the last quarter of the travel).
+        Steady-state longitudinal and lateral (global y) force on the wheel [N] (mean
+        over the last quarter of the travel); :attr:`Fy_contact` is the lateral force
+        in the tilted contact plane.
     p_max, a, b : float
         Peak pressure [Pa] and equivalent semi-axes [m] of the final patch.
     """
@@ -88,6 +100,12 @@ class RollingResult:
     model: object
     u: np.ndarray
     info: dict
+
+    @property
+    def Fy_contact(self) -> float:
+        """Steady lateral force in the contact plane [N] (the creep force to compare with a
+        half-space solution when the contact is inclined; equals ``Fy`` at δ = 0)."""
+        return _steady(self.dataset, "Fy_contact")
 
     def __repr__(self):
         return (f"RollingResult(Fx={self.Fx:.1f} N, Fy={self.Fy:.1f} N, p_max="
@@ -137,7 +155,8 @@ def _forces_row(c):
     return fs[:, 0].sum(), fs[:, 1].sum(), fs[:, 2].sum(), c["pn"].sum()
 
 
-def solve(case, *, progress: bool = True, output_every: int | None = None) -> RollingResult:
+def solve(case, *, progress: bool = True, output_every: int | None = None,
+          restart=None, restart_file=None, restart_every: int | None = None) -> RollingResult:
     """Roll the wheel over the rail: seed 000's two loading steps.
 
     Parameters
@@ -146,17 +165,85 @@ def solve(case, *, progress: bool = True, output_every: int | None = None) -> Ro
     progress : bool
         Show a rich progress bar.
     output_every : int, optional
-        Record the histories every this many steps (default: about 400 rows).
+        Explicit: record the histories every this many steps (default: about 400 rows).
+    restart : str or Path, optional
+        Continue from this restart file (written by a run of the same case).
+    restart_file : str or Path, optional
+        Write the state of the rolling step to this ``.npz`` file every
+        ``restart_every`` steps (and at the end), see :mod:`wheelrail.fe.restart`;
+        ``{step}`` in the name is replaced by the step number (one file per write),
+        otherwise the file is overwritten with the latest state.
+    restart_every : int, optional
+        Steps between restart writes (default: a tenth of the rolling steps).
 
     Returns
     -------
     RollingResult
+
+    Warns
+    -----
+    UserWarning
+        The creepage is past the saturation estimate (:func:`saturation_creepage`): the
+        patch slides entirely and the force is μ F_n whatever the creepage; or an implicit
+        ``time_step`` above h/(2V) (spurious slip, seed 000 §3).
     """
+    _warn_saturation(case)
+    io = {"restart": restart, "file": restart_file, "every": restart_every}
     if case.integrator == "explicit":
-        return _solve_explicit(case, progress, output_every)
+        return _solve_explicit(case, progress, output_every, io)
     if case.integrator == "implicit-qs":
-        return _solve_implicit_qs(case, progress)
-    return _solve_implicit_hht(case, progress)
+        return _solve_implicit_qs(case, progress, io)
+    return _solve_implicit_hht(case, progress, io)
+
+
+def saturation_creepage(case) -> float | None:
+    """Creepage magnitude [-] beyond which the whole patch slides (saturation estimate).
+
+    Johnson's and Vermeulen's cubic saturation law reaches μ F_n at three times the
+    creepage where Kalker's linear force does: √((C11 ξ)² + (C22 η)²) G c² = 3 μ F_n,
+    c = √(ab), with Kalker's coefficients of the Hertz contact of the case (None if the
+    case is not Hertzian or the creepage is zero).
+
+    References
+    ----------
+    .. [1] J.J. Kalker, *Three-Dimensional Elastic Bodies in Rolling Contact*, Kluwer 1990,
+       §2.3 (linear theory).
+    .. [2] P.J. Vermeulen, K.L. Johnson, "Contact of nonspherical elastic bodies
+       transmitting tangential forces", J. Appl. Mech. 31 (1964) 338-340 (cubic law).
+    """
+    from .model import contact_geometry
+
+    geo = contact_geometry(case)
+    hz = geo["hertz"]
+    if hz is None:
+        return None
+    from ..tangential.linear import kalker_coefficients
+    from .materials import as_fe_material
+
+    mat = as_fe_material(case.material, case.density)
+    c11, c22, _, _ = (float(v) for v in kalker_coefficients(float(hz.a / hz.b), mat.nu))
+    xi, eta = case.creepage[0], case.creepage[1]
+    n = float(np.hypot(xi, eta))
+    if n == 0:
+        return None
+    stiff = float(np.hypot(c11 * xi / n, c22 * eta / n))
+    return float(3.0 * case.mu * geo["normal_load"] / (mat.mu * hz.a * hz.b * stiff))
+
+
+def _warn_saturation(case):
+    import warnings
+
+    sat = saturation_creepage(case) if case.mu > 0 else None
+    if sat is None:
+        return
+    xi, eta = case.creepage[0], case.creepage[1]
+    n = float(np.hypot(xi, eta))
+    if n > sat:
+        warnings.warn(f"creepage (xi, eta) = ({xi!r}, {eta!r}) is past saturation (cubic "
+                      f"law on the linear theory: full sliding beyond |creepage| = "
+                      f"{sat:.3g}): the patch slides entirely and the creep force is mu Fn "
+                      f"whatever the creepage",
+                      UserWarning, stacklevel=3)
 
 
 def _progress(progress, total, label):
@@ -188,6 +275,12 @@ def _dataset(rows, case, model, extra):
     ds.travel.attrs["units"] = "m"
     ds["energy_error"] = ds.kinetic + ds.internal + ds.damping - ds.external - ds.contact_work
     ds["energy_error"].attrs["units"] = "J"
+    # forces in the (undeformed) contact plane: differ from Fy, Fz on an inclined contact
+    t, nv = model.geometry["lateral"], model.geometry["normal"]
+    ds["Fy_contact"] = ds.Fy * t[1] + ds.Fz * t[2]
+    ds["Fn_contact"] = ds.Fy * nv[1] + ds.Fz * nv[2]
+    for name in ("Fy_contact", "Fn_contact"):
+        ds[name].attrs["units"] = "N"
     ds.attrs.update({"integrator": case.integrator, "creepage_xi": case.xi, "mu": case.mu,
                      "load": case.load, "speed": case.speed, "n_elements": model.n_elements,
                      "mesh_size": case.mesh_size, **extra})
@@ -200,7 +293,31 @@ def _steady(ds, name):
     return float(np.mean(v[-n:]))
 
 
-def _solve_explicit(case, progress, output_every):
+def _restart_writer(io, model, dt, n_steps):
+    """A callable ``maybe_write(k_done, state_fn)`` writing every ``every`` steps and at the end."""
+    from .restart import write_restart
+
+    path = io["file"]
+    every = io["every"] or max(1, n_steps // 10)
+
+    def maybe_write(k_done, state_fn, force=False):
+        if path is None:
+            return False
+        if k_done % every == 0 or k_done == n_steps or force:
+            write_restart(str(path).format(step=k_done), model, dt, state_fn())
+            return True
+        return False
+
+    return maybe_write
+
+
+def _contact_state(c):
+    return {k: v for k, v in c.items() if isinstance(v, np.ndarray)}
+
+
+def _solve_explicit(case, progress, output_every, io):
+    from .restart import read_restart
+
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
     dt_stable = stable_time_step(model)
@@ -221,17 +338,6 @@ def _solve_explicit(case, progress, output_every):
     load, mu = case.load, case.mu
     R = model.geometry["r_c"]
 
-    u = np.zeros((n, 3))
-    v = np.zeros((n, 3))
-    hz = model.geometry["hertz"]
-    w = -float(hz.penetration) if hz is not None else 0.0
-    vw = 0.0
-    psi = s = 0.0
-    ft = np.zeros((model.slave.size, 3))
-    xs_prev = model.slave_positions(u, w, psi)
-    xm_prev = model.master_positions(u, s)
-
-    # ---- step 1: dynamic relaxation to the static contact (mass-proportional damping)
     depth = model.wheel.axes[2][-1]
     omega1 = np.pi * model.material.wave_speed / (2 * depth) / np.sqrt(case.mass_scaling)
     a_dr = 2.0 * omega1
@@ -239,12 +345,7 @@ def _solve_explicit(case, progress, output_every):
     speed, t_end = _speed_profile(case, travel)
     n2 = int(np.ceil(t_end / dt))
     every = output_every or max(1, n2 // 400)
-    bar = _progress(progress, n1 + n2, f"FE explicit ({model.n_elements} el.)")
-    rows = []
-    E = dict(kinetic=0.0, internal=0.0, contact=0.0, friction=0.0, damping=0.0, external=0.0,
-             contact_work=0.0)
     f = np.zeros((n, 3))
-    c = None
 
     def accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, mu_now, damp_a):
         f[:] = 0.0
@@ -260,27 +361,60 @@ def _solve_explicit(case, progress, output_every):
         aw = (fcw - load - damp_a * M_w * vw) / M_w
         return acc, aw, c, e_int, fc, fcw, fd
 
-    t = 0.0
-    acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, 0.0, a_dr)
-    for k in range(n1):
-        v += dt * acc
-        vw += dt * aw
-        u += dt * v
-        w += dt * vw
-        xs_prev, xm_prev = c["xs"], c["xm"]
+    if io["restart"] is not None:
+        st = read_restart(io["restart"], model, dt)
+        u, v, acc, fc, fd = st["u"], st["v"], st["acc"], st["fc"], st["fd"]
+        w, vw, aw, fcw, psi, s, t = (st[k] for k in ("w", "vw", "aw", "fcw", "psi", "s", "t"))
+        e_int, e_int0, relax_error, k0 = st["e_int"], st["e_int0"], st["relax_error"], st["k"]
+        c, E, rows = st["c"], st["E"], st["rows"].tolist()
+        ft = c["ft"]
+        bar = _progress(progress, n2 - k0, f"FE explicit ({model.n_elements} el.), restart")
+    else:
+        u = np.zeros((n, 3))
+        v = np.zeros((n, 3))
+        hz = model.geometry["hertz"]
+        w = -float(hz.penetration) if hz is not None else 0.0
+        vw = 0.0
+        psi = s = 0.0
+        ft = np.zeros((model.slave.size, 3))
+        xs_prev = model.slave_positions(u, w, psi)
+        xm_prev = model.master_positions(u, s)
+        bar = _progress(progress, n1 + n2, f"FE explicit ({model.n_elements} el.)")
+        rows = []
+        E = dict(kinetic=0.0, internal=0.0, contact=0.0, friction=0.0, damping=0.0,
+                 external=0.0, contact_work=0.0)
+
+        # ---- step 1: dynamic relaxation to the static contact (mass-proportional damping)
+        t = 0.0
         acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, 0.0,
                                                a_dr)
-        if bar is not None and k % 200 == 0:
-            bar.update(bar.task_ids[0], completed=k)
-    relax_error = abs(c["pn"].sum() * 0 + fcw - load) / load
-    v[:] = 0.0
-    vw = 0.0
+        for k in range(n1):
+            v += dt * acc
+            vw += dt * aw
+            u += dt * v
+            w += dt * vw
+            xs_prev, xm_prev = c["xs"], c["xm"]
+            acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft,
+                                                   0.0, a_dr)
+            if bar is not None and k % 200 == 0:
+                bar.update(bar.task_ids[0], completed=k)
+        relax_error = abs(fcw - load) / load
+        v[:] = 0.0
+        vw = 0.0
+        ft = c["ft"].copy()
+        e_int0 = e_int
+        fd = np.zeros_like(fd)
+        k0 = 0
+
+    def state(k_done):
+        return dict(u=u, v=v, acc=acc, fc=fc, fd=fd, w=w, vw=vw, aw=aw, fcw=fcw, psi=psi, s=s,
+                    t=t, e_int=e_int, e_int0=e_int0, relax_error=relax_error, k=k_done,
+                    c=_contact_state(c), E=E, rows=np.array(rows, float).reshape(-1, 13))
+
+    maybe_write = _restart_writer(io, model, dt, n2)
 
     # ---- step 2: rolling (energies counted from here)
-    ft = c["ft"].copy()
-    e_int0 = e_int
-    fd = np.zeros_like(fd)
-    for k in range(n2):
+    for k in range(k0, n2):
         t_half = t + 0.5 * dt
         V = speed(t_half)
         v += dt * acc
@@ -301,8 +435,7 @@ def _solve_explicit(case, progress, output_every):
         # trapezoidal rule: the other half with the forces at the end of the step
         E["damping"] += 0.5 * float(np.sum(fd * du))
         E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
-        E["friction"] += float(np.sum(c["ft"] * 0.0)) + float(
-            np.sum(np.linalg.norm(c["ft"], axis=1) * c["slip"]))
+        E["friction"] += float(np.sum(np.linalg.norm(c["ft"], axis=1) * c["slip"]))
         ft = c["ft"]
         if k % every == 0 or k == n2 - 1:
             # kinetic energy at the full step: v_n = v_{n-1/2} + dt/2 a_n
@@ -314,7 +447,8 @@ def _solve_explicit(case, progress, output_every):
             rows.append([t, s, *_forces_row(c), E["kinetic"], E["internal"], E["contact"],
                          E["friction"], E["damping"], E["external"], E["contact_work"]])
             if bar is not None:
-                bar.update(bar.task_ids[0], completed=n1 + k)
+                bar.update(bar.task_ids[0], completed=(k - k0) if io["restart"] else n1 + k)
+        maybe_write(k + 1, lambda: state(k + 1))
     if bar is not None:
         bar.stop()
     ds = _dataset(rows, case, model, {"time_step": dt, "steps": n1 + n2,
@@ -322,83 +456,166 @@ def _solve_explicit(case, progress, output_every):
     patch = patch_from_contact(model, c, psi, dt)
     return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
                          patch.attrs["a"], patch.attrs["b"], model, u,
-                         {"time_step": dt, "steps": n1 + n2, "stable_time_step": dt_stable})
+                         {"time_step": dt, "steps": n1 + n2, "stable_time_step": dt_stable,
+                          "restarted_at_step": int(k0)})
 
 
-def _implicit_start(case):
+def _implicit_start(case, io):
     """Model, stiffness, the loaded static state and the time grid of an implicit run."""
+    from ._newton import DirectSolver, ReusedFactorSolver
+
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
     K = model.stiffness()
     free = free_dofs(model)
     Kff = K[free][:, free].tocsr()
-    u, w, c, _ = static_equilibrium(model, K)
     speed, t_end = _speed_profile(case, travel)
-    dt = case.time_step if case.time_step is not None else 0.5 * case.mesh_size / case.speed
+    dt_max = 0.5 * case.mesh_size / case.speed
+    dt = case.time_step if case.time_step is not None else dt_max
+    if dt > dt_max * (1 + 1e-9):
+        import warnings
+
+        warnings.warn(f"time_step {dt!r} s moves the contact by "
+                      f"{dt * case.speed / case.mesh_size:.2g} elements per step; the implicit "
+                      f"friction history needs time_step <= h/(2V) = {dt_max:.3g} s, or the "
+                      f"patch slips spuriously (seed 000 §3)",
+                      UserWarning, stacklevel=4)
     nsteps = int(np.ceil(t_end / dt))
-    return model, K, free, Kff, u, w, c, speed, dt, nsteps, model.geometry["r_c"]
+    if io["restart"] is None:
+        u, w, c, _ = static_equilibrium(model, K)
+    else:
+        u = w = c = None
+    solver = ReusedFactorSolver() if case.linear_solver == "reuse" else DirectSolver()
+    return model, K, free, Kff, u, w, c, speed, dt, nsteps, model.geometry["r_c"], solver
 
 
-def _solve_implicit_qs(case, progress):
-    model, K, free, Kff, u, w, c, speed, dt, nsteps, R = _implicit_start(case)
-    ft = np.zeros((model.slave.size, 3))
-    psi = s = t = 0.0
-    rows = []
-    E = dict(friction=0.0, external=0.0)
-    bar = _progress(progress, nsteps, f"FE implicit-qs ({model.n_elements} el.)")
-    iters = 0
-    for k in range(nsteps):
+def _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, u, solver, k0, extra=None):
+    info = {"time_step": dt, "steps": nsteps, "newton_iterations": iters,
+            "restarted_at_step": int(k0)}
+    info.update(factorizations=solver.factorizations, krylov_iterations=solver.krylov_iterations,
+                linear_solves=solver.solves, linear_solve_seconds=solver.seconds)
+    ds = _dataset(rows, case, model, {**info, **(extra or {})})
+    patch = patch_from_contact(model, c, psi, dt)
+    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
+                         patch.attrs["a"], patch.attrs["b"], model, u, info)
+
+
+def _solve_implicit_qs(case, progress, io):
+    from .restart import read_restart
+
+    model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver = _implicit_start(case, io)
+    beta_r = case.rayleigh[1]
+    # viscous (Kelvin-Voigt) term β K (q − q_n)/Δt, backward Euler: tangent K (1 + β/Δt)
+    Kff_eff = Kff * (1.0 + beta_r / dt) if beta_r > 0 else Kff
+    if io["restart"] is not None:
+        st = read_restart(io["restart"], model, dt)
+        u, w, psi, s, t, k0, iters = (st[k] for k in ("u", "w", "psi", "s", "t", "k", "iters"))
+        c, E, rows = st["c"], st["E"], st["rows"].tolist()
+        ft, e_int0 = c["ft"], st["e_int0"]
+    else:
+        ft = np.zeros((model.slave.size, 3))
+        psi = s = t = 0.0
+        rows = []
+        E = dict(friction=0.0, external=0.0, damping=0.0, contact_work=0.0)
+        iters = k0 = 0
+        _, e_int0 = model.internal_force(u)
+    fc, fcw = model.generalized_contact_force(c, psi)
+    bar = _progress(progress, nsteps - k0, f"FE implicit-qs ({model.n_elements} el.)")
+
+    def state(k_done):
+        return dict(u=u, w=w, psi=psi, s=s, t=t, k=k_done, iters=iters, e_int0=e_int0,
+                    c=_contact_state(c), E=E, rows=np.array(rows, float).reshape(-1, 13))
+
+    maybe_write = _restart_writer(io, model, dt, nsteps)
+    for k in range(k0, nsteps):
         V = speed(t + 0.5 * dt)
         s += V * dt
         psi += V * (1.0 - case.xi) / R * dt
         t += dt
-        w_old = w
-        u, w, c, it = newton(model, Kff, free, u, w, psi, s, c["xs"], c["xm"], ft, case.mu,
-                             case.load)
+        q_n = np.concatenate([u.ravel(), [w]])
+        dyn = None
+        if beta_r > 0:
+            def dyn(qq, q_n=q_n):
+                return (beta_r / dt) * (K @ (qq - q_n))
+        u, w, c, it = newton(model, Kff_eff, free, u, w, psi, s, c["xs"], c["xm"], ft, case.mu,
+                             case.load, dyn=dyn, solver=solver)
         iters += it
         ft = c["ft"]
+        dq = np.concatenate([u.ravel(), [w]]) - q_n
+        fc_new, fcw_new = model.generalized_contact_force(c, psi)
+        E["contact_work"] += 0.5 * (float(np.sum((fc + fc_new).ravel() * dq[:-1]))
+                                    + (fcw + fcw_new) * dq[-1])
+        fc, fcw = fc_new, fcw_new
+        if beta_r > 0:
+            E["damping"] += (beta_r / dt) * float(dq @ (K @ dq))
         E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-        E["external"] += -case.load * (w - w_old)
+        E["external"] += -case.load * dq[-1]
         _, e_int = model.internal_force(u)
-        rows.append([t, s, *_forces_row(c), 0.0, e_int, float(c["energy"].sum()),
-                     E["friction"], 0.0, E["external"], np.nan])
+        rows.append([t, s, *_forces_row(c), 0.0, e_int - e_int0, float(c["energy"].sum()),
+                     E["friction"], E["damping"], E["external"], E["contact_work"]])
         if bar is not None:
-            bar.update(bar.task_ids[0], completed=k + 1)
+            bar.update(bar.task_ids[0], completed=k + 1 - k0)
+        if maybe_write(k + 1, lambda: state(k + 1)):
+            solver.lu = None          # a restart starts from a fresh factorisation: same numbers
     if bar is not None:
         bar.stop()
-    ds = _dataset(rows, case, model, {"time_step": dt, "steps": nsteps,
-                                      "newton_iterations": iters})
-    patch = patch_from_contact(model, c, psi, dt)
-    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
-                         patch.attrs["a"], patch.attrs["b"], model, u,
-                         {"time_step": dt, "steps": nsteps, "newton_iterations": iters})
+    return _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, u, solver, k0)
 
 
-def _solve_implicit_hht(case, progress):
-    model, K, free, Kff, u, w, c, speed, dt, nsteps, R = _implicit_start(case)
+def _solve_implicit_hht(case, progress, io):
+    from .restart import read_restart
+
+    model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver = _implicit_start(case, io)
     al = case.hht_alpha
     beta, gamma = (1 - al) ** 2 / 4, 0.5 - al
+    alpha_r, beta_r = case.rayleigh
     m = model.mass * case.mass_scaling
     M_w = float(m[:model.nw].sum())
     mvec = np.concatenate([np.repeat(m, 3), [M_w]])
-    diag = mvec[free] / (beta * dt * dt)
-    q = np.concatenate([u.ravel(), [w]])
-    v = np.zeros_like(q)
-    a = np.zeros_like(q)
+    # tangent: (1+α)[K (1 + γ β_R/(β Δt)) + K_c] + M (1 + (1+α) γ α_R Δt) / (β Δt²)
+    cv = gamma / (beta * dt)
+    diag = mvec[free] / (beta * dt * dt) + (1.0 + al) * cv * alpha_r * mvec[free]
+    Kff_eff = Kff * (1.0 + cv * beta_r) if beta_r > 0 else Kff
+    fixed = np.setdiff1d(np.arange(3 * model.n_nodes + 1), free)
+
+    def damping_force(vv):
+        out = alpha_r * mvec * vv
+        if beta_r > 0:
+            out = out + beta_r * (K @ vv)
+        return out
 
     def static_residual(q, c):
         f_int, _ = model.internal_force(q[:-1].reshape(-1, 3))
         fc, fcw = model.generalized_contact_force(c, psi)
         return np.concatenate([(f_int - fc).ravel(), [case.load - fcw]])
 
-    ft = np.zeros((model.slave.size, 3))
-    psi = s = t = 0.0
+    if io["restart"] is not None:
+        st = read_restart(io["restart"], model, dt)
+        q, v, a = st["q"], st["v"], st["a"]
+        psi, s, t, k0, iters, e_int0 = (st[k] for k in ("psi", "s", "t", "k", "iters", "e_int0"))
+        c, E, rows = st["c"], st["E"], st["rows"].tolist()
+        ft = c["ft"]
+    else:
+        q = np.concatenate([u.ravel(), [w]])
+        v = np.zeros_like(q)
+        a = np.zeros_like(q)
+        ft = np.zeros((model.slave.size, 3))
+        psi = s = t = 0.0
+        rows = []
+        E = dict(friction=0.0, external=0.0, damping=0.0, contact_work=0.0)
+        iters = k0 = 0
+        _, e_int0 = model.internal_force(u)
     r_old = static_residual(q, c)
-    rows = []
-    E = dict(friction=0.0, external=0.0)
-    bar = _progress(progress, nsteps, f"FE implicit-hht ({model.n_elements} el.)")
-    iters = 0
-    for k in range(nsteps):
+    fc, fcw = model.generalized_contact_force(c, psi)
+    fdamp = damping_force(v)
+    bar = _progress(progress, nsteps - k0, f"FE implicit-hht ({model.n_elements} el.)")
+
+    def state(k_done):
+        return dict(q=q, v=v, a=a, psi=psi, s=s, t=t, k=k_done, iters=iters, e_int0=e_int0,
+                    c=_contact_state(c), E=E, rows=np.array(rows, float).reshape(-1, 13))
+
+    maybe_write = _restart_writer(io, model, dt, nsteps)
+    for k in range(k0, nsteps):
         V = speed(t + 0.5 * dt)
         s += V * dt
         psi += V * (1.0 - case.xi) / R * dt
@@ -408,33 +625,42 @@ def _solve_implicit_hht(case, progress):
         def acc(qq):
             return (qq - q_n - dt * v_n) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n
 
-        def dyn(qq, r_old=r_old):
-            return mvec * acc(qq) - al * r_old
+        def dyn(qq, r_old=r_old, fd_old=fdamp):
+            r = mvec * acc(qq) - al * r_old
+            if alpha_r > 0 or beta_r > 0:
+                vv = v_n + dt * ((1 - gamma) * a_n + gamma * acc(qq))
+                r = r + (1.0 + al) * damping_force(vv) - al * fd_old
+            return r
 
-        w_old = q[-1]
-        u1, w1, c, it = newton(model, Kff, free, q[:-1].reshape(-1, 3), q[-1], psi, s, c["xs"],
-                               c["xm"], ft, case.mu, case.load, dyn=dyn, static_scale=1.0 + al,
-                               diag=diag)
+        u1, w1, c, it = newton(model, Kff_eff, free, q[:-1].reshape(-1, 3), q[-1], psi, s,
+                               c["xs"], c["xm"], ft, case.mu, case.load, dyn=dyn,
+                               static_scale=1.0 + al, diag=diag, solver=solver)
         iters += it
         q = np.concatenate([u1.ravel(), [w1]])
         a = acc(q)
-        fixed = np.setdiff1d(np.arange(q.size), free)
         a[fixed] = 0.0
         v = v_n + dt * ((1 - gamma) * a_n + gamma * a)
+        dq = q - q_n
         r_old = static_residual(q, c)
+        fc_new, fcw_new = model.generalized_contact_force(c, psi)
+        E["contact_work"] += 0.5 * (float(np.sum((fc + fc_new).ravel() * dq[:-1]))
+                                    + (fcw + fcw_new) * dq[-1])
+        fc, fcw = fc_new, fcw_new
+        fd_new = damping_force(v)
+        E["damping"] += 0.5 * float((fdamp + fd_new) @ dq)
+        fdamp = fd_new
         ft = c["ft"]
         E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-        E["external"] += -case.load * (q[-1] - w_old)
+        E["external"] += -case.load * dq[-1]
         _, e_int = model.internal_force(u1)
-        rows.append([t, s, *_forces_row(c), 0.5 * float(np.sum(mvec * v * v)), e_int,
-                     float(c["energy"].sum()), E["friction"], 0.0, E["external"], np.nan])
+        rows.append([t, s, *_forces_row(c), 0.5 * float(np.sum(mvec * v * v)), e_int - e_int0,
+                     float(c["energy"].sum()), E["friction"], E["damping"], E["external"],
+                     E["contact_work"]])
         if bar is not None:
-            bar.update(bar.task_ids[0], completed=k + 1)
+            bar.update(bar.task_ids[0], completed=k + 1 - k0)
+        if maybe_write(k + 1, lambda: state(k + 1)):
+            solver.lu = None          # a restart starts from a fresh factorisation: same numbers
     if bar is not None:
         bar.stop()
-    ds = _dataset(rows, case, model, {"time_step": dt, "steps": nsteps, "hht_alpha": al,
-                                      "newton_iterations": iters})
-    patch = patch_from_contact(model, c, psi, dt)
-    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
-                         patch.attrs["a"], patch.attrs["b"], model, q[:-1].reshape(-1, 3),
-                         {"time_step": dt, "steps": nsteps, "newton_iterations": iters})
+    return _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, q[:-1].reshape(-1, 3),
+                            solver, k0, {"hht_alpha": al})
