@@ -90,7 +90,7 @@ from .._resources import guard
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
 from ..materials import as_material_pair
-from .fft import _fft_shape, _kernel_transform
+from .fft import _cropped_irfft2, _fft_shape, _kernel_transform, _padded_rfft2
 from .grid import Grid
 from ._memo import grid_key, memo
 from .influence import influence_kernel
@@ -244,6 +244,39 @@ def _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z,
 
 
 @njit(cache=True)
+def _scatter(z, ei, ej, kind_e, pos_e, gtx_e, gty_e, v):
+    """Traction perturbation field ``v`` (2, nx, ny) of the Newton unknowns ``z`` (in place).
+
+    Adhesion elements (kind 1) carry δp, slip elements (kind 2) ``g t δθ``;
+    elements out of contact are never written (stay zero).
+    """
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        q = pos_e[k]
+        if kind_e[k] == 1:
+            v[0, i, j] = z[q]
+            v[1, i, j] = z[q + 1]
+        else:
+            v[0, i, j] = gtx_e[k] * z[q]
+            v[1, i, j] = gty_e[k] * z[q]
+
+
+@njit(cache=True)
+def _gather(mv, z, ei, ej, kind_e, pos_e, tx_e, ty_e, diag_e, out):
+    """Newton-system product from the slip change ``mv = K v`` (2, nx, ny) (in place)."""
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        q = pos_e[k]
+        if kind_e[k] == 1:
+            out[q] = mv[0, i, j]
+            out[q + 1] = mv[1, i, j]
+        else:
+            out[q] = tx_e[k] * mv[0, i, j] + ty_e[k] * mv[1, i, j] + diag_e[k] * z[q]
+
+
+@njit(cache=True)
 def _orthogonalise(V, k, w, h):
     """Modified Gram–Schmidt of ``w`` against rows ``V[:k+1]``; fills ``h[:k+2]``."""
     n = w.shape[0]
@@ -280,31 +313,59 @@ def _givens(H, cs, sn, e, k):
     e[k] = cs[k] * e[k]
 
 
+@njit(cache=True)
+def _norm(w):
+    """Euclidean norm without BLAS (private; threaded BLAS is slow on a shared machine)."""
+    acc = 0.0
+    for q in range(w.shape[0]):
+        acc += w[q] * w[q]
+    return math.sqrt(acc)
+
+
+@njit(cache=True)
+def _gmres_update(V, H, e, k_used, x):
+    """``x += V[:k]ᵀ y`` with ``H[:k, :k] y = e[:k]`` (back substitution; in place)."""
+    y = np.empty(k_used)
+    for i in range(k_used - 1, -1, -1):
+        acc = e[i]
+        for j in range(i + 1, k_used):
+            acc -= H[i, j] * y[j]
+        y[i] = acc / H[i, i]
+    n = x.shape[0]
+    for i in range(k_used):
+        yi = y[i]
+        for q in range(n):
+            x[q] += yi * V[i, q]
+
+
 def _gmres(matvec, rhs, rtol, maxiter, restart=60):
     """Restarted GMRES for ``A x = rhs`` from x = 0 (private; Saad & Schultz 1986).
 
-    Written out (numba Gram–Schmidt) because the BLAS-2 calls of
-    :func:`scipy.sparse.linalg.gmres` dominate for these small, many systems.
-    Returns ``x, iterations``.
+    Written out (numba Gram–Schmidt, back substitution and update) because the
+    BLAS calls of :func:`scipy.sparse.linalg.gmres` dominate for these small,
+    many systems, and multi-threaded BLAS level-1/2 calls are slow when the
+    cores are shared. Returns ``x, iterations``.
     """
     n = rhs.shape[0]
     x = np.zeros(n)
-    beta0 = float(np.sqrt(rhs @ rhs))
+    beta0 = _norm(rhs)
     if beta0 == 0.0:
         return x, 0
     total = 0
-    r = rhs.copy()
+    r = rhs
     m = min(restart, n)
+    V = np.empty((m + 1, n))
+    H = np.zeros((m + 1, m))
+    cs = np.zeros(m)
+    sn = np.zeros(m)
+    e = np.zeros(m + 1)
+    h = np.zeros(m + 1)
     while total < maxiter:
-        beta = float(np.sqrt(r @ r))
-        V = np.zeros((m + 1, n))
-        H = np.zeros((m + 1, m))
-        cs = np.zeros(m)
-        sn = np.zeros(m)
-        e = np.zeros(m + 1)
+        beta = _norm(r)
+        H[:] = 0.0
+        e[:] = 0.0
         e[0] = beta
-        V[0] = r / beta
-        h = np.zeros(m + 1)
+        np.multiply(r, 1.0 / beta, out=V[0])
         k_used = 0
         for k in range(m):
             w = matvec(V[k])
@@ -312,13 +373,13 @@ def _gmres(matvec, rhs, rtol, maxiter, restart=60):
             total += 1
             H[: k + 2, k] = h[: k + 2]
             if h[k + 1] > 0:
-                V[k + 1] = w / h[k + 1]
+                np.multiply(w, 1.0 / h[k + 1], out=V[k + 1])
             _givens(H, cs, sn, e, k)
             k_used = k + 1
             if abs(e[k + 1]) <= rtol * beta0 or total >= maxiter or h[k + 1] == 0:
                 break
-        y = np.linalg.solve(np.triu(H[:k_used, :k_used]), e[:k_used]) if k_used else np.zeros(0)
-        x += V[:k_used].T @ y
+        if k_used:
+            _gmres_update(V, H, e, k_used, x)
         if abs(e[k_used]) <= rtol * beta0 or total >= maxiter:
             break
         r = rhs - matvec(x)
@@ -328,30 +389,44 @@ def _gmres(matvec, rhs, rtol, maxiter, restart=60):
 # --------------------------------------------------------------------------
 # operators
 # --------------------------------------------------------------------------
+@njit(cache=True)
+def _block_multiply(hat, ph, out):
+    """``out[a] = Σ_b hat[a, b] · ph[b]`` per frequency (complex; in place)."""
+    m, k = hat.shape[0], hat.shape[1]
+    n0, n1 = ph.shape[1], ph.shape[2]
+    for i in range(n0):
+        for j in range(n1):
+            for a in range(m):
+                acc = 0j
+                for b in range(k):
+                    acc += hat[a, b, i, j] * ph[b, i, j]
+                out[a, i, j] = acc
+
+
 class _BlockConvolution:
     """FFT convolution with a block kernel (m, k, 2nx−1, 2ny−1) on an (nx, ny) grid (private).
 
     Same zero-padded wrap-around layout (and kernel transform) as
     :class:`~wheelrail.halfspace.fft.ConvolutionOperator`, but for a block of
-    kernels sharing the forward transforms of the ``k`` input fields.
+    kernels sharing the forward transforms of the ``k`` input fields. The
+    2-D transforms are done axis by axis so that the zero padding rows are
+    never transformed along y (forward) and only the ``nx`` rows needed are
+    transformed back (the same numbers as ``rfft2``/``irfft2``).
     """
 
     def __init__(self, kernel):
         self.nx = (np.shape(kernel)[-2] + 1) // 2
         self.ny = (np.shape(kernel)[-1] + 1) // 2
         self.shape = _fft_shape(self.nx, self.ny)
-        self.hat = _kernel_transform(kernel, self.shape)
+        self.hat = np.ascontiguousarray(_kernel_transform(kernel, self.shape))
+        self.hat.setflags(write=False)
 
     def __call__(self, p):
         """``u[i] = Σ_j K[i, j] * p[j]`` for ``p`` of shape (k, nx, ny) -> (m, nx, ny)."""
-        ph = sfft.rfft2(p, s=self.shape, axes=(-2, -1))
-        if self.hat.shape[:2] == (2, 2):
-            uh = np.empty((2,) + ph.shape[1:], dtype=complex)
-            uh[0] = self.hat[0, 0] * ph[0] + self.hat[0, 1] * ph[1]
-            uh[1] = self.hat[1, 0] * ph[0] + self.hat[1, 1] * ph[1]
-        else:
-            uh = np.einsum("ijab,jab->iab", self.hat, ph)
-        return sfft.irfft2(uh, s=self.shape, axes=(-2, -1))[:, : self.nx, : self.ny]
+        ph = _padded_rfft2(p, self.shape)
+        uh = np.empty((self.hat.shape[0],) + ph.shape[1:], dtype=complex)
+        _block_multiply(self.hat, ph, uh)
+        return _cropped_irfft2(uh, self.shape, self.nx, self.ny)
 
 
 def rolling_kernel(grid: Grid, materials) -> np.ndarray:
@@ -578,6 +653,7 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     it = 0
     vx = np.zeros(shape)
     vy = np.zeros(shape)
+    v = np.zeros((2,) + shape)      # Krylov work field: only contact elements are written
     for it in range(1, maxiter + 1):
         s = b + conv(p)
         # --- active-set update
@@ -619,33 +695,28 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         if res <= tol and not changed:
             return p, s, it - 1, res, total_krylov
         diag_s = np.where(slip, np.maximum(-sigma, 0.0), 0.0)
-        gtx, gty = g * tx, g * ty
-
-        def fields_of(z):
-            v = np.zeros((2,) + shape)
-            v[0, hi, hj] = z[ph]
-            v[1, hi, hj] = z[ph + 1]
-            v[0, si, sj] = gtx[si, sj] * z[ps]
-            v[1, si, sj] = gty[si, sj] * z[ps]
-            return v
+        # element lists in upwind order for the numba scatter/gather of the Krylov loop
+        kind_e = kind[order_i, order_j]
+        pos_e = pos[order_i, order_j]
+        tx_e = np.ascontiguousarray(tx[order_i, order_j])
+        ty_e = np.ascontiguousarray(ty[order_i, order_j])
+        gtx_e = g[order_i, order_j] * tx_e
+        gty_e = g[order_i, order_j] * ty_e
+        diag_e = diag_s[order_i, order_j]
 
         def matvec(z):
-            v = fields_of(z)
+            _scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
             mv = conv(v)
             out = np.empty(n_unknowns)
-            out[ph] = mv[0, hi, hj]
-            out[ph + 1] = mv[1, hi, hj]
-            out[ps] = (tx[si, sj] * mv[0, si, sj] + ty[si, sj] * mv[1, si, sj]
-                       + diag_s[si, sj] * z[ps])
+            _gather(mv, z, order_i, order_j, kind_e, pos_e, tx_e, ty_e, diag_e, out)
             return out
 
         def pinv(r):
             z = np.empty(n_unknowns)
-            _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup,
-                          np.ascontiguousarray(r, dtype=float), z, vx, vy)
+            _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy)
             return z
 
-        y, count = _gmres(lambda v: matvec(pinv(v)), -F, gmres_rtol, gmres_maxiter)
+        y, count = _gmres(lambda w: matvec(pinv(w)), -F, gmres_rtol, gmres_maxiter)
         total_krylov += count
         dz = pinv(y)
         # --- update
