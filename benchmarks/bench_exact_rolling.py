@@ -5,7 +5,9 @@ and three creepage cases it prints the time of the normal (boundary-element)
 solve, of the tangential (Newton–GMRES) solve and their sum, the Newton and
 Krylov (GMRES) iteration counts and the forces. Times are the best of
 ``--repeat`` runs after a warm-up (numba cache loaded, kernels built), on one
-core: the process is limited to one BLAS/FFT thread. The load average of the
+core: the process is limited to one BLAS/FFT thread; wall time ("s") and the
+CPU time of the process ("cpu s", less sensitive to other processes) are
+printed, the speed-up is the ratio of CPU times. The load average of the
 machine is printed beside the numbers, since other processes share the CPU.
 
 ``--before SRC`` runs the same measurements with another source tree of the
@@ -57,21 +59,23 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
                   (1e-3, 0, 0), MU)                                   # numba warm-up
     grid, gap = hertz_grid(hc, elements=n, margin=1.1)
     normal = solve_normal(grid, gap, wr.STEEL, load=1e4)              # builds the kernels
-    tn = []
+    tn, cn = [], []
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         normal = solve_normal(grid, gap, wr.STEEL, load=1e4)
         tn.append(time.perf_counter() - t0)
-    out = {"n": n, "grid": f"{grid.nx}x{grid.ny}", "normal_s": min(tn),
+        cn.append(time.process_time() - c0)
+    out = {"n": n, "grid": f"{grid.nx}x{grid.ny}", "normal_s": min(tn), "normal_cpu": min(cn),
            "normal_iterations": normal.iterations, "cases": {}}
     for name, cr in CASES.items():
         s = solve_rolling(grid, normal.pressure, wr.STEEL, cr, MU)
-        tt = []
+        tt, ct = [], []
         for _ in range(repeat):
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), time.process_time()
             s = solve_rolling(grid, normal.pressure, wr.STEEL, cr, MU)
             tt.append(time.perf_counter() - t0)
-        row = {"tangential_s": min(tt), "newton": s.iterations,
+            ct.append(time.process_time() - c0)
+        row = {"tangential_s": min(tt), "tangential_cpu": min(ct), "newton": s.iterations,
                "krylov": s.info["krylov_iterations"], "Fx": s.Fx, "Fy": s.Fy, "Mz": s.Mz}
         if memory:
             tracemalloc.start()
@@ -95,9 +99,9 @@ def _measure_in(src: str | None, n: int, repeat: int, memory: bool) -> dict:
 
 def _print_header(compare: bool) -> None:
     cols = (f"{'N':>4} {'grid':>8} {'case':>12} {'normal s':>9} {'tang s':>8} {'total s':>8} "
-            f"{'newton':>6} {'krylov':>6}")
+            f"{'cpu s':>7} {'newton':>6} {'krylov':>6}")
     if compare:
-        cols += f" {'before s':>9} {'nwt':>4} {'kry':>4} {'speed-up':>8}"
+        cols += f" {'before s':>9} {'cpu s':>7} {'nwt':>4} {'kry':>4} {'speed-up':>8}"
     cols += f" {'Fx N':>10} {'Fy N':>10} {'Mz Nm':>9}"
     print(cols)
 
@@ -105,12 +109,16 @@ def _print_header(compare: bool) -> None:
 def _print_rows(after: dict, before: dict | None) -> None:
     for name, r in after["cases"].items():
         total = after["normal_s"] + r["tangential_s"]
+        cpu = after["normal_cpu"] + r["tangential_cpu"]
         line = (f"{after['n']:>4} {after['grid']:>8} {name:>12} {after['normal_s']:>9.3f} "
-                f"{r['tangential_s']:>8.3f} {total:>8.3f} {r['newton']:>6} {r['krylov']:>6}")
+                f"{r['tangential_s']:>8.3f} {total:>8.3f} {cpu:>7.3f} {r['newton']:>6} "
+                f"{r['krylov']:>6}")
         if before is not None:
             b = before["cases"][name]
             tb = before["normal_s"] + b["tangential_s"]
-            line += f" {tb:>9.3f} {b['newton']:>4} {b['krylov']:>4} {tb / total:>8.2f}"
+            cb = before["normal_cpu"] + b["tangential_cpu"]
+            line += (f" {tb:>9.3f} {cb:>7.3f} {b['newton']:>4} {b['krylov']:>4} "
+                     f"{cb / cpu:>8.2f}")
         line += f" {r['Fx']:>10.2f} {r['Fy']:>10.2f} {r['Mz']:>9.4f}"
         if "peak_MB" in r:
             line += f"  peak {r['peak_MB']:.1f} MB"
