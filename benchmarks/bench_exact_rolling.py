@@ -7,8 +7,12 @@ Krylov (GMRES) iteration counts and the forces. Times are the best of
 ``--repeat`` runs after a warm-up (numba cache loaded, kernels built), on one
 core: the process is limited to one BLAS/FFT thread; wall time ("s") and the
 CPU time of the process ("cpu s", less sensitive to other processes) are
-printed, the speed-up is the ratio of CPU times. The load average of the
-machine is printed beside the numbers, since other processes share the CPU.
+printed, the speed-up is the ratio of CPU times of normal + tangential
+solve. "cf cpu" is the CPU time of the same case through
+``wr.creep_forces(..., method="exact", elements=N)`` (window, normal solve as
+the method starts it, tangential solve; its normal-solution cache cleared).
+The load average of the machine is printed beside the numbers, since other
+processes share the CPU.
 
 ``--before SRC`` runs the same measurements with another source tree of the
 package (e.g. ``git archive main src | tar -x -C /tmp/main`` then
@@ -77,6 +81,17 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
             ct.append(time.process_time() - c0)
         row = {"tangential_s": min(tt), "tangential_cpu": min(ct), "newton": s.iterations,
                "krylov": s.info["krylov_iterations"], "Fx": s.Fx, "Fy": s.Fy, "Mz": s.Mz}
+        # the same case through the public entry point (window, normal solve from the Hertz
+        # start as the method does it, tangential solve); the normal-solution cache is cleared
+        import wheelrail.tangential.exact as ex
+
+        cf = []
+        for _ in range(repeat):
+            getattr(ex, "_NORMAL_CACHE", {}).clear()
+            c0 = time.process_time()
+            wr.creep_forces(hc, cr, MU, method="exact", elements=n)
+            cf.append(time.process_time() - c0)
+        row["creep_forces_cpu"] = min(cf)
         if memory:
             tracemalloc.start()
             solve_rolling(grid, normal.pressure, wr.STEEL, cr, MU)
@@ -99,9 +114,10 @@ def _measure_in(src: str | None, n: int, repeat: int, memory: bool) -> dict:
 
 def _print_header(compare: bool) -> None:
     cols = (f"{'N':>4} {'grid':>8} {'case':>12} {'normal s':>9} {'tang s':>8} {'total s':>8} "
-            f"{'cpu s':>7} {'newton':>6} {'krylov':>6}")
+            f"{'cpu s':>7} {'cf cpu':>7} {'newton':>6} {'krylov':>6}")
     if compare:
-        cols += f" {'before s':>9} {'cpu s':>7} {'nwt':>4} {'kry':>4} {'speed-up':>8}"
+        cols += (f" {'before s':>9} {'cpu s':>7} {'cf cpu':>7} {'nwt':>4} {'kry':>4} "
+                 f"{'speed-up':>8}")
     cols += f" {'Fx N':>10} {'Fy N':>10} {'Mz Nm':>9}"
     print(cols)
 
@@ -111,14 +127,14 @@ def _print_rows(after: dict, before: dict | None) -> None:
         total = after["normal_s"] + r["tangential_s"]
         cpu = after["normal_cpu"] + r["tangential_cpu"]
         line = (f"{after['n']:>4} {after['grid']:>8} {name:>12} {after['normal_s']:>9.3f} "
-                f"{r['tangential_s']:>8.3f} {total:>8.3f} {cpu:>7.3f} {r['newton']:>6} "
-                f"{r['krylov']:>6}")
+                f"{r['tangential_s']:>8.3f} {total:>8.3f} {cpu:>7.3f} "
+                f"{r['creep_forces_cpu']:>7.3f} {r['newton']:>6} {r['krylov']:>6}")
         if before is not None:
             b = before["cases"][name]
             tb = before["normal_s"] + b["tangential_s"]
             cb = before["normal_cpu"] + b["tangential_cpu"]
-            line += (f" {tb:>9.3f} {cb:>7.3f} {b['newton']:>4} {b['krylov']:>4} "
-                     f"{cb / cpu:>8.2f}")
+            line += (f" {tb:>9.3f} {cb:>7.3f} {b['creep_forces_cpu']:>7.3f} {b['newton']:>4} "
+                     f"{b['krylov']:>4} {cb / cpu:>8.2f}")
         line += f" {r['Fx']:>10.2f} {r['Fy']:>10.2f} {r['Mz']:>9.4f}"
         if "peak_MB" in r:
             line += f"  peak {r['peak_MB']:.1f} MB"
