@@ -403,9 +403,25 @@ def _gmres(matvec, rhs, rtol, maxiter, restart=60):
 # --------------------------------------------------------------------------
 # operators
 # --------------------------------------------------------------------------
-@njit(cache=True)
 def _block_multiply(hat, ph, out):
-    """``out[a] = Σ_b hat[a, b] · ph[b]`` per frequency (complex; in place)."""
+    """``out[a] = Σ_b hat[a, b] · ph[b]`` per frequency (complex; in place).
+
+    The 2 × 2 block (the tangential products of every Krylov iteration) by
+    in-place numpy operations, which vectorise; other shapes by a numba loop.
+    """
+    if hat.shape[:2] != (2, 2):
+        _block_multiply_loop(hat, ph, out)
+        return
+    tmp = np.empty_like(out[0])
+    for a in (0, 1):
+        np.multiply(hat[a, 0], ph[0], out=out[a])
+        np.multiply(hat[a, 1], ph[1], out=tmp)
+        out[a] += tmp
+
+
+@njit(cache=True)
+def _block_multiply_loop(hat, ph, out):
+    """``out[a] = Σ_b hat[a, b] · ph[b]`` per frequency, any block shape (in place)."""
     m, k = hat.shape[0], hat.shape[1]
     n0, n1 = ph.shape[1], ph.shape[2]
     for i in range(n0):
