@@ -34,13 +34,18 @@ a sixth of an element upstream of the element centre::
 
 as in Vollebregt's CONTACT (rolling-step parameter FACPHI, default 1/6) [6]_.
 The backward difference of the displacement is centred half an element
-upstream, and neither placement of ``φ x`` at the centre nor at that midpoint
-is consistent with it: measured on a Hertzian contact (a/b = 1.59, μ = 0.3,
-pure spin φ = 3 /m), |Fy| is 2.5 % low at 40 elements with the centre, 5.7 %
-high with the midpoint and within 0.1 % with the sixth (limit −1030 N for all
-three, first order; ``tests/convergence/test_exact_convergence.py``). Without
-spin nothing changes. For the shift problem the slip is a displacement [m]:
-``s_I = W + u_I`` (rigid shift ``W`` of the wheel relative to the rail,
+upstream of the element; neither the centre nor that midpoint is the best
+place for ``φ x``: measured on a Hertzian contact (a/b = 1.59, μ = 0.3, pure
+spin φ = 3 /m), |Fy| is 2.7 % low at 40 elements with the centre, 5.7 % high
+with the midpoint and within 0.1 % with the sixth (limit −1030 N for all
+three, first order; ``tests/convergence/test_exact_convergence.py``); for
+φ = 0.3 and 1 /m: 0.2 % and 0.6 % instead of 2.2 % and 1.7 %. The sixth is
+a compromise for partial slip: in the no-slip limit the centre is exactly
+reciprocal (C23 from Fy(φ) equals C23 from Mz(η); with the sixth it is 1.3 %
+higher at 64 elements), and for very large spin (φ ≥ 10 /m, nearly full
+slip) the centre's error is smaller (−4 … −5 % against +4 … +18 % at 40
+elements). Without spin nothing changes. For the shift problem the slip is
+a displacement [m]: ``s_I = W + u_I`` (rigid shift ``W`` of the wheel relative to the rail,
 starting from the unloaded state), ``M = C``.
 
 Coulomb's law with the traction bound ``g = μ pn``::
