@@ -32,7 +32,7 @@ a sixth of an element upstream of the element centre::
 
     w_I = (ξ − φ y_I,  η + φ (x_I + dx/6)),
 
-as in Vollebregt's CONTACT (rolling-step parameter FACPHI, default 1/6) [6]_.
+as in Vollebregt's CONTACT (rolling-step parameter FACPHI, default 1/6; reference [6]).
 The backward difference of the displacement is centred half an element
 upstream of the element; neither the centre nor that midpoint is the best
 place for ``φ x``: measured on a Hertzian contact (a/b = 1.59, μ = 0.3, pure
