@@ -145,7 +145,7 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("sizes", nargs="*", type=int, default=[40, 104, 160])
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--before", default=None, help="source tree (…/src) of the version to compare")
+    ap.add_argument("--before", default=None, help="source tree (.../src) to compare with")
     ap.add_argument("--memory", action="store_true", help="also measure peak memory (untimed run)")
     ap.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
