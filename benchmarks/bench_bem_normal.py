@@ -38,6 +38,9 @@ def run(n: int) -> dict:
 
 
 def main(sizes) -> None:
+    import os
+
+    print("load average: " + " ".join(f"{v:.2f}" for v in os.getloadavg()))
     print(f"{'grid':>9} {'across':>7} {'setup[s]':>9} {'solve[s]':>9} {'iter':>5} "
           f"{'peak[MB]':>9} {'err p0':>10} {'err delta':>10}")
     for n in sizes:

@@ -54,8 +54,13 @@ def test_creep_coefficients(ab):
     assert got["C11"] == pytest.approx(C11, rel=0.02)
     assert got["C22"] == pytest.approx(C22, rel=0.02)
     assert got["C23_eta"] == pytest.approx(C23, rel=0.02)
-    # reciprocity of the coupling (Kalker's linear theory: the same C23 in Fy and Mz)
-    assert got["C23_phi"] == pytest.approx(got["C23_eta"], rel=0.01)
+    # reciprocity of the coupling (Kalker's linear theory: the same C23 in Fy and Mz). The
+    # spin's rigid slip is evaluated dx/6 upstream of the element centre (CONTACT's FACPHI,
+    # see wheelrail.halfspace.tangential; issue 13), which adds the lateral creepage φ·dx/6
+    # on the grid: C23 from Fy(φ) is +1.2 … +1.4 % above C23 from Mz(η) at 64 elements
+    # (measured; first order, 0.6 % at 128), the element-centre placement gave equality.
+    assert got["C23_phi"] == pytest.approx(got["C23_eta"], rel=0.02)
+    assert got["C23_phi"] == pytest.approx(C23, rel=0.025)
     # no slip in the linear limit and the sign convention Fx = -G c^2 C11 xi
     r1 = got["r1"]
     assert r1.Fx < 0

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 
-_SIZE = 12
+_SIZE = 16
 _store: OrderedDict = OrderedDict()
 
 

@@ -46,6 +46,22 @@ def _kernel_transform(kernel, shape, workers: int = 1) -> np.ndarray:
     return sfft.rfft2(wrapped, axes=(-2, -1), workers=workers)
 
 
+def _padded_rfft2(field, shape, workers: int = 1) -> np.ndarray:
+    """``rfft2(field, s=shape)`` over the last two axes, axis by axis (private).
+
+    The field (..., nx, ny) is zero-padded to ``shape``; transforming along y
+    first touches only its ``nx`` rows instead of all ``shape[0]``.
+    """
+    spec = sfft.rfft(field, n=shape[1], axis=-1, workers=workers)
+    return sfft.fft(spec, n=shape[0], axis=-2, overwrite_x=True, workers=workers)
+
+
+def _cropped_irfft2(spectrum, shape, nx, ny, workers: int = 1) -> np.ndarray:
+    """``irfft2(spectrum, s=shape)[..., :nx, :ny]``, back-transforming only the kept rows."""
+    rows = sfft.ifft(spectrum, n=shape[0], axis=-2, workers=workers)[..., :nx, :]
+    return sfft.irfft(rows, n=shape[1], axis=-1, workers=workers)[..., :ny]
+
+
 class ConvolutionOperator:
     """Apply one influence kernel to fields on a grid by zero-padded FFT.
 
@@ -99,13 +115,20 @@ class ConvolutionOperator:
         return f
 
     def forward(self, field) -> np.ndarray:
-        """Padded spectrum of ``field`` (shape (..., nx, ny)), for reuse with :meth:`backward`."""
-        return sfft.rfft2(self._check(field), s=self.fft_shape, workers=self.workers)
+        """Padded spectrum of ``field`` (shape (..., nx, ny)), for reuse with :meth:`backward`.
+
+        Equal to ``rfft2(field, s=fft_shape)``, computed axis by axis so that
+        the zero padding rows are not transformed along y.
+        """
+        return _padded_rfft2(self._check(field), self.fft_shape, self.workers)
 
     def backward(self, spectrum) -> np.ndarray:
-        """Field (..., nx, ny) from a spectrum already multiplied by a kernel transform."""
-        out = sfft.irfft2(spectrum, s=self.fft_shape, workers=self.workers)
-        return out[..., : self.nx, : self.ny]
+        """Field (..., nx, ny) from a spectrum already multiplied by a kernel transform.
+
+        Equal to ``irfft2(spectrum, s=fft_shape)[..., :nx, :ny]``; only the
+        ``nx`` rows kept are transformed back along y.
+        """
+        return _cropped_irfft2(spectrum, self.fft_shape, self.nx, self.ny, self.workers)
 
     def multiply(self, spectrum) -> np.ndarray:
         """Spectrum times the kernel transform."""

@@ -203,13 +203,22 @@ def contact_outline(grid: Grid, mask) -> list[np.ndarray]:
 
     def _area(poly):
         x, y = poly[:, 0], poly[:, 1]
-        return abs(np.dot(x[:-1], y[1:]) - np.dot(x[1:], y[:-1])) / 2
+        return abs(_dot(x[:-1], y[1:]) - _dot(x[1:], y[:-1])) / 2
 
     polygons.sort(key=_area, reverse=True)
     return polygons
 
 
 # --------------------------------------------------------------------------- kernel
+def _dot(a, b) -> float:
+    """Dot product of two 1-D arrays without BLAS (private).
+
+    ``np.dot`` calls a multi-threaded BLAS ``ddot`` for long vectors, which is
+    several times slower than one core when the machine's cores are busy.
+    """
+    return float(np.multiply(a, b).sum())
+
+
 def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol=1e-8,
                   maxiter=1000):
     """Bound-constrained conjugate gradients for the discrete Signorini problem (pure kernel).
@@ -273,7 +282,7 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
         else:
             g = g - penetration
         gI = g[Ic]
-        G = float(np.dot(gI, gI))
+        G = float(_dot(gI, gI))
         if restart:
             t = np.where(Ic, g, 0.0)
         else:
@@ -281,11 +290,11 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
         G_old = G
         r_raw = apply(t)
         r = r_raw - r_raw[Ic].mean() if load_control else r_raw
-        denom = float(np.dot(r[Ic], t[Ic]))
+        denom = float(_dot(r[Ic], t[Ic]))
         if G == 0.0 or denom == 0.0:
             change = 0.0
             break
-        tau = float(np.dot(gI, t[Ic])) / denom
+        tau = float(_dot(gI, t[Ic])) / denom
         p_old = p
         p = p - tau * t
         clipped = bool((p < 0.0).any())

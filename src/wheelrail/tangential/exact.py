@@ -22,14 +22,47 @@ References
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 import numpy as np
 
 from .._validation import integer, scalar_or_array
 from ..errors import InputError
+from ..materials import as_material_pair
 from ..results import CreepForces, Status
 from ._base import TangentialMethod
 
 __all__ = ["Exact", "exact_single"]
+
+
+_NORMAL_CACHE: OrderedDict = OrderedDict()
+_NORMAL_CACHE_SIZE = 8
+
+
+def _normal_solution(grid, gap, pair, load, on_fail, initial=None):
+    """Boundary-element pressure of a Hertzian window, kept for the next call (private).
+
+    A creepage iteration (:func:`wheelrail.solve_creepages`) or a creep curve
+    solves the same normal problem for every creepage; for quasi-identical
+    bodies (``K = 0``) it does not depend on the tangential tractions
+    (Johnson's process), so it is solved once per grid, gap, materials and load.
+    The solutions are frozen; the ``_NORMAL_CACHE_SIZE`` most recent are kept.
+    ``initial`` is the starting pressure of the solver (the analytic Hertz
+    pressure: about 30 % fewer iterations than the default start, the same
+    solution to the solver's tolerance).
+    """
+    from ..normal.bem import solve_normal
+
+    key = (grid, hash(gap.tobytes()), pair.G, pair.nu, pair.K, float(load), on_fail)
+    try:
+        normal = _NORMAL_CACHE.pop(key)
+    except KeyError:
+        normal = solve_normal(grid, gap, pair, load=float(load), on_fail=on_fail,
+                              initial=initial)
+    _NORMAL_CACHE[key] = normal
+    while len(_NORMAL_CACHE) > _NORMAL_CACHE_SIZE:
+        _NORMAL_CACHE.popitem(last=False)
+    return normal
 
 
 def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6, maxiter=100,
@@ -46,17 +79,34 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
         Friction coefficient.
     elements, margin, tol, maxiter, on_fail
         See :class:`Exact`.
+
+    Notes
+    -----
+    For quasi-identical bodies (``K = 0``) the normal solution is reused
+    between calls on the same contact (:func:`_normal_solution`); otherwise
+    the normal and tangential problems are alternated by
+    :func:`wheelrail.contact.solve_gap`.
     """
     from ..normal.bem import hertz_grid
-    from ..contact import solve_gap
+    from ..contact import GapSolution, solve_gap
+    from ..halfspace.tangential import solve_rolling
 
     # at least one row of elements outside the Hertz ellipse, also on coarse grids where the
     # discrete contact area reaches the ellipse's edge elements
     margin = max(float(margin), 1.0 + 3.0 / elements)
     grid, gap = hertz_grid(contact, elements=elements, margin=margin)
-    return solve_gap(grid, gap, contact.materials, load=float(contact.load),
-                     creepage=(float(xi), float(eta), float(phi)), mu=float(mu), tol=tol,
-                     maxiter=maxiter, on_fail=on_fail)
+    pair = as_material_pair(contact.materials)
+    creepage = (float(xi), float(eta), float(phi))
+    if pair.K != 0.0:
+        return solve_gap(grid, gap, pair, load=float(contact.load), creepage=creepage,
+                         mu=float(mu), tol=tol, maxiter=maxiter, on_fail=on_fail)
+    a, b = float(contact.a), float(contact.b)
+    hertz = float(contact.p0) * np.sqrt(np.clip(1.0 - (grid.X / a) ** 2 - (grid.Y / b) ** 2,
+                                                0.0, None))
+    normal = _normal_solution(grid, gap, pair, contact.load, on_fail, initial=hertz)
+    tang = solve_rolling(grid, normal.pressure, pair, creepage, float(mu), tol=tol,
+                         maxiter=maxiter, on_fail=on_fail)
+    return GapSolution(normal, tang, 1, 0.0)
 
 
 class Exact(TangentialMethod):
