@@ -22,22 +22,22 @@ import numpy as np
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace.influence import influence_kernel
 from wheelrail.halfspace.tangential import newton_step, solve_rolling
-from wheelrail.transient.rolling import shifted_influence_kernel
+from wheelrail.transient.rolling import step_kernels
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 
-def main(elements=30, steps=1801, h=5e-5):
+def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
     wr.transient_rolling(hc, travel=4e-4, step=2e-4, mu=0.4, tangential_force=2000.0,
                          elements=6)  # warm-up (numba cache)
     print(f"load (uptime): {os.getloadavg()}")
-    print(f"a = {hc.a * 1e3:.3f} mm, b = {hc.b * 1e3:.3f} mm; elements over 2a = {elements}, "
+    print(f"scheme = {scheme!r}; a = {hc.a * 1e3:.3f} mm, b = {hc.b * 1e3:.3f} mm; elements over 2a = {elements}, "
           f"V*dt = {h * 1e3:.3f} mm, steps = {steps}")
     t0 = time.perf_counter()
     res = wr.transient_rolling(hc, travel=(steps - 1) * h, step=h, mu=0.4,
-                               tangential_force=2000.0, elements=elements, frames=20)
+                               tangential_force=2000.0, elements=elements, frames=20,
+                               scheme=scheme)
     wall = time.perf_counter() - t0
     info = res.info
     print(f"grid {info['nx']}x{info['ny']}, dx = {info['dx'] * 1e3:.4f} mm: total {wall:.2f} s, "
@@ -47,9 +47,9 @@ def main(elements=30, steps=1801, h=5e-5):
     pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0, 0), mu=0.4,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
-    # steady fixed point of the same time step h (kernel (C − C_h)/h)
-    M = (influence_kernel(grid, wr.STEEL)[:2, :2]
-         - shifted_influence_kernel(grid, wr.STEEL, h)[:2, :2]) / h
+    # steady fixed point of the same time step h (kernel (now − old)/h of the scheme)
+    now, old = step_kernels(grid, wr.STEEL, h, scheme)
+    M = (now - old)[:2, :2] / h
 
     def fx(xi):
         b = np.zeros((2,) + grid.shape)

@@ -59,11 +59,18 @@ def test_varying_normal_force_solves_every_step(hc):
     (dict(friction="regularised"), "needs epsilon"),
     (dict(friction="tresca"), "tresca"),
     (dict(tangential_force=5e3), "tangential_force"),
+    (dict(tangential_force=lambda x: 1000 + 4e6 * x), r"tangential_force\(x = 0.00025 m\) = 2000.0 N"),
+    (dict(normal_force=lambda x: 5e3 - 1e7 * x), r"normal_force\(x = 0.0005 m\) = 0.0 N"),
+    (dict(approach=lambda x: 1e-5 - 0.02 * x), r"approach\(x = 0.0005 m\) = 0.0 m"),
+    (dict(approach=1e-5, normal_force=1e4), "not both"),
+    (dict(scheme="upwind"), "scheme must be"),
 ])
 def test_bad_input_is_named(hc, kwargs, match):
     base = dict(travel=1e-3, step=2.5e-4, mu=0.4, creepage=(-1e-4, 0, 0), elements=6)
     if "tangential_force" in kwargs:
         base.pop("creepage")
+    if callable(kwargs.get("tangential_force")):
+        base["normal_force"] = 5e3
     base.update(kwargs)
     with pytest.raises(wr.InputError, match=match):
         wr.transient_rolling(hc, **base)

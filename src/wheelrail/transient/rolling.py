@@ -23,6 +23,16 @@ rolling (:func:`wheelrail.halfspace.tangential.newton_step`). With ``h = dx``
 and ``p_o = p`` this is exactly Kalker's discretised steady rolling, so a run
 held at constant loads ends on :func:`~wheelrail.halfspace.solve_rolling`.
 
+For ``h < dx`` the slip at the element centres alone (``scheme="centre"``,
+the seed's eq. 2.10 as written) ends on a different steady problem, kernel
+``(C − C_h)/h``, which tends to the centred derivative ``−∂C/∂x`` whose
+self-coefficient vanishes: ill-conditioned and off Kalker's solution (−1.9 %
+in ξ for seed §3.1 at 30 elements). The default ``scheme="averaged"``
+averages the slip relation over the points ``x_I + k h`` inside the element
+length upstream of the centre (:func:`step_weights`); the carried
+displacements then telescope, and held steady the run ends on Kalker's
+discretisation for any ``h`` (:func:`step_kernels`).
+
 Normal force varying along the travel: the normal problem is solved at every
 step on the same grid (Polonsky–Keer, warm started); elements leaving the
 contact get zero traction (bound ``μ pn = 0``), elements entering start
@@ -175,10 +185,73 @@ def shifted_influence_kernel(grid, materials, shift) -> np.ndarray:
     return rectangle_influence(X, Y, grid.dx / 2, grid.dy / 2, pair.G, pair.nu, pair.K)
 
 
+def step_weights(dx, step):
+    """Collocation offsets [m] and weights of the element-averaged slip (``scheme="averaged"``).
+
+    With ``m = dx / step`` the slip of element I is the weighted mean of the
+    slip at the points ``x_I + k·step``, ``k = 0 … ⌈m⌉ − 1``, weights ``1/m``
+    except the last, ``(m − ⌈m⌉ + 1)/m`` (they sum to one). Held steady, the
+    displacement differences telescope to ``(u(x_I) − ũ(x_I + dx)) / dx``
+    with ``ũ`` the linear interpolation of ``u`` between the two last points:
+    Kalker's steady discretisation, exactly when ``m`` is an integer. With
+    ``step ≥ dx`` a single point (the element centre).
+
+    Returns
+    -------
+    offsets, weights : ndarray, shape (K,)
+    """
+    m = dx / step
+    K = max(1, int(math.ceil(m - 1e-9)))
+    if K == 1:
+        return np.zeros(1), np.ones(1)
+    w = np.full(K, 1.0 / m)
+    w[-1] = (m - (K - 1)) / m
+    return np.arange(K) * step, w
+
+
+def step_kernels(grid, materials, step, scheme="averaged"):
+    """Influence kernels of one time step, each of shape (3, 3, 2nx−1, 2ny−1) [m/Pa].
+
+    ``(now, old)``: the displacement difference at the collocation points of
+    element I due to a unit traction on element J now (``now``) and, carried
+    one step ``h = step`` upstream, at the previous step (``old``)::
+
+        s_I = w_I + Σ_J (now(I − J) p_J − old(I − J) p_old,J) / h
+
+    ``scheme="centre"``: the seed's eq. (2.10) at the element centres,
+    ``now = C`` and ``old = C`` at offsets shifted by ``h``
+    (:func:`shifted_influence_kernel`). ``scheme="averaged"``: the slip
+    averaged over the points of :func:`step_weights`; every kernel is
+    evaluated exactly with Love's rectangle formulae (no interpolation of
+    tractions or displacements).
+
+    Why the average: held steady, the centre scheme becomes the steady
+    problem with kernel ``(C − C_h)/h → −∂C/∂x`` at the element centres,
+    whose self-coefficient vanishes as ``h/dx → 0`` (the derivative of the
+    displacement of a uniformly loaded rectangle at its centre is zero). That
+    steady problem is a centred difference and loses its diagonal dominance:
+    the Newton iteration stops converging for ``dx/h ≳ 4`` on 30 elements
+    (measured) and the transient run ends off Kalker's steady solution
+    (−1.9 % in ξ at 30 elements, V·Δt = 0.05 mm). The averaged scheme ends
+    on Kalker's upwind discretisation (:func:`~wheelrail.halfspace.solve_rolling`)
+    for any step (exactly for integer ``dx/h``; 0.04 % in the force at
+    ``dx/h = 3.7``).
+    """
+    if scheme == "centre":
+        return influence_kernel(grid, materials), shifted_influence_kernel(grid, materials, step)
+    if scheme != "averaged":
+        raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
+    offsets, weights = step_weights(grid.dx, step)
+    now = sum(w * shifted_influence_kernel(grid, materials, s) for s, w in zip(offsets, weights))
+    old = sum(w * shifted_influence_kernel(grid, materials, s + step)
+              for s, w in zip(offsets, weights))
+    return now, old
+
+
 def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=None,
                       tangential_force=None, friction="exact", epsilon=None, elements=30,
                       margin=1.25, tol=1e-8, maxiter=100, force_tol=1e-7, frames=100,
-                      progress=False) -> TransientResult:
+                      progress=False, scheme="averaged", approach=None) -> TransientResult:
     """Transient (instationary) rolling of a Hertzian contact by time stepping.
 
     Parameters
@@ -226,6 +299,16 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         Number of traction fields stored (evenly spread, plus the last step).
     progress : bool
         Show a rich progress bar.
+    scheme : {"averaged", "centre"}
+        Collocation of the slip (:func:`step_kernels`): ``"averaged"``
+        (default) averages the slip over the element's upstream points so that
+        a run held at constant loads ends on Kalker's steady discretisation
+        for any step; ``"centre"`` is the seed's eq. (2.10) at the element
+        centres (accurate only for ``step = dx``).
+    approach : float or callable, optional
+        Prescribed approach δ(x) [m] (> 0) instead of ``normal_force``
+        (normal control by approach): the normal problem is solved for the
+        penetration at every step.
 
     Returns
     -------
@@ -234,8 +317,10 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     Raises
     ------
     InputError
-        A step not in (0, 2a), a load function that is not positive, ``|F1| ≥
-        μ F3`` (the wheel would slide), an unknown friction law.
+        A step not in (0, 2a), a load or approach function that is not
+        positive at some step (checked before the run, naming the travel and
+        value), ``|F1| ≥ μ F3`` (the wheel would slide), an unknown friction
+        law or scheme, both ``normal_force`` and ``approach``.
     ConvergenceError
         A step whose frictional problem or force iteration fails.
 
@@ -267,9 +352,17 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                          f"2a = {2 * a!r} m")
     if h > travel:
         raise InputError(f"step = {h!r} m is longer than travel = {travel!r} m")
-    F3 = _as_function("normal_force", float(contact.load) if normal_force is None
-                      else normal_force)
-    F3_const = not callable(normal_force)
+    if normal_force is not None and approach is not None:
+        raise InputError("give normal_force= or approach= (normal control), not both")
+    if approach is not None:
+        F3 = _as_function("approach", approach)
+        normal_name, normal_unit = "approach", "m"
+        F3_const = not callable(approach)
+    else:
+        F3 = _as_function("normal_force", float(contact.load) if normal_force is None
+                          else normal_force)
+        normal_name, normal_unit = "normal_force", "N"
+        F3_const = not callable(normal_force)
     if tangential_force is not None:
         F1 = _as_function("tangential_force", tangential_force)
         if creepage is None:
@@ -285,18 +378,40 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                              f"creepage={creepage!r}")
         cr = tuple(_as_function(n, c) for n, c in zip(("xi", "eta", "phi"), creepage))
 
+    n = int(math.floor(travel / h + 1e-9)) + 1
+    xs = np.arange(n) * h
+    # every load function is checked at every step before the run: a load that turns
+    # negative (or not finite) is named with its travel instead of failing mid-run
+    for name, fun in ((normal_name, F3), ("tangential_force", F1)) + tuple(
+            zip(("xi", "eta", "phi"), cr)):
+        if fun is None:
+            continue
+        vals = np.array([_evaluate(name, fun, float(x)) for x in xs])
+        if name == normal_name and not np.all(vals > 0):
+            k = int(np.argmax(~(vals > 0)))
+            raise InputError(f"{name}(x = {xs[k]!r} m) = {vals[k]!r} {normal_unit} must be > 0 "
+                             f"(the load function goes non-positive along the travel)")
+        if name == normal_name:
+            normal_vals = vals
+        if name == "tangential_force" and approach is None:
+            bad = np.nonzero(~(np.abs(vals) < mu * normal_vals))[0]
+            if bad.size:
+                k = int(bad[0])
+                raise InputError(f"tangential_force(x = {xs[k]!r} m) = {vals[k]!r} N must be "
+                                 f"smaller in magnitude than mu*normal_force = "
+                                 f"{mu * normal_vals[k]!r} N (full sliding)")
+
+    if scheme not in ("averaged", "centre"):
+        raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
     grid, gap = hertz_grid(contact, elements=elements, margin=margin)
     X, Y = grid.X, grid.Y
     dA = grid.element_area
-    C = influence_kernel(grid, pair)
-    Ch = shifted_influence_kernel(grid, pair, h)
+    C, Ch = step_kernels(grid, pair, h, scheme)
     K_now = np.ascontiguousarray(C[:2, :2] / h)
     conv_now = _BlockConvolution(K_now)
     conv_old = _BlockConvolution(Ch[:2, :])
     conv_n = _BlockConvolution(C[:2, 2:3]) if pair.K else None
 
-    n = int(math.floor(travel / h + 1e-9)) + 1
-    xs = np.arange(n) * h
     hist = {k: np.zeros(n) for k in _SCALARS}
     keep = set(np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int)).tolist())
     keep.add(n - 1)
@@ -306,9 +421,9 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     state_store = np.zeros((len(keep),) + nxy, dtype=np.int8)
 
     def normal(x, initial):
-        F = _evaluate("normal_force", F3, x)
-        if not F > 0:
-            raise InputError(f"normal_force({x!r} m) = {F!r} N must be > 0")
+        F = _evaluate(normal_name, F3, x)
+        if approach is not None:
+            return solve_normal(grid, gap, pair, penetration=F, initial=initial)
         return solve_normal(grid, gap, pair, load=F, initial=initial)
 
     nsol = normal(0.0, None)
@@ -352,6 +467,9 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
            _evaluate("eta", cr[1], 0.0), _evaluate("phi", cr[2], 0.0))
 
     xi_prev, slope = 0.0, None
+    # the averaged scheme couples each element strongly to its upstream neighbour:
+    # precondition with that coupling (the line solve of newton_step)
+    upwind = scheme == "averaged"
     bar = None
     if progress:
         from rich.progress import Progress
@@ -389,7 +507,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                     total_solves += 1
                     return pp, ss
                 pp, ss, its, res, kry = newton_step(K_now, b, g, conv=conv_now, initial=p0,
-                                                    tol=tol, maxiter=maxiter, upwind=False)
+                                                    tol=tol, maxiter=maxiter, upwind=upwind)
                 total_newton += its
                 total_krylov += kry
                 total_solves += 1
