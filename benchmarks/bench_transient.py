@@ -23,6 +23,7 @@ from scipy.optimize import brentq
 
 import wheelrail as wr
 from wheelrail.halfspace.tangential import newton_step, solve_rolling
+from wheelrail.transient.measures import leading_edge_slip
 from wheelrail.transient.rolling import step_kernels
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
@@ -84,24 +85,6 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
     print(f"slip elements at the end {int(res.n_slip[-1])} of {int(res.n_contact[-1])}")
 
 
-def _leading_slip(state):
-    """Rows (along y) whose leading contact element slips with adhesion behind it; max depth."""
-    rows = depth = 0
-    for col in np.asarray(state).T:
-        idx = np.nonzero(col)[0]
-        if idx.size < 3:
-            continue
-        d = 0
-        for i in idx[::-1]:
-            if col[i] != 2:
-                break
-            d += 1
-        if 0 < d < idx.size and np.any(col[idx[: idx.size - d]] == 1):
-            rows += 1
-            depth = max(depth, d)
-    return rows, depth
-
-
 def varying_loads(elements=15):
     """Seed §3.2 (F3 sinusoidal) and §3.3 (F1 sinusoidal), three wavelengths, V·Δt = dx/2."""
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
@@ -115,7 +98,7 @@ def varying_loads(elements=15):
             hc, travel=4 * lam, step=h, mu=0.4, tangential_force=2000.0, elements=elements,
             normal_force=lambda x: 10e3 + 4.5e3 * np.sin(2 * np.pi * x / lam), frames=10**6)
         m = r.x >= lam
-        lead = [(_leading_slip(r.state[k]), r.frame_x[k]) for k in range(len(r.frame_x))
+        lead = [(leading_edge_slip(r.state[k]), r.frame_x[k]) for k in range(len(r.frame_x))
                 if r.frame_x[k] >= lam]
         (rows, depth), xl = max(lead, key=lambda v: v[0])
         print(f"§3.2 lambda = {lam * 1e3:4.1f} mm: xi in [{r.xi[m].min():.3e}, {r.xi[m].max():.3e}]"
