@@ -116,7 +116,50 @@ def varying_loads(elements=15):
               f"reverse-slip elements (px < 0) up to {rev}")
 
 
+def convergence(travel=20e-3):
+    """§3.1 history under grid refinement (30, 45, 60 elements, V·Δt = 0.05 mm) and under
+    V·Δt refinement (30 elements: 0.2, 0.1, 0.05 mm against 0.025 mm); errors are the
+    largest difference over x in [2a, travel] relative to the final ξ of the reference;
+    observed orders by np.polyfit on log h / log error."""
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    a = float(hc.a)
+    print(f"\nconvergence of the §3.1 history over x in [2a, {travel * 1e3:.0f} mm] "
+          f"(load {os.getloadavg()[0]:.1f})")
+    h = 5e-5
+    runs = {}
+    for n in (30, 45, 60):
+        t0 = time.perf_counter()
+        runs[n] = wr.transient_rolling(hc, travel=travel, step=h, mu=0.4,
+                                       tangential_force=2000.0, elements=n, frames=2)
+        print(f"  {n} elements (grid {runs[n].grid.nx}x{runs[n].grid.ny}): final xi "
+              f"{runs[n].xi[-1]:.6e}; {time.perf_counter() - t0:.1f} s")
+    late = runs[60].x >= 2 * a
+    err = np.array([np.max(np.abs(runs[n].xi[late] - runs[60].xi[late])) / abs(runs[60].xi[-1])
+                    for n in (30, 45)])
+    order = np.log(err[0] / err[1]) / np.log(45 / 30)
+    print(f"  grid: errors against 60 elements {100 * err[0]:.2f} % (30), {100 * err[1]:.2f} % "
+          f"(45); observed order {order:.2f} (two levels)")
+    steps = (2e-4, 1e-4, 5e-5, 2.5e-5)
+    runs = {}
+    for s in steps:
+        runs[s] = wr.transient_rolling(hc, travel=travel, step=s, mu=0.4,
+                                       tangential_force=2000.0, elements=30, frames=2)
+    ref = runs[steps[-1]]
+    errs = []
+    for s in steps[:-1]:
+        k = int(round(s / steps[-1]))
+        xr, xir = ref.x[::k], ref.xi[::k]
+        n = min(len(xr), len(runs[s].xi))
+        m = xr[:n] >= 2 * a
+        errs.append(np.max(np.abs(runs[s].xi[:n][m] - xir[:n][m])) / abs(ref.xi[-1]))
+    order = np.polyfit(np.log(steps[:-1]), np.log(errs), 1)[0]
+    print("  V*dt: errors against 0.025 mm " + ", ".join(
+        f"{100 * e:.3f} % ({s * 1e3:g} mm)" for s, e in zip(steps, errs))
+        + f"; fitted order {order:.2f}")
+
+
 if __name__ == "__main__":
     args = [int(v) for v in sys.argv[1:]]
     main(*args)
     varying_loads()
+    convergence()

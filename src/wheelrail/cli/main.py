@@ -38,6 +38,7 @@ COMMANDS = [
     ("fe", "wheelrail.cli.fe"),
     ("sweep", "wheelrail.cli.sweep"),
     ("compare", "wheelrail.cli.compare"),
+    ("transient", "wheelrail.cli.transient"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
