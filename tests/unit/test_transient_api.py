@@ -74,3 +74,24 @@ def test_bad_input_is_named(hc, kwargs, match):
     base.update(kwargs)
     with pytest.raises(wr.InputError, match=match):
         wr.transient_rolling(hc, **base)
+
+
+def test_prescribed_approach_matches_force_control(hc):
+    """Normal control by approach: a constant δ gives the load of the normal solver at that
+    penetration, and the tangential history equals the force-controlled run at that load."""
+    from wheelrail.normal.bem import hertz_grid, solve_normal
+
+    grid, gap = hertz_grid(hc, elements=8)
+    delta = 0.9 * float(solve_normal(grid, gap, wr.STEEL, load=10e3).penetration)
+    Fn = float(solve_normal(grid, gap, wr.STEEL, penetration=delta).pressure.sum()
+               * grid.element_area)
+    kw = dict(travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=1500.0, elements=8)
+    by_delta = wr.transient_rolling(hc, approach=delta, **kw)
+    by_force = wr.transient_rolling(hc, normal_force=Fn, **kw)
+    assert by_delta.Fn == pytest.approx(Fn, rel=1e-9)
+    assert by_delta.approach == pytest.approx(delta, rel=1e-12)
+    assert by_delta.xi == pytest.approx(by_force.xi, rel=1e-6)
+    # a varying approach: the load follows (more approach, more load)
+    wavy = wr.transient_rolling(hc, approach=lambda x: delta * (1 + 0.2 * np.sin(2e3 * np.pi * x)),
+                                **kw)
+    assert wavy.Fn[1] > Fn > wavy.Fn[3]
