@@ -28,8 +28,12 @@ from wheelrail.transient.rolling import step_kernels
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 
+#: Table 1 of seed 001: E = 210 GPa, nu = 0.3 (wr.STEEL has nu = 0.28).
+SEED = wr.Material(2.1e11, 0.3)
+
+
 def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
-    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
     wr.transient_rolling(hc, travel=4e-4, step=2e-4, mu=0.4, tangential_force=2000.0,
                          elements=6)  # warm-up (numba cache)
     print(f"load (uptime): {os.getloadavg()}")
@@ -45,11 +49,11 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
           f"{wall / (steps - 1) * 1e3:.2f} ms/step; tangential solves {info['solves']}, "
           f"Newton {info['newton']}, GMRES {info['krylov']}")
     grid, gap = hertz_grid(hc, elements=elements)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
-    xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0, 0), mu=0.4,
+    pn = solve_normal(grid, gap, SEED, load=10e3).pressure
+    xi_st = brentq(lambda xi: solve_rolling(grid, pn, SEED, (xi, 0, 0), mu=0.4,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
     # steady fixed point of the same time step h (kernel (now − old)/h of the scheme)
-    now, old = step_kernels(grid, wr.STEEL, h, scheme)
+    now, old = step_kernels(grid, SEED, h, scheme)
     M = (now - old)[:2, :2] / h
 
     def fx(xi):
@@ -74,8 +78,8 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
           f"x = {settle * 1e3:.2f} mm = {settle / a:.2f} a")
     for n2 in (45, 60):
         g2, gap2 = hertz_grid(hc, elements=n2)
-        pn2 = solve_normal(g2, gap2, wr.STEEL, load=10e3).pressure
-        x2 = brentq(lambda xi: solve_rolling(g2, pn2, wr.STEEL, (xi, 0, 0), mu=0.4,
+        pn2 = solve_normal(g2, gap2, SEED, load=10e3).pressure
+        x2 = brentq(lambda xi: solve_rolling(g2, pn2, SEED, (xi, 0, 0), mu=0.4,
                                              tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
         print(f"steady exact solver on {n2} elements: xi = {x2:.6e} (transient-30 differs "
               f"{100 * (final / x2 - 1):+.2f} %)")
@@ -87,7 +91,7 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
 
 def varying_loads(elements=15):
     """Seed §3.2 (F3 sinusoidal) and §3.3 (F1 sinusoidal), three wavelengths, V·Δt = dx/2."""
-    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
     grid, _ = hertz_grid(hc, elements=elements)
     h = grid.dx / 2
     print(f"\n§3.2/§3.3 on {elements} elements over 2a, V*dt = {h * 1e3:.4f} mm, 4 wavelengths; "
@@ -121,7 +125,7 @@ def convergence(travel=20e-3):
     V·Δt refinement (30 elements: 0.2, 0.1, 0.05 mm against 0.025 mm); errors are the
     largest difference over x in [2a, travel] relative to the final ξ of the reference;
     observed orders by np.polyfit on log h / log error."""
-    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
     a = float(hc.a)
     print(f"\nconvergence of the §3.1 history over x in [2a, {travel * 1e3:.0f} mm] "
           f"(load {os.getloadavg()[0]:.1f})")
@@ -158,8 +162,24 @@ def convergence(travel=20e-3):
         + f"; fitted order {order:.2f}")
 
 
+def strips(elements=30, steps=1801, h=5e-5):
+    """§3.1 on the Paul–Hashemi discretisation (30 strips × 30 elements, as the seed's Table 1)."""
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
+    t0 = time.perf_counter()
+    res = wr.transient_rolling(hc, travel=(steps - 1) * h, step=h, mu=0.4,
+                               tangential_force=2000.0, elements=elements,
+                               discretisation="strips", frames=2)
+    wall = time.perf_counter() - t0
+    i = res.info
+    print(f"\nPaul–Hashemi {elements} strips x {elements} elements, V*dt = {h * 1e3:.3f} mm, "
+          f"{steps} steps: {wall:.2f} s ({wall / (steps - 1) * 1e3:.2f} ms/step, load "
+          f"{os.getloadavg()[0]:.1f}); solves {i['solves']}, Newton {i['newton']}, GMRES "
+          f"{i['krylov']}; final xi = {res.xi[-1]:.6e}")
+
+
 if __name__ == "__main__":
     args = [int(v) for v in sys.argv[1:]]
     main(*args)
+    strips()
     varying_loads()
     convergence()

@@ -1079,7 +1079,8 @@ __all__ += ["WheelsetCase", "load_wheelset_case", "load_contact_case", "solve_wh
 # --------------------------------------------------------------------------- transient case
 _TRANSIENT_TABLES = ("material", "contact", "friction", "transient")
 _TRANSIENT_KEYS = ("travel", "step", "elements", "friction", "epsilon", "scheme", "frames",
-                   "margin", "normal_force", "approach", "tangential_force", "xi", "eta", "phi")
+                   "margin", "normal_force", "approach", "tangential_force", "xi", "eta", "phi",
+                   "discretisation", "strips")
 
 
 @dataclass(frozen=True)
@@ -1159,6 +1160,7 @@ def load_transient_case(path_or_str) -> TransientCase:
         elements = 30            # elements across 2a
         friction = "exact"       # or "regularised" (then epsilon = ... [-])
         scheme = "averaged"      # or "centre"
+        discretisation = "uniform"   # or "strips" (Paul–Hashemi; strips = 30)
         frames = 60              # traction fields stored
         normal_force = 10000.0   # F3 [N] (default: [contact] load), or approach = δ [m]
         tangential_force = 2000.0   # F1 [N] (ξ unknown) -- or xi = ..., eta, phi creepages
@@ -1220,6 +1222,15 @@ def load_transient_case(path_or_str) -> TransientCase:
         s["epsilon"] = r.number("transient", t, "epsilon", positive=True)
     elif "epsilon" in t:
         r.fail("transient", "epsilon", "only with friction = 'regularised'")
+    s["discretisation"] = r.string("transient", t, "discretisation", "uniform")
+    if s["discretisation"] not in ("uniform", "strips"):
+        r.fail("transient", "discretisation", f"must be 'uniform' or 'strips', got "
+               f"{s['discretisation']!r}")
+    if "strips" in t:
+        v = t["strips"]
+        if isinstance(v, bool) or not isinstance(v, int) or v < 2:
+            r.fail("transient", "strips", f"must be an integer >= 2, got {v!r}")
+        s["strips"] = v
     s["scheme"] = r.string("transient", t, "scheme", "averaged")
     if s["scheme"] not in ("averaged", "centre"):
         r.fail("transient", "scheme", f"must be 'averaged' or 'centre', got {s['scheme']!r}")

@@ -6,7 +6,8 @@ F1 = 2000 N, Figs. 9–10: a slip zone appears at the *leading* edge for
 §3.3, eq. (3.3) F1 = 2000 + 1000 sin(2πx/λ) N with F3 = 10 kN, Figs. 11–12:
 ξ and F1 sometimes have the same sign, and at λ = 5 mm a zone of tractions
 opposite to the total force appears (reverse slip; Fig. 12 shows px down to
-about −40 MPa against +130 MPa on the centre line). Table 1 data.
+about −40 MPa against +130 MPa on the centre line). Table 1 data (E = 210 GPa,
+ν = 0.3).
 
 Leading-edge slip counts rows whose leading element slips with adhesion
 behind it (:func:`wheelrail.transient.measures.leading_edge_slip`); held
@@ -20,8 +21,8 @@ benchmarks/bench_transient.py give the same picture within a few %):
 =======  ==============================  =====================================
 λ [mm]   §3.2 leading-edge slip          §3.3 same-sign fraction, px_min/px_max
 =======  ==============================  =====================================
-12.5     7 rows, depth 1                 0.24, 0 (no reverse traction)
-5.0      7 rows, depth 3                 0.44, −0.22
+12.5     7 rows, depth 1                 0.23, 0 (no reverse traction)
+5.0      7 rows, depth 3                 0.39, −0.22
 =======  ==============================  =====================================
 """
 
@@ -37,7 +38,7 @@ N = 10
 
 @pytest.fixture(scope="module")
 def setup():
-    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
+    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.Material(2.1e11, 0.3))
     grid, _ = hertz_grid(hc, elements=N)
     return hc, grid.dx / 2
 
@@ -85,11 +86,11 @@ def test_longitudinal_force_variation_same_sign_and_reverse_traction(setup):
         frac[lam] = same_sign_fraction(r.xi[late], F1(r.x[late]))
         j = int(np.argmin(np.abs(r.grid.y)))
         ks = np.nonzero(r.frame_x >= lam)[0]
-        extreme[lam] = min(reverse_traction(r.px[k][:, j], r.pn[k][:, j], r.Fx[0 if k == 0
-                           else np.searchsorted(r.x, r.frame_x[k])])[1] for k in ks) / max(
-            r.px[k][:, j].max() for k in ks)
+        # F1 > 0 throughout (1000 … 3000 N): reverse tractions are px < 0
+        extreme[lam] = min(reverse_traction(r.px[k][:, j], r.pn[k][:, j], 1.0)[1]
+                           for k in ks) / max(r.px[k][:, j].max() for k in ks)
     # ξ and F1 of the same sign over part of the travel, more for faster variation
-    # (measured 0.24 at 12.5 mm, 0.44 at 5 mm)
+    # (measured 0.23 at 12.5 mm, 0.39 at 5 mm)
     assert 0.1 < frac[12.5e-3] < frac[5e-3] < 0.6
     # Fig. 12 (λ = 5 mm): reverse traction on the centre line, about −0.3 of the peak in the
     # seed (−40 / 130 MPa); measured −0.22 here; none at λ = 12.5 mm

@@ -134,11 +134,15 @@ class TransientResult:
 
         g = self.grid
         dims = ("x_frame", "gx", "gy")
+        coords = {"x_frame": self.frame_x, "gx": g.x, "gy": g.y}
+        if hasattr(g, "area"):  # Paul–Hashemi strips: element centres differ per strip
+            coords.update({"X": (("gx", "gy"), g.X, {"units": "m"}),
+                           "Y": (("gx", "gy"), g.Y, {"units": "m"})})
         return xr.Dataset(
             {"px": (dims, self.px, {"units": "Pa"}), "py": (dims, self.py, {"units": "Pa"}),
              "pn": (dims, self.pn, {"units": "Pa"}),
              "state": (dims, self.state, {"meaning": "0 out, 1 adhesion, 2 slip"})},
-            coords={"x_frame": self.frame_x, "gx": g.x, "gy": g.y})
+            coords=coords)
 
     def fields_at(self, x):
         """Traction fields at the stored step nearest to travel ``x`` [m] (xarray.Dataset)."""
@@ -251,7 +255,8 @@ def step_kernels(grid, materials, step, scheme="averaged"):
 def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=None,
                       tangential_force=None, friction="exact", epsilon=None, elements=30,
                       margin=1.25, tol=1e-8, maxiter=100, force_tol=1e-7, frames=100,
-                      progress=False, scheme="averaged", approach=None) -> TransientResult:
+                      progress=False, scheme="averaged", approach=None,
+                      discretisation="uniform", strips=None) -> TransientResult:
     """Transient (instationary) rolling of a Hertzian contact by time stepping.
 
     Parameters
@@ -309,6 +314,14 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         Prescribed approach δ(x) [m] (> 0) instead of ``normal_force``
         (normal control by approach): the normal problem is solved for the
         penetration at every step.
+    discretisation : {"uniform", "strips"}
+        ``"uniform"``: the grid of :func:`~wheelrail.normal.bem.hertz_grid`
+        (FFT operators). ``"strips"``: Paul–Hashemi (seed Fig. 2,
+        :mod:`wheelrail.transient.strips`): ``strips`` strips along x over the
+        Hertz ellipse with ``elements`` elements each, Hertz pressure, dense
+        operators; constant normal force and exact friction only.
+    strips : int, optional
+        Number of strips (default ``elements``).
 
     Returns
     -------
@@ -403,14 +416,44 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
 
     if scheme not in ("averaged", "centre"):
         raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
-    grid, gap = hertz_grid(contact, elements=elements, margin=margin)
-    X, Y = grid.X, grid.Y
-    dA = grid.element_area
-    C, Ch = step_kernels(grid, pair, h, scheme)
-    K_now = np.ascontiguousarray(C[:2, :2] / h)
-    conv_now = _BlockConvolution(K_now)
-    conv_old = _BlockConvolution(Ch[:2, :])
-    conv_n = _BlockConvolution(C[:2, 2:3]) if pair.K else None
+    if discretisation == "strips":
+        if not F3_const or approach is not None:
+            raise InputError("discretisation='strips' (Paul–Hashemi) needs a constant "
+                             "normal_force (the strips follow the Hertz ellipse)")
+        if friction != "exact":
+            raise InputError("discretisation='strips' supports friction='exact' only")
+        if scheme != "averaged":
+            raise InputError("discretisation='strips' uses scheme='averaged'")
+        from .strips import (DenseOperator, hertz_pressure, preconditioner_kernel,
+                             strip_grid, strip_step_operators)
+
+        strips = integer("strips", elements if strips is None else strips, 2)
+        grid = strip_grid(contact, elements, strips)
+        X, Y = grid.X, grid.Y
+        dA = np.array(grid.area)
+        Nw, Ow = strip_step_operators(grid, pair, h, step_weights)
+        nflat = grid.nx * grid.ny
+        K_now = preconditioner_kernel(Nw / h, grid)
+        conv_now = DenseOperator(Nw[:, :2 * nflat] / h, grid.shape)
+        conv_old = DenseOperator(Ow, grid.shape)
+        conv_n = DenseOperator(Nw[:, 2 * nflat:], grid.shape) if pair.K else None
+        strip_pn = hertz_pressure(contact, grid, _evaluate(normal_name, F3, 0.0))
+
+        class _HertzNormal:
+            pressure = strip_pn
+            penetration = float(np.asarray(contact.penetration))
+    elif discretisation == "uniform":
+        grid, gap = hertz_grid(contact, elements=elements, margin=margin)
+        X, Y = grid.X, grid.Y
+        dA = grid.element_area
+        C, Ch = step_kernels(grid, pair, h, scheme)
+        K_now = np.ascontiguousarray(C[:2, :2] / h)
+        conv_now = _BlockConvolution(K_now)
+        conv_old = _BlockConvolution(Ch[:2, :])
+        conv_n = _BlockConvolution(C[:2, 2:3]) if pair.K else None
+    else:
+        raise InputError(f"discretisation must be 'uniform' or 'strips', got "
+                         f"{discretisation!r}")
 
     hist = {k: np.zeros(n) for k in _SCALARS}
     keep = set(np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int)).tolist())
@@ -422,6 +465,8 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
 
     def normal(x, initial):
         F = _evaluate(normal_name, F3, x)
+        if discretisation == "strips":
+            return _HertzNormal
         if approach is not None:
             return solve_normal(grid, gap, pair, penetration=F, initial=initial)
         return solve_normal(grid, gap, pair, load=F, initial=initial)
@@ -450,9 +495,9 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         else:
             slip = contact_ & (norm >= g * (1 - 1e-9)) & (np.hypot(s[0], s[1]) > 0)
         hist["xi"][k], hist["eta"][k], hist["phi"][k] = xi, eta, phi
-        hist["Fn"][k] = float(pn.sum() * dA)
-        hist["Fx"][k] = float(p[0].sum() * dA)
-        hist["Fy"][k] = float(p[1].sum() * dA)
+        hist["Fn"][k] = float((pn * dA).sum())
+        hist["Fx"][k] = float((p[0] * dA).sum())
+        hist["Fy"][k] = float((p[1] * dA).sum())
         hist["p_max"][k] = float(pn.max())
         hist["approach"][k] = float(nsol.penetration)
         hist["n_contact"][k] = int(contact_.sum())
@@ -538,7 +583,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                 p_new, s_new = solve(xi, p)
             else:
                 target = control
-                Fn_k = float(pn_new.sum() * dA)
+                Fn_k = float((pn_new * dA).sum())
                 if not abs(target) < mu * Fn_k:
                     raise InputError(f"tangential_force({x!r} m) = {target!r} N must be smaller "
                                      f"in magnitude than mu*Fn = {mu * Fn_k!r} N (full sliding)")
@@ -561,7 +606,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     frame_x.setflags(write=False)
     xs.setflags(write=False)
     info = {"step": h, "mu": mu, "elements": elements, "nx": grid.nx, "ny": grid.ny,
-            "dx": grid.dx, "dy": grid.dy, "a": a, "b": float(contact.b), "friction": friction,
+            "dx": float(np.max(grid.dx)), "dy": grid.dy, "discretisation": discretisation, "a": a, "b": float(contact.b), "friction": friction,
             "epsilon": float(epsilon) if epsilon is not None else float("nan"),
             "newton": total_newton, "krylov": total_krylov, "solves": total_solves,
             "steady_steps": skipped,
@@ -574,7 +619,7 @@ def _xi_for_force(solve, target, xi0, slope, p0, dA, ftol, k, x, maxit=50):
     """ξ with ``Fx(ξ) = target``: secant steps kept inside a bracket (Illinois)."""
     def F(xi, p_init):
         pp, ss = solve(xi, p_init)
-        return float(pp[0].sum() * dA) - target, pp, ss
+        return float((pp[0] * dA).sum()) - target, pp, ss
 
     fa, pa, sa = F(xi0, p0)
     if abs(fa) <= ftol:
