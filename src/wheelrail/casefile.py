@@ -1160,7 +1160,7 @@ def load_transient_case(path_or_str) -> TransientCase:
         elements = 30            # elements across 2a
         friction = "exact"       # or "regularised" (then epsilon = ... [-])
         scheme = "averaged"      # or "centre"
-        discretisation = "uniform"   # or "strips" (Paul–Hashemi; strips = 30)
+        discretisation = "uniform"   # "strips" (Paul–Hashemi; strips = 30) or "material"
         frames = 60              # traction fields stored
         normal_force = 10000.0   # F3 [N] (default: [contact] load), or approach = δ [m]
         tangential_force = 2000.0   # F1 [N] (ξ unknown) -- or xi = ..., eta, phi creepages
@@ -1223,9 +1223,9 @@ def load_transient_case(path_or_str) -> TransientCase:
     elif "epsilon" in t:
         r.fail("transient", "epsilon", "only with friction = 'regularised'")
     s["discretisation"] = r.string("transient", t, "discretisation", "uniform")
-    if s["discretisation"] not in ("uniform", "strips"):
-        r.fail("transient", "discretisation", f"must be 'uniform' or 'strips', got "
-               f"{s['discretisation']!r}")
+    if s["discretisation"] not in ("uniform", "strips", "material"):
+        r.fail("transient", "discretisation", f"must be 'uniform', 'strips' or 'material', "
+               f"got {s['discretisation']!r}")
     if "strips" in t:
         v = t["strips"]
         if isinstance(v, bool) or not isinstance(v, int) or v < 2:

@@ -314,9 +314,14 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         Prescribed approach δ(x) [m] (> 0) instead of ``normal_force``
         (normal control by approach): the normal problem is solved for the
         penetration at every step.
-    discretisation : {"uniform", "strips"}
+    discretisation : {"uniform", "strips", "material"}
         ``"uniform"``: the grid of :func:`~wheelrail.normal.bem.hertz_grid`
-        (FFT operators). ``"strips"``: Paul–Hashemi (seed Fig. 2,
+        moving with the contact (FFT operators). ``"material"``: the same
+        grid fixed to the rail (a window that follows the contact in whole
+        elements): each particle keeps its element, the carried displacement
+        is ``C p_old`` without shift, the rigid slip is taken about the moving
+        contact centre, and the normal problem is solved every step for the
+        moved gap; held steady it oscillates with period ``dx/h`` steps. ``"strips"``: Paul–Hashemi (seed Fig. 2,
         :mod:`wheelrail.transient.strips`): ``strips`` strips along x over the
         Hertz ellipse with ``elements`` elements each, Hertz pressure, dense
         operators; constant normal force and exact friction only.
@@ -442,18 +447,27 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         class _HertzNormal:
             pressure = strip_pn
             penetration = float(np.asarray(contact.penetration))
-    elif discretisation == "uniform":
+    elif discretisation in ("uniform", "material"):
         grid, gap = hertz_grid(contact, elements=elements, margin=margin)
         X, Y = grid.X, grid.Y
         dA = grid.element_area
-        C, Ch = step_kernels(grid, pair, h, scheme)
+        if discretisation == "material":
+            # grid fixed to the rail (a window moved in whole elements): the particle
+            # stays on its element, so the carried displacement is C p_old unshifted
+            C = influence_kernel(grid, pair)
+            Ch = C
+        else:
+            C, Ch = step_kernels(grid, pair, h, scheme)
         K_now = np.ascontiguousarray(C[:2, :2] / h)
         conv_now = _BlockConvolution(K_now)
         conv_old = _BlockConvolution(Ch[:2, :])
         conv_n = _BlockConvolution(C[:2, 2:3]) if pair.K else None
     else:
-        raise InputError(f"discretisation must be 'uniform' or 'strips', got "
+        raise InputError(f"discretisation must be 'uniform', 'strips' or 'material', got "
                          f"{discretisation!r}")
+    material = discretisation == "material"
+    centre = 0.0  # material grid: contact centre relative to the window centre [m]
+    A_, B_ = float(contact.A), float(contact.B)
 
     hist = {k: np.zeros(n) for k in _SCALARS}
     keep = set(np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int)).tolist())
@@ -467,6 +481,11 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         F = _evaluate(normal_name, F3, x)
         if discretisation == "strips":
             return _HertzNormal
+        if material:
+            gap_c = A_ * (X - centre) ** 2 + B_ * Y ** 2
+            if approach is not None:
+                return solve_normal(grid, gap_c, pair, penetration=F, initial=initial)
+            return solve_normal(grid, gap_c, pair, load=F, initial=initial)
         if approach is not None:
             return solve_normal(grid, gap, pair, penetration=F, initial=initial)
         return solve_normal(grid, gap, pair, load=F, initial=initial)
@@ -526,7 +545,15 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     try:
         for k in range(1, n):
             x = xs[k]
-            if not F3_const:
+            if material:
+                # the contact moves by h over the rail-fixed elements; the window follows
+                # in whole elements (tractions and pressure move back by one index)
+                centre += h
+                while centre >= 0.5 * grid.dx * (1 - 1e-12):
+                    p = np.concatenate((p[:, 1:], np.zeros((2, 1, grid.ny))), axis=1)
+                    pn = np.concatenate((pn[1:], np.zeros((1, grid.ny))), axis=0)
+                    centre -= grid.dx
+            if not F3_const or material:
                 nsol = normal(x, pn)
             pn_new = np.array(nsol.pressure)
             g = mu * pn_new
@@ -534,7 +561,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             control = (_evaluate("xi", cr[0], x) if F1 is None
                        else _evaluate("tangential_force", F1, x))
             key = (eta, phi, control)
-            if (fixed is not None and fixed[0] == key and np.array_equal(fixed[1], p)
+            if (fixed is not None and not material and fixed[0] == key and np.array_equal(fixed[1], p)
                     and np.array_equal(pn, pn_new)):
                 # the previous step reproduced its input exactly under the same loads: the
                 # run has reached its steady fixed point and every such step repeats it
@@ -550,7 +577,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             if conv_n is not None:
                 base = base + conv_n(pn_new[None]) / h
             base[0] -= phi * Y
-            base[1] += eta + phi * X
+            base[1] += eta + phi * (X - centre)
 
             def solve(xi, p0):
                 nonlocal total_newton, total_krylov, total_solves
