@@ -60,7 +60,13 @@ def run(args, console) -> int:
         from ..transient.plot import plot_centreline, plot_creepage, plot_state
 
         plot_creepage(res, path=out / "creepage.png", title="longitudinal creepage")
-        plot_centreline(res, path=out / "centreline.png",
+        import numpy as np
+
+        # like the seed's Fig. 7: the build-up over the first semi-axes of travel
+        early = res.frame_x[res.frame_x <= 5 * float(hc.a)]
+        xs = early[np.unique(np.linspace(0, len(early) - 1, min(6, len(early))).round()
+                             .astype(int))] if len(early) >= 3 else None
+        plot_centreline(res, xs=xs, path=out / "centreline.png",
                         title="traction along the centre line")
         plot_state(res, float(res.frame_x[-1]), path=out / "state.png",
                    title="adhesion / slip, last step")
