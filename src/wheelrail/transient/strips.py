@@ -31,7 +31,7 @@ import numpy as np
 from ..halfspace.influence import rectangle_influence
 from ..materials import as_material_pair
 
-__all__ = ["StripGrid", "strip_grid", "strip_step_operators"]
+__all__ = ["StripGrid", "strip_grid", "hertz_pressure", "strip_step_operators"]
 
 
 @dataclass(frozen=True)
@@ -157,12 +157,3 @@ def preconditioner_kernel(now_t, sg: StripGrid) -> np.ndarray:
             if i + 1 < nx:
                 ker[t, c, nx - 2, ny - 1] = now_t[t * n + q, c * n + up]
     return ker
-
-
-def _check(contact, elements, strips):
-    from .._validation import integer
-
-    return integer("elements", elements, 2), integer("strips", strips, 2)
-
-
-__all__ += ["hertz_pressure"]
