@@ -1074,3 +1074,191 @@ def solve_wheelset_case(case: WheelsetCase, progress=None):
 
 
 __all__ += ["WheelsetCase", "load_wheelset_case", "load_contact_case", "solve_wheelset_case"]
+
+
+# --------------------------------------------------------------------------- transient case
+_TRANSIENT_TABLES = ("material", "contact", "friction", "transient")
+_TRANSIENT_KEYS = ("travel", "step", "elements", "friction", "epsilon", "scheme", "frames",
+                   "margin", "normal_force", "approach", "tangential_force", "xi", "eta", "phi",
+                   "discretisation", "strips")
+
+
+@dataclass(frozen=True)
+class TransientCase:
+    """A validated transient-rolling case (``[transient]`` table; issue 8, seed 001).
+
+    Attributes
+    ----------
+    materials : MaterialPair
+    contact : ContactSpec
+        The Hertzian contact: surfaces, and the grid (sized on its load).
+    mu : float
+    settings : Mapping
+        Keyword arguments of :func:`wheelrail.transient_rolling` (SI units);
+        load and creepage histories are
+        :class:`~wheelrail.transient.loads.TravelFunction` objects.
+    source : str
+    """
+
+    materials: MaterialPair
+    contact: ContactSpec
+    mu: float
+    settings: Mapping[str, Any]
+    source: str = "<dict>"
+
+    @cached_property
+    def hertz_contact(self):
+        return self.contact.hertz(self.materials)
+
+    def run(self, progress=False):
+        """Solve with :func:`wheelrail.transient_rolling`; returns its ``TransientResult``."""
+        from .transient import transient_rolling
+
+        return transient_rolling(self.hertz_contact, mu=self.mu, progress=progress,
+                                 **dict(self.settings))
+
+    def describe(self) -> dict:
+        """Plain description (strings and numbers) of the settings, for summaries."""
+        out = {}
+        for k, v in self.settings.items():
+            if k == "creepage":
+                for name, f in zip(("xi", "eta", "phi"), v):
+                    if f is not None:
+                        out[name] = f.describe() if hasattr(f, "describe") else f
+            else:
+                out[k] = v.describe() if hasattr(v, "describe") else v
+        return out
+
+
+def _read_travel_function(r: _Reader, tbl: Mapping, key: str):
+    from .transient.loads import KINDS, TravelFunction
+
+    v = tbl[key]
+    if isinstance(v, Mapping):
+        spec = dict(v)
+        kind = spec.pop("kind", None)
+        if kind not in KINDS:
+            r.fail("transient", key, f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+        try:
+            return TravelFunction.of(kind, **spec)
+        except InputError as exc:
+            r.fail("transient", key, str(exc))
+    r.number("transient", tbl, key)
+    return TravelFunction.of("constant", value=float(v))
+
+
+def load_transient_case(path_or_str) -> TransientCase:
+    """Read and validate a transient-rolling case file (``[transient]`` table).
+
+    Tables: ``[material]`` (optional, as for :func:`load_case`), ``[contact]``
+    (load and curvatures/radii/semi-axes: the Hertzian contact whose grid is
+    used, and the default normal force), ``[friction]`` (``mu``) and::
+
+        [transient]
+        travel = 0.09            # rolling distance [m]
+        step = 5e-5              # V·Δt [m]
+        elements = 30            # elements across 2a
+        friction = "exact"       # or "regularised" (then epsilon = ... [-])
+        scheme = "averaged"      # or "centre"
+        discretisation = "uniform"   # "strips" (Paul–Hashemi; strips = 30) or "material"
+        frames = 60              # traction fields stored
+        normal_force = 10000.0   # F3 [N] (default: [contact] load), or approach = δ [m]
+        tangential_force = 2000.0   # F1 [N] (ξ unknown) -- or xi = ..., eta, phi creepages
+
+    Every load or creepage is a number (constant) or an inline table::
+
+        {kind = "step", at = 0.001, before = 0.0, after = 2000.0}
+        {kind = "sine", mean = 10000.0, amplitude = 4500.0, wavelength = 0.005, phase = 0.0}
+        {kind = "table", x = [0.0, 0.01, 0.02], value = [0.0, 2000.0, 2000.0]}
+
+    Raises
+    ------
+    CaseFileError
+        Naming the file, table, key and bad value.
+    """
+    if isinstance(path_or_str, str) and ("\n" in path_or_str or "=" in path_or_str):
+        text, source = path_or_str, "<string>"
+    else:
+        path = Path(path_or_str)
+        source = str(path)
+        try:
+            text = path.read_text(encoding="utf-8")
+        except FileNotFoundError:
+            raise CaseFileError(f"{source}: case file not found") from None
+        except (OSError, UnicodeDecodeError) as exc:
+            raise CaseFileError(f"{source}: cannot read case file: {exc}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseFileError(f"{source}: malformed TOML: {exc}") from None
+    r = _Reader(source)
+    r.unknown("", data, _TRANSIENT_TABLES)
+    for name in _TRANSIENT_TABLES:
+        if name in data and not isinstance(data[name], Mapping):
+            raise CaseFileError(f"{source}: '{name}' must be a table [{name}], got {data[name]!r}")
+    materials = _read_materials(r, data.get("material", {}))
+    contact = _read_contact(r, r.required_table(data, "contact"))
+    fr = r.required_table(data, "friction")
+    r.unknown("friction", fr, ("mu",))
+    mu = r.number("friction", fr, "mu", positive=True)
+    _check_plausible(r, "friction", "mu", mu)
+    t = r.required_table(data, "transient")
+    r.unknown("transient", t, _TRANSIENT_KEYS)
+    s: dict = {"travel": r.number("transient", t, "travel", positive=True),
+               "step": r.number("transient", t, "step", positive=True)}
+    for key, default in (("elements", 30), ("frames", 60)):
+        v = t.get(key, default)
+        if isinstance(v, bool) or not isinstance(v, int) or v < 2:
+            r.fail("transient", key, f"must be an integer >= 2, got {v!r}")
+        s[key] = v
+    s["margin"] = r.number("transient", t, "margin", default=1.25)
+    if not s["margin"] > 1:
+        r.fail("transient", "margin", f"must be > 1, got {s['margin']!r}")
+    s["friction"] = r.string("transient", t, "friction", "exact")
+    if s["friction"] not in ("exact", "regularised", "regularized"):
+        r.fail("transient", "friction", f"must be 'exact' or 'regularised', got "
+               f"{s['friction']!r}")
+    if s["friction"] != "exact":
+        s["epsilon"] = r.number("transient", t, "epsilon", positive=True)
+    elif "epsilon" in t:
+        r.fail("transient", "epsilon", "only with friction = 'regularised'")
+    s["discretisation"] = r.string("transient", t, "discretisation", "uniform")
+    if s["discretisation"] not in ("uniform", "strips", "material"):
+        r.fail("transient", "discretisation", f"must be 'uniform', 'strips' or 'material', "
+               f"got {s['discretisation']!r}")
+    if "strips" in t:
+        v = t["strips"]
+        if isinstance(v, bool) or not isinstance(v, int) or v < 2:
+            r.fail("transient", "strips", f"must be an integer >= 2, got {v!r}")
+        s["strips"] = v
+    s["scheme"] = r.string("transient", t, "scheme", "averaged")
+    if s["scheme"] not in ("averaged", "centre"):
+        r.fail("transient", "scheme", f"must be 'averaged' or 'centre', got {s['scheme']!r}")
+    if "normal_force" in t and "approach" in t:
+        r.fail("transient", "approach", "give normal_force or approach, not both")
+    for key in ("normal_force", "approach", "tangential_force"):
+        if key in t:
+            s[key] = _read_travel_function(r, t, key)
+    given = [k for k in ("xi", "eta", "phi") if k in t]
+    cr = [(_read_travel_function(r, t, k) if k in t else None) for k in ("xi", "eta", "phi")]
+    if "tangential_force" in s:
+        if "xi" in t:
+            r.fail("transient", "xi", "with tangential_force the creepage xi is the unknown: "
+                   "omit xi")
+        if given:
+            s["creepage"] = (None, cr[1] or 0.0, cr[2] or 0.0)
+    else:
+        if not given:
+            r.fail("transient", None, "give tangential_force (F1 [N]) or creepages xi, eta, "
+                   "phi")
+        s["creepage"] = tuple(c if c is not None else 0.0 for c in cr)
+    case = TransientCase(materials=materials, contact=contact, mu=mu,
+                         settings=MappingProxyType(s), source=source)
+    try:
+        case.hertz_contact
+    except InputError as exc:
+        raise CaseFileError(f"{source}: [contact]: {exc}") from None
+    return case
+
+
+__all__ += ["TransientCase", "load_transient_case"]

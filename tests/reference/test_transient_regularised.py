@@ -2,7 +2,7 @@
 
 Reference: the exact-Coulomb transient solution (active set) of the same run;
 the observed order of the force error in ε is fitted (np.polyfit on log ε /
-log error; measured ≈ 0.9 on this case).
+log error; measured 0.87 on this case: 2.6 %, 1.0 %, 0.36 %, 0.13 %).
 """
 
 import numpy as np

@@ -59,11 +59,39 @@ def test_varying_normal_force_solves_every_step(hc):
     (dict(friction="regularised"), "needs epsilon"),
     (dict(friction="tresca"), "tresca"),
     (dict(tangential_force=5e3), "tangential_force"),
+    (dict(tangential_force=lambda x: 1000 + 4e6 * x), r"tangential_force\(x = 0.00025 m\) = 2000.0 N"),
+    (dict(normal_force=lambda x: 5e3 - 1e7 * x), r"normal_force\(x = 0.0005 m\) = 0.0 N"),
+    (dict(approach=lambda x: 1e-5 - 0.02 * x), r"approach\(x = 0.0005 m\) = 0.0 m"),
+    (dict(approach=1e-5, normal_force=1e4), "not both"),
+    (dict(scheme="upwind"), "scheme must be"),
 ])
 def test_bad_input_is_named(hc, kwargs, match):
     base = dict(travel=1e-3, step=2.5e-4, mu=0.4, creepage=(-1e-4, 0, 0), elements=6)
     if "tangential_force" in kwargs:
         base.pop("creepage")
+    if callable(kwargs.get("tangential_force")):
+        base["normal_force"] = 5e3
     base.update(kwargs)
     with pytest.raises(wr.InputError, match=match):
         wr.transient_rolling(hc, **base)
+
+
+def test_prescribed_approach_matches_force_control(hc):
+    """Normal control by approach: a constant δ gives the load of the normal solver at that
+    penetration, and the tangential history equals the force-controlled run at that load."""
+    from wheelrail.normal.bem import hertz_grid, solve_normal
+
+    grid, gap = hertz_grid(hc, elements=8)
+    delta = 0.9 * float(solve_normal(grid, gap, wr.STEEL, load=10e3).penetration)
+    Fn = float(solve_normal(grid, gap, wr.STEEL, penetration=delta).pressure.sum()
+               * grid.element_area)
+    kw = dict(travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=1500.0, elements=8)
+    by_delta = wr.transient_rolling(hc, approach=delta, **kw)
+    by_force = wr.transient_rolling(hc, normal_force=Fn, **kw)
+    assert by_delta.Fn == pytest.approx(Fn, rel=1e-9)
+    assert by_delta.approach == pytest.approx(delta, rel=1e-12)
+    assert by_delta.xi == pytest.approx(by_force.xi, rel=1e-6)
+    # a varying approach: the load follows (more approach, more load)
+    wavy = wr.transient_rolling(hc, approach=lambda x: delta * (1 + 0.2 * np.sin(2e3 * np.pi * x)),
+                                **kw)
+    assert wavy.Fn[1] > Fn > wavy.Fn[3]

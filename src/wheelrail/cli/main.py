@@ -38,6 +38,7 @@ COMMANDS = [
     ("fe", "wheelrail.cli.fe"),
     ("sweep", "wheelrail.cli.sweep"),
     ("compare", "wheelrail.cli.compare"),
+    ("transient", "wheelrail.cli.transient"),
     ("validate", "wheelrail.cli.validate"),
 ]
 

@@ -1,6 +1,9 @@
 """Instationary (transient) rolling contact: time stepping on a grid moving with the contact.
 
-Public: :func:`transient_rolling` and its frozen result :class:`TransientResult`.
+Public: :func:`transient_rolling` and its frozen result :class:`TransientResult`;
+:class:`TravelFunction` (constant, step, sine or tabulated loads along the
+travel); the kernels of one step :func:`step_kernels`; measures of the seed's
+findings in :mod:`wheelrail.transient.measures`.
 
 References
 ----------
@@ -8,6 +11,7 @@ L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail
 contact instationary process on contact parameters (seed paper 001), §2.
 """
 
-from .rolling import TransientResult, transient_rolling
+from .loads import TravelFunction
+from .rolling import TransientResult, step_kernels, transient_rolling
 
-__all__ = ["TransientResult", "transient_rolling"]
+__all__ = ["TransientResult", "TravelFunction", "step_kernels", "transient_rolling"]

@@ -63,8 +63,9 @@ def plot_centreline(result, *, xs=None, path=None, title=None):
         ks = np.unique(np.linspace(0, len(frames) - 1, min(6, len(frames))).round().astype(int))
     else:
         ks = [int(np.argmin(np.abs(frames - x))) for x in np.atleast_1d(xs)]
+    xg = np.asarray(g.X)[:, j]  # element centres along x (per strip for Paul–Hashemi)
     for k in ks:
-        ax.plot((g.x + frames[k]) * 1e3, result.px[k][:, j] / 1e6,
+        ax.plot((xg + frames[k]) * 1e3, result.px[k][:, j] / 1e6,
                 label=f"x = {frames[k] * 1e3:.2f} mm")
     ax.set_xlabel("position along the rail x1 [mm]")
     ax.set_ylabel("longitudinal traction px(x1, 0) [MPa]")
@@ -78,9 +79,14 @@ def plot_state(result, x, *, path=None, title=None):
     fig, ax = new_figure()
     k = int(np.argmin(np.abs(result.frame_x - x)))
     g = result.grid
-    x0, x1, y0, y1 = g.bounds
-    img = ax.imshow(np.asarray(result.state[k]).T, origin="lower", cmap="Greys", vmin=0, vmax=2,
-                    extent=(x0 * 1e3, x1 * 1e3, y0 * 1e3, y1 * 1e3), aspect="auto")
+    if hasattr(g, "bounds"):
+        x0, x1, y0, y1 = g.bounds
+        img = ax.imshow(np.asarray(result.state[k]).T, origin="lower", cmap="Greys", vmin=0,
+                        vmax=2, extent=(x0 * 1e3, x1 * 1e3, y0 * 1e3, y1 * 1e3), aspect="auto")
+    else:  # Paul–Hashemi strips: one marker per element centre
+        img = ax.scatter(np.asarray(g.X).ravel() * 1e3, np.asarray(g.Y).ravel() * 1e3,
+                         c=np.asarray(result.state[k]).ravel(), cmap="Greys", vmin=0, vmax=2,
+                         marker="s", s=12, edgecolors="0.6", linewidths=0.3)
     cb = fig.colorbar(img, ax=ax, ticks=[0, 1, 2])
     cb.ax.set_yticklabels(["out", "adhesion", "slip"])
     ax.set_xlabel("x [mm] (rolling direction →)")

@@ -23,6 +23,16 @@ rolling (:func:`wheelrail.halfspace.tangential.newton_step`). With ``h = dx``
 and ``p_o = p`` this is exactly Kalker's discretised steady rolling, so a run
 held at constant loads ends on :func:`~wheelrail.halfspace.solve_rolling`.
 
+For ``h < dx`` the slip at the element centres alone (``scheme="centre"``,
+the seed's eq. 2.10 as written) ends on a different steady problem, kernel
+``(C − C_h)/h``, which tends to the centred derivative ``−∂C/∂x`` whose
+self-coefficient vanishes: ill-conditioned and off Kalker's solution (−1.9 %
+in ξ for seed §3.1 at 30 elements). The default ``scheme="averaged"``
+averages the slip relation over the points ``x_I + k h`` inside the element
+length upstream of the centre (:func:`step_weights`); the carried
+displacements then telescope, and held steady the run ends on Kalker's
+discretisation for any ``h`` (:func:`step_kernels`).
+
 Normal force varying along the travel: the normal problem is solved at every
 step on the same grid (Polonsky–Keer, warm started); elements leaving the
 contact get zero traction (bound ``μ pn = 0``), elements entering start
@@ -124,11 +134,15 @@ class TransientResult:
 
         g = self.grid
         dims = ("x_frame", "gx", "gy")
+        coords = {"x_frame": self.frame_x, "gx": g.x, "gy": g.y}
+        if hasattr(g, "area"):  # Paul–Hashemi strips: element centres differ per strip
+            coords.update({"X": (("gx", "gy"), g.X, {"units": "m"}),
+                           "Y": (("gx", "gy"), g.Y, {"units": "m"})})
         return xr.Dataset(
             {"px": (dims, self.px, {"units": "Pa"}), "py": (dims, self.py, {"units": "Pa"}),
              "pn": (dims, self.pn, {"units": "Pa"}),
              "state": (dims, self.state, {"meaning": "0 out, 1 adhesion, 2 slip"})},
-            coords={"x_frame": self.frame_x, "gx": g.x, "gy": g.y})
+            coords=coords)
 
     def fields_at(self, x):
         """Traction fields at the stored step nearest to travel ``x`` [m] (xarray.Dataset)."""
@@ -175,10 +189,74 @@ def shifted_influence_kernel(grid, materials, shift) -> np.ndarray:
     return rectangle_influence(X, Y, grid.dx / 2, grid.dy / 2, pair.G, pair.nu, pair.K)
 
 
+def step_weights(dx, step):
+    """Collocation offsets [m] and weights of the element-averaged slip (``scheme="averaged"``).
+
+    With ``m = dx / step`` the slip of element I is the weighted mean of the
+    slip at the points ``x_I + k·step``, ``k = 0 … ⌈m⌉ − 1``, weights ``1/m``
+    except the last, ``(m − ⌈m⌉ + 1)/m`` (they sum to one). Held steady, the
+    displacement differences telescope to ``(u(x_I) − ũ(x_I + dx)) / dx``
+    with ``ũ`` the linear interpolation of ``u`` between the two last points:
+    Kalker's steady discretisation, exactly when ``m`` is an integer. With
+    ``step ≥ dx`` a single point (the element centre).
+
+    Returns
+    -------
+    offsets, weights : ndarray, shape (K,)
+    """
+    m = dx / step
+    K = max(1, int(math.ceil(m - 1e-9)))
+    if K == 1:
+        return np.zeros(1), np.ones(1)
+    w = np.full(K, 1.0 / m)
+    w[-1] = (m - (K - 1)) / m
+    return np.arange(K) * step, w
+
+
+def step_kernels(grid, materials, step, scheme="averaged"):
+    """Influence kernels of one time step, each of shape (3, 3, 2nx−1, 2ny−1) [m/Pa].
+
+    ``(now, old)``: the displacement difference at the collocation points of
+    element I due to a unit traction on element J now (``now``) and, carried
+    one step ``h = step`` upstream, at the previous step (``old``)::
+
+        s_I = w_I + Σ_J (now(I − J) p_J − old(I − J) p_old,J) / h
+
+    ``scheme="centre"``: the seed's eq. (2.10) at the element centres,
+    ``now = C`` and ``old = C`` at offsets shifted by ``h``
+    (:func:`shifted_influence_kernel`). ``scheme="averaged"``: the slip
+    averaged over the points of :func:`step_weights`; every kernel is
+    evaluated exactly with Love's rectangle formulae (no interpolation of
+    tractions or displacements).
+
+    Why the average: held steady, the centre scheme becomes the steady
+    problem with kernel ``(C − C_h)/h → −∂C/∂x`` at the element centres,
+    whose self-coefficient vanishes as ``h/dx → 0`` (the derivative of the
+    displacement of a uniformly loaded rectangle at its centre is zero). That
+    steady problem is a centred difference and loses its diagonal dominance:
+    the Newton iteration stops converging for ``dx/h ≳ 4`` on 30 elements
+    (measured) and the transient run ends off Kalker's steady solution
+    (−1.9 % in ξ at 30 elements, V·Δt = 0.05 mm). The averaged scheme ends
+    on Kalker's upwind discretisation (:func:`~wheelrail.halfspace.solve_rolling`)
+    for any step (exactly for integer ``dx/h``; 0.04 % in the force at
+    ``dx/h = 3.7``).
+    """
+    if scheme == "centre":
+        return influence_kernel(grid, materials), shifted_influence_kernel(grid, materials, step)
+    if scheme != "averaged":
+        raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
+    offsets, weights = step_weights(grid.dx, step)
+    now = sum(w * shifted_influence_kernel(grid, materials, s) for s, w in zip(offsets, weights))
+    old = sum(w * shifted_influence_kernel(grid, materials, s + step)
+              for s, w in zip(offsets, weights))
+    return now, old
+
+
 def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=None,
                       tangential_force=None, friction="exact", epsilon=None, elements=30,
                       margin=1.25, tol=1e-8, maxiter=100, force_tol=1e-7, frames=100,
-                      progress=False) -> TransientResult:
+                      progress=False, scheme="averaged", approach=None,
+                      discretisation="uniform", strips=None) -> TransientResult:
     """Transient (instationary) rolling of a Hertzian contact by time stepping.
 
     Parameters
@@ -226,6 +304,29 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         Number of traction fields stored (evenly spread, plus the last step).
     progress : bool
         Show a rich progress bar.
+    scheme : {"averaged", "centre"}
+        Collocation of the slip (:func:`step_kernels`): ``"averaged"``
+        (default) averages the slip over the element's upstream points so that
+        a run held at constant loads ends on Kalker's steady discretisation
+        for any step; ``"centre"`` is the seed's eq. (2.10) at the element
+        centres (accurate only for ``step = dx``).
+    approach : float or callable, optional
+        Prescribed approach δ(x) [m] (> 0) instead of ``normal_force``
+        (normal control by approach): the normal problem is solved for the
+        penetration at every step.
+    discretisation : {"uniform", "strips", "material"}
+        ``"uniform"``: the grid of :func:`~wheelrail.normal.bem.hertz_grid`
+        moving with the contact (FFT operators). ``"material"``: the same
+        grid fixed to the rail (a window that follows the contact in whole
+        elements): each particle keeps its element, the carried displacement
+        is ``C p_old`` without shift, the rigid slip is taken about the moving
+        contact centre, and the normal problem is solved every step for the
+        moved gap; held steady it oscillates with period ``dx/h`` steps. ``"strips"``: Paul–Hashemi (seed Fig. 2,
+        :mod:`wheelrail.transient.strips`): ``strips`` strips along x over the
+        Hertz ellipse with ``elements`` elements each, Hertz pressure, dense
+        operators; constant normal force and exact friction only.
+    strips : int, optional
+        Number of strips (default ``elements``).
 
     Returns
     -------
@@ -234,8 +335,10 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     Raises
     ------
     InputError
-        A step not in (0, 2a), a load function that is not positive, ``|F1| ≥
-        μ F3`` (the wheel would slide), an unknown friction law.
+        A step not in (0, 2a), a load or approach function that is not
+        positive at some step (checked before the run, naming the travel and
+        value), ``|F1| ≥ μ F3`` (the wheel would slide), an unknown friction
+        law or scheme, both ``normal_force`` and ``approach``.
     ConvergenceError
         A step whose frictional problem or force iteration fails.
 
@@ -267,9 +370,17 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                          f"2a = {2 * a!r} m")
     if h > travel:
         raise InputError(f"step = {h!r} m is longer than travel = {travel!r} m")
-    F3 = _as_function("normal_force", float(contact.load) if normal_force is None
-                      else normal_force)
-    F3_const = not callable(normal_force)
+    if normal_force is not None and approach is not None:
+        raise InputError("give normal_force= or approach= (normal control), not both")
+    if approach is not None:
+        F3 = _as_function("approach", approach)
+        normal_name, normal_unit = "approach", "m"
+        F3_const = not callable(approach)
+    else:
+        F3 = _as_function("normal_force", float(contact.load) if normal_force is None
+                          else normal_force)
+        normal_name, normal_unit = "normal_force", "N"
+        F3_const = not callable(normal_force)
     if tangential_force is not None:
         F1 = _as_function("tangential_force", tangential_force)
         if creepage is None:
@@ -285,18 +396,79 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                              f"creepage={creepage!r}")
         cr = tuple(_as_function(n, c) for n, c in zip(("xi", "eta", "phi"), creepage))
 
-    grid, gap = hertz_grid(contact, elements=elements, margin=margin)
-    X, Y = grid.X, grid.Y
-    dA = grid.element_area
-    C = influence_kernel(grid, pair)
-    Ch = shifted_influence_kernel(grid, pair, h)
-    K_now = np.ascontiguousarray(C[:2, :2] / h)
-    conv_now = _BlockConvolution(K_now)
-    conv_old = _BlockConvolution(Ch[:2, :])
-    conv_n = _BlockConvolution(C[:2, 2:3]) if pair.K else None
-
     n = int(math.floor(travel / h + 1e-9)) + 1
     xs = np.arange(n) * h
+    # every load function is checked at every step before the run: a load that turns
+    # negative (or not finite) is named with its travel instead of failing mid-run
+    for name, fun in ((normal_name, F3), ("tangential_force", F1)) + tuple(
+            zip(("xi", "eta", "phi"), cr)):
+        if fun is None:
+            continue
+        vals = np.array([_evaluate(name, fun, float(x)) for x in xs])
+        if name == normal_name and not np.all(vals > 0):
+            k = int(np.argmax(~(vals > 0)))
+            raise InputError(f"{name}(x = {xs[k]!r} m) = {vals[k]!r} {normal_unit} must be > 0 "
+                             f"(the load function goes non-positive along the travel)")
+        if name == normal_name:
+            normal_vals = vals
+        if name == "tangential_force" and approach is None:
+            bad = np.nonzero(~(np.abs(vals) < mu * normal_vals))[0]
+            if bad.size:
+                k = int(bad[0])
+                raise InputError(f"tangential_force(x = {xs[k]!r} m) = {vals[k]!r} N must be "
+                                 f"smaller in magnitude than mu*normal_force = "
+                                 f"{mu * normal_vals[k]!r} N (full sliding)")
+
+    if scheme not in ("averaged", "centre"):
+        raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
+    if discretisation == "strips":
+        if not F3_const or approach is not None:
+            raise InputError("discretisation='strips' (Paul–Hashemi) needs a constant "
+                             "normal_force (the strips follow the Hertz ellipse)")
+        if friction != "exact":
+            raise InputError("discretisation='strips' supports friction='exact' only")
+        if scheme != "averaged":
+            raise InputError("discretisation='strips' uses scheme='averaged'")
+        from .strips import (DenseOperator, hertz_pressure, preconditioner_kernel,
+                             strip_grid, strip_step_operators)
+
+        strips = integer("strips", elements if strips is None else strips, 2)
+        grid = strip_grid(contact, elements, strips)
+        X, Y = grid.X, grid.Y
+        dA = np.array(grid.area)
+        Nw, Ow = strip_step_operators(grid, pair, h, step_weights)
+        nflat = grid.nx * grid.ny
+        K_now = preconditioner_kernel(Nw / h, grid)
+        conv_now = DenseOperator(Nw[:, :2 * nflat] / h, grid.shape)
+        conv_old = DenseOperator(Ow, grid.shape)
+        conv_n = DenseOperator(Nw[:, 2 * nflat:], grid.shape) if pair.K else None
+        strip_pn = hertz_pressure(contact, grid, _evaluate(normal_name, F3, 0.0))
+
+        class _HertzNormal:
+            pressure = strip_pn
+            penetration = float(np.asarray(contact.penetration))
+    elif discretisation in ("uniform", "material"):
+        grid, gap = hertz_grid(contact, elements=elements, margin=margin)
+        X, Y = grid.X, grid.Y
+        dA = grid.element_area
+        if discretisation == "material":
+            # grid fixed to the rail (a window moved in whole elements): the particle
+            # stays on its element, so the carried displacement is C p_old unshifted
+            C = influence_kernel(grid, pair)
+            Ch = C
+        else:
+            C, Ch = step_kernels(grid, pair, h, scheme)
+        K_now = np.ascontiguousarray(C[:2, :2] / h)
+        conv_now = _BlockConvolution(K_now)
+        conv_old = _BlockConvolution(Ch[:2, :])
+        conv_n = _BlockConvolution(C[:2, 2:3]) if pair.K else None
+    else:
+        raise InputError(f"discretisation must be 'uniform', 'strips' or 'material', got "
+                         f"{discretisation!r}")
+    material = discretisation == "material"
+    centre = 0.0  # material grid: contact centre relative to the window centre [m]
+    A_, B_ = float(contact.A), float(contact.B)
+
     hist = {k: np.zeros(n) for k in _SCALARS}
     keep = set(np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int)).tolist())
     keep.add(n - 1)
@@ -306,9 +478,16 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     state_store = np.zeros((len(keep),) + nxy, dtype=np.int8)
 
     def normal(x, initial):
-        F = _evaluate("normal_force", F3, x)
-        if not F > 0:
-            raise InputError(f"normal_force({x!r} m) = {F!r} N must be > 0")
+        F = _evaluate(normal_name, F3, x)
+        if discretisation == "strips":
+            return _HertzNormal
+        if material:
+            gap_c = A_ * (X - centre) ** 2 + B_ * Y ** 2
+            if approach is not None:
+                return solve_normal(grid, gap_c, pair, penetration=F, initial=initial)
+            return solve_normal(grid, gap_c, pair, load=F, initial=initial)
+        if approach is not None:
+            return solve_normal(grid, gap, pair, penetration=F, initial=initial)
         return solve_normal(grid, gap, pair, load=F, initial=initial)
 
     nsol = normal(0.0, None)
@@ -335,9 +514,9 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         else:
             slip = contact_ & (norm >= g * (1 - 1e-9)) & (np.hypot(s[0], s[1]) > 0)
         hist["xi"][k], hist["eta"][k], hist["phi"][k] = xi, eta, phi
-        hist["Fn"][k] = float(pn.sum() * dA)
-        hist["Fx"][k] = float(p[0].sum() * dA)
-        hist["Fy"][k] = float(p[1].sum() * dA)
+        hist["Fn"][k] = float((pn * dA).sum())
+        hist["Fx"][k] = float((p[0] * dA).sum())
+        hist["Fy"][k] = float((p[1] * dA).sum())
         hist["p_max"][k] = float(pn.max())
         hist["approach"][k] = float(nsol.penetration)
         hist["n_contact"][k] = int(contact_.sum())
@@ -352,6 +531,11 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
            _evaluate("eta", cr[1], 0.0), _evaluate("phi", cr[2], 0.0))
 
     xi_prev, slope = 0.0, None
+    fixed = None  # (loads, tractions, xi, slip) of a step that reproduced its input
+    skipped = 0
+    # the averaged scheme couples each element strongly to its upstream neighbour:
+    # precondition with that coupling (the line solve of newton_step)
+    upwind = scheme == "averaged"
     bar = None
     if progress:
         from rich.progress import Progress
@@ -361,17 +545,39 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     try:
         for k in range(1, n):
             x = xs[k]
-            if not F3_const:
+            if material:
+                # the contact moves by h over the rail-fixed elements; the window follows
+                # in whole elements (tractions and pressure move back by one index)
+                centre += h
+                while centre >= 0.5 * grid.dx * (1 - 1e-12):
+                    p = np.concatenate((p[:, 1:], np.zeros((2, 1, grid.ny))), axis=1)
+                    pn = np.concatenate((pn[1:], np.zeros((1, grid.ny))), axis=0)
+                    centre -= grid.dx
+            if not F3_const or material:
                 nsol = normal(x, pn)
             pn_new = np.array(nsol.pressure)
             g = mu * pn_new
             eta, phi = _evaluate("eta", cr[1], x), _evaluate("phi", cr[2], x)
+            control = (_evaluate("xi", cr[0], x) if F1 is None
+                       else _evaluate("tangential_force", F1, x))
+            key = (eta, phi, control)
+            if (fixed is not None and not material and fixed[0] == key and np.array_equal(fixed[1], p)
+                    and np.array_equal(pn, pn_new)):
+                # the previous step reproduced its input exactly under the same loads: the
+                # run has reached its steady fixed point and every such step repeats it
+                xi = fixed[2]
+                record(k, x, pn_new, p, fixed[3], nsol, xi, eta, phi)
+                skipped += 1
+                if bar is not None:
+                    bar.advance(task)
+                continue
+            p_in = p
             carried = conv_old(np.concatenate((p, pn[None])))
             base = -carried / h
             if conv_n is not None:
                 base = base + conv_n(pn_new[None]) / h
             base[0] -= phi * Y
-            base[1] += eta + phi * X
+            base[1] += eta + phi * (X - centre)
 
             def solve(xi, p0):
                 nonlocal total_newton, total_krylov, total_solves
@@ -389,7 +595,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                     total_solves += 1
                     return pp, ss
                 pp, ss, its, res, kry = newton_step(K_now, b, g, conv=conv_now, initial=p0,
-                                                    tol=tol, maxiter=maxiter, upwind=False)
+                                                    tol=tol, maxiter=maxiter, upwind=upwind)
                 total_newton += its
                 total_krylov += kry
                 total_solves += 1
@@ -400,17 +606,18 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                 return pp, ss
 
             if F1 is None:
-                xi = _evaluate("xi", cr[0], x)
+                xi = control
                 p_new, s_new = solve(xi, p)
             else:
-                target = _evaluate("tangential_force", F1, x)
-                Fn_k = float(pn_new.sum() * dA)
+                target = control
+                Fn_k = float((pn_new * dA).sum())
                 if not abs(target) < mu * Fn_k:
                     raise InputError(f"tangential_force({x!r} m) = {target!r} N must be smaller "
                                      f"in magnitude than mu*Fn = {mu * Fn_k!r} N (full sliding)")
                 xi, p_new, s_new, slope = _xi_for_force(solve, target, xi_prev, slope, p, dA,
                                                         force_tol * mu * Fn_k, k, x)
                 xi_prev = xi
+            fixed = (key, p_in, xi, s_new) if np.array_equal(p_new, p_in) else None
             p, pn = p_new, pn_new
             record(k, x, pn, p, s_new, nsol, xi, eta, phi)
             if bar is not None:
@@ -426,9 +633,10 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     frame_x.setflags(write=False)
     xs.setflags(write=False)
     info = {"step": h, "mu": mu, "elements": elements, "nx": grid.nx, "ny": grid.ny,
-            "dx": grid.dx, "dy": grid.dy, "a": a, "b": float(contact.b), "friction": friction,
+            "dx": float(np.max(grid.dx)), "dy": grid.dy, "discretisation": discretisation, "a": a, "b": float(contact.b), "friction": friction,
             "epsilon": float(epsilon) if epsilon is not None else float("nan"),
             "newton": total_newton, "krylov": total_krylov, "solves": total_solves,
+            "steady_steps": skipped,
             "control": "force" if F1 is not None else "creepage"}
     return TransientResult(x=xs, history=hist, grid=grid, frame_x=frame_x, px=store["px"],
                            py=store["py"], pn=store["pn"], state=state_store, info=info)
@@ -438,7 +646,7 @@ def _xi_for_force(solve, target, xi0, slope, p0, dA, ftol, k, x, maxit=50):
     """ξ with ``Fx(ξ) = target``: secant steps kept inside a bracket (Illinois)."""
     def F(xi, p_init):
         pp, ss = solve(xi, p_init)
-        return float(pp[0].sum() * dA) - target, pp, ss
+        return float((pp[0] * dA).sum()) - target, pp, ss
 
     fa, pa, sa = F(xi0, p0)
     if abs(fa) <= ftol:
