@@ -348,6 +348,13 @@ def load_case(path_or_str):
     >>> case.mu, case.tangential
     (0.3, 'linear')
     """
+    data, source = _read_toml(path_or_str)
+    return case_from_dict(data, source=source)
+
+
+
+def _read_toml(path_or_str):
+    """``(data, source)`` of a case given as a path or as TOML text; CaseFileError if unreadable."""
     if isinstance(path_or_str, str) and ("\n" in path_or_str or "=" in path_or_str):
         text, source = path_or_str, "<string>"
     else:
@@ -363,8 +370,7 @@ def load_case(path_or_str):
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseFileError(f"{source}: malformed TOML: {exc}") from None
-    return case_from_dict(data, source=source)
-
+    return data, source
 
 def case_from_dict(data: Mapping, source: str = "<dict>"):
     """Validate a parsed case (the dictionary ``tomllib`` returns).
@@ -1176,21 +1182,7 @@ def load_transient_case(path_or_str) -> TransientCase:
     CaseFileError
         Naming the file, table, key and bad value.
     """
-    if isinstance(path_or_str, str) and ("\n" in path_or_str or "=" in path_or_str):
-        text, source = path_or_str, "<string>"
-    else:
-        path = Path(path_or_str)
-        source = str(path)
-        try:
-            text = path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            raise CaseFileError(f"{source}: case file not found") from None
-        except (OSError, UnicodeDecodeError) as exc:
-            raise CaseFileError(f"{source}: cannot read case file: {exc}") from None
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseFileError(f"{source}: malformed TOML: {exc}") from None
+    data, source = _read_toml(path_or_str)
     r = _Reader(source)
     r.unknown("", data, _TRANSIENT_TABLES)
     for name in _TRANSIENT_TABLES:
