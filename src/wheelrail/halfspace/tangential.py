@@ -63,7 +63,7 @@ nearest-neighbour coupling along the rolling direction (self + upstream
 element): for rolling this inverts the backward difference, i.e. a running
 sum from the leading edge. The preconditioner is local across the rolling
 direction, so the Krylov iterations still grow with the grid (about as
-N^0.6: 55, 101, 138 for 40, 104, 160 elements across a Hertzian contact,
+N^0.6: 59, 116, 141 for 40, 104, 160 elements across a Hertzian contact,
 small creepage; about 10 per decade of the residual at 104). After each step
 elements whose traction exceeds the bound move to the slip area, slip
 elements whose slip points along their traction move back to adhesion.
@@ -88,6 +88,42 @@ per sweep (numba), kept as an independent check of the Newton solver. For
 steady rolling the element-wise Gauss–Seidel iteration diverges on fine grids
 (the inverse of the backward difference amplifies the lagged downstream
 influence), which is why the default is the preconditioned Newton method.
+
+Preconditioners tried and not adopted
+-------------------------------------
+Measured on the Hertzian benchmark contact (``benchmarks/``; N elements
+across, small creepage ξ = 2e-4 unless said otherwise; Krylov iterations of
+the whole solve):
+
+* (measured in an earlier revision) an FFT-diagonal inverse of the
+  influence operator (its symbol on the periodic grid): the discrete
+  kernel's transform is indefinite; the analytic symbol helped
+  adhesion-dominated cases (101 → 48 iterations) but slowed slip-heavy ones
+  and doubled the FFTs per iteration; Gauss–Seidel with the lateral
+  neighbours in the local solve diverges; an adaptive GMRES tolerance gave
+  no gain;
+* a two-level preconditioner (``benchmarks/bench_exact_preconditioner.py``
+  reproduces these numbers): the ``a × a`` aggregates lying entirely in
+  adhesion carry a constant traction change, the coarse operator is the
+  exact Galerkin product of the rolling kernel (the kernel summed over the
+  element pairs of two aggregates), dense and LU-factored per Newton step.
+  Combined *multiplicatively* with the line solve (coarse correction, then
+  the line solve on the remaining residual; one extra FFT product per Krylov
+  iteration) and 4 × 4 aggregates, the iterations become nearly independent
+  of the grid for small creepage: 44, 49, 54 at N = 40, 104, 160 (line
+  solve alone: 59, 116, 141), but the slip-heavy cases gain little (combined
+  creepage 35, 51, 59 against 37, 59, 73; spin 35, 51, 67 against 36, 56,
+  78), every iteration costs two products, and the dense coarse system
+  (2400 unknowns at N = 160 in the first, all-adhesion Newton step) costs
+  more than the whole solve: 2.1 s against 0.26 s at N = 160, 0.24 s
+  against 0.085 s at N = 104 (CPU, one thread, load 3.5). With 8 × 8
+  aggregates the coarse solve is cheap but the iterations are 56, 77, 85 at
+  twice the cost each (0.35 s against 0.26 s at N = 160). *Additive*
+  combination (64, 121, 146) and replacing the extra product by the
+  aggregate mean of the residual (58, 80, 91) do not help enough. A
+  coarse-grid method would pay off only with a cheap (recursive, FFT-based)
+  coarse solve *and* a smoother that does not need the extra product; not
+  done.
 
 References
 ----------
@@ -701,7 +737,7 @@ def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
 
 
 def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
-            gmres_maxiter=400, krylov_conv=None):
+            gmres_maxiter=400, krylov_conv=None, precondition=None):
     """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
 
     Unknowns are the tractions of the adhesion elements (H) and the traction
@@ -711,6 +747,14 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     GMRES with FFT matrix–vector products, right-preconditioned by
     :func:`_precondition`. After each step elements with ``|p| > g`` move to S
     and slip elements whose slip points along their traction move to H.
+
+    ``precondition`` (private, for experiments such as
+    ``benchmarks/bench_exact_preconditioner.py``): a factory
+    ``(kind, pos, pinv, matvec, n) -> callable`` called once per Newton step
+    with the element states (0 out of contact, 1 adhesion, 2 slip), the
+    positions of their unknowns, the line preconditioner, the Krylov product
+    and the number of unknowns; the callable replaces ``pinv`` as the right
+    preconditioner. Default: the line preconditioner.
 
     Returns ``p, s, newton_iterations, residual, gmres_iterations``; the
     residual is the largest equation residual divided by the slip scale
@@ -738,7 +782,8 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
             g_scaled = np.minimum(g / s_scale, 1e300)
         p, s, it, res, kry = _newton(kernel, conv, b / s_scale, g_scaled,
                                      None if p0 is None else np.asarray(p0) / s_scale, tol,
-                                     maxiter, upwind, gmres_rtol, gmres_maxiter, krylov_conv)
+                                     maxiter, upwind, gmres_rtol, gmres_maxiter, krylov_conv,
+                                     precondition)
         return p * s_scale, s * s_scale, it, res, kry
     total_krylov = 0
     res = np.inf
@@ -809,9 +854,11 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
             _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy)
             return z
 
-        y, count = _gmres(lambda w: matvec(pinv(w)), -F, gmres_rtol, gmres_maxiter)
+        prec = pinv if precondition is None else precondition(kind, pos, pinv, matvec,
+                                                                  n_unknowns)
+        y, count = _gmres(lambda w: matvec(prec(w)), -F, gmres_rtol, gmres_maxiter)
         total_krylov += count
-        dz = pinv(y)
+        dz = prec(y)
         # --- update
         p[0, hi, hj] += dz[ph]
         p[1, hi, hj] += dz[ph + 1]
