@@ -394,7 +394,7 @@ def caf_contacts(table, t_y, load, materials):
         Lateral shift of the wheelset [m], inside the table's range.
     load : float
         Vertical load Q of the wheel [N], > 0.
-    materials : MaterialPair
+    materials : Material or MaterialPair
 
     Returns
     -------
@@ -403,7 +403,9 @@ def caf_contacts(table, t_y, load, materials):
         contact (one, or two inside an overlap; Σ w_i = 1); the normal loads
         are N_i = w_i N with N = Q / Σ w_i cos γ_i.
     """
-    E_star = float(materials.E_star)
+    from ..materials import as_material_pair
+
+    E_star = float(as_material_pair(materials).E_star)
     t_y = float(t_y)
     b = table.branch_of(t_y)
     best = None
