@@ -151,56 +151,63 @@ def spline_not_a_knot(x, Y, t):
     k = Y.shape[0]
     m = t.shape[0]
     dx = np.empty(n - 1)
+    idx = np.empty(n - 1)                # 1/dx: multiplications instead of divisions
     for i in range(n - 1):
         dx[i] = x[i + 1] - x[i]
-    # matrix rows: sub[i] s[i-1] + dia[i] s[i] + sup[i] s[i+1] = rhs[i]
-    sub = np.zeros(n)
-    dia = np.empty(n)
+        idx[i] = 1.0 / dx[i]
+    # matrix rows: sub[i] s[i-1] + dia[i] s[i] + sup[i] s[i+1] = rhs[i]; the forward
+    # elimination factors w, c (and 1/c) are shared by all rows of Y
     sup = np.zeros(n)
-    dia[0] = dx[1]
-    sup[0] = x[2] - x[0]
-    for i in range(1, n - 1):
-        sub[i] = dx[i]
-        dia[i] = 2.0 * (dx[i - 1] + dx[i])
-        sup[i] = dx[i - 1]
-    sub[n - 1] = x[n - 1] - x[n - 3]
-    dia[n - 1] = dx[n - 3]
-    # forward elimination factors (shared by all rows of Y)
     c = np.empty(n)
     w = np.empty(n)
-    c[0] = dia[0]
+    ic = np.empty(n)
+    c[0] = dx[1]
+    sup[0] = x[2] - x[0]
+    for i in range(1, n - 1):
+        sup[i] = dx[i - 1]
+    ic[0] = 1.0 / c[0]
     for i in range(1, n):
-        w[i] = sub[i] / c[i - 1]
-        c[i] = dia[i] - w[i] * sup[i - 1]
+        if i < n - 1:
+            sub = dx[i]
+            dia = 2.0 * (dx[i - 1] + dx[i])
+        else:
+            sub = x[n - 1] - x[n - 3]
+            dia = dx[n - 3]
+        w[i] = sub * ic[i - 1]
+        c[i] = dia - w[i] * sup[i - 1]
+        ic[i] = 1.0 / c[i]
+    jj = np.empty(m, np.int64)           # interval of each evaluation point (all rows)
+    j = 0
+    for q in range(m):
+        while j < n - 2 and t[q] > x[j + 1]:
+            j += 1
+        jj[q] = j
     out = np.empty((k, m))
     slope = np.empty(n - 1)
     rhs = np.empty(n)
     s = np.empty(n)
+    d0 = x[2] - x[0]
+    d1 = x[n - 1] - x[n - 3]
     for r in range(k):
         for i in range(n - 1):
-            slope[i] = (Y[r, i + 1] - Y[r, i]) / dx[i]
-        d0 = x[2] - x[0]
+            slope[i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
         rhs[0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[0] + dx[0] * dx[0] * slope[1]) / d0
         for i in range(1, n - 1):
             rhs[i] = 3.0 * (dx[i] * slope[i - 1] + dx[i - 1] * slope[i])
-        d1 = x[n - 1] - x[n - 3]
         rhs[n - 1] = ((dx[n - 2] * dx[n - 2] * slope[n - 3]
                        + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[n - 2]) / d1)
         for i in range(1, n):
             rhs[i] -= w[i] * rhs[i - 1]
-        s[n - 1] = rhs[n - 1] / c[n - 1]
+        s[n - 1] = rhs[n - 1] * ic[n - 1]
         for i in range(n - 2, -1, -1):
-            s[i] = (rhs[i] - sup[i] * s[i + 1]) / c[i]
-        j = 0
+            s[i] = (rhs[i] - sup[i] * s[i + 1]) * ic[i]
         for q in range(m):
-            tq = t[q]
-            while j < n - 2 and tq > x[j + 1]:
-                j += 1
-            h = dx[j]
-            tt = (s[j] + s[j + 1] - 2.0 * slope[j]) / h
-            c0 = tt / h
-            c1 = (slope[j] - s[j]) / h - tt
-            u = tq - x[j]
+            j = jj[q]
+            ih = idx[j]
+            tt = (s[j] + s[j + 1] - 2.0 * slope[j]) * ih
+            c0 = tt * ih
+            c1 = (slope[j] - s[j]) * ih - tt
+            u = t[q] - x[j]
             out[r, q] = ((c0 * u + c1) * u + s[j]) * u + Y[r, j]
     return out
 
