@@ -23,10 +23,11 @@ with zero roll and yaw; the rigid contact point is the candidate point of
 smallest separation, :func:`~wheelrail.geometry.contact_search.find_points`).
 All lengths in m, angles in rad, radii in m.
 
-The runtime multi-Hertz variant ``"ayasse"`` (:mod:`wheelrail.normal.multi_hertz`)
-solves one pose from its own candidate points; these tables are the
-precomputed form of the same information for a dynamics code, with the
-checks of the seed's relations in ``tests/reference/test_nonhertz_caf.py``.
+The multi-Hertz variant ``"ayasse"`` (:mod:`wheelrail.normal.multi_hertz`)
+reads these tables on the wheel–rail path: :func:`cached_caf_table` builds
+one per wheelset/track pair and side, :func:`caf_contacts` gives the
+contacts and their load shares at a lateral shift (eq. 3 overlaps). The
+checks of the seed's relations are in ``tests/reference/test_nonhertz_caf.py``.
 
 References
 ----------
