@@ -152,6 +152,23 @@ def test_solve_ayasse_table_against_direct(pair):
     assert dev["b"].max() < 0.12 and np.median(dev["b"]) < 0.03
 
 
+def test_roll_shifts_the_profiles(pair):
+    """With the rigid roll θ (flange contact, θ ≈ 9–11 mrad) the profiles' relative
+    translation is y + r0 sin θ (seed 003 §2.3.1: a translation, the rotation neglected):
+    the table's contact angle then matches the direct form's within 0.01 rad, while the
+    wheelset shift alone would give γ ≈ 1.22 instead of 0.95 at y = 8 mm."""
+    ws, tr = pair
+    for y in (0.008, 0.010):
+        wp = wr.WheelRailPosition(ws, tr, y, vertical_load=70e3)
+        rt = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                      vertical="normal")
+        rd = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                      caf="direct", vertical="normal")
+        (p,), (q,) = rt.side("right"), rd.side("right")
+        assert abs(p.contact_angle - q.contact_angle) < 0.01
+        assert p.Fn == pytest.approx(q.Fn, rel=0.01)
+
+
 def test_overlap_shares_follow_eq3(pair, table):
     """Across a jump the load moves linearly from contact 1 to contact 2 over
     [t_ylim − Δt_y2, t_ylim + Δt_y1], the widths of eq. (3) with δ_i the Hertz approach
@@ -193,11 +210,12 @@ def test_solve_table_carries_load_and_is_cached(pair):
         assert len(ps) == 2                 # inside the tread jump's overlap
         Fz = sum(p.Fn * np.cos(p.patch.frame.contact_angle) for p in ps)
         assert Fz == pytest.approx(70e3, rel=1e-9)
-    t1 = cached_caf_table(ws, tr, "right", (-0.01, 0.01), tolerance=2e-4)
-    assert cached_caf_table(ws, tr, "right", (-0.01, 0.01), tolerance=2e-4) is t1
-    with pytest.raises(InputError, match="0.012"):
-        wr.solve(wr.WheelRailPosition(ws, tr, 0.012, vertical_load=70e3), motion=MOTION,
-                 mu=0.3, normal="multi-hertz", variant="ayasse")
+    t1 = cached_caf_table(ws, tr, "right", (-0.02, 0.02), tolerance=2e-4)
+    assert cached_caf_table(ws, tr, "right", (-0.02, 0.02), tolerance=2e-4) is t1
+    with pytest.raises(InputError, match="outside the CAF table range"):
+        wr.solve(wr.WheelRailPosition(ws, tr, 0.006, roll=0.0, vertical_load=70e3),
+                 motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                 caf_range=(-0.005, 0.005))
     with pytest.raises(InputError, match="'tables'"):
         wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
                  caf="tables")

@@ -125,7 +125,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
     caf : {"table", "direct"}, default "table"
         Variant ``"ayasse"`` on a wheel: precomputed CAF tables or the
         candidate points of the pose.
-    caf_range : (float, float), default (-0.01, 0.01)
+    caf_range : (float, float), default (-0.02, 0.02)
         Lateral shifts covered by the CAF tables [m].
     caf_tolerance : float, default 2e-4
         Largest deviation of the CAF lines from the sampled contact angle [rad].
@@ -142,7 +142,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         "roue-rail, Rapport INRETS 225, 2000.",
     )
     options = {"variant": "pascal", "max_ellipses": 7, "strips": 40, "cells": 40,
-               "caf": "table", "caf_range": (-0.01, 0.01), "caf_tolerance": 2e-4}
+               "caf": "table", "caf_range": (-0.02, 0.02), "caf_tolerance": 2e-4}
 
     @staticmethod
     def _variant(opts):
@@ -319,15 +319,20 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
                              "overlap depends on it); got a prescribed approach")
-        rng = opts.get("caf_range", (-0.01, 0.01))
+        rng = opts.get("caf_range", (-0.02, 0.02))
         try:
             lo, hi = (float(v) for v in rng)
         except (TypeError, ValueError):
             raise InputError(f"caf_range must be (start, stop) in m, got {rng!r}") from None
-        ty = float(problem.pose["y"])
+        # the relative lateral translation of the profiles at rail level: the wheelset's
+        # shift plus the lateral displacement r0 sin θ of the wheel's running surface by the
+        # roll θ (the rotation of the profile itself is neglected, seed 003 §2.3.1)
+        ty = float(problem.pose["y"]) + float(problem.wheelset.nominal_radius) * math.sin(
+            float(problem.pose["roll"]))
         if not lo <= ty <= hi:
-            raise InputError(f"y = {ty!r} m lies outside the CAF table range caf_range = "
-                             f"{rng!r} m; widen caf_range or use caf='direct'")
+            raise InputError(f"y = {ty!r} m (lateral shift of the profiles, roll included) "
+                             f"lies outside the CAF table range caf_range = {rng!r} m; widen "
+                             "caf_range or use caf='direct'")
         table = cached_caf_table(problem.wheelset, problem.track, problem.side, (lo, hi),
                                  tolerance=float(opts.get("caf_tolerance", 2e-4)))
         pair = as_material_pair(problem.materials)
