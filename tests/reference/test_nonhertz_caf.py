@@ -116,7 +116,7 @@ def test_left_table_mirrors_the_right(pair, table):
     rl, rr = left.wheel_radius(-y), table.wheel_radius(y)
     fin = np.abs(rr) < 2.5
     # the simplified lines of the two tables differ (Douglas–Peucker runs from the other end):
-    # 5 %; the wrong sign of the slope relation gives R_w = −5 mm instead of −26 mm at 5.7 mm
+    # 5 %; the wrong sign of the slope relation gave R_w = −5.2 mm instead of −20.9 mm at −6 mm
     np.testing.assert_allclose(rl[fin], rr[fin], rtol=0.05)
 
 

@@ -311,6 +311,25 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             raise InputError(f"caf must be 'table' or 'direct', got {caf!r}")
         return opts.get("variant", "pascal") == "ayasse" and caf == "table"
 
+    @staticmethod
+    def _lead(problem, wheel_y):
+        """Longitudinal offset [m] of the wheel point ``wheel_y`` on the contact locus at the
+        pose (yaw, roll) of ``problem`` (:func:`~wheelrail.geometry.contact_search.silhouette`):
+        under yaw a contact point on a sloped part of the wheel lies ahead of or behind the
+        wheel centre, which changes its creepages; 0 without yaw."""
+        pose = problem.pose
+        if pose["yaw"] == 0.0:
+            return 0.0
+        from ..geometry.contact_search import _SIGMA, silhouette
+
+        ws = problem.wheelset
+        s = np.array([float(wheel_y)])
+        p, p1 = ws.curve(problem.side).eval(s, 1)
+        x, _, _, _ = silhouette(s, p, p1, ws.nominal_radius, ws.e_tape, _SIGMA[problem.side],
+                                np.float64(pose["y"]), np.float64(ws.nominal_radius + pose["z"]),
+                                np.float64(pose["roll"]), np.float64(pose["yaw"]))
+        return float(x[0])
+
     def _ayasse_table(self, problem, opts):
         from ..contact.patch import ContactFrame, ContactPatch
         from ..materials import as_material_pair
@@ -350,7 +369,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                                  "represent this contact")
             hc = _hertz_fast(w * N, A, B, pair)
             frame = ContactFrame(problem.side, ln["wheel_y"], ln["rail_y"], ln["track_y"],
-                                 ln["track_z"], 0.0, ln["gamma"], ln["rolling_radius"])
+                                 ln["track_z"], self._lead(problem, ln["wheel_y"]), ln["gamma"],
+                                 ln["rolling_radius"])
             p = ContactPatch.from_hertz(hc, strips=int(opts.get("strips", 40)),
                                         cells=int(opts.get("cells", 40)), frame=frame,
                                         method=self.name)
