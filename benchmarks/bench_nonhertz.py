@@ -12,6 +12,8 @@
 4. Timings: Kik–Piotrowski + FASTSIM and STRIPES + FASTSIM per wheel–rail
    contact (normal + tangential of one wheel, profile separation cached /
    not cached); a 201-position sweep with Kik–Piotrowski.
+5. Ayasse's CAF method (``--parts 5``): the table build (both sides) and a
+   201-position sweep with the tables against the direct form, interleaved.
 
 Relative errors: Fn, area, p_max |q − q_ref|/q_ref; Fx, Fs |ΔF|/(μ Fn_ref);
 Mz |ΔMz|/(μ Fn_ref √(area_ref/π)).
@@ -254,6 +256,41 @@ def timings(clock=time.perf_counter, record=None):
             record[f"sweep {normal}"] = t
 
 
+def caf_timings(clock=time.perf_counter, rounds=2):
+    """Ayasse's CAF method: table build once per profile pair, then a 201-position
+    sweep with the tables against the direct (per-pose candidate points) form."""
+    from wheelrail.normal import caf
+
+    ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
+    motion = wr.Motion(speed=20.0, omega=20.0 / 0.46)
+    kind = "CPU time" if clock is time.process_time else "wall time"
+    say(f"\n## 5. Ayasse CAF tables (S1002/60E1 1:40, 70 kN per wheel, yaw 2 mrad; {kind})\n")
+    caf._CACHE.clear()
+    t0 = clock()
+    for side in ("left", "right"):
+        t = caf.cached_caf_table(ws, tr, side, (-0.02, 0.02), tolerance=2e-4)
+    tb = clock() - t0
+    say(f"table build, both sides (t_y = −20 … 20 mm, {t.samples} samples, "
+        f"{t.y.size} breakpoints right): {tb:.2f} s (load {os.getloadavg()[0]:.1f})\n")
+    say("| round | caf | load | 201-position sweep (s) | ms per position |")
+    say("|---|---|---|---|---|")
+    y = np.linspace(-0.01, 0.01, 201)
+    for mode in ("table", "direct"):            # warm-up (imports, numba caches)
+        wr.wheelset_sweep(ws, tr, y[::40], yaw=0.002, vertical_load=70e3, motion=motion,
+                          mu=0.3, normal="multi-hertz", progress=False, variant="ayasse",
+                          caf=mode)
+    for r in range(rounds):
+        for mode in ("table", "direct"):
+            load = os.getloadavg()[0]
+            t0 = clock()
+            wr.wheelset_sweep(ws, tr, y, yaw=0.002, vertical_load=70e3, motion=motion, mu=0.3,
+                              normal="multi-hertz", tangential="fastsim", progress=False,
+                              variant="ayasse", caf=mode)
+            t = clock() - t0
+            say(f"| {r} | {mode} | {load:.1f} | {t:.2f} | {t / 201 * 1e3:.1f} |")
+
+
 def pairs(base_src, rounds):
     """Interleaved before/after timings: this tree and ``base_src`` (a checkout's src/)
     alternately in fresh processes, CPU time, with the load beside each run."""
@@ -322,6 +359,9 @@ def main(argv=None):
         timings(time.process_time if args.clock == "cpu" else time.perf_counter)
     if args.pairs:
         pairs(args.pairs, args.rounds)
+    if 5 in parts:
+        caf_timings(time.process_time if args.clock == "cpu" else time.perf_counter,
+                    args.rounds)
     if 2 in parts:
         s1002_sweep(np.arange(-10.0, 10.0 + 1e-9, args.step) * 1e-3)
     if 3 in parts:

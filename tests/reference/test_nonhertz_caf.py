@@ -100,3 +100,137 @@ def test_bad_input_named(pair):
         caf_table(*pair, "right", (-0.01, 0.01), step=0.0)
     with pytest.raises(InputError, match="range"):
         caf_table(*pair, "right", (0.01, -0.01))
+
+
+# --------------------------------------------------------------------------- wr.solve with the tables
+MOTION = wr.Motion(speed=10.0, omega=10.0 / 0.46 * 1.001)
+
+
+def test_left_table_mirrors_the_right(pair, table):
+    """Mirror symmetry of the track: the left wheel at −t_y is the right one at t_y; the
+    wheel radius from the CAF slope (sign reversed for the left wheel) agrees."""
+    left = caf_table(*pair, "left", (-0.01, 0.01), tolerance=2e-4)
+    np.testing.assert_allclose(np.sort(-left.jumps), np.sort(table.jumps), atol=1e-12)
+    y = np.array([-0.008, -0.003, 0.002, 0.0045, 0.0057, 0.009])
+    np.testing.assert_allclose(left.contact_angle(-y)[0], table.contact_angle(y)[0], atol=2e-4)
+    rl, rr = left.wheel_radius(-y), table.wheel_radius(y)
+    fin = np.abs(rr) < 2.5
+    # the simplified lines of the two tables differ (Douglas–Peucker runs from the other end):
+    # 5 %; the wrong sign of the slope relation gave R_w = −5.2 mm instead of −20.9 mm at −6 mm
+    np.testing.assert_allclose(rl[fin], rr[fin], rtol=0.05)
+
+
+def test_solve_ayasse_table_against_direct(pair):
+    """``variant="ayasse"`` from the tables against the per-pose (direct) form, S1002/60E1,
+    70 kN, roll 0 (the tables neglect roll, seed 003 §2.3.1), shifts −9.5…9.5 mm outside the
+    jump overlaps. Tolerances: the table's lines are within 2e-4 rad of the sampled γ (so the
+    contact angle within 3e-4 rad); the wheel radius of a line is its mean over the line
+    (CAF slope), the direct one the point curvature regularised over the patch, so b (from
+    B) differs up to 12 % (median < 3 %), a (from A = cos γ/2r) < 4 %."""
+    ws, tr = pair
+    dev = {"Fn": [], "g": [], "a": [], "b": []}
+    for y in np.arange(-0.0095, 0.0096, 0.001):
+        if abs(y) < 0.001:          # inside the tread jump's overlap (two contacts by design)
+            continue
+        wp = wr.WheelRailPosition(ws, tr, y, roll=0.0, vertical_load=70e3)
+        rt = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                      vertical="normal")
+        rd = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                      caf="direct", vertical="normal")
+        for s in ("left", "right"):
+            (p,), (q,) = rt.side(s), rd.side(s)
+            assert p.patch.info["caf"] == "table"
+            dev["Fn"].append(p.Fn / q.Fn - 1)
+            dev["g"].append(p.contact_angle - q.contact_angle)
+            dev["a"].append(p.patch.hertz.a / q.patch.hertz.a - 1)
+            dev["b"].append(p.patch.hertz.b / q.patch.hertz.b - 1)
+    dev = {k: np.abs(v) for k, v in dev.items()}
+    assert dev["Fn"].size == 36
+    assert dev["Fn"].max() < 1e-3
+    assert dev["g"].max() < 3e-4
+    assert dev["a"].max() < 0.04
+    assert dev["b"].max() < 0.12 and np.median(dev["b"]) < 0.03
+
+
+def test_roll_shifts_the_profiles(pair):
+    """With the rigid roll θ (flange contact, θ ≈ 9–11 mrad) the profiles' relative
+    translation is y + r0 sin θ (seed 003 §2.3.1: a translation, the rotation neglected):
+    the table's contact angle then matches the direct form's within 0.01 rad, while the
+    wheelset shift alone would give γ ≈ 1.22 instead of 0.95 at y = 8 mm."""
+    ws, tr = pair
+    for y in (0.008, 0.010):
+        wp = wr.WheelRailPosition(ws, tr, y, vertical_load=70e3)
+        rt = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                      vertical="normal")
+        rd = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                      caf="direct", vertical="normal")
+        (p,), (q,) = rt.side("right"), rd.side("right")
+        assert abs(p.contact_angle - q.contact_angle) < 0.01
+        assert p.Fn == pytest.approx(q.Fn, rel=0.01)
+
+
+def test_overlap_shares_follow_eq3(pair, table):
+    """Across a jump the load moves linearly from contact 1 to contact 2 over
+    [t_ylim − Δt_y2, t_ylim + Δt_y1], the widths of eq. (3) with δ_i the Hertz approach
+    (wr.hertz, independent) of contact i under the whole wheel load at the jump limit."""
+    from wheelrail.normal.caf import caf_contacts
+
+    Q = 70e3
+    for k in range(table.jumps.size):
+        t = float(table.jumps[k])
+        d = []
+        for ln in (table.line(t, k), table.line(t, k + 1)):
+            d.append(float(wr.hertz(Q / np.cos(ln["gamma"]), ln["A"], ln["B"],
+                                    wr.STEEL).penetration))
+        dt1, dt2 = table.overlaps(k, d[0], d[1])
+        lo, hi = t - dt2, t + dt1
+        ys = np.linspace(lo, hi, 9)[1:-1]
+        w2 = []
+        for y in ys:
+            c = caf_contacts(table, y, Q, wr.STEEL)
+            assert [br for _, _, br in c] == [k, k + 1]
+            assert sum(w for w, _, _ in c) == pytest.approx(1.0)
+            w2.append(c[1][0])
+        np.testing.assert_allclose(w2, (ys - lo) / (hi - lo), rtol=1e-6)
+        # just outside the overlap: one contact, on the branch of the rigid contact point
+        for y, br in ((lo - 1e-6, k), (hi + 1e-6, k + 1)):
+            (c,) = caf_contacts(table, y, Q, wr.STEEL)
+            assert c[0] == 1.0 and c[2] == br
+
+
+def test_solve_table_carries_load_and_is_cached(pair):
+    from wheelrail.normal.caf import cached_caf_table
+
+    ws, tr = pair
+    wp = wr.WheelRailPosition(ws, tr, 0.0002, vertical_load=70e3)
+    r = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                 vertical="normal")
+    for s in ("left", "right"):
+        ps = r.side(s)
+        assert len(ps) == 2                 # inside the tread jump's overlap
+        Fz = sum(p.Fn * np.cos(p.patch.frame.contact_angle) for p in ps)
+        assert Fz == pytest.approx(70e3, rel=1e-9)
+    t1 = cached_caf_table(ws, tr, "right", (-0.02, 0.02), tolerance=2e-4)
+    assert cached_caf_table(ws, tr, "right", (-0.02, 0.02), tolerance=2e-4) is t1
+    with pytest.raises(InputError, match="outside the CAF table range"):
+        wr.solve(wr.WheelRailPosition(ws, tr, 0.006, roll=0.0, vertical_load=70e3),
+                 motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                 caf_range=(-0.005, 0.005))
+    with pytest.raises(InputError, match="'tables'"):
+        wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                 caf="tables")
+
+
+def test_sweep_with_tables_equals_solve(pair):
+    """The sweep's fast path (no candidate-point search for the CAF tables) gives what
+    wr.solve gives per position."""
+    ws, tr = pair
+    y = np.array([-0.006, 0.0003, 0.0052])
+    ds = wr.wheelset_sweep(ws, tr, y, yaw=0.002, vertical_load=70e3, motion=MOTION, mu=0.3,
+                           normal="multi-hertz", variant="ayasse")
+    for i, yi in enumerate(y):
+        r = wr.solve(wr.WheelRailPosition(ws, tr, yi, yaw=0.002, vertical_load=70e3),
+                     motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse")
+        for s in ("left", "right"):
+            assert float(ds["Fy_track"].sel(side=s)[i]) == pytest.approx(r.force_track[s][1],
+                                                                  rel=1e-9, abs=1e-6)

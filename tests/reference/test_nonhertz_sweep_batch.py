@@ -118,17 +118,18 @@ def test_fast_separation_equals_separation_at(s1002):
     np.testing.assert_allclose(spline_not_a_knot(x, Y, t), CubicSpline(x, Y.T)(t).T,
                                rtol=1e-11, atol=1e-11)
     ws, tr = s1002
-    for y in (0.0, 0.005):
-        wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=70e3)
+    for y, yaw, side in ((0.0, 0.002, "right"), (0.005, 0.002, "right"),
+                         (0.005, 0.0, "right"), (-0.006, -0.003, "left")):
+        wp = wr.WheelRailPosition(ws, tr, y, yaw=yaw, vertical_load=70e3)
         roll, zs = touching_poses(wp)
-        prob = wheel_problem(wp, "right", roll, zs["right"])
+        prob = wheel_problem(wp, side, roll, zs[side])
         p = prob.pose
         for k, f in enumerate(prob.frames):
             kw = dict(y=p["y"], z=p["z"], roll=p["roll"], yaw=p["yaw"], wheel_y=f.wheel_y,
                       track_y=f.track_y, contact_angle=f.contact_angle, width=0.04, n=1601,
                       point=k)
-            a = separation_fast(ws, tr, "right", **kw)
-            b = separation_at(ws, tr, "right", **kw)
+            a = separation_fast(ws, tr, side, **kw)
+            b = separation_at(ws, tr, side, **kw)
             np.testing.assert_array_equal(a.eta, b.eta)
             np.testing.assert_allclose(a.f, b.f, rtol=0, atol=1e-13)
             np.testing.assert_allclose(a.wheel_radius, b.wheel_radius, rtol=1e-13)

@@ -19,6 +19,10 @@ The normal and tangential problems are then solved position by position
 :func:`wheelrail.solve`). A position whose batched geometry fails is solved
 by :func:`wheelrail.solve` alone, so that its error message is the usual one.
 A test checks that the sweep agrees with the per-position path.
+
+Multi-Hertz ``variant="ayasse"`` with its CAF tables (the default) reads its
+contacts from the tables, not from the candidate points, so the candidate
+point search is skipped for it (its wheel problems carry no points).
 """
 
 from __future__ import annotations
@@ -31,7 +35,7 @@ from .wheelrail import SIDES, WheelProblem, WheelRailPosition
 __all__ = ["strip_sweep"]
 
 
-def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius):
+def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius, points=True):
     """Touching poses and per-side candidate points of all rows.
 
     Returns ``ok`` (bool, shape (n,)), ``roll``, ``{side: z}`` and
@@ -65,7 +69,7 @@ def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius):
             ok[idx[beside[s]]] = False
     rows = np.nonzero(ok)[0]
     pts = {}
-    if rows.size:
+    if rows.size and points:
         for side in SIDES:
             yr, zr, thr, psr = y[rows], zs[side][rows], th[rows], yaw[rows]
             data, count = find_points(ws, tr, side, _Pose(yr, zr, thr, psr),
@@ -87,8 +91,11 @@ def _problem(position, side, roll, z, data, count, r, A, B, roller_radius):
     from ..geometry.contact_search import _side_from_row
     from .patch import ContactFrame
 
-    pts = _side_from_row(data, count, r)
-    k = pts.n
+    if data is None:        # a method that reads no candidate points (CAF tables)
+        pts, k, A, B = None, 0, np.zeros((r + 1, 0)), np.zeros((r + 1, 0))
+    else:
+        pts = _side_from_row(data, count, r)
+        k = pts.n
     frames = tuple(ContactFrame(side, float(pts.wheel_y[i]), float(pts.rail_y[i]),
                                 float(pts.track_y[i]), float(pts.track_z[i]), float(pts.x[i]),
                                 float(pts.contact_angle[i]), float(pts.rolling_radius[i]))
@@ -117,7 +124,12 @@ def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nim
     n = y.size
     R = motion.roller_radius
     try:
-        ok, rows, th, zs, pts = _batched_geometry(wheelset, track, y, yaw, roll, tolerance, R)
+        uses = getattr(nimpl, "_uses_tables", None)
+        points = not (uses is not None and uses(nopts))
+        ok, rows, th, zs, pts = _batched_geometry(wheelset, track, y, yaw, roll, tolerance, R,
+                                                  points)
+        if not points:
+            pts = {s: (None, None, None, None) for s in SIDES}
     except WheelrailError:
         ok = np.zeros(n, dtype=bool)
         rows = np.zeros(0, dtype=int)

@@ -22,7 +22,103 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["spline_not_a_knot", "separation_fast"]
+__all__ = ["spline_not_a_knot", "separation_fast", "plane_samples"]
+
+
+@njit(cache=True)
+def _cubic_eval(u, c, h, x, order):
+    """Value (and slope) of the piecewise cubic (u, c) at x, as ``PiecewiseCubic.eval``
+    (uniform breakpoints when h > 0, else a search; end cubics extrapolated)."""
+    n = u.shape[0]
+    m = x.shape[0]
+    f = np.empty(m)
+    f1 = np.empty(m)
+    for q in range(m):
+        if h > 0.0:
+            i = int((x[q] - u[0]) * (1.0 / h))
+        else:
+            i = np.searchsorted(u, x[q]) - 1
+        if i < 0:
+            i = 0
+        elif i > n - 2:
+            i = n - 2
+        dx = x[q] - u[i]
+        c0, c1, c2, c3 = c[0, i], c[1, i], c[2, i], c[3, i]
+        f[q] = ((c0 * dx + c1) * dx + c2) * dx + c3
+        if order > 0:
+            f1[q] = (3.0 * c0 * dx + 2.0 * c1) * dx + c2
+    return f, f1
+
+
+@njit(cache=True)
+def plane_samples(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta, psi,
+                  C0, C1, gam):
+    """Wheel and rail samples in the contact plane of angle ``gam`` through (C0, C1)
+    (pure kernel; the sampling part of ``separation_at``).
+
+    Parameters
+    ----------
+    s : ndarray, shape (m,)
+        Wheel profile coordinates [m].
+    wu, wc, wh
+        Wheel profile curve: breakpoints [m], cubic coefficients (4, n−1), uniform step
+        [m] (0: not uniform).
+    ur : ndarray, shape (m,)
+        Rail profile coordinates [m].
+    ru, rc, rh
+        Rail profile curve, as for the wheel.
+    r0, e_tape, sig : float
+        Nominal radius [m], tape-circle half distance [m], +1 right / −1 left.
+    y, zc, theta, psi : float
+        Pose: lateral shift [m], axle-centre height [m], roll, yaw [rad].
+    C0, C1 : float
+        Origin of the plane (rail point, side frame) [m].
+    gam : float
+        Contact angle [rad].
+
+    Returns
+    -------
+    ew, zw, rw, er, zr : ndarray, shape (m,)
+        Tangential and normal coordinates of the wheel silhouette (of
+        :func:`~wheelrail.geometry.contact_search.silhouette`) and its circle
+        radius, and of the rail samples [m].
+    """
+    t0, t1 = np.cos(gam), np.sin(gam)
+    n0, n1 = -np.sin(gam), np.cos(gam)
+    p, p1 = _cubic_eval(wu, wc, wh, s, 1)
+    m = s.shape[0]
+    ew = np.empty(m)
+    zw = np.empty(m)
+    rw = np.empty(m)
+    st, ct = np.sin(theta), np.cos(theta)
+    sp, cp = np.sin(psi), np.cos(psi)
+    Bc = -st * sp
+    R = np.hypot(cp, Bc)
+    ph0 = np.arctan2(Bc, cp)
+    for q in range(m):
+        r = r0 - p[q]
+        a = sig * (e_tape + s[q])
+        if psi == 0.0:
+            Y = y + (a * ct + r * st)
+            Z = zc + (a * st - r * ct)
+        else:
+            C = -(-sig * p1[q]) * ct * sp
+            v = C / R
+            v = -1.0 if v < -1.0 else (1.0 if v > 1.0 else v)
+            phi = np.arcsin(v) - ph0
+            sf, cf = np.sin(phi), np.cos(phi)
+            xb = r * sf
+            yp = a * ct + r * cf * st
+            Y = y + xb * sp + yp * cp
+            Z = zc + (a * st - r * cf * ct)
+        uw = sig * Y
+        ew[q] = (uw - C0) * t0 + (Z - C1) * t1
+        zw[q] = (uw - C0) * n0 + (Z - C1) * n1
+        rw[q] = r
+    zr, _ = _cubic_eval(ru, rc, rh, ur, 0)
+    er = (ur - C0) * t0 + (zr - C1) * t1
+    zrr = (ur - C0) * n0 + (zr - C1) * n1
+    return ew, zw, rw, er, zrr
 
 
 @njit(cache=True)
@@ -55,56 +151,63 @@ def spline_not_a_knot(x, Y, t):
     k = Y.shape[0]
     m = t.shape[0]
     dx = np.empty(n - 1)
+    idx = np.empty(n - 1)                # 1/dx: multiplications instead of divisions
     for i in range(n - 1):
         dx[i] = x[i + 1] - x[i]
-    # matrix rows: sub[i] s[i-1] + dia[i] s[i] + sup[i] s[i+1] = rhs[i]
-    sub = np.zeros(n)
-    dia = np.empty(n)
+        idx[i] = 1.0 / dx[i]
+    # matrix rows: sub[i] s[i-1] + dia[i] s[i] + sup[i] s[i+1] = rhs[i]; the forward
+    # elimination factors w, c (and 1/c) are shared by all rows of Y
     sup = np.zeros(n)
-    dia[0] = dx[1]
-    sup[0] = x[2] - x[0]
-    for i in range(1, n - 1):
-        sub[i] = dx[i]
-        dia[i] = 2.0 * (dx[i - 1] + dx[i])
-        sup[i] = dx[i - 1]
-    sub[n - 1] = x[n - 1] - x[n - 3]
-    dia[n - 1] = dx[n - 3]
-    # forward elimination factors (shared by all rows of Y)
     c = np.empty(n)
     w = np.empty(n)
-    c[0] = dia[0]
+    ic = np.empty(n)
+    c[0] = dx[1]
+    sup[0] = x[2] - x[0]
+    for i in range(1, n - 1):
+        sup[i] = dx[i - 1]
+    ic[0] = 1.0 / c[0]
     for i in range(1, n):
-        w[i] = sub[i] / c[i - 1]
-        c[i] = dia[i] - w[i] * sup[i - 1]
+        if i < n - 1:
+            sub = dx[i]
+            dia = 2.0 * (dx[i - 1] + dx[i])
+        else:
+            sub = x[n - 1] - x[n - 3]
+            dia = dx[n - 3]
+        w[i] = sub * ic[i - 1]
+        c[i] = dia - w[i] * sup[i - 1]
+        ic[i] = 1.0 / c[i]
+    jj = np.empty(m, np.int64)           # interval of each evaluation point (all rows)
+    j = 0
+    for q in range(m):
+        while j < n - 2 and t[q] > x[j + 1]:
+            j += 1
+        jj[q] = j
     out = np.empty((k, m))
     slope = np.empty(n - 1)
     rhs = np.empty(n)
     s = np.empty(n)
+    d0 = x[2] - x[0]
+    d1 = x[n - 1] - x[n - 3]
     for r in range(k):
         for i in range(n - 1):
-            slope[i] = (Y[r, i + 1] - Y[r, i]) / dx[i]
-        d0 = x[2] - x[0]
+            slope[i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
         rhs[0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[0] + dx[0] * dx[0] * slope[1]) / d0
         for i in range(1, n - 1):
             rhs[i] = 3.0 * (dx[i] * slope[i - 1] + dx[i - 1] * slope[i])
-        d1 = x[n - 1] - x[n - 3]
         rhs[n - 1] = ((dx[n - 2] * dx[n - 2] * slope[n - 3]
                        + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[n - 2]) / d1)
         for i in range(1, n):
             rhs[i] -= w[i] * rhs[i - 1]
-        s[n - 1] = rhs[n - 1] / c[n - 1]
+        s[n - 1] = rhs[n - 1] * ic[n - 1]
         for i in range(n - 2, -1, -1):
-            s[i] = (rhs[i] - sup[i] * s[i + 1]) / c[i]
-        j = 0
+            s[i] = (rhs[i] - sup[i] * s[i + 1]) * ic[i]
         for q in range(m):
-            tq = t[q]
-            while j < n - 2 and tq > x[j + 1]:
-                j += 1
-            h = dx[j]
-            tt = (s[j] + s[j + 1] - 2.0 * slope[j]) / h
-            c0 = tt / h
-            c1 = (slope[j] - s[j]) / h - tt
-            u = tq - x[j]
+            j = jj[q]
+            ih = idx[j]
+            tt = (s[j] + s[j + 1] - 2.0 * slope[j]) * ih
+            c0 = tt * ih
+            c1 = (slope[j] - s[j]) * ih - tt
+            u = t[q] - x[j]
             out[r, q] = ((c0 * u + c1) * u + s[j]) * u + Y[r, j]
     return out
 
@@ -115,29 +218,22 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
 
     Parameters and return value as there (SI units: m, rad).
     """
-    from ..geometry.contact_search import _SIGMA, silhouette
+    from ..geometry.contact_search import _SIGMA
     from ..geometry.separation import Separation, _monotone_window
 
     sig = _SIGMA[side]
     gam = float(contact_angle)
-    t0, t1 = np.cos(gam), np.sin(gam)
-    n0, n1 = -np.sin(gam), np.cos(gam)
     rc = track.curve(side)
     u_c = sig * float(track_y)
     C0, C1 = u_c, float(rc.eval(u_c, 0)[0])
     m = 2001
     wc = wheelset.curve(side)
     s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
-    p, p1 = wc.eval(s, 1)
-    one = np.ones_like(s)
-    _, Yw, Zw, rw = silhouette(s, p, p1, wheelset.nominal_radius, wheelset.e_tape, sig,
-                               y * one, (wheelset.nominal_radius + z) * one, roll * one,
-                               yaw * one)
-    uw = sig * Yw
     ur = np.linspace(max(rc.u_min, u_c - width), min(rc.u_max, u_c + width), m)
-    (zr,) = rc.eval(ur, 0)
-    ew, zw = (uw - C0) * t0 + (Zw - C1) * t1, (uw - C0) * n0 + (Zw - C1) * n1
-    er, zrr = (ur - C0) * t0 + (zr - C1) * t1, (ur - C0) * n0 + (zr - C1) * n1
+    ew, zw, rw, er, zrr = plane_samples(s, wc.u, wc.c, wc._h, ur, rc.u, rc.c, rc._h,
+                                        float(wheelset.nominal_radius), float(wheelset.e_tape),
+                                        sig, float(y), float(wheelset.nominal_radius + z),
+                                        float(roll), float(yaw), C0, C1, gam)
     sw = _monotone_window(ew, int(np.argmin(np.abs(ew))))
     sr = _monotone_window(er, int(np.argmin(np.abs(er))))
     lo = max(-0.5 * width, ew[sw][0], er[sr][0])

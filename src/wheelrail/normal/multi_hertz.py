@@ -34,6 +34,21 @@ Three variants (seed 003 §2), chosen with ``variant=``:
     small-jump limit γ2 → γ1 is regular here. The vertical load is
     prescribed (a prescribed approach is rejected).
 
+    With ``caf="table"`` (the default) the wheel–rail path reads Ayasse's
+    precomputed piecewise-linear CAF tables instead (§2.3.2,
+    :mod:`wheelrail.normal.caf`): built once per wheelset/track pair and side
+    (:func:`~wheelrail.normal.caf.cached_caf_table`, lateral shifts
+    ``caf_range``, lines within ``caf_tolerance`` of the sampled γ), they give
+    at the position's shift t_y the contact angle, the contact point, the rail
+    radius and the wheel radius (from the CAF slope) of the rigid contact's
+    line; within the overlap [t_ylim − Δt_y2, t_ylim + Δt_y1] of a jump
+    (eq. 3, δ_i the Hertz approach of contact i under the wheel load at the
+    jump limit) the load moves linearly from one contact to the other
+    (:func:`~wheelrail.normal.caf.caf_contacts`). As in the seed (§2.3.1) the
+    roll and yaw of the wheelset are neglected in the table (the contact
+    geometry is that of a pure translation). ``caf="direct"`` keeps the
+    per-pose form above (the candidate points of the actual pose).
+
 On a single Hertzian contact every variant gives its Hertz ellipse.
 
 References
@@ -107,6 +122,13 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         Most ellipses per contact plane (Sauvage's code used seven).
     strips, cells : int, default 40, 40
         Patch description of every ellipse.
+    caf : {"table", "direct"}, default "table"
+        Variant ``"ayasse"`` on a wheel: precomputed CAF tables or the
+        candidate points of the pose.
+    caf_range : (float, float), default (-0.02, 0.02)
+        Lateral shifts covered by the CAF tables [m].
+    caf_tolerance : float, default 2e-4
+        Largest deviation of the CAF lines from the sampled contact angle [rad].
     """
 
     name = "multi-hertz"
@@ -119,7 +141,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         "J.B. Ayasse, H. Chollet, J.L. Maupu, Parametres caracteristiques du contact "
         "roue-rail, Rapport INRETS 225, 2000.",
     )
-    options = {"variant": "pascal", "max_ellipses": 7, "strips": 40, "cells": 40}
+    options = {"variant": "pascal", "max_ellipses": 7, "strips": 40, "cells": 40,
+               "caf": "table", "caf_range": (-0.02, 0.02), "caf_tolerance": 2e-4}
 
     @staticmethod
     def _variant(opts):
@@ -280,7 +303,88 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         patches.sort(key=lambda p: -sig * p.frame.track_y)
         return tuple(patches), {"approach": float(dz), "variant": variant}
 
+    @staticmethod
+    def _uses_tables(opts):
+        """True when the options select variant "ayasse" with the CAF tables."""
+        caf = opts.get("caf", "table")
+        if caf not in ("table", "direct"):
+            raise InputError(f"caf must be 'table' or 'direct', got {caf!r}")
+        return opts.get("variant", "pascal") == "ayasse" and caf == "table"
+
+    @staticmethod
+    def _lead(problem, wheel_y):
+        """Longitudinal offset [m] of the wheel point ``wheel_y`` on the contact locus at the
+        pose (yaw, roll) of ``problem`` (:func:`~wheelrail.geometry.contact_search.silhouette`):
+        under yaw a contact point on a sloped part of the wheel lies ahead of or behind the
+        wheel centre, which changes its creepages; 0 without yaw."""
+        pose = problem.pose
+        if pose["yaw"] == 0.0:
+            return 0.0
+        from ..geometry.contact_search import _SIGMA, silhouette
+
+        ws = problem.wheelset
+        s = np.array([float(wheel_y)])
+        p, p1 = ws.curve(problem.side).eval(s, 1)
+        x, _, _, _ = silhouette(s, p, p1, ws.nominal_radius, ws.e_tape, _SIGMA[problem.side],
+                                np.float64(pose["y"]), np.float64(ws.nominal_radius + pose["z"]),
+                                np.float64(pose["roll"]), np.float64(pose["yaw"]))
+        return float(x[0])
+
+    def _ayasse_table(self, problem, opts):
+        from ..contact.patch import ContactFrame, ContactPatch
+        from ..materials import as_material_pair
+        from .caf import caf_contacts, cached_caf_table
+
+        if problem.vertical_load is None:
+            raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
+                             "overlap depends on it); got a prescribed approach")
+        rng = opts.get("caf_range", (-0.02, 0.02))
+        try:
+            lo, hi = (float(v) for v in rng)
+        except (TypeError, ValueError):
+            raise InputError(f"caf_range must be (start, stop) in m, got {rng!r}") from None
+        # the relative lateral translation of the profiles at rail level: the wheelset's
+        # shift plus the lateral displacement r0 sin θ of the wheel's running surface by the
+        # roll θ (the rotation of the profile itself is neglected, seed 003 §2.3.1)
+        ty = float(problem.pose["y"]) + float(problem.wheelset.nominal_radius) * math.sin(
+            float(problem.pose["roll"]))
+        if not lo <= ty <= hi:
+            raise InputError(f"y = {ty!r} m (lateral shift of the profiles, roll included) "
+                             f"lies outside the CAF table range caf_range = {rng!r} m; widen "
+                             "caf_range or use caf='direct'")
+        table = cached_caf_table(problem.wheelset, problem.track, problem.side, (lo, hi),
+                                 tolerance=float(opts.get("caf_tolerance", 2e-4)))
+        pair = as_material_pair(problem.materials)
+        Q = float(problem.vertical_load)
+        contacts = caf_contacts(table, ty, Q, pair)
+        extra_A = 0.0 if problem.roller_radius is None else 0.5 / problem.roller_radius
+        N = Q / sum(w * math.cos(ln["gamma"]) for w, ln, _ in contacts)
+        rigid = table.branch_of(ty)
+        patches, dz = [], 0.0
+        for w, ln, br in contacts:
+            A, B = ln["A"] + extra_A, ln["B"]
+            if not (A > 0 and B > 0):
+                raise InputError(f"{problem.side} wheel at y = {ty!r} m: the CAF line gives "
+                                 f"A = {A!r}, B = {B!r} 1/m (not convex); the CAF method cannot "
+                                 "represent this contact")
+            hc = _hertz_fast(w * N, A, B, pair)
+            frame = ContactFrame(problem.side, ln["wheel_y"], ln["rail_y"], ln["track_y"],
+                                 ln["track_z"], self._lead(problem, ln["wheel_y"]), ln["gamma"],
+                                 ln["rolling_radius"])
+            p = ContactPatch.from_hertz(hc, strips=int(opts.get("strips", 40)),
+                                        cells=int(opts.get("cells", 40)), frame=frame,
+                                        method=self.name)
+            p.info.update({"variant": "ayasse", "share": w, "caf": "table"})
+            patches.append(p)
+            if br == rigid:     # the rigid contact point: its approach is the wheel's
+                dz = float(hc.penetration) / math.cos(ln["gamma"])
+        sig = 1.0 if problem.side == "right" else -1.0
+        patches.sort(key=lambda p: -sig * p.frame.track_y)
+        return tuple(patches), {"approach": float(dz), "variant": "ayasse", "caf": "table"}
+
     def _ayasse(self, problem, opts):
+        if self._uses_tables(opts):
+            return self._ayasse_table(problem, opts)
         from ..contact.patch import ContactPatch
         from ..materials import as_material_pair
         from .hertz import hertz
@@ -328,6 +432,19 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         patches.sort(key=lambda p: -sig * p.frame.track_y)
         dz = (s[k1] * cg[k1] + float(patches[0].penetration)) / cg[k1]
         return tuple(patches), {"approach": float(dz), "variant": "ayasse"}
+
+
+def _hertz_fast(load, A, B, pair):
+    """Hertz's solution for one contact from the interpolated unit-load solution
+    (:func:`~wheelrail.normal._strips.hertz_shape`, relative error < 1e-5): a, b ∝
+    (N/E*)^(1/3), δ ∝ (N/E*)^(2/3), p0 = 3N/(2πab) (Johnson 1985, eqs. 3.64–3.66)."""
+    from .hertz import HertzContact
+
+    au, bu, _, du = hertz_shape(A, B)
+    s = (load / pair.E_star) ** (1.0 / 3.0)
+    a, b = au * s, bu * s
+    return HertzContact(a, b, 1.5 * load / (math.pi * a * b), du * s * s, float(load),
+                        float(A), float(B), pair)
 
 
 def _scale_patches(patches, factor, pair):
