@@ -385,6 +385,27 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
                          scalar_or_array(np.asarray(mu, dtype=float)), scheme, fields)
 
 
+#: rigid-slip traction rate [Pa/m] beyond which every element slides whatever the grid:
+#: larger creepages are scaled down together to it (same direction, so the same full-slip
+#: tractions to round-off) so that the kernels never overflow to inf or nan
+_SLIP_RATE_CAP = 1e200
+
+
+def _tame(xi, eta, phi, L1, L2, L3, reach):
+    """Creepages scaled down together where their rigid-slip rate would overflow.
+
+    ``reach`` [m] bounds |x|, |y| on the patch; arrays broadcast. In full sliding
+    FASTSIM's traction depends only on the direction of the rigid slip, which a
+    common factor keeps.
+    """
+    with np.errstate(divide="ignore"):       # in logarithms: no overflow for any float
+        log_rate = np.maximum.reduce([np.log(np.abs(xi)) - np.log(L1),
+                                      np.log(np.abs(eta)) - np.log(L2),
+                                      np.log(np.abs(phi)) + np.log(reach) - np.log(L3)])
+    f = np.exp(np.minimum(0.0, np.log(_SLIP_RATE_CAP) - log_rate))
+    return xi * f, eta * f, phi * f
+
+
 def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_out, scheme,
                   fields):
     """:func:`fastsim_strips` on checked, contiguous float arrays (shapes (ny,), p (ny, nx))."""
@@ -395,9 +416,18 @@ def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_
     sx = np.zeros((ny, nx))
     sy = np.zeros((ny, nx))
     slip = np.zeros((ny, nx), dtype=bool)
+    reach = max(float(np.max(np.abs(y), initial=0.0) + np.max(dy, initial=0.0)),
+                float(np.max(np.abs(x_lead), initial=0.0)), float(np.max(np.abs(x_trail), initial=0.0)))
+    kxi, keta, kphi = _tame(xi, eta, phi, np.min(L1), np.min(L2), np.min(L3), reach)
     Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3,
-                                          xi, eta, phi, px, py, sx, sy, slip,
-                                          scheme == "euler")
+                                          float(kxi), float(keta), float(kphi), px, py, sx, sy,
+                                          slip, scheme == "euler")
+    scale = max((abs(kv / v) for kv, v in ((kxi, xi), (keta, eta), (kphi, phi)) if v != 0.0),
+                default=1.0)
+    if scale < 1.0:                       # creepages were tamed: the slip fields scale back
+        with np.errstate(over="ignore"):
+            sx /= scale
+            sy /= scale
     length = np.clip(x_lead - x_trail, 0.0, None)
     dx = length / nx
     Fn = float(np.sum(p * (dx * dy)[:, None]))
@@ -578,10 +608,11 @@ class Fastsim(TangentialMethod):
         peak = peak * (continuous / discrete)
         if not want_fields:
             c_ = np.ascontiguousarray
+            kxi, keta, kphi = _tame(xi, eta, phi, L1, L2, L3, np.maximum(a, b))
             Fx, Fy, Mz, adh = _k.fastsim_hertz_batch(
                 c_(a), c_(b), c_(peak), c_(mu), c_(L1, dtype=float), c_(L2, dtype=float),
-                c_(L3, dtype=float), c_(xi), c_(eta), c_(phi), t, half, strip_peak, s_cells,
-                first_order)
+                c_(L3, dtype=float), c_(kxi, dtype=float), c_(keta, dtype=float),
+                c_(kphi, dtype=float), t, half, strip_peak, s_cells, first_order)
             info["adhesion_fraction"] = adh if not single else float(adh[0])
             f = None
         else:
