@@ -537,8 +537,8 @@ class Bem(NormalMethod):
       found by Newton's method so that Σ Fn cos γ = Q. With one group the
       load is prescribed directly (one solve).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     elements : int, default 40
         Elements along the longer side of the potential contact area
         (ignored when ``element_size`` is given).

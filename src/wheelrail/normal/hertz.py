@@ -544,8 +544,8 @@ class Hertz(NormalMethod):
       Hertzian stiffness per point, or Piotrowski & Chollet's independent
       ellipses (seed 003 §2).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     strips, cells : int, default 40, 40
         Strips and cells per strip of the patch description (used by strip
         theories; the closed-form laws and FASTSIM use the ellipse itself).

@@ -107,8 +107,8 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
     interpenetrated by ε·dz·cos, every connected region is a patch, and the
     vertical approach dz follows from Σ Fn cos γ = Q.
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     penetration_factor : "hertz" or float in (0, 1], default "hertz"
         ε = δ0/δ; 0.55 gives the original method.
     shape_correction : bool, default True

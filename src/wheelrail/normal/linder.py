@@ -65,8 +65,8 @@ class Linder(VirtualPenetration, NormalMethod):
     Problems: a gap h(x, y), a Hertzian contact, a wheel on its rail (as
     :class:`~wheelrail.normal.kik_piotrowski.KikPiotrowski`).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     strips, cells : int, default 40, 40
         Strips of each patch and cells per strip of the patch description.
 

@@ -115,8 +115,8 @@ def sauvage_ellipses(eta, f, Ax, Bx, h1_factor, delta, max_ellipses=7):
 class MultiHertz(VirtualPenetration, NormalMethod):
     """Multi-Hertzian methods (Sauvage, Pascal, Ayasse); see the module docstring.
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     variant : {"pascal", "sauvage", "sauvage-half", "ayasse"}, default "pascal"
     max_ellipses : int, default 7
         Most ellipses per contact plane (Sauvage's code used seven).

@@ -66,8 +66,8 @@ def _smoothed_B(eta, f, length):
 class Stripes(VirtualPenetration, NormalMethod):
     """STRIPES (semi-Hertzian) as a normal method (see the module docstring).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     smoothing : float, default 0.002
         Length [m] of the Gaussian smoothing of the lateral curvature B(y).
     strips, cells : int, default 40, 40

@@ -135,6 +135,11 @@ def saturate(pxh, pyh, g, L1, L2, steps):
     """
     if g <= 0.0:
         return 0.0, 0.0
+    # the solution depends on L1 : L2 only (λ scales with them): work with max(L) = 1, so that
+    # no flexibility underflows when squared (e.g. E = 1e155 Pa gives L ~ 1e-158 m/Pa)
+    lm = max(L1, L2)
+    L1 = L1 / lm
+    L2 = L2 / lm
     # scaled by the larger predictor component (no overflow for huge creepages)
     m = max(abs(pxh), abs(pyh))
     if m == np.inf:

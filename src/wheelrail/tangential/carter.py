@@ -291,8 +291,8 @@ class Carter(TangentialMethod):
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     form : {"global", "strip"}, default "global"
         Carter's force–creepage curve for the whole ellipse, or applied strip
         by strip (Haines & Ollerton); see :mod:`wheelrail.tangential.carter`.

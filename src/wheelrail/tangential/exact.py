@@ -112,8 +112,8 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
 class Exact(TangentialMethod):
     """Kalker's exact (half-space, boundary-element) theory of steady rolling.
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     elements : int, default 40
         Elements across the Hertz contact in each direction (≥ 4).
     margin : float, default 1.1
@@ -130,8 +130,8 @@ class Exact(TangentialMethod):
     progress : bool or None, default None
         Show a progress bar for batches (``None``: only for more than 20 cases).
 
-    Results
-    -------
+    Notes
+    -----
     ``fields`` is the :class:`~wheelrail.contact.GapSolution`
     (grid, pressure, px, py, slip sx, sy, adhesion mask, displacements) for a
     single case, a tuple of them for a batch. ``info`` holds ``area``,

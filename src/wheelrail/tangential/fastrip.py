@@ -102,8 +102,8 @@ class FaStrip(TangentialMethod):
     virtual-penetration patches with their per-strip or weighted
     flexibilities as in FASTSIM, boundary-element patches).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     ny : int, default 40
         Strips across an ellipse (Hertzian contacts; other patches use their
         own strips).

@@ -494,8 +494,8 @@ def _resample_weights(m, nx):
 class Fastsim(TangentialMethod):
     """Kalker's FASTSIM on the Hertzian ellipse.
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     nx, ny : int, default 20, 20
         Elements per strip and number of strips. Strips are uniform in y over
         (−b, b); each strip's ``nx`` elements span its own length (Kalker 1982).

@@ -315,8 +315,8 @@ class Polach(TangentialMethod):
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     kA : float, default 1
         Reduction of Kalker's stiffness in the area of adhesion (0 < kA ≤ 1).
     kS : float, default 1

@@ -137,8 +137,8 @@ class ShenHedrickElkins(TangentialMethod):
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     spin_moment : {"scaled", "linear"}
         ``"scaled"`` (default): Mz = ε Mz_linear with the force saturation
         factor ε; ``"linear"``: Kalker's linear moment unchanged.

@@ -344,8 +344,8 @@ class Table(TangentialMethod):
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
 
-    Options
-    -------
+    Other Parameters
+    ----------------
     outside : {"raise", "exact", "fastsim"}, default "raise"
         Points outside the table's domain (|φ̂| > 4, a/b ∉ [0.2, 5],
         ν ∉ [0.25, 0.30], K ≠ 0): raise :class:`~wheelrail.errors.InputError`
@@ -353,8 +353,8 @@ class Table(TangentialMethod):
     table : str or None, default None
         Path of another table file (built by :func:`build_table`).
 
-    Results
-    -------
+    Notes
+    -----
     ``info["outside"]``: boolean mask (batch) or bool of the points computed
     by the fallback method.
     """
