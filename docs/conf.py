@@ -12,6 +12,7 @@ from __future__ import annotations
 import os
 import sys
 import tempfile
+import warnings
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -46,6 +47,10 @@ suppress_warnings = [
 
 myst_enable_extensions = ["dollarmath", "colon_fence"]
 myst_heading_anchors = 4                # [text](page.md#a-heading) links resolve
+
+# numpydoc reports malformed docstring sections as Python warnings, which sphinx -W does not
+# see: make them errors too, so the build stays free of warnings of any kind
+warnings.filterwarnings("error", category=UserWarning, module=r"numpydoc\..*")
 
 # numpydoc renders the docstrings; the class member tables would duplicate autodoc's
 numpydoc_show_class_members = False
