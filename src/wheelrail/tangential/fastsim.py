@@ -417,7 +417,8 @@ def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_
     sy = np.zeros((ny, nx))
     slip = np.zeros((ny, nx), dtype=bool)
     reach = max(float(np.max(np.abs(y), initial=0.0) + np.max(dy, initial=0.0)),
-                float(np.max(np.abs(x_lead), initial=0.0)), float(np.max(np.abs(x_trail), initial=0.0)))
+                float(np.max(np.abs(x_lead), initial=0.0)),
+                float(np.max(np.abs(x_trail), initial=0.0)))
     kxi, keta, kphi = _tame(xi, eta, phi, np.min(L1), np.min(L2), np.min(L3), reach)
     Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3,
                                           float(kxi), float(keta), float(kphi), px, py, sx, sy,
