@@ -210,6 +210,18 @@ def _bilinear(c, r, t, out):
                   + (1 - r) * t * c[3, d])
 
 
+@njit(cache=True, inline="always")
+def _bilinear_tangents(c, r, t):
+    """Tangents d/dr and d/dt of the bilinear quad ``c`` (4, 3) at (r, t)."""
+    tr0 = (1 - t) * (c[1, 0] - c[0, 0]) + t * (c[2, 0] - c[3, 0])
+    tr1 = (1 - t) * (c[1, 1] - c[0, 1]) + t * (c[2, 1] - c[3, 1])
+    tr2 = (1 - t) * (c[1, 2] - c[0, 2]) + t * (c[2, 2] - c[3, 2])
+    tt0 = (1 - r) * (c[3, 0] - c[0, 0]) + r * (c[2, 0] - c[1, 0])
+    tt1 = (1 - r) * (c[3, 1] - c[0, 1]) + r * (c[2, 1] - c[1, 1])
+    tt2 = (1 - r) * (c[3, 2] - c[0, 2]) + r * (c[2, 2] - c[1, 2])
+    return tr0, tr1, tr2, tt0, tt1, tt2
+
+
 @njit(cache=True)
 def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
                     reach, g0, energy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num):
@@ -287,12 +299,7 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
             for it in range(6):
                 _bilinear(c, r, t, q)
                 # tangents
-                tr0 = (1 - t) * (c[1, 0] - c[0, 0]) + t * (c[2, 0] - c[3, 0])
-                tr1 = (1 - t) * (c[1, 1] - c[0, 1]) + t * (c[2, 1] - c[3, 1])
-                tr2 = (1 - t) * (c[1, 2] - c[0, 2]) + t * (c[2, 2] - c[3, 2])
-                tt0 = (1 - r) * (c[3, 0] - c[0, 0]) + r * (c[2, 0] - c[1, 0])
-                tt1 = (1 - r) * (c[3, 1] - c[0, 1]) + r * (c[2, 1] - c[1, 1])
-                tt2 = (1 - r) * (c[3, 2] - c[0, 2]) + r * (c[2, 2] - c[1, 2])
+                tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
                 d0 = xs[s, 0] - q[0]
                 d1 = xs[s, 1] - q[1]
                 d2 = xs[s, 2] - q[2]
@@ -333,12 +340,7 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
         r = min(max(r, 0.0), 1.0)
         t = min(max(t, 0.0), 1.0)
         _bilinear(c, r, t, q)
-        tr0 = (1 - t) * (c[1, 0] - c[0, 0]) + t * (c[2, 0] - c[3, 0])
-        tr1 = (1 - t) * (c[1, 1] - c[0, 1]) + t * (c[2, 1] - c[3, 1])
-        tr2 = (1 - t) * (c[1, 2] - c[0, 2]) + t * (c[2, 2] - c[3, 2])
-        tt0 = (1 - r) * (c[3, 0] - c[0, 0]) + r * (c[2, 0] - c[1, 0])
-        tt1 = (1 - r) * (c[3, 1] - c[0, 1]) + r * (c[2, 1] - c[1, 1])
-        tt2 = (1 - r) * (c[3, 2] - c[0, 2]) + r * (c[2, 2] - c[1, 2])
+        tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
         # continuous normal: bilinear interpolation of the nodal normals nm
         n0 = ((1 - r) * (1 - t) * nm[i, j, 0] + r * (1 - t) * nm[i + 1, j, 0]
               + r * t * nm[i + 1, j + 1, 0] + (1 - r) * t * nm[i, j + 1, 0])
