@@ -15,7 +15,7 @@ import wheelrail as wr
 from wheelrail.contact.wheelrail import touching_heights
 from wheelrail.errors import InputError
 from wheelrail.geometry.contact_search import _Pose, find_points
-from wheelrail.normal.caf import caf_table, jump_overlap
+from wheelrail.normal.caf import caf_contacts, caf_table, jump_gap, jump_overlap
 
 
 @pytest.fixture(scope="module")
@@ -85,14 +85,107 @@ def test_overlap_eq3(table):
     g1, g2, d = 0.03, 0.06, 1e-4
     assert jump_overlap(g1, g2, d) == pytest.approx(np.cos(g1) * d / 2 / np.tan(g2 - g1))
     # on the tread (small angle jump) the overlap is large; flanging it is of order δ/2
-    tread = table.overlaps(0, d, d)
-    flange = table.overlaps(table.jumps.size - 1, d, d)
-    assert min(tread) > 10 * d / 2
-    assert 0.3 * d / 2 < max(flange) < 3 * d / 2
+    for kind in ("eq3", "general"):
+        tread = table.overlaps(0, d, d, overlap=kind)
+        flange = table.overlaps(table.jumps.size - 1, d, d, overlap=kind)
+        assert min(tread) > 10 * d / 2
+        assert 0.3 * d / 2 < max(flange) < 3 * d / 2
     with pytest.raises(InputError, match="gamma2"):
         jump_overlap(0.1, 0.1, d)
     with pytest.raises(InputError, match="delta1"):
         jump_overlap(0.1, 0.2, -1e-5)
+    with pytest.raises(InputError, match="caf_overlap"):
+        table.overlaps(0, d, d, overlap="eq. 3")
+
+
+@pytest.mark.parametrize("g1, g2", [(0.03, 0.06), (0.06, 0.03), (0.3, 0.9), (0.05, 0.05)])
+@pytest.mark.parametrize("rate", [-40.0, -5.0, 1e-7, 5.0, 40.0])
+def test_generalised_overlap_inverts_the_gap(g1, g2, rate):
+    """The small-jump generalisation of eq. 3 (this project's, seed 003 §2.3.3 only cites
+    its ref. [42]): the overlap is where the rigid gap of the CAF lines, ∫ tan Δγ dτ / cos γ1
+    (checked here against numerical quadrature), reaches δ1/2; it tends to eq. 3 as the
+    rate → 0 and stays finite for γ2 = γ1."""
+    from scipy.integrate import quad
+
+    d = 1e-4
+    t = float(jump_overlap(g1, g2, d, rate))
+    c = rate if g2 >= g1 else -rate
+    if g2 == g1:
+        c = abs(rate)
+
+    def gap(tau):
+        a = abs(g2 - g1)
+        if c < 0:
+            tau = min(tau, a / -c)
+        return quad(lambda s: np.tan(a + c * s), 0.0, tau, epsabs=1e-16)[0] / np.cos(g1)
+
+    assert float(jump_gap(g1, g2, t, rate)) == pytest.approx(gap(t), rel=1e-9, abs=1e-15)
+    a = abs(g2 - g1)
+    if c < 0 and gap(a / -c) < d / 2:             # converging lines cross before the gap opens
+        assert t == pytest.approx(a / -c, rel=1e-12)
+    else:
+        assert gap(t) == pytest.approx(d / 2, rel=1e-7)
+    if g1 != g2 and abs(rate) < 1e-6:
+        assert t == pytest.approx(np.cos(g1) * d / 2 / np.tan(a), rel=1e-7)      # eq. 3
+    if g1 == g2 and rate > 0:
+        assert t == pytest.approx(np.sqrt(np.cos(g1) * d / rate), rel=1e-3)     # finite
+
+
+def test_gap_model_follows_the_profiles(pair, table):
+    """The rigid gap of the second contact near a jump, measured on the profiles
+    (find_points' candidate on the other branch, S1002/60E1), against the CAF lines'
+    gap (jump_gap): straight lines (eq. 3's model) and lines with the CAF slopes (the
+    generalisation). Gap increments from the first sample up to 0.45 mm (the jump limit
+    is known to ± 25 µm). Measured on the tread and flange-root jumps, both sides: the
+    sloped lines 0.4 / 3.9 / 0.9 / 2.4 % off the increments (mean 1.9 %), the straight
+    ones 3.5 / 6.2 / 3.6 / 1.2 % (mean 3.6 %)."""
+    ws, tr = pair
+    err = {"eq3": [], "general": []}
+    for k in (0, 1):
+        t_lim, g1, g2, _, _, s1, s2 = table._jump_data(k)
+        for side in (1, 2):
+            sgn = -1.0 if side == 1 else 1.0
+            y = t_lim + sgn * np.arange(0.05e-3, 0.5e-3, 0.05e-3)
+            zero = np.zeros(y.size)
+            z, _ = touching_heights(ws, tr, y, zero, zero)
+            d, _ = find_points(ws, tr, "right", _Pose(y, z["right"], zero, zero),
+                               tolerance=1e-3)
+            other = (g2 + s2 * (y - t_lim)) if side == 1 else (g1 + s1 * (y - t_lim))
+            ok = np.isfinite(d["separation"]) & (d["separation"] > 1e-8)
+            j = np.argmin(np.where(ok, np.abs(d["contact_angle"] - other[:, None]), np.inf),
+                          axis=1)
+            r = np.arange(y.size)
+            keep = np.abs(d["contact_angle"][r, j] - other) < 0.01
+            assert keep.sum() >= 4
+            tau, gap = np.abs(y - t_lim)[keep], d["separation"][r, j][keep]
+            ga, gb = (g1, g2) if side == 1 else (g2, g1)
+            for kind, rate in (("eq3", 0.0), ("general", s1 - s2)):
+                model = jump_gap(ga, gb, tau, rate)
+                inc, minc = gap[1:] - gap[0], model[1:] - model[0]
+                err[kind].append(np.max(np.abs(minc / inc - 1)))
+    assert max(err["general"]) < 0.045
+    assert np.mean(err["general"]) < 0.6 * np.mean(err["eq3"])   # measured 1.9 vs 3.6 %
+
+
+def test_overlap_sides_follow_the_rigid_gaps(pair, table):
+    """On side i of a jump limit (contact i the rigid one) the other contact carries load
+    while its rigid gap is below δ_i/2: the table's shares against those of the direct form
+    (caf="direct", shares from the rigid gaps of the candidate points of the actual pose)
+    inside both overlaps, S1002/60E1, 70 kN, roll 0. Measured: within 0.05 of the share at
+    the tread jump and 0.035 at the flange-root jump; with the sides of eq. 3 exchanged the
+    table was 0.14–0.23 off."""
+    ws, tr = pair
+    for y, tol in ((-0.175e-3, 0.06), (0.025e-3, 0.06), (0.225e-3, 0.06), (0.425e-3, 0.06),
+                   (4.825e-3, 0.035), (5.025e-3, 0.035), (5.225e-3, 0.035)):
+        wp = wr.WheelRailPosition(ws, tr, y, roll=0.0, vertical_load=70e3)
+        res = {}
+        for caf in ("table", "direct"):
+            r = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
+                         caf=caf, vertical="normal")
+            ps = sorted(r.side("right"), key=lambda p: p.contact_angle)
+            assert len(ps) == 2
+            res[caf] = ps[1].Fn / (ps[0].Fn + ps[1].Fn)
+        assert res["table"] == pytest.approx(res["direct"], abs=tol)
 
 
 def test_bad_input_named(pair):
@@ -130,14 +223,15 @@ def test_solve_ayasse_table_against_direct(pair):
     ws, tr = pair
     dev = {"Fn": [], "g": [], "a": [], "b": []}
     for y in np.arange(-0.0095, 0.0096, 0.001):
-        if abs(y) < 0.001:          # inside the tread jump's overlap (two contacts by design)
-            continue
         wp = wr.WheelRailPosition(ws, tr, y, roll=0.0, vertical_load=70e3)
         rt = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
                       vertical="normal")
         rd = wr.solve(wp, motion=MOTION, mu=0.3, normal="multi-hertz", variant="ayasse",
                       caf="direct", vertical="normal")
         for s in ("left", "right"):
+            if len(rt.side(s)) == 2:    # inside the tread jump's overlap (two contacts by design)
+                assert abs(y) < 0.002
+                continue
             (p,), (q,) = rt.side(s), rd.side(s)
             assert p.patch.info["caf"] == "table"
             dev["Fn"].append(p.Fn / q.Fn - 1)
@@ -145,7 +239,7 @@ def test_solve_ayasse_table_against_direct(pair):
             dev["a"].append(p.patch.hertz.a / q.patch.hertz.a - 1)
             dev["b"].append(p.patch.hertz.b / q.patch.hertz.b - 1)
     dev = {k: np.abs(v) for k, v in dev.items()}
-    assert dev["Fn"].size == 36
+    assert dev["Fn"].size >= 34
     assert dev["Fn"].max() < 1e-3
     assert dev["g"].max() < 3e-4
     assert dev["a"].max() < 0.04
@@ -169,12 +263,12 @@ def test_roll_shifts_the_profiles(pair):
         assert p.Fn == pytest.approx(q.Fn, rel=0.01)
 
 
-def test_overlap_shares_follow_eq3(pair, table):
+@pytest.mark.parametrize("kind", ["eq3", "general"])
+def test_overlap_shares_follow_eq3(pair, table, kind):
     """Across a jump the load moves linearly from contact 1 to contact 2 over
-    [t_ylim − Δt_y2, t_ylim + Δt_y1], the widths of eq. (3) with δ_i the Hertz approach
-    (wr.hertz, independent) of contact i under the whole wheel load at the jump limit."""
-    from wheelrail.normal.caf import caf_contacts
-
+    [t_ylim − Δt_y1, t_ylim + Δt_y2], the widths of eq. (3) (or its generalisation) with
+    δ_i the Hertz approach (wr.hertz, independent) of contact i under the whole wheel load
+    at the jump limit."""
     Q = 70e3
     for k in range(table.jumps.size):
         t = float(table.jumps[k])
@@ -182,19 +276,19 @@ def test_overlap_shares_follow_eq3(pair, table):
         for ln in (table.line(t, k), table.line(t, k + 1)):
             d.append(float(wr.hertz(Q / np.cos(ln["gamma"]), ln["A"], ln["B"],
                                     wr.STEEL).penetration))
-        dt1, dt2 = table.overlaps(k, d[0], d[1])
-        lo, hi = t - dt2, t + dt1
+        dt1, dt2 = table.overlaps(k, d[0], d[1], overlap=kind)
+        lo, hi = t - dt1, t + dt2
         ys = np.linspace(lo, hi, 9)[1:-1]
         w2 = []
         for y in ys:
-            c = caf_contacts(table, y, Q, wr.STEEL)
+            c = caf_contacts(table, y, Q, wr.STEEL, overlap=kind)
             assert [br for _, _, br in c] == [k, k + 1]
             assert sum(w for w, _, _ in c) == pytest.approx(1.0)
             w2.append(c[1][0])
         np.testing.assert_allclose(w2, (ys - lo) / (hi - lo), rtol=1e-6)
         # just outside the overlap: one contact, on the branch of the rigid contact point
         for y, br in ((lo - 1e-6, k), (hi + 1e-6, k + 1)):
-            (c,) = caf_contacts(table, y, Q, wr.STEEL)
+            (c,) = caf_contacts(table, y, Q, wr.STEEL, overlap=kind)
             assert c[0] == 1.0 and c[2] == br
 
 

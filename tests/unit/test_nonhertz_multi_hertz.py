@@ -52,3 +52,26 @@ def test_bad_variant_named():
     c = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
     with pytest.raises(InputError, match="'kalker'"):
         wr.solve(c, creepage=(0, 0, 0), mu=0.3, normal="multi-hertz", variant="kalker")
+
+
+def test_sauvage_load_jump_is_bridged():
+    """Sauvage's greedy choice of ellipses makes the load jump at some approaches: on
+    S1002/60E1 at y = 4.6 mm, yaw 2 mrad, from 68.3 to 74.2 kN, across the wheel load of
+    70 kN (this raised ConvergenceError in a 201-position sweep). The nearer side is scaled
+    to the load; both loads are reported and bracket it."""
+    ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
+    from wheelrail.contact.wheelrail import touching_poses, wheel_problem
+
+    wp = wr.WheelRailPosition(ws, tr, 0.0046, yaw=0.002, vertical_load=70e3)
+    roll, zs = touching_poses(wp)
+    prob = wheel_problem(wp, "right", roll, zs["right"])
+    m = wr.api.get_normal_method("multi-hertz")
+    patches, info = m.from_wheel(prob, **m.check_options({"variant": "sauvage"}))
+    lo, hi = info["load_jump"]
+    assert lo < 70e3 < hi
+    Fz = sum(p.Fn * np.cos(p.frame.contact_angle) for p in patches)
+    assert Fz == pytest.approx(70e3, rel=1e-9)
+    r = wr.solve(wp, motion=wr.Motion(speed=20.0, omega=20.0 / 0.46), mu=0.3,
+                 normal="multi-hertz", variant="sauvage", vertical="normal")
+    assert np.isfinite(r.force_track["right"]).all()

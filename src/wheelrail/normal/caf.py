@@ -52,23 +52,99 @@ import numpy as np
 from .._validation import positive
 from ..errors import InputError
 
-__all__ = ["CafTable", "caf_table", "cached_caf_table", "caf_contacts", "jump_overlap"]
+__all__ = ["CafTable", "caf_table", "cached_caf_table", "caf_contacts", "jump_gap",
+           "jump_overlap"]
 
 
-def jump_overlap(gamma1, gamma2, delta1):
-    """Overlap width of a jump on side 1 (seed 003 eq. 3, large jumps).
+def _angle_growth(gamma1, gamma2, rate):
+    """|γ2 − γ1| and the rate c at which it grows with the distance from the jump limit."""
+    a0 = gamma2 - gamma1
+    return np.abs(a0), np.where(a0 > 0, rate, np.where(a0 < 0, -rate, np.abs(rate)))
 
-    Δt_y1 = cos γ1 · (δ1/2) / tan(γ2 − γ1): the lateral distance from the jump
-    limit over which contact 1, pressed by its Hertz approach δ1, still
-    carries load while the contact point has rigidly moved to zone 2
-    (interpenetration d1 = δ1/2).
+
+def jump_gap(gamma1, gamma2, tau, rate=0.0):
+    """Rigid gap of contact 2 at the distance τ from a jump limit, on side 1 (CAF lines).
+
+    On side 1 contact 1 touches rigidly; the other branch's surface lies at
+    the gap (along contact 1's normal) ``∫₀^τ tan Δγ dτ' / cos γ1`` with
+    Δγ(τ') = |γ2 − γ1| + c τ' the angle between the two branches' lines
+    (``rate`` = d(γ2 − γ1)/dτ from their slopes, signed as γ2 − γ1); in
+    closed form ``ln(cos Δγ(0) / cos Δγ(τ)) / (c cos γ1)``, and
+    ``τ tan|γ2 − γ1| / cos γ1`` for straight lines (the gap behind eq. 3).
+    This is the relation :func:`jump_overlap` inverts.
 
     Parameters
     ----------
     gamma1, gamma2 : array_like
-        Contact angles on both sides of the jump [rad] (γ2 ≠ γ1).
+        Contact angles of the two lines at the jump limit [rad].
+    tau : array_like
+        Lateral distance from the jump limit into side 1 [m], ≥ 0.
+    rate : array_like, default 0
+        d(γ2 − γ1)/dτ [rad/m].
+
+    Returns
+    -------
+    ndarray
+        Gap [m] (converging lines: the largest gap, where they cross, is kept
+        beyond the crossing).
+    """
+    g1, g2, t, r = np.broadcast_arrays(*(np.asarray(v, dtype=float)
+                                         for v in (gamma1, gamma2, tau, rate)))
+    a, c = _angle_growth(g1, g2, r)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_eff = np.where(c < 0, np.minimum(t, a / np.abs(c)), t)
+        w = c * t_eff
+        # ln(cos a / cos(a + w)) / c without cancellation for small w
+        gen = -np.log1p(_cos_ratio_m1(a, w)) / c
+        out = np.where(c == 0.0, t_eff * np.tan(a), gen)
+    return out / np.cos(g1)
+
+
+def _cos_ratio_m1(a, w):
+    """cos(a + w)/cos(a) − 1, accurate for small w."""
+    return -2.0 * np.sin(0.5 * w) ** 2 - np.tan(a) * np.sin(w)
+
+
+def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
+    """Overlap width of a jump on side 1 (seed 003 eq. 3 and a small-jump generalisation).
+
+    Side 1 is the side of the jump limit t_ylim where contact 1 is the rigid
+    contact point; contact 2, rigidly separated from the rail there by a gap
+    that grows with the distance Δt from t_ylim, still carries load while the
+    gap is smaller than contact 1's interpenetration d1 = δ1/2. With straight
+    profile lines the gap, measured along contact 1's normal, is
+    Δt tan(γ2 − γ1)/cos γ1, which gives eq. (3)::
+
+        Δt_y1 = cos γ1 · (δ1/2) / tan(γ2 − γ1)            (rate = 0)
+
+    It diverges as γ2 → γ1 (the small jump the seed says eq. 3 does not cover;
+    its generalisation, ref. [42] of the seed, is not given there). Here the
+    angle difference follows the two branches of the contact angle function,
+    Δγ(τ) = |γ2 − γ1| + c τ, c the rate at which it grows with the distance τ
+    from t_ylim (from the CAF slopes: ``rate`` = d(γ2 − γ1)/dτ, signed as
+    γ2 − γ1). The gap is then ∫ tan Δγ dτ / cos γ1 = ln(cos Δγ(0)/cos Δγ(Δt)) /
+    (c cos γ1) (cos γ1 held at its jump value), so that::
+
+        cos(Δγ(0) + c Δt) = cos Δγ(0) · exp(−c cos γ1 δ1/2)
+
+    gives Δt in closed form (:func:`jump_gap` is the gap as a function of Δt).
+    It equals eq. (3) to first order in c, stays
+    finite for γ2 = γ1 (Δt ≈ √(cos γ1 δ1 / c) when the lines diverge), and where
+    the lines converge (c < 0) the gap is largest where they cross, at
+    τ = Δγ(0)/|c|: if it stays below d1 the overlap is capped there. This
+    generalisation is this project's derivation from the same geometry as
+    eq. (3), not Ayasse's published one.
+
+    Parameters
+    ----------
+    gamma1, gamma2 : array_like
+        Contact angles on both sides of the jump [rad], on the two branches'
+        lines extended to the jump limit.
     delta1 : array_like
         Hertz approach of contact 1 under its load [m], ≥ 0.
+    rate : array_like, default 0
+        d(γ2 − γ1)/dτ [rad/m] with τ ≥ 0 the lateral distance from the jump
+        limit into side 1 (0: straight lines, eq. 3).
 
     Returns
     -------
@@ -78,16 +154,39 @@ def jump_overlap(gamma1, gamma2, delta1):
     Raises
     ------
     InputError
-        γ2 = γ1 (eq. 3 is for large jumps; the small-jump limit diverges).
+        γ2 = γ1 with rate = 0 (parallel lines: the overlap is unbounded), or
+        δ1 < 0.
+
+    References
+    ----------
+    .. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2.3.3, eq. (3) (seed 003).
     """
-    g1, g2, d1 = (np.asarray(v, dtype=float) for v in (gamma1, gamma2, delta1))
-    dg = np.abs(g2 - g1)
-    if np.any(dg == 0.0):
-        raise InputError(f"jump_overlap: gamma2 must differ from gamma1 (got {g1!r}, {g2!r}); "
-                         "eq. (3) is the large-jump form")
+    g1, g2, d1, r = np.broadcast_arrays(*(np.asarray(v, dtype=float)
+                                          for v in (gamma1, gamma2, delta1, rate)))
     if np.any(d1 < 0):
         raise InputError(f"jump_overlap: delta1 must be >= 0, got {d1!r}")
-    return np.cos(g1) * 0.5 * d1 / np.tan(dg)
+    if np.any((g2 == g1) & (r == 0.0)):
+        raise InputError(f"jump_overlap: gamma2 must differ from gamma1 (got {g1!r}, {g2!r}) "
+                         "unless the angle difference changes (rate != 0): parallel lines "
+                         "give an unbounded overlap")
+    a, c = _angle_growth(g1, g2, r)
+    K = np.cos(g1) * 0.5 * d1                       # the gap to close, times cos γ1
+    x = c * K
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        eq3 = K / np.tan(a)
+        arg = np.cos(a) * np.exp(-x)
+        # w = c Δt solves cos(a + w)/cos a − 1 = expm1(−x): closed form, then Newton steps
+        # on the cancellation-free form (small w, i.e. nearly straight lines)
+        w = np.arccos(np.clip(arg, -1.0, 1.0)) - a
+        target = np.expm1(-x)
+        for _ in range(4):
+            f = _cos_ratio_m1(a, w) - target
+            df = -np.sin(a + w) / np.cos(a)
+            w = np.where(df != 0.0, w - f / np.where(df != 0.0, df, 1.0), w)
+        general = w / c
+        crossed = a / np.abs(c)                     # converging lines: capped where they cross
+        out = np.where(c == 0.0, eq3, np.where(arg > 1.0, crossed, general))
+    return out
 
 
 def _simplify(x, y, tol):
@@ -245,9 +344,10 @@ class CafTable:
         return out
 
     def _jump_data(self, k):
-        """(t_ylim, γ1, γ2, δ1_unit, δ2_unit) of jump ``k``, memoised: the Hertz approach
-        of each side's contact at the jump limit is δ_unit (N/E*)^(2/3) [m] (N [N],
-        E* [Pa]); None when a side is not convex (A or B ≤ 0) or γ1 = γ2."""
+        """(t_ylim, γ1, γ2, δ1_unit, δ2_unit, s1, s2) of jump ``k``, memoised: the Hertz
+        approach of each side's contact at the jump limit is δ_unit (N/E*)^(2/3) [m]
+        (N [N], E* [Pa]), s_i the slope dγ/dt_y of branch i's line [rad/m]; None when a
+        side is not convex (A or B ≤ 0) or both lines coincide."""
         memo = self.__dict__.setdefault("_memo", {})
         if k not in memo:
             from .hertz import hertz_kernel
@@ -255,22 +355,38 @@ class CafTable:
             t_lim = float(self.jumps[k])
             l1, l2 = self.line(t_lim, k), self.line(t_lim, k + 1)
             if (min(l1["A"], l1["B"], l2["A"], l2["B"]) <= 0
-                    or l1["gamma"] == l2["gamma"]):
+                    or (l1["gamma"] == l2["gamma"] and l1["slope"] == l2["slope"])):
                 memo[k] = None
             else:
                 u = [float(hertz_kernel(1.0, ln["A"], ln["B"], 1.0)[3]) for ln in (l1, l2)]
-                memo[k] = (t_lim, l1["gamma"], l2["gamma"], u[0], u[1])
+                memo[k] = (t_lim, l1["gamma"], l2["gamma"], u[0], u[1], l1["slope"],
+                           l2["slope"])
         return memo[k]
+
+    def _rates(self, k):
+        """d(γ2 − γ1)/dτ [rad/m] on side 1 (τ = t_ylim − t_y) and d(γ1 − γ2)/dτ on
+        side 2 (τ = t_y − t_ylim) of jump ``k``, from the slopes of the two lines."""
+        s1 = self.line(float(self.jumps[k]), k)["slope"]
+        s2 = self.line(float(self.jumps[k]), k + 1)["slope"]
+        return s1 - s2, s1 - s2
 
     def branch_of(self, y):
         """Branch (continuous part of the CAF) of the rigid contact point at shift ``y`` [m]."""
         return int(np.searchsorted(self.jumps, float(y)))
 
-    def overlaps(self, k, delta1, delta2):
+    def overlaps(self, k, delta1, delta2, overlap="general"):
         """Overlap widths (Δt_y1, Δt_y2) [m] at jump ``k`` for the Hertz approaches δ1, δ2
-        [m] of the two contacts (seed 003 eq. 3 on each side of the jump)."""
+        [m] of the two contacts: Δt_y1 below the jump limit (branch k, contact 1 the
+        rigid one), Δt_y2 above it (seed 003 eq. 3 on each side of the jump).
+
+        ``overlap="eq3"`` is eq. (3) with straight lines; ``"general"`` (default)
+        lets the angle difference follow the two lines' slopes
+        (:func:`jump_overlap` with its ``rate``), which equals eq. (3) for parallel
+        lines and stays finite for small jumps.
+        """
         g1, g2 = self.jump_angles(k)
-        return (float(jump_overlap(g1, g2, delta1)), float(jump_overlap(g2, g1, delta2)))
+        r1, r2 = self._rates(k) if _overlap_kind(overlap) == "general" else (0.0, 0.0)
+        return (float(jump_overlap(g1, g2, delta1, r1)), float(jump_overlap(g2, g1, delta2, r2)))
 
 
 def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tolerance=1e-3,
@@ -374,15 +490,23 @@ def cached_caf_table(wheelset, track, side, y=(-0.01, 0.01), *, step=5e-5, toler
     return table
 
 
-def caf_contacts(table, t_y, load, materials):
+def _overlap_kind(overlap):
+    if overlap not in ("general", "eq3"):
+        raise InputError(f"caf_overlap must be 'general' or 'eq3', got {overlap!r}")
+    return overlap
+
+
+def caf_contacts(table, t_y, load, materials, overlap="general"):
     """Ayasse's contacts of one wheel at shift ``t_y`` from its CAF table (seed 003 §2.3).
 
     The rigid contact point lies on the branch of ``t_y``; near a jump limit
     t_ylim the two contacts of the neighbouring branches share the load over
-    the overlap [t_ylim − Δt_y2, t_ylim + Δt_y1] of eq. (3) (δ_i the Hertz
+    the overlap [t_ylim − Δt_y1, t_ylim + Δt_y2] of eq. (3): on side i of the
+    jump, where contact i is the rigid one, the other contact touches while
+    its rigid gap is below contact i's interpenetration δ_i/2 (δ_i the Hertz
     approach of contact i under the whole wheel load, at the jump limit: "the
     overlap is determined at the beginning of the jump as a function of the
-    dynamic load", §2.3.3); the share of contact 2 rises linearly across the
+    dynamic load", §2.3.3). The share of contact 2 rises linearly across the
     overlap ("the normal load varies quasi-linearly with the lateral
     displacement", fig. 8). Each contact's angle, rail radius, wheel radius
     (from the CAF slope) and point come from its branch's line (extended
@@ -396,6 +520,9 @@ def caf_contacts(table, t_y, load, materials):
     load : float
         Vertical load Q of the wheel [N], > 0.
     materials : Material or MaterialPair
+    overlap : {"general", "eq3"}, default "general"
+        Overlap widths: :func:`jump_overlap` with the angle difference
+        following the lines' slopes, or eq. (3) with straight lines.
 
     Returns
     -------
@@ -407,6 +534,7 @@ def caf_contacts(table, t_y, load, materials):
     from ..materials import as_material_pair
 
     E_star = float(as_material_pair(materials).E_star)
+    general = _overlap_kind(overlap) == "general"
     t_y = float(t_y)
     b = table.branch_of(t_y)
     best = None
@@ -416,14 +544,22 @@ def caf_contacts(table, t_y, load, materials):
         jd = table._jump_data(k)
         if jd is None:                   # a side of the jump is not convex: no overlap
             continue
-        t_lim, g1, g2, u1, u2 = jd
+        t_lim, g1, g2, u1, u2, s1, s2 = jd
         # Hertz approach of each contact under the whole wheel load, δ = δ_unit (N/E*)^(2/3)
         d1 = u1 * (load / math.cos(g1) / E_star) ** (2.0 / 3.0)
         d2 = u2 * (load / math.cos(g2) / E_star) ** (2.0 / 3.0)
-        tg = math.tan(abs(g2 - g1))
-        dt1 = math.cos(g1) * 0.5 * d1 / tg          # eq. (3), side 1
-        dt2 = math.cos(g2) * 0.5 * d2 / tg          # eq. (3), side 2
-        lo, hi = t_lim - dt2, t_lim + dt1
+        if general:
+            dt1 = float(jump_overlap(g1, g2, d1, s1 - s2))    # side 1 (below t_ylim)
+            dt2 = float(jump_overlap(g2, g1, d2, s1 - s2))    # side 2 (above t_ylim)
+        else:
+            tg = math.tan(abs(g2 - g1))
+            if tg == 0.0:
+                raise InputError(f"jump at t_ylim = {t_lim!r} m: equal contact angles "
+                                 f"{g1!r} rad on both sides; eq. (3) gives an unbounded "
+                                 "overlap (use caf_overlap='general')")
+            dt1 = math.cos(g1) * 0.5 * d1 / tg          # eq. (3), side 1
+            dt2 = math.cos(g2) * 0.5 * d2 / tg          # eq. (3), side 2
+        lo, hi = t_lim - dt1, t_lim + dt2
         if lo < t_y < hi and (best is None or abs(t_y - t_lim) < best[0]):
             best = (abs(t_y - t_lim), k, (t_y - lo) / (hi - lo))
     if best is None:

@@ -41,9 +41,11 @@ Three variants (seed 003 §2), chosen with ``variant=``:
     ``caf_range``, lines within ``caf_tolerance`` of the sampled γ), they give
     at the position's shift t_y the contact angle, the contact point, the rail
     radius and the wheel radius (from the CAF slope) of the rigid contact's
-    line; within the overlap [t_ylim − Δt_y2, t_ylim + Δt_y1] of a jump
-    (eq. 3, δ_i the Hertz approach of contact i under the wheel load at the
-    jump limit) the load moves linearly from one contact to the other
+    line; within the overlap [t_ylim − Δt_y1, t_ylim + Δt_y2] of a jump
+    (eq. 3 on side i, where contact i is the rigid one, with δ_i the Hertz
+    approach of contact i under the wheel load at the jump limit; by default
+    with the angle difference following the lines' slopes, ``caf_overlap``)
+    the load moves linearly from one contact to the other
     (:func:`~wheelrail.normal.caf.caf_contacts`). As in the seed (§2.3.1) the
     roll and yaw of the wheelset are neglected in the table (the contact
     geometry is that of a pure translation). ``caf="direct"`` keeps the
@@ -67,7 +69,7 @@ import math
 
 import numpy as np
 
-from ..errors import InputError, NoContactError
+from ..errors import ConvergenceError, InputError, NoContactError
 from ._base import NormalMethod
 from ._strips import VirtualPenetration, hertz_shape
 
@@ -129,6 +131,10 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         Lateral shifts covered by the CAF tables [m].
     caf_tolerance : float, default 2e-4
         Largest deviation of the CAF lines from the sampled contact angle [rad].
+    caf_overlap : {"general", "eq3"}, default "general"
+        Overlap widths at a jump of the CAF tables: eq. (3) with the angle
+        difference following the two lines' slopes (finite for small jumps;
+        :func:`~wheelrail.normal.caf.jump_overlap`), or eq. (3) as printed.
     """
 
     name = "multi-hertz"
@@ -142,7 +148,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         "roue-rail, Rapport INRETS 225, 2000.",
     )
     options = {"variant": "pascal", "max_ellipses": 7, "strips": 40, "cells": 40,
-               "caf": "table", "caf_range": (-0.02, 0.02), "caf_tolerance": 2e-4}
+               "caf": "table", "caf_range": (-0.02, 0.02), "caf_tolerance": 2e-4,
+               "caf_overlap": "general"}
 
     @staticmethod
     def _variant(opts):
@@ -287,7 +294,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             l0 = lines[0]
             _, _, _, d1 = hertz_shape(max(l0.A, 1e-6), max(l0.B, 1e-6))
             start = (float(np.min(l0.f)) + d1 * (Q / pair.E_star) ** (2 / 3)) / l0.cos
-            dz = self._iterate(total, Q, max(start, 1e-7), f"{problem.side} wheel, multi-hertz")
+            dz, jump = self._approach_for_load(total, Q, max(start, 1e-7), problem.side)
         patches = []
         for line in lines:
             patches += self._hertz_patches(line, dz * line.cos, opts, pair,
@@ -296,12 +303,46 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                                                separation=line.extra.get("separation")))
         if not patches:
             raise NoContactError(f"{problem.side} wheel: no contact at the approach {dz!r} m")
+        info = {"approach": float(dz), "variant": variant}
         if problem.vertical_load is not None:
             Fz = sum(p.Fn * math.cos(p.frame.contact_angle) for p in patches)
-            patches = _scale_patches(patches, float(problem.vertical_load) / Fz, pair)
+            limit = 1e-3 if jump is None else 1e-3 + abs(jump[1] - jump[0]) / float(Fz)
+            patches = _scale_patches(patches, float(problem.vertical_load) / Fz, pair, limit)
+            if jump is not None:
+                info["load_jump"] = jump
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
-        return tuple(patches), {"approach": float(dz), "variant": variant}
+        return tuple(patches), info
+
+    def _approach_for_load(self, total, Q, start, side):
+        """Approach [m] at which the ellipses carry the vertical load ``Q`` [N].
+
+        Returns ``(dz, None)``, or ``(dz, (F_below, F_above))`` where the
+        method's load jumps over ``Q`` at one approach: the greedy choice of
+        ellipses (each next one at the largest remaining interpenetration)
+        changes there, so no approach carries ``Q`` exactly; the side whose
+        load is nearer ``Q`` is returned and its ellipses are scaled to ``Q``
+        by the caller (``info["load_jump"]`` gives both loads).
+        """
+        evals = []
+
+        def recorded(dz):
+            F = total(dz)
+            evals.append((dz, F))
+            return F
+
+        try:
+            return self._iterate(recorded, Q, start, f"{side} wheel, multi-hertz"), None
+        except ConvergenceError:
+            below = [e for e in evals if e[1] < Q]
+            above = [e for e in evals if e[1] >= Q]
+            if not below or not above:
+                raise
+            lo, hi = max(below), min(above)
+            if not 0.0 <= hi[0] - lo[0] <= 1e-9 * hi[0]:
+                raise
+            best = min((lo, hi), key=lambda e: abs(e[1] - Q))
+            return best[0], (float(lo[1]), float(hi[1]))
 
     @staticmethod
     def _uses_tables(opts):
@@ -356,7 +397,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                                  tolerance=float(opts.get("caf_tolerance", 2e-4)))
         pair = as_material_pair(problem.materials)
         Q = float(problem.vertical_load)
-        contacts = caf_contacts(table, ty, Q, pair)
+        contacts = caf_contacts(table, ty, Q, pair, overlap=opts.get("caf_overlap", "general"))
         extra_A = 0.0 if problem.roller_radius is None else 0.5 / problem.roller_radius
         N = Q / sum(w * math.cos(ln["gamma"]) for w, ln, _ in contacts)
         rigid = table.branch_of(ty)
@@ -447,15 +488,17 @@ def _hertz_fast(load, A, B, pair):
                         float(A), float(B), pair)
 
 
-def _scale_patches(patches, factor, pair):
-    """Hertz patches rescaled to carry ``factor`` × their loads (load closure, factor ≈ 1)."""
+def _scale_patches(patches, factor, pair, limit=1e-3):
+    """Hertz patches rescaled to carry ``factor`` × their loads (load closure, |factor − 1|
+    ≤ ``limit``)."""
     from dataclasses import replace
 
     from ..contact.patch import ContactPatch
     from .hertz import hertz
 
-    if abs(factor - 1.0) > 1e-3:
-        raise InputError(f"multi-hertz: load closure factor {factor!r} is not within 1e-3 of 1")
+    if abs(factor - 1.0) > limit:
+        raise InputError(f"multi-hertz: load closure factor {factor!r} is not within {limit!r} "
+                         "of 1")
     out = []
     for p in patches:
         hc = hertz(p.Fn * factor, float(p.hertz.A), float(p.hertz.B), pair)
