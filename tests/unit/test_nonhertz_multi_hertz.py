@@ -75,3 +75,26 @@ def test_sauvage_load_jump_is_bridged():
     r = wr.solve(wp, motion=wr.Motion(speed=20.0, omega=20.0 / 0.46), mu=0.3,
                  normal="multi-hertz", variant="sauvage", vertical="normal")
     assert np.isfinite(r.force_track["right"]).all()
+
+
+def test_secondary_ellipses_do_not_warn():
+    """Sauvage's secondary ellipses may carry a few N by design (depth down to 0.5 % of the
+    first's); the plausibility warning for a load below 100 N (meant for wrong-unit user
+    input) must not fire for them (it did at y = −5 mm, approach 20 µm, S1002/60E1)."""
+    import dataclasses
+    import warnings
+
+    from wheelrail.contact.wheelrail import touching_poses, wheel_problem
+    from wheelrail.plausibility import PlausibilityWarning
+
+    ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
+    m = wr.api.get_normal_method("multi-hertz")
+    wp = wr.WheelRailPosition(ws, tr, -0.005, yaw=0.002, vertical_load=70e3)
+    roll, zs = touching_poses(wp)
+    prob = dataclasses.replace(wheel_problem(wp, "right", roll, zs["right"]),
+                               vertical_load=None, approach=2e-5, cache={})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", PlausibilityWarning)
+        patches, _ = m.from_wheel(prob, **m.check_options({"variant": "sauvage"}))
+    assert len(patches) >= 2 and min(p.Fn for p in patches) < 100.0

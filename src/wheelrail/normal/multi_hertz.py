@@ -219,8 +219,11 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             p.info.update({"variant": variant, "ellipses": len(ell)})
             return [p]
         out = []
-        for e in ell:
-            hc = hertz_from_penetration(e[3], e[1], e[2], pair)
+        for i, e in enumerate(ell):
+            # the secondary ellipses may carry a few N by design (depth down to 0.5 % of
+            # the first's): the plausibility checks of user input stay on the first only
+            with _quiet(i > 0):
+                hc = hertz_from_penetration(e[3], e[1], e[2], pair)
             p = ContactPatch.from_hertz(hc, strips=strips, cells=cells,
                                         frame=frame_of(float(line.eta[e[0]])), method=self.name)
             p.info.update({"variant": variant})
@@ -475,6 +478,15 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         return tuple(patches), {"approach": float(dz), "variant": "ayasse"}
 
 
+def _quiet(on):
+    """No plausibility warnings inside the block when ``on`` (internal secondary ellipses)."""
+    import contextlib
+
+    from ..plausibility import disabled
+
+    return disabled() if on else contextlib.nullcontext()
+
+
 def _hertz_fast(load, A, B, pair):
     """Hertz's solution for one contact from the interpolated unit-load solution
     (:func:`~wheelrail.normal._strips.hertz_shape`, relative error < 1e-5): a, b ∝
@@ -500,8 +512,10 @@ def _scale_patches(patches, factor, pair, limit=1e-3):
         raise InputError(f"multi-hertz: load closure factor {factor!r} is not within {limit!r} "
                          "of 1")
     out = []
-    for p in patches:
-        hc = hertz(p.Fn * factor, float(p.hertz.A), float(p.hertz.B), pair)
+    largest = max(range(len(patches)), key=lambda i: patches[i].Fn)
+    for i, p in enumerate(patches):
+        with _quiet(i != largest):
+            hc = hertz(p.Fn * factor, float(p.hertz.A), float(p.hertz.B), pair)
         q = ContactPatch.from_hertz(hc, strips=p.y.size, cells=p.cells, frame=p.frame,
                                     method=p.method)
         out.append(replace(q, info=dict(p.info)))
