@@ -566,7 +566,7 @@ def _rolling_and_influence_kernels(grid: Grid, materials):
     return memo(("rolling",) + grid_key(grid, pair), build)
 
 
-def _contact_box(grid, pair, R, contact, conv):
+def _contact_box(grid, pair, R, contact):
     """The bounding box of the contact and the rolling kernel / convolution cropped to it.
 
     Tractions vanish outside the contact and slips are needed only inside it, so
@@ -581,7 +581,7 @@ def _contact_box(grid, pair, R, contact, conv):
     mx, my = i1 - i0, j1 - j0
     full = (slice(0, grid.nx), slice(0, grid.ny))
     if _fft_shape(mx, my) == _fft_shape(grid.nx, grid.ny):
-        return full, R[:2, :2], conv
+        return full, R[:2, :2], _block_convolution(grid, pair, "R_tt", R[:2, :2])
     cx, cy = grid.nx - 1, grid.ny - 1
     kernel = R[:2, :2, cx - (mx - 1): cx + mx, cy - (my - 1): cy + my]
     key = ("block-box", mx, my) + grid_key(grid, pair)
@@ -737,7 +737,7 @@ def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
 
 
 def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
-            gmres_maxiter=400, krylov_conv=None, precondition=None):
+            gmres_maxiter=400, krylov_conv=None, precondition=None, forcing=None):
     """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
 
     Unknowns are the tractions of the adhesion elements (H) and the traction
@@ -783,7 +783,7 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         p, s, it, res, kry = _newton(kernel, conv, b / s_scale, g_scaled,
                                      None if p0 is None else np.asarray(p0) / s_scale, tol,
                                      maxiter, upwind, gmres_rtol, gmres_maxiter, krylov_conv,
-                                     precondition)
+                                     precondition, forcing)
         return p * s_scale, s * s_scale, it, res, kry
     total_krylov = 0
     res = np.inf
@@ -856,7 +856,14 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
 
         prec = pinv if precondition is None else precondition(kind, pos, pinv, matvec,
                                                                   n_unknowns)
-        y, count = _gmres(lambda w: matvec(prec(w)), -F, gmres_rtol, gmres_maxiter)
+        rtol = gmres_rtol
+        if forcing is not None:
+            # adaptive forcing: loose while the active set moves, then just tight enough
+            # to reach tol in one more step (floor: the single-precision products)
+            loose, factor, floor = forcing
+            rtol = loose if (changed or it == 1) else min(gmres_rtol,
+                                                          max(factor * tol / res, floor))
+        y, count = _gmres(lambda w: matvec(prec(w)), -F, rtol, gmres_maxiter)
         total_krylov += count
         dz = prec(y)
         # --- update
@@ -985,8 +992,108 @@ def _check_solver_options(tol, maxiter, on_fail):
     return tol, maxiter, on_fail
 
 
+#: Nested iteration: coarse levels are used while the contact's bounding box
+#: is at least this many elements long in both directions on the finer level.
+_NESTED_MIN = 32
+#: Tolerance of the coarse-level solves (their solution differs from the fine
+#: one by the discretisation error anyway).
+_NESTED_TOL = 1e-2
+#: GMRES forcing of steady rolling: relative tolerance while the active set
+#: changes, factor of ``tol / residual`` once it has settled, floor.
+_FORCING = (0.2, 0.3, 1e-4)
+
+
+def _rolling_traction(grid, pressure, pair, creepage, mu, tol, maxiter, initial, nested,
+                      coarse):
+    """Tractions and slip (2, nx, ny) of steady rolling on ``grid``; nested-iteration start.
+
+    Returns ``p, s, newton_iterations, residual, krylov_iterations``; the
+    iteration counts of the coarse levels are appended to ``coarse`` (finest
+    coarse level first) as dicts.
+    """
+    xi, eta, phi = creepage
+    R = _rolling_and_influence_kernels(grid, pair)[0]
+    X, Y = grid.X, grid.Y
+    # spin evaluated a sixth of an element upstream (module docstring; CONTACT's FACPHI)
+    b = np.stack((xi - phi * Y, eta + phi * (X + _SPIN_SHIFT * grid.dx)))
+    if pair.K:
+        b = b + _block_convolution(grid, pair, "R_tn", R[:2, 2:3])(pressure[None])
+    g = mu * pressure
+    contact = g > 0.0
+    box, kernel, conv = _contact_box(grid, pair, R, contact)
+    mx, my = box[0].stop - box[0].start, box[1].stop - box[1].start
+    if initial is None and nested and min(mx, my) >= _NESTED_MIN:
+        cgrid, cpressure = _coarsened(grid, pressure)
+        pc, sc, itc, resc, kryc = _rolling_traction(cgrid, cpressure, pair, creepage, mu,
+                                                    max(tol, _NESTED_TOL), maxiter, None,
+                                                    nested, coarse)
+        coarse.insert(0, {"shape": cgrid.shape, "newton": itc, "krylov": kryc})
+        if np.all(np.isfinite(pc)):
+            initial = _prolongated(pc, mu * cpressure, g)
+    p0 = None if initial is None else np.asarray(initial, dtype=float)[(slice(None),) + box]
+    pb, sb, its, res, krylov = _newton(kernel, conv, b[(slice(None),) + box], g[box], p0, tol,
+                                       maxiter, krylov_conv=conv.single, forcing=_FORCING)
+    p = np.zeros((2,) + grid.shape)
+    s = np.zeros((2,) + grid.shape)
+    p[(slice(None),) + box] = pb
+    s[(slice(None),) + box] = sb
+    return p, s, its, res, krylov
+
+
+def _coarsened(grid, pressure):
+    """The grid with 2 × 2 times larger elements on the same window and the block-mean pressure.
+
+    Coarse element ``(k, l)`` covers the fine elements ``2k, 2k+1`` × ``2l, 2l+1``
+    (an odd count is padded by one row of zero pressure at the far side); its
+    pressure is the mean of theirs, so the normal force is kept.
+    """
+    nxc, nyc = (grid.nx + 1) // 2, (grid.ny + 1) // 2
+    padded = np.zeros((2 * nxc, 2 * nyc))
+    padded[:grid.nx, :grid.ny] = pressure
+    pc = padded.reshape(nxc, 2, nyc, 2).mean(axis=(1, 3))
+    cgrid = Grid(grid.x0 + 0.5 * grid.dx, grid.y0 + 0.5 * grid.dy, 2.0 * grid.dx, 2.0 * grid.dy,
+                 nxc, nyc)
+    return cgrid, pc
+
+
+def _linear_weights(n_fine, n_coarse):
+    """Lower coarse index and weight of the upper one for each fine element centre (private).
+
+    Fine centre ``i`` lies at coarse index ``(i − ½) / 2`` (see :func:`_coarsened`);
+    clamped to the coarse range (constant extrapolation at the ends).
+    """
+    t = np.clip((np.arange(n_fine) - 0.5) / 2.0, 0.0, n_coarse - 1.0)
+    k = np.minimum(np.floor(t).astype(np.int64), max(n_coarse - 2, 0))
+    return k, t - k
+
+
+def _prolongated(pc, gc, g):
+    """Fine starting tractions (2, nx, ny) from a coarse solution (private).
+
+    Tractions by bilinear interpolation between coarse element centres; fine
+    elements whose coarse element slips start in slip (``|p| = g`` along the
+    interpolated traction), the others with the interpolated traction (the
+    Newton iteration moves those above the bound to slip).
+    """
+    nx, ny = g.shape
+    nxc, nyc = gc.shape
+    kx, wx = _linear_weights(nx, nxc)
+    ky, wy = _linear_weights(ny, nyc)
+    kx1 = np.minimum(kx + 1, nxc - 1)
+    ky1 = np.minimum(ky + 1, nyc - 1)
+    rows = pc[:, kx, :] * (1.0 - wx)[None, :, None] + pc[:, kx1, :] * wx[None, :, None]
+    p = rows[:, :, ky] * (1.0 - wy) + rows[:, :, ky1] * wy
+    slip_c = (gc > 0.0) & (np.hypot(pc[0], pc[1]) >= gc * (1.0 - 1e-9))
+    parent = np.arange(nx) // 2, np.arange(ny) // 2
+    slip = slip_c[parent[0][:, None], parent[1][None, :]] & (g > 0.0)
+    norm = np.hypot(p[0], p[1])
+    scale = np.where(slip & (norm > 0.0), g / np.where(norm > 0.0, norm, 1.0), 1.0)
+    return p * scale
+
+
 def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=100,
-                  initial=None, on_fail="raise", solver="newton") -> TangentialSolution:
+                  initial=None, on_fail="raise", solver="newton",
+                  nested=True) -> TangentialSolution:
     """Steady-state rolling with prescribed creepages (Kalker's exact theory).
 
     Parameters
@@ -1017,12 +1124,21 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
         iterate with ``converged=False``.
     solver : {"newton"}
         The preconditioned Newton–GMRES method (module docstring).
+    nested : bool
+        Without ``initial``: start from the solution of the same problem on
+        the grid with 2 × 2 times larger elements (pressure averaged over
+        them), itself started that way while the contact is at least 32
+        elements long in both directions (nested iteration, module
+        docstring). Only the path changes: the converged solution is that of
+        this grid to ``tol``.
 
     Returns
     -------
     TangentialSolution
         ``sx, sy`` are dimensionless slip velocities; ``iterations`` counts
-        Newton iterations, ``info["krylov_iterations"]`` the GMRES ones.
+        Newton iterations, ``info["krylov_iterations"]`` the GMRES ones (on
+        this grid); ``info["coarse"]`` lists the coarse levels (finest first)
+        as dicts with ``shape``, ``newton`` and ``krylov`` iteration counts.
 
     Examples
     --------
@@ -1048,29 +1164,16 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
     xi, eta, phi = (float(v) for v in cr)
     guard("exact", grid.size, f"exact theory on a {grid.nx}x{grid.ny} grid")  # memory/time
     pair = as_material_pair(materials)
-    R, C = _rolling_and_influence_kernels(grid, pair)
-    conv = _block_convolution(grid, pair, "R_tt", R[:2, :2])
-    conv_n = _block_convolution(grid, pair, "R_tn", R[:2, 2:3]) if pair.K else None
-    conv_u = _block_convolution(grid, pair, "C_t", C[:2, :])
-    X, Y = grid.X, grid.Y
-    # spin evaluated a sixth of an element upstream (module docstring; CONTACT's FACPHI)
-    b = np.stack((xi - phi * Y, eta + phi * (X + _SPIN_SHIFT * grid.dx)))
-    if conv_n is not None:
-        b = b + conv_n(pressure[None])
-    g = mu * pressure
     if solver != "newton":
         raise InputError(f"solver must be 'newton' for steady rolling, got {solver!r} "
                          "(Gauss–Seidel is available for the shift problem only)")
-    box, kernel, conv = _contact_box(grid, pair, R, g > 0.0, conv)
-    p0 = None if initial is None else np.asarray(initial, dtype=float)[(slice(None),) + box]
-    pb, sb, its, res, krylov = newton_step(kernel, b[(slice(None),) + box], g[box], conv=conv,
-                                           initial=p0, tol=tol, maxiter=maxiter,
-                                           krylov_conv=conv.single)
-    p = np.zeros((2,) + grid.shape)
-    s = np.zeros((2,) + grid.shape)
-    p[(slice(None),) + box] = pb
-    s[(slice(None),) + box] = sb
-    info = {"solver": "newton", "krylov_iterations": krylov}
+    nested = bool(nested)
+    coarse = []
+    p, s, its, res, krylov = _rolling_traction(grid, pressure, pair, (xi, eta, phi), mu, tol,
+                                               maxiter, initial, nested, coarse)
+    C = _rolling_and_influence_kernels(grid, pair)[1]
+    conv_u = _block_convolution(grid, pair, "C_t", C[:2, :])
+    info = {"solver": "newton", "krylov_iterations": krylov, "coarse": coarse}
     u = conv_u(np.concatenate((p, pressure[None])))
     return _finish(grid, pressure, p, s, u, mu, "rolling", (xi, eta, phi), its, res, tol,
                    on_fail, info)
