@@ -283,45 +283,46 @@ def _gs_sweep(mxx, mxy, myx, myy, order_i, order_j, g, px, py, sx, sy,
 
 
 @njit(cache=True)
-def _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy):
+def _precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy):
     """Apply the line preconditioner (in place into ``z``).
 
     Solves, in upwind order, the part of the Newton system that couples each
     element to itself (``d0 = M(0)``) and to its upstream neighbour
     (``dup = M(−e_x)``): for rolling this is the backward difference along x,
-    whose exact inverse is a running sum from the leading edge. ``kind`` is
-    1 (adhesion, unknowns δp) or 2 (slip, unknown δθ); ``vx, vy`` receive the
+    whose exact inverse is a running sum from the leading edge. The contact
+    elements are listed in upwind order: ``up_e`` is the list index of the
+    upstream neighbour (−1 if it is out of contact or off the grid),
+    ``kind_e`` 1 (adhesion, unknowns δp) or 2 (slip, unknown δθ), ``pos_e``
+    the position of the unknowns; ``vx, vy`` (per element) receive the
     traction perturbation of each element.
     """
-    nx, ny = kind.shape
-    for k in range(order_i.shape[0]):
-        i = order_i[k]
-        j = order_j[k]
+    det = d0[0, 0] * d0[1, 1] - d0[0, 1] * d0[1, 0]
+    for k in range(kind_e.shape[0]):
         ux = 0.0
         uy = 0.0
-        if i + 1 < nx and kind[i + 1, j] > 0:
-            ux = dup[0, 0] * vx[i + 1, j] + dup[0, 1] * vy[i + 1, j]
-            uy = dup[1, 0] * vx[i + 1, j] + dup[1, 1] * vy[i + 1, j]
-        q = pos[i, j]
-        if kind[i, j] == 1:
+        u = up_e[k]
+        if u >= 0:
+            ux = dup[0, 0] * vx[u] + dup[0, 1] * vy[u]
+            uy = dup[1, 0] * vx[u] + dup[1, 1] * vy[u]
+        q = pos_e[k]
+        if kind_e[k] == 1:
             rx = r[q] - ux
             ry = r[q + 1] - uy
-            det = d0[0, 0] * d0[1, 1] - d0[0, 1] * d0[1, 0]
             ax = (d0[1, 1] * rx - d0[0, 1] * ry) / det
             ay = (-d0[1, 0] * rx + d0[0, 0] * ry) / det
             z[q] = ax
             z[q + 1] = ay
-            vx[i, j] = ax
-            vy[i, j] = ay
+            vx[k] = ax
+            vy[k] = ay
         else:
-            t0 = tx[i, j]
-            t1 = ty[i, j]
+            t0 = tx_e[k]
+            t1 = ty_e[k]
             tdt = (t0 * (d0[0, 0] * t0 + d0[0, 1] * t1) + t1 * (d0[1, 0] * t0 + d0[1, 1] * t1))
-            den = tdt * g[i, j] + diag_s[i, j]
+            den = tdt * g_e[k] + diag_e[k]
             dth = (r[q] - (t0 * ux + t1 * uy)) / den
             z[q] = dth
-            vx[i, j] = g[i, j] * t0 * dth
-            vy[i, j] = g[i, j] * t1 * dth
+            vx[k] = g_e[k] * t0 * dth
+            vy[k] = g_e[k] * t1 * dth
 
 
 @njit(cache=True)
@@ -804,8 +805,15 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     total_krylov = 0
     res = np.inf
     it = 0
-    vx = np.zeros(shape)
-    vy = np.zeros(shape)
+    # list index of each contact element's upstream neighbour (i + 1, j), −1 if none
+    index = np.full(shape, -1, dtype=np.int64)
+    index[order_i, order_j] = np.arange(order_i.shape[0])
+    up_e = np.full(order_i.shape[0], -1, dtype=np.int64)
+    inside = order_i + 1 < nx
+    up_e[inside] = index[order_i[inside] + 1, order_j[inside]]
+    g_e = np.ascontiguousarray(g[order_i, order_j])
+    vx = np.zeros(order_i.shape[0])
+    vy = np.zeros(order_i.shape[0])
     v = np.zeros((2,) + shape)      # Krylov work field: only contact elements are written
     kconv = conv if krylov_conv is None else krylov_conv
     for it in range(1, maxiter + 1):
@@ -868,7 +876,7 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
 
         def pinv(r):
             z = np.empty(n_unknowns)
-            _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy)
+            _precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy)
             return z
 
         prec = pinv if precondition is None else precondition(kind, pos, pinv, matvec,
