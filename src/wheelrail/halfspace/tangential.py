@@ -62,24 +62,57 @@ system is solved by restarted GMRES with FFT matrix–vector products
 nearest-neighbour coupling along the rolling direction (self + upstream
 element): for rolling this inverts the backward difference, i.e. a running
 sum from the leading edge. The preconditioner is local across the rolling
-direction, so the Krylov iterations still grow with the grid (about as
-N^0.6: 59, 116, 141 for 40, 104, 160 elements across a Hertzian contact,
-small creepage; about 10 per decade of the residual at 104). After each step
+direction, so the Krylov iterations per decade of the residual still grow
+with the grid (about 7, 11, 13 at 40, 104, 160 elements across a Hertzian
+contact, small creepage). After each step
 elements whose traction exceeds the bound move to the slip area, slip
 elements whose slip points along their traction move back to adhesion.
 Converged when no element changes state and the largest residual of the slip
 equations is below ``tol · max|w|``.
 
+Nested iteration (steady rolling, ``nested=True``, the default without an
+``initial`` traction): the same problem is first solved on the grid with
+2 × 2 times larger elements on the same window (pressure averaged over the
+four elements, so the normal force is kept), itself started that way while
+the contact's bounding box is at least 32 elements long in both directions
+(160 → 80 → 40 → 20 elements across), to the tolerance 1e-2 (its solution
+differs from the fine one by the discretisation error anyway) and with
+single-precision products throughout. Its tractions, bilinearly
+interpolated between the coarse element centres, start the finer level; fine
+elements whose coarse element slips start on the bound ``|p| = g``. This
+removes the expensive first, all-adhesion Newton steps: the start is right
+except for about one element row along the slip boundary, which the Newton
+iteration moves in 2–4 steps. GMRES's relative tolerance (forcing) is 0.2
+while the active set changes and then ``0.3 · tol / residual`` (at least
+1e-4, the accuracy of the single-precision products), so that the last step
+usually reaches ``tol`` at once. Only the path changes: plain and nested
+solves agree to the tolerance (``tests/unit/test_exact_nested.py``).
+Fine-level counts on the benchmark contact (``benchmarks/bench_exact_rolling.py``;
+40, 104, 160 elements; Newton / Krylov, before → after): small creepage
+8/59 → 5/41, 10/116 → 5/68, 10/141 → 6/98; combined creepage 8/37 → 4/26,
+9/59 → 4/24, 10/73 → 5/31; pure spin 9/36 → 4/16, 10/56 → 5/29, 11/78 → 4/28;
+the coarse levels add about a quarter of that in fine-product equivalents.
+With combined creepage or spin the fine-level Krylov count is now nearly
+independent of the grid; with small creepage (mostly adhesion) it still
+grows, because the last decades are limited by the per-decade count of the
+local preconditioner (the largest residual sits at the lateral tips of the
+contact, where the lines along x are short).
+
 Cost: one FFT convolution pair (x and y components together) per Krylov
-iteration plus one or two per Newton iteration. The products of steady
+iteration plus one or two per Newton iteration (the second, after an
+active-set change, in single precision: such a step is never the last). The products of steady
 rolling are made on the bounding box of the contact (a smaller FFT than the
 window) and, inside GMRES, in single precision (the Newton residual and the
 returned slip stay in double precision, so the tolerance is met as before;
 forces change by < 1e-8 μFn), the 2-D transforms skip the zero padding rows,
 the scatter/gather of
-the Newton unknowns and GMRES's Gram–Schmidt, update and back substitution
+the Newton unknowns, the line preconditioner (on element lists in upwind
+order) and GMRES's Gram–Schmidt, update and back substitution
 are numba kernels without BLAS calls (multi-threaded BLAS level-1/2 calls
-were several times slower than one core on a loaded machine).
+were several times slower than one core on a loaded machine); the
+Gram–Schmidt sums are reassociated (SIMD) and fused with the update of the
+previous basis vector (2.5 times faster than plain modified Gram–Schmidt, the
+same operations up to round-off).
 
 ``solver="gs"`` (shift problem only): Kalker's block Gauss–Seidel (ConvexGS
 without relaxation) with the exact 2×2 local problem per element (adhesion
@@ -123,7 +156,35 @@ the whole solve):
   aggregate mean of the residual (58, 80, 91) do not help enough. A
   coarse-grid method would pay off only with a cheap (recursive, FFT-based)
   coarse solve *and* a smoother that does not need the extra product; not
-  done.
+  done (the coarse grids are used for the starting tractions instead:
+  nested iteration, above).
+
+Other variants measured with the nested start (same benchmark, iteration
+counts of the fine level at 104 / 160 elements, small creepage) and dropped:
+
+* adaptive forcing *without* the nested start: 116 → 131 Krylov at 104 (the
+  tight solves are spoilt by the active-set changes that follow);
+* fine elements start in slip only where the interpolated traction exceeds
+  their bound (not by their coarse element): 104 / 138 Krylov instead of
+  81 / 122 (fixed forcing 0.1); keeping the prolongated slip area for the
+  first fine step: 88 / 131;
+* forcing 0.4 while the active set changes: fewer Krylov (72 / 89) but one
+  more Newton step and slower; a floor of 2e-5: 72 / 108;
+* coarse tolerance 1e-3 or 1e-4 instead of 1e-2: the same fine-level counts,
+  more coarse iterations;
+* row scaling of the Newton equations by ``(max g / g)^α`` (to weight the
+  lateral tips, where the largest residual stays): α = 0.5 no gain, α = 1
+  twice the iterations;
+* the Newton residual in single precision while it is above 1e3·tol: one
+  more Newton step (79 / 112 Krylov), since the tight last solves need the
+  right-hand side to ~1e-9 of the slip;
+* a fused numba loop for the 2 × 2 spectrum product instead of numpy's
+  in-place operations: no gain (memory bound);
+* a nested start for the normal (Polonsky–Keer) solve: from the analytic
+  Hertz pressure it takes 42 / 47 iterations, and even from the converged
+  pressure perturbed by 1e-4 it takes 30 / 34 (the stopping rule, relative
+  pressure change < 1e-8, sets the count), so a coarse-grid start cannot
+  save much; not done.
 
 References
 ----------
