@@ -105,7 +105,8 @@ rolling are made on the bounding box of the contact (a smaller FFT than the
 window) and, inside GMRES, in single precision (the Newton residual and the
 returned slip stay in double precision, so the tolerance is met as before;
 forces change by < 1e-8 μFn), the 2-D transforms skip the zero padding rows,
-the scatter/gather of
+the active-set update,
+residual and correction of each Newton step, the scatter/gather of
 the Newton unknowns, the line preconditioner (on element lists in upwind
 order) and GMRES's Gram–Schmidt, update and back substitution
 are numba kernels without BLAS calls (multi-threaded BLAS level-1/2 calls
@@ -384,6 +385,112 @@ def _precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, v
             z[q] = dth
             vx[k] = g_e[k] * t0 * dth
             vy[k] = g_e[k] * t1 * dth
+
+
+@njit(cache=True)
+def _active_set(p, s, g_e, ei, ej, slip_e):
+    """Active-set update of the Newton iteration on the element list (in place).
+
+    Adhesion elements whose traction exceeds the bound (by more than 1e-10)
+    move to slip and are projected onto it; slip elements whose slip points
+    along their traction move to adhesion. Returns whether any element changed.
+    """
+    changed = False
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        px = p[0, i, j]
+        py = p[1, i, j]
+        norm = math.hypot(px, py)
+        if slip_e[k]:
+            safe = norm if norm > 0.0 else 1.0
+            if (px / safe) * s[0, i, j] + (py / safe) * s[1, i, j] > 0.0:
+                slip_e[k] = False
+                changed = True
+        elif norm > g_e[k] * (1 + 1e-10):
+            slip_e[k] = True
+            changed = True
+            f = g_e[k] / norm
+            p[0, i, j] = px * f
+            p[1, i, j] = py * f
+    return changed
+
+
+@njit(cache=True)
+def _newton_system(p, s, g_e, ei, ej, slip_e, kind_e, pos_e, ex_e, ey_e, tx_e, ty_e,
+                   gtx_e, gty_e, diag_e, F):
+    """Unknown layout, residual ``F`` and per-element data of one Newton step (in place).
+
+    Adhesion elements (kind 1) have two unknowns (δp), slip elements (kind 2)
+    one (δθ), in upwind order; ``t = (−e_y, e_x)`` is the unit vector normal to
+    the traction direction ``e``, ``diag`` the slip elements' ``max(−e·s, 0)``.
+    Returns ``(number of unknowns, max |F|)``.
+    """
+    q = 0
+    big = 0.0
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        px = p[0, i, j]
+        py = p[1, i, j]
+        norm = math.hypot(px, py)
+        safe = norm if norm > 0.0 else 1.0
+        ex = px / safe
+        ey = py / safe
+        ex_e[k] = ex
+        ey_e[k] = ey
+        tx_e[k] = -ey
+        ty_e[k] = ex
+        gtx_e[k] = g_e[k] * -ey
+        gty_e[k] = g_e[k] * ex
+        pos_e[k] = q
+        sx = s[0, i, j]
+        sy = s[1, i, j]
+        if slip_e[k]:
+            kind_e[k] = 2
+            sigma = ex * sx + ey * sy
+            diag_e[k] = -sigma if sigma < 0.0 else 0.0
+            f = -ey * sx + ex * sy
+            F[q] = f
+            q += 1
+            if abs(f) > big:
+                big = abs(f)
+        else:
+            kind_e[k] = 1
+            diag_e[k] = 0.0
+            F[q] = sx
+            F[q + 1] = sy
+            q += 2
+            if abs(sx) > big:
+                big = abs(sx)
+            if abs(sy) > big:
+                big = abs(sy)
+    return q, big
+
+
+@njit(cache=True)
+def _newton_update(p, dz, g_e, ei, ej, kind_e, pos_e, ex_e, ey_e):
+    """Apply the Newton correction ``dz`` to the tractions (in place).
+
+    Adhesion: ``p += δp``; slip: the traction angle turns by δθ (clipped to
+    ±π/2) on the bound, ``p = g (e cos δθ + t sin δθ)``.
+    """
+    half_pi = 0.5 * math.pi
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        q = pos_e[k]
+        if kind_e[k] == 1:
+            p[0, i, j] += dz[q]
+            p[1, i, j] += dz[q + 1]
+        else:
+            dth = min(max(dz[q], -half_pi), half_pi)
+            c = math.cos(dth)
+            sn = math.sin(dth)
+            ex = ex_e[k]
+            ey = ey_e[k]
+            p[0, i, j] = g_e[k] * (ex * c - ey * sn)
+            p[1, i, j] = g_e[k] * (ey * c + ex * sn)
 
 
 @njit(cache=True)
@@ -877,56 +984,27 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     vy = np.zeros(order_i.shape[0])
     v = np.zeros((2,) + shape)      # Krylov work field: only contact elements are written
     kconv = conv if krylov_conv is None else krylov_conv
+    n_e = order_i.shape[0]
+    slip_e = np.ascontiguousarray(slip[order_i, order_j])
+    kind_e = np.empty(n_e, dtype=np.int64)
+    pos_e = np.empty(n_e, dtype=np.int64)
+    ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e = (np.empty(n_e) for _ in range(7))
+    F_work = np.empty(2 * n_e)
+    p = np.ascontiguousarray(p)
     for it in range(1, maxiter + 1):
         s = b + conv(p)
         # --- active-set update
-        norm = np.hypot(p[0], p[1])
-        to_slip = contact & ~slip & (norm > g * (1 + 1e-10))
-        safe = np.where(norm > 0, norm, 1.0)
-        ex, ey = p[0] / safe, p[1] / safe
-        sigma = ex * s[0] + ey * s[1]
-        to_stick = slip & (sigma > 0.0)
-        changed = bool(np.any(to_slip) or np.any(to_stick))
+        changed = _active_set(p, s, g_e, order_i, order_j, slip_e)
         if changed:
-            slip = (slip | to_slip) & ~to_stick
-            p = np.where(to_slip, p * (g / safe), p)
             # the Krylov product suffices: a step whose active set changed is never the last
             s = b + kconv(p)
-            norm = np.hypot(p[0], p[1])
-            safe = np.where(norm > 0, norm, 1.0)
-            ex, ey = p[0] / safe, p[1] / safe
-            sigma = ex * s[0] + ey * s[1]
-        stick = contact & ~slip
-        tx, ty = -ey, ex
-        # --- residual
-        kind = np.zeros(shape, dtype=np.int64)
-        kind[stick] = 1
-        kind[slip] = 2
-        pos = np.zeros(shape, dtype=np.int64)
-        # positions in the unknown vector, in upwind order
-        width = np.where(kind[order_i, order_j] == 1, 2, 1)
-        starts = np.concatenate(([0], np.cumsum(width)[:-1]))
-        pos[order_i, order_j] = starts
-        n_unknowns = int(width.sum())
-        F = np.empty(n_unknowns)
-        hi, hj = order_i[kind[order_i, order_j] == 1], order_j[kind[order_i, order_j] == 1]
-        si, sj = order_i[kind[order_i, order_j] == 2], order_j[kind[order_i, order_j] == 2]
-        ph, ps = pos[hi, hj], pos[si, sj]
-        F[ph] = s[0, hi, hj]
-        F[ph + 1] = s[1, hi, hj]
-        F[ps] = tx[si, sj] * s[0, si, sj] + ty[si, sj] * s[1, si, sj]
-        res = float(np.max(np.abs(F))) / s_scale if n_unknowns else 0.0
+        # --- residual, unknowns in upwind order, element data of the Krylov loop
+        n_unknowns, big = _newton_system(p, s, g_e, order_i, order_j, slip_e, kind_e, pos_e,
+                                         ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e, F_work)
+        F = F_work[:n_unknowns]
+        res = big / s_scale if n_unknowns else 0.0
         if res <= tol and not changed:
             return p, s, it - 1, res, total_krylov
-        diag_s = np.where(slip, np.maximum(-sigma, 0.0), 0.0)
-        # element lists in upwind order for the numba scatter/gather of the Krylov loop
-        kind_e = kind[order_i, order_j]
-        pos_e = pos[order_i, order_j]
-        tx_e = np.ascontiguousarray(tx[order_i, order_j])
-        ty_e = np.ascontiguousarray(ty[order_i, order_j])
-        gtx_e = g[order_i, order_j] * tx_e
-        gty_e = g[order_i, order_j] * ty_e
-        diag_e = diag_s[order_i, order_j]
 
         def matvec(z):
             _scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
@@ -940,8 +1018,14 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
             _precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy)
             return z
 
-        prec = pinv if precondition is None else precondition(kind, pos, pinv, matvec,
-                                                                  n_unknowns)
+        if precondition is None:
+            prec = pinv
+        else:
+            kind = np.zeros(shape, dtype=np.int64)
+            pos = np.zeros(shape, dtype=np.int64)
+            kind[order_i, order_j] = kind_e
+            pos[order_i, order_j] = pos_e
+            prec = precondition(kind, pos, pinv, matvec, n_unknowns)
         rtol = gmres_rtol
         if forcing is not None:
             # adaptive forcing: loose while the active set moves, then just tight enough
@@ -953,15 +1037,7 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         total_krylov += count
         dz = prec(y)
         # --- update
-        p[0, hi, hj] += dz[ph]
-        p[1, hi, hj] += dz[ph + 1]
-        dth = np.clip(dz[ps], -0.5 * np.pi, 0.5 * np.pi)
-        c, sn = np.cos(dth), np.sin(dth)
-        gi = g[si, sj]
-        nxv = gi * (ex[si, sj] * c + tx[si, sj] * sn)
-        nyv = gi * (ey[si, sj] * c + ty[si, sj] * sn)
-        p[0, si, sj] = nxv
-        p[1, si, sj] = nyv
+        _newton_update(p, dz, g_e, order_i, order_j, kind_e, pos_e, ex_e, ey_e)
     s = b + conv(p)
     return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov
 
