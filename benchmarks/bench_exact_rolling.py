@@ -11,7 +11,8 @@ printed, the speed-up is the ratio of CPU times of normal + tangential
 solve. The Newton and Krylov counts are those of the given grid; with
 nested iteration the coarse levels' counts follow the forces as
 ``nx:newton/krylov`` per level (coarse grid size nx, finest first; a coarse
-Krylov iteration costs about a quarter of a finer one). "cf cpu" is the CPU time of the same case through
+Krylov iteration costs about a quarter of a finer one). "cf cpu" is the CPU
+time of the same case through
 ``wr.creep_forces(..., method="exact", elements=N)`` (window, normal solve as
 the method starts it, tangential solve; its normal-solution cache cleared).
 The load average of the machine is printed beside the numbers, since other
