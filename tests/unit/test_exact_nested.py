@@ -8,6 +8,8 @@ reason it exists; counts measured with ``benchmarks/bench_exact_rolling.py``).
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import wheelrail as wr
 from wheelrail.halfspace import Grid, solve_rolling
@@ -100,3 +102,17 @@ def test_prolongated_interpolates_and_keeps_slip_on_the_bound():
     g = np.full(grid.shape, 2.5)
     p = _prolongated(pc, gc, g)
     np.testing.assert_allclose(np.hypot(p[0], p[1]), 2.5, rtol=1e-12)
+
+
+@settings(max_examples=8, deadline=None)
+@given(xi=st.floats(-2e-3, 2e-3), eta=st.floats(-2e-3, 2e-3), phi=st.floats(-4.0, 4.0))
+def test_nested_and_plain_agree_for_any_creepage(grid36, xi, eta, phi):
+    # property: the nested start changes the path only, for any creepage (partial slip to
+    # nearly full slip, either sign)
+    grid, pn = grid36
+    plain = solve_rolling(grid, pn, wr.STEEL, (xi, eta, phi), MU, tol=1e-9, nested=False)
+    nested = solve_rolling(grid, pn, wr.STEEL, (xi, eta, phi), MU, tol=1e-9)
+    scale = MU * 1e4
+    assert abs(plain.Fx - nested.Fx) <= 1e-8 * scale
+    assert abs(plain.Fy - nested.Fy) <= 1e-8 * scale
+    assert abs(plain.Mz - nested.Mz) <= 1e-8 * scale * grid.dx * grid.nx
