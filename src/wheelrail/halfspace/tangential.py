@@ -826,7 +826,9 @@ class TangentialSolution:
         Newton: largest slip-equation residual / max |rigid slip|;
         Gauss–Seidel: largest traction change of the last sweep / max μ·pn.
     info : dict
-        ``solver``, ``krylov_iterations`` (rolling), ``outer_iterations`` (shift).
+        ``solver``, ``krylov_iterations`` and ``coarse`` (rolling: the Newton
+        and Krylov counts of the nested-iteration levels), ``outer_iterations``
+        (shift).
     """
 
     grid: Grid
