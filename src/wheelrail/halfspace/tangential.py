@@ -89,7 +89,7 @@ usually reaches ``tol`` at once. Only the path changes: plain and nested
 solves agree to the tolerance (``tests/unit/test_exact_nested.py``).
 Fine-level counts on the benchmark contact (``benchmarks/bench_exact_rolling.py``;
 40, 104, 160 elements; Newton / Krylov, before → after): small creepage
-8/59 → 5/41, 10/116 → 5/68, 10/141 → 6/98; combined creepage 8/37 → 4/26,
+8/59 → 5/41, 10/116 → 5/68, 10/141 → 6/96; combined creepage 8/37 → 4/26,
 9/59 → 4/24, 10/73 → 5/31; pure spin 9/36 → 4/16, 10/56 → 5/29, 11/78 → 4/28;
 the coarse levels add about a quarter of that in fine-product equivalents.
 With combined creepage or spin the fine-level Krylov count is now nearly
@@ -100,20 +100,19 @@ contact, where the lines along x are short).
 
 Cost: one FFT convolution pair (x and y components together) per Krylov
 iteration plus one or two per Newton iteration (the second, after an
-active-set change, in single precision: such a step is never the last). The products of steady
-rolling are made on the bounding box of the contact (a smaller FFT than the
-window) and, inside GMRES, in single precision (the Newton residual and the
-returned slip stay in double precision, so the tolerance is met as before;
-forces change by < 1e-8 μFn), the 2-D transforms skip the zero padding rows,
-the active-set update,
-residual and correction of each Newton step, the scatter/gather of
-the Newton unknowns, the line preconditioner (on element lists in upwind
-order) and GMRES's Gram–Schmidt, update and back substitution
-are numba kernels without BLAS calls (multi-threaded BLAS level-1/2 calls
-were several times slower than one core on a loaded machine); the
-Gram–Schmidt sums are reassociated (SIMD) and fused with the update of the
-previous basis vector (2.5 times faster than plain modified Gram–Schmidt, the
-same operations up to round-off).
+active-set change, in single precision: such a step is never the last).
+The products of steady rolling are made on the bounding box of the contact
+(a smaller FFT than the window) and, inside GMRES, in single precision (the
+Newton residual and the returned slip stay in double precision, so the
+tolerance is met as before; forces change by < 1e-8 μFn); the 2-D
+transforms skip the zero padding rows. The active-set update, residual and
+correction of each Newton step, the scatter/gather of the Newton unknowns,
+the line preconditioner (on element lists in upwind order) and GMRES's
+Gram–Schmidt, update and back substitution are numba kernels without BLAS
+calls (multi-threaded BLAS level-1/2 calls were several times slower than
+one core on a loaded machine); the Gram–Schmidt sums are reassociated (SIMD)
+and fused with the update of the previous basis vector (2.5 times faster
+than plain modified Gram–Schmidt, the same operations up to round-off).
 
 ``solver="gs"`` (shift problem only): Kalker's block Gauss–Seidel (ConvexGS
 without relaxation) with the exact 2×2 local problem per element (adhesion
