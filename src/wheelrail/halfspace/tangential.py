@@ -1180,8 +1180,8 @@ def _rolling_traction(grid, pressure, pair, creepage, mu, tol, maxiter, initial,
     """Tractions and slip (2, nx, ny) of steady rolling on ``grid``; nested-iteration start.
 
     Returns ``p, s, newton_iterations, residual, krylov_iterations``; the
-    iteration counts of the coarse levels are appended to ``coarse`` (finest
-    coarse level first) as dicts.
+    iteration counts of the coarse levels are recorded in the list ``coarse``
+    (finest coarse level first) as dicts.
     """
     xi, eta, phi = creepage
     R = _rolling_and_influence_kernels(grid, pair)[0]
