@@ -171,8 +171,7 @@ def main() -> None:
         pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
         R, _ = T._rolling_and_influence_kernels(grid, pair)
         g = MU * pn
-        box, kernel, conv = T._contact_box(grid, pair, R, g > 0.0,
-                                           T._block_convolution(grid, pair, "R_tt", R[:2, :2]))
+        box, kernel, conv = T._contact_box(grid, pair, R, g > 0.0)
         gb = g[box]
         shape = f"{gb.shape[0]}x{gb.shape[1]}"
         for name, (xi, eta, phi) in CASES.items():

@@ -8,7 +8,11 @@ Krylov (GMRES) iteration counts and the forces. Times are the best of
 core: the process is limited to one BLAS/FFT thread; wall time ("s") and the
 CPU time of the process ("cpu s", less sensitive to other processes) are
 printed, the speed-up is the ratio of CPU times of normal + tangential
-solve. "cf cpu" is the CPU time of the same case through
+solve. The Newton and Krylov counts are those of the given grid; with
+nested iteration the coarse levels' counts follow the forces as
+``nx:newton/krylov`` per level (coarse grid size nx, finest first; a coarse
+Krylov iteration costs about a quarter of a finer one). "cf cpu" is the CPU
+time of the same case through
 ``wr.creep_forces(..., method="exact", elements=N)`` (window, normal solve as
 the method starts it, tangential solve; its normal-solution cache cleared).
 The load average of the machine is printed beside the numbers, since other
@@ -80,7 +84,10 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
             tt.append(time.perf_counter() - t0)
             ct.append(time.process_time() - c0)
         row = {"tangential_s": min(tt), "tangential_cpu": min(ct), "newton": s.iterations,
-               "krylov": s.info["krylov_iterations"], "Fx": s.Fx, "Fy": s.Fy, "Mz": s.Mz}
+               "krylov": s.info["krylov_iterations"], "Fx": s.Fx, "Fy": s.Fy, "Mz": s.Mz,
+               # nested iteration (absent in older versions): per coarse level, finest first
+               "coarse": [(c["shape"][0], c["newton"], c["krylov"])
+                          for c in s.info.get("coarse", ())]}
         # the same case through the public entry point (window, normal solve from the Hertz
         # start as the method does it, tangential solve); the normal-solution cache is cleared
         import wheelrail.tangential.exact as ex
@@ -118,7 +125,7 @@ def _print_header(compare: bool) -> None:
     if compare:
         cols += (f" {'before s':>9} {'cpu s':>7} {'cf cpu':>7} {'nwt':>4} {'kry':>4} "
                  f"{'speed-up':>8}")
-    cols += f" {'Fx N':>10} {'Fy N':>10} {'Mz Nm':>9}"
+    cols += f" {'Fx N':>10} {'Fy N':>10} {'Mz Nm':>9}  coarse levels nx:newton/krylov"
     print(cols)
 
 
@@ -136,6 +143,7 @@ def _print_rows(after: dict, before: dict | None) -> None:
             line += (f" {tb:>9.3f} {cb:>7.3f} {b['creep_forces_cpu']:>7.3f} {b['newton']:>4} "
                      f"{b['krylov']:>4} {cb / cpu:>8.2f}")
         line += f" {r['Fx']:>10.2f} {r['Fy']:>10.2f} {r['Mz']:>9.4f}"
+        line += "  " + (" ".join(f"{n}:{a}/{k}" for n, a, k in r.get("coarse", ())) or "-")
         if "peak_MB" in r:
             line += f"  peak {r['peak_MB']:.1f} MB"
         print(line, flush=True)

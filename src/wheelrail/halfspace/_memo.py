@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 
-_SIZE = 16
+_SIZE = 24
 _store: OrderedDict = OrderedDict()
 
 

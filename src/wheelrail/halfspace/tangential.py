@@ -62,24 +62,57 @@ system is solved by restarted GMRES with FFT matrix–vector products
 nearest-neighbour coupling along the rolling direction (self + upstream
 element): for rolling this inverts the backward difference, i.e. a running
 sum from the leading edge. The preconditioner is local across the rolling
-direction, so the Krylov iterations still grow with the grid (about as
-N^0.6: 59, 116, 141 for 40, 104, 160 elements across a Hertzian contact,
-small creepage; about 10 per decade of the residual at 104). After each step
+direction, so the Krylov iterations per decade of the residual still grow
+with the grid (about 7, 11, 13 at 40, 104, 160 elements across a Hertzian
+contact, small creepage). After each step
 elements whose traction exceeds the bound move to the slip area, slip
 elements whose slip points along their traction move back to adhesion.
 Converged when no element changes state and the largest residual of the slip
 equations is below ``tol · max|w|``.
 
+Nested iteration (steady rolling, ``nested=True``, the default without an
+``initial`` traction): the same problem is first solved on the grid with
+2 × 2 times larger elements on the same window (pressure averaged over the
+four elements, so the normal force is kept), itself started that way while
+the contact's bounding box is at least 32 elements long in both directions
+(160 → 80 → 40 → 20 elements across), to the tolerance 3e-2 (its solution
+differs from the fine one by the discretisation error anyway) and with
+single-precision products throughout. Its tractions, bilinearly
+interpolated between the coarse element centres, start the finer level; fine
+elements whose coarse element slips start on the bound ``|p| = g``. This
+removes the expensive first, all-adhesion Newton steps: the start is right
+except for about one element row along the slip boundary, which the Newton
+iteration moves in 2–4 steps. GMRES's relative tolerance (forcing) is 0.2
+while the active set changes and then ``0.3 · tol / residual`` (at least
+1e-4, the accuracy of the single-precision products), so that the last step
+usually reaches ``tol`` at once. Only the path changes: plain and nested
+solves agree to the tolerance (``tests/unit/test_exact_nested.py``).
+Fine-level counts on the benchmark contact (``benchmarks/bench_exact_rolling.py``;
+40, 104, 160 elements; Newton / Krylov, before → after): small creepage
+8/59 → 5/41, 10/116 → 5/68, 10/141 → 6/96; combined creepage 8/37 → 4/26,
+9/59 → 4/24, 10/73 → 5/31; pure spin 9/36 → 4/16, 10/56 → 5/29, 11/78 → 4/28;
+the coarse levels add about a quarter of that in fine-product equivalents.
+With combined creepage or spin the fine-level Krylov count is now nearly
+independent of the grid; with small creepage (mostly adhesion) it still
+grows, because the last decades are limited by the per-decade count of the
+local preconditioner (the largest residual sits at the lateral tips of the
+contact, where the lines along x are short).
+
 Cost: one FFT convolution pair (x and y components together) per Krylov
-iteration plus one or two per Newton iteration. The products of steady
-rolling are made on the bounding box of the contact (a smaller FFT than the
-window) and, inside GMRES, in single precision (the Newton residual and the
-returned slip stay in double precision, so the tolerance is met as before;
-forces change by < 1e-8 μFn), the 2-D transforms skip the zero padding rows,
-the scatter/gather of
-the Newton unknowns and GMRES's Gram–Schmidt, update and back substitution
-are numba kernels without BLAS calls (multi-threaded BLAS level-1/2 calls
-were several times slower than one core on a loaded machine).
+iteration plus one or two per Newton iteration (the second, after an
+active-set change, in single precision: such a step is never the last).
+The products of steady rolling are made on the bounding box of the contact
+(a smaller FFT than the window) and, inside GMRES, in single precision (the
+Newton residual and the returned slip stay in double precision, so the
+tolerance is met as before; forces change by < 1e-8 μFn); the 2-D
+transforms skip the zero padding rows. The active-set update, residual and
+correction of each Newton step, the scatter/gather of the Newton unknowns,
+the line preconditioner (on element lists in upwind order) and GMRES's
+Gram–Schmidt, update and back substitution are numba kernels without BLAS
+calls (multi-threaded BLAS level-1/2 calls were several times slower than
+one core on a loaded machine); the Gram–Schmidt sums are reassociated (SIMD)
+and fused with the update of the previous basis vector (2.5 times faster
+than plain modified Gram–Schmidt, the same operations up to round-off).
 
 ``solver="gs"`` (shift problem only): Kalker's block Gauss–Seidel (ConvexGS
 without relaxation) with the exact 2×2 local problem per element (adhesion
@@ -123,7 +156,44 @@ the whole solve):
   aggregate mean of the residual (58, 80, 91) do not help enough. A
   coarse-grid method would pay off only with a cheap (recursive, FFT-based)
   coarse solve *and* a smoother that does not need the extra product; not
-  done.
+  done (the coarse grids are used for the starting tractions instead:
+  nested iteration, above).
+
+Other variants measured with the nested start (same benchmark, iteration
+counts of the fine level at 104 / 160 elements, small creepage) and dropped:
+
+* adaptive forcing *without* the nested start: 116 → 131 Krylov at 104 (the
+  tight solves are spoilt by the active-set changes that follow);
+* fine elements start in slip only where the interpolated traction exceeds
+  their bound (not by their coarse element): 104 / 138 Krylov instead of
+  81 / 122 (fixed forcing 0.1); keeping the prolongated slip area for the
+  first fine step: 88 / 131;
+* forcing 0.4 while the active set changes: fewer Krylov (72 / 89) but one
+  more Newton step and slower; a floor of 2e-5: 72 / 108;
+* coarse tolerance 1e-3 or 1e-4 instead of 3e-2: the same fine-level counts,
+  more coarse iterations (1e-1: the same as 3e-2);
+* row scaling of the Newton equations by ``(max g / g)^α`` (to weight the
+  lateral tips, where the largest residual stays): α = 0.5 no gain, α = 1
+  twice the iterations;
+* an exact (dense, LU-factored) solve of the Newton system restricted to the
+  1, 2 or 3 outermost lateral lines of the contact, in place of their line
+  solves (the largest residual of the last steps sits there: at 160 the
+  second-to-last iterate is within tol everywhere else): 98, 110, 90 Krylov
+  at 160 instead of 96, so the slow decay at the tips is not a local defect
+  of the preconditioner;
+* row weights 2, 3 or 5 on the outermost lateral lines in GMRES (to align its
+  2-norm with the max-norm test): no consistent gain over six creepage cases
+  (between −12 and +10 Krylov iterations);
+* the Newton residual in single precision while it is above 1e3·tol: one
+  more Newton step (79 / 112 Krylov), since the tight last solves need the
+  right-hand side to ~1e-9 of the slip;
+* a fused numba loop for the 2 × 2 spectrum product instead of numpy's
+  in-place operations: no gain (memory bound);
+* a nested start for the normal (Polonsky–Keer) solve: from the analytic
+  Hertz pressure it takes 42 / 47 iterations, and even from the converged
+  pressure perturbed by 1e-4 it takes 30 / 34 (the stopping rule, relative
+  pressure change < 1e-8, sets the count), so a coarse-grid start cannot
+  save much; not done.
 
 References
 ----------
@@ -182,6 +252,12 @@ __all__ = [
 # --------------------------------------------------------------------------
 # numba kernels
 # --------------------------------------------------------------------------
+#: numba fast-math flags of the Krylov reductions: reassociation lets the dot
+#: products use SIMD (about 2.5 times faster Gram–Schmidt; the sums change at
+#: round-off level only); no assumptions about NaN or infinities.
+_REASSOC = {"reassoc", "contract"}
+
+
 @njit(cache=True)
 def _local_problem(bx, by, dxx, dxy, dyx, dyy, g):
     """Exact solution of one element's problem ``s = b + D p`` under ``|p| ≤ g``.
@@ -277,45 +353,152 @@ def _gs_sweep(mxx, mxy, myx, myy, order_i, order_j, g, px, py, sx, sy,
 
 
 @njit(cache=True)
-def _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy):
+def _precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy):
     """Apply the line preconditioner (in place into ``z``).
 
     Solves, in upwind order, the part of the Newton system that couples each
     element to itself (``d0 = M(0)``) and to its upstream neighbour
     (``dup = M(−e_x)``): for rolling this is the backward difference along x,
-    whose exact inverse is a running sum from the leading edge. ``kind`` is
-    1 (adhesion, unknowns δp) or 2 (slip, unknown δθ); ``vx, vy`` receive the
+    whose exact inverse is a running sum from the leading edge. The contact
+    elements are listed in upwind order: ``up_e`` is the list index of the
+    upstream neighbour (−1 if it is out of contact or off the grid),
+    ``kind_e`` 1 (adhesion, unknowns δp) or 2 (slip, unknown δθ), ``pos_e``
+    the position of the unknowns; ``vx, vy`` (per element) receive the
     traction perturbation of each element.
     """
-    nx, ny = kind.shape
-    for k in range(order_i.shape[0]):
-        i = order_i[k]
-        j = order_j[k]
+    det = d0[0, 0] * d0[1, 1] - d0[0, 1] * d0[1, 0]
+    for k in range(kind_e.shape[0]):
         ux = 0.0
         uy = 0.0
-        if i + 1 < nx and kind[i + 1, j] > 0:
-            ux = dup[0, 0] * vx[i + 1, j] + dup[0, 1] * vy[i + 1, j]
-            uy = dup[1, 0] * vx[i + 1, j] + dup[1, 1] * vy[i + 1, j]
-        q = pos[i, j]
-        if kind[i, j] == 1:
+        u = up_e[k]
+        if u >= 0:
+            ux = dup[0, 0] * vx[u] + dup[0, 1] * vy[u]
+            uy = dup[1, 0] * vx[u] + dup[1, 1] * vy[u]
+        q = pos_e[k]
+        if kind_e[k] == 1:
             rx = r[q] - ux
             ry = r[q + 1] - uy
-            det = d0[0, 0] * d0[1, 1] - d0[0, 1] * d0[1, 0]
             ax = (d0[1, 1] * rx - d0[0, 1] * ry) / det
             ay = (-d0[1, 0] * rx + d0[0, 0] * ry) / det
             z[q] = ax
             z[q + 1] = ay
-            vx[i, j] = ax
-            vy[i, j] = ay
+            vx[k] = ax
+            vy[k] = ay
         else:
-            t0 = tx[i, j]
-            t1 = ty[i, j]
+            t0 = tx_e[k]
+            t1 = ty_e[k]
             tdt = (t0 * (d0[0, 0] * t0 + d0[0, 1] * t1) + t1 * (d0[1, 0] * t0 + d0[1, 1] * t1))
-            den = tdt * g[i, j] + diag_s[i, j]
+            den = tdt * g_e[k] + diag_e[k]
             dth = (r[q] - (t0 * ux + t1 * uy)) / den
             z[q] = dth
-            vx[i, j] = g[i, j] * t0 * dth
-            vy[i, j] = g[i, j] * t1 * dth
+            vx[k] = g_e[k] * t0 * dth
+            vy[k] = g_e[k] * t1 * dth
+
+
+@njit(cache=True)
+def _active_set(p, s, g_e, ei, ej, slip_e):
+    """Active-set update of the Newton iteration on the element list (in place).
+
+    Adhesion elements whose traction exceeds the bound (by more than 1e-10)
+    move to slip and are projected onto it; slip elements whose slip points
+    along their traction move to adhesion. Returns whether any element changed.
+    """
+    changed = False
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        px = p[0, i, j]
+        py = p[1, i, j]
+        norm = math.hypot(px, py)
+        if slip_e[k]:
+            safe = norm if norm > 0.0 else 1.0
+            if (px / safe) * s[0, i, j] + (py / safe) * s[1, i, j] > 0.0:
+                slip_e[k] = False
+                changed = True
+        elif norm > g_e[k] * (1 + 1e-10):
+            slip_e[k] = True
+            changed = True
+            f = g_e[k] / norm
+            p[0, i, j] = px * f
+            p[1, i, j] = py * f
+    return changed
+
+
+@njit(cache=True)
+def _newton_system(p, s, g_e, ei, ej, slip_e, kind_e, pos_e, ex_e, ey_e, tx_e, ty_e,
+                   gtx_e, gty_e, diag_e, F):
+    """Unknown layout, residual ``F`` and per-element data of one Newton step (in place).
+
+    Adhesion elements (kind 1) have two unknowns (δp), slip elements (kind 2)
+    one (δθ), in upwind order; ``t = (−e_y, e_x)`` is the unit vector normal to
+    the traction direction ``e``, ``diag`` the slip elements' ``max(−e·s, 0)``.
+    Returns ``(number of unknowns, max |F|)``.
+    """
+    q = 0
+    big = 0.0
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        px = p[0, i, j]
+        py = p[1, i, j]
+        norm = math.hypot(px, py)
+        safe = norm if norm > 0.0 else 1.0
+        ex = px / safe
+        ey = py / safe
+        ex_e[k] = ex
+        ey_e[k] = ey
+        tx_e[k] = -ey
+        ty_e[k] = ex
+        gtx_e[k] = g_e[k] * -ey
+        gty_e[k] = g_e[k] * ex
+        pos_e[k] = q
+        sx = s[0, i, j]
+        sy = s[1, i, j]
+        if slip_e[k]:
+            kind_e[k] = 2
+            sigma = ex * sx + ey * sy
+            diag_e[k] = -sigma if sigma < 0.0 else 0.0
+            f = -ey * sx + ex * sy
+            F[q] = f
+            q += 1
+            if abs(f) > big:
+                big = abs(f)
+        else:
+            kind_e[k] = 1
+            diag_e[k] = 0.0
+            F[q] = sx
+            F[q + 1] = sy
+            q += 2
+            if abs(sx) > big:
+                big = abs(sx)
+            if abs(sy) > big:
+                big = abs(sy)
+    return q, big
+
+
+@njit(cache=True)
+def _newton_update(p, dz, g_e, ei, ej, kind_e, pos_e, ex_e, ey_e):
+    """Apply the Newton correction ``dz`` to the tractions (in place).
+
+    Adhesion: ``p += δp``; slip: the traction angle turns by δθ (clipped to
+    ±π/2) on the bound, ``p = g (e cos δθ + t sin δθ)``.
+    """
+    half_pi = 0.5 * math.pi
+    for k in range(ei.shape[0]):
+        i = ei[k]
+        j = ej[k]
+        q = pos_e[k]
+        if kind_e[k] == 1:
+            p[0, i, j] += dz[q]
+            p[1, i, j] += dz[q + 1]
+        else:
+            dth = min(max(dz[q], -half_pi), half_pi)
+            c = math.cos(dth)
+            sn = math.sin(dth)
+            ex = ex_e[k]
+            ey = ey_e[k]
+            p[0, i, j] = g_e[k] * (ex * c - ey * sn)
+            p[1, i, j] = g_e[k] * (ey * c + ex * sn)
 
 
 @njit(cache=True)
@@ -351,20 +534,30 @@ def _gather(mv, z, ei, ej, kind_e, pos_e, tx_e, ty_e, diag_e, out):
             out[q] = tx_e[k] * mv[0, i, j] + ty_e[k] * mv[1, i, j] + diag_e[k] * z[q]
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_REASSOC)
 def _orthogonalise(V, k, w, h):
     """Modified Gram–Schmidt of ``w`` against rows ``V[:k+1]``; fills ``h[:k+2]``."""
     n = w.shape[0]
-    for i in range(k + 1):
-        acc = 0.0
-        for q in range(n):
-            acc += V[i, q] * w[q]
-        h[i] = acc
-        for q in range(n):
-            w[q] -= acc * V[i, q]
     acc = 0.0
     for q in range(n):
-        acc += w[q] * w[q]
+        acc += V[0, q] * w[q]
+    # one pass per basis vector: subtract the projection on V[i] and, with the updated
+    # entries, accumulate the projection on V[i + 1] (the same operations as modified
+    # Gram–Schmidt, half the passes over w)
+    for i in range(k + 1):
+        h[i] = acc
+        nxt = 0.0
+        if i < k:
+            for q in range(n):
+                wq = w[q] - acc * V[i, q]
+                w[q] = wq
+                nxt += V[i + 1, q] * wq
+        else:
+            for q in range(n):
+                wq = w[q] - acc * V[i, q]
+                w[q] = wq
+                nxt += wq * wq
+        acc = nxt
     h[k + 1] = math.sqrt(acc)
 
 
@@ -388,7 +581,7 @@ def _givens(H, cs, sn, e, k):
     e[k] = cs[k] * e[k]
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=_REASSOC)
 def _norm(w):
     """Euclidean norm without BLAS (private; threaded BLAS is slow on a shared machine)."""
     acc = 0.0
@@ -566,7 +759,7 @@ def _rolling_and_influence_kernels(grid: Grid, materials):
     return memo(("rolling",) + grid_key(grid, pair), build)
 
 
-def _contact_box(grid, pair, R, contact, conv):
+def _contact_box(grid, pair, R, contact):
     """The bounding box of the contact and the rolling kernel / convolution cropped to it.
 
     Tractions vanish outside the contact and slips are needed only inside it, so
@@ -581,7 +774,7 @@ def _contact_box(grid, pair, R, contact, conv):
     mx, my = i1 - i0, j1 - j0
     full = (slice(0, grid.nx), slice(0, grid.ny))
     if _fft_shape(mx, my) == _fft_shape(grid.nx, grid.ny):
-        return full, R[:2, :2], conv
+        return full, R[:2, :2], _block_convolution(grid, pair, "R_tt", R[:2, :2])
     cx, cy = grid.nx - 1, grid.ny - 1
     kernel = R[:2, :2, cx - (mx - 1): cx + mx, cy - (my - 1): cy + my]
     key = ("block-box", mx, my) + grid_key(grid, pair)
@@ -632,7 +825,9 @@ class TangentialSolution:
         Newton: largest slip-equation residual / max |rigid slip|;
         Gauss–Seidel: largest traction change of the last sweep / max μ·pn.
     info : dict
-        ``solver``, ``krylov_iterations`` (rolling), ``outer_iterations`` (shift).
+        ``solver``, ``krylov_iterations`` and ``coarse`` (rolling: the Newton
+        and Krylov counts of the nested-iteration levels), ``outer_iterations``
+        (shift).
     """
 
     grid: Grid
@@ -737,7 +932,7 @@ def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
 
 
 def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
-            gmres_maxiter=400, krylov_conv=None, precondition=None):
+            gmres_maxiter=400, krylov_conv=None, precondition=None, forcing=None):
     """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
 
     Unknowns are the tractions of the adhesion elements (H) and the traction
@@ -783,64 +978,43 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         p, s, it, res, kry = _newton(kernel, conv, b / s_scale, g_scaled,
                                      None if p0 is None else np.asarray(p0) / s_scale, tol,
                                      maxiter, upwind, gmres_rtol, gmres_maxiter, krylov_conv,
-                                     precondition)
+                                     precondition, forcing)
         return p * s_scale, s * s_scale, it, res, kry
     total_krylov = 0
     res = np.inf
     it = 0
-    vx = np.zeros(shape)
-    vy = np.zeros(shape)
+    # list index of each contact element's upstream neighbour (i + 1, j), −1 if none
+    index = np.full(shape, -1, dtype=np.int64)
+    index[order_i, order_j] = np.arange(order_i.shape[0])
+    up_e = np.full(order_i.shape[0], -1, dtype=np.int64)
+    inside = order_i + 1 < nx
+    up_e[inside] = index[order_i[inside] + 1, order_j[inside]]
+    g_e = np.ascontiguousarray(g[order_i, order_j])
+    vx = np.zeros(order_i.shape[0])
+    vy = np.zeros(order_i.shape[0])
     v = np.zeros((2,) + shape)      # Krylov work field: only contact elements are written
     kconv = conv if krylov_conv is None else krylov_conv
+    n_e = order_i.shape[0]
+    slip_e = np.ascontiguousarray(slip[order_i, order_j])
+    kind_e = np.empty(n_e, dtype=np.int64)
+    pos_e = np.empty(n_e, dtype=np.int64)
+    ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e = (np.empty(n_e) for _ in range(7))
+    F_work = np.empty(2 * n_e)
+    p = np.ascontiguousarray(p)
     for it in range(1, maxiter + 1):
         s = b + conv(p)
         # --- active-set update
-        norm = np.hypot(p[0], p[1])
-        to_slip = contact & ~slip & (norm > g * (1 + 1e-10))
-        safe = np.where(norm > 0, norm, 1.0)
-        ex, ey = p[0] / safe, p[1] / safe
-        sigma = ex * s[0] + ey * s[1]
-        to_stick = slip & (sigma > 0.0)
-        changed = bool(np.any(to_slip) or np.any(to_stick))
+        changed = _active_set(p, s, g_e, order_i, order_j, slip_e)
         if changed:
-            slip = (slip | to_slip) & ~to_stick
-            p = np.where(to_slip, p * (g / safe), p)
-            s = b + conv(p)
-            norm = np.hypot(p[0], p[1])
-            safe = np.where(norm > 0, norm, 1.0)
-            ex, ey = p[0] / safe, p[1] / safe
-            sigma = ex * s[0] + ey * s[1]
-        stick = contact & ~slip
-        tx, ty = -ey, ex
-        # --- residual
-        kind = np.zeros(shape, dtype=np.int64)
-        kind[stick] = 1
-        kind[slip] = 2
-        pos = np.zeros(shape, dtype=np.int64)
-        # positions in the unknown vector, in upwind order
-        width = np.where(kind[order_i, order_j] == 1, 2, 1)
-        starts = np.concatenate(([0], np.cumsum(width)[:-1]))
-        pos[order_i, order_j] = starts
-        n_unknowns = int(width.sum())
-        F = np.empty(n_unknowns)
-        hi, hj = order_i[kind[order_i, order_j] == 1], order_j[kind[order_i, order_j] == 1]
-        si, sj = order_i[kind[order_i, order_j] == 2], order_j[kind[order_i, order_j] == 2]
-        ph, ps = pos[hi, hj], pos[si, sj]
-        F[ph] = s[0, hi, hj]
-        F[ph + 1] = s[1, hi, hj]
-        F[ps] = tx[si, sj] * s[0, si, sj] + ty[si, sj] * s[1, si, sj]
-        res = float(np.max(np.abs(F))) / s_scale if n_unknowns else 0.0
+            # the Krylov product suffices: a step whose active set changed is never the last
+            s = b + kconv(p)
+        # --- residual, unknowns in upwind order, element data of the Krylov loop
+        n_unknowns, big = _newton_system(p, s, g_e, order_i, order_j, slip_e, kind_e, pos_e,
+                                         ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e, F_work)
+        F = F_work[:n_unknowns]
+        res = big / s_scale if n_unknowns else 0.0
         if res <= tol and not changed:
             return p, s, it - 1, res, total_krylov
-        diag_s = np.where(slip, np.maximum(-sigma, 0.0), 0.0)
-        # element lists in upwind order for the numba scatter/gather of the Krylov loop
-        kind_e = kind[order_i, order_j]
-        pos_e = pos[order_i, order_j]
-        tx_e = np.ascontiguousarray(tx[order_i, order_j])
-        ty_e = np.ascontiguousarray(ty[order_i, order_j])
-        gtx_e = g[order_i, order_j] * tx_e
-        gty_e = g[order_i, order_j] * ty_e
-        diag_e = diag_s[order_i, order_j]
 
         def matvec(z):
             _scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
@@ -851,24 +1025,29 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
 
         def pinv(r):
             z = np.empty(n_unknowns)
-            _precondition(order_i, order_j, kind, pos, tx, ty, g, diag_s, d0, dup, r, z, vx, vy)
+            _precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy)
             return z
 
-        prec = pinv if precondition is None else precondition(kind, pos, pinv, matvec,
-                                                                  n_unknowns)
-        y, count = _gmres(lambda w: matvec(prec(w)), -F, gmres_rtol, gmres_maxiter)
+        if precondition is None:
+            prec = pinv
+        else:
+            kind = np.zeros(shape, dtype=np.int64)
+            pos = np.zeros(shape, dtype=np.int64)
+            kind[order_i, order_j] = kind_e
+            pos[order_i, order_j] = pos_e
+            prec = precondition(kind, pos, pinv, matvec, n_unknowns)
+        rtol = gmres_rtol
+        if forcing is not None:
+            # adaptive forcing: loose while the active set moves, then just tight enough
+            # to reach tol in one more step (floor: the single-precision products)
+            loose, factor, floor = forcing
+            rtol = loose if (changed or it == 1) else min(gmres_rtol,
+                                                          max(factor * tol / res, floor))
+        y, count = _gmres(lambda w: matvec(prec(w)), -F, rtol, gmres_maxiter)
         total_krylov += count
         dz = prec(y)
         # --- update
-        p[0, hi, hj] += dz[ph]
-        p[1, hi, hj] += dz[ph + 1]
-        dth = np.clip(dz[ps], -0.5 * np.pi, 0.5 * np.pi)
-        c, sn = np.cos(dth), np.sin(dth)
-        gi = g[si, sj]
-        nxv = gi * (ex[si, sj] * c + tx[si, sj] * sn)
-        nyv = gi * (ey[si, sj] * c + ty[si, sj] * sn)
-        p[0, si, sj] = nxv
-        p[1, si, sj] = nyv
+        _newton_update(p, dz, g_e, order_i, order_j, kind_e, pos_e, ex_e, ey_e)
     s = b + conv(p)
     return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov
 
@@ -985,8 +1164,112 @@ def _check_solver_options(tol, maxiter, on_fail):
     return tol, maxiter, on_fail
 
 
+#: Nested iteration: coarse levels are used while the contact's bounding box
+#: is at least this many elements long in both directions on the finer level.
+_NESTED_MIN = 32
+#: Tolerance of the coarse-level solves (their solution differs from the fine
+#: one by the discretisation error anyway).
+_NESTED_TOL = 3e-2
+#: GMRES forcing of steady rolling: relative tolerance while the active set
+#: changes, factor of ``tol / residual`` once it has settled, floor.
+_FORCING = (0.2, 0.3, 1e-4)
+
+
+def _rolling_traction(grid, pressure, pair, creepage, mu, tol, maxiter, initial, nested,
+                      coarse):
+    """Tractions and slip (2, nx, ny) of steady rolling on ``grid``; nested-iteration start.
+
+    Returns ``p, s, newton_iterations, residual, krylov_iterations``; the
+    iteration counts of the coarse levels are recorded in the list ``coarse``
+    (finest coarse level first) as dicts.
+    """
+    xi, eta, phi = creepage
+    R = _rolling_and_influence_kernels(grid, pair)[0]
+    X, Y = grid.X, grid.Y
+    # spin evaluated a sixth of an element upstream (module docstring; CONTACT's FACPHI)
+    b = np.stack((xi - phi * Y, eta + phi * (X + _SPIN_SHIFT * grid.dx)))
+    if pair.K:
+        b = b + _block_convolution(grid, pair, "R_tn", R[:2, 2:3])(pressure[None])
+    g = mu * pressure
+    contact = g > 0.0
+    box, kernel, conv = _contact_box(grid, pair, R, contact)
+    mx, my = box[0].stop - box[0].start, box[1].stop - box[1].start
+    if initial is None and nested and min(mx, my) >= _NESTED_MIN:
+        cgrid, cpressure = _coarsened(grid, pressure)
+        pc, sc, itc, resc, kryc = _rolling_traction(cgrid, cpressure, pair, creepage, mu,
+                                                    max(tol, _NESTED_TOL), maxiter, None,
+                                                    nested, coarse)
+        coarse.insert(0, {"shape": cgrid.shape, "newton": itc, "krylov": kryc})
+        if np.all(np.isfinite(pc)):
+            initial = _prolongated(pc, mu * cpressure, g)
+    p0 = None if initial is None else np.asarray(initial, dtype=float)[(slice(None),) + box]
+    # coarse levels (tol >= 1e-3): the single-precision product (relative error ~1e-7)
+    # also for the residual
+    residual_conv = conv.single if tol >= 1e-3 else conv
+    pb, sb, its, res, krylov = _newton(kernel, residual_conv, b[(slice(None),) + box], g[box],
+                                       p0, tol, maxiter, krylov_conv=conv.single,
+                                       forcing=_FORCING)
+    p = np.zeros((2,) + grid.shape)
+    s = np.zeros((2,) + grid.shape)
+    p[(slice(None),) + box] = pb
+    s[(slice(None),) + box] = sb
+    return p, s, its, res, krylov
+
+
+def _coarsened(grid, pressure):
+    """The grid with 2 × 2 times larger elements on the same window and the block-mean pressure.
+
+    Coarse element ``(k, l)`` covers the fine elements ``2k, 2k+1`` × ``2l, 2l+1``
+    (an odd count is padded by one row of zero pressure at the far side); its
+    pressure is the mean of theirs, so the normal force is kept.
+    """
+    nxc, nyc = (grid.nx + 1) // 2, (grid.ny + 1) // 2
+    padded = np.zeros((2 * nxc, 2 * nyc))
+    padded[:grid.nx, :grid.ny] = pressure
+    pc = padded.reshape(nxc, 2, nyc, 2).mean(axis=(1, 3))
+    cgrid = Grid(grid.x0 + 0.5 * grid.dx, grid.y0 + 0.5 * grid.dy, 2.0 * grid.dx, 2.0 * grid.dy,
+                 nxc, nyc)
+    return cgrid, pc
+
+
+def _linear_weights(n_fine, n_coarse):
+    """Lower coarse index and weight of the upper one for each fine element centre (private).
+
+    Fine centre ``i`` lies at coarse index ``(i − ½) / 2`` (see :func:`_coarsened`);
+    clamped to the coarse range (constant extrapolation at the ends).
+    """
+    t = np.clip((np.arange(n_fine) - 0.5) / 2.0, 0.0, n_coarse - 1.0)
+    k = np.minimum(np.floor(t).astype(np.int64), max(n_coarse - 2, 0))
+    return k, t - k
+
+
+def _prolongated(pc, gc, g):
+    """Fine starting tractions (2, nx, ny) from a coarse solution (private).
+
+    Tractions by bilinear interpolation between coarse element centres; fine
+    elements whose coarse element slips start in slip (``|p| = g`` along the
+    interpolated traction), the others with the interpolated traction (the
+    Newton iteration moves those above the bound to slip).
+    """
+    nx, ny = g.shape
+    nxc, nyc = gc.shape
+    kx, wx = _linear_weights(nx, nxc)
+    ky, wy = _linear_weights(ny, nyc)
+    kx1 = np.minimum(kx + 1, nxc - 1)
+    ky1 = np.minimum(ky + 1, nyc - 1)
+    rows = pc[:, kx, :] * (1.0 - wx)[None, :, None] + pc[:, kx1, :] * wx[None, :, None]
+    p = rows[:, :, ky] * (1.0 - wy) + rows[:, :, ky1] * wy
+    slip_c = (gc > 0.0) & (np.hypot(pc[0], pc[1]) >= gc * (1.0 - 1e-9))
+    parent = np.arange(nx) // 2, np.arange(ny) // 2
+    slip = slip_c[parent[0][:, None], parent[1][None, :]] & (g > 0.0)
+    norm = np.hypot(p[0], p[1])
+    scale = np.where(slip & (norm > 0.0), g / np.where(norm > 0.0, norm, 1.0), 1.0)
+    return p * scale
+
+
 def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=100,
-                  initial=None, on_fail="raise", solver="newton") -> TangentialSolution:
+                  initial=None, on_fail="raise", solver="newton",
+                  nested=True) -> TangentialSolution:
     """Steady-state rolling with prescribed creepages (Kalker's exact theory).
 
     Parameters
@@ -1017,12 +1300,21 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
         iterate with ``converged=False``.
     solver : {"newton"}
         The preconditioned Newton–GMRES method (module docstring).
+    nested : bool
+        Without ``initial``: start from the solution of the same problem on
+        the grid with 2 × 2 times larger elements (pressure averaged over
+        them), itself started that way while the contact is at least 32
+        elements long in both directions (nested iteration, module
+        docstring). Only the path changes: the converged solution is that of
+        this grid to ``tol``.
 
     Returns
     -------
     TangentialSolution
         ``sx, sy`` are dimensionless slip velocities; ``iterations`` counts
-        Newton iterations, ``info["krylov_iterations"]`` the GMRES ones.
+        Newton iterations, ``info["krylov_iterations"]`` the GMRES ones (on
+        this grid); ``info["coarse"]`` lists the coarse levels (finest first)
+        as dicts with ``shape``, ``newton`` and ``krylov`` iteration counts.
 
     Examples
     --------
@@ -1048,29 +1340,16 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
     xi, eta, phi = (float(v) for v in cr)
     guard("exact", grid.size, f"exact theory on a {grid.nx}x{grid.ny} grid")  # memory/time
     pair = as_material_pair(materials)
-    R, C = _rolling_and_influence_kernels(grid, pair)
-    conv = _block_convolution(grid, pair, "R_tt", R[:2, :2])
-    conv_n = _block_convolution(grid, pair, "R_tn", R[:2, 2:3]) if pair.K else None
-    conv_u = _block_convolution(grid, pair, "C_t", C[:2, :])
-    X, Y = grid.X, grid.Y
-    # spin evaluated a sixth of an element upstream (module docstring; CONTACT's FACPHI)
-    b = np.stack((xi - phi * Y, eta + phi * (X + _SPIN_SHIFT * grid.dx)))
-    if conv_n is not None:
-        b = b + conv_n(pressure[None])
-    g = mu * pressure
     if solver != "newton":
         raise InputError(f"solver must be 'newton' for steady rolling, got {solver!r} "
                          "(Gauss–Seidel is available for the shift problem only)")
-    box, kernel, conv = _contact_box(grid, pair, R, g > 0.0, conv)
-    p0 = None if initial is None else np.asarray(initial, dtype=float)[(slice(None),) + box]
-    pb, sb, its, res, krylov = newton_step(kernel, b[(slice(None),) + box], g[box], conv=conv,
-                                           initial=p0, tol=tol, maxiter=maxiter,
-                                           krylov_conv=conv.single)
-    p = np.zeros((2,) + grid.shape)
-    s = np.zeros((2,) + grid.shape)
-    p[(slice(None),) + box] = pb
-    s[(slice(None),) + box] = sb
-    info = {"solver": "newton", "krylov_iterations": krylov}
+    nested = bool(nested)
+    coarse = []
+    p, s, its, res, krylov = _rolling_traction(grid, pressure, pair, (xi, eta, phi), mu, tol,
+                                               maxiter, initial, nested, coarse)
+    C = _rolling_and_influence_kernels(grid, pair)[1]
+    conv_u = _block_convolution(grid, pair, "C_t", C[:2, :])
+    info = {"solver": "newton", "krylov_iterations": krylov, "coarse": coarse}
     u = conv_u(np.concatenate((p, pressure[None])))
     return _finish(grid, pressure, p, s, u, mu, "rolling", (xi, eta, phi), its, res, tol,
                    on_fail, info)
