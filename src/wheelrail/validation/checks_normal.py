@@ -282,6 +282,55 @@ def nonhertz_vs_bem(quick):
     return rows
 
 
+@register("caf-jump-gaps", ["multi-hertz"],
+          "Ayasse's CAF tables: the rigid gap behind the jump overlaps vs the profiles")
+def caf_jump_gaps(quick):
+    """The gap of the second contact near a CAF jump, from the table's lines
+    (jump_gap: straight lines = eq. 3's model; with the CAF slopes = the
+    generalisation) against the rigid gaps measured on the profiles by the
+    contact search (S1002/60E1, tread and flange-root jumps, both sides)."""
+    wr = _wr()
+    from wheelrail.contact.wheelrail import touching_heights
+    from wheelrail.geometry.contact_search import _Pose, find_points
+    from wheelrail.normal.caf import caf_table, jump_gap
+
+    ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
+    table = caf_table(ws, tr, "right", (-0.01, 0.01), tolerance=2e-4)
+    err = {"eq3": [], "general": []}
+    for k in (0, 1):
+        t_lim, g1, g2, _, _, s1, s2 = table._jump_data(k)
+        for side in (1, 2):
+            y = t_lim + (-1.0 if side == 1 else 1.0) * np.arange(0.05e-3, 0.5e-3, 0.05e-3)
+            zero = np.zeros(y.size)
+            z, _ = touching_heights(ws, tr, y, zero, zero)
+            d, _ = find_points(ws, tr, "right", _Pose(y, z["right"], zero, zero),
+                               tolerance=1e-3)
+            other = (g2 + s2 * (y - t_lim)) if side == 1 else (g1 + s1 * (y - t_lim))
+            ok = np.isfinite(d["separation"]) & (d["separation"] > 1e-8)
+            j = np.argmin(np.where(ok, np.abs(d["contact_angle"] - other[:, None]), np.inf),
+                          axis=1)
+            r = np.arange(y.size)
+            keep = np.abs(d["contact_angle"][r, j] - other) < 0.01
+            tau, gap = np.abs(y - t_lim)[keep], d["separation"][r, j][keep]
+            ga, gb = (g1, g2) if side == 1 else (g2, g1)
+            for kind, rate in (("eq3", 0.0), ("general", s1 - s2)):
+                model = jump_gap(ga, gb, tau, rate)
+                inc, minc = gap[1:] - gap[0], model[1:] - model[0]
+                err[kind].append(float(np.max(np.abs(minc / inc - 1))))
+    ref = ("rigid gaps of the profiles (contact search, find_points), S1002/60E1, "
+           "increments up to 0.45 mm from the jump limit")
+    kw = dict(source="PiotrowskiChollet2005", reference_method="geometry",
+              tolerance_source="tests/reference/test_nonhertz_caf.py::"
+                               "test_gap_model_follows_the_profiles (0.045)")
+    return [abs_row("multi-hertz", ref, "ayasse, gap of the CAF lines with slopes "
+                    "(small-jump generalisation), worst of 4 jump sides",
+                    max(err["general"]), 0.0, 0.045, **kw),
+            band_row("multi-hertz", ref, "ayasse, gap of straight lines (eq. 3), worst of 4 "
+                     "jump sides (documented: the generalisation is closer)",
+                     max(err["eq3"]), max(err["general"]), max(err["general"]), 0.2, **kw)]
+
+
 # --------------------------------------------------------------------------- influence coefficients
 @register("influence-boussinesq-cerruti", ["halfspace"],
           "Half-space influence coefficients vs Boussinesq/Cerruti and Love")
