@@ -474,6 +474,14 @@ def _kalker_scalar(aspect, nu):
     return np.interp(v, x, c11), np.interp(v, x, c22), np.interp(v, x, c23)
 
 
+def _median(v):
+    """float(np.median(v)) of a finite 1-D array (the same value, without np.median's overhead)."""
+    s = np.sort(v)
+    n = s.shape[0]
+    k = n // 2
+    return float(s[k]) if n % 2 else float((s[k - 1] + s[k]) / 2.0)
+
+
 @lru_cache(maxsize=16)
 def _resample_weights(m, nx):
     """Indices and weights of linear interpolation from m to nx cell centres on (0, 1)
@@ -670,7 +678,7 @@ class Fastsim(TangentialMethod):
             L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
             if flexibility == "weighted":
                 L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(sa * sb))
-            Lrep = tuple(float(np.median(v)) for v in (L1, L2, L3))
+            Lrep = tuple(_median(v) for v in (L1, L2, L3))
         else:
             C11, C22, C23 = _kalker_scalar(a / b, patch.materials.nu)
             G = float(patch.materials.G)
@@ -685,6 +693,11 @@ class Fastsim(TangentialMethod):
         sp = np.asarray(patch.strip_pressure, dtype=float)
         m = sp.shape[1]
         i0, i1, w = _resample_weights(m, nx)
+        if fields is False:
+            r = self._patch_forces(patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu,
+                                   scheme, flexibility, Lrep)
+            if r is not None:
+                return r
         p = sp[:, i0] * (1.0 - w) + sp[:, i1] * w
         scale = sp.sum(axis=1) / m
         got = p.sum(axis=1) / nx
@@ -715,3 +728,33 @@ class Fastsim(TangentialMethod):
                 status = Status.FULL_SLIP
         return CreepForces(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
                            method=self.name, status=status, fields=r.fields, info=info)
+
+    def _patch_forces(self, patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu, scheme,
+                      flexibility, Lrep):
+        """Forces-only path of :meth:`solve_patch` for a strip patch: one fused kernel
+        (:func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`), the same
+        equations as the general path (sums in another order: equal to round-off).
+        ``None`` when the creepages are so large that the general path must scale them."""
+        mu = float(positive("mu", mu))
+        xi, eta, phi = float(xi), float(eta), float(phi)
+        ny = sp.shape[0]
+        c_ = np.ascontiguousarray
+
+        def strip(v):
+            if np.ndim(v) == 0:
+                return np.full(ny, float(v))
+            if isinstance(v, np.ndarray) and v.shape == (ny,) and v.dtype == np.float64:
+                return c_(v)
+            return c_(np.broadcast_to(np.asarray(v, dtype=float), (ny,)))
+
+        ok, Fx, Fy, Mz, Fn, xc, yc = _k.strip_patch_forces(
+            c_(patch.y), c_(patch.dy), c_(patch.x_lead), c_(patch.x_trail), c_(sp), i0, i1, w,
+            pinfo.get("traction_bound") == "parabolic", mu, strip(L1), strip(L2), strip(L3),
+            xi, eta, phi, _SLIP_RATE_CAP, scheme == "euler")
+        if not ok:
+            return None
+        info = {"nx": int(i0.shape[0]), "ny": ny, "scheme": scheme,
+                "flexibility": flexibility, "L": Lrep}
+        return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
+                           Fn=float(Fn), mu=mu, method=self.name, status=Status.CONVERGED,
+                           fields=None, info=info)
