@@ -421,32 +421,19 @@ class VirtualPenetration:
     # ----------------------------------------------------------- patches
     def _make_patch(self, line, reg, pair, opts, frame, delta, extra=None):
         from ..contact.patch import ContactPatch
+        from ._patch_kernel import strip_patch
 
         strips = int(opts.get("strips", self._default_strips))
         cells = int(opts.get("cells", self._default_cells))
-        eta_n, xl_n, pk_n = reg.eta, reg.xl, reg.peak
-        hn = float(eta_n[1] - eta_n[0]) if eta_n.size > 1 else line.h
-        lo, hi = eta_n[0] - 0.5 * hn, eta_n[-1] + 0.5 * hn
-        width = hi - lo
-        dy = width / strips
-        ys = lo + (np.arange(strips) + 0.5) * dy
-        # interpolate x_l² (linear in the interpenetration) and the strip peaks
-        e_ext = np.concatenate(([lo], eta_n, [hi]))
-        xl2 = np.interp(ys, e_ext, np.concatenate(([0.0], xl_n ** 2, [0.0])))
-        xl = np.sqrt(np.clip(xl2, 0.0, None))
-        pk = np.interp(ys, e_ext, np.concatenate(([0.0], pk_n, [0.0])))
-        # strip forces of the nodes, redistributed: keep the patch force exactly
-        s = 1.0 - (np.arange(cells) + 0.5) * (2.0 / cells)
-        prof = np.sqrt(np.clip(1.0 - s * s, 0.0, None))
-        sp = pk[:, None] * prof[None, :]
-        got = float(np.sum(sp.sum(axis=1) * (2 * xl / cells) * dy))
-        if got > 0:
-            sp *= reg.N / got
+        eta_n = reg.eta
         eta_ref = float(reg.info.get("eta_ref", eta_n[reg.j0 - reg.nodes.start]))
-        y = line.sign * (ys - eta_ref)
-        order = np.argsort(y)
-        area = float(np.sum(2 * xl) * dy)
-        L = 2.0 * float(np.max(xl))
+        # strips: x_l² (linear in the interpenetration) and the peaks interpolated from the
+        # nodes, the strip pressures scaled to keep the patch force exactly
+        # (:func:`wheelrail.normal._patch_kernel.strip_patch`)
+        y, xl, sp, ys, dy, width, area, L, ok = strip_patch(
+            np.ascontiguousarray(eta_n, dtype=float), np.ascontiguousarray(reg.xl, dtype=float),
+            np.ascontiguousarray(reg.peak, dtype=float), float(line.h), strips, cells,
+            float(reg.N), eta_ref, float(line.sign))
         ratio = L / width
         a = math.sqrt(area * ratio / math.pi)
         b = math.sqrt(area / (ratio * math.pi))
@@ -456,12 +443,17 @@ class VirtualPenetration:
         if reg.strip_axes is not None:
             ax = np.interp(ys, eta_n, reg.strip_axes[0])
             bx = np.interp(ys, eta_n, reg.strip_axes[1])
-            info["strip_semiaxes"] = (ax[order], bx[order])
+            if line.sign < 0:
+                ax, bx = ax[::-1], bx[::-1]
+            info["strip_semiaxes"] = (ax, bx)
         info.update(self._patch_info(reg, opts))
-        return ContactPatch(y=y[order], dy=np.full(strips, dy), x_lead=xl[order],
-                            x_trail=-xl[order], strip_pressure=sp[order], Fn=reg.N,
-                            materials=pair, a=a, b=b, penetration=float(delta), A=line.A,
-                            B=line.B, frame=frame, method=self.name, info=info)
+        N = float(reg.N)
+        values = dict(y=y, dy=np.full(strips, dy), x_lead=xl, x_trail=-xl, strip_pressure=sp,
+                      Fn=N, materials=pair, a=a, b=b, penetration=float(delta), A=line.A,
+                      B=line.B, frame=frame, method=self.name, info=info)
+        if ok and all(math.isfinite(v) and v > 0 for v in (N, a, b)):
+            return ContactPatch._trusted(**values)
+        return ContactPatch(**values)      # the checks say what is wrong
 
     def _patch_info(self, reg, opts):
         return {}
@@ -508,7 +500,9 @@ class VirtualPenetration:
                 regs = self._solve_line(line, dz * line.cos, opts)
                 for reg in regs:
                     w = reg.weights
+                    # the weighted mean surface angle (ContactFrame's, see frame_at)
                     ang = float(np.sum(w * line.angle[reg.nodes]) / np.sum(w))
+                    reg.info["_angle"] = ang
                     Fz += reg.N * math.cos(ang)
                 out.append(regs)
             return out, Fz
@@ -538,7 +532,9 @@ class VirtualPenetration:
                 w = reg.weights
                 e_nodes = line.eta[reg.nodes]
                 eta_c = float(np.sum(w * e_nodes) / np.sum(w))
-                frame = problem.frame_at(line.ref, eta_c, weights=w, eta_samples=e_nodes,
+                # angle: the weighted mean of the rail's surface angle over the region's
+                # nodes, i.e. frame_at(..., weights=w, eta_samples=e_nodes), from the line
+                frame = problem.frame_at(line.ref, eta_c, angle=reg.info.pop("_angle"),
                                          separation=line.extra.get("separation"))
                 reg.info["eta_ref"] = self._eta_in_region_coords(reg, eta_c, e_nodes)
                 patches.append(self._make_patch(line, reg, pair, opts, frame, dz * line.cos,
