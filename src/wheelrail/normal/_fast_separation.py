@@ -212,6 +212,81 @@ def spline_not_a_knot(x, Y, t):
     return out
 
 
+@njit(cache=True)
+def _monotone_bounds(e, c):
+    """(start, stop) of the largest run of strictly increasing ``e`` containing index ``c``
+    (stop inclusive; :func:`wheelrail.geometry.separation._monotone_window`)."""
+    n = e.shape[0]
+    start = 0
+    for k in range(c - 1, -1, -1):
+        if e[k + 1] - e[k] <= 0:
+            start = k + 1
+            break
+    stop = n - 1
+    for k in range(c, n - 1):
+        if e[k + 1] - e[k] <= 0:
+            stop = k
+            break
+    return start, stop
+
+
+@njit(cache=True)
+def _abs_argmin(e):
+    j = 0
+    v = abs(e[0])
+    for k in range(1, e.shape[0]):
+        if abs(e[k]) < v:
+            v = abs(e[k])
+            j = k
+    return j
+
+
+@njit(cache=True)
+def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta, psi,
+                      C0, C1, gam, width, n):
+    """The whole of :func:`separation_fast` after the sampling grids (pure kernel).
+
+    :func:`plane_samples`, the monotone windows of both silhouettes around the
+    plane origin, the uniform η grid (as ``numpy.linspace``) and the
+    not-a-knot splines of the wheel's distance and radius and of the rail.
+
+    Returns
+    -------
+    ok : bool
+        False when a window has fewer than 4 samples (the caller then uses the
+        reference implementation).
+    eta, f, wheel_radius : ndarray, shape (n,)
+    """
+    ew, zw, rw, er, zrr = plane_samples(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc,
+                                        theta, psi, C0, C1, gam)
+    w0, w1 = _monotone_bounds(ew, _abs_argmin(ew))
+    r0_, r1_ = _monotone_bounds(er, _abs_argmin(er))
+    empty = np.empty(0)
+    if w1 - w0 + 1 < 4 or r1_ - r0_ + 1 < 4:
+        return False, empty, empty, empty
+    lo = max(max(-0.5 * width, ew[w0]), er[r0_])
+    hi = min(min(0.5 * width, ew[w1]), er[r1_])
+    eta = np.empty(n)
+    step = (hi - lo) / (n - 1)
+    for i in range(n):
+        eta[i] = i * step + lo
+    eta[n - 1] = hi
+    nw = w1 - w0 + 1
+    Y = np.empty((2, nw))
+    for k in range(nw):
+        Y[0, k] = zw[w0 + k]
+        Y[1, k] = rw[w0 + k]
+    W = spline_not_a_knot(ew[w0:w1 + 1].copy(), Y, eta)
+    Z = np.empty((1, r1_ - r0_ + 1))
+    for k in range(r1_ - r0_ + 1):
+        Z[0, k] = zrr[r0_ + k]
+    R = spline_not_a_knot(er[r0_:r1_ + 1].copy(), Z, eta)
+    f = np.empty(n)
+    for i in range(n):
+        f[i] = W[0, i] - R[0, i]
+    return True, eta, f, W[1].copy()
+
+
 def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, contact_angle,
                     width=0.04, n=401, point=-1):
     """:func:`wheelrail.geometry.separation.separation_at` with the numba spline (same result).
@@ -219,7 +294,7 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
     Parameters and return value as there (SI units: m, rad).
     """
     from ..geometry.contact_search import _SIGMA
-    from ..geometry.separation import Separation, _monotone_window
+    from ..geometry.separation import Separation
 
     sig = _SIGMA[side]
     gam = float(contact_angle)
@@ -230,24 +305,15 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
     wc = wheelset.curve(side)
     s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
     ur = np.linspace(max(rc.u_min, u_c - width), min(rc.u_max, u_c + width), m)
-    ew, zw, rw, er, zrr = plane_samples(s, wc.u, wc.c, wc._h, ur, rc.u, rc.c, rc._h,
-                                        float(wheelset.nominal_radius), float(wheelset.e_tape),
-                                        sig, float(y), float(wheelset.nominal_radius + z),
-                                        float(roll), float(yaw), C0, C1, gam)
-    sw = _monotone_window(ew, int(np.argmin(np.abs(ew))))
-    sr = _monotone_window(er, int(np.argmin(np.abs(er))))
-    lo = max(-0.5 * width, ew[sw][0], er[sr][0])
-    hi = min(0.5 * width, ew[sw][-1], er[sr][-1])
-    eta = np.linspace(lo, hi, n)
-    xw = np.ascontiguousarray(ew[sw])
-    xr = np.ascontiguousarray(er[sr])
-    if xw.size < 4 or xr.size < 4:       # degenerate window: the reference implementation
+    ok, eta, f, radius = separation_kernel(
+        s, wc.u, wc.c, wc._h, ur, rc.u, rc.c, rc._h, float(wheelset.nominal_radius),
+        float(wheelset.e_tape), sig, float(y), float(wheelset.nominal_radius + z), float(roll),
+        float(yaw), C0, C1, gam, float(width), int(n))
+    if not ok:                           # degenerate window: the reference implementation
         from ..geometry.separation import separation_at
 
         return separation_at(wheelset, track, side, y=y, z=z, roll=roll, yaw=yaw,
                              wheel_y=wheel_y, track_y=track_y, contact_angle=contact_angle,
                              width=width, n=n, point=point)
-    W = spline_not_a_knot(xw, np.ascontiguousarray(np.stack([zw[sw], rw[sw]])), eta)
-    R = spline_not_a_knot(xr, np.ascontiguousarray(zrr[sr])[None, :], eta)
     cosf = float(np.cos(gam - sig * roll))
-    return Separation(eta, W[0] - R[0], W[1], cosf, gam, side, float(y), float(yaw), int(point))
+    return Separation(eta, f, radius, cosf, gam, side, float(y), float(yaw), int(point))

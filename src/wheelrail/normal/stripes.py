@@ -47,20 +47,34 @@ def stripes_constants(A, B):
     return h0 / d, (b / a) ** 2 * B / A, p0 * a / h0
 
 
-def _smoothed_B(eta, f, length):
-    """Half the second derivative of f, smoothed with a Gaussian of ``length`` [m] (≥ 0 floor later)."""
+def _smoothing(eta, f, length):
+    """(d2, pad, kernel): half the second derivative of f, its edge-padded copy and the
+    normalised Gaussian of ``length`` [m] (``pad`` and ``kernel`` None: no smoothing)."""
     h = eta[1] - eta[0]
     d2 = np.gradient(np.gradient(f, h), h) * 0.5
     if length <= 0:
-        return d2
+        return d2, None, None
     sig = length / h
     half = int(min(4 * sig, d2.size // 2))
     if half < 1:
-        return d2
+        return d2, None, None
     k = np.exp(-0.5 * (np.arange(-half, half + 1) / sig) ** 2)
     k /= k.sum()
-    pad = np.pad(d2, half, mode="edge")
-    return np.convolve(pad, k, mode="valid")
+    return d2, np.pad(d2, half, mode="edge"), k
+
+
+def _smoothed_range(sm, i0, i1):
+    """Nodes i0 … i1 − 1 of :func:`_smoothed_B` from :func:`_smoothing`'s output."""
+    d2, pad, k = sm
+    if pad is None:
+        return d2[i0:i1]
+    return np.convolve(pad[i0:i1 + k.size - 1], k, mode="valid")
+
+
+def _smoothed_B(eta, f, length):
+    """Half the second derivative of f, smoothed with a Gaussian of ``length`` [m] (≥ 0 floor later)."""
+    sm = _smoothing(eta, f, length)
+    return _smoothed_range(sm, 0, sm[0].size)
 
 
 class Stripes(VirtualPenetration, NormalMethod):
@@ -96,13 +110,13 @@ class Stripes(VirtualPenetration, NormalMethod):
                 raise InputError(f"stripes: the curvatures at the reference point are not "
                                  f"convex (A = {A!r}, B = {B!r} 1/m); use normal='bem'")
             eps, comp, kp = stripes_constants(A, B)
-            Bs = _smoothed_B(line.eta, line.f, float(opts.get("smoothing", 0.002)))
-            Bs = np.maximum(Bs, 0.05 * B)       # negative between close patches: small positive
-            line.extra[key] = (eps, comp, kp, Bs)
+            # B(y) smoothed: computed on the nodes of the regions only (_solve_line)
+            sm = _smoothing(line.eta, line.f, float(opts.get("smoothing", 0.002)))
+            line.extra[key] = (eps, comp, kp, sm)
         return line.extra[key]
 
     def _solve_line(self, line, delta, opts):
-        eps, comp, kp, Bs = self._line_data(line, opts)
+        eps, comp, kp, sm = self._line_data(line, opts)
         h0 = eps * delta
         hi_all = h0 - line.f
         E_star = line.extra["E_star"]
@@ -118,9 +132,11 @@ class Stripes(VirtualPenetration, NormalMethod):
             if not N > 0:
                 continue
             # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i)
-            lam = line.Ax[i0:i1] / Bs[i0:i1]
+            # negative between close patches: small positive
+            Bs = np.maximum(_smoothed_range(sm, i0, i1), 0.05 * line.B)
+            lam = line.Ax[i0:i1] / Bs
             av = np.sqrt(h0 / Ac)
-            nm = np.array([_n_over_m(v) for v in _quantise(lam)])[_qindex(lam)]
+            nm = _n_over_m_array(lam)
             j = int(np.argmax(hi))
             out.append(Region(slice(i0, i1), i0 + j, N, line.eta[i0:i1], ai, peak, hi,
                               strip_axes=(av, av * nm),
@@ -131,7 +147,7 @@ class Stripes(VirtualPenetration, NormalMethod):
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: with eq. (27) the strip force ½π a_i p_i h is
         # ½π k_p E* h_i h (a_i cancels), so the load needs no virtual ellipses
-        eps, comp, kp, Bs = self._line_data(line, opts)
+        eps, comp, kp, _ = self._line_data(line, opts)
         hi_all = eps * delta - line.f
         c = 0.5 * math.pi * kp * line.extra["E_star"] * line.h
         N = Nz = 0.0
@@ -155,14 +171,23 @@ class Stripes(VirtualPenetration, NormalMethod):
 _NM_CACHE: dict = {}
 
 
-def _quantise(lam):
-    q = np.round(np.log(np.clip(lam, 1e-6, 1e6)) * 50.0) / 50.0
-    return np.exp(np.unique(q))
+_NM_K = 691                 # round(50 ln 1e6): the quantised ln λ is k/50, |k| <= _NM_K
+_NM_TABLE = np.full(2 * _NM_K + 1, np.nan)
 
 
-def _qindex(lam):
-    q = np.round(np.log(np.clip(lam, 1e-6, 1e6)) * 50.0) / 50.0
-    return np.searchsorted(np.unique(q), q)
+def _n_over_m_array(lam):
+    """:func:`_n_over_m` of every λ quantised on the 2 % grid of ln λ (as
+    ``_quantise``/``_qindex``), from a table filled on first use of each grid value."""
+    k = np.round(np.log(np.clip(lam, 1e-6, 1e6)) * 50.0)
+    idx = k.astype(np.intp) + _NM_K
+    v = _NM_TABLE[idx]
+    miss = np.isnan(v)
+    if miss.any():
+        q = np.unique(k[miss]) / 50.0
+        for kq, lq in zip(q, np.exp(q)):
+            _NM_TABLE[int(round(kq * 50.0)) + _NM_K] = _n_over_m(lq)
+        v = _NM_TABLE[idx]
+    return v
 
 
 def _n_over_m(lam):

@@ -235,6 +235,15 @@ def weighted_flexibility(L1, L2, L3, xi, eta, phi, c):
         return np.where(norm > 0, num / np.where(norm > 0, norm, 1.0), L1)
 
 
+def _weighted_scalar(L1, L2, L3, xi, eta, phi, c):
+    """:func:`weighted_flexibility` of floats (the same operations in Python arithmetic)."""
+    cphi = c * abs(phi)
+    norm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
+    if not norm > 0:
+        return float(L1)
+    return (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / norm
+
+
 def hertz_strips(a, b, ny):
     """Strips of an elliptic patch: uniform in y over (−b, b).
 
@@ -461,6 +470,11 @@ def _kalker_scalar(aspect, nu):
     relative; a scalar :func:`kalker_coefficients` call costs ~0.3 ms, this ~10 µs.
     a/b outside the grid goes to :func:`kalker_coefficients`.
     """
+    if isinstance(aspect, float) and 0.01 <= aspect <= 100.0 and isinstance(nu, float):
+        x, c11, c22, c23 = _kalker_table(nu)         # one patch: no array checks
+        v = math.log(aspect)
+        return (float(np.interp(v, x, c11)), float(np.interp(v, x, c22)),
+                float(np.interp(v, x, c23)))
     a = np.asarray(aspect, dtype=float)
     if np.ndim(nu) != 0 or not (a.size and np.all(a >= 0.01) and np.all(a <= 100.0)):
         C11, C22, C23, _ = kalker_coefficients(aspect, nu)
@@ -686,8 +700,8 @@ class Fastsim(TangentialMethod):
             L2 = 8.0 * a / (3.0 * G * C22)
             L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
             if flexibility == "weighted":
-                L1 = L2 = L3 = float(weighted_flexibility(L1, L2, L3, xi, eta, phi,
-                                                          np.sqrt(a * b)))
+                L1 = L2 = L3 = _weighted_scalar(L1, L2, L3, float(xi), float(eta), float(phi),
+                                                math.sqrt(a * b))
             Lrep = (L1, L2, L3)
         # pressure resampled from the patch's m cells to nx cells per strip
         sp = np.asarray(patch.strip_pressure, dtype=float)
@@ -735,7 +749,8 @@ class Fastsim(TangentialMethod):
         (:func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`), the same
         equations as the general path (sums in another order: equal to round-off).
         ``None`` when the creepages are so large that the general path must scale them."""
-        mu = float(positive("mu", mu))
+        mu_f = float(mu) if isinstance(mu, (float, int)) else math.nan
+        mu = mu_f if math.isfinite(mu_f) and mu_f > 0 else float(positive("mu", mu))
         xi, eta, phi = float(xi), float(eta), float(phi)
         ny = sp.shape[0]
         c_ = np.ascontiguousarray
