@@ -71,6 +71,18 @@ def _smoothed_range(sm, i0, i1):
     return np.convolve(pad[i0:i1 + k.size - 1], k, mode="valid")
 
 
+def _smoothed_cached(line, opts, sm, i0, i1):
+    """:func:`_smoothed_range` remembered on the line (computed once per node)."""
+    key = ("stripes_B", opts.get("smoothing", 0.002))
+    done = line.extra.get(key)
+    if done is None:
+        done = line.extra[key] = np.full(sm[0].size, np.nan)
+    seg = done[i0:i1]
+    if np.isnan(seg).any():
+        seg[:] = _smoothed_range(sm, i0, i1)
+    return seg
+
+
 def _smoothed_B(eta, f, length):
     """Half the second derivative of f, smoothed with a Gaussian of ``length`` [m] (≥ 0 floor later)."""
     sm = _smoothing(eta, f, length)
@@ -133,7 +145,7 @@ class Stripes(VirtualPenetration, NormalMethod):
                 continue
             # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i)
             # negative between close patches: small positive
-            Bs = np.maximum(_smoothed_range(sm, i0, i1), 0.05 * line.B)
+            Bs = np.maximum(_smoothed_cached(line, opts, sm, i0, i1), 0.05 * line.B)
             lam = line.Ax[i0:i1] / Bs
             av = np.sqrt(h0 / Ac)
             nm = _n_over_m_array(lam)
@@ -147,22 +159,14 @@ class Stripes(VirtualPenetration, NormalMethod):
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: with eq. (27) the strip force ½π a_i p_i h is
         # ½π k_p E* h_i h (a_i cancels), so the load needs no virtual ellipses
+        from ._stripes_kernel import stripes_line_load
+
         eps, comp, kp, _ = self._line_data(line, opts)
-        hi_all = eps * delta - line.f
         c = 0.5 * math.pi * kp * line.extra["E_star"] * line.h
-        N = Nz = 0.0
-        for i0, i1 in runs(hi_all > 0):
-            if i1 - i0 < 3:
-                continue
-            hi = hi_all[i0:i1]
-            s = float(np.sum(hi))
-            n = c * s
-            if not n > 0:
-                continue
-            N += n
-            Nz += n if line.angle is None else n * math.cos(
-                float(np.dot(hi, line.angle[i0:i1])) / s)
-        return N, Nz
+        ang = line.angle
+        N, Nz = stripes_line_load(line.f, line.f if ang is None else ang, ang is not None,
+                                  eps * delta, c)
+        return float(N), float(Nz)
 
     def _patch_info(self, reg, opts):
         return {"fastsim_flexibility": "three"}
