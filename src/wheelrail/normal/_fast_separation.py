@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["spline_not_a_knot", "separation_fast", "plane_samples"]
+__all__ = ["spline_not_a_knot", "separation_fast", "plane_samples", "separation_kernel",
+           "separation_window", "rail_slopes"]
 
 
 @njit(cache=True)
@@ -262,6 +263,38 @@ def _knot_range(e, k0, k1, lo, hi):
 
 
 @njit(cache=True)
+def _linspace(a, b, n):
+    """``numpy.linspace(a, b, n)`` (the same numbers)."""
+    out = np.empty(n)
+    step = (b - a) / (n - 1)
+    for i in range(n):
+        out[i] = i * step + a
+    out[n - 1] = b
+    return out
+
+
+@njit(cache=True)
+def separation_window(wu, wc, wh, ru, rc, rh, r0, e_tape, sig, y, zc, theta, psi, gam,
+                      wheel_y, u_c, width, n, m):
+    """:func:`separation_kernel` with its sampling grids: ``m`` wheel samples on
+    ``wheel_y ± width`` and ``m`` rail samples on ``u_c ± width`` (clipped to the
+    profiles), the plane through the rail point at ``u_c`` (pure kernel)."""
+    s = _linspace(max(wu[0], wheel_y - width), min(wu[wu.shape[0] - 1], wheel_y + width), m)
+    ur = _linspace(max(ru[0], u_c - width), min(ru[ru.shape[0] - 1], u_c + width), m)
+    x = np.empty(1)
+    x[0] = u_c
+    C1 = _cubic_eval(ru, rc, rh, x, 0)[0][0]
+    return separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta,
+                             psi, u_c, C1, gam, width, n)
+
+
+@njit(cache=True)
+def rail_slopes(ru, rc, rh, u):
+    """Slope dZ/du of the rail curve at ``u`` (``PiecewiseCubic.eval(u, 1)[1]``, same numbers)."""
+    return _cubic_eval(ru, rc, rh, u, 1)[1]
+
+
+@njit(cache=True)
 def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta, psi,
                       C0, C1, gam, width, n):
     """The whole of :func:`separation_fast` after the sampling grids (pure kernel).
@@ -323,15 +356,11 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
     gam = float(contact_angle)
     rc = track.curve(side)
     u_c = sig * float(track_y)
-    C0, C1 = u_c, float(rc.eval(u_c, 0)[0])
-    m = 2001
     wc = wheelset.curve(side)
-    s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
-    ur = np.linspace(max(rc.u_min, u_c - width), min(rc.u_max, u_c + width), m)
-    ok, eta, f, radius = separation_kernel(
-        s, wc.u, wc.c, wc._h, ur, rc.u, rc.c, rc._h, float(wheelset.nominal_radius),
+    ok, eta, f, radius = separation_window(
+        wc.u, wc.c, wc._h, rc.u, rc.c, rc._h, float(wheelset.nominal_radius),
         float(wheelset.e_tape), sig, float(y), float(wheelset.nominal_radius + z), float(roll),
-        float(yaw), C0, C1, gam, float(width), int(n))
+        float(yaw), gam, float(wheel_y), u_c, float(width), int(n), 2001)
     if not ok:                           # degenerate window: the reference implementation
         from ..geometry.separation import separation_at
 

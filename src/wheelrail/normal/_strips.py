@@ -463,6 +463,8 @@ class VirtualPenetration:
         key = ("vp_lines", self.name, group_angle, width)
         if key in problem.cache:
             return problem.cache[key]
+        from ._fast_separation import rail_slopes
+
         sigma = 1.0 if problem.side == "right" else -1.0
         groups = problem.groups(group_angle, width)
         rc = problem.track.curve(problem.side)
@@ -475,8 +477,7 @@ class VirtualPenetration:
             if problem.roller_radius is not None:
                 Ax = Ax + 0.5 / problem.roller_radius
             u = sigma * f.track_y + s.eta * math.cos(f.contact_angle)
-            _, z1 = rc.eval(u, 1)
-            ang = np.arctan(z1)
+            ang = np.arctan(rail_slopes(rc.u, rc.c, rc._h, u))
             A, B = float(problem.A[r]), float(problem.B[r])
             lines.append(Line(np.asarray(s.eta, float), np.asarray(s.f, float), np.asarray(Ax),
                               A, B, cos=float(s.cos_factor), angle=ang, sign=sigma, ref=r,
