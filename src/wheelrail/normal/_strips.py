@@ -41,7 +41,7 @@ import numpy as np
 from ..errors import ConvergenceError, InputError, NoContactError
 
 __all__ = ["Line", "Region", "VirtualPenetration", "runs", "kp_integrals",
-           "hertz_penetration_factor", "hertz_shape"]
+           "hertz_penetration_factor", "hertz_shape", "hertz_ab"]
 
 _LINE_NODES = 801        # nodes of the refined lateral line of a gap problem
 _WHEEL_NODES = 1601      # nodes of a wheel's separation line (40 mm: 0.025 mm spacing)
@@ -139,6 +139,18 @@ def hertz_shape(A, B):
     p0 = math.exp(float(np.interp(lam, grid, lp))) * s ** (2 / 3)
     d = math.exp(float(np.interp(lam, grid, ld))) * s ** (1 / 3)
     return a, b, p0, d
+
+
+def hertz_ab(A, B):
+    """(a, b) of :func:`hertz_shape` (the same numbers, two table look-ups instead of four)."""
+    A, B = float(A), float(B)
+    lam = math.log(A / B)
+    if abs(lam) > _LN_MAX:
+        return hertz_shape(A, B)[:2]
+    grid, la, lb, _, _ = _hertz_table()
+    s = math.sqrt(A * B)
+    return (math.exp(float(np.interp(lam, grid, la))) / s ** (1 / 3),
+            math.exp(float(np.interp(lam, grid, lb))) / s ** (1 / 3))
 
 
 def hertz_penetration_factor(A, B):
@@ -513,11 +525,14 @@ class VirtualPenetration:
         else:
             Q = float(problem.vertical_load)
             l0 = lines[0]
-            if l0.A > 0 and l0.B > 0:
-                _, _, _, d1 = hertz_shape(l0.A, l0.B)
-                start = float(np.min(l0.f)) + d1 * (Q / pair.E_star) ** (2 / 3)
+            if "start" not in l0.extra:        # (min f, Hertz's approach at 1 N, E* = 1)
+                d1 = hertz_shape(l0.A, l0.B)[3] if l0.A > 0 and l0.B > 0 else None
+                l0.extra["start"] = (float(np.min(l0.f)), d1)
+            fmin, d1 = l0.extra["start"]
+            if d1 is not None:
+                start = fmin + d1 * (Q / pair.E_star) ** (2 / 3)
             else:
-                start = float(np.min(l0.f)) + 5e-5
+                start = fmin + 5e-5
             start = max(start, 1e-7) / l0.cos
             def vertical(d):
                 return sum(self._line_loads(line, d * line.cos, opts)[1] for line in lines)

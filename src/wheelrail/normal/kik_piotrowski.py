@@ -45,7 +45,7 @@ import numpy as np
 
 from ..errors import InputError
 from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_penetration_factor, hertz_shape, runs
+from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor, runs
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
 
@@ -89,7 +89,7 @@ def shape_correction(eta, xl, h, j0):
     """
     L = 2.0 * float(np.max(xl))
     W = xl.size * h
-    a, b, _, _ = hertz_shape((W / L) ** 2, 1.0)
+    a, b = hertz_ab((W / L) ** 2, 1.0)
     alpha = a / b
     sy = math.sqrt(L / (alpha * W))          # W_c / W   (eq. 19)
     sx = 1.0 / sy                            # L_c / L   (area kept)
@@ -137,11 +137,7 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
                "cells": 40}
 
     def _solve_line(self, line, delta, opts):
-        key = ("eps", opts.get("penetration_factor", "hertz"))
-        if key not in line.extra:
-            line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
-                                                 line.A, line.B)
-        eps, how = line.extra[key]
+        eps, how = self._eps(line, opts)
         correct = bool(opts.get("shape_correction", True))
         d0 = eps * delta
         g = d0 - line.f
@@ -176,24 +172,33 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
 
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: the same equations as _solve_line in one kernel
-        from . import _kp_kernel
-        from ._strips import _hertz_table
+        key = ("kp_load", opts.get("penetration_factor", "hertz"),
+               bool(opts.get("shape_correction", True)))
+        args = line.extra.get(key)
+        if args is None:
+            from . import _kp_kernel
+            from ._strips import _hertz_table
 
+            eps = self._eps(line, opts)[0]
+            ang = line.angle
+            if ang is None:
+                ang = np.zeros_like(line.f)
+            lam, la, lb, _, _ = _hertz_table()
+            args = line.extra[key] = (_kp_kernel.kp_line_load, line.f,
+                                      np.asarray(line.Ax, dtype=float), ang, line.h, eps,
+                                      line.extra["E_star"], key[2], lam, la, lb)
+        kern, f, Ax, ang, h, eps, E_star, correct, lam, la, lb = args
+        N, Nz = kern(f, Ax, ang, h, eps * delta, eps, E_star, correct, lam, la, lb)
+        return float(N), float(Nz)
+
+    @staticmethod
+    def _eps(line, opts):
+        """(ε, how) of the line for the option penetration_factor (cached on the line)."""
         key = ("eps", opts.get("penetration_factor", "hertz"))
         if key not in line.extra:
             line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
                                                  line.A, line.B)
-        eps = line.extra[key][0]
-        ang = line.angle
-        if ang is None:
-            ang = line.extra.get("zero_angle")
-            if ang is None:
-                ang = line.extra["zero_angle"] = np.zeros_like(line.f)
-        lam, la, lb, _, _ = _hertz_table()
-        N, Nz = _kp_kernel.kp_line_load(line.f, np.asarray(line.Ax, dtype=float), ang, line.h,
-                                        eps * delta, eps, line.extra["E_star"],
-                                        bool(opts.get("shape_correction", True)), lam, la, lb)
-        return float(N), float(Nz)
+        return line.extra[key]
 
     def _patch_info(self, reg, opts):
         return {"fastsim_flexibility": "weighted"}
