@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["pairwise_sum", "strip_patch"]
+__all__ = ["pairwise_sum", "strip_patch", "positive_runs"]
 
 
 @njit(cache=True)
@@ -201,3 +201,24 @@ def strip_patch(eta_n, xl_n, pk_n, h_line, strips, cells, N, eta_ref, sign):
         for i in range(cells):
             so[k, i] = sp[src, i]
     return y, xo, so, ys, dy, width, area, 2.0 * Lh, ok
+
+
+@njit(cache=True)
+def positive_runs(g):
+    """Connected runs of g > 0: array (k, 2) of (start, stop), stop exclusive
+    (:func:`wheelrail.normal._strips.runs` of ``g > 0``)."""
+    n = g.shape[0]
+    out = np.empty((n // 2 + 1, 2), np.int64)
+    k = 0
+    i = 0
+    while i < n:
+        if g[i] > 0:
+            i0 = i
+            while i < n and g[i] > 0:
+                i += 1
+            out[k, 0] = i0
+            out[k, 1] = i
+            k += 1
+        else:
+            i += 1
+    return out[:k]

@@ -45,7 +45,7 @@ import numpy as np
 
 from ..errors import InputError
 from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor, runs
+from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
 
@@ -143,9 +143,11 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
         g = d0 - line.f
         E_star = line.extra["E_star"]
         from . import _kp_kernel
+        from ._patch_kernel import positive_runs
 
         out = []
-        for i0, i1 in runs(g > 0):
+        h_line = line.h
+        for i0, i1 in positive_runs(g).tolist():
             if i1 - i0 < 3:
                 continue                # narrower than the line's resolution
             gi = g[i0:i1]
@@ -156,7 +158,7 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
             # separate region the load then vanishes with the region instead of jumping)
             real = float(gi[j]) / eps
             eta = line.eta[i0:i1]
-            h = line.h
+            h = h_line
             alpha = None
             if correct:
                 eta, xl, h, alpha = shape_correction(eta, xl, h, j)

@@ -35,7 +35,7 @@ import math
 import numpy as np
 
 from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_shape, runs
+from ._strips import Region, VirtualPenetration, hertz_shape
 
 __all__ = ["Stripes", "stripes_constants"]
 
@@ -128,12 +128,14 @@ class Stripes(VirtualPenetration, NormalMethod):
         return line.extra[key]
 
     def _solve_line(self, line, delta, opts):
+        from ._patch_kernel import positive_runs
+
         eps, comp, kp, sm = self._line_data(line, opts)
         h0 = eps * delta
         hi_all = h0 - line.f
         E_star = line.extra["E_star"]
         out = []
-        for i0, i1 in runs(hi_all > 0):
+        for i0, i1 in positive_runs(hi_all).tolist():
             if i1 - i0 < 3:
                 continue
             hi = hi_all[i0:i1]
