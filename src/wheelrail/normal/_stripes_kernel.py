@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from ._patch_kernel import pairwise_sum
 
-__all__ = ["stripes_line_load"]
+__all__ = ["stripes_line_load", "smooth_nodes"]
 
 
 @njit(cache=True)
@@ -67,3 +68,22 @@ def stripes_line_load(f, angle, has_angle, d0, c):
         else:
             Nz += nn
     return N, Nz
+
+
+@njit(cache=True, fastmath=True)
+def smooth_nodes(pad, k, idx):
+    """``numpy.convolve(pad, k, "valid")`` at the outputs ``idx`` only (pure kernel).
+
+    Each output is a dot product of ``k`` reversed with a window of ``pad``,
+    summed in vector lanes (``fastmath``: the order of the additions differs from
+    NumPy's, the values agree to round-off).
+    """
+    m = k.shape[0]
+    out = np.empty(idx.shape[0])
+    for q in range(idx.shape[0]):
+        i = idx[q]
+        acc = 0.0
+        for t in range(m):
+            acc += pad[i + t] * k[m - 1 - t]
+        out[q] = acc
+    return out

@@ -71,16 +71,42 @@ def _smoothed_range(sm, i0, i1):
     return np.convolve(pad[i0:i1 + k.size - 1], k, mode="valid")
 
 
-def _smoothed_cached(line, opts, sm, i0, i1):
-    """:func:`_smoothed_range` remembered on the line (computed once per node)."""
+def _smoothed_at(line, opts, sm, idx):
+    """:func:`_smoothed_B` at the nodes ``idx`` of the line, remembered on it (each node
+    computed once)."""
+    d2, pad, k = sm
+    if pad is None:
+        return d2[idx]
     key = ("stripes_B", opts.get("smoothing", 0.002))
     done = line.extra.get(key)
     if done is None:
-        done = line.extra[key] = np.full(sm[0].size, np.nan)
-    seg = done[i0:i1]
-    if np.isnan(seg).any():
-        seg[:] = _smoothed_range(sm, i0, i1)
-    return seg
+        done = line.extra[key] = np.full(d2.size, np.nan)
+    v = done[idx]
+    miss = np.isnan(v)
+    if miss.any():
+        from ._stripes_kernel import smooth_nodes
+
+        todo = idx[miss]
+        done[todo] = smooth_nodes(pad, k, todo)     # np.convolve(pad, k, "valid") there
+        v = done[idx]
+    return v
+
+
+def _read_nodes(eta_n, strips):
+    """Nodes of a region whose strip ellipses the patch reads: ``np.interp`` at the strip
+    centres of :meth:`~wheelrail.normal._strips.VirtualPenetration._make_patch` reads the
+    two nodes around each centre (here with one more on each side)."""
+    n = eta_n.size
+    if n <= 2 * strips + 4:
+        return np.arange(n)
+    hn = eta_n[1] - eta_n[0]
+    lo = eta_n[0] - 0.5 * hn
+    dy = (eta_n[-1] + 0.5 * hn - lo) / strips
+    ys = lo + (np.arange(strips) + 0.5) * dy
+    j = np.searchsorted(eta_n, ys, side="right")       # interval j − 1 … j around ys
+    mask = np.zeros(n, dtype=bool)
+    mask[np.clip(np.concatenate((j - 2, j - 1, j, j + 1)), 0, n - 1)] = True
+    return np.flatnonzero(mask)
 
 
 def _smoothed_B(eta, f, length):
@@ -145,12 +171,14 @@ class Stripes(VirtualPenetration, NormalMethod):
             N = float(np.sum(0.5 * math.pi * ai * peak) * line.h)
             if not N > 0:
                 continue
-            # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i)
-            # negative between close patches: small positive
-            Bs = np.maximum(_smoothed_cached(line, opts, sm, i0, i1), 0.05 * line.B)
-            lam = line.Ax[i0:i1] / Bs
+            # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i),
+            # λ_i with the smoothed B, floored (negative between close patches: small
+            # positive); only at the nodes the patch's strips read (1 elsewhere, unused)
+            idx = _read_nodes(line.eta[i0:i1], int(opts.get("strips", self._default_strips)))
+            Bs = np.maximum(_smoothed_at(line, opts, sm, i0 + idx), 0.05 * line.B)
+            nm = np.ones(i1 - i0)
+            nm[idx] = _n_over_m_array(line.Ax[i0 + idx] / Bs)
             av = np.sqrt(h0 / Ac)
-            nm = _n_over_m_array(lam)
             j = int(np.argmax(hi))
             out.append(Region(slice(i0, i1), i0 + j, N, line.eta[i0:i1], ai, peak, hi,
                               strip_axes=(av, av * nm),
