@@ -250,3 +250,17 @@ def test_separation_kernel_equals_full_splines(s1002):
                           sep.eta)
     np.testing.assert_allclose(sep.f, W[0] - R[0], rtol=0, atol=1e-17)
     np.testing.assert_allclose(sep.wheel_radius, W[1], rtol=1e-15)
+
+
+def test_stripes_n_over_m_table_equals_hertz():
+    """The n/m table of STRIPES (all grid values at once) against Hertz's b/a per λ."""
+    from wheelrail.normal.hertz import hertz_kernel
+    from wheelrail.normal.stripes import _NM_K, _n_over_m, _n_over_m_array, _nm_table
+
+    q = np.arange(-_NM_K, _NM_K + 1) / 50.0
+    t = _nm_table()
+    np.testing.assert_allclose(t, [_n_over_m(v) for v in np.exp(q)], rtol=1e-15, atol=0)
+    for lam in (0.05, 0.3, 1.0, 4.0, 30.0):
+        a, b, _, _ = hertz_kernel(1.0, lam, 1.0, 1.0)
+        # quantised to 2 % in ln λ: b/a within the change of b/a over 1 % of ln λ
+        assert _n_over_m_array(np.array([lam]))[0] == pytest.approx(float(b / a), rel=0.01)

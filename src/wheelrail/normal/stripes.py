@@ -206,22 +206,30 @@ _NM_CACHE: dict = {}
 
 
 _NM_K = 691                 # round(50 ln 1e6): the quantised ln λ is k/50, |k| <= _NM_K
-_NM_TABLE = np.full(2 * _NM_K + 1, np.nan)
+_NM_TABLE: list = []
+
+
+def _nm_table():
+    """Hertz's n/m = b/a at λ = exp(k/50), |k| ≤ ``_NM_K``: :func:`_n_over_m` of every
+    grid value, computed at once (the table of :func:`~wheelrail.normal._strips.hertz_shape`
+    interpolated for all of them; equal to the scalar look-up to round-off)."""
+    if not _NM_TABLE:
+        from ._strips import _hertz_table
+
+        grid, la, lb, _, _ = _hertz_table()
+        lam = np.exp(np.arange(-_NM_K, _NM_K + 1) / 50.0)
+        x = np.log(lam)
+        s3 = np.sqrt(lam) ** (1 / 3)
+        a = np.exp(np.interp(x, grid, la)) / s3
+        b = np.exp(np.interp(x, grid, lb)) / s3
+        _NM_TABLE.append(b / a)
+    return _NM_TABLE[0]
 
 
 def _n_over_m_array(lam):
-    """:func:`_n_over_m` of every λ quantised on the 2 % grid of ln λ (as
-    ``_quantise``/``_qindex``), from a table filled on first use of each grid value."""
+    """:func:`_n_over_m` of every λ, quantised on the 2 % grid of ln λ (from :func:`_nm_table`)."""
     k = np.round(np.log(np.clip(lam, 1e-6, 1e6)) * 50.0)
-    idx = k.astype(np.intp) + _NM_K
-    v = _NM_TABLE[idx]
-    miss = np.isnan(v)
-    if miss.any():
-        q = np.unique(k[miss]) / 50.0
-        for kq, lq in zip(q, np.exp(q)):
-            _NM_TABLE[int(round(kq * 50.0)) + _NM_K] = _n_over_m(lq)
-        v = _NM_TABLE[idx]
-    return v
+    return _nm_table()[k.astype(np.intp) + _NM_K]
 
 
 def _n_over_m(lam):
