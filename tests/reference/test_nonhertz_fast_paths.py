@@ -264,3 +264,21 @@ def test_stripes_n_over_m_table_equals_hertz():
         a, b, _, _ = hertz_kernel(1.0, lam, 1.0, 1.0)
         # quantised to 2 % in ln λ: b/a within the change of b/a over 1 % of ln λ
         assert _n_over_m_array(np.array([lam]))[0] == pytest.approx(float(b / a), rel=0.01)
+
+
+def test_stripes_smoothing_kernels_equal_numpy():
+    """½ f'' (two ``numpy.gradient``) to the bit, and the Gaussian smoothing at chosen
+    nodes (edges included) against ``numpy.convolve`` of the edge-padded curvature."""
+    from wheelrail.normal._stripes_kernel import half_curvature, smooth_nodes
+    from wheelrail.normal.stripes import _smoothing
+
+    rng = np.random.default_rng(5)
+    eta = np.linspace(-0.02, 0.02, 1601)
+    f = 3 * eta ** 2 + 1e-3 * np.sin(300 * eta) + 1e-7 * rng.random(eta.size)
+    h = eta[1] - eta[0]
+    np.testing.assert_array_equal(half_curvature(f, h), np.gradient(np.gradient(f, h), h) * 0.5)
+    d2, krev = _smoothing(eta, f, 0.002)
+    half = krev.size // 2
+    ref = np.convolve(np.pad(d2, half, mode="edge"), krev[::-1], mode="valid")
+    idx = np.array([0, 1, half - 1, half, 700, 701, 1601 - half, 1599, 1600])
+    np.testing.assert_allclose(smooth_nodes(d2, krev, idx), ref[idx], rtol=1e-14)

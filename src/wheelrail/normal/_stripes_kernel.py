@@ -20,7 +20,7 @@ from numba import njit
 
 from ._patch_kernel import pairwise_sum
 
-__all__ = ["stripes_line_load", "smooth_nodes"]
+__all__ = ["stripes_line_load", "smooth_nodes", "half_curvature"]
 
 
 @njit(cache=True)
@@ -70,20 +70,45 @@ def stripes_line_load(f, angle, has_angle, d0, c):
     return N, Nz
 
 
-@njit(cache=True, fastmath=True)
-def smooth_nodes(pad, k, idx):
-    """``numpy.convolve(pad, k, "valid")`` at the outputs ``idx`` only (pure kernel).
+@njit(cache=True)
+def half_curvature(f, h):
+    """½ f'' by two central differences, ``numpy.gradient(numpy.gradient(f, h), h) * 0.5``
+    (one-sided at the ends, as ``numpy.gradient`` with ``edge_order=1``; the same numbers)."""
+    n = f.shape[0]
+    d1 = np.empty(n)
+    d2 = np.empty(n)
+    for g, out in ((f, d1), (d1, d2)):
+        out[0] = (g[1] - g[0]) / h
+        for i in range(1, n - 1):
+            out[i] = (g[i + 1] - g[i - 1]) / (2.0 * h)
+        out[n - 1] = (g[n - 1] - g[n - 2]) / h
+    for i in range(n):
+        d2[i] = d2[i] * 0.5
+    return d2
 
-    Each output is a dot product of ``k`` reversed with a window of ``pad``,
-    summed in vector lanes (``fastmath``: the order of the additions differs from
-    NumPy's, the values agree to round-off).
+
+@njit(cache=True, fastmath=True)
+def smooth_nodes(d2, krev, idx):
+    """``numpy.convolve(numpy.pad(d2, half, mode="edge"), k, "valid")`` at the outputs
+    ``idx`` only (pure kernel; ``krev`` = k reversed, 2·half + 1 long).
+
+    Each output is a dot product over a window of ``d2`` (edge values repeated
+    beyond the ends), summed in vector lanes (``fastmath``: the order of the
+    additions differs from NumPy's, the values agree to round-off).
     """
-    m = k.shape[0]
+    m = krev.shape[0]
+    half = m // 2
+    n = d2.shape[0]
     out = np.empty(idx.shape[0])
     for q in range(idx.shape[0]):
-        i = idx[q]
+        i0 = idx[q] - half
         acc = 0.0
-        for t in range(m):
-            acc += pad[i + t] * k[m - 1 - t]
+        if i0 >= 0 and i0 + m <= n:
+            for t in range(m):
+                acc += d2[i0 + t] * krev[t]
+        else:
+            for t in range(m):
+                j = min(max(i0 + t, 0), n - 1)
+                acc += d2[j] * krev[t]
         out[q] = acc
     return out

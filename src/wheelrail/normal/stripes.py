@@ -48,34 +48,38 @@ def stripes_constants(A, B):
 
 
 def _smoothing(eta, f, length):
-    """(d2, pad, kernel): half the second derivative of f, its edge-padded copy and the
-    normalised Gaussian of ``length`` [m] (``pad`` and ``kernel`` None: no smoothing)."""
+    """(d2, kernel reversed): half the second derivative of f and the normalised Gaussian of
+    ``length`` [m] (kernel None: no smoothing)."""
+    from ._stripes_kernel import half_curvature
+
     h = eta[1] - eta[0]
-    d2 = np.gradient(np.gradient(f, h), h) * 0.5
+    d2 = half_curvature(np.ascontiguousarray(f, dtype=float), float(h))
     if length <= 0:
-        return d2, None, None
+        return d2, None
     sig = length / h
     half = int(min(4 * sig, d2.size // 2))
     if half < 1:
-        return d2, None, None
+        return d2, None
     k = np.exp(-0.5 * (np.arange(-half, half + 1) / sig) ** 2)
     k /= k.sum()
-    return d2, np.pad(d2, half, mode="edge"), k
+    return d2, np.ascontiguousarray(k[::-1])
 
 
 def _smoothed_range(sm, i0, i1):
     """Nodes i0 … i1 − 1 of :func:`_smoothed_B` from :func:`_smoothing`'s output."""
-    d2, pad, k = sm
-    if pad is None:
+    d2, krev = sm
+    if krev is None:
         return d2[i0:i1]
-    return np.convolve(pad[i0:i1 + k.size - 1], k, mode="valid")
+    half = krev.size // 2
+    return np.convolve(np.pad(d2, half, mode="edge")[i0:i1 + krev.size - 1], krev[::-1],
+                       mode="valid")
 
 
 def _smoothed_at(line, opts, sm, idx):
     """:func:`_smoothed_B` at the nodes ``idx`` of the line, remembered on it (each node
     computed once)."""
-    d2, pad, k = sm
-    if pad is None:
+    d2, krev = sm
+    if krev is None:
         return d2[idx]
     key = ("stripes_B", opts.get("smoothing", 0.002))
     done = line.extra.get(key)
@@ -87,7 +91,7 @@ def _smoothed_at(line, opts, sm, idx):
         from ._stripes_kernel import smooth_nodes
 
         todo = idx[miss]
-        done[todo] = smooth_nodes(pad, k, todo)     # np.convolve(pad, k, "valid") there
+        done[todo] = smooth_nodes(d2, krev, todo)
         v = done[idx]
     return v
 
