@@ -10,8 +10,8 @@ checked here against an independent or the general computation:
   construction (written out here);
 * the vectorised AGM of the Kik–Piotrowski integrals against SciPy's complete
   elliptic integrals (closed form of eqs. 13–15, seed 003 §3.2);
-* forces-only FASTSIM on a strip patch (``fields=False``) against the path
-  with fields, also for creepages large enough to need the general path;
+* FASTSIM on a strip patch through one fused kernel (with and without
+  fields) against the general path, also for creepages large enough to need it;
 * cached line data (penetration factor, load-kernel arguments, STRIPES'
   smoothed curvature per node): a second solve of the same wheel problem with
   other options or another load equals a solve of a fresh problem.
@@ -125,12 +125,15 @@ def test_kp_integrals_against_scipy():
 
 @pytest.mark.parametrize("normal", ["kik-piotrowski", "stripes", "linder"])
 @pytest.mark.parametrize("creep", [(1e-3, 1e-3, 0.1), (-2e-3, 5e-4, -1.0), (0.0, 0.0, 0.0),
-                                   (1e240, -1e240, 0.0)])
-def test_fastsim_forces_only_equals_fields(s1002, normal, creep):
-    """``fields=False`` (one fused kernel) against the path with fields; creepages of
-    1e240 exceed the fused kernel's rate bound and take the general path (not with
-    Kik–Piotrowski's weighted flexibility, whose norm √(ξ² + η² + ...) overflows there
-    on both paths)."""
+                                   (3e-2, 0.0, 0.0), (1e240, -1e240, 0.0)])
+def test_fastsim_fused_equals_general_path(s1002, normal, creep, monkeypatch):
+    """FASTSIM on a strip patch through the fused kernel (with and without fields)
+    against the general path (resampling in NumPy, ``_solve_strips``), which the
+    fused path replaces; creepages of 1e240 exceed the fused kernel's rate bound
+    and take the general path in both (not with Kik–Piotrowski's weighted
+    flexibility, whose norm √(ξ² + η² + ...) overflows there on both paths)."""
+    from wheelrail.tangential.fastsim import Fastsim
+
     if normal == "kik-piotrowski" and creep[0] > 1e100:
         creep = (1e140, -1e140, 0.0)
     nm = wr.api.get_normal_method(normal)
@@ -140,13 +143,27 @@ def test_fastsim_forces_only_equals_fields(s1002, normal, creep):
         cr = [creep] * len(ps)
         a = tm.solve_patches(ps, cr, 0.3, **tm.check_options({"fields": False}))
         b = tm.solve_patches(ps, cr, 0.3, **tm.check_options({"fields": True}))
-        for u, v in zip(a, b):
+        with monkeypatch.context() as m:
+            m.setattr(Fastsim, "_patch_forces", lambda *args: None)
+            g = tm.solve_patches(ps, cr, 0.3, **tm.check_options({"fields": True}))
+        for u, v, r in zip(a, b, g):
             assert u.fields is None and v.fields is not None
-            s = 0.3 * v.Fn
-            assert abs(u.Fx - v.Fx) <= 1e-12 * s and abs(u.Fy - v.Fy) <= 1e-12 * s
-            assert abs(u.Mz - v.Mz) <= 1e-12 * s * 0.01
-            assert u.Fn == pytest.approx(v.Fn, rel=1e-13)
-            assert u.info["L"] == v.info["L"] and u.info["flexibility"] == v.info["flexibility"]
+            s = 0.3 * r.Fn
+            for q in (u, v):
+                assert abs(q.Fx - r.Fx) <= 1e-12 * s and abs(q.Fy - r.Fy) <= 1e-12 * s
+                assert abs(q.Mz - r.Mz) <= 1e-12 * s * 0.01
+                assert q.Fn == pytest.approx(r.Fn, rel=1e-13)
+                assert q.info["L"] == r.info["L"]
+                assert q.info["flexibility"] == r.info["flexibility"]
+            assert v.status == r.status
+            assert v.info["adhesion_fraction"] == r.info["adhesion_fraction"]
+            for k in ("x", "y", "dx", "dy", "mu", "slip"):
+                np.testing.assert_array_equal(getattr(v.fields, k), getattr(r.fields, k), k)
+            for k in ("pressure", "px", "py", "sx", "sy"):
+                np.testing.assert_allclose(getattr(v.fields, k), getattr(r.fields, k),
+                                           rtol=1e-12, atol=1e-12 * float(
+                                               np.max(np.abs(getattr(r.fields, k))) or 1.0),
+                                           err_msg=k)
 
 
 def test_fastsim_forces_only_rejects_bad_mu(s1002):

@@ -414,8 +414,8 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
 
 @njit(cache=True)
 def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1, L2, L3,
-                       xi, eta, phi, cap, first_order=False):
-    """Forces-only FASTSIM on a strip patch, resampling and centre of pressure fused.
+                       xi, eta, phi, cap, first_order, store, p_out, px, py, sx, sy, slip):
+    """FASTSIM on a strip patch, resampling and centre of pressure fused (fields optional).
 
     The same discrete equations as ``Fastsim.solve_patch`` on a non-elliptic
     :class:`~wheelrail.contact.patch.ContactPatch` followed by
@@ -445,6 +445,13 @@ def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1,
         Largest rigid-slip traction rate [Pa/m] handled here; beyond it (or for
         a non-finite rate) ``ok`` is False and nothing else is meaningful (the
         caller then takes the general path, which scales the creepages).
+    first_order : bool
+        First-order backward-Euler march (see the module docstring).
+    store : bool
+        Write the fields: ``p_out`` the resampled pressure, ``px``, ``py``,
+        ``sx``, ``sy``, ``slip`` as in :func:`fastsim_strips_kernel` (all
+        shape (ny, nx), zero-initialised by the caller); otherwise they are not
+        touched (any float / bool arrays).
 
     Returns
     -------
@@ -523,9 +530,16 @@ def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1,
         for i in range(nx):
             bound[i] = p[i] * mu
             Fn += p[i] * dA
-        fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound, L1[j], L2[j],
-                                 L3[j], xi, eta, phi, nx, False, dummy, dummy, dummy, dummy,
-                                 dummy_b, first_order)
+        if store:
+            for i in range(nx):
+                p_out[j, i] = p[i]
+            fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound, L1[j], L2[j],
+                                     L3[j], xi, eta, phi, nx, True, px[j], py[j], sx[j], sy[j],
+                                     slip[j], first_order)
+        else:
+            fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound, L1[j], L2[j],
+                                     L3[j], xi, eta, phi, nx, False, dummy, dummy, dummy, dummy,
+                                     dummy_b, first_order)
         Fx += fx
         Fy += fy
         Mz += mz

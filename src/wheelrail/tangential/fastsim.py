@@ -488,6 +488,10 @@ def _kalker_scalar(aspect, nu):
     return np.interp(v, x, c11), np.interp(v, x, c22), np.interp(v, x, c23)
 
 
+_EMPTY2 = np.zeros((0, 0))
+_EMPTY2B = np.zeros((0, 0), dtype=bool)
+
+
 def _median(v):
     """float(np.median(v)) of a finite 1-D array (the same value, without np.median's overhead)."""
     s = np.sort(v)
@@ -707,11 +711,10 @@ class Fastsim(TangentialMethod):
         sp = np.asarray(patch.strip_pressure, dtype=float)
         m = sp.shape[1]
         i0, i1, w = _resample_weights(m, nx)
-        if fields is False:
-            r = self._patch_forces(patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu,
-                                   scheme, flexibility, Lrep)
-            if r is not None:
-                return r
+        r = self._patch_forces(patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu,
+                               scheme, flexibility, Lrep, fields is not False)
+        if r is not None:
+            return r
         p = sp[:, i0] * (1.0 - w) + sp[:, i1] * w
         scale = sp.sum(axis=1) / m
         got = p.sum(axis=1) / nx
@@ -744,11 +747,12 @@ class Fastsim(TangentialMethod):
                            method=self.name, status=status, fields=r.fields, info=info)
 
     def _patch_forces(self, patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu, scheme,
-                      flexibility, Lrep):
-        """Forces-only path of :meth:`solve_patch` for a strip patch: one fused kernel
-        (:func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`), the same
-        equations as the general path (sums in another order: equal to round-off).
-        ``None`` when the creepages are so large that the general path must scale them."""
+                      flexibility, Lrep, want_fields):
+        """:meth:`solve_patch` for a strip patch in one fused kernel
+        (:func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`): the same
+        equations as the general path (sums in another order: equal to round-off), with
+        the same fields if wanted. ``None`` when the creepages are so large that the
+        general path must scale them."""
         mu_f = float(mu) if isinstance(mu, (float, int)) else math.nan
         mu = mu_f if math.isfinite(mu_f) and mu_f > 0 else float(positive("mu", mu))
         xi, eta, phi = float(xi), float(eta), float(phi)
@@ -762,14 +766,34 @@ class Fastsim(TangentialMethod):
                 return c_(v)
             return c_(np.broadcast_to(np.asarray(v, dtype=float), (ny,)))
 
+        nx = int(i0.shape[0])
+        y, dy, xl, xt = c_(patch.y), c_(patch.dy), c_(patch.x_lead), c_(patch.x_trail)
+        if want_fields:
+            p, px, py, sx, sy = (np.zeros((ny, nx)) for _ in range(5))
+            slip = np.zeros((ny, nx), dtype=bool)
+        else:
+            p = px = py = sx = sy = _EMPTY2
+            slip = _EMPTY2B
         ok, Fx, Fy, Mz, Fn, xc, yc = _k.strip_patch_forces(
-            c_(patch.y), c_(patch.dy), c_(patch.x_lead), c_(patch.x_trail), c_(sp), i0, i1, w,
-            pinfo.get("traction_bound") == "parabolic", mu, strip(L1), strip(L2), strip(L3),
-            xi, eta, phi, _SLIP_RATE_CAP, scheme == "euler")
+            y, dy, xl, xt, c_(sp), i0, i1, w, pinfo.get("traction_bound") == "parabolic", mu,
+            strip(L1), strip(L2), strip(L3), xi, eta, phi, _SLIP_RATE_CAP, scheme == "euler",
+            want_fields, p, px, py, sx, sy, slip)
         if not ok:
             return None
-        info = {"nx": int(i0.shape[0]), "ny": ny, "scheme": scheme,
-                "flexibility": flexibility, "L": Lrep}
+        info = {"nx": nx, "ny": ny, "scheme": scheme, "flexibility": flexibility, "L": Lrep}
+        status = Status.CONVERGED
+        f = None
+        if want_fields:          # as _solve_strips
+            length = np.clip(xl - xt, 0.0, None)
+            empty = length <= 0
+            x = strip_cell_centres(xl, xt, nx)
+            x[empty] = (0.5 * (xl + xt))[empty, None]
+            f = FastsimFields(x=x, y=np.repeat(y[:, None], nx, 1), dx=length / nx, dy=dy,
+                              pressure=p, px=px, py=py, sx=sx, sy=sy, slip=slip,
+                              mu=np.full(ny, mu))
+            info["adhesion_fraction"] = f.adhesion_fraction
+            if not np.any(f.adhesion):
+                status = Status.FULL_SLIP
         return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
-                           Fn=float(Fn), mu=mu, method=self.name, status=Status.CONVERGED,
-                           fields=None, info=info)
+                           Fn=float(Fn), mu=mu, method=self.name, status=status,
+                           fields=f, info=info)
