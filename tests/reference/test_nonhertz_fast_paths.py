@@ -299,3 +299,36 @@ def test_stripes_smoothing_kernels_equal_numpy():
     ref = np.convolve(np.pad(d2, half, mode="edge"), krev[::-1], mode="valid")
     idx = np.array([0, 1, half - 1, half, 700, 701, 1601 - half, 1599, 1600])
     np.testing.assert_allclose(smooth_nodes(d2, krev, idx), ref[idx], rtol=1e-14)
+
+
+@pytest.mark.parametrize("opts", [{}, {"shape_correction": False},
+                                  {"penetration_factor": 0.55}])
+def test_kp_region_kernel_equals_python_loop(s1002, opts, monkeypatch):
+    """Kik–Piotrowski's regions from one kernel against the Python loop it replaces
+    (still used beyond the Hertz table), on a wheel with two patches and a Hertzian gap."""
+    from wheelrail.normal import _kp_kernel
+
+    nm = wr.api.get_normal_method("kik-piotrowski")
+    o = nm.check_options(opts)
+    c = wr.hertz(1e5, 1.0, 4.0, wr.STEEL)
+
+    def solve():
+        w, _ = nm.from_wheel(_problem(s1002, 0.005), **o)
+        return w + nm.from_contact(c, **o)
+
+    fast = solve()
+    with monkeypatch.context() as m:
+        m.setattr(_kp_kernel, "kp_line_regions",
+                  lambda *a: (False, np.zeros((0, 6)), None, None, None))
+        slow = solve()
+    assert len(fast) == len(slow) == 3
+    for p, q in zip(fast, slow):
+        np.testing.assert_allclose(_forces([p]) if p.frame else [[p.Fn, p.area, p.p_max]],
+                                   _forces([q]) if q.frame else [[q.Fn, q.area, q.p_max]],
+                                   rtol=1e-14)
+        np.testing.assert_allclose(p.strip_pressure, q.strip_pressure, rtol=1e-13,
+                                   atol=1e-13 * q.p_max)
+        if q.info["alpha"] is None:
+            assert p.info["alpha"] is None
+        else:
+            assert p.info["alpha"] == pytest.approx(q.info["alpha"], rel=1e-15)

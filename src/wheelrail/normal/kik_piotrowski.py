@@ -144,6 +144,23 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
         E_star = line.extra["E_star"]
         from . import _kp_kernel
         from ._patch_kernel import positive_runs
+        from ._strips import _LN_MAX, _hertz_table
+
+        # the regions in one kernel (the arithmetic of the loop below)
+        lam, la, lb, _, _ = _hertz_table()
+        ok, meta, eta_c, xl_c, peak = _kp_kernel.kp_line_regions(
+            line.f, np.ascontiguousarray(np.broadcast_to(line.Ax, line.f.shape), dtype=float),
+            line.eta, float(line.h), d0, eps, E_star, correct, lam, la, lb, _LN_MAX)
+        if ok:
+            out = []
+            for i0, i1, j, N, p0, alpha in meta.tolist():
+                i0, i1, j = int(i0), int(i1), int(j)
+                out.append(Region(slice(i0, i1), i0 + j, N, eta_c[i0:i1] if correct else
+                                  line.eta[i0:i1], xl_c[i0:i1], peak[i0:i1], g[i0:i1],
+                                  info={"penetration_factor": eps, "factor_from": how,
+                                        "virtual_penetration": d0, "shape_correction": correct,
+                                        "alpha": alpha if correct else None, "p0": p0}))
+            return out
 
         out = []
         h_line = line.h
