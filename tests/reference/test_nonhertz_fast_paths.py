@@ -332,3 +332,24 @@ def test_kp_region_kernel_equals_python_loop(s1002, opts, monkeypatch):
             assert p.info["alpha"] is None
         else:
             assert p.info["alpha"] == pytest.approx(q.info["alpha"], rel=1e-15)
+
+
+def test_strip_flexibilities_kernel_equals_numpy():
+    """Per-strip flexibilities of STRIPES/Linder patches: kernel against
+    ``flexibilities`` with the interpolated Kalker coefficients; a/b beyond the
+    table is refused (the caller then evaluates Kalker's coefficients directly)."""
+    from wheelrail.tangential._fastsim_kernel import strip_flexibilities
+    from wheelrail.tangential.fastsim import _kalker_scalar, _kalker_table, flexibilities
+
+    rng = np.random.default_rng(6)
+    sa = rng.uniform(1e-3, 8e-3, 40)
+    sb = sa / rng.uniform(0.05, 20.0, 40)
+    G, nu = wr.STEEL.G, wr.STEEL.nu
+    ok, L1, L2, L3, m1, m2, m3 = strip_flexibilities(sa, sb, G, *_kalker_table(nu))
+    assert ok
+    ref = flexibilities(sa, sb, G, *_kalker_scalar(sa / sb, nu))
+    for v, r, m in zip((L1, L2, L3), ref, (m1, m2, m3)):
+        np.testing.assert_allclose(v, r, rtol=1e-14)
+        assert m == pytest.approx(float(np.median(r)), rel=1e-14)
+    sb[3] = sa[3] / 150.0
+    assert not strip_flexibilities(sa, sb, G, *_kalker_table(nu))[0]

@@ -70,6 +70,8 @@ References
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -544,3 +546,41 @@ def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1,
         Fy += fy
         Mz += mz
     return True, Fx, Fy, Mz, Fn, WX / W, WY / W
+
+
+@njit(cache=True)
+def strip_flexibilities(sa, sb, G, x, c11, c22, c23):
+    """Kalker's three flexibilities of every strip's virtual ellipse (pure kernel).
+
+    ``Fastsim.solve_patch`` for a patch with per-strip semi-axes ``sa``, ``sb`` [m]:
+    C11, C22, C23 interpolated linearly in ln(a/b) in the table ``x``, ``c11``,
+    ``c22``, ``c23`` (:func:`wheelrail.tangential.fastsim._kalker_table`), then
+    L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a √(a/b)/(4 G C23) [m/Pa]
+    (:func:`wheelrail.tangential.fastsim.flexibilities`).
+
+    Returns
+    -------
+    ok : bool
+        False when an a/b lies outside the table's range [0.01, 100] (the caller
+        then evaluates Kalker's coefficients directly).
+    L1, L2, L3 : ndarray, shape (ny,)
+    m1, m2, m3 : float
+        Their medians.
+    """
+    n = sa.shape[0]
+    L1 = np.empty(n)
+    L2 = np.empty(n)
+    L3 = np.empty(n)
+    for j in range(n):
+        r = sa[j] / sb[j]
+        if not (r >= 0.01 and r <= 100.0):
+            return False, L1, L2, L3, 0.0, 0.0, 0.0
+        v = math.log(r)
+        C11 = np.interp(v, x, c11)
+        C22 = np.interp(v, x, c22)
+        C23 = np.interp(v, x, c23)
+        a = sa[j]
+        L1[j] = 8.0 * a / (3.0 * G * C11)
+        L2[j] = 8.0 * a / (3.0 * G * C22)
+        L3[j] = np.pi * a * np.sqrt(a / sb[j]) / (4.0 * G * C23)
+    return True, L1, L2, L3, np.median(L1), np.median(L2), np.median(L3)

@@ -691,12 +691,21 @@ class Fastsim(TangentialMethod):
         a, b = patch.a, patch.b
         axes = pinfo.get("strip_semiaxes")
         if axes is not None:
-            sa, sb = (np.asarray(v, dtype=float) for v in axes)
-            C11, C22, C23 = _kalker_scalar(sa / sb, patch.materials.nu)
-            L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
-            if flexibility == "weighted":
-                L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(sa * sb))
-            Lrep = tuple(_median(v) for v in (L1, L2, L3))
+            sa, sb = (np.ascontiguousarray(v, dtype=float) for v in axes)
+            nu = patch.materials.nu
+            ok = False
+            if flexibility == "three" and isinstance(nu, float) and sa.size:
+                # one kernel (the same table look-up and formulas as below)
+                ok, L1, L2, L3, *Lrep = _k.strip_flexibilities(
+                    sa, sb, float(patch.materials.G), *_kalker_table(nu))
+                Lrep = tuple(Lrep)
+            if not ok:
+                C11, C22, C23 = _kalker_scalar(sa / sb, nu)
+                L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
+                if flexibility == "weighted":
+                    L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi,
+                                                        np.sqrt(sa * sb))
+                Lrep = tuple(_median(v) for v in (L1, L2, L3))
         else:
             C11, C22, C23 = _kalker_scalar(a / b, patch.materials.nu)
             G = float(patch.materials.G)
