@@ -222,3 +222,17 @@ def positive_runs(g):
         else:
             i += 1
     return out[:k]
+
+
+@njit(cache=True)
+def weighted_means(w, a, b):
+    """(Σ w a / Σ w, Σ w b / Σ w) with NumPy's pairwise sums (``np.sum(w * a) / np.sum(w)``
+    to the bit), for the surface angle and the lateral position of a region."""
+    n = w.shape[0]
+    wa = np.empty(n)
+    wb = np.empty(n)
+    for i in range(n):
+        wa[i] = w[i] * a[i]
+        wb[i] = w[i] * b[i]
+    sw = pairwise_sum(w, 0, n, 1)
+    return pairwise_sum(wa, 0, n, 1) / sw, pairwise_sum(wb, 0, n, 1) / sw

@@ -507,15 +507,19 @@ class VirtualPenetration:
         if not lines:
             raise NoContactError(f"{problem.side} wheel: no candidate contact point")
 
+        from ._patch_kernel import weighted_means
+
         def solve_all(dz):
             out, Fz = [], 0.0
             for line in lines:
                 regs = self._solve_line(line, dz * line.cos, opts)
                 for reg in regs:
-                    w = reg.weights
-                    # the weighted mean surface angle (ContactFrame's, see frame_at)
-                    ang = float(np.sum(w * line.angle[reg.nodes]) / np.sum(w))
-                    reg.info["_angle"] = ang
+                    # the weighted mean surface angle (ContactFrame's, see frame_at) and
+                    # lateral position of the region, weights = its interpenetration
+                    ang, eta_c = weighted_means(
+                        np.ascontiguousarray(reg.weights, dtype=float),
+                        line.angle[reg.nodes], line.eta[reg.nodes])
+                    reg.info["_angle"], reg.info["_eta"] = ang, eta_c
                     Fz += reg.N * math.cos(ang)
                 out.append(regs)
             return out, Fz
@@ -545,9 +549,8 @@ class VirtualPenetration:
         patches = []
         for line, regs in zip(lines, sols):
             for reg in regs:
-                w = reg.weights
                 e_nodes = line.eta[reg.nodes]
-                eta_c = float(np.sum(w * e_nodes) / np.sum(w))
+                eta_c = reg.info.pop("_eta")
                 # angle: the weighted mean of the rail's surface angle over the region's
                 # nodes, i.e. frame_at(..., weights=w, eta_samples=e_nodes), from the line
                 frame = problem.frame_at(line.ref, eta_c, angle=reg.info.pop("_angle"),
