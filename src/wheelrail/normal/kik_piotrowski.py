@@ -147,10 +147,13 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
         from ._strips import _LN_MAX, _hertz_table
 
         # the regions in one kernel (the arithmetic of the loop below)
+        Ax = line.extra.get("Ax_array")
+        if Ax is None:
+            Ax = line.extra["Ax_array"] = np.ascontiguousarray(
+                np.broadcast_to(line.Ax, line.f.shape), dtype=float)
         lam, la, lb, _, _ = _hertz_table()
         ok, meta, eta_c, xl_c, peak = _kp_kernel.kp_line_regions(
-            line.f, np.ascontiguousarray(np.broadcast_to(line.Ax, line.f.shape), dtype=float),
-            line.eta, float(line.h), d0, eps, E_star, correct, lam, la, lb, _LN_MAX)
+            line.f, Ax, line.eta, float(line.h), d0, eps, E_star, correct, lam, la, lb, _LN_MAX)
         if ok:
             out = []
             for i0, i1, j, N, p0, alpha in meta.tolist():

@@ -769,11 +769,14 @@ class Fastsim(TangentialMethod):
         c_ = np.ascontiguousarray
 
         def strip(v):
-            if np.ndim(v) == 0:
-                return np.full(ny, float(v))
             if isinstance(v, np.ndarray) and v.shape == (ny,) and v.dtype == np.float64:
                 return c_(v)
             return c_(np.broadcast_to(np.asarray(v, dtype=float), (ny,)))
+
+        if isinstance(L1, float) and isinstance(L2, float) and isinstance(L3, float):
+            Ls = np.empty((3, ny))          # one patch flexibility: three constant rows
+            Ls[0], Ls[1], Ls[2] = L1, L2, L3
+            L1, L2, L3 = Ls
 
         nx = int(i0.shape[0])
         y, dy, xl, xt = c_(patch.y), c_(patch.dy), c_(patch.x_lead), c_(patch.x_trail)
