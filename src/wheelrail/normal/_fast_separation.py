@@ -184,32 +184,42 @@ def spline_not_a_knot(x, Y, t):
             j += 1
         jj[q] = j
     out = np.empty((k, m))
-    slope = np.empty(n - 1)
-    rhs = np.empty(n)
-    s = np.empty(n)
+    slope = np.empty((k, n - 1))
+    rhs = np.empty((k, n))
+    s = np.empty((k, n))
     d0 = x[2] - x[0]
     d1 = x[n - 1] - x[n - 3]
     for r in range(k):
         for i in range(n - 1):
-            slope[i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
-        rhs[0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[0] + dx[0] * dx[0] * slope[1]) / d0
+            slope[r, i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
+        rhs[r, 0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[r, 0]
+                     + dx[0] * dx[0] * slope[r, 1]) / d0
         for i in range(1, n - 1):
-            rhs[i] = 3.0 * (dx[i] * slope[i - 1] + dx[i - 1] * slope[i])
-        rhs[n - 1] = ((dx[n - 2] * dx[n - 2] * slope[n - 3]
-                       + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[n - 2]) / d1)
-        for i in range(1, n):
-            rhs[i] -= w[i] * rhs[i - 1]
-        s[n - 1] = rhs[n - 1] * ic[n - 1]
-        for i in range(n - 2, -1, -1):
-            s[i] = (rhs[i] - sup[i] * s[i + 1]) * ic[i]
+            rhs[r, i] = 3.0 * (dx[i] * slope[r, i - 1] + dx[i - 1] * slope[r, i])
+        rhs[r, n - 1] = ((dx[n - 2] * dx[n - 2] * slope[r, n - 3]
+                          + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[r, n - 2]) / d1)
+    # the eliminations are chains along i: the rows run side by side (independent chains
+    # overlap in the processor), each row with exactly its own operations
+    for i in range(1, n):
+        wi = w[i]
+        for r in range(k):
+            rhs[r, i] -= wi * rhs[r, i - 1]
+    for r in range(k):
+        s[r, n - 1] = rhs[r, n - 1] * ic[n - 1]
+    for i in range(n - 2, -1, -1):
+        su = sup[i]
+        ci = ic[i]
+        for r in range(k):
+            s[r, i] = (rhs[r, i] - su * s[r, i + 1]) * ci
+    for r in range(k):
         for q in range(m):
             j = jj[q]
             ih = idx[j]
-            tt = (s[j] + s[j + 1] - 2.0 * slope[j]) * ih
+            tt = (s[r, j] + s[r, j + 1] - 2.0 * slope[r, j]) * ih
             c0 = tt * ih
-            c1 = (slope[j] - s[j]) * ih - tt
+            c1 = (slope[r, j] - s[r, j]) * ih - tt
             u = t[q] - x[j]
-            out[r, q] = ((c0 * u + c1) * u + s[j]) * u + Y[r, j]
+            out[r, q] = ((c0 * u + c1) * u + s[r, j]) * u + Y[r, j]
     return out
 
 
