@@ -237,7 +237,8 @@ def _n_over_m_array(lam):
 
 
 def _n_over_m(lam):
-    """Hertz's n/m = b/a for λ = A/B (Table 2), cached on a 2 % grid of ln λ."""
+    """Hertz's n/m = b/a for one λ = A/B (Table 2), memoised (the scalar form of
+    :func:`_nm_table`, which the method uses)."""
     key = round(float(lam), 12)
     v = _NM_CACHE.get(key)
     if v is None:
