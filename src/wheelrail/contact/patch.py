@@ -38,7 +38,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import MISSING, dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
@@ -176,6 +176,24 @@ class ContactPatch:
             object.__setattr__(self, name, v)
 
     # ------------------------------------------------------------ constructors
+    @classmethod
+    def _trusted(cls, **values) -> "ContactPatch":
+        """A patch from values the library has built and checked itself (private).
+
+        Skips :meth:`__post_init__`: the caller guarantees what it checks
+        (float arrays of shape (ny,), ``strip_pressure`` (ny, m) finite and
+        ≥ 0, ``Fn``, ``a``, ``b`` finite floats > 0, ``materials`` a
+        :class:`MaterialPair`). User input never comes here.
+        """
+        obj = object.__new__(cls)
+        for f in _PATCH_FIELDS:
+            v = values.pop(f.name) if f.name in values else (
+                f.default_factory() if f.default_factory is not MISSING else f.default)
+            object.__setattr__(obj, f.name, v)
+        if values:
+            raise TypeError(f"unknown ContactPatch fields {sorted(values)}")
+        return obj
+
     @classmethod
     def from_hertz(cls, contact, *, strips: int = DEFAULT_STRIPS, cells: int = DEFAULT_CELLS,
                    frame: ContactFrame | None = None, method: str = "hertz") -> "ContactPatch":
@@ -322,6 +340,9 @@ class ContactPatch:
     def with_frame(self, frame: ContactFrame) -> "ContactPatch":
         """A copy placed at ``frame``."""
         return replace(self, frame=frame)
+
+
+_PATCH_FIELDS = fields(ContactPatch)
 
 
 def _equivalent_semiaxes(area: float, length: float, width: float) -> tuple[float, float]:

@@ -43,6 +43,7 @@ References
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -232,6 +233,18 @@ class WheelProblem:
         rc = self.track.curve(self.side)
         u_r = sig * f.track_y
         g = f.contact_angle
+        if angle is not None and weights is None and np.ndim(eta) == 0:
+            # one point, angle given (the strip methods): scalar arithmetic, same numbers
+            e = float(eta)
+            u_c = u_r + e * math.cos(g)
+            z_c = _curve_value(rc, u_c)
+            pl = self.track.placement(self.side)
+            ca, sa = math.cos(-pl.angle), math.sin(-pl.angle)
+            yr, zr = u_c - pl.offset, z_c + pl.z_top
+            sep = self.separation(k) if separation is None else separation
+            r = float(np.interp(e, sep.eta, sep.wheel_radius))
+            return ContactFrame(self.side, f.wheel_y + float(u_c - u_r), float(ca * yr - sa * zr),
+                                float(sig * u_c), float(z_c), f.x, float(angle), r)
 
         def rail_at(e):
             u = u_r + np.asarray(e, dtype=float) * np.cos(g)
@@ -290,6 +303,20 @@ class WheelRailResult(ContactResult):
 
 
 # --------------------------------------------------------------------------- geometry
+def _curve_value(curve, x: float) -> float:
+    """``curve.eval(x, 0)[0]`` of a :class:`~wheelrail.geometry._curves.PiecewiseCubic` for one
+    float ``x`` in Python arithmetic (the same operations, without array overhead)."""
+    u = curve.u
+    if curve._h:
+        i = int((x - u[0]) * (1.0 / curve._h))
+    else:
+        i = int(np.searchsorted(u, x)) - 1
+    i = min(max(i, 0), u.size - 2)
+    dx = x - float(u[i])
+    c = curve.c
+    return ((float(c[0, i]) * dx + float(c[1, i])) * dx + float(c[2, i])) * dx + float(c[3, i])
+
+
 def touching_heights(wheelset, track, y, roll, yaw):
     """Axle height at which each wheel just touches its rail, for prescribed roll (arrays).
 

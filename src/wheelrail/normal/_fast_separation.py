@@ -22,7 +22,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-__all__ = ["spline_not_a_knot", "separation_fast", "plane_samples"]
+__all__ = ["spline_not_a_knot", "separation_fast", "plane_samples", "separation_kernel",
+           "separation_window", "rail_slopes"]
 
 
 @njit(cache=True)
@@ -183,33 +184,173 @@ def spline_not_a_knot(x, Y, t):
             j += 1
         jj[q] = j
     out = np.empty((k, m))
-    slope = np.empty(n - 1)
-    rhs = np.empty(n)
-    s = np.empty(n)
+    slope = np.empty((k, n - 1))
+    rhs = np.empty((k, n))
+    s = np.empty((k, n))
     d0 = x[2] - x[0]
     d1 = x[n - 1] - x[n - 3]
     for r in range(k):
         for i in range(n - 1):
-            slope[i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
-        rhs[0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[0] + dx[0] * dx[0] * slope[1]) / d0
+            slope[r, i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
+        rhs[r, 0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[r, 0]
+                     + dx[0] * dx[0] * slope[r, 1]) / d0
         for i in range(1, n - 1):
-            rhs[i] = 3.0 * (dx[i] * slope[i - 1] + dx[i - 1] * slope[i])
-        rhs[n - 1] = ((dx[n - 2] * dx[n - 2] * slope[n - 3]
-                       + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[n - 2]) / d1)
-        for i in range(1, n):
-            rhs[i] -= w[i] * rhs[i - 1]
-        s[n - 1] = rhs[n - 1] * ic[n - 1]
-        for i in range(n - 2, -1, -1):
-            s[i] = (rhs[i] - sup[i] * s[i + 1]) * ic[i]
+            rhs[r, i] = 3.0 * (dx[i] * slope[r, i - 1] + dx[i - 1] * slope[r, i])
+        rhs[r, n - 1] = ((dx[n - 2] * dx[n - 2] * slope[r, n - 3]
+                          + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[r, n - 2]) / d1)
+    # the eliminations are chains along i: the rows run side by side (independent chains
+    # overlap in the processor), each row with exactly its own operations
+    for i in range(1, n):
+        wi = w[i]
+        for r in range(k):
+            rhs[r, i] -= wi * rhs[r, i - 1]
+    for r in range(k):
+        s[r, n - 1] = rhs[r, n - 1] * ic[n - 1]
+    for i in range(n - 2, -1, -1):
+        su = sup[i]
+        ci = ic[i]
+        for r in range(k):
+            s[r, i] = (rhs[r, i] - su * s[r, i + 1]) * ci
+    for r in range(k):
         for q in range(m):
             j = jj[q]
             ih = idx[j]
-            tt = (s[j] + s[j + 1] - 2.0 * slope[j]) * ih
+            tt = (s[r, j] + s[r, j + 1] - 2.0 * slope[r, j]) * ih
             c0 = tt * ih
-            c1 = (slope[j] - s[j]) * ih - tt
+            c1 = (slope[r, j] - s[r, j]) * ih - tt
             u = t[q] - x[j]
-            out[r, q] = ((c0 * u + c1) * u + s[j]) * u + Y[r, j]
+            out[r, q] = ((c0 * u + c1) * u + s[r, j]) * u + Y[r, j]
     return out
+
+
+@njit(cache=True)
+def _monotone_bounds(e, c):
+    """(start, stop) of the largest run of strictly increasing ``e`` containing index ``c``
+    (stop inclusive; :func:`wheelrail.geometry.separation._monotone_window`)."""
+    n = e.shape[0]
+    start = 0
+    for k in range(c - 1, -1, -1):
+        if e[k + 1] - e[k] <= 0:
+            start = k + 1
+            break
+    stop = n - 1
+    for k in range(c, n - 1):
+        if e[k + 1] - e[k] <= 0:
+            stop = k
+            break
+    return start, stop
+
+
+@njit(cache=True)
+def _abs_argmin(e):
+    j = 0
+    v = abs(e[0])
+    for k in range(1, e.shape[0]):
+        if abs(e[k]) < v:
+            v = abs(e[k])
+            j = k
+    return j
+
+
+#: samples kept beyond the evaluation interval on each side of a spline: the influence of a
+#: sample (and of the not-a-knot end condition) on the interpolant decays by a factor
+#: ≤ 1/2 per sample (2 − √3 ≈ 0.27 on uniform samples), so 64 samples put the effect of
+#: cutting the rest below 1e-19 relative, under round-off
+_SPLINE_MARGIN = 64
+
+
+@njit(cache=True)
+def _knot_range(e, k0, k1, lo, hi):
+    """Sub-range of the increasing samples ``e[k0..k1]`` covering [lo, hi] with
+    ``_SPLINE_MARGIN`` samples beyond each end (clipped)."""
+    a = k0
+    while a < k1 and e[a + 1] <= lo:
+        a += 1
+    b = k1
+    while b > k0 and e[b - 1] >= hi:
+        b -= 1
+    return max(k0, a - _SPLINE_MARGIN), min(k1, b + _SPLINE_MARGIN)
+
+
+@njit(cache=True)
+def _linspace(a, b, n):
+    """``numpy.linspace(a, b, n)`` (the same numbers)."""
+    out = np.empty(n)
+    step = (b - a) / (n - 1)
+    for i in range(n):
+        out[i] = i * step + a
+    out[n - 1] = b
+    return out
+
+
+@njit(cache=True)
+def separation_window(wu, wc, wh, ru, rc, rh, r0, e_tape, sig, y, zc, theta, psi, gam,
+                      wheel_y, u_c, width, n, m):
+    """:func:`separation_kernel` with its sampling grids: ``m`` wheel samples on
+    ``wheel_y ± width`` and ``m`` rail samples on ``u_c ± width`` (clipped to the
+    profiles), the plane through the rail point at ``u_c`` (pure kernel)."""
+    s = _linspace(max(wu[0], wheel_y - width), min(wu[wu.shape[0] - 1], wheel_y + width), m)
+    ur = _linspace(max(ru[0], u_c - width), min(ru[ru.shape[0] - 1], u_c + width), m)
+    x = np.empty(1)
+    x[0] = u_c
+    C1 = _cubic_eval(ru, rc, rh, x, 0)[0][0]
+    return separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta,
+                             psi, u_c, C1, gam, width, n)
+
+
+@njit(cache=True)
+def rail_slopes(ru, rc, rh, u):
+    """Slope dZ/du of the rail curve at ``u`` (``PiecewiseCubic.eval(u, 1)[1]``, same numbers)."""
+    return _cubic_eval(ru, rc, rh, u, 1)[1]
+
+
+@njit(cache=True)
+def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta, psi,
+                      C0, C1, gam, width, n):
+    """The whole of :func:`separation_fast` after the sampling grids (pure kernel).
+
+    :func:`plane_samples`, the monotone windows of both silhouettes around the
+    plane origin, the uniform η grid (as ``numpy.linspace``) and the
+    not-a-knot splines of the wheel's distance and radius and of the rail.
+
+    Returns
+    -------
+    ok : bool
+        False when a window has fewer than 4 samples (the caller then uses the
+        reference implementation).
+    eta, f, wheel_radius : ndarray, shape (n,)
+    """
+    ew, zw, rw, er, zrr = plane_samples(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc,
+                                        theta, psi, C0, C1, gam)
+    w0, w1 = _monotone_bounds(ew, _abs_argmin(ew))
+    r0_, r1_ = _monotone_bounds(er, _abs_argmin(er))
+    empty = np.empty(0)
+    if w1 - w0 + 1 < 4 or r1_ - r0_ + 1 < 4:
+        return False, empty, empty, empty
+    lo = max(max(-0.5 * width, ew[w0]), er[r0_])
+    hi = min(min(0.5 * width, ew[w1]), er[r1_])
+    eta = np.empty(n)
+    step = (hi - lo) / (n - 1)
+    for i in range(n):
+        eta[i] = i * step + lo
+    eta[n - 1] = hi
+    # the splines on the samples around [lo, hi] only (_SPLINE_MARGIN beyond each end)
+    w0, w1 = _knot_range(ew, w0, w1, lo, hi)
+    r0_, r1_ = _knot_range(er, r0_, r1_, lo, hi)
+    nw = w1 - w0 + 1
+    Y = np.empty((2, nw))
+    for k in range(nw):
+        Y[0, k] = zw[w0 + k]
+        Y[1, k] = rw[w0 + k]
+    W = spline_not_a_knot(ew[w0:w1 + 1].copy(), Y, eta)
+    Z = np.empty((1, r1_ - r0_ + 1))
+    for k in range(r1_ - r0_ + 1):
+        Z[0, k] = zrr[r0_ + k]
+    R = spline_not_a_knot(er[r0_:r1_ + 1].copy(), Z, eta)
+    f = np.empty(n)
+    for i in range(n):
+        f[i] = W[0, i] - R[0, i]
+    return True, eta, f, W[1].copy()
 
 
 def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, contact_angle,
@@ -219,35 +360,22 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
     Parameters and return value as there (SI units: m, rad).
     """
     from ..geometry.contact_search import _SIGMA
-    from ..geometry.separation import Separation, _monotone_window
+    from ..geometry.separation import Separation
 
     sig = _SIGMA[side]
     gam = float(contact_angle)
     rc = track.curve(side)
     u_c = sig * float(track_y)
-    C0, C1 = u_c, float(rc.eval(u_c, 0)[0])
-    m = 2001
     wc = wheelset.curve(side)
-    s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
-    ur = np.linspace(max(rc.u_min, u_c - width), min(rc.u_max, u_c + width), m)
-    ew, zw, rw, er, zrr = plane_samples(s, wc.u, wc.c, wc._h, ur, rc.u, rc.c, rc._h,
-                                        float(wheelset.nominal_radius), float(wheelset.e_tape),
-                                        sig, float(y), float(wheelset.nominal_radius + z),
-                                        float(roll), float(yaw), C0, C1, gam)
-    sw = _monotone_window(ew, int(np.argmin(np.abs(ew))))
-    sr = _monotone_window(er, int(np.argmin(np.abs(er))))
-    lo = max(-0.5 * width, ew[sw][0], er[sr][0])
-    hi = min(0.5 * width, ew[sw][-1], er[sr][-1])
-    eta = np.linspace(lo, hi, n)
-    xw = np.ascontiguousarray(ew[sw])
-    xr = np.ascontiguousarray(er[sr])
-    if xw.size < 4 or xr.size < 4:       # degenerate window: the reference implementation
+    ok, eta, f, radius = separation_window(
+        wc.u, wc.c, wc._h, rc.u, rc.c, rc._h, float(wheelset.nominal_radius),
+        float(wheelset.e_tape), sig, float(y), float(wheelset.nominal_radius + z), float(roll),
+        float(yaw), gam, float(wheel_y), u_c, float(width), int(n), 2001)
+    if not ok:                           # degenerate window: the reference implementation
         from ..geometry.separation import separation_at
 
         return separation_at(wheelset, track, side, y=y, z=z, roll=roll, yaw=yaw,
                              wheel_y=wheel_y, track_y=track_y, contact_angle=contact_angle,
                              width=width, n=n, point=point)
-    W = spline_not_a_knot(xw, np.ascontiguousarray(np.stack([zw[sw], rw[sw]])), eta)
-    R = spline_not_a_knot(xr, np.ascontiguousarray(zrr[sr])[None, :], eta)
     cosf = float(np.cos(gam - sig * roll))
-    return Separation(eta, W[0] - R[0], W[1], cosf, gam, side, float(y), float(yaw), int(point))
+    return Separation(eta, f, radius, cosf, gam, side, float(y), float(yaw), int(point))

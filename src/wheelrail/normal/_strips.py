@@ -41,7 +41,7 @@ import numpy as np
 from ..errors import ConvergenceError, InputError, NoContactError
 
 __all__ = ["Line", "Region", "VirtualPenetration", "runs", "kp_integrals",
-           "hertz_penetration_factor", "hertz_shape"]
+           "hertz_penetration_factor", "hertz_shape", "hertz_ab"]
 
 _LINE_NODES = 801        # nodes of the refined lateral line of a gap problem
 _WHEEL_NODES = 1601      # nodes of a wheel's separation line (40 mm: 0.025 mm spacing)
@@ -139,6 +139,18 @@ def hertz_shape(A, B):
     p0 = math.exp(float(np.interp(lam, grid, lp))) * s ** (2 / 3)
     d = math.exp(float(np.interp(lam, grid, ld))) * s ** (1 / 3)
     return a, b, p0, d
+
+
+def hertz_ab(A, B):
+    """(a, b) of :func:`hertz_shape` (the same numbers, two table look-ups instead of four)."""
+    A, B = float(A), float(B)
+    lam = math.log(A / B)
+    if abs(lam) > _LN_MAX:
+        return hertz_shape(A, B)[:2]
+    grid, la, lb, _, _ = _hertz_table()
+    s = math.sqrt(A * B)
+    return (math.exp(float(np.interp(lam, grid, la))) / s ** (1 / 3),
+            math.exp(float(np.interp(lam, grid, lb))) / s ** (1 / 3))
 
 
 def hertz_penetration_factor(A, B):
@@ -421,32 +433,19 @@ class VirtualPenetration:
     # ----------------------------------------------------------- patches
     def _make_patch(self, line, reg, pair, opts, frame, delta, extra=None):
         from ..contact.patch import ContactPatch
+        from ._patch_kernel import strip_patch
 
         strips = int(opts.get("strips", self._default_strips))
         cells = int(opts.get("cells", self._default_cells))
-        eta_n, xl_n, pk_n = reg.eta, reg.xl, reg.peak
-        hn = float(eta_n[1] - eta_n[0]) if eta_n.size > 1 else line.h
-        lo, hi = eta_n[0] - 0.5 * hn, eta_n[-1] + 0.5 * hn
-        width = hi - lo
-        dy = width / strips
-        ys = lo + (np.arange(strips) + 0.5) * dy
-        # interpolate x_l² (linear in the interpenetration) and the strip peaks
-        e_ext = np.concatenate(([lo], eta_n, [hi]))
-        xl2 = np.interp(ys, e_ext, np.concatenate(([0.0], xl_n ** 2, [0.0])))
-        xl = np.sqrt(np.clip(xl2, 0.0, None))
-        pk = np.interp(ys, e_ext, np.concatenate(([0.0], pk_n, [0.0])))
-        # strip forces of the nodes, redistributed: keep the patch force exactly
-        s = 1.0 - (np.arange(cells) + 0.5) * (2.0 / cells)
-        prof = np.sqrt(np.clip(1.0 - s * s, 0.0, None))
-        sp = pk[:, None] * prof[None, :]
-        got = float(np.sum(sp.sum(axis=1) * (2 * xl / cells) * dy))
-        if got > 0:
-            sp *= reg.N / got
+        eta_n = reg.eta
         eta_ref = float(reg.info.get("eta_ref", eta_n[reg.j0 - reg.nodes.start]))
-        y = line.sign * (ys - eta_ref)
-        order = np.argsort(y)
-        area = float(np.sum(2 * xl) * dy)
-        L = 2.0 * float(np.max(xl))
+        # strips: x_l² (linear in the interpenetration) and the peaks interpolated from the
+        # nodes, the strip pressures scaled to keep the patch force exactly
+        # (:func:`wheelrail.normal._patch_kernel.strip_patch`)
+        y, xl, sp, ys, dy, width, area, L, ok = strip_patch(
+            np.ascontiguousarray(eta_n, dtype=float), np.ascontiguousarray(reg.xl, dtype=float),
+            np.ascontiguousarray(reg.peak, dtype=float), float(line.h), strips, cells,
+            float(reg.N), eta_ref, float(line.sign))
         ratio = L / width
         a = math.sqrt(area * ratio / math.pi)
         b = math.sqrt(area / (ratio * math.pi))
@@ -456,12 +455,17 @@ class VirtualPenetration:
         if reg.strip_axes is not None:
             ax = np.interp(ys, eta_n, reg.strip_axes[0])
             bx = np.interp(ys, eta_n, reg.strip_axes[1])
-            info["strip_semiaxes"] = (ax[order], bx[order])
+            if line.sign < 0:
+                ax, bx = ax[::-1], bx[::-1]
+            info["strip_semiaxes"] = (ax, bx)
         info.update(self._patch_info(reg, opts))
-        return ContactPatch(y=y[order], dy=np.full(strips, dy), x_lead=xl[order],
-                            x_trail=-xl[order], strip_pressure=sp[order], Fn=reg.N,
-                            materials=pair, a=a, b=b, penetration=float(delta), A=line.A,
-                            B=line.B, frame=frame, method=self.name, info=info)
+        N = float(reg.N)
+        values = dict(y=y, dy=np.full(strips, dy), x_lead=xl, x_trail=-xl, strip_pressure=sp,
+                      Fn=N, materials=pair, a=a, b=b, penetration=float(delta), A=line.A,
+                      B=line.B, frame=frame, method=self.name, info=info)
+        if ok and all(math.isfinite(v) and v > 0 for v in (N, a, b)):
+            return ContactPatch._trusted(**values)
+        return ContactPatch(**values)      # the checks say what is wrong
 
     def _patch_info(self, reg, opts):
         return {}
@@ -471,6 +475,8 @@ class VirtualPenetration:
         key = ("vp_lines", self.name, group_angle, width)
         if key in problem.cache:
             return problem.cache[key]
+        from ._fast_separation import rail_slopes
+
         sigma = 1.0 if problem.side == "right" else -1.0
         groups = problem.groups(group_angle, width)
         rc = problem.track.curve(problem.side)
@@ -483,8 +489,7 @@ class VirtualPenetration:
             if problem.roller_radius is not None:
                 Ax = Ax + 0.5 / problem.roller_radius
             u = sigma * f.track_y + s.eta * math.cos(f.contact_angle)
-            _, z1 = rc.eval(u, 1)
-            ang = np.arctan(z1)
+            ang = np.arctan(rail_slopes(rc.u, rc.c, rc._h, u))
             A, B = float(problem.A[r]), float(problem.B[r])
             lines.append(Line(np.asarray(s.eta, float), np.asarray(s.f, float), np.asarray(Ax),
                               A, B, cos=float(s.cos_factor), angle=ang, sign=sigma, ref=r,
@@ -502,13 +507,19 @@ class VirtualPenetration:
         if not lines:
             raise NoContactError(f"{problem.side} wheel: no candidate contact point")
 
+        from ._patch_kernel import weighted_means
+
         def solve_all(dz):
             out, Fz = [], 0.0
             for line in lines:
                 regs = self._solve_line(line, dz * line.cos, opts)
                 for reg in regs:
-                    w = reg.weights
-                    ang = float(np.sum(w * line.angle[reg.nodes]) / np.sum(w))
+                    # the weighted mean surface angle (ContactFrame's, see frame_at) and
+                    # lateral position of the region, weights = its interpenetration
+                    ang, eta_c = weighted_means(
+                        np.ascontiguousarray(reg.weights, dtype=float),
+                        line.angle[reg.nodes], line.eta[reg.nodes])
+                    reg.info["_angle"], reg.info["_eta"] = ang, eta_c
                     Fz += reg.N * math.cos(ang)
                 out.append(regs)
             return out, Fz
@@ -518,11 +529,14 @@ class VirtualPenetration:
         else:
             Q = float(problem.vertical_load)
             l0 = lines[0]
-            if l0.A > 0 and l0.B > 0:
-                _, _, _, d1 = hertz_shape(l0.A, l0.B)
-                start = float(np.min(l0.f)) + d1 * (Q / pair.E_star) ** (2 / 3)
+            if "start" not in l0.extra:        # (min f, Hertz's approach at 1 N, E* = 1)
+                d1 = hertz_shape(l0.A, l0.B)[3] if l0.A > 0 and l0.B > 0 else None
+                l0.extra["start"] = (float(np.min(l0.f)), d1)
+            fmin, d1 = l0.extra["start"]
+            if d1 is not None:
+                start = fmin + d1 * (Q / pair.E_star) ** (2 / 3)
             else:
-                start = float(np.min(l0.f)) + 5e-5
+                start = fmin + 5e-5
             start = max(start, 1e-7) / l0.cos
             def vertical(d):
                 return sum(self._line_loads(line, d * line.cos, opts)[1] for line in lines)
@@ -535,10 +549,11 @@ class VirtualPenetration:
         patches = []
         for line, regs in zip(lines, sols):
             for reg in regs:
-                w = reg.weights
                 e_nodes = line.eta[reg.nodes]
-                eta_c = float(np.sum(w * e_nodes) / np.sum(w))
-                frame = problem.frame_at(line.ref, eta_c, weights=w, eta_samples=e_nodes,
+                eta_c = reg.info.pop("_eta")
+                # angle: the weighted mean of the rail's surface angle over the region's
+                # nodes, i.e. frame_at(..., weights=w, eta_samples=e_nodes), from the line
+                frame = problem.frame_at(line.ref, eta_c, angle=reg.info.pop("_angle"),
                                          separation=line.extra.get("separation"))
                 reg.info["eta_ref"] = self._eta_in_region_coords(reg, eta_c, e_nodes)
                 patches.append(self._make_patch(line, reg, pair, opts, frame, dz * line.cos,

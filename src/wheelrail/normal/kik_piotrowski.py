@@ -45,7 +45,7 @@ import numpy as np
 
 from ..errors import InputError
 from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_penetration_factor, hertz_shape, runs
+from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
 
@@ -89,7 +89,7 @@ def shape_correction(eta, xl, h, j0):
     """
     L = 2.0 * float(np.max(xl))
     W = xl.size * h
-    a, b, _, _ = hertz_shape((W / L) ** 2, 1.0)
+    a, b = hertz_ab((W / L) ** 2, 1.0)
     alpha = a / b
     sy = math.sqrt(L / (alpha * W))          # W_c / W   (eq. 19)
     sx = 1.0 / sy                            # L_c / L   (area kept)
@@ -137,19 +137,37 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
                "cells": 40}
 
     def _solve_line(self, line, delta, opts):
-        key = ("eps", opts.get("penetration_factor", "hertz"))
-        if key not in line.extra:
-            line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
-                                                 line.A, line.B)
-        eps, how = line.extra[key]
+        eps, how = self._eps(line, opts)
         correct = bool(opts.get("shape_correction", True))
         d0 = eps * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]
         from . import _kp_kernel
+        from ._patch_kernel import positive_runs
+        from ._strips import _LN_MAX, _hertz_table
+
+        # the regions in one kernel (the arithmetic of the loop below)
+        Ax = line.extra.get("Ax_array")
+        if Ax is None:
+            Ax = line.extra["Ax_array"] = np.ascontiguousarray(
+                np.broadcast_to(line.Ax, line.f.shape), dtype=float)
+        lam, la, lb, _, _ = _hertz_table()
+        ok, meta, eta_c, xl_c, peak = _kp_kernel.kp_line_regions(
+            line.f, Ax, line.eta, float(line.h), d0, eps, E_star, correct, lam, la, lb, _LN_MAX)
+        if ok:
+            out = []
+            for i0, i1, j, N, p0, alpha in meta.tolist():
+                i0, i1, j = int(i0), int(i1), int(j)
+                out.append(Region(slice(i0, i1), i0 + j, N, eta_c[i0:i1] if correct else
+                                  line.eta[i0:i1], xl_c[i0:i1], peak[i0:i1], g[i0:i1],
+                                  info={"penetration_factor": eps, "factor_from": how,
+                                        "virtual_penetration": d0, "shape_correction": correct,
+                                        "alpha": alpha if correct else None, "p0": p0}))
+            return out
 
         out = []
-        for i0, i1 in runs(g > 0):
+        h_line = line.h
+        for i0, i1 in positive_runs(g).tolist():
             if i1 - i0 < 3:
                 continue                # narrower than the line's resolution
             gi = g[i0:i1]
@@ -160,7 +178,7 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
             # separate region the load then vanishes with the region instead of jumping)
             real = float(gi[j]) / eps
             eta = line.eta[i0:i1]
-            h = line.h
+            h = h_line
             alpha = None
             if correct:
                 eta, xl, h, alpha = shape_correction(eta, xl, h, j)
@@ -176,24 +194,33 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
 
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: the same equations as _solve_line in one kernel
-        from . import _kp_kernel
-        from ._strips import _hertz_table
+        key = ("kp_load", opts.get("penetration_factor", "hertz"),
+               bool(opts.get("shape_correction", True)))
+        args = line.extra.get(key)
+        if args is None:
+            from . import _kp_kernel
+            from ._strips import _hertz_table
 
+            eps = self._eps(line, opts)[0]
+            ang = line.angle
+            if ang is None:
+                ang = np.zeros_like(line.f)
+            lam, la, lb, _, _ = _hertz_table()
+            args = line.extra[key] = (_kp_kernel.kp_line_load, line.f,
+                                      np.asarray(line.Ax, dtype=float), ang, line.h, eps,
+                                      line.extra["E_star"], key[2], lam, la, lb)
+        kern, f, Ax, ang, h, eps, E_star, correct, lam, la, lb = args
+        N, Nz = kern(f, Ax, ang, h, eps * delta, eps, E_star, correct, lam, la, lb)
+        return float(N), float(Nz)
+
+    @staticmethod
+    def _eps(line, opts):
+        """(ε, how) of the line for the option penetration_factor (cached on the line)."""
         key = ("eps", opts.get("penetration_factor", "hertz"))
         if key not in line.extra:
             line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
                                                  line.A, line.B)
-        eps = line.extra[key][0]
-        ang = line.angle
-        if ang is None:
-            ang = line.extra.get("zero_angle")
-            if ang is None:
-                ang = line.extra["zero_angle"] = np.zeros_like(line.f)
-        lam, la, lb, _, _ = _hertz_table()
-        N, Nz = _kp_kernel.kp_line_load(line.f, np.asarray(line.Ax, dtype=float), ang, line.h,
-                                        eps * delta, eps, line.extra["E_star"],
-                                        bool(opts.get("shape_correction", True)), lam, la, lb)
-        return float(N), float(Nz)
+        return line.extra[key]
 
     def _patch_info(self, reg, opts):
         return {"fastsim_flexibility": "weighted"}

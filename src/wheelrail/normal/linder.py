@@ -37,7 +37,7 @@ import math
 import numpy as np
 
 from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, runs
+from ._strips import Region, VirtualPenetration
 
 __all__ = ["Linder", "LINDER_FACTOR"]
 
@@ -85,12 +85,14 @@ class Linder(VirtualPenetration, NormalMethod):
     options = {"strips": 40, "cells": 40}
 
     def _solve_line(self, line, delta, opts):
+        from ._patch_kernel import positive_runs
+
         d0 = LINDER_FACTOR * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]
         h = line.h
         out = []
-        for i0, i1 in runs(g > 0):
+        for i0, i1 in positive_runs(g).tolist():
             if i1 - i0 < 3:
                 continue
             gi = g[i0:i1]

@@ -70,6 +70,8 @@ References
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numba import njit
 
@@ -410,3 +412,175 @@ def fastsim_hertz_batch(a, b, peak, mu, L1, L2, L3, xi, eta, phi, t, half, strip
         Mz[k] = mz
         Adh[k] = adh / tot if tot > 0.0 else 0.0
     return Fx, Fy, Mz, Adh
+
+
+@njit(cache=True)
+def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1, L2, L3,
+                       xi, eta, phi, cap, first_order, store, p_out, px, py, sx, sy, slip):
+    """FASTSIM on a strip patch, resampling and centre of pressure fused (fields optional).
+
+    The same discrete equations as ``Fastsim.solve_patch`` on a non-elliptic
+    :class:`~wheelrail.contact.patch.ContactPatch` followed by
+    :func:`fastsim_strips_kernel` (without fields), in one call: the patch's
+    ``m`` cells per strip are resampled to ``nx`` by linear interpolation
+    (indices ``i0``, ``i1``, weights ``w``) keeping each strip's force,
+    optionally made parabolic along the strip (same force), multiplied by μ
+    to give the traction bound, and marched.
+
+    Parameters
+    ----------
+    y, dy, x_lead, x_trail : ndarray, shape (ny,)
+        Strips of the patch [m].
+    sp : ndarray, shape (ny, m)
+        Pressure of the patch's cells [Pa].
+    i0, i1 : ndarray of int, shape (nx,); w : ndarray, shape (nx,)
+        Linear resampling from m to nx cell centres.
+    parabolic : bool
+        Parabolic pressure along every strip (Linder's traction bound).
+    mu : float
+        Friction coefficient [-].
+    L1, L2, L3 : ndarray, shape (ny,)
+        Flexibilities [m/Pa].
+    xi, eta, phi : float
+        Creepages [-], [-], [1/m].
+    cap : float
+        Largest rigid-slip traction rate [Pa/m] handled here; beyond it (or for
+        a non-finite rate) ``ok`` is False and nothing else is meaningful (the
+        caller then takes the general path, which scales the creepages).
+    first_order : bool
+        First-order backward-Euler march (see the module docstring).
+    store : bool
+        Write the fields: ``p_out`` the resampled pressure, ``px``, ``py``,
+        ``sx``, ``sy``, ``slip`` as in :func:`fastsim_strips_kernel` (all
+        shape (ny, nx), zero-initialised by the caller); otherwise they are not
+        touched (any float / bool arrays).
+
+    Returns
+    -------
+    ok : bool
+    Fx, Fy, Mz : float
+        Forces [N] and moment about the coordinate origin [N m].
+    Fn : float
+        Σ p_z dA of the resampled pressure [N].
+    xc, yc : float
+        Centre of pressure of the patch's own cells [m].
+    """
+    ny, m = sp.shape
+    nx = i0.shape[0]
+    # rigid-slip rate bound (as _tame): the general path handles huge creepages
+    reach = 0.0
+    my = 0.0
+    mdy = 0.0
+    L1m = L1[0]
+    L2m = L2[0]
+    L3m = L3[0]
+    for j in range(ny):
+        my = max(my, abs(y[j]))
+        mdy = max(mdy, dy[j])
+        reach = max(reach, abs(x_lead[j]), abs(x_trail[j]))
+        L1m = min(L1m, L1[j])
+        L2m = min(L2m, L2[j])
+        L3m = min(L3m, L3[j])
+    reach = max(reach, my + mdy)
+    rate = max(abs(xi) / L1m, abs(eta) / L2m, abs(phi) * reach / L3m)
+    if not rate <= cap:
+        return False, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    par = np.empty(nx)
+    parsum = 0.0
+    for i in range(nx):
+        s = 1.0 - ((i + 0.5) / nx) * 2.0
+        par[i] = max(1.0 - s * s, 0.0)
+        parsum += par[i]
+    p = np.empty(nx)
+    bound = np.empty(nx)
+    dummy = np.empty(0)
+    dummy_b = np.empty(0, dtype=np.bool_)
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    Fn = 0.0
+    W = 0.0
+    WX = 0.0
+    WY = 0.0
+    for j in range(ny):
+        lj = x_lead[j] - x_trail[j]
+        wj = dy[j] * lj / m
+        ssum = 0.0
+        for k in range(m):
+            v = sp[j, k]
+            ssum += v
+            c = v * wj
+            W += c
+            WX += c * (x_lead[j] - ((k + 0.5) / m) * lj)
+            WY += c * y[j]
+        got = 0.0
+        for i in range(nx):
+            p[i] = sp[j, i0[i]] * (1.0 - w[i]) + sp[j, i1[i]] * w[i]
+            got += p[i]
+        scale = ssum / m
+        got = got / nx
+        f = scale / got if got > 0 else 0.0
+        tot = 0.0
+        for i in range(nx):
+            p[i] *= f
+            tot += p[i]
+        if parabolic:
+            for i in range(nx):
+                p[i] = (tot / parsum) * par[i]
+        dxj = max(lj, 0.0) / nx
+        dA = dxj * dy[j]
+        for i in range(nx):
+            bound[i] = p[i] * mu
+            Fn += p[i] * dA
+        if store:
+            for i in range(nx):
+                p_out[j, i] = p[i]
+            fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound, L1[j], L2[j],
+                                     L3[j], xi, eta, phi, nx, True, px[j], py[j], sx[j], sy[j],
+                                     slip[j], first_order)
+        else:
+            fx, fy, mz = march_strip(y[j], dy[j], x_lead[j], x_trail[j], bound, L1[j], L2[j],
+                                     L3[j], xi, eta, phi, nx, False, dummy, dummy, dummy, dummy,
+                                     dummy_b, first_order)
+        Fx += fx
+        Fy += fy
+        Mz += mz
+    return True, Fx, Fy, Mz, Fn, WX / W, WY / W
+
+
+@njit(cache=True)
+def strip_flexibilities(sa, sb, G, x, c11, c22, c23):
+    """Kalker's three flexibilities of every strip's virtual ellipse (pure kernel).
+
+    ``Fastsim.solve_patch`` for a patch with per-strip semi-axes ``sa``, ``sb`` [m]:
+    C11, C22, C23 interpolated linearly in ln(a/b) in the table ``x``, ``c11``,
+    ``c22``, ``c23`` (:func:`wheelrail.tangential.fastsim._kalker_table`), then
+    L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a √(a/b)/(4 G C23) [m/Pa]
+    (:func:`wheelrail.tangential.fastsim.flexibilities`).
+
+    Returns
+    -------
+    ok : bool
+        False when an a/b lies outside the table's range [0.01, 100] (the caller
+        then evaluates Kalker's coefficients directly).
+    L1, L2, L3 : ndarray, shape (ny,)
+    m1, m2, m3 : float
+        Their medians.
+    """
+    n = sa.shape[0]
+    L1 = np.empty(n)
+    L2 = np.empty(n)
+    L3 = np.empty(n)
+    for j in range(n):
+        r = sa[j] / sb[j]
+        if not (r >= 0.01 and r <= 100.0):
+            return False, L1, L2, L3, 0.0, 0.0, 0.0
+        v = math.log(r)
+        C11 = np.interp(v, x, c11)
+        C22 = np.interp(v, x, c22)
+        C23 = np.interp(v, x, c23)
+        a = sa[j]
+        L1[j] = 8.0 * a / (3.0 * G * C11)
+        L2[j] = 8.0 * a / (3.0 * G * C22)
+        L3[j] = np.pi * a * np.sqrt(a / sb[j]) / (4.0 * G * C23)
+    return True, L1, L2, L3, np.median(L1), np.median(L2), np.median(L3)

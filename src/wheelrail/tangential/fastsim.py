@@ -235,6 +235,15 @@ def weighted_flexibility(L1, L2, L3, xi, eta, phi, c):
         return np.where(norm > 0, num / np.where(norm > 0, norm, 1.0), L1)
 
 
+def _weighted_scalar(L1, L2, L3, xi, eta, phi, c):
+    """:func:`weighted_flexibility` of floats (the same operations in Python arithmetic)."""
+    cphi = c * abs(phi)
+    norm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
+    if not norm > 0:
+        return float(L1)
+    return (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / norm
+
+
 def hertz_strips(a, b, ny):
     """Strips of an elliptic patch: uniform in y over (−b, b).
 
@@ -461,6 +470,11 @@ def _kalker_scalar(aspect, nu):
     relative; a scalar :func:`kalker_coefficients` call costs ~0.3 ms, this ~10 µs.
     a/b outside the grid goes to :func:`kalker_coefficients`.
     """
+    if isinstance(aspect, float) and 0.01 <= aspect <= 100.0 and isinstance(nu, float):
+        x, c11, c22, c23 = _kalker_table(nu)         # one patch: no array checks
+        v = math.log(aspect)
+        return (float(np.interp(v, x, c11)), float(np.interp(v, x, c22)),
+                float(np.interp(v, x, c23)))
     a = np.asarray(aspect, dtype=float)
     if np.ndim(nu) != 0 or not (a.size and np.all(a >= 0.01) and np.all(a <= 100.0)):
         C11, C22, C23, _ = kalker_coefficients(aspect, nu)
@@ -472,6 +486,18 @@ def _kalker_scalar(aspect, nu):
                 float(np.interp(v, x, c23)))
     v = np.log(a)
     return np.interp(v, x, c11), np.interp(v, x, c22), np.interp(v, x, c23)
+
+
+_EMPTY2 = np.zeros((0, 0))
+_EMPTY2B = np.zeros((0, 0), dtype=bool)
+
+
+def _median(v):
+    """float(np.median(v)) of a finite 1-D array (the same value, without np.median's overhead)."""
+    s = np.sort(v)
+    n = s.shape[0]
+    k = n // 2
+    return float(s[k]) if n % 2 else float((s[k - 1] + s[k]) / 2.0)
 
 
 @lru_cache(maxsize=16)
@@ -665,12 +691,21 @@ class Fastsim(TangentialMethod):
         a, b = patch.a, patch.b
         axes = pinfo.get("strip_semiaxes")
         if axes is not None:
-            sa, sb = (np.asarray(v, dtype=float) for v in axes)
-            C11, C22, C23 = _kalker_scalar(sa / sb, patch.materials.nu)
-            L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
-            if flexibility == "weighted":
-                L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(sa * sb))
-            Lrep = tuple(float(np.median(v)) for v in (L1, L2, L3))
+            sa, sb = (np.ascontiguousarray(v, dtype=float) for v in axes)
+            nu = patch.materials.nu
+            ok = False
+            if flexibility == "three" and isinstance(nu, float) and sa.size:
+                # one kernel (the same table look-up and formulas as below)
+                ok, L1, L2, L3, *Lrep = _k.strip_flexibilities(
+                    sa, sb, float(patch.materials.G), *_kalker_table(nu))
+                Lrep = tuple(Lrep)
+            if not ok:
+                C11, C22, C23 = _kalker_scalar(sa / sb, nu)
+                L1, L2, L3 = flexibilities(sa, sb, patch.materials.G, C11, C22, C23)
+                if flexibility == "weighted":
+                    L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi,
+                                                        np.sqrt(sa * sb))
+                Lrep = tuple(_median(v) for v in (L1, L2, L3))
         else:
             C11, C22, C23 = _kalker_scalar(a / b, patch.materials.nu)
             G = float(patch.materials.G)
@@ -678,13 +713,17 @@ class Fastsim(TangentialMethod):
             L2 = 8.0 * a / (3.0 * G * C22)
             L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
             if flexibility == "weighted":
-                L1 = L2 = L3 = float(weighted_flexibility(L1, L2, L3, xi, eta, phi,
-                                                          np.sqrt(a * b)))
+                L1 = L2 = L3 = _weighted_scalar(L1, L2, L3, float(xi), float(eta), float(phi),
+                                                math.sqrt(a * b))
             Lrep = (L1, L2, L3)
         # pressure resampled from the patch's m cells to nx cells per strip
         sp = np.asarray(patch.strip_pressure, dtype=float)
         m = sp.shape[1]
         i0, i1, w = _resample_weights(m, nx)
+        r = self._patch_forces(patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu,
+                               scheme, flexibility, Lrep, fields is not False)
+        if r is not None:
+            return r
         p = sp[:, i0] * (1.0 - w) + sp[:, i1] * w
         scale = sp.sum(axis=1) / m
         got = p.sum(axis=1) / nx
@@ -715,3 +754,58 @@ class Fastsim(TangentialMethod):
                 status = Status.FULL_SLIP
         return CreepForces(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
                            method=self.name, status=status, fields=r.fields, info=info)
+
+    def _patch_forces(self, patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu, scheme,
+                      flexibility, Lrep, want_fields):
+        """:meth:`solve_patch` for a strip patch in one fused kernel
+        (:func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`): the same
+        equations as the general path (sums in another order: equal to round-off), with
+        the same fields if wanted. ``None`` when the creepages are so large that the
+        general path must scale them."""
+        mu_f = float(mu) if isinstance(mu, (float, int)) else math.nan
+        mu = mu_f if math.isfinite(mu_f) and mu_f > 0 else float(positive("mu", mu))
+        xi, eta, phi = float(xi), float(eta), float(phi)
+        ny = sp.shape[0]
+        c_ = np.ascontiguousarray
+
+        def strip(v):
+            if isinstance(v, np.ndarray) and v.shape == (ny,) and v.dtype == np.float64:
+                return c_(v)
+            return c_(np.broadcast_to(np.asarray(v, dtype=float), (ny,)))
+
+        if isinstance(L1, float) and isinstance(L2, float) and isinstance(L3, float):
+            Ls = np.empty((3, ny))          # one patch flexibility: three constant rows
+            Ls[0], Ls[1], Ls[2] = L1, L2, L3
+            L1, L2, L3 = Ls
+
+        nx = int(i0.shape[0])
+        y, dy, xl, xt = c_(patch.y), c_(patch.dy), c_(patch.x_lead), c_(patch.x_trail)
+        if want_fields:
+            p, px, py, sx, sy = (np.zeros((ny, nx)) for _ in range(5))
+            slip = np.zeros((ny, nx), dtype=bool)
+        else:
+            p = px = py = sx = sy = _EMPTY2
+            slip = _EMPTY2B
+        ok, Fx, Fy, Mz, Fn, xc, yc = _k.strip_patch_forces(
+            y, dy, xl, xt, c_(sp), i0, i1, w, pinfo.get("traction_bound") == "parabolic", mu,
+            strip(L1), strip(L2), strip(L3), xi, eta, phi, _SLIP_RATE_CAP, scheme == "euler",
+            want_fields, p, px, py, sx, sy, slip)
+        if not ok:
+            return None
+        info = {"nx": nx, "ny": ny, "scheme": scheme, "flexibility": flexibility, "L": Lrep}
+        status = Status.CONVERGED
+        f = None
+        if want_fields:          # as _solve_strips
+            length = np.clip(xl - xt, 0.0, None)
+            empty = length <= 0
+            x = strip_cell_centres(xl, xt, nx)
+            x[empty] = (0.5 * (xl + xt))[empty, None]
+            f = FastsimFields(x=x, y=np.repeat(y[:, None], nx, 1), dx=length / nx, dy=dy,
+                              pressure=p, px=px, py=py, sx=sx, sy=sy, slip=slip,
+                              mu=np.full(ny, mu))
+            info["adhesion_fraction"] = f.adhesion_fraction
+            if not np.any(f.adhesion):
+                status = Status.FULL_SLIP
+        return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
+                           Fn=float(Fn), mu=mu, method=self.name, status=status,
+                           fields=f, info=info)
