@@ -15,7 +15,8 @@ import wheelrail as wr
 from wheelrail.contact.wheelrail import touching_heights
 from wheelrail.errors import InputError
 from wheelrail.geometry.contact_search import _Pose, find_points
-from wheelrail.normal.caf import caf_contacts, caf_table, jump_gap, jump_overlap
+from wheelrail.normal.caf import (caf_contacts, caf_table, jump_gap, jump_overlap,
+                                  profile_jump_gaps)
 
 
 @pytest.fixture(scope="module")
@@ -142,22 +143,11 @@ def test_gap_model_follows_the_profiles(pair, table):
     ws, tr = pair
     err = {"eq3": [], "general": []}
     for k in (0, 1):
-        t_lim, g1, g2, _, _, s1, s2 = table._jump_data(k)
+        _, g1, g2, _, _, s1, s2 = table._jump_data(k)
         for side in (1, 2):
-            sgn = -1.0 if side == 1 else 1.0
-            y = t_lim + sgn * np.arange(0.05e-3, 0.5e-3, 0.05e-3)
-            zero = np.zeros(y.size)
-            z, _ = touching_heights(ws, tr, y, zero, zero)
-            d, _ = find_points(ws, tr, "right", _Pose(y, z["right"], zero, zero),
-                               tolerance=1e-3)
-            other = (g2 + s2 * (y - t_lim)) if side == 1 else (g1 + s1 * (y - t_lim))
-            ok = np.isfinite(d["separation"]) & (d["separation"] > 1e-8)
-            j = np.argmin(np.where(ok, np.abs(d["contact_angle"] - other[:, None]), np.inf),
-                          axis=1)
-            r = np.arange(y.size)
-            keep = np.abs(d["contact_angle"][r, j] - other) < 0.01
-            assert keep.sum() >= 4
-            tau, gap = np.abs(y - t_lim)[keep], d["separation"][r, j][keep]
+            tau, gap = profile_jump_gaps(ws, tr, table, k, side,
+                                         np.arange(0.05e-3, 0.5e-3, 0.05e-3))
+            assert tau.size >= 4
             ga, gb = (g1, g2) if side == 1 else (g2, g1)
             for kind, rate in (("eq3", 0.0), ("general", s1 - s2)):
                 model = jump_gap(ga, gb, tau, rate)

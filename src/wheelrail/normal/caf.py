@@ -53,7 +53,7 @@ from .._validation import positive
 from ..errors import InputError
 
 __all__ = ["CafTable", "caf_table", "cached_caf_table", "caf_contacts", "jump_gap",
-           "jump_overlap"]
+           "jump_overlap", "profile_jump_gaps"]
 
 
 def _angle_growth(gamma1, gamma2, rate):
@@ -462,6 +462,55 @@ def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tole
            for f in ("wheel_y", "rail_y", "track_y", "track_z", "rolling_radius")}
     return CafTable(side, np.concatenate(ys), np.concatenate(gs), np.concatenate(brs), jumps,
                     np.asarray(rr), n, tolerance, **pts)
+
+
+def profile_jump_gaps(wheelset, track, table, k, side, tau):
+    """Rigid gap of the second contact near jump ``k``, measured on the profiles.
+
+    At the shifts t_ylim ∓ τ (side 1 below the jump limit, side 2 above) the
+    contact search (:func:`~wheelrail.geometry.contact_search.find_points`,
+    zero roll and yaw, the wheel at its rigid touching height) finds the
+    candidate point of the other branch (contact angle within 0.01 rad of that
+    branch's line) and its separation: the gap that :func:`jump_gap` models
+    from the table's lines. A check of the tables against the geometry.
+
+    Parameters
+    ----------
+    wheelset, track
+        The pair the table was built from.
+    table : CafTable
+    k : int
+        Jump index.
+    side : {1, 2}
+    tau : array_like
+        Distances from the jump limit [m], > 0.
+
+    Returns
+    -------
+    tau, gap : ndarray
+        The distances where the other branch's point was found and its gap [m].
+    """
+    from ..contact.wheelrail import touching_heights
+    from ..geometry.contact_search import _Pose, find_points
+
+    if side not in (1, 2):
+        raise InputError(f"side must be 1 or 2, got {side!r}")
+    jd = table._jump_data(k)
+    if jd is None:
+        raise InputError(f"jump {k!r}: a side is not convex or both lines coincide")
+    t_lim, g1, g2, _, _, s1, s2 = jd
+    tau = np.atleast_1d(np.asarray(tau, dtype=float))
+    y = t_lim + (-1.0 if side == 1 else 1.0) * tau
+    zero = np.zeros(y.size)
+    z, _ = touching_heights(wheelset, track, y, zero, zero)
+    d, _ = find_points(wheelset, track, table.side, _Pose(y, z[table.side], zero, zero),
+                       tolerance=1e-3)
+    other = (g2 + s2 * (y - t_lim)) if side == 1 else (g1 + s1 * (y - t_lim))
+    ok = np.isfinite(d["separation"]) & (d["separation"] > 1e-8)
+    j = np.argmin(np.where(ok, np.abs(d["contact_angle"] - other[:, None]), np.inf), axis=1)
+    r = np.arange(y.size)
+    keep = np.abs(d["contact_angle"][r, j] - other) < 0.01
+    return tau[keep], d["separation"][r, j][keep]
 
 
 _CACHE: OrderedDict = OrderedDict()

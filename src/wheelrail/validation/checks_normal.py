@@ -290,29 +290,17 @@ def caf_jump_gaps(quick):
     generalisation) against the rigid gaps measured on the profiles by the
     contact search (S1002/60E1, tread and flange-root jumps, both sides)."""
     wr = _wr()
-    from wheelrail.contact.wheelrail import touching_heights
-    from wheelrail.geometry.contact_search import _Pose, find_points
-    from wheelrail.normal.caf import caf_table, jump_gap
+    from wheelrail.normal.caf import caf_table, jump_gap, profile_jump_gaps
 
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
     tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
     table = caf_table(ws, tr, "right", (-0.01, 0.01), tolerance=2e-4)
     err = {"eq3": [], "general": []}
     for k in (0, 1):
-        t_lim, g1, g2, _, _, s1, s2 = table._jump_data(k)
+        _, g1, g2, _, _, s1, s2 = table._jump_data(k)
         for side in (1, 2):
-            y = t_lim + (-1.0 if side == 1 else 1.0) * np.arange(0.05e-3, 0.5e-3, 0.05e-3)
-            zero = np.zeros(y.size)
-            z, _ = touching_heights(ws, tr, y, zero, zero)
-            d, _ = find_points(ws, tr, "right", _Pose(y, z["right"], zero, zero),
-                               tolerance=1e-3)
-            other = (g2 + s2 * (y - t_lim)) if side == 1 else (g1 + s1 * (y - t_lim))
-            ok = np.isfinite(d["separation"]) & (d["separation"] > 1e-8)
-            j = np.argmin(np.where(ok, np.abs(d["contact_angle"] - other[:, None]), np.inf),
-                          axis=1)
-            r = np.arange(y.size)
-            keep = np.abs(d["contact_angle"][r, j] - other) < 0.01
-            tau, gap = np.abs(y - t_lim)[keep], d["separation"][r, j][keep]
+            tau, gap = profile_jump_gaps(ws, tr, table, k, side,
+                                         np.arange(0.05e-3, 0.5e-3, 0.05e-3))
             ga, gb = (g1, g2) if side == 1 else (g2, g1)
             for kind, rate in (("eq3", 0.0), ("general", s1 - s2)):
                 model = jump_gap(ga, gb, tau, rate)
