@@ -125,3 +125,11 @@ def test_bad_kernel_rejected():
         InverseSymbolPreconditioner(-np.ones((5, 5)), 1e-4, 1e-4)
     with pytest.raises(wr.errors.InputError, match="odd"):
         InverseSymbolPreconditioner(np.ones((4, 5)), 1e-4, 1e-4)
+
+
+def test_single_element_grid():
+    """One element: no preconditioner; the pressure is the load over the element area."""
+    grid = Grid.from_bounds(-1e-3, 1e-3, -1e-3, 1e-3, 1, 1)
+    with pytest.warns(wr.normal.bem.ContactTruncatedWarning):
+        sol = solve_normal(grid, np.zeros(grid.shape), STEEL, load=100.0)
+    assert sol.p_max == pytest.approx(100.0 / grid.element_area, rel=1e-12)

@@ -400,7 +400,12 @@ def _pk(apply, h, dA, load, penetration, p_init, tol, maxiter, precondition):
 
 # --------------------------------------------------------------------------- entry
 def _preconditioner(grid, operator):
-    """The :class:`InverseSymbolPreconditioner` of ``operator``'s normal block (memoised)."""
+    """The :class:`InverseSymbolPreconditioner` of ``operator``'s normal block (memoised).
+
+    None for a single element (nothing to precondition).
+    """
+    if grid.size < 2:
+        return None
     from ..halfspace._memo import grid_key, memo
     from ..halfspace.precondition import InverseSymbolPreconditioner
 
