@@ -96,7 +96,8 @@ def test_inverse_symbol_operator_is_symmetric_psd_and_approximates_inverse():
     m = InverseSymbolPreconditioner(op.kernel, grid.dx, grid.dy)
     rng = np.random.default_rng(1)
     x, y = rng.standard_normal((2,) + grid.shape)
-    assert np.vdot(x, m(y)) == pytest.approx(np.vdot(y, m(x)), rel=1e-10)
+    scale = np.linalg.norm(x) * np.linalg.norm(m(y))        # single-precision FFTs
+    assert abs(np.vdot(x, m(y)) - np.vdot(y, m(x))) < 1e-5 * scale
     assert np.vdot(x, m(x)) > 0
     # A smooth bump well inside the grid: M (A p) ≈ p in the interior
     p = np.exp(-((grid.X / 4e-4) ** 2 + (grid.Y / 4e-4) ** 2))

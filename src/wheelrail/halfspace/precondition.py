@@ -68,7 +68,7 @@ class InverseSymbolPreconditioner:
     -----
     :meth:`apply` maps a pressure-like field (nx, ny) [m] to a pressure-like
     field [Pa]: zero padding to a periodic grid of ``fft_shape`` (at least
-    ``nx + 8`` × ``ny + 8``), one real FFT pair, cropping. The operator is
+    ``nx + 8`` × ``ny + 8``), one real FFT pair in single precision, cropping. The operator is
     symmetric positive semi-definite (its null space is the constant of the
     periodic grid). Immutable.
     """
@@ -94,12 +94,17 @@ class InverseSymbolPreconditioner:
         self.c = float(c)
         self.fft_shape = (sfft.next_fast_len(nx + _PAD, real=True),
                           sfft.next_fast_len(ny + _PAD, real=True))
-        self._inv = _inverse_symbol(self.c, dx, dy, self.fft_shape, int(aliases))
+        inv = _inverse_symbol(self.c, dx, dy, self.fft_shape, int(aliases))
+        self._inv = inv.astype(np.float32)
         self._inv.setflags(write=False)
 
     def apply(self, field) -> np.ndarray:
-        """``M field`` for a field of shape (nx, ny); same shape out."""
-        spec = sfft.rfft2(field, s=self.fft_shape)
+        """``M field`` for a field of shape (nx, ny); same shape out (float32).
+
+        Computed in single precision (float32 FFTs): a preconditioner needs
+        no more, and it is about four times faster than double precision.
+        """
+        spec = sfft.rfft2(np.asarray(field, dtype=np.float32), s=self.fft_shape)
         spec *= self._inv
         return sfft.irfft2(spec, s=self.fft_shape)[:self.nx, :self.ny]
 

@@ -17,31 +17,36 @@ of Polonsky & Keer, which handles the load constraint directly and uses the
 FFT influence operator (one convolution for the search direction per
 iteration, plus one for the displacement when the active set changes).
 
-Preconditioning (default): the residual on the contact set is multiplied by
-an FFT approximate inverse of the influence matrix,
+Preconditioning (default): the residual on the contact set is multiplied by an
+FFT approximate inverse of the influence matrix,
 :class:`~wheelrail.halfspace.precondition.InverseSymbolPreconditioner` (the
 reciprocal of the half-space operator's Fourier symbol, ∝ |k|, applied as a
-circulant on a grid 8 elements larger than the window, one small real FFT
-pair), restricted to the contact set again and, for load control, projected
-onto zero total load (the load constraint is the deflated direction, as in
-Vollebregt 2014). The directions are ``t = z + (g·z / g_old·z_old) t_old``;
-step, clipping, re-activation and the stopping rule (relative pressure
-change < tol) are those of Polonsky & Keer, so the solution is that of the
-same discrete problem. Iterations (tol 1e-8, Hertz window 1.1 semi-axes,
-default start / Hertz start as the exact theory uses it): 40 elements
-(45²) 39/25 → 16/10, 104 (115²) 56/42 → 20/10, 160 (177²) 64/47 → 21/10;
-CPU time at 160 elements about 3× lower (``benchmarks/bench_bem_normal.py``,
-``benchmarks/bench_exact_rolling.py``). The work arrays of the loop are
-allocated once.
+circulant on a grid 8 elements larger than the window, one small real FFT pair
+in single precision), restricted to the contact set again and, for load
+control, projected onto zero total load (the load constraint is the deflated
+direction, as in Vollebregt 2014). The directions are ``t = z + (g·z /
+g_old·z_old) t_old``; step, clipping, re-activation and the stopping rule
+(relative pressure change < tol) are those of Polonsky & Keer, so the solution
+is that of the same discrete problem. Iterations (tol 1e-8, Hertz window 1.1
+semi-axes, default start / Hertz start as the exact theory uses it): 40
+elements (45²) 39/25 → 16/10, 104 (115²) 56/42 → 20/10, 160 (177²) 64/47 →
+21/10; CPU time at 160 elements about 3× lower
+(``benchmarks/bench_bem_normal.py``, ``benchmarks/bench_exact_rolling.py``).
+The work arrays of the loop are allocated once.
 
 Tried and not kept: the transform of the wrapped, zero-padded kernel (the
-circulant embedding that makes the convolution exact) as the symbol: it is
-of either sign at high frequencies and the iteration diverged (500+
-iterations); more alias terms in the symbol (|j| ≤ 3 instead of 1): at most
-one iteration fewer; the preconditioner on the doubled (padded) FFT grid:
-the same counts at about 1.5× the time. Earlier (plain iteration): a
-coarse-grid start leaves 30–34 of 42–47 iterations (the stopping rule sets
-the count) and numba versions of the loop were not faster.
+circulant embedding that makes the convolution exact) as the symbol: it is of
+either sign at high frequencies and the iteration diverged (500+ iterations);
+more alias terms in the symbol (|j| ≤ 3 instead of 1): at most one iteration
+fewer; the preconditioner on the doubled (padded) FFT grid: the same counts at
+about 1.5× the time; single-precision influence products (float32 FFTs, about
+4× faster at 360²) until the pressure change falls below 1e-4 or 1e-5, then
+double precision to tol: float32 stalls at a change of about 2e-6, the switch
+costs a restart and one more convolution, and from the Hertz start (10
+iterations) nothing was gained at 104 and 160 elements (10–20 % from the
+default start, within the noise of a loaded machine). Earlier (plain
+iteration): a coarse-grid start leaves 30–34 of 42–47 iterations (the stopping
+rule sets the count) and numba versions of the loop were not faster.
 
 Tangential tractions are not fed back into the normal problem (Johnson's
 process): exact for quasi-identical materials (``K = 0``), an approximation
@@ -377,18 +382,18 @@ def _pk(apply, h, dA, load, penetration, p_init, tol, maxiter, precondition):
         if load_control:
             scale = load / (dA * p.sum())
             p *= scale
-        if clipped or restart or it % 20 == 0:
-            u = apply(p)
-        else:   # linear step, active set unchanged: A p follows without a convolution
-            r_raw *= tau
-            u -= r_raw
-            u *= scale
         total = p.sum()
         np.subtract(p, p_old, out=tmp)
         np.abs(tmp, out=tmp)
         change = float(tmp.sum() / total) if total > 0 else np.inf
         if change < tol:
             break
+        if clipped or restart or it % 20 == 0:
+            u = apply(p)
+        else:   # linear step, active set unchanged: A p follows without a convolution
+            r_raw *= tau
+            u -= r_raw
+            u *= scale
     u = apply(p)
     if load_control:
         np.add(u, h, out=g)
