@@ -8,13 +8,17 @@ iteration-count behaviour claimed by Vollebregt, J. Comput. Phys. 257 (2014)
 growing with it).
 """
 
+import warnings
+
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import wheelrail as wr
 from wheelrail.halfspace import Grid, InfluenceOperator
 from wheelrail.halfspace.precondition import InverseSymbolPreconditioner
-from wheelrail.normal.bem import hertz_grid, polonsky_keer, solve_normal
+from wheelrail.normal.bem import ContactTruncatedWarning, hertz_grid, polonsky_keer, solve_normal
 
 STEEL = wr.Material(2.1e11, 0.28)
 LOAD = 10e3
@@ -134,3 +138,25 @@ def test_single_element_grid():
     with pytest.warns(wr.normal.bem.ContactTruncatedWarning):
         sol = solve_normal(grid, np.zeros(grid.shape), STEEL, load=100.0)
     assert sol.p_max == pytest.approx(100.0 / grid.element_area, rel=1e-12)
+
+
+@settings(max_examples=12, deadline=None)
+@given(nx=st.integers(5, 25), ny=st.integers(5, 25), ratio=st.floats(0.25, 4.0),
+       A=st.floats(0.2, 5.0), B=st.floats(0.2, 5.0), wave=st.floats(0.0, 3e-6),
+       seed=st.integers(0, 2**31), load_control=st.booleans())
+def test_preconditioned_equals_plain_random_gaps(nx, ny, ratio, A, B, wave, seed,
+                                                 load_control):
+    """Any grid shape, element aspect and rough quadratic gap: the same discrete solution."""
+    rng = np.random.default_rng(seed)
+    grid = Grid.from_bounds(-3e-3, 3e-3, -3e-3 * ratio, 3e-3 * ratio, nx, ny)
+    kx, ky = rng.uniform(500.0, 5000.0, 2)
+    h0 = (A * grid.X ** 2 + B * grid.Y ** 2
+          + wave * np.sin(kx * grid.X + rng.uniform(0, 6)) * np.cos(ky * grid.Y))
+    h0 = h0 - h0.min()
+    kw = {"load": 2e3} if load_control else {"penetration": 0.5 * float(np.median(h0)) + 1e-7}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ContactTruncatedWarning)
+        pre, plain = _both(grid, h0, tol=1e-11, **kw)
+    assert np.max(np.abs(pre.pressure - plain.pressure)) < 1e-6 * plain.p_max
+    assert pre.Fn == pytest.approx(plain.Fn, rel=1e-8)
+    assert pre.residual < 1e-6

@@ -32,7 +32,8 @@ semi-axes, default start / Hertz start as the exact theory uses it): 40
 elements (45²) 39/25 → 16/10, 104 (115²) 56/42 → 20/10, 160 (177²) 64/47 →
 21/10; CPU time at 160 elements about 3× lower
 (``benchmarks/bench_bem_normal.py``, ``benchmarks/bench_exact_rolling.py``).
-The work arrays of the loop are allocated once.
+The work arrays of the loop are allocated once (the FFTs still allocate their
+outputs).
 
 Tried and not kept: the transform of the wrapped, zero-padded kernel (the
 circulant embedding that makes the convolution exact) as the symbol: it is of
