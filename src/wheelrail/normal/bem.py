@@ -30,24 +30,29 @@ g_old·z_old) t_old``; step, clipping, re-activation and the stopping rule
 is that of the same discrete problem. Iterations (tol 1e-8, Hertz window 1.1
 semi-axes, default start / Hertz start as the exact theory uses it): 40
 elements (45²) 39/25 → 16/10, 104 (115²) 56/42 → 20/10, 160 (177²) 64/47 →
-21/10; CPU time at 160 elements about 3× lower
-(``benchmarks/bench_bem_normal.py``, ``benchmarks/bench_exact_rolling.py``).
-The work arrays of the loop are allocated once (the FFTs still allocate their
-outputs).
+21/10; CPU time of the solve at 177² 3.5× (default start) to 5× (Hertz start)
+lower (``benchmarks/bench_bem_normal.py``,
+``benchmarks/bench_exact_rolling.py``). The work arrays of the loop are
+allocated once (the FFTs still allocate their outputs).
 
 Tried and not kept: the transform of the wrapped, zero-padded kernel (the
 circulant embedding that makes the convolution exact) as the symbol: it is of
-either sign at high frequencies and the iteration diverged (500+ iterations);
-more alias terms in the symbol (|j| ≤ 3 instead of 1): at most one iteration
-fewer; the preconditioner on the doubled (padded) FFT grid: the same counts at
-about 1.5× the time; single-precision influence products (float32 FFTs, about
-4× faster at 360²) until the pressure change falls below 1e-4 or 1e-5, then
-double precision to tol: float32 stalls at a change of about 2e-6, the switch
-costs a restart and one more convolution, and from the Hertz start (10
-iterations) nothing was gained at 104 and 160 elements (10–20 % from the
-default start, within the noise of a loaded machine). Earlier (plain
-iteration): a coarse-grid start leaves 30–34 of 42–47 iterations (the stopping
-rule sets the count) and numba versions of the loop were not faster.
+either sign at high frequencies and the iteration stalled (not converged in
+500 iterations at 115² and 177², 172 iterations at 45²); more alias terms in
+the symbol (|j| ≤ 3 instead of 1): at most one iteration fewer; the
+preconditioner on the doubled (padded) FFT grid: the same counts at about 1.5×
+the time; single-precision influence products (float32 FFTs, about 4× faster
+at 360²) until the pressure change falls below 1e-4 or 1e-5, then double
+precision to tol: float32 stalls at a change of about 2e-6, the switch costs a
+restart and one more convolution, and from the Hertz start (10 iterations)
+nothing was gained at 104 and 160 elements (10–20 % from the default start,
+within the noise of a loaded machine). Earlier (plain iteration): a
+coarse-grid start leaves 30–34 of 42–47 iterations (the stopping rule sets the
+count) and numba versions of the loop were not faster. Not done: updating u_n
+through the kernel columns of the elements the clipping or re-activation
+changed instead of a convolution; from the Hertz start 4 of the 16
+convolutions at 177² are such recomputes, each after 4–120 changed elements,
+and beyond about 20 columns the column sum costs more than one FFT product.
 
 Tangential tractions are not fed back into the normal problem (Johnson's
 process): exact for quasi-identical materials (``K = 0``), an approximation
