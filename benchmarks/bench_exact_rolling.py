@@ -16,7 +16,10 @@ time of the same case through
 ``wr.creep_forces(..., method="exact", elements=N)`` (window, normal solve as
 the method starts it, tangential solve; its normal-solution cache cleared).
 The load average of the machine is printed beside the numbers, since other
-processes share the CPU.
+processes share the CPU. After the rows of each size a line gives the
+normal solve alone (iterations, CPU time): from the solver's default start
+and from the analytic Hertz pressure on the exact method's window, as
+``creep_forces`` starts it.
 
 ``--before SRC`` runs the same measurements with another source tree of the
 package (e.g. ``git archive main src | tar -x -C /tmp/main`` then
@@ -75,6 +78,21 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
         cn.append(time.process_time() - c0)
     out = {"n": n, "grid": f"{grid.nx}x{grid.ny}", "normal_s": min(tn), "normal_cpu": min(cn),
            "normal_iterations": normal.iterations, "cases": {}}
+    # the normal solve as the exact method starts it: its window (at least 3 elements of
+    # margin) and the analytic Hertz pressure as the first iterate
+    import numpy as np
+
+    gh, hh = hertz_grid(hc, elements=n, margin=max(1.1, 1.0 + 3.0 / n))
+    hz = float(hc.p0) * np.sqrt(np.clip(1.0 - (gh.X / float(hc.a)) ** 2
+                                        - (gh.Y / float(hc.b)) ** 2, 0.0, None))
+    solve_normal(gh, hh, wr.STEEL, load=1e4, initial=hz)
+    ch = []
+    for _ in range(repeat):
+        c0 = time.process_time()
+        nh = solve_normal(gh, hh, wr.STEEL, load=1e4, initial=hz)
+        ch.append(time.process_time() - c0)
+    out["normal_hertz_cpu"] = min(ch)
+    out["normal_hertz_iterations"] = nh.iterations
     for name, cr in CASES.items():
         s = solve_rolling(grid, normal.pressure, wr.STEEL, cr, MU)
         tt, ct = [], []
@@ -149,6 +167,20 @@ def _print_rows(after: dict, before: dict | None) -> None:
         print(line, flush=True)
 
 
+def _print_normal(after: dict, before: dict | None) -> None:
+    """Normal solve alone: iterations and CPU time, default start and Hertz start."""
+    def part(r):
+        txt = f"default start {r['normal_iterations']} it {r['normal_cpu']:.4f} s"
+        if "normal_hertz_cpu" in r:
+            txt += (f", Hertz start {r['normal_hertz_iterations']} it "
+                    f"{r['normal_hertz_cpu']:.4f} s")
+        return txt
+    line = f"{after['n']:>4} {after['grid']:>8}  normal solve (cpu): {part(after)}"
+    if before is not None:
+        line += f"  | before: {part(before)}"
+    print(line, flush=True)
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("sizes", nargs="*", type=int, default=[40, 104, 160])
@@ -176,6 +208,7 @@ def main(argv=None) -> None:
         this = None if args.before is None else os.path.join(_here(), "..", "src")
         after = _measure_in(this, n, args.repeat, args.memory)
         _print_rows(after, before)
+        _print_normal(after, before)
     print("load average after: " + " ".join(f"{v:.2f}" for v in os.getloadavg()))
 
 
