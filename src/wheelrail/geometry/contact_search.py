@@ -310,14 +310,14 @@ def _grid_gap_kernel(s, p, p1, r0, e_tape, sig, y, zc, th, psi, u0, hu, c, big):
 
 def _grid_gap(ws, tr, side, pose, step):
     """Gap on the search grid, shape (n_rows, n_grid), and the grid (s, lo, hi, h)."""
-    s, lo, hi, h = _grid(ws, side, step)
-    p, p1 = _grid_profile(ws, side, step)
+    args = _side_args(ws, tr, side, step)    # grid, wheel heights and splines (cached)
+    s, p, p1, lo, hi, h = args[:6]
+    ru, rc, rh = args[9], args[11], args[12]
     n = np.size(pose.y)
     arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
-    rc = tr.curve(side)
     d = _grid_gap_kernel(s, p, p1, ws.nominal_radius, ws.e_tape, _SIGMA[side], arr(pose.y),
-                         arr(pose.zc(ws)), arr(pose.roll), arr(pose.yaw), rc.u_min, rc._h,
-                         np.ascontiguousarray(rc.c), _BIG)
+                         arr(pose.zc(ws)), arr(pose.roll), arr(pose.yaw), float(ru[0]), rh, rc,
+                         _BIG)
     return d, (s, lo, hi, h)
 
 
@@ -819,7 +819,8 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
     out = {}
     for key, val in data.items():
         arr = np.full((nrow, npt), np.nan)
-        arr[rows_o, slot] = np.broadcast_to(val, sref.shape)[order]
+        val = np.asarray(val)
+        arr[rows_o, slot] = (val if val.shape == sref.shape else np.broadcast_to(val, sref.shape))[order]
         out[key] = arr
     return out, count
 
