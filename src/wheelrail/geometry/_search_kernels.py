@@ -302,3 +302,82 @@ def refine_rows(sg, pg, p1g, lo, hi, h, wu, winv, wc, ru, rinv, rc, rh, r0, e_ta
         out[k] = _refine_point(s0[k], h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape,
                                sig, y[k], zc[k], th[k], psi[k], big)
     return out
+
+
+#: Rows of the output of :func:`point_data_rows`, in the order of ``contact_search.POINT_FIELDS``.
+POINT_ROWS = ("wheel_y", "wheel_z", "rail_y", "rail_z", "track_y", "track_z", "x",
+              "contact_angle", "rolling_radius", "wheel_curvature_x", "wheel_curvature_y",
+              "rail_curvature_y", "A", "B", "separation", "gap")
+
+
+@njit(cache=True)
+def point_data_rows(s, y, zc, th, psi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, offset,
+                    z_top, angle):  # pragma: no cover - compiled
+    """Per-point quantities at wheel coordinates ``s`` with their poses (arrays (n,)).
+
+    The formulas of ``contact_search.point_data`` (see :data:`POINT_ROWS`);
+    ``offset``, ``z_top``, ``angle``: the rail placement
+    (:class:`~wheelrail.geometry.track.RailPlacement`). Returns shape (16, n).
+    """
+    n = s.size
+    out = np.empty((16, n))
+    ca, sa = math.cos(-angle), math.sin(-angle)
+    for k in range(n):
+        i = _index(wu, winv, s[k])
+        dx = s[k] - wu[i]
+        c0, c1, c2, c3 = wc[0, i], wc[1, i], wc[2, i], wc[3, i]
+        p = ((c0 * dx + c1) * dx + c2) * dx + c3
+        p1 = (3.0 * c0 * dx + 2.0 * c1) * dx + c2
+        p2 = 6.0 * c0 * dx + 2.0 * c1
+        r = r0 - p
+        a = sig * (e_tape + s[k])
+        st, ct = math.sin(th[k]), math.cos(th[k])
+        if psi[k] == 0.0:
+            xr = 0.0
+            Y = y[k] + (a * ct + r * st)
+            Z = zc[k] + (a * st - r * ct)
+        else:
+            sp, cp = math.sin(psi[k]), math.cos(psi[k])
+            r_a = -sig * p1
+            Bc = -st * sp
+            C = -r_a * ct * sp
+            R = math.hypot(cp, Bc)
+            q = min(max(C / R, -1.0), 1.0)
+            phi = math.asin(q) - math.atan2(Bc, cp)
+            sf, cf = math.sin(phi), math.cos(phi)
+            xb = r * sf
+            yp = a * ct + r * cf * st
+            zp = a * st - r * cf * ct
+            xr = xb * cp - r * cf * st * sp
+            Y = y[k] + xb * sp + yp * cp
+            Z = zc[k] + zp
+        u = sig * Y
+        j = _index(ru, rinv, u)
+        du = u - ru[j]
+        d0, d1, d2, d3 = rc[0, j], rc[1, j], rc[2, j], rc[3, j]
+        zr = ((d0 * du + d1) * du + d2) * du + d3
+        zr1 = (3.0 * d0 * du + 2.0 * d1) * du + d2
+        zr2 = 6.0 * d0 * du + 2.0 * d1
+        gap = Z - zr
+        gamma = math.atan(zr1)
+        kwx = 1.0 / (r * math.sqrt(1.0 + p1 * p1))
+        kwy = p2 / (1.0 + p1 * p1) ** 1.5
+        kry = -(zr2 / (1.0 + zr1 * zr1) ** 1.5)
+        yr, zz = u - offset, zr + z_top
+        out[0, k] = s[k]
+        out[1, k] = p
+        out[2, k] = ca * yr - sa * zz
+        out[3, k] = sa * yr + ca * zz
+        out[4, k] = Y
+        out[5, k] = Z
+        out[6, k] = xr
+        out[7, k] = gamma
+        out[8, k] = r
+        out[9, k] = kwx
+        out[10, k] = kwy
+        out[11, k] = kry
+        out[12, k] = 0.5 * kwx
+        out[13, k] = 0.5 * (kwy + kry)
+        out[14, k] = gap * math.cos(gamma)
+        out[15, k] = gap
+    return out

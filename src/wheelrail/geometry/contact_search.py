@@ -725,7 +725,28 @@ def classify_rows(ws, y, z, wheel_y, status, roll=None):
 
 
 def point_data(ws, tr, side, s, pose: _Pose) -> dict:
-    """All per-point quantities of :data:`POINT_FIELDS` at wheel coordinates ``s`` (pure)."""
+    """All per-point quantities of :data:`POINT_FIELDS` at wheel coordinates ``s`` (pure).
+
+    One pose per point (``pose`` arrays of the shape of ``s``, 1-D) runs the compiled
+    kernel :func:`wheelrail.geometry._search_kernels.point_data_rows` (the same formulas).
+    """
+    s_arr = np.asarray(s, dtype=float)
+    if s_arr.ndim == 1 and all(np.shape(v) == s_arr.shape for v in
+                               (pose.y, pose.z, pose.roll, pose.yaw)):
+        from ._search_kernels import POINT_ROWS, point_data_rows
+
+        args = _side_args(ws, tr, side, step=2e-4)
+        pl = tr.placement(side)
+        c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
+        out = point_data_rows(c(s_arr), c(pose.y), c(pose.zc(ws)), c(pose.roll), c(pose.yaw),
+                              *args[6:12], *args[13:16], float(pl.offset), float(pl.z_top),
+                              float(pl.angle))
+        return dict(zip(POINT_ROWS, out))
+    return _point_data_arrays(ws, tr, side, s, pose)
+
+
+def _point_data_arrays(ws, tr, side, s, pose: _Pose) -> dict:
+    """:func:`point_data` with array operations (any broadcastable shapes)."""
     sig = _SIGMA[side]
     wc, rc, pl = ws.curve(side), tr.curve(side), tr.placement(side)
     p, p1, p2 = wc.eval(s)
