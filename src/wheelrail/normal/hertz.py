@@ -607,8 +607,16 @@ class Hertz(NormalMethod):
         bad = ~((A > 0) & (B > 0))
         cosg = np.cos(pts.contact_angle)
         sep = np.asarray(pts.separation, dtype=float)
-        d1 = np.full(A.shape, np.inf)
-        d1[~bad] = hertz_kernel(1.0, A[~bad], B[~bad], pair.E_star)[3]
+        # the unit-load solution of every convex point (kept in the problem's cache: the
+        # vertical-load passes of solve_wheelrail re-solve the same points)
+        key = ("hertz_unit", pair.E_star, A.tobytes(), B.tobytes())
+        unit = problem.cache.get(key) if isinstance(problem.cache, dict) else None
+        if unit is None:
+            unit = np.full((4,) + A.shape, np.inf)
+            unit[:, ~bad] = hertz_kernel(1.0, A[~bad], B[~bad], pair.E_star)
+            if isinstance(problem.cache, dict):
+                problem.cache[key] = unit
+        d1 = unit[3]
         if problem.approach is not None:
             dz = float(problem.approach)
         else:
@@ -625,7 +633,12 @@ class Hertz(NormalMethod):
                     f"{problem.side} wheel: contact point at wheel y = {float(pts.wheel_y[k])!r} m "
                     f"penetrates but is not convex (A = {float(A[k])!r}, B = {float(B[k])!r} 1/m); "
                     "Hertz cannot represent it, use normal='bem'")
-            hc = hertz_from_penetration(float(pen[k]), float(A[k]), float(B[k]), pair)
+            # as hertz_from_penetration, from the unit-load solution above
+            delta = positive("penetration", float(pen[k]))
+            _checked_curvatures(float(A[k]), float(B[k]))
+            s = np.sqrt(delta / unit[3, k])
+            hc = _make(unit[0, k] * s, unit[1, k] * s, unit[2, k] * s, delta, s**3, float(A[k]),
+                       float(B[k]), pair)
             _check_on_rail(problem, k, float(hc.b))
             patches.append(ContactPatch.from_hertz(hc, strips=strips, cells=cells,
                                                    frame=problem.frames[k]))
