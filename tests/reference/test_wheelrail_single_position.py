@@ -1,0 +1,142 @@
+"""A single wheelset position through ``wr.solve``: the compiled contact search.
+
+The rigid search (Newton on roll and height, the refined global minimum of
+the gap, the parabolic refinement of every candidate point and the per-point
+quantities) runs as numba kernels with the arithmetic of the array code it
+replaced. References:
+
+* the array implementation of the same algorithm (``_grid_gap``, ``_gapfun``,
+  ``_refine``, ``_point_data_arrays`` of :mod:`wheelrail.geometry.contact_search`,
+  still used by :mod:`wheelrail.geometry.elastic`), point by point;
+* numbers printed by ``wr.solve`` before the change (main at 0ef094f, the
+  array search), to 1e-12 relative: one- and two-point contact, flange
+  contact on either wheel, yaw of both signs, Hertz and Kik–Piotrowski, both
+  vertical-load modes;
+* a cache keyed on the wheel and rail splines must follow a change of profile.
+"""
+
+import numpy as np
+import pytest
+
+import wheelrail as wr
+from wheelrail.geometry import contact_search as cs
+
+OLD = {
+    ('hertz', 0.0, 0.002, 'normal'): ((0.0, -0.000182174067782704, -0.000182174067782704), [('left', 0.0032612464891195805, 8484.60582116245, 578.3820673116677, 2410.151573907786, -0.4496673833839681), ('left', -0.007686728097846419, 1520.9040351379826, 273.3592727320275, 364.89351579757056, -0.009815166133107121), ('right', 0.0032612464891195805, 9207.714548841426, 1437.9477352290867, 2351.593489098381, 0.20282121901015757), ('right', -0.007686728097846419, 1798.5580506457507, 387.6176401858256, 374.926513688615, 0.011892640281685359)]),
+    ('hertz', 0.005, -0.004, 'total'): ((0.0003684944243475377, 3.084758929212105e-05, 3.084758929212105e-05), [('left', 0.013167526842829487, 9974.96174606679, 67.95606789562085, -2991.653328341084, -0.020829627742116143), ('right', -0.01846885860426641, 1110.576794639138, 246.6023203112023, -223.6231311159434, 0.007978412729869901), ('right', -0.028608162503465366, 10756.37936855435, 2976.5480063693635, -1169.8066503690645, 0.7699528179800158)]),
+    ('hertz', 0.0068, 0.002, 'normal'): ((0.005740713661017976, 0.0041094575111453304, 0.0041094575111453304), [('left', 0.01818270686573099, 10000.181891324562, -14.99878443087204, 2759.3688562828197, -0.48177552368487103), ('right', -0.040743095592718395, 24479.99944427747, 7116.398167420437, 1045.519038553088, 5.410909983283358)]),
+    ('kik-piotrowski', -0.0068, 0.003, 'normal'): ((-0.00574285305362323, 0.004111077791551907, 0.004111077791551907), [('left', -0.04074555555622661, 22259.686056841758, 6507.073714979333, 885.1703937278862, -4.7038327182622135), ('right', 0.018141175415075914, 11000.210028460391, 755.6402221283687, 3038.6414227523396, -0.40331829994212864)]),
+    ('kik-piotrowski', 0.005, 0.0, 'total'): ((0.0003695270279448543, 3.168298574320246e-05, 3.168298574320246e-05), [('left', 0.013085422281712493, 9999.957495157832, 244.0202279831213, -48.58479012242941, -0.07010926442683735), ('right', -0.028618291016855254, 11452.28050707829, 3382.3475815368583, 213.79246645617866, 1.0246668877000242)]),
+}
+
+
+@pytest.fixture(scope="module")
+def s1002():
+    ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
+    return ws, tr
+
+
+def _global_min_arrays(ws, tr, side, pose, step, levels=5):
+    """The array version of the refined global gap minimum (the code before the kernels)."""
+    d, (s, lo, hi, h) = cs._grid_gap(ws, tr, side, pose, step)
+    zc = pose.zc(ws)
+    dm = np.full_like(d, np.inf)
+    dm[:, 1:-1] = np.where(cs._interior_minima(d), d[:, 1:-1], np.inf)
+    rows = np.arange(d.shape[0])
+    dm[rows, np.argmin(d, axis=1)] = d[rows, np.argmin(d, axis=1)]
+    first = np.argmin(dm, axis=1)
+    dm2 = dm.copy()
+    dm2[rows, first] = np.inf
+    second = np.where(np.isfinite(dm2.min(axis=1)), np.argmin(dm2, axis=1), first)
+    n = rows.size
+    fun = cs._gapfun(ws, tr, side, pose.y, zc, pose.roll, pose.yaw)
+    sab = cs._refine(fun, np.concatenate([s[first], s[second]]), h, lo, hi, levels)
+    dab = fun(sab)
+    sa, sb, da, db = sab[:n], sab[n:], dab[:n], dab[n:]
+    return np.where(db < da, sb, sa), np.minimum(da, db)
+
+
+# poses (y, yaw) with one- and two-point contact and flange contact on either wheel
+POSES = [(0.0, 0.0), (0.0, 0.002), (0.005, -0.004), (0.0068, 0.002), (-0.0068, 0.003),
+         (0.0085, -0.01), (-0.009, 0.0)]
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_compiled_search_equals_array_search(s1002, side):
+    ws, tr = s1002
+    y = np.array([p[0] for p in POSES])
+    yaw = np.array([p[1] for p in POSES])
+    z, roll, _ = cs.solve_rigid(ws, tr, y, yaw)
+    # at the rigid pose the global minimum of each side is 0; lift the axle a little too
+    for dz in (0.0, 3e-4):
+        pose = cs._Pose(y, z + dz, roll, yaw)
+        s1, d1, _ = cs._global_min(ws, tr, side, pose, 2e-4)
+        s_ref, d_ref = _global_min_arrays(ws, tr, side, pose, 2e-4)
+        np.testing.assert_allclose(s1, s_ref, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(d1, d_ref, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(cs._global_min(ws, tr, side, cs._Pose(y, z, roll, yaw),
+                                              2e-4)[1], 0.0, atol=1e-10)
+    # every candidate point: refinement and per-point quantities
+    data, count = cs.find_points(ws, tr, side, cs._Pose(y, z, roll, yaw), tolerance=5e-4)
+    assert count.max() == 2 and count.min() == 1          # two-point contact is among them
+    rows, cols = np.nonzero(np.isfinite(data["separation"]))
+    sub = cs._Pose(y[rows], z[rows], roll[rows], yaw[rows])
+    s0 = data["wheel_y"][rows, cols] + 7e-5                # start off the minimum
+    fun = cs._gapfun(ws, tr, side, sub.y, sub.zc(ws), sub.roll, sub.yaw)
+    h = cs._grid(ws, side, 2e-4)[3]
+    lo, hi = cs._grid(ws, side, 2e-4)[1:3]
+    np.testing.assert_allclose(
+        cs._refine_fast(ws, tr, side, 2e-4, s0, sub.y, sub.zc(ws), sub.roll, sub.yaw),
+        cs._refine(fun, s0, h, lo, hi), rtol=0, atol=1e-13)
+    fast = cs.point_data(ws, tr, side, data["wheel_y"][rows, cols], sub)
+    ref = cs._point_data_arrays(ws, tr, side, data["wheel_y"][rows, cols], sub)
+    assert fast.keys() == ref.keys() == cs.POINT_FIELDS.keys()
+    for k in ref:
+        np.testing.assert_allclose(fast[k], ref[k], rtol=1e-13, atol=1e-16, err_msg=k)
+
+
+@pytest.mark.parametrize("case", list(OLD))
+def test_solve_one_position_equals_old_numbers(s1002, case):
+    ws, tr = s1002
+    normal, y, yaw, vertical = case
+    m = wr.Motion(speed=20.0, omega=20.0 / 0.46 * 1.001, yaw_rate=0.01)
+    r = wr.solve(wr.WheelRailPosition(ws, tr, y, yaw=yaw, vertical_load=(10e3, 11e3)), motion=m,
+                 mu=0.3, normal=normal, vertical=vertical)
+    pose, patches = OLD[case]
+    np.testing.assert_allclose((r.pose["roll"], r.pose["z_left"], r.pose["z_right"]), pose,
+                               rtol=1e-12, atol=1e-17)
+    assert [p.side for p in r.patches] == [p[0] for p in patches]
+    got = np.array([(p.y_wheel, p.Fn, p.Fx, p.Fs, p.Mz) for p in r.patches])
+    want = np.array([p[1:] for p in patches])
+    for j, name in enumerate(("y_wheel", "Fn", "Fx", "Fs", "Mz")):
+        np.testing.assert_allclose(got[:, j], want[:, j], rtol=1e-12,
+                                   atol=1e-12 * np.abs(want[:, j]).max(), err_msg=name)
+
+
+def test_search_cache_follows_the_profiles(s1002):
+    """The compiled kernels' arguments are cached per wheel/rail spline: another profile
+    (or another wheelset with the same profile but another radius) gives its own answer."""
+    ws, tr = s1002
+    other = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.45,
+                        flange_back=1.360)
+    tr54 = wr.Track(rail=wr.profiles.load("54E1"), gauge=1.435, inclination=1 / 40)
+    m = wr.Motion(speed=20.0)
+
+    def run(w, t):
+        r = wr.solve(wr.WheelRailPosition(w, t, 0.004, yaw=0.002, vertical_load=1e4),
+                     motion=m, mu=0.3, vertical="normal")
+        return np.array([r.pose["roll"], r.pose["z_left"]] + [p.Fn for p in r.patches]
+                        + [p.y_wheel for p in r.patches])
+
+    cs._ARGS_CACHE.clear()
+    first = {k: run(*wt) for k, wt in {"a": (ws, tr), "b": (other, tr), "c": (ws, tr54)}.items()}
+    for k, wt in (("c", (ws, tr54)), ("a", (ws, tr)), ("b", (other, tr)), ("a", (ws, tr))):
+        again = run(*wt)
+        assert again.shape == first[k].shape and np.array_equal(again, first[k]), k
+    assert not np.allclose(first["a"][:2], first["b"][:2], rtol=1e-3)
+    assert not np.allclose(first["a"][:2], first["c"][:2], rtol=1e-3)
+    # entries hold the splines they were built from and are used only for those objects
+    for wc, rc, _ in cs._ARGS_CACHE.values():
+        assert wc in (ws.curve("left"), other.curve("left")) and rc in (tr.curve("left"),
+                                                                      tr54.curve("left"))
