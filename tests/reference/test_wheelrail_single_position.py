@@ -140,3 +140,17 @@ def test_search_cache_follows_the_profiles(s1002):
     for wc, rc, _ in cs._ARGS_CACHE.values():
         assert wc in (ws.curve("left"), other.curve("left")) and rc in (tr.curve("left"),
                                                                       tr54.curve("left"))
+
+
+def test_shape_ratio_of_one_ratio_equals_the_array_iteration():
+    """The float path of shape_ratio (one contact point) runs the same secant iteration as
+    the array path: equal to round-off over ratios 1 … 1e7, and both solve the defining
+    equation (Johnson 1985, eq. 3.66) as the bisection reference does."""
+    from wheelrail.normal.hertz import _shape_ratio_bisection, shape_ratio
+
+    r = np.geomspace(1.0, 1e7, 301)
+    vec = shape_ratio(r)
+    one = np.array([shape_ratio(np.array([x]))[0] for x in r])
+    np.testing.assert_allclose(one, vec, rtol=1e-13)
+    np.testing.assert_allclose(one, _shape_ratio_bisection(r), rtol=1e-12)
+    assert np.ndim(shape_ratio(3.0)) == 0 and shape_ratio(np.array([3.0])).shape == (1,)

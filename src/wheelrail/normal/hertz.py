@@ -20,6 +20,7 @@ References
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -92,6 +93,10 @@ def shape_ratio(ratio):
         min(a, b) / max(a, b), same shape as ``ratio``.
     """
     ratio = np.asarray(ratio, dtype=float)
+    if ratio.size == 1 and 1.0 <= float(ratio.flat[0]) < np.inf:
+        # one ratio (a wheel's single contact point): the same iteration in float arithmetic
+        k = _shape_ratio_one(float(ratio.flat[0]))
+        return np.float64(k) if ratio.ndim == 0 else np.full(ratio.shape, k)
     target = np.log(ratio)
     lo = np.log(_K_MIN)
 
@@ -111,6 +116,39 @@ def shape_ratio(ratio):
             break
         f1 = F(t1)
     return np.exp(t1)
+
+
+def _shape_ratio_one(ratio: float) -> float:
+    """:func:`shape_ratio` of one ratio ≥ 1 (the same secant iteration on Python floats)."""
+    from scipy import special
+
+    target = math.log(ratio)
+    lo = math.log(_K_MIN)
+
+    def F(t):
+        k = math.exp(t)
+        p = k * k
+        m = 1.0 - p
+        if m < 1e-5:
+            cr = (1.0 + 1.125 * m) / (1.0 + 0.375 * m)
+        else:
+            K = float(special.ellipkm1(p))
+            E = float(special.ellipe(m))
+            cr = (E / p - K) / (K - E)
+        return math.log(cr) - target
+
+    t0 = min(max(-(2.0 / 3.0) * target, lo), 0.0)
+    t1 = min(max(t0 - 1e-3, lo), 0.0)
+    f0, f1 = F(t0), F(t1)
+    for _ in range(40):
+        df = f1 - f0
+        step = f1 * (t1 - t0) / df if (df != 0.0 and math.isfinite(df)) else 0.0
+        t0, f0 = t1, f1
+        t1 = min(max(t1 - step, lo), 0.0)
+        if abs(t1 - t0) <= 1e-15 * max(1.0, abs(t1)):
+            break
+        f1 = F(t1)
+    return math.exp(t1)
 
 
 def _shape_ratio_bisection(ratio):
