@@ -154,3 +154,34 @@ def test_shape_ratio_of_one_ratio_equals_the_array_iteration():
     np.testing.assert_allclose(one, vec, rtol=1e-13)
     np.testing.assert_allclose(one, _shape_ratio_bisection(r), rtol=1e-12)
     assert np.ndim(shape_ratio(3.0)) == 0 and shape_ratio(np.array([3.0])).shape == (1,)
+
+
+def test_fastsim_single_ellipse_skips_only_the_checks():
+    """FASTSIM on one Hertz ellipse with fields calls the strip solver without re-checking
+    its own arguments: the same forces and fields as fastsim_strips (Kalker 1982) on the
+    same strips, and bad input is still refused by name."""
+    from wheelrail.errors import InputError
+    from wheelrail.tangential import fastsim as fs
+
+    hc = wr.hertz(load=9e3, A=1.1, B=4.0, material=wr.STEEL)
+    law = fs.Fastsim()
+    for xi, eta, phi in ((-4e-4, 2e-4, 0.5), (3e-3, -2e-3, -1.0), (0.0, 0.0, 0.0)):
+        r = law.solve(hc, xi, eta, phi, 0.3, nx=12, ny=9)
+        C11, C22, C23, _ = fs.kalker_coefficients(np.atleast_1d(hc.a / hc.b), hc.nu)
+        L1, L2, L3 = fs.flexibilities(np.atleast_1d(hc.a), np.atleast_1d(hc.b), hc.G, C11,
+                                      C22, C23)
+        t = fs._strip_t(9)
+        s = fs._profile("parabolic", 1.0 - (np.arange(12) + 0.5) * (2.0 / 12))
+        discrete = (4.0 / (12 * 9)) * np.sum(fs._profile("parabolic", t) * np.sqrt(1 - t * t)) \
+            * np.sum(s)
+        peak = 2.0 * hc.load / (np.pi * hc.a * hc.b) * (np.pi / 2.0 / discrete)
+        ref = fs.fastsim_strips(*fs.hertz_strips(hc.a, hc.b, 9),
+                                peak * fs._profile("parabolic", t), L1[0], L2[0], L3[0], xi,
+                                eta, phi, 0.3, 12, profile="parabolic")
+        assert (r.Fx, r.Fy, r.Mz) == (ref.Fx, ref.Fy, ref.Mz)
+        for name in ("px", "py", "sx", "sy", "slip", "pressure", "x", "y"):
+            np.testing.assert_array_equal(getattr(r.fields, name), getattr(ref.fields, name))
+    with pytest.raises(InputError, match="mu"):
+        law.solve(hc, 1e-3, 0.0, 0.0, -0.3)
+    with pytest.raises(InputError, match="xi"):
+        law.solve(hc, np.nan, 0.0, 0.0, 0.3)
