@@ -93,10 +93,11 @@ def shape_ratio(ratio):
         min(a, b) / max(a, b), same shape as ``ratio``.
     """
     ratio = np.asarray(ratio, dtype=float)
-    if ratio.size == 1 and 1.0 <= float(ratio.flat[0]) < np.inf:
-        # one ratio (a wheel's single contact point): the same iteration in float arithmetic
-        k = _shape_ratio_one(float(ratio.flat[0]))
-        return np.float64(k) if ratio.ndim == 0 else np.full(ratio.shape, k)
+    if ratio.size <= 4 and np.all((ratio >= 1.0) & (ratio < np.inf)):
+        # a few ratios (the contact points of one wheel): the same iteration in float
+        # arithmetic, point by point (equal to the array iteration to a few ulps)
+        k = [_shape_ratio_one(float(v)) for v in ratio.flat]
+        return np.float64(k[0]) if ratio.ndim == 0 else np.array(k).reshape(ratio.shape)
     target = np.log(ratio)
     lo = np.log(_K_MIN)
 
