@@ -185,3 +185,24 @@ def test_fastsim_single_ellipse_skips_only_the_checks():
         law.solve(hc, 1e-3, 0.0, 0.0, -0.3)
     with pytest.raises(InputError, match="xi"):
         law.solve(hc, np.nan, 0.0, 0.0, 0.3)
+
+
+def test_vertical_approach_of_one_wheel_equals_the_array_iteration():
+    """The float path of the vertical approach (one wheel, up to 4 points) runs the same
+    Newton iteration as the array path (rows of many wheels): Σ cos γ (δ/δ1)^{3/2} = Q."""
+    from wheelrail.normal.hertz import _vertical_approach
+
+    rng = np.random.default_rng(3)
+    for n in (1, 2, 3, 4):
+        for _ in range(20):
+            sep = np.sort(rng.uniform(0.0, 2e-4, n))
+            cosg = np.cos(rng.uniform(0.0, 1.2, n))
+            d1 = rng.uniform(2e-7, 8e-7, n)
+            Q = float(rng.uniform(1e3, 1e5))
+            one = _vertical_approach(Q, sep, cosg, d1)
+            rows = _vertical_approach(np.array([Q, 2 * Q]), np.stack([sep, sep]),
+                                      np.stack([cosg, cosg]), np.stack([d1, d1]))
+            assert isinstance(one, float)
+            assert one == pytest.approx(rows[0], rel=1e-14, abs=1e-18)
+            pen = np.clip(one * cosg - sep, 0.0, None)
+            assert np.sum((pen / d1) ** 1.5 * cosg) == pytest.approx(Q, rel=1e-11)

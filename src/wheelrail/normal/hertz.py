@@ -536,6 +536,9 @@ def _vertical_approach(Q, sep, cosg, d1, valid=None):
     each point [m/N^(2/3)]. Returns a float, or shape (n,).
     """
     single = np.ndim(sep) == 1
+    if single and valid is None and np.size(sep) <= 4 and np.ndim(Q) == 0:
+        return _vertical_approach_one(float(Q), [float(v) for v in sep],
+                                      [float(v) for v in cosg], [float(v) for v in d1])
     sep, cosg, d1 = (np.atleast_2d(np.asarray(v, dtype=float)) for v in (sep, cosg, d1))
     valid = np.ones(sep.shape, bool) if valid is None else np.atleast_2d(valid)
     Q = np.broadcast_to(np.asarray(Q, dtype=float), sep.shape[:1])
@@ -550,6 +553,25 @@ def _vertical_approach(Q, sep, cosg, d1, valid=None):
         if np.all(np.abs(F) <= 1e-12 * Q):
             break
     return float(dz[0]) if single else dz
+
+
+def _vertical_approach_one(Q, sep, cosg, d1):
+    """:func:`_vertical_approach` of one wheel with a few points (lists of floats): the same
+    Newton iteration in float arithmetic."""
+    ratios = [s / c for s, c in zip(sep, cosg)]
+    k = ratios.index(min(ratios))
+    dz = (sep[k] + d1[k] * (Q / cosg[k]) ** (2.0 / 3.0)) / cosg[k]
+    for _ in range(100):
+        F = dF = 0.0
+        for s, c, d in zip(sep, cosg, d1):
+            pen = max(dz * c - s, 0.0)
+            F += (pen / d) ** 1.5 * c
+            dF += 1.5 * math.sqrt(pen / d) / d * c * c
+        F -= Q
+        dz = dz - (F / dF if dF > 0 else 0.0)
+        if abs(F) <= 1e-12 * Q:
+            break
+    return dz
 
 
 def _check_on_rail(problem, k, b):
