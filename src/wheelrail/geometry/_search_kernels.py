@@ -174,6 +174,9 @@ def global_min_row(sg, pg, p1g, lo, hi, h, wu, winv, wc, ru, rinv, rc, rh, r0, e
     global grid minimum and the lowest interior minimum besides it) refined
     by :func:`_refine_point`, the lower one kept; ``lever`` is the gap's
     sensitivity to the roll angle. ``d`` is a work array of the grid's size.
+    Without a second local minimum only the global one is refined (the array
+    code refined a grid point picked by ``argpartition`` among equal ``inf``
+    entries there, which depends on the CPU's sorting kernel).
     """
     grid_gap_row(sg, pg, p1g, r0, e_tape, sig, y, zc, th, psi, ru[0], rh, rc, big, d)
     n = sg.size
