@@ -206,3 +206,28 @@ def test_vertical_approach_of_one_wheel_equals_the_array_iteration():
             assert one == pytest.approx(rows[0], rel=1e-14, abs=1e-18)
             pen = np.clip(one * cosg - sep, 0.0, None)
             assert np.sum((pen / d1) ** 1.5 * cosg) == pytest.approx(Q, rel=1e-11)
+
+
+def test_patch_from_hertz_without_rechecks_equals_the_checked_patch():
+    """ContactPatch.from_hertz skips __post_init__ for a sound ellipse: the patch equals the
+    one the checked constructor builds from the same fields (semi-elliptic pressure, Johnson
+    1985 eq. 3.63), and a bad ellipse is still refused by name."""
+    import dataclasses
+
+    from wheelrail.contact.patch import ContactPatch
+    from wheelrail.errors import InputError
+
+    hc = wr.hertz(load=9e3, A=1.1, B=4.0, material=wr.STEEL)
+    fast = ContactPatch.from_hertz(hc, strips=12, cells=9)
+    checked = dataclasses.replace(fast)            # runs __init__ and __post_init__
+    for f in dataclasses.fields(ContactPatch):
+        a, b = getattr(fast, f.name), getattr(checked, f.name)
+        if isinstance(a, np.ndarray):
+            assert a.dtype == b.dtype and a.shape == b.shape
+            np.testing.assert_array_equal(a, b)
+        else:
+            assert a is b or a == b or (a != a and b != b), f.name
+    assert fast.Fn == pytest.approx(np.sum(fast.strip_pressure * (2 * fast.x_lead / 9)[:, None]
+                                           * fast.dy[:, None]), rel=0.02)
+    with pytest.raises(InputError, match="Fn"):
+        ContactPatch.from_hertz(dataclasses.replace(hc, load=-1.0))

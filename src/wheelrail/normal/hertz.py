@@ -695,8 +695,10 @@ class Hertz(NormalMethod):
                     f"penetrates but is not convex (A = {float(A[k])!r}, B = {float(B[k])!r} 1/m); "
                     "Hertz cannot represent it, use normal='bem'")
             # as hertz_from_penetration, from the unit-load solution above
-            delta = positive("penetration", float(pen[k]))
-            _checked_curvatures(float(A[k]), float(B[k]))
+            delta = float(pen[k])                       # > 0 here
+            Ak, Bk = float(A[k]), float(B[k])           # > 0 here (not bad)
+            if max(Ak, Bk) / min(Ak, Bk) > 1e12:
+                _checked_curvatures(Ak, Bk)             # refuses it, naming the ratio
             s = np.sqrt(delta / unit[3, k])
             hc = _make(unit[0, k] * s, unit[1, k] * s, unit[2, k] * s, delta, s**3, float(A[k]),
                        float(B[k]), pair)
