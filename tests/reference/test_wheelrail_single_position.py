@@ -231,3 +231,66 @@ def test_patch_from_hertz_without_rechecks_equals_the_checked_patch():
                                            * fast.dy[:, None]), rel=0.02)
     with pytest.raises(InputError, match="Fn"):
         ContactPatch.from_hertz(dataclasses.replace(hc, load=-1.0))
+
+
+def _find_points_arrays(ws, tr, side, pose, tolerance, step=2e-4):
+    """The array version of find_points (the code before the kernels): reference."""
+    d, (s, lo, hi, h) = cs._grid_gap(ws, tr, side, pose, step)
+    nrow = d.shape[0]
+    gmin = np.argmin(d, axis=1)
+    interior = np.zeros_like(d, dtype=bool)
+    interior[:, 1:-1] = cs._interior_minima(d)
+    interior &= d <= 6.0 * tolerance + 1e-9
+    interior[np.arange(nrow), gmin] = True
+    rows, idx = np.nonzero(interior)
+    keep = np.ones(rows.size, dtype=bool)
+    for k in range(1, rows.size):
+        if rows[k] != rows[k - 1]:
+            continue
+        j = k - 1
+        while j >= 0 and not keep[j] and rows[j] == rows[k]:
+            j -= 1
+        if j < 0 or rows[j] != rows[k]:
+            continue
+        i1, i2 = idx[j], idx[k]
+        if np.max(d[rows[k], i1:i2 + 1]) - max(d[rows[k], i1], d[rows[k], i2]) < cs._MERGE:
+            keep[j if d[rows[k], i2] < d[rows[k], i1] else k] = False
+    rows, idx = rows[keep], idx[keep]
+    sub = cs._Pose(*(np.asarray(v)[rows] for v in (pose.y, pose.z, pose.roll, pose.yaw)))
+    fun = cs._gapfun(ws, tr, side, sub.y, sub.zc(ws), sub.roll, sub.yaw)
+    sref = cs._refine(fun, s[idx], h, lo, hi)
+    data = cs._point_data_arrays(ws, tr, side, sref, sub)
+    sep = data["separation"]
+    rowmin = np.full(nrow, np.inf)
+    np.minimum.at(rowmin, rows, sep)
+    ok = (sep <= tolerance) | (sep == rowmin[rows])
+    order = np.lexsort((-sref, rows))
+    last_row, last_s = -1, np.nan
+    for k in order:
+        if not ok[k]:
+            continue
+        if rows[k] == last_row and abs(sref[k] - last_s) < 1e-6:
+            ok[k] = False
+            continue
+        last_row, last_s = rows[k], sref[k]
+    order = order[ok[order]]
+    return {k: np.asarray(v)[order] for k, v in data.items()}, rows[order]
+
+
+@pytest.mark.parametrize("side", ["left", "right"])
+def test_find_points_equals_array_search_over_a_sweep(s1002, side):
+    """Candidate points over y = −10 … 10 mm (one, two and flange points), also 0.3 mm
+    above the touching pose and with a large tolerance (distant minima kept)."""
+    ws, tr = s1002
+    y = np.linspace(-0.01, 0.01, 41)
+    yaw = np.full(y.size, -0.003)
+    z, roll, _ = cs.solve_rigid(ws, tr, y, yaw)
+    for dz, tol in ((0.0, 5e-4), (3e-4, 2e-3)):
+        pose = cs._Pose(y, z + dz, roll, yaw)
+        data, count = cs.find_points(ws, tr, side, pose, tolerance=tol)
+        ref, rows = _find_points_arrays(ws, tr, side, pose, tol)
+        np.testing.assert_array_equal(count, np.bincount(rows, minlength=y.size))
+        assert count.max() >= 2
+        got = np.isfinite(data["separation"])
+        for k in cs.POINT_FIELDS:
+            np.testing.assert_allclose(data[k][got], ref[k], rtol=1e-12, atol=1e-15, err_msg=k)

@@ -384,3 +384,95 @@ def point_data_rows(s, y, zc, th, psi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
         out[14, k] = gap * math.cos(gamma)
         out[15, k] = gap
     return out
+
+
+@njit(cache=True)
+def select_minima(d, threshold, merge, big):  # pragma: no cover - compiled
+    """Candidate grid minima of every row of the gap ``d`` (n_rows, n_grid): (rows, idx).
+
+    As ``contact_search.find_points``: the interior local minima off the rail
+    ends with a gap ≤ ``threshold`` and the global minimum of each row, in
+    row-major order; neighbouring minima separated by a hump lower than
+    ``merge`` are one (the lower kept).
+    """
+    nrow, ns = d.shape
+    rows = np.empty(nrow * ns, dtype=np.int64)
+    idx = np.empty(nrow * ns, dtype=np.int64)
+    m = 0
+    for r in range(nrow):
+        g = 0
+        for j in range(1, ns):
+            if d[r, j] < d[r, g]:
+                g = j
+        for j in range(ns):
+            cand = j == g
+            if not cand and 0 < j < ns - 1:
+                cand = (d[r, j] < d[r, j - 1] and d[r, j] <= d[r, j + 1] and d[r, j - 1] < big
+                        and d[r, j + 1] < big and d[r, j] <= threshold)
+            if cand:
+                rows[m] = r
+                idx[m] = j
+                m += 1
+    keep = np.ones(m, dtype=np.bool_)
+    for k in range(1, m):
+        if rows[k] != rows[k - 1]:
+            continue
+        j = k - 1
+        while j >= 0 and not keep[j] and rows[j] == rows[k]:
+            j -= 1
+        if j < 0 or rows[j] != rows[k]:
+            continue
+        r, i1, i2 = rows[k], idx[j], idx[k]
+        hump = d[r, i1]
+        for i in range(i1 + 1, i2 + 1):
+            if d[r, i] > hump:
+                hump = d[r, i]
+        if hump - max(d[r, i1], d[r, i2]) < merge:
+            if d[r, i2] < d[r, i1]:
+                keep[j] = False
+            else:
+                keep[k] = False
+    n = 0
+    for k in range(m):
+        if keep[k]:
+            rows[n] = rows[k]
+            idx[n] = idx[k]
+            n += 1
+    return rows[:n].copy(), idx[:n].copy()
+
+
+@njit(cache=True)
+def order_points(rows, sref, sep, tolerance, nrow):  # pragma: no cover - compiled
+    """Kept refined points, ordered by row and decreasing wheel coordinate (indices).
+
+    As ``contact_search.find_points``: a point is kept if its separation is
+    ≤ ``tolerance`` or the smallest of its row, and not within 1 µm of the
+    previous kept point of its row (two grid minima refined to one point).
+    ``rows`` must be sorted (row-major candidates).
+    """
+    n = rows.size
+    rowmin = np.full(nrow, np.inf)
+    for k in range(n):
+        if sep[k] < rowmin[rows[k]]:
+            rowmin[rows[k]] = sep[k]
+    out = np.empty(n, dtype=np.int64)
+    m = 0
+    start = 0
+    while start < n:
+        stop = start
+        while stop < n and rows[stop] == rows[start]:
+            stop += 1
+        order = np.argsort(-sref[start:stop], kind="mergesort") + start
+        last_s = np.nan
+        first = True
+        for k in order:
+            if not (sep[k] <= tolerance or sep[k] == rowmin[rows[k]]):
+                continue
+            if not first and abs(sref[k] - last_s) < 1e-6:
+                continue
+            first = False
+            last_s = sref[k]
+            out[m] = k
+            m += 1
+        start = stop
+    return out[:m].copy()

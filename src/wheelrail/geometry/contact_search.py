@@ -783,52 +783,23 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
         :data:`POINT_FIELDS`, NaN-padded.
     count : ndarray of int, shape (n_rows,)
     """
+    from ._search_kernels import order_points, select_minima
+
     d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
     nrow = d.shape[0]
-    gmin = np.argmin(d, axis=1)
-    interior = np.zeros_like(d, dtype=bool)
-    interior[:, 1:-1] = _interior_minima(d)
-    # vertical gap of a point with normal separation <= tolerance is at most tolerance/cos(80°)
-    interior &= d <= 6.0 * tolerance + 1e-9
-    interior[np.arange(nrow), gmin] = True
-    rows, idx = np.nonzero(interior)
-    # merge neighbouring minima separated by a negligible hump
-    keep = np.ones(rows.size, dtype=bool)
-    for k in range(1, rows.size):
-        if rows[k] != rows[k - 1]:
-            continue
-        j = k - 1
-        while j >= 0 and not keep[j] and rows[j] == rows[k]:
-            j -= 1
-        if j < 0 or rows[j] != rows[k]:
-            continue
-        i1, i2 = idx[j], idx[k]
-        hump = np.max(d[rows[k], i1:i2 + 1])
-        if hump - max(d[rows[k], i1], d[rows[k], i2]) < _MERGE:
-            if d[rows[k], i2] < d[rows[k], i1]:
-                keep[j] = False
-            else:
-                keep[k] = False
-    rows, idx = rows[keep], idx[keep]
+    # interior grid minima off the rail ends and each row's global minimum; the vertical gap
+    # of a point with normal separation <= tolerance is at most tolerance/cos(80°); minima
+    # separated by a negligible hump are merged
+    rows, idx = select_minima(d, 6.0 * tolerance + 1e-9, _MERGE, _BIG)
     sub = _Pose(*(np.asarray(v)[rows] for v in (pose.y, pose.z, pose.roll, pose.yaw)))
     zsub = sub.zc(ws)
     sref = _refine_fast(ws, tr, side, step, s[idx], sub.y, zsub, sub.roll, sub.yaw)
     data = point_data(ws, tr, side, sref, sub)
-    # drop duplicates (two grid minima refined to the same point) and distant minima
-    sep = data["separation"]
-    rowmin = np.full(nrow, np.inf)
-    np.minimum.at(rowmin, rows, sep)
-    ok = (sep <= tolerance) | (sep == rowmin[rows])
-    order = np.lexsort((-sref, rows))
-    last_row, last_s = -1, np.nan
-    for k in order:
-        if not ok[k]:
-            continue
-        if rows[k] == last_row and abs(sref[k] - last_s) < 1e-6:
-            ok[k] = False
-            continue
-        last_row, last_s = rows[k], sref[k]
-    order = order[ok[order]]
+    # drop duplicates (two grid minima refined to the same point) and distant minima;
+    # order by row, then from the field side to the flange
+    order = order_points(rows, np.ascontiguousarray(sref, dtype=float),
+                         np.ascontiguousarray(data["separation"], dtype=float),
+                         float(tolerance), nrow)
     rows_o = rows[order]
     count = np.bincount(rows_o, minlength=nrow)
     npt = int(max(count.max(initial=1), 1))
@@ -837,13 +808,12 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
     slot = np.zeros(order.size, dtype=int)
     for k in range(1, order.size):
         slot[k] = slot[k - 1] + 1 if rows_o[k] == rows_o[k - 1] else 0
-    out = {}
-    for key, val in data.items():
-        arr = np.full((nrow, npt), np.nan)
-        val = np.asarray(val)
-        arr[rows_o, slot] = (val if val.shape == sref.shape else np.broadcast_to(val, sref.shape))[order]
-        out[key] = arr
-    return out, count
+    # all fields in one array (n_fields, n_rows, n_points), one row of it per field
+    vals = np.stack([np.broadcast_to(np.asarray(v, dtype=float), sref.shape)
+                     for v in data.values()])
+    arr = np.full((len(data), nrow, npt), np.nan)
+    arr[:, rows_o, slot] = vals[:, order]
+    return dict(zip(data, arr)), count
 
 
 # --------------------------------------------------------------------------- results
