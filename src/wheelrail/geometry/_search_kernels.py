@@ -26,7 +26,7 @@ from numba import njit
 __all__ = []
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _index(u, inv_h, x):  # pragma: no cover - compiled
     if inv_h > 0.0:
         i = int((x - u[0]) * inv_h)
@@ -39,14 +39,14 @@ def _index(u, inv_h, x):  # pragma: no cover - compiled
     return i
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _eval0(u, inv_h, c, x):  # pragma: no cover - compiled
     i = _index(u, inv_h, x)
     dx = x - u[i]
     return ((c[0, i] * dx + c[1, i]) * dx + c[2, i]) * dx + c[3, i]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _eval1(u, inv_h, c, x):  # pragma: no cover - compiled
     i = _index(u, inv_h, x)
     dx = x - u[i]
@@ -54,7 +54,7 @@ def _eval1(u, inv_h, c, x):  # pragma: no cover - compiled
     return ((c0 * dx + c1) * dx + c2) * dx + c3, (3.0 * c0 * dx + 2.0 * c1) * dx + c2
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _silhouette(s, p, p1, r0, e_tape, sig, y, zc, th, psi):  # pragma: no cover - compiled
     """One point of :func:`~wheelrail.geometry.contact_search.silhouette`: (Y, Z)."""
     r = r0 - p
@@ -462,7 +462,15 @@ def order_points(rows, sref, sep, tolerance, nrow):  # pragma: no cover - compil
         stop = start
         while stop < n and rows[stop] == rows[start]:
             stop += 1
-        order = np.argsort(-sref[start:stop], kind="mergesort") + start
+        # stable insertion sort by decreasing wheel coordinate (a few points per row)
+        order = np.arange(start, stop)
+        for i in range(1, stop - start):
+            k = order[i]
+            j = i - 1
+            while j >= 0 and -sref[order[j]] > -sref[k]:
+                order[j + 1] = order[j]
+                j -= 1
+            order[j + 1] = k
         last_s = np.nan
         first = True
         for k in order:
