@@ -45,15 +45,19 @@ def best(f, repeat):
     return min(times)
 
 
-def cpu_per_call(f, calls, repeat):
-    """Best over ``repeat`` of the mean CPU time of ``calls`` calls [s] (after one warm-up)."""
-    f()
-    best_t = np.inf
+def cpu_per_call(fs, calls, repeat):
+    """Best over ``repeat`` rounds of the mean CPU time of ``calls`` calls [s] of each function
+    of ``fs`` (after one warm-up call each); the functions take turns in every round, so that
+    all see the same machine conditions."""
+    for f in fs:
+        f()
+    best_t = [np.inf] * len(fs)
     for _ in range(repeat):
-        t0 = time.process_time()
-        for _ in range(calls):
-            f()
-        best_t = min(best_t, (time.process_time() - t0) / calls)
+        for i, f in enumerate(fs):
+            t0 = time.process_time()
+            for _ in range(calls):
+                f()
+            best_t[i] = min(best_t[i], (time.process_time() - t0) / calls)
     return best_t
 
 
@@ -66,22 +70,24 @@ def single(ws, tr, m, calls, repeat, breakdown):
         nimpl = get_normal_method(normal)
         for y in (0.0, 0.005, 0.0068):
             wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=10e3)
-            t = cpu_per_call(lambda: wr.solve(wp, motion=m, mu=0.3, normal=normal,
-                                              tangential="fastsim", vertical="normal"),
-                             calls, repeat)
             r = wr.solve(wp, motion=m, mu=0.3, normal=normal, vertical="normal")
+            roll, zs = touching_poses(wp)
+            fs = [lambda: wr.solve(wp, motion=m, mu=0.3, normal=normal, tangential="fastsim",
+                                   vertical="normal")]
+            if breakdown:
+                fs += [lambda: touching_poses(wp),
+                       lambda: [wheel_problem(wp, s, roll, zs[s]) for s in SIDES],
+                       lambda: [nimpl.from_wheel(wheel_problem(wp, s, roll, zs[s]))
+                                for s in SIDES]]
+            t = cpu_per_call(fs, calls, repeat)
             npt = [len(r.side(s)) for s in SIDES]
             line = (f"{normal} + fastsim, one position (2 wheels, patches {npt[0]}+{npt[1]}), "
-                    f"y = {y * 1e3:.1f} mm: {t * 1e3:.3f} ms CPU")
+                    f"y = {y * 1e3:.1f} mm: {t[0] * 1e3:.3f} ms CPU")
             if breakdown:
-                roll, zs = touching_poses(wp)
-                t_pose = cpu_per_call(lambda: touching_poses(wp), calls, repeat)
-                t_pts = cpu_per_call(lambda: [wheel_problem(wp, s, roll, zs[s]) for s in SIDES],
-                                     calls, repeat)
-                t_norm = cpu_per_call(lambda: [nimpl.from_wheel(wheel_problem(wp, s, roll, zs[s]))
-                                               for s in SIDES], calls, repeat) - t_pts
+                t_tot, t_pose, t_pts, t_pn = t
                 line += (f" = pose {t_pose * 1e3:.3f} + points {t_pts * 1e3:.3f} + normal "
-                         f"{t_norm * 1e3:.3f} + rest {(t - t_pose - t_pts - t_norm) * 1e3:.3f} ms")
+                         f"{(t_pn - t_pts) * 1e3:.3f} + rest (creepages, tangential, result) "
+                         f"{(t_tot - t_pose - t_pn) * 1e3:.3f} ms")
             print(line, flush=True)
 
 
