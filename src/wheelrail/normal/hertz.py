@@ -671,12 +671,13 @@ class Hertz(NormalMethod):
         # the unit-load solution of every convex point (kept in the problem's cache: the
         # vertical-load passes of solve_wheelrail re-solve the same points)
         key = ("hertz_unit", pair.E_star, A.tobytes(), B.tobytes())
-        unit = problem.cache.get(key) if isinstance(problem.cache, dict) else None
+        cache = getattr(problem, "cache", None)
+        unit = cache.get(key) if isinstance(cache, dict) else None
         if unit is None:
             unit = np.full((4,) + A.shape, np.inf)
             unit[:, ~bad] = hertz_kernel(1.0, A[~bad], B[~bad], pair.E_star)
-            if isinstance(problem.cache, dict):
-                problem.cache[key] = unit
+            if isinstance(cache, dict):
+                cache[key] = unit
         d1 = unit[3]
         if problem.approach is not None:
             dz = float(problem.approach)
