@@ -11,6 +11,17 @@ Times are wall-clock on one core (NUMBA_NUM_THREADS=1 recommended), best of
 ``--repeat``, after a warm-up call (numba cache load, FFT plans).
 
     python benchmarks/bench_wheelrail.py [--repeat 5]
+
+``--single``: only ``wr.solve`` of one position (both wheels, ``vertical="normal"``,
+yaw 2 mrad, 10 kN per wheel, μ = 0.3) with Hertz and Kik–Piotrowski + FASTSIM at
+y = 0, 5, 6.8 mm, as CPU time per call (mean of ``--calls`` calls, best of
+``--repeat``); ``--breakdown`` adds where the time goes: the rigid pose
+(``touching_poses``), the candidate points of both wheels (``wheel_problem``),
+the normal problem (``from_wheel``) and the rest (creepages, tangential
+problem, result). Both run unchanged on an older tree (``PYTHONPATH=...``), for
+interleaved before/after pairs::
+
+    python benchmarks/bench_wheelrail.py --single --breakdown
 """
 
 from __future__ import annotations
@@ -34,14 +45,67 @@ def best(f, repeat):
     return min(times)
 
 
+def cpu_per_call(fs, calls, repeat):
+    """Best over ``repeat`` rounds of the mean CPU time of ``calls`` calls [s] of each function
+    of ``fs`` (after one warm-up call each); the functions take turns in every round, so that
+    all see the same machine conditions."""
+    for f in fs:
+        f()
+    best_t = [np.inf] * len(fs)
+    for _ in range(repeat):
+        for i, f in enumerate(fs):
+            t0 = time.process_time()
+            for _ in range(calls):
+                f()
+            best_t[i] = min(best_t[i], (time.process_time() - t0) / calls)
+    return best_t
+
+
+def single(ws, tr, m, calls, repeat, breakdown):
+    """Per-call CPU time of wr.solve for one position (both wheels), optionally split."""
+    from wheelrail.api import get_method, get_normal_method
+    from wheelrail.contact.wheelrail import SIDES, touching_poses, wheel_problem
+
+    for normal in ("hertz", "kik-piotrowski"):
+        nimpl = get_normal_method(normal)
+        for y in (0.0, 0.005, 0.0068):
+            wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=10e3)
+            r = wr.solve(wp, motion=m, mu=0.3, normal=normal, vertical="normal")
+            roll, zs = touching_poses(wp)
+            fs = [lambda: wr.solve(wp, motion=m, mu=0.3, normal=normal, tangential="fastsim",
+                                   vertical="normal")]
+            if breakdown:
+                fs += [lambda: touching_poses(wp),
+                       lambda: [wheel_problem(wp, s, roll, zs[s]) for s in SIDES],
+                       lambda: [nimpl.from_wheel(wheel_problem(wp, s, roll, zs[s]))
+                                for s in SIDES]]
+            t = cpu_per_call(fs, calls, repeat)
+            npt = [len(r.side(s)) for s in SIDES]
+            line = (f"{normal} + fastsim, one position (2 wheels, patches {npt[0]}+{npt[1]}), "
+                    f"y = {y * 1e3:.1f} mm: {t[0] * 1e3:.3f} ms CPU")
+            if breakdown:
+                t_tot, t_pose, t_pts, t_pn = t
+                line += (f" = pose {t_pose * 1e3:.3f} + points {t_pts * 1e3:.3f} + normal "
+                         f"{(t_pn - t_pts) * 1e3:.3f} + rest (creepages, tangential, result) "
+                         f"{(t_tot - t_pose - t_pn) * 1e3:.3f} ms")
+            print(line, flush=True)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--single", action="store_true",
+                    help="only wr.solve of one position, CPU time per call")
+    ap.add_argument("--breakdown", action="store_true", help="with --single: split the time")
+    ap.add_argument("--calls", type=int, default=50, help="calls per timing with --single")
     args = ap.parse_args(argv)
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
     tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
     m = wr.Motion(speed=20.0, omega=20.0 / 0.46 * 1.001)
     print(f"load average {os.getloadavg()[0]:.2f}, cores {os.cpu_count()}")
+    if args.single:
+        single(ws, tr, m, args.calls, args.repeat, args.breakdown)
+        return
     for y in (0.0, 0.004, 0.0068):
         wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=10e3)
         t = best(lambda: wr.solve(wp, motion=m, mu=0.3), args.repeat)

@@ -219,6 +219,17 @@ def _refine(fun, s0, h, lo, hi, levels=5):
     return np.where(f <= best_f, s, best_s)
 
 
+def _refine_fast(ws, tr, side, step, s0, y, zc, th, psi, levels=5):
+    """:func:`_refine` of the gap of ``side`` from the grid points ``s0`` (one pose each,
+    arrays of shape (n,)), compiled (:func:`wheelrail.geometry._search_kernels.refine_rows`)."""
+    from ._search_kernels import refine_rows
+
+    n = np.size(s0)
+    arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
+    return refine_rows(*_side_args(ws, tr, side, step), arr(s0), arr(y), arr(zc), arr(th),
+                       arr(psi), int(levels), _BIG)
+
+
 def _grid(ws, side, step):
     wc = ws.curve(side)
     lo, hi = wc.u_min + _EDGE, wc.u_max - _EDGE
@@ -299,14 +310,14 @@ def _grid_gap_kernel(s, p, p1, r0, e_tape, sig, y, zc, th, psi, u0, hu, c, big):
 
 def _grid_gap(ws, tr, side, pose, step):
     """Gap on the search grid, shape (n_rows, n_grid), and the grid (s, lo, hi, h)."""
-    s, lo, hi, h = _grid(ws, side, step)
-    p, p1 = _grid_profile(ws, side, step)
+    args = _side_args(ws, tr, side, step)    # grid, wheel heights and splines (cached)
+    s, p, p1, lo, hi, h = args[:6]
+    ru, rc, rh = args[9], args[11], args[12]
     n = np.size(pose.y)
     arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
-    rc = tr.curve(side)
     d = _grid_gap_kernel(s, p, p1, ws.nominal_radius, ws.e_tape, _SIGMA[side], arr(pose.y),
-                         arr(pose.zc(ws)), arr(pose.roll), arr(pose.yaw), rc.u_min, rc._h,
-                         np.ascontiguousarray(rc.c), _BIG)
+                         arr(pose.zc(ws)), arr(pose.roll), arr(pose.yaw), float(ru[0]), rh, rc,
+                         _BIG)
     return d, (s, lo, hi, h)
 
 
@@ -316,34 +327,50 @@ def _interior_minima(d):
             & (d[:, :-2] < _BIG) & (d[:, 2:] < _BIG))
 
 
+def _side_args(ws, tr, side, step):
+    """Arguments of the compiled search kernels for one side (cached per wheel/rail curve).
+
+    ``(s, p, p1, lo, hi, h, wheel u, 1/h_w, wheel c, rail u, 1/h_r, rail c, h_r, r0, e_tape, σ)``
+    (see :mod:`wheelrail.geometry._search_kernels`).
+    """
+    wc, rc = ws.curve(side), tr.curve(side)
+    key = (id(wc), id(rc), step, ws.nominal_radius, ws.e_tape, side)
+    hit = _ARGS_CACHE.get(key)
+    if hit is not None and hit[0] is wc and hit[1] is rc:
+        return hit[2]
+    s, lo, hi, h = _grid(ws, side, step)
+    p, p1 = _grid_profile(ws, side, step)
+    spline = lambda cv: (np.ascontiguousarray(cv.u, dtype=float),  # noqa: E731
+                         1.0 / cv._h if cv._h else 0.0, np.ascontiguousarray(cv.c, dtype=float))
+    args = (np.ascontiguousarray(s), np.ascontiguousarray(p), np.ascontiguousarray(p1),
+            float(lo), float(hi), float(h), *spline(wc), *spline(rc), float(rc._h),
+            float(ws.nominal_radius), float(ws.e_tape), _SIGMA[side])
+    if len(_ARGS_CACHE) > 64:
+        _ARGS_CACHE.clear()
+    _ARGS_CACHE[key] = (wc, rc, args)
+    return args
+
+
+_ARGS_CACHE: dict = {}
+
+
 def _global_min(ws, tr, side, pose, step, levels=5):
-    """Refined global minimum of the gap per row: (s*, d*, lever) (see :func:`solve_rigid`)."""
-    d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
-    zc = pose.zc(ws)
-    # the two lowest local minima of the grid are refined: near a jump of the contact point
-    # the lower grid value may belong to the branch whose refined minimum is higher
-    dm = np.full_like(d, np.inf)
-    dm[:, 1:-1] = np.where(_interior_minima(d), d[:, 1:-1], np.inf)
-    rows = np.arange(d.shape[0])
-    dm[rows, np.argmin(d, axis=1)] = d[rows, np.argmin(d, axis=1)]
-    two = np.argpartition(dm, 1, axis=1)[:, :2]
-    n = rows.size
-    fun = _gapfun(ws, tr, side, pose.y, zc, pose.roll, pose.yaw)
-    sab = _refine(fun, np.concatenate([s[two[:, 0]], s[two[:, 1]]]), h, lo, hi, levels)
-    dab = fun(sab)
-    sa, sb, da, db = sab[:n], sab[n:], dab[:n], dab[n:]
-    s1 = np.where(db < da, sb, sa)
-    d1 = np.minimum(da, db)
-    wc = ws.curve(side)
-    p, p1 = wc.eval(s1, 1)
-    sig = _SIGMA[side]
-    _, Y, Z, _ = silhouette(s1, p, p1, ws.nominal_radius, ws.e_tape, sig,
-                            pose.y, zc, pose.roll, pose.yaw)
-    _, t = tr.curve(side).eval(sig * Y, 1)
-    # sensitivity of the gap to the roll angle: the point moves by (−(Z − zc), Y − y) dθ
-    # in (y, z); the rail below it rises by its slope times the lateral motion
-    lever = (Y - pose.y) + sig * t * (Z - zc)
-    return s1, d1, lever
+    """Refined global minimum of the gap per row: (s*, d*, lever) (see :func:`solve_rigid`).
+
+    The gap on the search grid, its two lowest local minima (near a jump of
+    the contact point the lower grid value may belong to the branch whose
+    refined minimum is higher) refined by parabolic interpolation
+    (:func:`_refine`), the lower kept; ``lever`` is the sensitivity of the
+    gap to the roll angle: the point moves by (−(Z − zc), Y − y) dθ in (y, z)
+    and the rail below it rises by its slope times the lateral motion.
+    Compiled (:func:`wheelrail.geometry._search_kernels.global_min_rows`).
+    """
+    from ._search_kernels import global_min_rows
+
+    n = np.size(pose.y)
+    arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
+    return global_min_rows(*_side_args(ws, tr, side, step), arr(pose.y), arr(pose.zc(ws)),
+                           arr(pose.roll), arr(pose.yaw), int(levels), _BIG)
 
 
 #: Row status codes of :func:`solve_rigid_rows` and of contact tables (``status`` variable).
@@ -393,38 +420,17 @@ def _newton(ws, tr, y, yaw, z, th, step, tol, maxiter):
     """Damped Newton iteration on (z, θ) for the rows ``y`` (see :func:`solve_rigid`).
 
     Returns z, θ, wheel coordinates, residual and a code per row (0 converged,
-    3 a wheel beside its rail at some iterate, 4 not converged).
+    3 a wheel beside its rail at some iterate, 4 not converged). The gap minima
+    are refined on 3 levels until a row's residual falls below ``tol``, then on
+    5 (shared by the active rows). Compiled
+    (:func:`wheelrail.geometry._search_kernels.newton_rows`).
     """
-    n = y.size
-    code = np.full(n, 4, dtype=np.int8)
-    sL_out, sR_out, res_out = np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.inf)
-    act = np.arange(n)
-    levels = np.full(n, 3)
-    z, th = z.copy(), th.copy()
-    for _ in range(maxiter):
-        if act.size == 0:
-            break
-        pose = _Pose(y[act], z[act], th[act], yaw[act])
-        lev = int(levels[act].max())
-        sL, gL, lL = _global_min(ws, tr, "left", pose, step, lev)
-        sR, gR, lR = _global_min(ws, tr, "right", pose, step, lev)
-        beside = (gL >= _BIG) | (gR >= _BIG)
-        res = np.maximum(np.abs(gL), np.abs(gR))
-        done = ~beside & (res < tol) & (levels[act] == 5)
-        code[act[beside]] = 3
-        code[act[done]] = 0
-        sL_out[act], sR_out[act], res_out[act] = sL, sR, np.where(beside, np.inf, res)
-        levels[act[~beside & (res < tol)]] = 5
-        keep = ~beside & ~done
-        with np.errstate(divide="ignore", invalid="ignore"):
-            dth = -(gR - gL) / (lR - lL)
-        dth = np.clip(np.nan_to_num(dth, nan=0.0, posinf=0.0, neginf=0.0), -_MAX_DTH, _MAX_DTH)
-        dz = np.clip(-gR - lR * dth, -_MAX_DZ, _MAX_DZ)
-        move = keep & (res >= tol)
-        th[act[move]] += dth[move]
-        z[act[move]] += dz[move]
-        act = act[keep]
-    return z, th, sL_out, sR_out, res_out, code
+    from ._search_kernels import newton_rows
+
+    c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
+    return newton_rows(_side_args(ws, tr, "left", step), _side_args(ws, tr, "right", step),
+                       c(y), c(yaw), c(z), c(th), float(ws.nominal_radius), float(tol),
+                       int(maxiter), _MAX_DTH, _MAX_DZ, _BIG)
 
 
 def _min_gaps(ws, tr, y, yaw, th, step, levels=5):
@@ -719,7 +725,28 @@ def classify_rows(ws, y, z, wheel_y, status, roll=None):
 
 
 def point_data(ws, tr, side, s, pose: _Pose) -> dict:
-    """All per-point quantities of :data:`POINT_FIELDS` at wheel coordinates ``s`` (pure)."""
+    """All per-point quantities of :data:`POINT_FIELDS` at wheel coordinates ``s`` (pure).
+
+    One pose per point (``pose`` arrays of the shape of ``s``, 1-D) runs the compiled
+    kernel :func:`wheelrail.geometry._search_kernels.point_data_rows` (the same formulas).
+    """
+    s_arr = np.asarray(s, dtype=float)
+    if s_arr.ndim == 1 and all(np.shape(v) == s_arr.shape for v in
+                               (pose.y, pose.z, pose.roll, pose.yaw)):
+        from ._search_kernels import POINT_ROWS, point_data_rows
+
+        args = _side_args(ws, tr, side, step=2e-4)
+        pl = tr.placement(side)
+        c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
+        out = point_data_rows(c(s_arr), c(pose.y), c(pose.zc(ws)), c(pose.roll), c(pose.yaw),
+                              *args[6:12], *args[13:16], float(pl.offset), float(pl.z_top),
+                              float(pl.angle))
+        return dict(zip(POINT_ROWS, out))
+    return _point_data_arrays(ws, tr, side, s, pose)
+
+
+def _point_data_arrays(ws, tr, side, s, pose: _Pose) -> dict:
+    """:func:`point_data` with array operations (any broadcastable shapes)."""
     sig = _SIGMA[side]
     wc, rc, pl = ws.curve(side), tr.curve(side), tr.placement(side)
     p, p1, p2 = wc.eval(s)
@@ -756,53 +783,23 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
         :data:`POINT_FIELDS`, NaN-padded.
     count : ndarray of int, shape (n_rows,)
     """
+    from ._search_kernels import order_points, select_minima
+
     d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
     nrow = d.shape[0]
-    gmin = np.argmin(d, axis=1)
-    interior = np.zeros_like(d, dtype=bool)
-    interior[:, 1:-1] = _interior_minima(d)
-    # vertical gap of a point with normal separation <= tolerance is at most tolerance/cos(80°)
-    interior &= d <= 6.0 * tolerance + 1e-9
-    interior[np.arange(nrow), gmin] = True
-    rows, idx = np.nonzero(interior)
-    # merge neighbouring minima separated by a negligible hump
-    keep = np.ones(rows.size, dtype=bool)
-    for k in range(1, rows.size):
-        if rows[k] != rows[k - 1]:
-            continue
-        j = k - 1
-        while j >= 0 and not keep[j] and rows[j] == rows[k]:
-            j -= 1
-        if j < 0 or rows[j] != rows[k]:
-            continue
-        i1, i2 = idx[j], idx[k]
-        hump = np.max(d[rows[k], i1:i2 + 1])
-        if hump - max(d[rows[k], i1], d[rows[k], i2]) < _MERGE:
-            if d[rows[k], i2] < d[rows[k], i1]:
-                keep[j] = False
-            else:
-                keep[k] = False
-    rows, idx = rows[keep], idx[keep]
+    # interior grid minima off the rail ends and each row's global minimum; the vertical gap
+    # of a point with normal separation <= tolerance is at most tolerance/cos(80°); minima
+    # separated by a negligible hump are merged
+    rows, idx = select_minima(d, 6.0 * tolerance + 1e-9, _MERGE, _BIG)
     sub = _Pose(*(np.asarray(v)[rows] for v in (pose.y, pose.z, pose.roll, pose.yaw)))
     zsub = sub.zc(ws)
-    fun = _gapfun(ws, tr, side, sub.y, zsub, sub.roll, sub.yaw)
-    sref = _refine(fun, s[idx], h, lo, hi)
+    sref = _refine_fast(ws, tr, side, step, s[idx], sub.y, zsub, sub.roll, sub.yaw)
     data = point_data(ws, tr, side, sref, sub)
-    # drop duplicates (two grid minima refined to the same point) and distant minima
-    sep = data["separation"]
-    rowmin = np.full(nrow, np.inf)
-    np.minimum.at(rowmin, rows, sep)
-    ok = (sep <= tolerance) | (sep == rowmin[rows])
-    order = np.lexsort((-sref, rows))
-    last_row, last_s = -1, np.nan
-    for k in order:
-        if not ok[k]:
-            continue
-        if rows[k] == last_row and abs(sref[k] - last_s) < 1e-6:
-            ok[k] = False
-            continue
-        last_row, last_s = rows[k], sref[k]
-    order = order[ok[order]]
+    # drop duplicates (two grid minima refined to the same point) and distant minima;
+    # order by row, then from the field side to the flange
+    order = order_points(rows, np.ascontiguousarray(sref, dtype=float),
+                         np.ascontiguousarray(data["separation"], dtype=float),
+                         float(tolerance), nrow)
     rows_o = rows[order]
     count = np.bincount(rows_o, minlength=nrow)
     npt = int(max(count.max(initial=1), 1))
@@ -811,12 +808,12 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
     slot = np.zeros(order.size, dtype=int)
     for k in range(1, order.size):
         slot[k] = slot[k - 1] + 1 if rows_o[k] == rows_o[k - 1] else 0
-    out = {}
-    for key, val in data.items():
-        arr = np.full((nrow, npt), np.nan)
-        arr[rows_o, slot] = np.broadcast_to(val, sref.shape)[order]
-        out[key] = arr
-    return out, count
+    # all fields in one array (n_fields, n_rows, n_points), one row of it per field
+    vals = np.stack([np.broadcast_to(np.asarray(v, dtype=float), sref.shape)
+                     for v in data.values()])
+    arr = np.full((len(data), nrow, npt), np.nan)
+    arr[:, rows_o, slot] = vals[:, order]
+    return dict(zip(data, arr)), count
 
 
 # --------------------------------------------------------------------------- results

@@ -20,6 +20,7 @@ References
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -92,6 +93,11 @@ def shape_ratio(ratio):
         min(a, b) / max(a, b), same shape as ``ratio``.
     """
     ratio = np.asarray(ratio, dtype=float)
+    if ratio.size <= 4 and np.all((ratio >= 1.0) & (ratio < np.inf)):
+        # a few ratios (the contact points of one wheel): the same iteration in float
+        # arithmetic, point by point (equal to the array iteration to a few ulps)
+        k = [_shape_ratio_one(float(v)) for v in ratio.flat]
+        return np.float64(k[0]) if ratio.ndim == 0 else np.array(k).reshape(ratio.shape)
     target = np.log(ratio)
     lo = np.log(_K_MIN)
 
@@ -111,6 +117,39 @@ def shape_ratio(ratio):
             break
         f1 = F(t1)
     return np.exp(t1)
+
+
+def _shape_ratio_one(ratio: float) -> float:
+    """:func:`shape_ratio` of one ratio ≥ 1 (the same secant iteration on Python floats)."""
+    from scipy import special
+
+    target = math.log(ratio)
+    lo = math.log(_K_MIN)
+
+    def F(t):
+        k = math.exp(t)
+        p = k * k
+        m = 1.0 - p
+        if m < 1e-5:
+            cr = (1.0 + 1.125 * m) / (1.0 + 0.375 * m)
+        else:
+            K = float(special.ellipkm1(p))
+            E = float(special.ellipe(m))
+            cr = (E / p - K) / (K - E)
+        return math.log(cr) - target
+
+    t0 = min(max(-(2.0 / 3.0) * target, lo), 0.0)
+    t1 = min(max(t0 - 1e-3, lo), 0.0)
+    f0, f1 = F(t0), F(t1)
+    for _ in range(40):
+        df = f1 - f0
+        step = f1 * (t1 - t0) / df if (df != 0.0 and math.isfinite(df)) else 0.0
+        t0, f0 = t1, f1
+        t1 = min(max(t1 - step, lo), 0.0)
+        if abs(t1 - t0) <= 1e-15 * max(1.0, abs(t1)):
+            break
+        f1 = F(t1)
+    return math.exp(t1)
 
 
 def _shape_ratio_bisection(ratio):
@@ -497,6 +536,9 @@ def _vertical_approach(Q, sep, cosg, d1, valid=None):
     each point [m/N^(2/3)]. Returns a float, or shape (n,).
     """
     single = np.ndim(sep) == 1
+    if single and valid is None and np.size(sep) <= 4 and np.ndim(Q) == 0:
+        return _vertical_approach_one(float(Q), [float(v) for v in sep],
+                                      [float(v) for v in cosg], [float(v) for v in d1])
     sep, cosg, d1 = (np.atleast_2d(np.asarray(v, dtype=float)) for v in (sep, cosg, d1))
     valid = np.ones(sep.shape, bool) if valid is None else np.atleast_2d(valid)
     Q = np.broadcast_to(np.asarray(Q, dtype=float), sep.shape[:1])
@@ -511,6 +553,25 @@ def _vertical_approach(Q, sep, cosg, d1, valid=None):
         if np.all(np.abs(F) <= 1e-12 * Q):
             break
     return float(dz[0]) if single else dz
+
+
+def _vertical_approach_one(Q, sep, cosg, d1):
+    """:func:`_vertical_approach` of one wheel with a few points (lists of floats): the same
+    Newton iteration in float arithmetic."""
+    ratios = [s / c for s, c in zip(sep, cosg)]
+    k = ratios.index(min(ratios))
+    dz = (sep[k] + d1[k] * (Q / cosg[k]) ** (2.0 / 3.0)) / cosg[k]
+    for _ in range(100):
+        F = dF = 0.0
+        for s, c, d in zip(sep, cosg, d1):
+            pen = max(dz * c - s, 0.0)
+            F += (pen / d) ** 1.5 * c
+            dF += 1.5 * math.sqrt(pen / d) / d * c * c
+        F -= Q
+        dz = dz - (F / dF if dF > 0 else 0.0)
+        if abs(F) <= 1e-12 * Q:
+            break
+    return dz
 
 
 def _check_on_rail(problem, k, b):
@@ -607,8 +668,17 @@ class Hertz(NormalMethod):
         bad = ~((A > 0) & (B > 0))
         cosg = np.cos(pts.contact_angle)
         sep = np.asarray(pts.separation, dtype=float)
-        d1 = np.full(A.shape, np.inf)
-        d1[~bad] = hertz_kernel(1.0, A[~bad], B[~bad], pair.E_star)[3]
+        # the unit-load solution of every convex point (kept in the problem's cache: the
+        # vertical-load passes of solve_wheelrail re-solve the same points)
+        key = ("hertz_unit", pair.E_star, A.tobytes(), B.tobytes())
+        cache = getattr(problem, "cache", None)
+        unit = cache.get(key) if isinstance(cache, dict) else None
+        if unit is None:
+            unit = np.full((4,) + A.shape, np.inf)
+            unit[:, ~bad] = hertz_kernel(1.0, A[~bad], B[~bad], pair.E_star)
+            if isinstance(cache, dict):
+                cache[key] = unit
+        d1 = unit[3]
         if problem.approach is not None:
             dz = float(problem.approach)
         else:
@@ -625,7 +695,14 @@ class Hertz(NormalMethod):
                     f"{problem.side} wheel: contact point at wheel y = {float(pts.wheel_y[k])!r} m "
                     f"penetrates but is not convex (A = {float(A[k])!r}, B = {float(B[k])!r} 1/m); "
                     "Hertz cannot represent it, use normal='bem'")
-            hc = hertz_from_penetration(float(pen[k]), float(A[k]), float(B[k]), pair)
+            # as hertz_from_penetration, from the unit-load solution above
+            delta = float(pen[k])                       # > 0 here
+            Ak, Bk = float(A[k]), float(B[k])           # > 0 here (not bad)
+            if max(Ak, Bk) / min(Ak, Bk) > 1e12:
+                _checked_curvatures(Ak, Bk)             # refuses it, naming the ratio
+            s = np.sqrt(delta / unit[3, k])
+            hc = _make(unit[0, k] * s, unit[1, k] * s, unit[2, k] * s, delta, s**3, float(A[k]),
+                       float(B[k]), pair)
             _check_on_rail(problem, k, float(hc.b))
             patches.append(ContactPatch.from_hertz(hc, strips=strips, cells=cells,
                                                    frame=problem.frames[k]))

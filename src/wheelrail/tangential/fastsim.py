@@ -647,9 +647,22 @@ class Fastsim(TangentialMethod):
             flist = []
             for k in range(n):
                 ys, dys, xl, xt = hertz_strips(a[k], b[k], ny)
-                r = fastsim_strips(ys, dys, xl, xt, peak[k] * strip_peak, L1[k], L2[k], L3[k],
-                                   xi[k], eta[k], phi[k], mu[k], nx, profile=bound,
-                                   scheme=scheme)
+                vals = (float(L1[k]), float(L2[k]), float(L3[k]), float(mu[k]))
+                if (all(v > 0 and math.isfinite(v) for v in vals)
+                        and all(math.isfinite(v) for v in (xi[k], eta[k], phi[k]))):
+                    # checked inputs: fastsim_strips without its argument checks (same numbers)
+                    full = lambda v: np.full(ny, v)  # noqa: E731
+                    peaks = np.ascontiguousarray(peak[k] * strip_peak, dtype=float)
+                    p = np.ascontiguousarray(peaks[:, None] * s_cells[None, :])  # s_cells: _profile
+                    r = _solve_strips(
+                        np.ascontiguousarray(ys, dtype=float), np.ascontiguousarray(dys, dtype=float),
+                        np.ascontiguousarray(xl, dtype=float), np.ascontiguousarray(xt, dtype=float),
+                        p, full(vals[0]), full(vals[1]), full(vals[2]), float(xi[k]),
+                        float(eta[k]), float(phi[k]), full(vals[3]), vals[3], scheme, True)
+                else:
+                    r = fastsim_strips(ys, dys, xl, xt, peak[k] * strip_peak, L1[k], L2[k],
+                                       L3[k], xi[k], eta[k], phi[k], mu[k], nx, profile=bound,
+                                       scheme=scheme)
                 Fx[k], Fy[k], Mz[k] = r.Fx, r.Fy, r.Mz
                 flist.append(r.fields)
             f = flist[0] if single else tuple(flist)
