@@ -25,7 +25,6 @@ import numpy as np
 
 import wheelrail as wr
 from wheelrail.fe import RollingCase, build_model
-from wheelrail.fe import _kernels as K
 from wheelrail.fe.rolling import _speed_profile, stable_time_step
 
 

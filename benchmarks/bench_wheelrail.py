@@ -63,7 +63,7 @@ def cpu_per_call(fs, calls, repeat):
 
 def single(ws, tr, m, calls, repeat, breakdown):
     """Per-call CPU time of wr.solve for one position (both wheels), optionally split."""
-    from wheelrail.api import get_method, get_normal_method
+    from wheelrail.api import get_normal_method
     from wheelrail.contact.wheelrail import SIDES, touching_poses, wheel_problem
 
     for normal in ("hertz", "kik-piotrowski"):

@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 import pytest
 
 import wheelrail as wr
 from wheelrail.casefile import Case, case_from_dict, load_case, run_case, solve_case
-from wheelrail.errors import CaseFileError, WheelrailError
+from wheelrail.errors import CaseFileError
 
 FULL = """
 [material]

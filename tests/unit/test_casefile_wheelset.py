@@ -161,7 +161,7 @@ def test_centred_symmetric_wheelset_gives_mirror_forces():
     wheels are equal and opposite (mirror symmetry), the longitudinal ones equal."""
     case = load_case(_edit(WS, "y = 0.003", "y = 0.0"))
     res = solve_wheelset_case(case)
-    (fxl, fyl, fzl), (fxr, fyr, fzr) = res.force_track["left"], res.force_track["right"]
+    (fxl, fyl, _), (fxr, fyr, _) = res.force_track["left"], res.force_track["right"]
     assert fyl == pytest.approx(-fyr, rel=1e-6, abs=1e-6)
     assert fxl == pytest.approx(fxr, rel=1e-6, abs=1e-6)
 

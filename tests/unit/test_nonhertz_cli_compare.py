@@ -2,8 +2,6 @@
 
 import csv
 
-import pytest
-
 from wheelrail.cli.main import main
 
 CASE = """

@@ -3,7 +3,6 @@
 import socket
 
 import numpy as np
-import pytest
 
 import wheelrail as wr
 from wheelrail.cli.main import main

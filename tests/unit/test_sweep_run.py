@@ -133,7 +133,7 @@ def test_resume_after_sigkill_gives_the_uninterrupted_dataset(tmp_path):
 def test_dask_executor_matches_serial():
     spec = SweepSpec.grid(**BASE, xi=np.linspace(-2e-3, 2e-3, 7), eta=[0.0, 1e-3], chunk=3)
     serial = sweep(spec, progress=False)
-    with DaskExecutor(2, processes=False) as ex:
+    with DaskExecutor(2, processes=False):
         pass  # a cluster starts and stops
     ds, info = sweep(spec, executor=DaskExecutor(2, processes=False), progress=False,
                      summary=True)

@@ -535,8 +535,7 @@ def _solve_implicit_qs(case, progress, io):
         q_n = np.concatenate([u.ravel(), [w]])
         dyn = None
         if beta_r > 0:
-            def dyn(qq, q_n=q_n):
-                return (beta_r / dt) * (K @ (qq - q_n))
+            dyn = _rayleigh_force(K, beta_r / dt, q_n)
         u, w, c, it = newton(model, Kff_eff, free, u, w, psi, s, c["xs"], c["xm"], ft, case.mu,
                              case.load, dyn=dyn, solver=solver)
         iters += it
@@ -664,3 +663,10 @@ def _solve_implicit_hht(case, progress, io):
         bar.stop()
     return _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, q[:-1].reshape(-1, 3),
                             solver, k0, {"hht_alpha": al})
+
+
+def _rayleigh_force(K, factor, q_n):
+    """Stiffness-proportional damping force ``factor · K (q − q_n)`` of one step."""
+    def dyn(qq):
+        return factor * (K @ (qq - q_n))
+    return dyn

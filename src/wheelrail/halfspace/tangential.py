@@ -224,7 +224,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.fft as sfft
 from numba import njit
 
 from .._resources import guard
