@@ -85,6 +85,7 @@ from .._validation import as_float_array, non_negative, positive
 from ..errors import ConvergenceError, InputError
 from ._checks import SIDES, check_side
 from ._curves import curvature
+from ._search_kernels import grid_gap_row
 from .track import Track
 from .wheelset import Wheelset
 
@@ -270,41 +271,13 @@ class _Pose:
 def _grid_gap_kernel(s, p, p1, r0, e_tape, sig, y, zc, th, psi, u0, hu, c, big):  # pragma: no cover
     """Vertical gap on the search grid for many poses (numba kernel; see :func:`silhouette`).
 
-    ``u0``, ``hu`` and ``c`` (4, m) describe the rail spline on an equidistant grid.
+    ``u0``, ``hu`` and ``c`` (4, m) describe the rail spline on an equidistant grid;
+    each row is :func:`wheelrail.geometry._search_kernels.grid_gap_row`.
     """
-    nrow, ns, m = y.size, s.size, c.shape[1]
-    u1 = u0 + hu * m
-    out = np.empty((nrow, ns))
-    for k in range(nrow):
-        st, ct = np.sin(th[k]), np.cos(th[k])
-        sp, cp = np.sin(psi[k]), np.cos(psi[k])
-        Bc = -st * sp
-        R = np.sqrt(cp * cp + Bc * Bc)
-        beta = np.arctan2(Bc, cp)
-        for j in range(ns):
-            r = r0 - p[j]
-            a = sig * (e_tape + s[j])
-            if psi[k] == 0.0:
-                sf, cf = 0.0, 1.0
-            else:
-                q = (sig * p1[j]) * ct * sp / R
-                q = min(1.0, max(-1.0, q))
-                phi = np.arcsin(q) - beta
-                sf, cf = np.sin(phi), np.cos(phi)
-            xb = r * sf
-            yp = a * ct + r * cf * st
-            Y = y[k] + xb * sp + yp * cp
-            Z = zc[k] + a * st - r * cf * ct
-            u = sig * Y
-            if u < u0 or u > u1:
-                out[k, j] = big
-                continue
-            i = int((u - u0) / hu)
-            if i > m - 1:
-                i = m - 1
-            dx = u - (u0 + i * hu)
-            zr = ((c[0, i] * dx + c[1, i]) * dx + c[2, i]) * dx + c[3, i]
-            out[k, j] = Z - zr
+    out = np.empty((y.size, s.size))
+    for k in range(y.size):
+        grid_gap_row(s, p, p1, r0, e_tape, sig, y[k], zc[k], th[k], psi[k], u0, hu, c, big,
+                     out[k])
     return out
 
 
