@@ -56,12 +56,13 @@ def _eval1(u, inv_h, c, x):  # pragma: no cover - compiled
 
 @njit(cache=True)
 def _silhouette(s, p, p1, r0, e_tape, sig, y, zc, th, psi):  # pragma: no cover - compiled
-    """One point of :func:`~wheelrail.geometry.contact_search.silhouette`: (Y, Z)."""
+    """One point of :func:`~wheelrail.geometry.contact_search.silhouette`: (Y, Z, x_r),
+    x_r the point's longitudinal lead in the track frame (0 without yaw)."""
     r = r0 - p
     a = sig * (e_tape + s)
     st, ct = math.sin(th), math.cos(th)
     if psi == 0.0:
-        return y + (a * ct + r * st), zc + (a * st - r * ct)
+        return y + (a * ct + r * st), zc + (a * st - r * ct), 0.0
     sp, cp = math.sin(psi), math.cos(psi)
     r_a = -sig * p1
     Bc = -st * sp
@@ -73,7 +74,7 @@ def _silhouette(s, p, p1, r0, e_tape, sig, y, zc, th, psi):  # pragma: no cover 
     xb = r * sf
     yp = a * ct + r * cf * st
     zp = a * st - r * cf * ct
-    return y + xb * sp + yp * cp, zc + zp
+    return y + xb * sp + yp * cp, zc + zp, xb * cp - r * cf * st * sp
 
 
 @njit(cache=True)
@@ -81,7 +82,7 @@ def _gap_point(s, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, th, psi,
                big):  # pragma: no cover - compiled
     """Vertical gap wheel − rail at wheel coordinate ``s`` (as ``contact_search._gap``)."""
     p, p1 = _eval1(wu, winv, wc, s)
-    Y, Z = _silhouette(s, p, p1, r0, e_tape, sig, y, zc, th, psi)
+    Y, Z, _ = _silhouette(s, p, p1, r0, e_tape, sig, y, zc, th, psi)
     u = sig * Y
     if u < ru[0] or u > ru[-1]:
         return big
@@ -206,7 +207,7 @@ def global_min_row(sg, pg, p1g, lo, hi, h, wu, winv, wc, ru, rinv, rc, rh, r0, e
     s1 = sb if db < da else sa
     d1 = min(da, db)
     p, p1 = _eval1(wu, winv, wc, s1)
-    Y, Z = _silhouette(s1, p, p1, r0, e_tape, sig, y, zc, th, psi)
+    Y, Z, _ = _silhouette(s1, p, p1, r0, e_tape, sig, y, zc, th, psi)
     _, t = _eval1(ru, rinv, rc, sig * Y)
     lever = (Y - y) + sig * t * (Z - zc)
     return s1, d1, lever
@@ -333,27 +334,7 @@ def point_data_rows(s, y, zc, th, psi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
         p1 = (3.0 * c0 * dx + 2.0 * c1) * dx + c2
         p2 = 6.0 * c0 * dx + 2.0 * c1
         r = r0 - p
-        a = sig * (e_tape + s[k])
-        st, ct = math.sin(th[k]), math.cos(th[k])
-        if psi[k] == 0.0:
-            xr = 0.0
-            Y = y[k] + (a * ct + r * st)
-            Z = zc[k] + (a * st - r * ct)
-        else:
-            sp, cp = math.sin(psi[k]), math.cos(psi[k])
-            r_a = -sig * p1
-            Bc = -st * sp
-            C = -r_a * ct * sp
-            R = math.hypot(cp, Bc)
-            q = min(max(C / R, -1.0), 1.0)
-            phi = math.asin(q) - math.atan2(Bc, cp)
-            sf, cf = math.sin(phi), math.cos(phi)
-            xb = r * sf
-            yp = a * ct + r * cf * st
-            zp = a * st - r * cf * ct
-            xr = xb * cp - r * cf * st * sp
-            Y = y[k] + xb * sp + yp * cp
-            Z = zc[k] + zp
+        Y, Z, xr = _silhouette(s[k], p, p1, r0, e_tape, sig, y[k], zc[k], th[k], psi[k])
         u = sig * Y
         j = _index(ru, rinv, u)
         du = u - ru[j]
