@@ -363,12 +363,12 @@ class CafTable:
                            l2["slope"])
         return memo[k]
 
-    def _rates(self, k):
-        """d(γ2 − γ1)/dτ [rad/m] on side 1 (τ = t_ylim − t_y) and d(γ1 − γ2)/dτ on
-        side 2 (τ = t_y − t_ylim) of jump ``k``, from the slopes of the two lines."""
-        s1 = self.line(float(self.jumps[k]), k)["slope"]
-        s2 = self.line(float(self.jumps[k]), k + 1)["slope"]
-        return s1 - s2, s1 - s2
+    def _rate(self, k):
+        """s1 − s2 [rad/m] of jump ``k`` (the slopes dγ/dt_y of the two lines): both
+        d(γ2 − γ1)/dτ on side 1 (τ = t_ylim − t_y) and d(γ1 − γ2)/dτ on side 2
+        (τ = t_y − t_ylim), the ``rate`` of :func:`jump_overlap` on either side."""
+        t = float(self.jumps[k])
+        return self.line(t, k)["slope"] - self.line(t, k + 1)["slope"]
 
     def branch_of(self, y):
         """Branch (continuous part of the CAF) of the rigid contact point at shift ``y`` [m]."""
@@ -385,8 +385,9 @@ class CafTable:
         lines and stays finite for small jumps.
         """
         g1, g2 = self.jump_angles(k)
-        r1, r2 = self._rates(k) if _overlap_kind(overlap) == "general" else (0.0, 0.0)
-        return (float(jump_overlap(g1, g2, delta1, r1)), float(jump_overlap(g2, g1, delta2, r2)))
+        rate = self._rate(k) if _overlap_kind(overlap) == "general" else 0.0
+        return (float(jump_overlap(g1, g2, delta1, rate)),
+                float(jump_overlap(g2, g1, delta2, rate)))
 
 
 def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tolerance=1e-3,
