@@ -513,12 +513,7 @@ def _solve_implicit_qs(case, progress, io):
         c, E, rows = st["c"], st["E"], st["rows"].tolist()
         ft, e_int0 = c["ft"], st["e_int0"]
     else:
-        ft = np.zeros((model.slave.size, 3))
-        psi = s = t = 0.0
-        rows = []
-        E = dict(friction=0.0, external=0.0, damping=0.0, contact_work=0.0)
-        iters = k0 = 0
-        _, e_int0 = model.internal_force(u)
+        ft, psi, s, t, rows, E, iters, k0, e_int0 = _fresh_implicit_state(model, u)
     fc, fcw = model.generalized_contact_force(c, psi)
     bar = _progress(progress, nsteps - k0, f"FE implicit-qs ({model.n_elements} el.)")
 
@@ -598,12 +593,7 @@ def _solve_implicit_hht(case, progress, io):
         q = np.concatenate([u.ravel(), [w]])
         v = np.zeros_like(q)
         a = np.zeros_like(q)
-        ft = np.zeros((model.slave.size, 3))
-        psi = s = t = 0.0
-        rows = []
-        E = dict(friction=0.0, external=0.0, damping=0.0, contact_work=0.0)
-        iters = k0 = 0
-        _, e_int0 = model.internal_force(u)
+        ft, psi, s, t, rows, E, iters, k0, e_int0 = _fresh_implicit_state(model, u)
     r_old = static_residual(q, c)
     fc, fcw = model.generalized_contact_force(c, psi)
     fdamp = damping_force(v)
@@ -670,3 +660,12 @@ def _rayleigh_force(K, factor, q_n):
     def dyn(qq):
         return factor * (K @ (qq - q_n))
     return dyn
+
+
+def _fresh_implicit_state(model, u):
+    """Start of an implicit run without a restart file: tangential contact history,
+    rolling angle, travel, time, output rows, energy accounts, iteration and step
+    counters, and the internal energy of the initial displacement ``u``."""
+    _, e_int0 = model.internal_force(u)
+    E = dict(friction=0.0, external=0.0, damping=0.0, contact_work=0.0)
+    return np.zeros((model.slave.size, 3)), 0.0, 0.0, 0.0, [], E, 0, 0, e_int0
