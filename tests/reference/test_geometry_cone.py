@@ -12,13 +12,12 @@ eqs. 2.1–2.3; Klingel's cone: Δr ≈ 2λy).
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
 
 import wheelrail as wr
 from wheelrail.geometry.conicity import conicity_from_delta_r
+from wheelrail.validation.checks_other import R_RAIL, cone_tangency
 
 LAM = 1.0 / 20.0
-R_RAIL = 0.3
 R0 = 0.46
 
 
@@ -38,35 +37,8 @@ def make(inclination=1 / 40, lam=LAM):
     return ws, tr
 
 
-def reference(ws, tr, y, lam=LAM):
-    """Closed-form tangency of cone and circle: roll, z, wheel coordinates, contact angles."""
-    pl = tr.placement("right")
-    a = tr.cant_angle
-    Uc = pl.offset + R_RAIL * np.sin(a)
-    Zc = -R_RAIL * np.cos(a) - pl.z_top
-    e, r0 = ws.e_tape, ws.nominal_radius
-
-    def zc_side(th, sign):
-        # side-local: the left side is the right side with y -> -y, theta -> -theta
-        yy, tt = sign * y, sign * th
-        g = np.arctan(lam) + tt
-        up0 = yy + e * np.cos(tt) + r0 * np.sin(tt)
-        # Z_P0 = zc + e sin(tt) - r0 cos(tt) for the tape-circle point
-        return Zc + R_RAIL * np.cos(g) - np.tan(g) * (Uc - R_RAIL * np.sin(g) - up0) \
-            - e * np.sin(tt) + r0 * np.cos(tt)
-
-    th = brentq(lambda t: zc_side(t, 1) - zc_side(t, -1), -0.02, 0.02, xtol=1e-16)
-    zc = zc_side(th, 1)
-    out = {"roll": th, "z": zc - r0}
-    for side, sign in (("right", 1), ("left", -1)):
-        yy, tt = sign * y, sign * th
-        g = np.arctan(lam) + tt
-        up0 = yy + e * np.cos(tt) + r0 * np.sin(tt)
-        T = Uc - R_RAIL * np.sin(g)
-        s = (T - up0) / (np.cos(tt) - lam * np.sin(tt))
-        out[side] = {"s": s, "gamma": g, "r": r0 - lam * s, "u": T}
-    out["delta_r"] = out["right"]["r"] - out["left"]["r"]
-    return out
+# the closed-form tangency of the module docstring (shared with the validation report)
+reference = cone_tangency
 
 
 @pytest.mark.parametrize("inclination", [0.0, 1 / 40])

@@ -172,12 +172,15 @@ def _cone_case(inclination):
             wr.Track(rail, inclination=inclination, gauge_height=0.001))
 
 
-def cone_tangency(ws, tr, y):
-    """Closed-form rigid contact of a cone on circular rail heads (seed 002 eqs. 2.1–2.3).
+def cone_tangency(ws, tr, y, lam=LAM):
+    """Closed-form rigid contact of a cone (slope ``lam``) on circular rail heads of
+    radius 0.3 m (seed 002 eqs. 2.1–2.3).
 
     The contact point is where the rolled generatrix is tangent to the circle; both
     tangency conditions are linear in the axle height, so the roll angle follows from
-    one scalar equation (brentq).
+    one scalar equation (brentq). Returns the roll [rad], the height ``z`` [m], per
+    side the wheel coordinate ``s``, contact angle ``gamma``, rolling radius ``r`` and
+    rail coordinate ``u`` of the tangent point [m], and ``delta_r`` [m].
     """
     from scipy.optimize import brentq
 
@@ -189,7 +192,7 @@ def cone_tangency(ws, tr, y):
 
     def zc_side(th, sign):
         yy, tt = sign * y, sign * th
-        g = np.arctan(LAM) + tt
+        g = np.arctan(lam) + tt
         up0 = yy + e * np.cos(tt) + r0 * np.sin(tt)
         return Zc + R_RAIL * np.cos(g) - np.tan(g) * (Uc - R_RAIL * np.sin(g) - up0) \
             - e * np.sin(tt) + r0 * np.cos(tt)
@@ -198,10 +201,11 @@ def cone_tangency(ws, tr, y):
     out = {"roll": th, "z": zc_side(th, 1) - r0}
     for side, sign in (("right", 1), ("left", -1)):
         yy, tt = sign * y, sign * th
-        g = np.arctan(LAM) + tt
+        g = np.arctan(lam) + tt
         up0 = yy + e * np.cos(tt) + r0 * np.sin(tt)
-        s = (Uc - R_RAIL * np.sin(g) - up0) / (np.cos(tt) - LAM * np.sin(tt))
-        out[side] = {"s": s, "gamma": g, "r": r0 - LAM * s}
+        T = Uc - R_RAIL * np.sin(g)
+        s = (T - up0) / (np.cos(tt) - lam * np.sin(tt))
+        out[side] = {"s": s, "gamma": g, "r": r0 - lam * s, "u": T}
     out["delta_r"] = out["right"]["r"] - out["left"]["r"]
     return out
 
