@@ -50,12 +50,7 @@ import time
 for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 
-CASES = {
-    "small creep": (2e-4, 0.0, 0.0),
-    "combined": (1e-3, 5e-4, 1.0),
-    "spin": (0.0, 0.0, 3.0),
-}
-MU = 0.3
+from bench_exact_rolling import CASES, MU  # noqa: E402 - the same cases (script directory)
 
 
 def coarse_kernel(kernel, a):
