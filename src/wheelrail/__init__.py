@@ -5,8 +5,11 @@ forces (Carter, Kalker's linear theory, FASTSIM, Shen–Hedrick–Elkins, Polach
 Kalker's exact theory) behind one API. SI units everywhere; Kalker's sign
 convention (:mod:`wheelrail.conventions`).
 
-Heavy sub-packages (geometry, profiles, half-space solvers, plotting) are
-imported lazily on first use.
+Every entry function and every method class is one attribute away
+(``wr.solve``, ``wr.creep_forces``, ``wr.tangential.Fastsim`` or
+``wr.Fastsim``, ``wr.normal.Bem`` or ``wr.Bem``); :func:`normal_methods` and
+:func:`tangential_methods` give name -> class. Everything but the core types
+is imported on first use, so that ``import wheelrail`` stays fast.
 """
 
 from __future__ import annotations
@@ -14,22 +17,41 @@ from __future__ import annotations
 import importlib
 
 from . import conventions
-from .api import available_methods, creep_forces, normal_methods, solve, tangential_methods
-from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError, ProfileError,
-                     WheelrailError)
+from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError, OptionError,
+                     ProfileError, WheelrailError)
 from .materials import STEEL, Material, MaterialPair
-from .normal.hertz import (HertzContact, curvatures_from_radii, hertz, hertz_from_penetration,
-                           hertz_from_radii, hertz_from_semiaxes, hertz_line)
 from .results import CreepForces, Status
 
 __version__ = "0.1.0"
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {
+    # entry functions
+    "solve": ("wheelrail.api", "solve"),
+    "creep_forces": ("wheelrail.api", "creep_forces"),
+    "normal_methods": ("wheelrail.api", "normal_methods"),
+    "tangential_methods": ("wheelrail.api", "tangential_methods"),
+    "hertz": ("wheelrail.normal.hertz", "hertz"),
+    "hertz_from_semiaxes": ("wheelrail.normal.hertz", "hertz_from_semiaxes"),
+    "hertz_from_radii": ("wheelrail.normal.hertz", "hertz_from_radii"),
+    "hertz_from_penetration": ("wheelrail.normal.hertz", "hertz_from_penetration"),
+    "hertz_line": ("wheelrail.normal.hertz", "hertz_line"),
+    "curvatures_from_radii": ("wheelrail.normal.hertz", "curvatures_from_radii"),
+    "HertzContact": ("wheelrail.normal.hertz", "HertzContact"),
+    # method classes (also wr.normal.<Class>, wr.tangential.<Class>)
+    **{c: ("wheelrail.normal", c) for c in ("Hertz", "MultiHertz", "Linder", "KikPiotrowski",
+                                            "Stripes", "Bem")},
+    **{c: ("wheelrail.tangential", c) for c in ("Carter", "Linear", "Fastsim", "Fastrip",
+                                                "ShenHedrickElkins", "Polach", "Exact",
+                                                "Table")},
+    "tangential": ("wheelrail.tangential", None),
+    "options": ("wheelrail.options", None),
+    "cases": ("wheelrail.cases", None),
+    "casefile": ("wheelrail.casefile", None),
     "transient_rolling": ("wheelrail.transient", "transient_rolling"),
     "kalker_coefficients": ("wheelrail.tangential.linear", "kalker_coefficients"),
     "load_case": ("wheelrail.casefile", "load_case"),
-    "run_case": ("wheelrail.casefile", "run_case"),
+    "run_case": ("wheelrail.cases", "run_case"),
     "profiles": ("wheelrail.profiles", None),
     "geometry": ("wheelrail.geometry", None),
     "halfspace": ("wheelrail.halfspace", None),
@@ -76,13 +98,13 @@ def __getattr__(name):
     raise AttributeError(f"module 'wheelrail' has no attribute {name!r}")
 
 
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
+
 __all__ = [
-    "Material", "MaterialPair", "STEEL",
-    "HertzContact", "hertz", "hertz_from_semiaxes", "hertz_from_radii", "hertz_from_penetration",
-    "hertz_line", "curvatures_from_radii",
-    "creep_forces", "available_methods", "solve", "normal_methods", "tangential_methods",
-    "CreepForces", "Status", "conventions",
-    "WheelrailError", "InputError", "ConvergenceError", "NoContactError", "ProfileError",
-    "CaseFileError",
+    "Material", "MaterialPair", "STEEL", "CreepForces", "Status", "conventions",
+    "WheelrailError", "InputError", "OptionError", "ConvergenceError", "NoContactError",
+    "ProfileError", "CaseFileError",
     *_LAZY,
 ]

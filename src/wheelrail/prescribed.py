@@ -29,7 +29,9 @@ from dataclasses import replace
 import numpy as np
 
 from ._validation import as_float_array, positive
-from .api import _broadcast_contact, as_creepage, creep_forces, get_method
+from . import tangential as _tangential
+from .api import creep_forces
+from .tangential import as_creepage, broadcast_contact as _broadcast_contact
 from .errors import ConvergenceError, InputError
 from .results import CreepForces
 from .tangential.linear import linear_stiffness
@@ -62,7 +64,7 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
     maxiter : int
         Largest number of outer iterations.
     **options
-        Options of the creep-force law.
+        Options of the creep-force law (as for :func:`wheelrail.creep_forces`).
 
     Returns
     -------
@@ -89,7 +91,7 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
     """
     if Fx is None and Fy is None:
         raise InputError("give at least one prescribed force, Fx= or Fy= [N]")
-    impl = get_method(method)
+    impl = _tangential.get(method, options, argname="method")
     xi0, eta0, phi0 = as_creepage(creepage)
     if np.ndim(xi0) != 0:
         raise InputError("creepage must be a single (xi, eta, phi); batches follow the contact")
@@ -142,7 +144,7 @@ def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options):
 
     def evaluate(x, e):
         evals[0] += 1
-        return creep_forces(contact, (x, e, phi), mu, method=impl, **options)
+        return creep_forces(contact, (x, e, phi), mu, method=impl)
 
     # linear-theory stiffnesses -dFx/dxi, -dFy/deta [N] start the iteration
     k11, k22 = (float(k) for k in linear_stiffness(contact.a, contact.b, contact.G, contact.nu)[:2])

@@ -22,7 +22,6 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
-from wheelrail.api import METHODS, get_method
 
 #: small, fast options per method (only keys the method accepts are passed)
 SMALL_OPTIONS = {"fastsim": {"nx": 10, "ny": 10, "fields": False},
@@ -41,7 +40,7 @@ CONTACTS = [
     wr.hertz(7.5e4, A=0.5 / 0.46, B=0.5 / 0.30, material=STEEL),   # a/b > 1 (tread)
     wr.hertz(5.0e4, A=0.5 / 0.46, B=0.5 / 0.015, material=STEEL),  # a/b < 1 (flange root)
 ]
-LAWS = [m for m in METHODS]
+LAWS = list(wr.tangential_methods())
 
 PROP = settings(max_examples=50, deadline=None,
                 suppress_health_check=[HealthCheck.function_scoped_fixture])
@@ -54,9 +53,8 @@ contact_index = st.sampled_from(range(len(CONTACTS)))
 
 def law(name):
     """(implementation, options) for ``name``."""
-    impl = get_method(name)
-    opts = {k: v for k, v in SMALL_OPTIONS.get(name, {}).items() if k in impl.options}
-    return impl, opts
+    impl = wr.tangential.get(name, SMALL_OPTIONS.get(name, {}))
+    return impl, {}
 
 
 def creepage(name, xi, eta, phi):

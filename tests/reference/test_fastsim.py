@@ -396,5 +396,5 @@ def test_bad_strip_input():
 def test_method_metadata():
     m = Fastsim()
     assert m.name == "fastsim" and any("1982" in ref for ref in m.references)
-    assert m.options["bound"] == "parabolic" and m.options["flexibility"] == "three"
-    assert m.options["scheme"] == "midpoint"
+    assert m.bound == "parabolic" and m.flexibility == "three"
+    assert m.scheme == "midpoint"

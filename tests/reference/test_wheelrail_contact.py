@@ -264,7 +264,7 @@ def test_gap_problem_two_bumps_bem_gives_two_patches_hertz_one():
 
     prob = wr.GapProblem(gap, wr.STEEL, penetration=2.5e-5, search=(-0.02, 0.02, -0.03, 0.03))
     b = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="bem", tangential="fastsim",
-                 elements=120)
+                 grid_elements=120)
     assert len(b.patches) == 2
     big, small = sorted(b.patches, key=lambda p: -p.Fn)
     # reference: two Hertz contacts, each lowered by the far-field (Boussinesq) displacement

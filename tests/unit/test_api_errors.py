@@ -8,13 +8,12 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.api import METHODS
 
 C = wr.hertz(7500.0, 1.0869565, 1.6666667, wr.STEEL)
 OPTS = {"fastsim": {"nx": 6, "ny": 6}, "exact": {"elements": 8}}
 
 
-@pytest.mark.parametrize("method", list(METHODS))
+@pytest.mark.parametrize("method", list(wr.tangential_methods()))
 @pytest.mark.parametrize("creepage, mu, match", [
     ((np.nan, 0.0, 0.0), 0.3, "creepage must be finite"),
     ((0.0, np.inf, 0.0), 0.3, "creepage must be finite"),

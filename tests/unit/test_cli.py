@@ -113,7 +113,7 @@ def test_solve_plot_fastsim_fields(tmp_path, capsys):
 
 def test_solve_bem_exact_writes_traction_and_pressure_figures(tmp_path):
     text = (SPHERE.format(method="exact").replace("[method]\n", '[method]\nnormal = "bem"\n')
-            + "[method.bem]\nelements = 21\n")
+            + "[method.bem]\ngrid_elements = 21\n")
     assert 'normal = "bem"' in text
     case = _write(tmp_path, text)
     png = tmp_path / "t.png"

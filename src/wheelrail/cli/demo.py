@@ -94,11 +94,11 @@ COMBINED = dict(CREEPAGES)["combined"]
 
 def step_creep_forces(ctx: DemoContext):
     """Every available creep-force method at a few creepage combinations."""
-    from ..api import available_methods, creep_forces
+    from ..api import creep_forces, tangential_methods
     from ..errors import InputError
 
     table = {}
-    for m in available_methods():
+    for m in tangential_methods():
         if m == "exact":
             continue  # the exact theory is slow; the demo keeps to the fast laws
         rows = {}
@@ -130,12 +130,12 @@ def step_creep_curves(ctx: DemoContext):
     """Creep curves in ξ and η for every available fast method (two panels)."""
     import numpy as np
 
-    from ..api import available_methods
+    from ..api import tangential_methods
     from ..plotting import creep_curves, new_figure
     from ..plotting._common import finish
     from .creep_curve import normalised, run_sweep_with_progress
 
-    methods = [m for m in available_methods() if m != "exact"]
+    methods = [m for m in tangential_methods() if m != "exact"]
     fig, axes = new_figure(1, 2, size=(12.0, 4.6))
     case = ctx.case.replace(creepage=(0.0, 0.0, 0.0))
     curves, notes = {}, []
@@ -157,7 +157,7 @@ def step_creep_curves(ctx: DemoContext):
 
 def step_fastsim_fields(ctx: DemoContext):
     """FASTSIM traction and adhesion/slip areas of the built-in case."""
-    from ..casefile import solve_case
+    from ..cases import solve_case
     from .solve import plot_result
 
     result = solve_case(ctx.case.replace(tangential="fastsim", creepage=COMBINED))
@@ -285,7 +285,8 @@ def add_arguments(p) -> None:
 def run(args, console) -> int:
     import time
 
-    from ..casefile import DEFAULT_CASE, case_from_dict
+    from ..casefile import case_from_dict
+    from ..cases import DEFAULT_CASE
     from ..errors import InputError, WheelrailError
     from ._output import write_json
 

@@ -110,22 +110,21 @@ def _problem(position, side, roll, z, data, count, r, A, B, roller_radius):
                         position.wheelset, position.track)
 
 
-def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl, timpl, nopts,
-                topts, material, tolerance, vertical, record, advance=None):
+def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl, timpl,
+                material, tolerance, vertical, record, advance=None):
     """Solve every position; ``record(i, result)`` or ``record(i, exception)`` per position.
 
     Parameters are those of :func:`~wheelrail.contact.sweep.wheelset_sweep`
-    (``nimpl``, ``timpl`` method objects, ``nopts``, ``topts`` checked options).
+    (``nimpl``, ``timpl`` configured method objects).
     """
-    from ..api import solve
     from ..plausibility import check_friction, disabled
-    from .wheelrail import _solve_sides
+    from .wheelrail import _solve_sides, solve_wheelrail
 
     n = y.size
     R = motion.roller_radius
     try:
         uses = getattr(nimpl, "_uses_tables", None)
-        points = not (uses is not None and uses(nopts))
+        points = not (uses is not None and uses(nimpl.option_values()))
         ok, rows, th, zs, pts = _batched_geometry(wheelset, track, y, yaw, roll, tolerance, R,
                                                   points)
         if not points:
@@ -150,11 +149,10 @@ def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nim
                 probs = {s: _problem(pos, s, float(th[i]), zsi[s], *pts[s][:2], r,
                                      *pts[s][2:], R) for s in SIDES}
                 with disabled():
-                    res = _solve_sides(pos, motion, mu, nimpl, timpl, nopts, topts, vertical,
+                    res = _solve_sides(pos, motion, mu, nimpl, timpl, vertical,
                                        float(th[i]), zsi, Omega, R, problems=probs)
             else:
-                res = solve(pos, motion=motion, mu=mu, normal=nimpl, tangential=timpl,
-                            vertical=vertical, normal_options=nopts, tangential_options=topts)
+                res = solve_wheelrail(pos, motion, mu, nimpl, timpl, vertical)
         except WheelrailError as exc:
             record(i, exc)
         else:

@@ -53,6 +53,8 @@ from ..errors import ConvergenceError, InputError
 from ..materials import STEEL, as_material_pair
 from ..results import ContactResult, PatchResult, to_jsonable
 from .patch import ContactFrame
+from .. import normal as normal_family
+from .. import tangential as tangential_family
 
 __all__ = ["WheelRailPosition", "WheelProblem", "WheelRailResult", "solve_wheelrail", "SIDES"]
 
@@ -411,7 +413,6 @@ def _creepage_at(frame, sig, motion, Omega, position, roll, zc, R):
 
 
 def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
-                    normal_options=None, tangential_options=None,
                     vertical="total") -> WheelRailResult:
     """Contact patches and forces of a wheelset on a track (see the module docstring).
 
@@ -422,11 +423,11 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
         Velocities (:class:`wheelrail.Motion`).
     mu : float
         Friction coefficient [-], > 0.
-    normal, tangential : str or method object
-        Any names of :func:`wheelrail.normal_methods` and
-        :func:`wheelrail.tangential_methods`.
-    normal_options, tangential_options : dict
-        Options of the two methods.
+    normal : str or NormalMethod
+        A name of :func:`wheelrail.normal_methods` or a configured method
+        (``wr.normal.Bem(element_size=2e-4)``).
+    tangential : str or TangentialMethod
+        A name of :func:`wheelrail.tangential_methods` or a configured law.
     vertical : {"total", "normal"}
         What carries the prescribed vertical load: the total vertical force
         on the wheel, creep forces included (default; the normal problem is
@@ -438,7 +439,6 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
     -------
     WheelRailResult
     """
-    from ..api import get_method, get_normal_method
     from ..geometry.kinematics import Motion
 
     if not isinstance(position, WheelRailPosition):
@@ -446,10 +446,8 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
     if not isinstance(motion, Motion):
         raise InputError(f"motion must be a wheelrail.Motion, got {type(motion).__name__}")
     mu = float(positive("mu", mu))
-    nimpl = get_normal_method(normal)
-    timpl = get_method(tangential)
-    nopts = nimpl.check_options(dict(normal_options or {}))
-    topts = timpl.check_options(dict(tangential_options or {}))
+    nimpl = normal_family.get(normal)
+    timpl = tangential_family.get(tangential)
     ws = position.wheelset
     roll, zs = touching_poses(position)
     Omega = motion.angular_velocity(ws.nominal_radius)
@@ -460,12 +458,11 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
 
     check_friction(mu)
     with disabled():   # the inputs are checked; patches of a few N are normal inside a wheel
-        return _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs,
-                            Omega, R)
+        return _solve_sides(position, motion, mu, nimpl, timpl, vertical, roll, zs, Omega, R)
 
 
-def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs, Omega,
-                 R, problems=None) -> WheelRailResult:
+def _solve_sides(position, motion, mu, nimpl, timpl, vertical, roll, zs, Omega, R,
+                 problems=None) -> WheelRailResult:
     ws = position.wheelset
     patches, force_track, pose = [], {}, {"y": position.y, "yaw": position.yaw, "roll": roll}
     for side in SIDES:
@@ -478,11 +475,11 @@ def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, rol
         history = []            # (normal-load target, total vertical force)
         forces = None
         for outer in range(1, _MAX_VERTICAL + 1):
-            found, info = nimpl.from_wheel(prob, **nopts)
+            found, info = nimpl.from_wheel(prob)
             if not found:
                 raise InputError(f"no contact on the {side} wheel at y = {position.y!r} m")
             cr = [_creepage_at(p.frame, sig, motion, Omega, position, roll, zc, R) for p in found]
-            forces = timpl.solve_patches(found, cr, mu, previous=forces, **topts)
+            forces = timpl.solve_patches(found, cr, mu, previous=forces)
             F = np.zeros(3)
             for p, fr in zip(found, forces):
                 g = p.frame.contact_angle

@@ -329,7 +329,8 @@ class VirtualPenetration:
                                f"{best[1]!r} m, load {best[2]!r} N)")
 
     # ----------------------------------------------------------- Hertzian contact
-    def from_contact(self, contact, **opts):
+    def from_contact(self, contact):
+        opts = self.option_values()
         from ._base import GapProblem
 
         A, B = float(contact.A), float(contact.B)
@@ -341,7 +342,7 @@ class VirtualPenetration:
 
         prob = GapProblem(gap, contact.materials, load=float(contact.load),
                           search=(-L, L, -L, L))
-        return self.from_gap(prob, **opts)
+        return self.from_gap(prob)
 
     # ----------------------------------------------------------- gap problems
     def _gap_line(self, problem, centre, ylim, n, dx):
@@ -357,7 +358,8 @@ class VirtualPenetration:
         Ax = (hp + hm - 2.0 * h0) / (2.0 * dx * dx)
         return eta, h0 - hmin, Ax
 
-    def from_gap(self, problem, **opts):
+    def from_gap(self, problem):
+        opts = self.option_values()
         from ..materials import as_material_pair
         from ._gap import _check_search, _evaluate, _minimum
 
@@ -435,8 +437,8 @@ class VirtualPenetration:
         from ..contact.patch import ContactPatch
         from ._patch_kernel import strip_patch
 
-        strips = int(opts.get("strips", self._default_strips))
-        cells = int(opts.get("cells", self._default_cells))
+        strips = int(opts["strips"])
+        cells = int(opts["cells"])
         eta_n = reg.eta
         eta_ref = float(reg.info.get("eta_ref", eta_n[reg.j0 - reg.nodes.start]))
         # strips: x_l² (linear in the interpenetration) and the peaks interpolated from the
@@ -574,5 +576,6 @@ class VirtualPenetration:
         t = (eta_c - e_nodes[0]) / (e_nodes[-1] - e_nodes[0])
         return float(reg.eta[0] + t * (reg.eta[-1] - reg.eta[0]))
 
-    def from_wheel(self, problem, **opts):
+    def from_wheel(self, problem):
+        opts = self.option_values()
         return self._wheel_solve(problem, opts)

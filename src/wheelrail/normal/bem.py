@@ -86,6 +86,7 @@ from ..halfspace.fft import InfluenceOperator, influence_operator
 from ..halfspace.grid import Grid
 from ..materials import MaterialPair, as_material_pair
 from ..results import Status, to_jsonable
+from ..options import configured, option
 from ._base import NormalMethod
 
 __all__ = ["Bem", "NormalSolution", "ContactTruncatedWarning", "solve_normal", "hertz_grid",
@@ -619,6 +620,7 @@ def _elements_for(length, elements, element_size):
     return max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
 
 
+@configured
 class Bem(NormalMethod):
     """Boundary elements on the elastic half-space (the exact normal problem).
 
@@ -641,15 +643,15 @@ class Bem(NormalMethod):
 
     Other Parameters
     ----------------
-    elements : int, default 40
+    grid_elements : int, default 40
         Elements along the longer side of the potential contact area
         (ignored when ``element_size`` is given).
     element_size : float or None
         Element size [m] (square elements), e.g. 2e-4 for a 0.2 mm grid.
-    margin : float, default 1.2
+    window_margin : float, default 1.2
         Window half-size / half-size of the rigid interpenetration region.
-    tol : float, default 1e-8
-        Polonsky–Keer tolerance.
+    pressure_tol : float, default 1e-8
+        Polonsky–Keer tolerance of the pressure solve.
     max_enlarge : int, default 4
         Window enlargements when the contact reaches the window edge.
     cells : int, default 40
@@ -677,43 +679,55 @@ class Bem(NormalMethod):
         "on the multi-level multi-summation and conjugate gradient techniques, Wear 231 (1999) "
         "206-219.",
     )
-    options = {"elements": 40, "element_size": None, "margin": 1.2, "tol": 1e-8,
-               "max_enlarge": 4, "cells": 40, "group_angle": 0.2, "width": 0.04}
+    grid_elements: int = option(40, lo=2, doc="elements along the longer side of the potential "
+                                "contact area (ignored when element_size is given)")
+    element_size: float | None = option(None, kind="float", lo=0.0, lo_open=True, allow_none=True,
+                                        unit="m", doc="element size (square elements)")
+    window_margin: float = option(1.2, lo=0.0, hi=10.0, lo_open=True,
+                                  doc="window half-size / half-size of the rigid "
+                                      "interpenetration region")
+    pressure_tol: float = option(1e-8, lo=0.0, hi=1.0, lo_open=True, hi_open=True,
+                                 doc="Polonsky-Keer tolerance of the pressure solve")
+    max_enlarge: int = option(4, lo=0, doc="window enlargements when the contact reaches its edge")
+    cells: int = option(40, lo=2, hi=2000, doc="cells per strip of the patch description")
+    group_angle: float = option(0.2, lo=0.0, hi=3.2, lo_open=True, unit="rad",
+                                doc="largest contact-angle difference of points on one grid")
+    width: float = option(0.04, lo=0.0, hi=0.2, lo_open=True, unit="m",
+                          doc="extent of the lateral separation function around a group")
 
-    def from_contact(self, contact, elements=40, element_size=None, margin=1.2, tol=1e-8,
-                     max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
+    def from_contact(self, contact):
         from ..contact.patch import ContactPatch
 
-        n = _elements_for(2.0 * max(float(contact.a), float(contact.b)), elements, element_size)
+        n = _elements_for(2.0 * max(float(contact.a), float(contact.b)), self.grid_elements,
+                          self.element_size)
         grid, gap = hertz_grid(contact, elements=n, margin=max(1.25, 1.0 + 3.0 / n))
-        sol = solve_normal(grid, gap, contact.materials, load=float(contact.load), tol=tol)
+        sol = solve_normal(grid, gap, contact.materials, load=float(contact.load),
+                           tol=self.pressure_tol)
         return (ContactPatch.from_grid(grid, sol.pressure, sol.contact, contact.materials,
                                        penetration=sol.penetration, A=float(contact.A),
-                                       B=float(contact.B), cells=cells, method="bem",
+                                       B=float(contact.B), cells=self.cells, method="bem",
                                        info=_solution_info(sol)),)
 
-    def from_gap(self, problem, elements=40, element_size=None, margin=1.2, tol=1e-8,
-                 max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
+    def from_gap(self, problem):
         from ._gap import _window
 
         w = _window(problem.gap, problem.penetration, problem.load, problem.materials,
-                    elements, margin, problem.search)
+                    self.grid_elements, self.window_margin, problem.search)
         grid = w["grid"]
-        if element_size is not None:
-            grid = _square_grid(grid.bounds, element_size)
+        if self.element_size is not None:
+            grid = _square_grid(grid.bounds, self.element_size)
         sol, grid = _solve_enlarging(problem.gap, grid, problem.materials, w["search"],
-                                     load=problem.load, penetration=problem.penetration, tol=tol,
-                                     max_enlarge=max_enlarge)
-        return _patches_of(sol, problem.materials, cells, frames=None)
+                                     load=problem.load, penetration=problem.penetration,
+                                     tol=self.pressure_tol, max_enlarge=self.max_enlarge)
+        return _patches_of(sol, problem.materials, self.cells, frames=None)
 
-    def from_wheel(self, problem, elements=40, element_size=None, margin=1.2, tol=1e-8,
-                   max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
+    def from_wheel(self, problem):
         from ._wheel_bem import solve_wheel
 
-        return solve_wheel(problem, elements=elements, element_size=element_size, margin=margin,
-                           tol=tol, max_enlarge=max_enlarge, cells=cells,
-                           group_angle=float(positive("group_angle", group_angle)),
-                           width=float(positive("width", width)))
+        return solve_wheel(problem, elements=self.grid_elements, element_size=self.element_size,
+                           margin=self.window_margin, tol=self.pressure_tol,
+                           max_enlarge=self.max_enlarge, cells=self.cells,
+                           group_angle=self.group_angle, width=self.width)
 
 
 def _solution_info(sol) -> dict:

@@ -28,7 +28,8 @@ import numpy as np
 from .._validation import as_float_array, positive, scalar_or_array
 from ..errors import InputError
 from ..materials import MaterialPair, as_material_pair
-from ._base import NormalMethod
+from ..options import configured, option
+from ._base import NormalMethod, PatchDescription
 from ..plausibility import check_hertz, check_rolling_radius
 
 __all__ = [
@@ -420,6 +421,11 @@ def hertz(load, A, B, material) -> HertzContact:
     return _make(a, b, p0, delta, load, A, B, pair)
 
 
+#: Names of the principal radii [m] taken by :func:`hertz_from_radii` (case files, sweeps).
+RADII_KEYS = ("wheel_rolling_radius", "wheel_profile_radius", "rail_profile_radius",
+              "rail_longitudinal_radius")
+
+
 def hertz_from_radii(load, wheel_rolling_radius, wheel_profile_radius=np.inf,
                      rail_profile_radius=np.inf, rail_longitudinal_radius=np.inf,
                      *, material) -> HertzContact:
@@ -590,7 +596,8 @@ def _check_on_rail(problem, k, b):
             "these profiles cannot carry that load")
 
 
-class Hertz(NormalMethod):
+@configured
+class Hertz(NormalMethod, PatchDescription):
     """Hertz's theory as a normal method: one ellipse per contact point.
 
     * a :class:`HertzContact`: its own ellipse;
@@ -621,14 +628,15 @@ class Hertz(NormalMethod):
     references = ("H. Hertz, Ueber die Berührung fester elastischer Körper, J. reine angew. "
                   "Math. 92 (1882) 156-171.",
                   "K.L. Johnson, Contact Mechanics, Cambridge University Press, 1985.")
-    options = {"strips": 40, "cells": 40}
 
-    def from_contact(self, contact, strips=40, cells=40):
+    def from_contact(self, contact):
+        strips, cells = self.strips, self.cells
         from ..contact.patch import ContactPatch
 
         return (ContactPatch.from_hertz(contact, strips=strips, cells=cells),)
 
-    def from_gap(self, problem, strips=40, cells=40):
+    def from_gap(self, problem):
+        strips, cells = self.strips, self.cells
         from ..contact.patch import ContactPatch
         from ..errors import NoContactError
         from ._gap import _check_search, _minimum, _principal_curvatures
@@ -658,7 +666,8 @@ class Hertz(NormalMethod):
                 "note": "principal axes of the gap assumed along x and y"}
         return (replace(patch, info=info),)
 
-    def from_wheel(self, problem, strips=40, cells=40):
+    def from_wheel(self, problem):
+        strips, cells = self.strips, self.cells
         from ..contact.patch import ContactPatch
 
         pts = problem.points

@@ -40,11 +40,14 @@ References
 from __future__ import annotations
 
 import math
+import numbers
+from typing import Any
 
 import numpy as np
 
 from ..errors import InputError
-from ._base import NormalMethod
+from ..options import configured, option
+from ._base import NormalMethod, PatchDescription
 from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
@@ -66,6 +69,19 @@ def penetration_factor(value, A, B):
     if not (math.isfinite(v) and 0.0 < v <= 1.0):
         raise InputError(f"penetration_factor must lie in (0, 1], got {value!r}")
     return v, "given"
+
+
+def _penetration_factor_option(name, value):
+    """The ``penetration_factor`` option: ``"hertz"`` or a number in (0, 1]."""
+    if isinstance(value, str):
+        if value != "hertz":
+            raise InputError(f"{name} must be 'hertz' or a number in (0, 1], got {value!r}")
+        return value
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InputError(f"{name} must be 'hertz' or a number in (0, 1], got {value!r}")
+    if not (math.isfinite(float(value)) and 0.0 < float(value) <= 1.0):
+        raise InputError(f"{name} must lie in (0, 1], got {value!r}")
+    return float(value)
 
 
 def shape_correction(eta, xl, h, j0):
@@ -97,7 +113,8 @@ def shape_correction(eta, xl, h, j0):
     return eta_c, xl * sx, h * sy, alpha
 
 
-class KikPiotrowski(VirtualPenetration, NormalMethod):
+@configured
+class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
     """Kik–Piotrowski virtual penetration as a normal method (see the module docstring).
 
     Works on a gap h(x, y) (rolling direction x; load or approach prescribed),
@@ -133,12 +150,13 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
         "non-Hertzian problems and its application in rail vehicle dynamic simulations, "
         "Vehicle System Dynamics 46 (2008) 27-48.",
     )
-    options = {"penetration_factor": "hertz", "shape_correction": True, "strips": 40,
-               "cells": 40}
+    penetration_factor: Any = option("hertz", kind="any", check=_penetration_factor_option,
+                                     doc="epsilon = delta0/delta: 'hertz' or a number in (0, 1]")
+    shape_correction: bool = option(True, doc="Kik & Piotrowski's length/width correction")
 
     def _solve_line(self, line, delta, opts):
         eps, how = self._eps(line, opts)
-        correct = bool(opts.get("shape_correction", True))
+        correct = bool(opts["shape_correction"])
         d0 = eps * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]
@@ -194,8 +212,8 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
 
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: the same equations as _solve_line in one kernel
-        key = ("kp_load", opts.get("penetration_factor", "hertz"),
-               bool(opts.get("shape_correction", True)))
+        key = ("kp_load", opts["penetration_factor"],
+               bool(opts["shape_correction"]))
         args = line.extra.get(key)
         if args is None:
             from . import _kp_kernel
@@ -216,9 +234,9 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
     @staticmethod
     def _eps(line, opts):
         """(ε, how) of the line for the option penetration_factor (cached on the line)."""
-        key = ("eps", opts.get("penetration_factor", "hertz"))
+        key = ("eps", opts["penetration_factor"])
         if key not in line.extra:
-            line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
+            line.extra[key] = penetration_factor(opts["penetration_factor"],
                                                  line.A, line.B)
         return line.extra[key]
 

@@ -36,7 +36,8 @@ import math
 
 import numpy as np
 
-from ._base import NormalMethod
+from ..options import configured, option
+from ._base import NormalMethod, PatchDescription
 from ._strips import Region, VirtualPenetration
 
 __all__ = ["Linder", "LINDER_FACTOR"]
@@ -59,7 +60,8 @@ def hertz_load_from_axes(a, b, delta, E_star):
     return 2.0 * np.pi * a * b * E_star * delta / (3.0 * s * K)
 
 
-class Linder(VirtualPenetration, NormalMethod):
+@configured
+class Linder(VirtualPenetration, NormalMethod, PatchDescription):
     """Linder's method as a normal method (see the module docstring).
 
     Problems: a gap h(x, y), a Hertzian contact, a wheel on its rail (as
@@ -82,7 +84,6 @@ class Linder(VirtualPenetration, NormalMethod):
         "C. Linder, Verschleiss von Eisenbahnraedern mit Unrundheiten, Dissertation ETH "
         "Zuerich Nr. 12342, 1997.",
     )
-    options = {"strips": 40, "cells": 40}
 
     def _solve_line(self, line, delta, opts):
         from ._patch_kernel import positive_runs

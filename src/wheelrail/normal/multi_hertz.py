@@ -66,11 +66,13 @@ References
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
-from ._base import NormalMethod
+from ..options import configured, option
+from ._base import NormalMethod, PatchDescription
 from ._strips import VirtualPenetration, hertz_shape
 
 __all__ = ["MultiHertz", "sauvage_ellipses"]
@@ -114,7 +116,19 @@ def sauvage_ellipses(eta, f, Ax, Bx, h1_factor, delta, max_ellipses=7):
     return out
 
 
-class MultiHertz(VirtualPenetration, NormalMethod):
+def _caf_range(name, value):
+    """The ``caf_range`` option: (start, stop) [m], start < stop, as a tuple of floats."""
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be (start, stop) in m, got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise InputError(f"{name} must be (start, stop) in m with start < stop, got {value!r}")
+    return (lo, hi)
+
+
+@configured
+class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     """Multi-Hertzian methods (Sauvage, Pascal, Ayasse); see the module docstring.
 
     Other Parameters
@@ -147,24 +161,32 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         "J.B. Ayasse, H. Chollet, J.L. Maupu, Parametres caracteristiques du contact "
         "roue-rail, Rapport INRETS 225, 2000.",
     )
-    options = {"variant": "pascal", "max_ellipses": 7, "strips": 40, "cells": 40,
-               "caf": "table", "caf_range": (-0.02, 0.02), "caf_tolerance": 2e-4,
-               "caf_overlap": "general"}
+    variant: str = option("pascal", choices=VARIANTS, doc="multi-Hertzian variant")
+    max_ellipses: int = option(7, lo=1, hi=20, doc="most ellipses per contact plane")
+    caf: str = option("table", choices=("table", "direct"),
+                      doc="variant 'ayasse' on a wheel: CAF tables or the pose's points")
+    caf_range: tuple = option((-0.02, 0.02), kind="any", unit="m", check=_caf_range,
+                              doc="lateral shifts (start, stop) covered by the CAF tables")
+    caf_tolerance: float = option(2e-4, lo=0.0, lo_open=True, unit="rad",
+                                  doc="largest deviation of the CAF lines from the contact angle")
+    caf_overlap: str = option("general", choices=("general", "eq3"),
+                              doc="overlap widths at a jump of the CAF tables")
 
     @staticmethod
     def _variant(opts):
-        v = opts.get("variant", "pascal")
+        v = opts["variant"]
         if v not in VARIANTS:
             raise InputError(f"variant must be one of {', '.join(VARIANTS)}, got {v!r}")
         return v
 
     # ------------------------------------------------------------------ contact
-    def from_contact(self, contact, **opts):
+    def from_contact(self, contact):
+        opts = self.option_values()
         from ..contact.patch import ContactPatch
 
         self._variant(opts)
-        return (ContactPatch.from_hertz(contact, strips=opts.get("strips", 40),
-                                        cells=opts.get("cells", 40), method=self.name),)
+        return (ContactPatch.from_hertz(contact, strips=opts["strips"],
+                                        cells=opts["cells"], method=self.name),)
 
     # ------------------------------------------------------------------ lines
     def _curv(self, line):
@@ -184,7 +206,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         E_star = line.extra["E_star"]
         out = []
         for k, hk, dk in sauvage_ellipses(line.eta, line.f, line.Ax, Bx, c, delta,
-                                          int(opts.get("max_ellipses", 7))):
+                                          int(opts["max_ellipses"])):
             A, B = float(line.Ax[k]), float(Bx[k])
             _, _, _, d1 = hertz_shape(A, B)
             d1 = d1 / E_star ** (2.0 / 3.0)          # approach of a unit load [m/N^(2/3)]
@@ -203,7 +225,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
 
         variant = self._variant(opts)
         ell = self._ellipses(line, delta, opts)
-        strips, cells = int(opts.get("strips", 40)), int(opts.get("cells", 40))
+        strips, cells = int(opts["strips"]), int(opts["cells"])
         if variant == "pascal" and len(ell) > 1:
             hcs = [hertz_from_penetration(e[3], e[1], e[2], pair) for e in ell]
             N = np.array([e[4] for e in ell])
@@ -231,7 +253,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         return out
 
     # ------------------------------------------------------------------ gap
-    def from_gap(self, problem, **opts):
+    def from_gap(self, problem):
+        opts = self.option_values()
         if self._variant(opts) == "ayasse":
             raise InputError("variant 'ayasse' works on the candidate contact points of a "
                              "wheel on its rail (its contact-angle function); use it with a "
@@ -267,7 +290,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         return tuple(patches)
 
     # ------------------------------------------------------------------ wheel
-    def from_wheel(self, problem, **opts):
+    def from_wheel(self, problem):
+        opts = self.option_values()
         from ..materials import as_material_pair
 
         variant = self._variant(opts)
@@ -350,10 +374,10 @@ class MultiHertz(VirtualPenetration, NormalMethod):
     @staticmethod
     def _uses_tables(opts):
         """True when the options select variant "ayasse" with the CAF tables."""
-        caf = opts.get("caf", "table")
+        caf = opts["caf"]
         if caf not in ("table", "direct"):
             raise InputError(f"caf must be 'table' or 'direct', got {caf!r}")
-        return opts.get("variant", "pascal") == "ayasse" and caf == "table"
+        return opts["variant"] == "ayasse" and caf == "table"
 
     @staticmethod
     def _lead(problem, wheel_y):
@@ -382,7 +406,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
                              "overlap depends on it); got a prescribed approach")
-        rng = opts.get("caf_range", (-0.02, 0.02))
+        rng = opts["caf_range"]
         try:
             lo, hi = (float(v) for v in rng)
         except (TypeError, ValueError):
@@ -397,10 +421,10 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                              f"lies outside the CAF table range caf_range = {rng!r} m; widen "
                              "caf_range or use caf='direct'")
         table = cached_caf_table(problem.wheelset, problem.track, problem.side, (lo, hi),
-                                 tolerance=float(opts.get("caf_tolerance", 2e-4)))
+                                 tolerance=float(opts["caf_tolerance"]))
         pair = as_material_pair(problem.materials)
         Q = float(problem.vertical_load)
-        contacts = caf_contacts(table, ty, Q, pair, overlap=opts.get("caf_overlap", "general"))
+        contacts = caf_contacts(table, ty, Q, pair, overlap=opts["caf_overlap"])
         extra_A = 0.0 if problem.roller_radius is None else 0.5 / problem.roller_radius
         N = Q / sum(w * math.cos(ln["gamma"]) for w, ln, _ in contacts)
         rigid = table.branch_of(ty)
@@ -415,8 +439,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             frame = ContactFrame(problem.side, ln["wheel_y"], ln["rail_y"], ln["track_y"],
                                  ln["track_z"], self._lead(problem, ln["wheel_y"]), ln["gamma"],
                                  ln["rolling_radius"])
-            p = ContactPatch.from_hertz(hc, strips=int(opts.get("strips", 40)),
-                                        cells=int(opts.get("cells", 40)), frame=frame,
+            p = ContactPatch.from_hertz(hc, strips=int(opts["strips"]),
+                                        cells=int(opts["cells"]), frame=frame,
                                         method=self.name)
             p.info.update({"variant": "ayasse", "share": w, "caf": "table"})
             patches.append(p)
@@ -467,8 +491,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             if w <= 0:
                 continue
             hc = hertz(w * N, A[k], B[k], pair)
-            p = ContactPatch.from_hertz(hc, strips=int(opts.get("strips", 40)),
-                                        cells=int(opts.get("cells", 40)),
+            p = ContactPatch.from_hertz(hc, strips=int(opts["strips"]),
+                                        cells=int(opts["cells"]),
                                         frame=problem.frames[k], method=self.name)
             p.info.update({"variant": "ayasse", "share": w})
             patches.append(p)

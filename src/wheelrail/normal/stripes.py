@@ -34,7 +34,8 @@ import math
 
 import numpy as np
 
-from ._base import NormalMethod
+from ..options import configured, option
+from ._base import NormalMethod, PatchDescription
 from ._strips import Region, VirtualPenetration, hertz_shape
 
 __all__ = ["Stripes", "stripes_constants"]
@@ -81,7 +82,7 @@ def _smoothed_at(line, opts, sm, idx):
     d2, krev = sm
     if krev is None:
         return d2[idx]
-    key = ("stripes_B", opts.get("smoothing", 0.002))
+    key = ("stripes_B", opts["smoothing"])
     done = line.extra.get(key)
     if done is None:
         done = line.extra[key] = np.full(d2.size, np.nan)
@@ -119,7 +120,8 @@ def _smoothed_B(eta, f, length):
     return _smoothed_range(sm, 0, sm[0].size)
 
 
-class Stripes(VirtualPenetration, NormalMethod):
+@configured
+class Stripes(VirtualPenetration, NormalMethod, PatchDescription):
     """STRIPES (semi-Hertzian) as a normal method (see the module docstring).
 
     Other Parameters
@@ -140,10 +142,11 @@ class Stripes(VirtualPenetration, NormalMethod):
         "J.B. Ayasse, H. Chollet, Determination of the wheel rail contact patch in "
         "semi-Hertzian conditions, Vehicle System Dynamics 43 (2005) 161-172.",
     )
-    options = {"smoothing": 0.002, "strips": 40, "cells": 40}
+    smoothing: float = option(0.002, lo=0.0, unit="m",
+                              doc="length of the Gaussian smoothing of B(y)")
 
     def _line_data(self, line, opts):
-        key = ("stripes", opts.get("smoothing", 0.002))
+        key = ("stripes", opts["smoothing"])
         if key not in line.extra:
             from ..errors import InputError
 
@@ -153,7 +156,7 @@ class Stripes(VirtualPenetration, NormalMethod):
                                  f"convex (A = {A!r}, B = {B!r} 1/m); use normal='bem'")
             eps, comp, kp = stripes_constants(A, B)
             # B(y) smoothed: computed on the nodes of the regions only (_solve_line)
-            sm = _smoothing(line.eta, line.f, float(opts.get("smoothing", 0.002)))
+            sm = _smoothing(line.eta, line.f, float(opts["smoothing"]))
             line.extra[key] = (eps, comp, kp, sm)
         return line.extra[key]
 
@@ -178,7 +181,7 @@ class Stripes(VirtualPenetration, NormalMethod):
             # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i),
             # λ_i with the smoothed B, floored (negative between close patches: small
             # positive); only at the nodes the patch's strips read (1 elsewhere, unused)
-            idx = _read_nodes(line.eta[i0:i1], int(opts.get("strips", self._default_strips)))
+            idx = _read_nodes(line.eta[i0:i1], int(opts["strips"]))
             Bs = np.maximum(_smoothed_at(line, opts, sm, i0 + idx), 0.05 * line.B)
             nm = np.ones(i1 - i0)
             nm[idx] = _n_over_m_array(line.Ax[i0 + idx] / Bs)

@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..casefile import RADII_KEYS
+from .. import tangential
+from ..normal.hertz import RADII_KEYS
 from ..errors import InputError
 
 __all__ = ["EVALUATORS", "STATUS_CODES", "get_evaluator", "CreepEvaluator"]
@@ -43,7 +44,7 @@ class CreepEvaluator:
 
     Inputs: ``xi, eta`` [-], ``phi`` [1/m], ``mu`` [-], ``load`` [N]; the
     contact as curvatures ``A, B`` [1/m], semi-axes ``a, b`` [m] or principal
-    radii [m] (:data:`wheelrail.casefile.RADII_KEYS`); material ``E`` [Pa],
+    radii [m] (:data:`wheelrail.normal.hertz.RADII_KEYS`); material ``E`` [Pa],
     ``nu`` [-] (default steel, the same for wheel and rail); ``method`` (a
     name, default ``"fastsim"``). With a ``method`` axis, ``options`` maps each
     method name to its options.
@@ -73,26 +74,20 @@ class CreepEvaluator:
 
     def methods(self, spec) -> list[str]:
         """Registry names of the methods of the sweep."""
-        from ..api import method_key
-
         if "method" in spec.fixed:
             given = [spec.fixed["method"]]
         else:
             given = dict(spec.axes).get("method", np.array(["fastsim"], dtype=object)).tolist()
         out = []
         for m in given:
-            if not isinstance(m, str) or method_key(m) is None:
-                from ..api import METHODS
-
+            if not isinstance(m, str):
                 raise InputError(f"unknown creep-force method {m!r}; choose one of "
-                                 + ", ".join(METHODS))
-            out.append(method_key(m))
+                                 + ", ".join(tangential.registry()))
+            out.append(tangential.get_class(m, argname="creep-force").name)
         return out
 
     def options_for(self, spec, method: str) -> dict:
         """Options of ``method`` (flat options, or ``options[method]`` with a method axis)."""
-        from ..api import method_key
-
         opts = dict(spec.options)
         if "method" in spec.fixed or "method" not in dict(spec.axes):
             return opts
@@ -100,12 +95,10 @@ class CreepEvaluator:
             if not isinstance(v, dict) and not hasattr(v, "items"):
                 raise InputError(f"with a method axis, options must be given per method "
                                  f"([sweep.options.<method>]), got option {k!r} = {v!r}")
-        return {k: v for name, o in opts.items() if method_key(name) == method
+        return {k: v for name, o in opts.items() if tangential.get_class(name).name == method
                 for k, v in dict(o).items()}
 
     def check(self, spec) -> None:
-        from ..api import get_method
-
         names = self._names(spec)
         unknown = names - set(self.quantities)
         if unknown:
@@ -125,8 +118,7 @@ class CreepEvaluator:
         if used[0] == "radii" and "wheel_rolling_radius" not in names:
             raise InputError("wheel_rolling_radius is required with radii")
         for m in self.methods(spec):
-            impl = get_method(m)
-            impl.check_options(self.options_for(spec, m))
+            tangential.get(m, self.options_for(spec, m))
 
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, spec, cols: dict) -> dict:
@@ -170,20 +162,20 @@ class CreepEvaluator:
         return hertz_from_radii(load, material=material, **radii)
 
     def _solve(self, spec, cols, idx, key, out) -> None:
-        from ..api import creep_forces, get_method
         from ..materials import Material
 
         method, E, nu = key
         contact = self._contact(cols, idx, Material(E, nu))
         opts = self.options_for(spec, method)
-        impl = get_method(method)
-        if "on_fail" in impl.options:
+        decl = tangential.get_class(method).option_declarations()
+        if "on_fail" in decl:
             opts.setdefault("on_fail", "status")  # a non-converged point is recorded, not raised
-        if "progress" in impl.options:
+        if "progress" in decl:
             opts.setdefault("progress", False)    # the sweep shows its own progress
+        impl = tangential.get(method, opts)
         creep = np.stack([cols.get(k, np.zeros(len(cols["mu"])))[idx].astype(float)
                           for k in ("xi", "eta", "phi")], axis=1)
-        r = creep_forces(contact, creep, cols["mu"][idx].astype(float), method=method, **opts)
+        r = impl.forces(contact, creep, cols["mu"][idx].astype(float))
         for k, v in (("Fx", r.Fx), ("Fy", r.Fy), ("Mz", r.Mz), ("Fn", contact.load),
                      ("a", contact.a), ("b", contact.b), ("p0", contact.p0)):
             out[k][idx] = np.asarray(v, float).reshape(-1)

@@ -36,7 +36,7 @@ The quantities each evaluator takes are listed in
 :data:`wheelrail.sweeps.evaluators.EVALUATORS`; the creep-force evaluator
 (default, ``evaluator = "creep"``) takes ``xi, eta`` [-], ``phi`` [1/m],
 ``mu`` [-], ``load`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
-:data:`wheelrail.casefile.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
+:data:`wheelrail.normal.hertz.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
 ``method`` (names). The geometry evaluator (``evaluator = "geometry"``)
 takes ``y`` [m], ``yaw`` [rad], ``wheel``, ``rail`` (profile names or files),
 ``gauge``, ``inclination``, ``nominal_radius``, ``flange_back``.
@@ -55,6 +55,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..errors import CaseFileError, InputError
+from .._toml import Reader, tomllib
 
 __all__ = ["SweepSpec", "load_sweep", "sweep_from_dict", "expand_range"]
 
@@ -340,8 +341,6 @@ def load_sweep(path_or_str) -> SweepSpec:
         Unreadable or malformed file, unknown keys, axes without values; the
         message names the file, the table, the key and the value.
     """
-    from ..casefile import tomllib
-
     sha = None
     if isinstance(path_or_str, str) and ("\n" in path_or_str or "=" in path_or_str):
         text, source = path_or_str, "<string>"
@@ -369,10 +368,9 @@ def load_sweep(path_or_str) -> SweepSpec:
 
 def sweep_from_dict(data: Mapping, source: str = "<dict>", sha256: str | None = None) -> SweepSpec:
     """Validate a parsed sweep case (``{"sweep": {...}}``) into a :class:`SweepSpec`."""
-    from ..casefile import _Reader
     from .evaluators import get_evaluator
 
-    r = _Reader(source)
+    r = Reader(source)
     r.unknown("", data, ("sweep",))
     tbl = r.required_table(data, "sweep")
     if not isinstance(tbl, Mapping):

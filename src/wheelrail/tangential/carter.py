@@ -78,6 +78,7 @@ import numpy as np
 from .._validation import as_float_array, in_range, positive, scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
+from ..options import configured, option
 from ._base import TangentialMethod
 
 __all__ = [
@@ -283,6 +284,7 @@ def carter_ellipse_force(a, b, G, nu, Fn, mu, xi, form="global", stiffness="cart
     raise InputError(f"form must be 'global' or 'strip', got {form!r}")
 
 
+@configured
 class Carter(TangentialMethod):
     """Carter's theory of tractive rolling (longitudinal creep only).
 
@@ -321,17 +323,16 @@ class Carter(TangentialMethod):
         "subjected to radial and tangential forces, Proc. IMechE 177 (1963) 95-114.",
         "K.L. Johnson, Contact Mechanics, Cambridge University Press, 1985, sections 8.2, 8.4.",
     )
-    options = {"form": "global", "stiffness": "carter", "lateral": "error"}
+    form: str = option("global", choices=("global", "strip"),
+                       doc="Carter's curve for the whole ellipse, or strip by strip")
+    stiffness: str = option("carter", choices=("carter", "kalker"),
+                            doc="initial slope of the global curve")
+    lateral: str = option("error", choices=("error", "ignore"),
+                          doc="non-zero eta or phi: refuse, or ignore (Fy = Mz = 0)")
 
-    def solve(self, contact, xi, eta, phi, mu, form="global", stiffness="carter",
-              lateral="error"):
+    def solve(self, contact, xi, eta, phi, mu):
         """Carter creep force for a (batch of) Hertzian contact(s); see the class docstring."""
-        if form not in ("global", "strip"):
-            raise InputError(f"option form must be 'global' or 'strip', got {form!r}")
-        if stiffness not in ("carter", "kalker"):
-            raise InputError(f"option stiffness must be 'carter' or 'kalker', got {stiffness!r}")
-        if lateral not in ("error", "ignore"):
-            raise InputError(f"option lateral must be 'error' or 'ignore', got {lateral!r}")
+        form, stiffness, lateral = self.form, self.stiffness, self.lateral
         eta = np.asarray(eta, float)
         phi = np.asarray(phi, float)
         if lateral == "error":

@@ -30,6 +30,7 @@ from .._validation import integer, scalar_or_array
 from ..errors import InputError
 from ..materials import as_material_pair
 from ..results import CreepForces, Status
+from ..options import configured, option
 from ._base import TangentialMethod
 
 __all__ = ["Exact", "exact_single"]
@@ -109,6 +110,7 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     return GapSolution(normal, tang, 1, 0.0)
 
 
+@configured
 class Exact(TangentialMethod):
     """Kalker's exact (half-space, boundary-element) theory of steady rolling.
 
@@ -149,16 +151,22 @@ class Exact(TangentialMethod):
         "J. Zhao, E.A.H. Vollebregt, C.W. Oosterlee, A fast nonlinear conjugate gradient based "
         "method for 3D frictional contact problems, J. Comput. Phys. 288 (2015) 86-100.",
     )
-    options = {"elements": 40, "margin": 1.1, "tol": 1e-6, "maxiter": 100,
-               "on_fail": "raise", "progress": None}
+    aliases = ("kalker",)
+    elements: int = option(40, lo=4, doc="elements across the Hertz contact in each direction")
+    margin: float = option(1.1, lo=1.0, hi=10.0, lo_open=True,
+                           doc="half-width of the grid window in semi-axes")
+    tol: float = option(1e-6, lo=0.0, hi=1.0, lo_open=True, hi_open=True,
+                        doc="tangential solver tolerance (slip residual / rigid slip)")
+    maxiter: int = option(100, lo=1, doc="Newton iterations of the tangential solver")
+    on_fail: str = option("raise", choices=("raise", "status"),
+                          doc="not converged: raise ConvergenceError, or return with a status")
+    progress: bool | None = option(None, choices=(None, True, False),
+                                   doc="progress bar for batches (None: above 20 cases)")
 
-    def solve(self, contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6,
-              maxiter=100, on_fail="raise", progress=None):
+    def solve(self, contact, xi, eta, phi, mu):
         """Creep forces of a (batch of) Hertzian contact(s); see the class docstring."""
-        elements = integer("elements", elements, 4)
-        maxiter = integer("maxiter", maxiter, 1)
-        if on_fail not in ("raise", "status"):
-            raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
+        elements, margin, tol, maxiter = self.elements, self.margin, self.tol, self.maxiter
+        on_fail, progress = self.on_fail, self.progress
         shape = np.shape(contact.a)
         n = int(np.prod(shape)) if shape else 1
         xs, es, ps, ms = (np.broadcast_to(np.asarray(v, float), shape).reshape(-1)
@@ -186,21 +194,17 @@ class Exact(TangentialMethod):
                 bar.stop()
         return _to_creep_forces(sols, shape, ms, self.name)
 
-    def solve_patch(self, patch, xi, eta, phi, mu, elements=40, margin=1.1, tol=1e-6,
-                    maxiter=100, on_fail="raise", progress=None):
+    def solve_patch(self, patch, xi, eta, phi, mu):
         """Exact theory on one patch: the patch's own pressure field if it has one
         (boundary elements; ``elements``/``margin`` then do not apply), else the
         boundary-element solution of its ellipse (as :meth:`solve`)."""
-        return _solve_patches_exact(self, (patch,), ((xi, eta, phi),), float(mu), tol, maxiter,
-                                    on_fail, elements, margin)[0]
+        return _solve_patches_exact(self, (patch,), ((xi, eta, phi),), float(mu))[0]
 
-    def solve_patches(self, patches, creepages, mu, previous=None, elements=40, margin=1.1,
-                      tol=1e-6, maxiter=100, on_fail="raise", progress=None):
+    def solve_patches(self, patches, creepages, mu, previous=None):
         """Patches on one boundary-element grid are solved together (their interaction
         included), with the creepages of the patch with the largest normal force, at its
         reference point (the rigid slip varies over the grid through the spin)."""
-        return _solve_patches_exact(self, patches, creepages, float(mu), tol, maxiter, on_fail,
-                                    elements, margin, previous)
+        return _solve_patches_exact(self, patches, creepages, float(mu), previous)
 
 
 def _to_creep_forces(sols, shape, mu, name):
@@ -246,9 +250,11 @@ def _patch_forces(sol, mask, grid, origin, centre):
     return Fx, Fy, Mz, adh
 
 
-def _solve_patches_exact(method, patches, creepages, mu, tol, maxiter, on_fail, elements,
-                         margin, previous=None):
+def _solve_patches_exact(method, patches, creepages, mu, previous=None):
     from ..halfspace.tangential import solve_rolling
+
+    tol, maxiter, on_fail = method.tol, method.maxiter, method.on_fail
+    elements, margin = method.elements, method.margin
 
     out = [None] * len(patches)
     shared = {}

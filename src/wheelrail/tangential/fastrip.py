@@ -46,6 +46,7 @@ import numpy as np
 
 from .._validation import integer
 from ..results import CreepForces, Status
+from ..options import configured, option
 from ._base import TangentialMethod
 from .fastsim import flexibilities, weighted_flexibility
 from .linear import kalker_coefficients
@@ -95,7 +96,8 @@ def fastrip_strips(y, dy, a_s, xc, P, L1, L2, L3, xi, eta, phi, mu):
     return Fx, Fy, Mz, (float(np.sum((P * dy)[sat])) / tot if tot > 0 else 0.0)
 
 
-class FaStrip(TangentialMethod):
+@configured
+class Fastrip(TangentialMethod):
     """FaStrip strip theory as a creep-force law (see the module docstring).
 
     Works on every patch (Hertzian ellipses through their strips, the
@@ -115,12 +117,12 @@ class FaStrip(TangentialMethod):
         "of the wheel-rail contact, Vehicle System Dynamics 54 (2016) 748-764.",
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
     )
-    options = {"ny": 40}
+    ny: int = option(40, lo=2, hi=2000, doc="strips across an ellipse (Hertzian contacts)")
 
-    def solve(self, contact, xi, eta, phi, mu, ny=40):
+    def solve(self, contact, xi, eta, phi, mu):
         from ..contact.patch import ContactPatch
 
-        ny = integer("ny", ny)
+        ny = self.ny
         single = np.shape(contact.a) == ()
         xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))
         n = xi.shape[0]
@@ -136,7 +138,7 @@ class FaStrip(TangentialMethod):
                            mu=out(mu), method=self.name, status=Status.CONVERGED,
                            iterations=None, fields=None, info={"ny": ny})
 
-    def solve_patch(self, patch, xi, eta, phi, mu, ny=40):
+    def solve_patch(self, patch, xi, eta, phi, mu):
         xi, eta, phi, mu = float(xi), float(eta), float(phi), float(mu)
         G, nu = patch.materials.G, patch.materials.nu
         axes = patch.info.get("strip_semiaxes")

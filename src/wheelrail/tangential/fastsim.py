@@ -60,6 +60,7 @@ from .._validation import as_float_array, integer, positive, scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
 from . import _fastsim_kernel as _k
+from ..options import configured, option
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -518,6 +519,7 @@ def _resample_weights(m, nx):
 # ---------------------------------------------------------------------------
 # the creep-force law
 # ---------------------------------------------------------------------------
+@configured
 class Fastsim(TangentialMethod):
     """Kalker's FASTSIM on the Hertzian ellipse.
 
@@ -592,19 +594,20 @@ class Fastsim(TangentialMethod):
         "J. Piotrowski, H. Chollet, Wheel-rail contact models for vehicle system dynamics "
         "including multi-point contact, Vehicle System Dynamics 43 (2005) 455-483.",
     )
-    options = {"nx": 20, "ny": 20, "bound": "parabolic", "flexibility": "three",
-               "scheme": "midpoint", "fields": None}
+    nx: int = option(20, lo=1, hi=2000, doc="elements per strip (along the rolling direction)")
+    ny: int = option(20, lo=1, hi=2000, doc="strips across the ellipse (Hertzian patches)")
+    bound: str = option("parabolic", choices=_BOUNDS, doc="traction bound along the strips")
+    flexibility: str = option("three", choices=_FLEXIBILITIES,
+                              doc="three flexibilities L1, L2, L3 or Kalker's weighted one")
+    scheme: str = option("midpoint", choices=_SCHEMES,
+                         doc="second-order mid-point march, or CONTACT's first-order one")
+    fields: bool | None = option(None, choices=(None, True, False),
+                                 doc="return traction fields (None: for single cases only)")
 
-    def solve(self, contact, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
-              flexibility="three", scheme="midpoint", fields=None):
-        nx = integer("nx", nx)
-        ny = integer("ny", ny)
-        _check_choice("bound", bound, _BOUNDS)
-        _check_choice("flexibility", flexibility, _FLEXIBILITIES)
-        _check_choice("scheme", scheme, _SCHEMES)
+    def solve(self, contact, xi, eta, phi, mu):
+        nx, ny, bound, flexibility = self.nx, self.ny, self.bound, self.flexibility
+        scheme, fields = self.scheme, self.fields
         first_order = scheme == "euler"
-        if fields not in (None, True, False):
-            raise InputError(f"fields must be True, False or None, got {fields!r}")
         single = np.shape(contact.a) == ()
         want_fields = single if fields is None else bool(fields)
 
@@ -675,8 +678,7 @@ class Fastsim(TangentialMethod):
         return CreepForces(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
                            method=self.name, status=status, iterations=None, fields=f, info=info)
 
-    def solve_patch(self, patch, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
-                    flexibility="three", scheme="midpoint", fields=None):
+    def solve_patch(self, patch, xi, eta, phi, mu):
         """FASTSIM on one :class:`~wheelrail.contact.patch.ContactPatch`.
 
         A Hertzian patch is solved as its ellipse (:meth:`solve`, options as
@@ -692,10 +694,8 @@ class Fastsim(TangentialMethod):
         if patch.is_hertzian:
             f = np.asarray
             return self.solve(patch.hertz, f(float(xi)), f(float(eta)), f(float(phi)),
-                              f(float(mu)), nx=nx, ny=ny, bound=bound, flexibility=flexibility,
-                              scheme=scheme, fields=fields)
-        nx = integer("nx", nx)
-        _check_choice("flexibility", flexibility, _FLEXIBILITIES)
+                              f(float(mu)))
+        nx, flexibility, scheme, fields = self.nx, self.flexibility, self.scheme, self.fields
         # a virtual-penetration patch may prescribe its own flexibilities (seed 003 §3):
         # one weighted flexibility per patch (Kik-Piotrowski), per-strip virtual ellipses
         # (Linder, STRIPES), a parabolic traction bound along the strips (Linder)

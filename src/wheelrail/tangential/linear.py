@@ -93,6 +93,7 @@ from scipy.interpolate import PchipInterpolator
 
 from .._validation import in_range, positive, scalar_or_array
 from ..results import CreepForces, Status
+from ..options import configured
 from ._base import TangentialMethod
 
 __all__ = [
@@ -101,7 +102,7 @@ __all__ = [
     "kalker_asymptotes",
     "linear_forces",
     "linear_stiffness",
-    "KalkerLinear",
+    "Linear",
     "NU_NODES",
 ]
 
@@ -368,7 +369,8 @@ def linear_forces(a, b, G, nu, xi, eta, phi):
     return Fx, Fy, Mz
 
 
-class KalkerLinear(TangentialMethod):
+@configured
+class Linear(TangentialMethod):
     """Kalker's linear theory: creep forces proportional to the creepages.
 
     On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
@@ -401,9 +403,9 @@ class KalkerLinear(TangentialMethod):
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990 "
         "(Table E.3: creep coefficients).",
     )
-    options: dict = {}
+    aliases = ("kalker-linear",)
 
-    def solve(self, contact, xi, eta, phi, mu, **options):
+    def solve(self, contact, xi, eta, phi, mu):
         """Linear creep forces for a (batch of) Hertzian contact(s); see the class docstring."""
         Fx, Fy, Mz = linear_forces(contact.a, contact.b, contact.G, contact.nu, xi, eta, phi)
         Fn = np.asarray(contact.load, dtype=float)

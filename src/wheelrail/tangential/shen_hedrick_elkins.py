@@ -44,6 +44,7 @@ import numpy as np
 from .._validation import scalar_or_array
 from ..errors import InputError
 from ..results import CreepForces, Status
+from ..options import configured, option
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -129,6 +130,7 @@ def shen_hedrick_elkins_forces(G, a, b, C11, C22, C23, C33, xi, eta, phi, mu, Fn
     return ratio * fx, ratio * fy, mz, ratio
 
 
+@configured
 class ShenHedrickElkins(TangentialMethod):
     """Shen–Hedrick–Elkins (1983) creep-force law (Kalker linear + Johnson–Vermeulen cubic).
 
@@ -160,12 +162,12 @@ class ShenHedrickElkins(TangentialMethod):
         "tangential forces, J. Appl. Mech. 31 (1964) 338-340.",
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
     )
-    options = {"spin_moment": "scaled"}
+    aliases = ("she", "shen_hedrick_elkins")
+    spin_moment: str = option("scaled", choices=_SPIN_MOMENT_CHOICES,
+                              doc="spin moment scaled by the force saturation, or linear")
 
-    def solve(self, contact, xi, eta, phi, mu, spin_moment="scaled"):
-        if spin_moment not in _SPIN_MOMENT_CHOICES:
-            raise InputError(f"spin_moment must be one of {_SPIN_MOMENT_CHOICES}, "
-                             f"got {spin_moment!r}")
+    def solve(self, contact, xi, eta, phi, mu):
+        spin_moment = self.spin_moment
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
         Fn = np.asarray(contact.load, dtype=float)

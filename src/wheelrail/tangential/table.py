@@ -85,7 +85,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..results import CreepForces, Status
-from ._base import TangentialMethod
+from ..options import configured, option
+from ._base import TangentialMethod, get
 
 __all__ = ["Table", "TableData", "load_table", "table_nodes", "build_table", "DEFAULT_TABLE",
            "GRID"]
@@ -336,6 +337,18 @@ def table_coordinates(a, b, G, nu, xi, eta, phi, mu, Fn):
     return coords, sx, sy, ph, alpha
 
 
+def _table_path(name, v):
+    """A table file path (str or path-like) as ``str``; refused if it is not a file."""
+    if v is None:
+        return None
+    if not isinstance(v, (str, Path)):
+        raise InputError(f"{name} must be the path of a table file, got {v!r}")
+    if not Path(v).is_file():
+        raise InputError(f"{name}: creep table {str(v)!r} not found")
+    return str(v)
+
+
+@configured
 class Table(TangentialMethod):
     """Creep forces interpolated in a table of exact-theory results (see the module docstring).
 
@@ -365,13 +378,15 @@ class Table(TangentialMethod):
         "on Contact Mechanics and Wear of Wheel/Rail Systems, Budapest, 1996, 11-20 "
         "(tabulated exact theory; table here built with wheelrail's exact solver).",
     )
-    options = {"outside": "raise", "table": None}
+    outside: str = option("raise", choices=("raise", "exact", "fastsim"),
+                          doc="points outside the table: refuse, or compute with that method")
+    table: str | None = option(None, kind="any", allow_none=True, check=_table_path,
+                               doc="path of another table file (.npz)")
 
-    def solve(self, contact, xi, eta, phi, mu, *, outside="raise", table=None):
+    def solve(self, contact, xi, eta, phi, mu):
         """Creep forces by interpolation; see the class docstring."""
-        if outside not in ("raise", "exact", "fastsim"):
-            raise InputError(f"outside must be 'raise', 'exact' or 'fastsim', got {outside!r}")
-        data = load_table(table)
+        outside = self.outside
+        data = load_table(self.table)
         shape = np.shape(contact.a)
         a, b, Fn = (np.asarray(getattr(contact, k), float).reshape(-1)
                     for k in ("a", "b", "load"))
@@ -422,11 +437,9 @@ class Table(TangentialMethod):
         Fy = np.where(lateral0, 0.0, Fy)
         Mz = np.where(lateral0, 0.0, Mz)
         if np.any(out_mask):
-            from ..api import get_method
-
             idx = np.flatnonzero(out_mask)
             sub = contact if not shape else contact[idx]
-            r = get_method(outside).solve(sub, *(v[idx] if shape else v[0]
+            r = get(outside).solve(sub, *(v[idx] if shape else v[0]
                                                  for v in (xs, es, ps, ms)))
             for arr, v in ((Fx, r.Fx), (Fy, r.Fy), (Mz, r.Mz)):
                 arr[idx] = np.asarray(v, float).reshape(-1)
