@@ -61,7 +61,7 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
     import tracemalloc
 
     import wheelrail as wr
-    from wheelrail.halfspace import solve_rolling
+    from wheelrail.tangential.exact import solve_rolling
     from wheelrail.normal.bem import hertz_grid, solve_normal
 
     hc = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)

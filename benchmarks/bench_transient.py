@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import newton_step, solve_rolling
+from wheelrail.tangential.exact import newton_step, solve_rolling
 from wheelrail.transient.measures import leading_edge_slip
 from wheelrail.transient.rolling import step_kernels
 from wheelrail.normal.bem import hertz_grid, solve_normal

@@ -22,7 +22,7 @@ from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError
 from .materials import STEEL, Material, MaterialPair
 from .results import CreepForces, Status
 
-__version__ = "0.1.0"
+from ._version import __version__
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {
@@ -31,13 +31,13 @@ _LAZY = {
     "creep_forces": ("wheelrail.api", "creep_forces"),
     "normal_methods": ("wheelrail.api", "normal_methods"),
     "tangential_methods": ("wheelrail.api", "tangential_methods"),
-    "hertz": ("wheelrail.normal.hertz", "hertz"),
-    "hertz_from_semiaxes": ("wheelrail.normal.hertz", "hertz_from_semiaxes"),
-    "hertz_from_radii": ("wheelrail.normal.hertz", "hertz_from_radii"),
-    "hertz_from_penetration": ("wheelrail.normal.hertz", "hertz_from_penetration"),
-    "hertz_line": ("wheelrail.normal.hertz", "hertz_line"),
-    "curvatures_from_radii": ("wheelrail.normal.hertz", "curvatures_from_radii"),
-    "HertzContact": ("wheelrail.normal.hertz", "HertzContact"),
+    "hertz": ("wheelrail.hertzian", "hertz"),
+    "hertz_from_semiaxes": ("wheelrail.hertzian", "hertz_from_semiaxes"),
+    "hertz_from_radii": ("wheelrail.hertzian", "hertz_from_radii"),
+    "hertz_from_penetration": ("wheelrail.hertzian", "hertz_from_penetration"),
+    "hertz_line": ("wheelrail.hertzian", "hertz_line"),
+    "curvatures_from_radii": ("wheelrail.hertzian", "curvatures_from_radii"),
+    "HertzContact": ("wheelrail.hertzian", "HertzContact"),
     # method classes (also wr.normal.<Class>, wr.tangential.<Class>)
     **{c: ("wheelrail.normal", c) for c in ("Hertz", "MultiHertz", "Linder", "KikPiotrowski",
                                             "Stripes", "Bem")},
@@ -66,12 +66,12 @@ _LAZY = {
     "contact_points": ("wheelrail.geometry", "contact_points"),
     "elastic_contact": ("wheelrail.geometry", "elastic_contact"),
     "solve_normal": ("wheelrail.normal.bem", "solve_normal"),
-    "solve_gap": ("wheelrail.contact", "solve_gap"),
+    "solve_gap": ("wheelrail.tangential.exact", "solve_gap"),
     "solve_gap_auto": ("wheelrail.contact", "solve_gap_auto"),
     "WheelRailPosition": ("wheelrail.contact.wheelrail", "WheelRailPosition"),
     "WheelRailResult": ("wheelrail.contact.wheelrail", "WheelRailResult"),
     "wheelset_sweep": ("wheelrail.contact.sweep", "wheelset_sweep"),
-    "ContactPatch": ("wheelrail.contact.patch", "ContactPatch"),
+    "ContactPatch": ("wheelrail.patch", "ContactPatch"),
     "Motion": ("wheelrail.geometry.kinematics", "Motion"),
     "GapProblem": ("wheelrail.normal._base", "GapProblem"),
     "normal": ("wheelrail.normal", None),

@@ -22,7 +22,8 @@ import wheelrail as wr
 from wheelrail.errors import InputError, NoContactError
 from wheelrail.normal.bem import ContactTruncatedWarning, solve_normal
 from wheelrail.halfspace import Grid
-from wheelrail.contact import contact_patches, potential_contact_grid, solve_gap, solve_gap_auto
+from wheelrail.contact import contact_patches, potential_contact_grid, solve_gap_auto
+from wheelrail.tangential.exact import solve_gap
 
 STEEL = wr.Material(2.1e11, 0.28)
 # wheel rolling radius 0.46 m, rail crown radius 0.15 m (flat wheel profile)

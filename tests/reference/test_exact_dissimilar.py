@@ -20,9 +20,10 @@ import pytest
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, solve_rolling
+from wheelrail.halfspace import Grid
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.normal.bem import hertz_grid
-from wheelrail.contact import solve_gap
+from wheelrail.tangential.exact import solve_gap
 
 STEEL = wr.Material(2.1e11, 0.28)
 ALU = wr.Material(7.0e10, 0.33)

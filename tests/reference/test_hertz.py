@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.normal.hertz import hertz_coefficients
+from wheelrail.hertzian import hertz_coefficients
 
 # Seed 003 (Piotrowski & Chollet, VSD 43, 2005), Table 2: theta [deg], n/m, m, r
 TABLE2 = np.array([
@@ -107,7 +107,7 @@ def test_batch(steel):
 
 def test_shape_ratio_secant_equals_bisection():
     """The secant solve of the Hertz shape equation agrees with plain bisection (1e-12)."""
-    from wheelrail.normal.hertz import _shape_ratio_bisection, shape_ratio
+    from wheelrail.hertzian import _shape_ratio_bisection, shape_ratio
 
     r = np.concatenate([[1.0, 1 + 1e-12, 1 + 1e-6, 1.001], np.logspace(0, 12, 500)])
     # near k = 1 the shape equation is flat: both agree to its own round-off (~2e-13)

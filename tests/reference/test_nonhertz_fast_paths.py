@@ -272,7 +272,7 @@ def test_separation_kernel_equals_full_splines(s1002):
 
 def test_stripes_n_over_m_table_equals_hertz():
     """The n/m table of STRIPES (all grid values at once) against Hertz's b/a per λ."""
-    from wheelrail.normal.hertz import hertz_kernel
+    from wheelrail.hertzian import hertz_kernel
     from wheelrail.normal.stripes import _NM_K, _n_over_m, _n_over_m_array, _nm_table
 
     q = np.arange(-_NM_K, _NM_K + 1) / 50.0

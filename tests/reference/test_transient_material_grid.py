@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import solve_rolling
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 XI = -5.6e-4

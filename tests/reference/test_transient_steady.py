@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 
 import wheelrail as wr
 from wheelrail.halfspace.influence import influence_kernel
-from wheelrail.halfspace.tangential import newton_step, solve_rolling, solve_shift
+from wheelrail.tangential.exact import newton_step, solve_rolling, solve_shift
 from wheelrail.transient.rolling import shifted_influence_kernel
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
@@ -107,7 +107,7 @@ def test_averaged_step_kernel_telescopes_to_kalkers_rolling_kernel(m):
     """Held steady, (now − old)/h of the averaged scheme is Kalker's M = (C − C_dx)/dx
     (Kalker 1990 §5.2) exactly for integer dx/h: an independent kernel (rolling_kernel)."""
     from wheelrail.halfspace.grid import Grid
-    from wheelrail.halfspace.tangential import rolling_kernel
+    from wheelrail.halfspace.rolling import rolling_kernel
     from wheelrail.transient.rolling import step_kernels
 
     g = Grid(0.0, 0.0, 2e-4, 3e-4, 7, 5)

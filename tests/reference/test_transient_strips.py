@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import solve_rolling
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.normal.bem import hertz_grid, solve_normal
 from wheelrail.transient.strips import hertz_pressure, strip_grid
 

@@ -146,7 +146,7 @@ def test_shape_ratio_of_one_ratio_equals_the_array_iteration():
     """The float path of shape_ratio (one contact point) runs the same secant iteration as
     the array path: equal to round-off over ratios 1 … 1e7, and both solve the defining
     equation (Johnson 1985, eq. 3.66) as the bisection reference does."""
-    from wheelrail.normal.hertz import _shape_ratio_bisection, shape_ratio
+    from wheelrail.hertzian import _shape_ratio_bisection, shape_ratio
 
     r = np.geomspace(1.0, 1e7, 301)
     vec = shape_ratio(r)
@@ -190,7 +190,7 @@ def test_fastsim_single_ellipse_skips_only_the_checks():
 def test_vertical_approach_of_one_wheel_equals_the_array_iteration():
     """The float path of the vertical approach (one wheel, up to 4 points) runs the same
     Newton iteration as the array path (rows of many wheels): Σ cos γ (δ/δ1)^{3/2} = Q."""
-    from wheelrail.normal.hertz import _vertical_approach
+    from wheelrail.hertzian import _vertical_approach
 
     rng = np.random.default_rng(3)
     for n in (1, 2, 3, 4):
@@ -214,7 +214,7 @@ def test_patch_from_hertz_without_rechecks_equals_the_checked_patch():
     1985 eq. 3.63), and a bad ellipse is still refused by name."""
     import dataclasses
 
-    from wheelrail.contact.patch import ContactPatch
+    from wheelrail.patch import ContactPatch
     from wheelrail.errors import InputError
 
     hc = wr.hertz(load=9e3, A=1.1, B=4.0, material=wr.STEEL)

@@ -9,7 +9,7 @@ from typing import Mapping
 
 from ..errors import CaseFileError, InputError, OptionError
 from ..materials import STEEL, Material, MaterialPair
-from ..normal.hertz import RADII_KEYS
+from ..hertzian import RADII_KEYS
 from ..cases.contact import ContactSpec
 
 __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_methods",

@@ -13,7 +13,7 @@ from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError
 from ._reader import Reader, read_materials, read_methods
 
-__all__ = ["load_wheelset_case", "wheelset_case_from_dict", "is_wheelset_case", "MAX_POSITIONS"]
+__all__ = ["wheelset_case_from_dict", "is_wheelset_case", "MAX_POSITIONS"]
 
 #: Top-level tables of a wheelset case (a wheelset on a track, real profiles).
 _WHEELSET_TABLES = ("material", "wheelset", "track", "motion", "position", "friction", "method")
@@ -29,18 +29,6 @@ MAX_POSITIONS = 100_001
 
 def is_wheelset_case(data: Mapping) -> bool:
     return any(k in data for k in ("wheelset", "track", "position", "motion"))
-
-
-def load_wheelset_case(path_or_str) -> WheelsetCase:
-    """Read and validate a wheelset case file (see :func:`load_case`)."""
-    from .contact import load_case
-
-    case = load_case(path_or_str)
-    if not isinstance(case, WheelsetCase):
-        raise CaseFileError(f"{case.source}: not a wheelset case: it has no [wheelset], "
-                            "[track], [motion] and [position] tables (run it with "
-                            "'wheelrail solve')")
-    return case
 
 
 def _base_dir(source: str) -> Path:

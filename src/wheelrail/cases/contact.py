@@ -21,7 +21,7 @@ from ..conventions import CREEPAGE_UNITS, FORCE_UNITS
 from ..errors import CaseFileError, InputError
 from ..materials import MaterialPair
 from ..normal import NormalMethod
-from ..normal.hertz import RADII_KEYS
+from ..hertzian import RADII_KEYS
 from ..results import to_jsonable
 from ..tangential import TangentialMethod
 
@@ -73,7 +73,7 @@ class ContactSpec:
 
     def hertz(self, material):
         """The :class:`wheelrail.HertzContact` of this description."""
-        from ..normal.hertz import hertz, hertz_from_radii, hertz_from_semiaxes
+        from ..hertzian import hertz, hertz_from_radii, hertz_from_semiaxes
 
         if self.kind == "curvatures":
             return hertz(self.load, self.A, self.B, material)
@@ -211,7 +211,7 @@ class CaseResult:
         The Hertz ellipse used by the tangential method.
     forces : CreepForces
         Creep forces (``fields`` holds traction fields for FASTSIM / exact).
-    normal : NormalSolution or None
+    normal : NormalResult or None
         The boundary-element normal solution (``normal = "bem"``).
     summary : dict
         The JSON-ready dictionary returned by :func:`run_case`.

@@ -59,7 +59,7 @@ def step_hertz(ctx: DemoContext):
 
     import numpy as np
 
-    from ..normal.hertz import hertz
+    from ..hertzian import hertz
     from ..plotting import pressure_map
 
     c = ctx.case.hertz_contact

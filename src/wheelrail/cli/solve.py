@@ -22,7 +22,7 @@ def plot_result(result, path) -> str:
 
     fields = result.forces.fields
     title = f"{result.case.source}: {result.case.normal.name} + {result.summary['method']}"
-    bem = result.normal  # the boundary-element NormalSolution (normal = "bem") or None
+    bem = result.normal  # the boundary-element NormalResult (normal = "bem") or None
     if fields is not None and field_arrays(fields) is not None:
         traction_field(fields, mu=result.case.mu, contact=result.contact, path=path, title=title)
         if bem is None:

@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError, WheelrailError
-from ..normal.hertz import _vertical_approach, hertz_from_penetration, hertz_kernel
+from ..hertzian import _vertical_approach, hertz_from_penetration, hertz_kernel
 
 __all__ = ["hertz_sweep"]
 
@@ -33,7 +33,8 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, material
     from ..geometry.elastic import regularised_B_rows
     from ..geometry.kinematics import creepage_kernel
     from ..materials import as_material_pair
-    from .wheelrail import axle_offset_x, touching_heights
+    from ..geometry.touching import touching_heights
+    from .wheelrail import axle_offset_x
 
     pair = as_material_pair(material)
     n = y.size

@@ -44,7 +44,7 @@ def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius, points=Tru
     """
     from ..geometry.contact_search import _Pose, find_points, solve_rigid
     from ..geometry.elastic import regularised_B_rows
-    from .wheelrail import touching_heights
+    from ..geometry.touching import touching_heights
 
     n = y.size
     th = np.array(roll, dtype=float)
@@ -89,7 +89,7 @@ def _problem(position, side, roll, z, data, count, r, A, B, roller_radius):
     (what :func:`~wheelrail.contact.wheelrail.wheel_problem` computes for one pose)."""
     from ..errors import InputError
     from ..geometry.contact_search import _side_from_row
-    from .patch import ContactFrame
+    from ..patch import ContactFrame
 
     if data is None:        # a method that reads no candidate points (CAF tables)
         pts, k, A, B = None, 0, np.zeros((r + 1, 0)), np.zeros((r + 1, 0))

@@ -52,8 +52,9 @@ from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
 from ..materials import STEEL, as_material_pair
 from ..results import ContactResult, PatchResult, to_jsonable
-from .patch import ContactFrame
+from ..patch import ContactFrame
 from .. import normal as normal_family
+from ..geometry.touching import touching_heights
 from .. import tangential as tangential_family
 
 __all__ = ["WheelRailPosition", "WheelProblem", "WheelRailResult", "solve_wheelrail", "SIDES"]
@@ -319,26 +320,6 @@ def _curve_value(curve, x: float) -> float:
     return ((float(c[0, i]) * dx + float(c[1, i])) * dx + float(c[2, i])) * dx + float(c[3, i])
 
 
-def touching_heights(wheelset, track, y, roll, yaw):
-    """Axle height at which each wheel just touches its rail, for prescribed roll (arrays).
-
-    Raising the axle by dz raises every gap by dz, so the height is minus the
-    smallest gap at height 0. Returns ``{side: z}`` and ``{side: beside}``
-    (shape (n,); ``beside`` marks rows where the wheel lies entirely beside
-    its rail).
-    """
-    from ..geometry.contact_search import _global_min, _Pose
-
-    pose = _Pose(np.asarray(y, float), np.zeros(np.size(y)), np.asarray(roll, float),
-                 np.asarray(yaw, float))
-    z, beside = {}, {}
-    for side in SIDES:
-        _, g, _ = _global_min(wheelset, track, side, pose, 2e-4, 5)
-        beside[side] = g >= 0.5
-        z[side] = -g
-    return z, beside
-
-
 def touching_poses(position):
     """Pose (z of each wheel, roll) at which each wheel just touches its rail.
 
@@ -519,4 +500,4 @@ def _solve_sides(position, motion, mu, nimpl, timpl, vertical, roll, zs, Omega, 
                            position=position, motion=motion)
 
 
-__all__ += ["touching_poses", "touching_heights", "wheel_problem"]
+__all__ += ["touching_poses", "wheel_problem"]

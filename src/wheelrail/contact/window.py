@@ -56,7 +56,7 @@ from .._validation import integer
 from ..normal.bem import ContactTruncatedWarning
 from ..normal._gap import (DEFAULT_SEARCH, _enlarged_bounds, _evaluate, _grid_on, _window,
                            contact_patches, potential_contact_grid)
-from .coupled import solve_gap
+from ..tangential.exact import solve_gap
 
 __all__ = ["DEFAULT_SEARCH", "contact_patches", "potential_contact_grid", "solve_gap_auto"]
 
@@ -92,7 +92,7 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
 
     Returns
     -------
-    GapSolution
+    GapResult
         Its ``grid`` is the final window. ``normal.info`` gains
         ``window_enlargements`` (int), ``contact_patches`` (int, connected
         components of the contact area, :func:`contact_patches`),

@@ -56,7 +56,7 @@ from scipy.optimize import root
 from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
 from ..materials import STEEL, as_material_pair
-from ..normal.hertz import hertz_kernel
+from ..hertzian import hertz_kernel
 from ._checks import check_side
 from .contact_search import (SIDES, _SIGMA, SideContacts, _gapfun, _grid_gap, _Pose,
                              _side_from_row, check_inputs, find_points, point_data, solve_rigid)

@@ -1,4 +1,7 @@
-"""Normal contact problem: the normal methods, one per module, and Hertz's closed forms.
+"""Normal contact problem: the normal methods, one per module.
+
+Hertz's closed forms (``wr.hertz``, :class:`~wheelrail.hertzian.HertzContact`) are
+core types in :mod:`wheelrail.hertzian`: every method and the contact patch read them.
 
 Each method is a frozen dataclass whose options are fields
 (:mod:`wheelrail.options`); pass its registry name or a configured instance to
@@ -24,8 +27,7 @@ name                  class                     module
 
 from ._base import GapProblem, NormalMethod, get, get_class, registry
 from .bem import Bem, hertz_grid, solve_normal
-from .hertz import (Hertz, HertzContact, curvatures_from_radii, hertz, hertz_coefficients,
-                    hertz_from_penetration, hertz_from_radii, hertz_from_semiaxes, hertz_line)
+from .hertz import Hertz
 from .kik_piotrowski import KikPiotrowski
 from .linder import Linder
 from .multi_hertz import MultiHertz
@@ -33,6 +35,4 @@ from .stripes import Stripes
 
 __all__ = ["NormalMethod", "GapProblem", "get", "get_class", "registry",
            "Hertz", "MultiHertz", "Linder", "KikPiotrowski", "Stripes", "Bem",
-           "solve_normal", "hertz_grid",
-           "HertzContact", "hertz", "hertz_from_semiaxes", "hertz_from_radii",
-           "hertz_from_penetration", "hertz_line", "curvatures_from_radii", "hertz_coefficients"]
+           "solve_normal", "hertz_grid"]

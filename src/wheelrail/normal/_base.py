@@ -20,7 +20,7 @@ options
     Dataclass fields declared with :func:`~wheelrail.options.option` (type,
     unit, default, bounds); :meth:`_check` may check their combination.
 ``from_contact(contact) -> tuple of ContactPatch``
-    A single :class:`~wheelrail.normal.hertz.HertzContact` (load and
+    A single :class:`~wheelrail.hertzian.HertzContact` (load and
     curvatures given): the patch(es) carrying ``contact.load``.
 ``from_gap(problem) -> tuple of ContactPatch``
     A :class:`GapProblem`: an undeformed gap h(x, y) with a prescribed load or
@@ -30,7 +30,7 @@ options
     rail at a fixed pose, its candidate contact points, and either the
     vertical load the wheel carries or its vertical approach. The patches
     must carry the vertical load through their normal forces
-    (Σ Fn cos γ = Q) and have their :class:`~wheelrail.contact.patch.ContactFrame`;
+    (Σ Fn cos γ = Q) and have their :class:`~wheelrail.patch.ContactFrame`;
     the dict holds at least ``approach``, the vertical approach dz [m].
 
 A method that cannot treat a kind of problem keeps the base implementation,

@@ -97,7 +97,7 @@ def _principal_curvatures(gap, xm, ym, hx, hy):
 
 def _hertz_penetration(gap, load, materials, xm, ym, spacing):
     """Hertz estimate of δ for ``load`` from the curvatures of h at its minimum."""
-    from .hertz import hertz   # hertz imports this package's base; import on use
+    from ..hertzian import hertz   # hertz imports this package's base; import on use
 
     hx, hy = spacing
     for _ in range(3):
@@ -291,7 +291,7 @@ def contact_patches(solution):
 
     Parameters
     ----------
-    solution : NormalSolution or GapSolution
+    solution : NormalResult or GapResult
         Anything with ``grid``, ``contact`` (nx, ny) bool and ``pressure`` (nx, ny) [Pa].
 
     Returns

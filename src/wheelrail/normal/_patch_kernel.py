@@ -2,7 +2,7 @@
 
 :func:`strip_patch` turns the nodes of one solved region (lateral positions
 η, strip half-lengths x_l, peak pressures) into the ``strips`` × ``cells``
-description of :class:`~wheelrail.contact.patch.ContactPatch`: the equations
+description of :class:`~wheelrail.patch.ContactPatch`: the equations
 of ``VirtualPenetration._make_patch`` (:mod:`wheelrail.normal._strips`) in
 one call. Sums follow NumPy's pairwise summation (:func:`pairwise_sum`), so
 the numbers are those of the NumPy expressions they replace, to the last bit.

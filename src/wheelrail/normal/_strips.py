@@ -106,7 +106,7 @@ def _hertz_table():
     """ln a, ln b, ln p0, ln δ of Hertz (unit load, E* = 1, A·B = 1) on a grid of ln(A/B)."""
     t = _TABLE.get("hertz")
     if t is None:
-        from .hertz import hertz_kernel
+        from ..hertzian import hertz_kernel
 
         n = int(round(2 * _LN_MAX / _LN_STEP)) + 1
         lam = np.linspace(-_LN_MAX, _LN_MAX, n)
@@ -121,14 +121,14 @@ def hertz_shape(A, B):
     """Hertz's unit-load solution (a, b, p0, δ; load 1 N, E* = 1 Pa) for curvatures A, B [1/m].
 
     Interpolated (linear in ln(A/B), step 0.005, relative error < 1e-5) in a
-    table of :func:`wheelrail.normal.hertz.hertz_kernel` with A·B = 1, scaled
+    table of :func:`wheelrail.hertzian.hertz_kernel` with A·B = 1, scaled
     to s = √(AB) by a, b ∝ s^(-1/3), p0 ∝ s^(2/3), δ ∝ s^(1/3) (Johnson
     1985, eqs. 3.64–3.66).
     """
     A, B = float(A), float(B)
     lam = math.log(A / B)
     if abs(lam) > _LN_MAX:
-        from .hertz import hertz_kernel
+        from ..hertzian import hertz_kernel
 
         a, b, p0, d = hertz_kernel(1.0, A, B, 1.0)
         return float(a), float(b), float(p0), float(d)
@@ -330,7 +330,6 @@ class VirtualPenetration:
 
     # ----------------------------------------------------------- Hertzian contact
     def from_contact(self, contact):
-        opts = self.option_values()
         from ._base import GapProblem
 
         A, B = float(contact.A), float(contact.B)
@@ -379,7 +378,7 @@ class VirtualPenetration:
                     f"normal method {self.name!r}: the gap is not convex at its minimum "
                     f"(x, y) = ({xm!r}, {ym!r}) m (A = {A!r}, B = {B!r} 1/m); this patch cannot be "
                     "represented by a virtual-penetration method, use normal='bem'")
-            from .hertz import hertz_kernel
+            from ..hertzian import hertz_kernel
             if problem.load is not None:
                 a1, b1, _, d1 = hertz_kernel(float(problem.load), A, B, pair.E_star)
             else:
@@ -434,7 +433,7 @@ class VirtualPenetration:
 
     # ----------------------------------------------------------- patches
     def _make_patch(self, line, reg, pair, opts, frame, delta, extra=None):
-        from ..contact.patch import ContactPatch
+        from ..patch import ContactPatch
         from ._patch_kernel import strip_patch
 
         strips = int(opts["strips"])

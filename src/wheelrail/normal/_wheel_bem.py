@@ -13,8 +13,8 @@ import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
 from ._gap import _scaled
-from .bem import _elements_for, _patches_of, _solve_enlarging, _square_grid
-from .hertz import _vertical_approach, hertz_kernel
+from ._bem_solver import _elements_for, _patches_of, _solve_enlarging, _square_grid
+from ..hertzian import _vertical_approach, hertz_kernel
 
 __all__ = ["solve_wheel"]
 

@@ -18,7 +18,7 @@ be precomputed as functions of the lateral translation t_y alone (§2.3.2):
   one ellipse to the other.
 
 :func:`caf_table` builds the table from the profiles (rigid touching height
-of the translated wheel, :func:`~wheelrail.contact.wheelrail.touching_heights`
+of the translated wheel, :func:`~wheelrail.geometry.touching.touching_heights`
 with zero roll and yaw; the rigid contact point is the candidate point of
 smallest separation, :func:`~wheelrail.geometry.contact_search.find_points`).
 All lengths in m, angles in rad, radii in m.
@@ -350,7 +350,7 @@ class CafTable:
         side is not convex (A or B ≤ 0) or both lines coincide."""
         memo = self.__dict__.setdefault("_memo", {})
         if k not in memo:
-            from .hertz import hertz_kernel
+            from ..hertzian import hertz_kernel
 
             t_lim = float(self.jumps[k])
             l1, l2 = self.line(t_lim, k), self.line(t_lim, k + 1)
@@ -413,7 +413,7 @@ def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tole
     -------
     CafTable
     """
-    from ..contact.wheelrail import touching_heights
+    from ..geometry.touching import touching_heights
     from ..geometry._checks import check_side
     from ..geometry.contact_search import _Pose, find_points
 
@@ -491,7 +491,7 @@ def profile_jump_gaps(wheelset, track, table, k, side, tau):
     tau, gap : ndarray
         The distances where the other branch's point was found and its gap [m].
     """
-    from ..contact.wheelrail import touching_heights
+    from ..geometry.touching import touching_heights
     from ..geometry.contact_search import _Pose, find_points
 
     if side not in (1, 2):

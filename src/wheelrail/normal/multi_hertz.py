@@ -182,7 +182,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     # ------------------------------------------------------------------ contact
     def from_contact(self, contact):
         opts = self.option_values()
-        from ..contact.patch import ContactPatch
+        from ..patch import ContactPatch
 
         self._variant(opts)
         return (ContactPatch.from_hertz(contact, strips=opts["strips"],
@@ -220,8 +220,8 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         return [_R(e[4]) for e in self._ellipses(line, delta, opts)]
 
     def _hertz_patches(self, line, delta, opts, pair, frame_of):
-        from ..contact.patch import ContactPatch
-        from .hertz import hertz_from_penetration
+        from ..patch import ContactPatch
+        from ..hertzian import hertz_from_penetration
 
         variant = self._variant(opts)
         ell = self._ellipses(line, delta, opts)
@@ -233,7 +233,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
             area = float(sum(float(h.area) for h in hcs))
             a = math.sqrt(area * ratio / math.pi)
             b = math.sqrt(area / (ratio * math.pi))
-            from .hertz import hertz_from_semiaxes
+            from ..hertzian import hertz_from_semiaxes
             hc = hertz_from_semiaxes(a, b, float(N.sum()), pair)
             eta_c = float(np.sum(N * line.eta[[e[0] for e in ell]]) / N.sum())
             p = ContactPatch.from_hertz(hc, strips=strips, cells=cells,
@@ -399,7 +399,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         return float(x[0])
 
     def _ayasse_table(self, problem, opts):
-        from ..contact.patch import ContactFrame, ContactPatch
+        from ..patch import ContactFrame, ContactPatch
         from ..materials import as_material_pair
         from .caf import caf_contacts, cached_caf_table
 
@@ -453,9 +453,9 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     def _ayasse(self, problem, opts):
         if self._uses_tables(opts):
             return self._ayasse_table(problem, opts)
-        from ..contact.patch import ContactPatch
+        from ..patch import ContactPatch
         from ..materials import as_material_pair
-        from .hertz import hertz
+        from ..hertzian import hertz
 
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
@@ -515,7 +515,7 @@ def _hertz_fast(load, A, B, pair):
     """Hertz's solution for one contact from the interpolated unit-load solution
     (:func:`~wheelrail.normal._strips.hertz_shape`, relative error < 1e-5): a, b ∝
     (N/E*)^(1/3), δ ∝ (N/E*)^(2/3), p0 = 3N/(2πab) (Johnson 1985, eqs. 3.64–3.66)."""
-    from .hertz import HertzContact
+    from ..hertzian import HertzContact
 
     au, bu, _, du = hertz_shape(A, B)
     s = (load / pair.E_star) ** (1.0 / 3.0)
@@ -529,8 +529,8 @@ def _scale_patches(patches, factor, pair, limit=1e-3):
     ≤ ``limit``)."""
     from dataclasses import replace
 
-    from ..contact.patch import ContactPatch
-    from .hertz import hertz
+    from ..patch import ContactPatch
+    from ..hertzian import hertz
 
     if abs(factor - 1.0) > limit:
         raise InputError(f"multi-hertz: load closure factor {factor!r} is not within {limit!r} "

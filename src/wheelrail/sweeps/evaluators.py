@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from .. import tangential
-from ..normal.hertz import RADII_KEYS
+from ..hertzian import RADII_KEYS
 from ..errors import InputError
 
 __all__ = ["EVALUATORS", "STATUS_CODES", "get_evaluator", "CreepEvaluator"]
@@ -44,7 +44,7 @@ class CreepEvaluator:
 
     Inputs: ``xi, eta`` [-], ``phi`` [1/m], ``mu`` [-], ``load`` [N]; the
     contact as curvatures ``A, B`` [1/m], semi-axes ``a, b`` [m] or principal
-    radii [m] (:data:`wheelrail.normal.hertz.RADII_KEYS`); material ``E`` [Pa],
+    radii [m] (:data:`wheelrail.hertzian.RADII_KEYS`); material ``E`` [Pa],
     ``nu`` [-] (default steel, the same for wheel and rail); ``method`` (a
     name, default ``"fastsim"``). With a ``method`` axis, ``options`` maps each
     method name to its options.
@@ -149,7 +149,7 @@ class CreepEvaluator:
         return {k: v for k, v in out.items() if k in keep}
 
     def _contact(self, cols, idx, material):
-        from ..normal.hertz import hertz, hertz_from_radii, hertz_from_semiaxes
+        from ..hertzian import hertz, hertz_from_radii, hertz_from_semiaxes
 
         load = cols["load"][idx].astype(float)
         if "A" in cols:

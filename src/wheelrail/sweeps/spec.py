@@ -36,7 +36,7 @@ The quantities each evaluator takes are listed in
 :data:`wheelrail.sweeps.evaluators.EVALUATORS`; the creep-force evaluator
 (default, ``evaluator = "creep"``) takes ``xi, eta`` [-], ``phi`` [1/m],
 ``mu`` [-], ``load`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
-:data:`wheelrail.normal.hertz.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
+:data:`wheelrail.hertzian.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
 ``method`` (names). The geometry evaluator (``evaluator = "geometry"``)
 takes ``y`` [m], ``yaw`` [rad], ``wheel``, ``rail`` (profile names or files),
 ``gauge``, ``inclination``, ``nominal_radius``, ``flange_back``.

@@ -126,7 +126,7 @@ class SweepStore:
 
 def provenance(spec, method_names, options) -> dict:
     """Attributes recording what produced a store."""
-    from .. import __version__
+    from .._version import __version__
 
     return {
         "title": "wheelrail sweep",

@@ -420,7 +420,7 @@ def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1,
     """FASTSIM on a strip patch, resampling and centre of pressure fused (fields optional).
 
     The same discrete equations as ``Fastsim.solve_patch`` on a non-elliptic
-    :class:`~wheelrail.contact.patch.ContactPatch` followed by
+    :class:`~wheelrail.patch.ContactPatch` followed by
     :func:`fastsim_strips_kernel` (without fields), in one call: the patch's
     ``m`` cells per strip are resampled to ``nx`` by linear interpolation
     (indices ``i0``, ``i1``, weights ``w``) keeping each strip's force,

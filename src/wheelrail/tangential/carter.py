@@ -288,7 +288,7 @@ def carter_ellipse_force(a, b, G, nu, Fn, mu, xi, form="global", stiffness="cart
 class Carter(TangentialMethod):
     """Carter's theory of tractive rolling (longitudinal creep only).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).

@@ -51,7 +51,7 @@ from ._base import TangentialMethod
 from .fastsim import flexibilities, weighted_flexibility
 from .linear import kalker_coefficients
 
-__all__ = ["FaStrip", "fastrip_strips"]
+__all__ = ["Fastrip", "fastrip_strips"]
 
 
 def fastrip_strips(y, dy, a_s, xc, P, L1, L2, L3, xi, eta, phi, mu):
@@ -120,7 +120,7 @@ class Fastrip(TangentialMethod):
     ny: int = option(40, lo=2, hi=2000, doc="strips across an ellipse (Hertzian contacts)")
 
     def solve(self, contact, xi, eta, phi, mu):
-        from ..contact.patch import ContactPatch
+        from ..patch import ContactPatch
 
         ny = self.ny
         single = np.shape(contact.a) == ()

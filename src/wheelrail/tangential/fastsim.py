@@ -164,7 +164,7 @@ class FastsimFields:
     def as_arrays(self) -> dict:
         """Plain arrays indexed ``[i_x, i_y]`` (the strip arrays transposed), for plotting.
 
-        Keys as :meth:`wheelrail.contact.GapSolution.as_arrays`: ``x``, ``y`` [m],
+        Keys as :meth:`wheelrail.results.GapResult.as_arrays`: ``x``, ``y`` [m],
         ``px``, ``py``, ``p`` [Pa], ``adhesion``, ``inside`` (bool), ``dA`` [m²],
         ``sx``, ``sy`` [-].
         """
@@ -679,7 +679,7 @@ class Fastsim(TangentialMethod):
                            method=self.name, status=status, iterations=None, fields=f, info=info)
 
     def solve_patch(self, patch, xi, eta, phi, mu):
-        """FASTSIM on one :class:`~wheelrail.contact.patch.ContactPatch`.
+        """FASTSIM on one :class:`~wheelrail.patch.ContactPatch`.
 
         A Hertzian patch is solved as its ellipse (:meth:`solve`, options as
         there). A non-elliptic patch is solved strip by strip

@@ -373,7 +373,7 @@ def linear_forces(a, b, G, nu, xi, eta, phi):
 class Linear(TangentialMethod):
     """Kalker's linear theory: creep forces proportional to the creepages.
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).

@@ -328,7 +328,7 @@ def _check_extended(kA, kS, speed, A, B, conditions):
 class Polach(TangentialMethod):
     """Polach's creep-force law (1999), optionally extended as in Polach (2005).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).

@@ -134,7 +134,7 @@ def shen_hedrick_elkins_forces(G, a, b, C11, C22, C23, C33, xi, eta, phi, mu, Fn
 class ShenHedrickElkins(TangentialMethod):
     """Shen–Hedrick–Elkins (1983) creep-force law (Kalker linear + Johnson–Vermeulen cubic).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).

@@ -19,7 +19,7 @@ where ``C_h`` is the influence kernel evaluated at the offsets shifted by
 displacement) and ``p_o`` the tractions (tangential and normal) of the
 previous step. Each step is one frictional problem ``s = b + (C/h) p`` with
 the Coulomb bound ``μ pn``, solved by the stepping core shared with steady
-rolling (:func:`wheelrail.halfspace.tangential.newton_step`). With ``h = dx``
+rolling (:func:`wheelrail.tangential.exact.newton_step`). With ``h = dx``
 and ``p_o = p`` this is exactly Kalker's discretised steady rolling, so a run
 held at constant loads ends on :func:`~wheelrail.halfspace.solve_rolling`.
 
@@ -62,7 +62,8 @@ import numpy as np
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError
 from ..halfspace.influence import influence_kernel, kernel_offsets, rectangle_influence
-from ..halfspace.tangential import _BlockConvolution, newton_step
+from ..halfspace.rolling import _BlockConvolution
+from ..tangential.exact import newton_step
 from ..materials import as_material_pair
 from ..normal.bem import hertz_grid, solve_normal
 from .regularised import dense_block, regularised_step

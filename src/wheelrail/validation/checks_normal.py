@@ -104,7 +104,7 @@ _TABLE2 = np.array([
 
 @register("hertz-table2", ["hertz"], "Hertz coefficients vs Piotrowski & Chollet Table 2")
 def hertz_vs_table2(quick):
-    from wheelrail.normal.hertz import hertz_coefficients
+    from wheelrail.hertzian import hertz_coefficients
 
     theta, nm, m_ref, r_ref = _TABLE2.T
     m, n, r = hertz_coefficients(theta)

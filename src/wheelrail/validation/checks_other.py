@@ -27,7 +27,7 @@ def transient_steady(quick):
     wr = _wr()
     from scipy.optimize import brentq
 
-    from wheelrail.halfspace.tangential import solve_rolling, solve_shift
+    from wheelrail.tangential.exact import solve_rolling, solve_shift
     from wheelrail.normal.bem import hertz_grid, solve_normal
 
     MU = 0.4

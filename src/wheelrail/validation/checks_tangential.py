@@ -125,7 +125,7 @@ def _carter_strip(nx, A=1e-3, P0=5e8, ny=21):
 @register("exact-carter", ["exact"], "Exact theory in the 2D limit vs Carter (1926)")
 def exact_vs_carter(quick):
     wr = _wr()
-    from wheelrail.halfspace import solve_rolling
+    from wheelrail.tangential.exact import solve_rolling
     from wheelrail.reference import (carter_force_per_length, carter_saturation_creepage,
                                      carter_traction)
 
@@ -167,7 +167,8 @@ def exact_vs_carter(quick):
 @register("exact-cattaneo", ["exact"], "Exact theory, shift problem vs Cattaneo-Mindlin")
 def exact_vs_cattaneo(quick):
     wr = _wr()
-    from wheelrail.halfspace import Grid, solve_shift
+    from wheelrail.halfspace import Grid
+    from wheelrail.tangential.exact import solve_shift
     from wheelrail.reference import cattaneo_shift, cattaneo_stick_radius
 
     A, P, MU = 1e-3, 1e3, 0.3

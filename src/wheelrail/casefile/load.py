@@ -1,4 +1,4 @@
-"""Reading single-contact case files (``[contact]``) into :class:`wheelrail.cases.Case`."""
+"""Reading case files: the entry points, and single-contact cases (``[contact]``)."""
 
 from __future__ import annotations
 
@@ -8,10 +8,11 @@ from typing import Mapping
 from ..cases.contact import Case
 from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError
+from .wheelset import is_wheelset_case, wheelset_case_from_dict
 from ._reader import (Reader, check_plausible, read_contact, read_forces, read_materials,
                       read_methods, read_toml)
 
-__all__ = ["load_case", "case_from_dict", "load_contact_case"]
+__all__ = ["load_case", "case_from_dict", "load_contact_case", "load_wheelset_case"]
 
 _TOP_TABLES = ("material", "contact", "creepage", "friction", "method", "force")
 
@@ -63,8 +64,6 @@ def case_from_dict(data: Mapping, source: str = "<dict>"):
     Returns a :class:`Case` (a single contact, ``[contact]``) or a
     :class:`WheelsetCase` (``[wheelset]``, ``[track]``, ``[motion]``, ``[position]``).
     """
-    from .wheelset import is_wheelset_case, wheelset_case_from_dict
-
     r = Reader(source)
     if not isinstance(data, Mapping):
         raise CaseFileError(f"{source}: a case must be a table, got {type(data).__name__}")
@@ -105,3 +104,11 @@ def load_contact_case(path_or_str) -> Case:
     return case
 
 
+def load_wheelset_case(path_or_str) -> WheelsetCase:
+    """Read and validate a wheelset case file (see :func:`load_case`)."""
+    case = load_case(path_or_str)
+    if not isinstance(case, WheelsetCase):
+        raise CaseFileError(f"{case.source}: not a wheelset case: it has no [wheelset], "
+                            "[track], [motion] and [position] tables (run it with "
+                            "'wheelrail solve')")
+    return case

@@ -13,7 +13,7 @@ families (de Pater's normal and tangential sub-problems):
 * an **equivalent ellipse** (semi-axes ``a``, ``b``, :meth:`ContactPatch.ellipse`)
   for the closed-form creep laws (Carter, linear, Shen–Hedrick–Elkins,
   Polach), which know nothing but an ellipse. A Hertzian patch carries its
-  exact :class:`~wheelrail.normal.hertz.HertzContact`; for a non-elliptic
+  exact :class:`~wheelrail.hertzian.HertzContact`; for a non-elliptic
   patch the ellipse has the patch's area and its length/width ratio;
 * optionally a **pressure field on a half-space grid** (``grid``,
   ``pressure``, ``mask``) from the boundary-element solver, which the exact
@@ -44,9 +44,9 @@ from typing import Any
 
 import numpy as np
 
-from .._validation import integer
-from ..errors import InputError
-from ..materials import MaterialPair, as_material_pair
+from ._validation import integer
+from .errors import InputError
+from .materials import MaterialPair, as_material_pair
 
 __all__ = ["ContactPatch", "ContactFrame", "DEFAULT_STRIPS", "DEFAULT_CELLS"]
 
@@ -335,7 +335,7 @@ class ContactPatch:
         return self.x_lead[:, None] - frac[None, :] * (self.x_lead - self.x_trail)[:, None]
 
     def ellipse(self):
-        """The equivalent :class:`~wheelrail.normal.hertz.HertzContact` (a, b, Fn).
+        """The equivalent :class:`~wheelrail.hertzian.HertzContact` (a, b, Fn).
 
         The Hertz ellipse itself for a Hertzian patch; otherwise the ellipse
         with the patch's semi-axes ``a``, ``b`` (same area, same
@@ -343,7 +343,7 @@ class ContactPatch:
         """
         if self.hertz is not None:
             return self.hertz
-        from ..normal.hertz import hertz_from_semiaxes
+        from .hertzian import hertz_from_semiaxes
 
         return hertz_from_semiaxes(self.a, self.b, self.Fn, self.materials)
 

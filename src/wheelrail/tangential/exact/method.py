@@ -4,9 +4,9 @@ For each Hertzian contact the window around the ellipse is discretised
 (:func:`wheelrail.normal.bem.hertz_grid`), the normal problem is solved with
 the boundary-element solver (so the pressure is that of the discretised
 half-space, not the analytic Hertz one) and then the steady-rolling problem
-with Coulomb friction (:mod:`wheelrail.halfspace.tangential`). For
+with Coulomb friction (:mod:`wheelrail.tangential.exact`). For
 dissimilar materials (``K ≠ 0``) the two problems are alternated
-(Panagiotopoulos' process, :func:`wheelrail.contact.solve_gap`).
+(Panagiotopoulos' process, :func:`wheelrail.tangential.exact.solve_gap`).
 
 This is the reference method of the library; accuracy is controlled by
 ``elements`` (elements across the contact in each direction): the creep
@@ -26,12 +26,14 @@ from collections import OrderedDict
 
 import numpy as np
 
-from .._validation import integer, scalar_or_array
-from ..errors import InputError
-from ..materials import as_material_pair
-from ..results import CreepForces, Status
-from ..options import configured, option
-from ._base import TangentialMethod
+from ..._validation import scalar_or_array
+from ...materials import as_material_pair
+from ...normal.bem import hertz_grid, solve_normal
+from ...options import configured, option
+from ...results import CreepForces, GapResult, Status
+from .._base import TangentialMethod
+from .coupled import solve_gap
+from .steady import solve_rolling
 
 __all__ = ["Exact", "exact_single"]
 
@@ -52,7 +54,6 @@ def _normal_solution(grid, gap, pair, load, on_fail, initial=None):
     pressure: about 30 % fewer iterations than the default start, the same
     solution to the solver's tolerance).
     """
-    from ..normal.bem import solve_normal
 
     key = (grid, hash(gap.tobytes()), pair.G, pair.nu, pair.K, float(load), on_fail)
     try:
@@ -68,7 +69,7 @@ def _normal_solution(grid, gap, pair, load, on_fail, initial=None):
 
 def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6, maxiter=100,
                  on_fail="raise"):
-    """Solve one Hertzian contact with the exact theory; returns a :class:`GapSolution`.
+    """Solve one Hertzian contact with the exact theory; returns a :class:`GapResult`.
 
     Parameters
     ----------
@@ -88,9 +89,6 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     the normal and tangential problems are alternated by
     :func:`wheelrail.contact.solve_gap`.
     """
-    from ..normal.bem import hertz_grid
-    from ..contact import GapSolution, solve_gap
-    from ..halfspace.tangential import solve_rolling
 
     # at least one row of elements outside the Hertz ellipse, also on coarse grids where the
     # discrete contact area reaches the ellipse's edge elements
@@ -107,7 +105,7 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     normal = _normal_solution(grid, gap, pair, contact.load, on_fail, initial=hertz)
     tang = solve_rolling(grid, normal.pressure, pair, creepage, float(mu), tol=tol,
                          maxiter=maxiter, on_fail=on_fail)
-    return GapSolution(normal, tang, 1, 0.0)
+    return GapResult(normal, tang, 1, 0.0)
 
 
 @configured
@@ -134,7 +132,7 @@ class Exact(TangentialMethod):
 
     Notes
     -----
-    ``fields`` is the :class:`~wheelrail.contact.GapSolution`
+    ``fields`` is the :class:`~wheelrail.results.GapResult`
     (grid, pressure, px, py, slip sx, sy, adhesion mask, displacements) for a
     single case, a tuple of them for a batch. ``info`` holds ``area``,
     ``p_max``, ``adhesion_area`` [m², Pa, m²], ``normal_iterations``,
@@ -251,8 +249,6 @@ def _patch_forces(sol, mask, grid, origin, centre):
 
 
 def _solve_patches_exact(method, patches, creepages, mu, previous=None):
-    from ..halfspace.tangential import solve_rolling
-
     tol, maxiter, on_fail = method.tol, method.maxiter, method.on_fail
     elements, margin = method.elements, method.margin
 
