@@ -17,12 +17,18 @@ from __future__ import annotations
 import importlib
 
 from . import conventions
-from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError, OptionError,
-                     ProfileError, WheelrailError)
+from ._version import __version__
+from .errors import (
+    CaseFileError,
+    ConvergenceError,
+    InputError,
+    NoContactError,
+    OptionError,
+    ProfileError,
+    WheelrailError,
+)
 from .materials import STEEL, Material, MaterialPair
 from .results import CreepForces, Status
-
-from ._version import __version__
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {
@@ -103,7 +109,7 @@ def __dir__():
 
 
 __all__ = [
-    "Material", "MaterialPair", "STEEL", "CreepForces", "Status", "conventions",
+    "__version__", "Material", "MaterialPair", "STEEL", "CreepForces", "Status", "conventions",
     "WheelrailError", "InputError", "OptionError", "ConvergenceError", "NoContactError",
     "ProfileError", "CaseFileError",
     *_LAZY,

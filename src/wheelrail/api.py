@@ -6,12 +6,11 @@ import numpy as np
 
 from . import normal as _normal
 from . import tangential as _tangential
-from ._validation import as_float_array, positive
+from ._validation import positive
 from .contact.wheelrail import WheelRailPosition, solve_wheelrail
-from .errors import InputError, WheelrailError
+from .errors import InputError
 from .normal import GapProblem
 from .options import split_options
-from .plausibility import check_friction
 from .results import ContactResult, CreepForces, PatchResult
 from .tangential import as_creepage
 

@@ -46,6 +46,7 @@ import numpy as np
 
 from ._validation import integer
 from .errors import InputError
+from .hertzian import hertz_from_semiaxes
 from .materials import MaterialPair, as_material_pair
 
 __all__ = ["ContactPatch", "ContactFrame", "DEFAULT_STRIPS", "DEFAULT_CELLS"]
@@ -343,7 +344,6 @@ class ContactPatch:
         """
         if self.hertz is not None:
             return self.hertz
-        from .hertzian import hertz_from_semiaxes
 
         return hertz_from_semiaxes(self.a, self.b, self.Fn, self.materials)
 

@@ -28,12 +28,13 @@ from dataclasses import replace
 
 import numpy as np
 
-from ._validation import as_float_array, positive
 from . import tangential as _tangential
+from ._validation import as_float_array, positive
 from .api import creep_forces
-from .tangential import as_creepage, broadcast_contact as _broadcast_contact
 from .errors import ConvergenceError, InputError
 from .results import CreepForces
+from .tangential import as_creepage
+from .tangential import broadcast_contact as _broadcast_contact
 from .tangential.linear import linear_stiffness
 
 __all__ = ["solve_creepages"]

@@ -3,23 +3,25 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from types import MappingProxyType
 from typing import Mapping
 
-from ..errors import CaseFileError, InputError, OptionError
-from ..materials import STEEL, Material, MaterialPair
-from ..hertzian import RADII_KEYS
 from ..cases.contact import ContactSpec
+from ..errors import InputError, OptionError
+from ..hertzian import RADII_KEYS
+from ..materials import STEEL, Material, MaterialPair
 
 __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_methods",
            "read_forces", "configure", "check_plausible", "tomllib"]
 
+from .. import normal as normal_family
+from .. import tangential as tangential_family
 from .._toml import Reader, read_toml, tomllib
+from ..plausibility import check_friction
+
 
 def check_plausible(r, table: str, key: str, value) -> None:
     """Plausibility check of one value at read time (see :mod:`wheelrail.plausibility`)."""
-    from ..plausibility import check_friction
 
     try:
         check_friction(value)
@@ -99,8 +101,6 @@ def read_methods(r: Reader, tbl: Mapping):
         Registry name -> configured method, for every ``[method.<name>]``
         table and the two chosen methods.
     """
-    from .. import normal as normal_family
-    from .. import tangential as tangential_family
 
     option_tables = {k: v for k, v in tbl.items() if isinstance(v, Mapping)}
     scalars = {k: v for k, v in tbl.items() if k not in option_tables}

@@ -8,9 +8,16 @@ from typing import Mapping
 from ..cases.contact import Case
 from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError
+from ._reader import (
+    Reader,
+    check_plausible,
+    read_contact,
+    read_forces,
+    read_materials,
+    read_methods,
+    read_toml,
+)
 from .wheelset import is_wheelset_case, wheelset_case_from_dict
-from ._reader import (Reader, check_plausible, read_contact, read_forces, read_materials,
-                      read_methods, read_toml)
 
 __all__ = ["load_case", "case_from_dict", "load_contact_case", "load_wheelset_case"]
 

@@ -7,6 +7,7 @@ from typing import Mapping
 
 from ..cases.transient import TransientCase
 from ..errors import CaseFileError, InputError
+from ..transient.loads import KINDS, TravelFunction
 from ._reader import Reader, check_plausible, read_contact, read_materials, read_toml
 
 __all__ = ["load_transient_case"]
@@ -19,8 +20,6 @@ _TRANSIENT_KEYS = ("travel", "step", "elements", "friction", "epsilon", "scheme"
 
 
 def _read_travel_function(r: Reader, tbl: Mapping, key: str):
-    from ..transient.loads import KINDS, TravelFunction
-
     v = tbl[key]
     if isinstance(v, Mapping):
         spec = dict(v)

@@ -9,8 +9,11 @@ from typing import Mapping
 
 import numpy as np
 
+from .. import profiles
 from ..cases.wheelset import WheelsetCase
-from ..errors import CaseFileError, InputError
+from ..errors import CaseFileError, InputError, ProfileError
+from ..geometry import Track, Wheelset
+from ..geometry.kinematics import Motion
 from ._reader import Reader, read_materials, read_methods
 
 __all__ = ["wheelset_case_from_dict", "is_wheelset_case", "MAX_POSITIONS"]
@@ -36,9 +39,6 @@ def _base_dir(source: str) -> Path:
 
 
 def _read_profile(r: Reader, table: str, tbl: Mapping, key: str, kind: str, default):
-    from .. import profiles
-    from ..errors import ProfileError
-
     if key not in tbl and default is None:
         return None, None
     spec = r.string(table, tbl, key, default)
@@ -62,8 +62,6 @@ def _read_profile(r: Reader, table: str, tbl: Mapping, key: str, kind: str, defa
 
 
 def _construct(r: Reader, table: str, make):
-    from ..errors import ProfileError
-
     try:
         return make()
     except (InputError, ProfileError) as exc:
@@ -162,9 +160,6 @@ def _read_position(r: Reader, tbl: Mapping):
 
 
 def wheelset_case_from_dict(r: Reader, data: Mapping) -> WheelsetCase:
-    from ..geometry import Track, Wheelset
-    from ..geometry.kinematics import Motion
-
     for name in ("contact", "creepage", "force"):
         if name in data:
             r.fail(name, None, "a wheelset case ([wheelset], [track], [motion], [position]) "

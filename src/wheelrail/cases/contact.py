@@ -17,13 +17,18 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .. import normal as normal_family
+from .. import tangential as tangential_family
+from ..api import solve
 from ..conventions import CREEPAGE_UNITS, FORCE_UNITS
 from ..errors import CaseFileError, InputError
+from ..hertzian import hertz, hertz_from_radii, hertz_from_semiaxes
 from ..materials import MaterialPair
 from ..normal import NormalMethod
-from ..hertzian import RADII_KEYS
+from ..prescribed import solve_creepages
 from ..results import to_jsonable
 from ..tangential import TangentialMethod
+from .wheelset import WheelsetCase, solve_wheelset_case
 
 __all__ = ["Case", "ContactSpec", "CaseResult", "run_case", "solve_case", "DEFAULT_CASE", "UNITS",
            "toml_value"]
@@ -73,7 +78,6 @@ class ContactSpec:
 
     def hertz(self, material):
         """The :class:`wheelrail.HertzContact` of this description."""
-        from ..hertzian import hertz, hertz_from_radii, hertz_from_semiaxes
 
         if self.kind == "curvatures":
             return hertz(self.load, self.A, self.B, material)
@@ -129,9 +133,6 @@ class Case:
     source: str = "<case>"
 
     def __post_init__(self):
-        from .. import normal as normal_family
-        from .. import tangential as tangential_family
-
         n = normal_family.get("hertz" if self.normal is None else self.normal)
         t = tangential_family.get("fastsim" if self.tangential is None else self.tangential)
         object.__setattr__(self, "normal", n)
@@ -144,7 +145,6 @@ class Case:
     def with_tangential(self, name) -> "Case":
         """The case with another creep-force law: its configured object from
         :attr:`methods` (the case file's ``[method.<name>]``), else its defaults."""
-        from .. import tangential as tangential_family
 
         cls = tangential_family.get_class(name)
         return self.replace(tangential=self.methods.get(cls.name, cls()))
@@ -264,15 +264,12 @@ def solve_case(case: Case) -> CaseResult:
     CaseResult
         ``summary`` is the dictionary returned by :func:`run_case`.
     """
-    from ..api import solve
 
     if not isinstance(case, Case):
         raise InputError(f"solve_case needs a Case (from load_case), got {type(case).__name__}")
     contact = case.hertz_contact
     xi, eta, phi = case.creepage
     if case.forces:
-        from ..prescribed import solve_creepages
-
         forces = solve_creepages(contact, case.mu, Fx=case.forces.get("Fx"),
                                  Fy=case.forces.get("Fy"), creepage=(xi, eta, phi),
                                  method=case.tangential)
@@ -304,7 +301,6 @@ def run_case(case) -> dict:
     ``force_track``, ``pose``) with the validated input under ``case``; a
     sweep is solved with :func:`solve_wheelset_case` (an ``xarray.Dataset``).
     """
-    from .wheelset import WheelsetCase, solve_wheelset_case
 
     if isinstance(case, WheelsetCase):
         if case.sweep:

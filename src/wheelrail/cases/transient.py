@@ -7,6 +7,7 @@ from functools import cached_property
 from typing import Any, Mapping
 
 from ..materials import MaterialPair
+from ..transient import transient_rolling
 from .contact import ContactSpec
 
 __all__ = ["TransientCase"]
@@ -40,7 +41,6 @@ class TransientCase:
 
     def run(self, progress=False):
         """Solve with :func:`wheelrail.transient_rolling`; returns its ``TransientResult``."""
-        from ..transient import transient_rolling
 
         return transient_rolling(self.hertz_contact, mu=self.mu, progress=progress,
                                  **dict(self.settings))

@@ -10,6 +10,11 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .. import normal as normal_family
+from .. import tangential as tangential_family
+from ..api import solve
+from ..contact.sweep import wheelset_sweep
+from ..contact.wheelrail import WheelRailPosition
 from ..errors import InputError
 from ..materials import MaterialPair
 from ..normal import NormalMethod
@@ -73,9 +78,6 @@ class WheelsetCase:
     tables: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
 
     def __post_init__(self):
-        from .. import normal as normal_family
-        from .. import tangential as tangential_family
-
         object.__setattr__(self, "normal",
                            normal_family.get("hertz" if self.normal is None else self.normal))
         object.__setattr__(self, "tangential", tangential_family.get(
@@ -83,7 +85,6 @@ class WheelsetCase:
 
     def position(self, i: int = 0):
         """The :class:`wheelrail.WheelRailPosition` of shift number ``i``."""
-        from ..contact.wheelrail import WheelRailPosition
 
         return WheelRailPosition(self.wheelset, self.track, float(self.y[i]), float(self.yaw[i]),
                                  self.roll, vertical_load=self.vertical_load, z=self.z,
@@ -106,7 +107,6 @@ def solve_wheelset_case(case: WheelsetCase, progress=None):
     xarray.Dataset
         For a sweep (``y`` a range or list): :func:`wheelrail.wheelset_sweep`.
     """
-    from ..api import solve
 
     if not isinstance(case, WheelsetCase):
         raise InputError(f"solve_wheelset_case needs a WheelsetCase (from load_case), got "
@@ -114,7 +114,6 @@ def solve_wheelset_case(case: WheelsetCase, progress=None):
     if not case.sweep:
         return solve(case.position(0), motion=case.motion, mu=case.mu, normal=case.normal,
                      tangential=case.tangential)
-    from ..contact.sweep import wheelset_sweep
 
     ds = wheelset_sweep(case.wheelset, case.track, y=case.y, yaw=case.yaw,
                         roll=case.roll, vertical_load=case.vertical_load, z=case.z,

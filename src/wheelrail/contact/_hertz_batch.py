@@ -14,7 +14,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError, WheelrailError
+from ..geometry.contact_search import _Pose, find_points, solve_rigid
+from ..geometry.elastic import regularised_B_rows
+from ..geometry.kinematics import creepage_kernel
+from ..geometry.touching import touching_heights
 from ..hertzian import _vertical_approach, hertz_from_penetration, hertz_kernel
+from ..materials import as_material_pair
+from .wheelrail import axle_offset_x
 
 __all__ = ["hertz_sweep"]
 
@@ -29,12 +35,6 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, material
 
     ``tangential`` is a configured creep-force law (its ``solve`` on the batch of
     Hertz contacts of the active points)."""
-    from ..geometry.contact_search import _Pose, find_points, solve_rigid
-    from ..geometry.elastic import regularised_B_rows
-    from ..geometry.kinematics import creepage_kernel
-    from ..materials import as_material_pair
-    from ..geometry.touching import touching_heights
-    from .wheelrail import axle_offset_x
 
     pair = as_material_pair(material)
     n = y.size

@@ -29,8 +29,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import WheelrailError
-from .wheelrail import SIDES, WheelProblem, WheelRailPosition
+from ..errors import InputError, WheelrailError
+from ..geometry.contact_search import _Pose, _side_from_row, find_points, solve_rigid
+from ..geometry.elastic import regularised_B_rows
+from ..geometry.touching import touching_heights
+from ..patch import ContactFrame
+from ..plausibility import check_friction, disabled
+from .wheelrail import SIDES, WheelProblem, WheelRailPosition, _solve_sides, solve_wheelrail
 
 __all__ = ["strip_sweep"]
 
@@ -42,9 +47,6 @@ def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius, points=Tru
     ``{side: (data, count, A, B)}`` for the rows in ``ok`` (arrays over all
     rows; rows not ok hold NaN), or None when the batch cannot be formed.
     """
-    from ..geometry.contact_search import _Pose, find_points, solve_rigid
-    from ..geometry.elastic import regularised_B_rows
-    from ..geometry.touching import touching_heights
 
     n = y.size
     th = np.array(roll, dtype=float)
@@ -87,9 +89,6 @@ def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius, points=Tru
 def _problem(position, side, roll, z, data, count, r, A, B, roller_radius):
     """The :class:`WheelProblem` of one side of one position from the batched rows
     (what :func:`~wheelrail.contact.wheelrail.wheel_problem` computes for one pose)."""
-    from ..errors import InputError
-    from ..geometry.contact_search import _side_from_row
-    from ..patch import ContactFrame
 
     if data is None:        # a method that reads no candidate points (CAF tables)
         pts, k, A, B = None, 0, np.zeros((r + 1, 0)), np.zeros((r + 1, 0))
@@ -117,8 +116,6 @@ def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nim
     Parameters are those of :func:`~wheelrail.contact.sweep.wheelset_sweep`
     (``nimpl``, ``timpl`` configured method objects).
     """
-    from ..plausibility import check_friction, disabled
-    from .wheelrail import _solve_sides, solve_wheelrail
 
     n = y.size
     R = motion.roller_radius

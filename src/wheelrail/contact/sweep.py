@@ -10,11 +10,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import as_float_array
-from ..errors import InputError, WheelrailError
-
 from .. import normal as normal_family
 from .. import tangential as tangential_family
+from .._validation import as_float_array
+from ..errors import InputError, WheelrailError
+from ..materials import STEEL
+from ..normal.hertz import Hertz
+from ..options import split_options
+from ..plausibility import check_friction, disabled
+from ._hertz_batch import check_vertical, hertz_sweep
+from ._strip_batch import strip_sweep
 from .wheelrail import SIDES, WheelRailPosition, solve_wheelrail
 
 __all__ = ["wheelset_sweep", "PATCH_VARIABLES"]
@@ -90,7 +95,6 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         ``n_patches``; per position: ``yaw``, ``roll`` [rad], ``status``
         ("ok" or "error") and ``message``.
     """
-    from ..materials import STEEL
 
     y = np.atleast_1d(as_float_array("y", y))
     if y.ndim != 1 or y.size == 0:
@@ -104,9 +108,6 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         raise InputError("motion=wheelrail.Motion(speed=...) is required")
     material = STEEL if material is None else material
     npat = int(max_patches)
-    from ..normal.hertz import Hertz
-    from ..options import split_options
-    from ._hertz_batch import check_vertical, hertz_sweep
 
     check_vertical(vertical)
     nopts, topts = split_options(normal_family.get_class(normal),
@@ -121,7 +122,6 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
                           tolerance=tolerance)
         loads = None if vertical_load is None else np.broadcast_to(
             np.asarray(vertical_load, dtype=float), (2,))
-        from ..plausibility import check_friction, disabled
 
         check_friction(mu)
         with disabled():   # inputs checked above; small secondary patches are normal
@@ -159,7 +159,6 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     try:
         if batch:
             # other methods: poses and candidate points of all positions at once
-            from ._strip_batch import strip_sweep
 
             strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl,
                         timpl, material, tolerance, vertical,

@@ -48,14 +48,20 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import normal as normal_family
+from .. import tangential as tangential_family
 from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
-from ..materials import STEEL, as_material_pair
-from ..results import ContactResult, PatchResult, to_jsonable
-from ..patch import ContactFrame
-from .. import normal as normal_family
+from ..geometry import Track, Wheelset
+from ..geometry.contact_search import _Pose, _side_from_row, find_points, solve_rigid
+from ..geometry.elastic import _regularised_B
+from ..geometry.kinematics import Motion, creepage_kernel
+from ..geometry.separation import separation_at
 from ..geometry.touching import touching_heights
-from .. import tangential as tangential_family
+from ..materials import STEEL, as_material_pair
+from ..patch import ContactFrame
+from ..plausibility import check_friction, check_load, disabled
+from ..results import ContactResult, PatchResult, to_jsonable
 
 __all__ = ["WheelRailPosition", "WheelProblem", "WheelRailResult", "solve_wheelrail", "SIDES"]
 
@@ -105,8 +111,6 @@ class WheelRailPosition:
     tolerance: float = 5e-4
 
     def __post_init__(self):
-        from ..geometry import Track, Wheelset
-
         if not isinstance(self.wheelset, Wheelset):
             raise InputError(f"wheelset must be a Wheelset, got {type(self.wheelset).__name__}")
         if not isinstance(self.track, Track):
@@ -123,8 +127,6 @@ class WheelRailPosition:
             raise InputError("give exactly one of vertical_load= (N per wheel) and z= (m), got "
                              f"vertical_load={self.vertical_load!r}, z={self.z!r}")
         if self.vertical_load is not None:
-            from ..plausibility import check_load
-
             q = np.broadcast_to(as_float_array("vertical_load", self.vertical_load), (2,))
             for side, v in zip(SIDES, q):
                 if not v > 0:
@@ -185,7 +187,6 @@ class WheelProblem:
     def separation(self, k, width: float = 0.04, n: int = 801):
         """Profile separation around candidate point ``k`` (or a :class:`ContactFrame`) in its
         contact plane (:func:`wheelrail.geometry.separation.separation_at`); cached."""
-        from ..geometry.separation import separation_at
 
         f = self.frames[k] if not isinstance(k, ContactFrame) else k
         key = ("separation", f, width, n)
@@ -325,7 +326,6 @@ def touching_poses(position):
 
     Returns ``roll`` and ``{side: z}``.
     """
-    from ..geometry.contact_search import solve_rigid
 
     ws, tr = position.wheelset, position.track
     y = np.array([position.y])
@@ -343,8 +343,6 @@ def touching_poses(position):
 
 def wheel_problem(position, side, roll, z, roller_radius=None) -> WheelProblem:
     """Candidate points, curvatures and frames of one wheel at its touching pose."""
-    from ..geometry.contact_search import _Pose, _side_from_row, find_points
-    from ..geometry.elastic import _regularised_B
 
     ws, tr = position.wheelset, position.track
     pose = _Pose(np.array([position.y]), np.array([z]), np.array([roll]),
@@ -383,8 +381,6 @@ def axle_offset_x(x, wheel_y, sigma, e_tape, roll, yaw):
 
 
 def _creepage_at(frame, sig, motion, Omega, position, roll, zc, R):
-    from ..geometry.kinematics import creepage_kernel
-
     dx = axle_offset_x(frame.x, frame.wheel_y, sig, position.wheelset.e_tape, roll, position.yaw)
     return tuple(float(v) for v in creepage_kernel(
         sig, motion.speed, Omega, motion.lateral_velocity, motion.vertical_velocity,
@@ -420,7 +416,6 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
     -------
     WheelRailResult
     """
-    from ..geometry.kinematics import Motion
 
     if not isinstance(position, WheelRailPosition):
         raise InputError(f"position must be a WheelRailPosition, got {type(position).__name__}")
@@ -435,7 +430,6 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
     R = motion.roller_radius
     if vertical not in ("total", "normal"):
         raise InputError(f"vertical must be 'total' or 'normal', got {vertical!r}")
-    from ..plausibility import check_friction, disabled
 
     check_friction(mu)
     with disabled():   # the inputs are checked; patches of a few N are normal inside a wheel

@@ -53,9 +53,16 @@ import warnings
 import numpy as np
 
 from .._validation import integer
+from ..normal._gap import (
+    DEFAULT_SEARCH,
+    _enlarged_bounds,
+    _evaluate,
+    _grid_on,
+    _window,
+    contact_patches,
+    potential_contact_grid,
+)
 from ..normal.bem import ContactTruncatedWarning
-from ..normal._gap import (DEFAULT_SEARCH, _enlarged_bounds, _evaluate, _grid_on, _window,
-                           contact_patches, potential_contact_grid)
 from ..tangential.exact import solve_gap
 
 __all__ = ["DEFAULT_SEARCH", "contact_patches", "potential_contact_grid", "solve_gap_auto"]

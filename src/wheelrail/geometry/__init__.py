@@ -6,8 +6,8 @@ Public names: :class:`Wheelset`, :class:`Track`, :func:`contact_points`,
 derailed wheel) and :data:`STATUS` (row status codes of contact tables).
 """
 
-from .contact_search import STATUS, ContactPoints, ContactWarning, SideContacts, contact_points
 from .conicity import equivalent_conicity
+from .contact_search import STATUS, ContactPoints, ContactWarning, SideContacts, contact_points
 from .contact_table import contact_table
 from .elastic import ElasticContact, elastic_contact
 from .separation import Separation, separation, undeformed_distance

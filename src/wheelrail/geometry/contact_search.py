@@ -85,7 +85,16 @@ from .._validation import as_float_array, non_negative, positive
 from ..errors import ConvergenceError, InputError
 from ._checks import SIDES, check_side
 from ._curves import curvature
-from ._search_kernels import grid_gap_row
+from ._search_kernels import (
+    POINT_ROWS,
+    global_min_rows,
+    grid_gap_row,
+    newton_rows,
+    order_points,
+    point_data_rows,
+    refine_rows,
+    select_minima,
+)
 from .track import Track
 from .wheelset import Wheelset
 
@@ -223,7 +232,6 @@ def _refine(fun, s0, h, lo, hi, levels=5):
 def _refine_fast(ws, tr, side, step, s0, y, zc, th, psi, levels=5):
     """:func:`_refine` of the gap of ``side`` from the grid points ``s0`` (one pose each,
     arrays of shape (n,)), compiled (:func:`wheelrail.geometry._search_kernels.refine_rows`)."""
-    from ._search_kernels import refine_rows
 
     n = np.size(s0)
     arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
@@ -338,7 +346,6 @@ def _global_min(ws, tr, side, pose, step, levels=5):
     and the rail below it rises by its slope times the lateral motion.
     Compiled (:func:`wheelrail.geometry._search_kernels.global_min_rows`).
     """
-    from ._search_kernels import global_min_rows
 
     n = np.size(pose.y)
     arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
@@ -398,7 +405,6 @@ def _newton(ws, tr, y, yaw, z, th, step, tol, maxiter):
     5 (shared by the active rows). Compiled
     (:func:`wheelrail.geometry._search_kernels.newton_rows`).
     """
-    from ._search_kernels import newton_rows
 
     c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
     return newton_rows(_side_args(ws, tr, "left", step), _side_args(ws, tr, "right", step),
@@ -706,8 +712,6 @@ def point_data(ws, tr, side, s, pose: _Pose) -> dict:
     s_arr = np.asarray(s, dtype=float)
     if s_arr.ndim == 1 and all(np.shape(v) == s_arr.shape for v in
                                (pose.y, pose.z, pose.roll, pose.yaw)):
-        from ._search_kernels import POINT_ROWS, point_data_rows
-
         args = _side_args(ws, tr, side, step=2e-4)
         pl = tr.placement(side)
         c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
@@ -756,7 +760,6 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
         :data:`POINT_FIELDS`, NaN-padded.
     count : ndarray of int, shape (n_rows,)
     """
-    from ._search_kernels import order_points, select_minima
 
     d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
     nrow = d.shape[0]

@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import atomic_open, atomic_path
 from .._validation import as_float_array, positive
 from ..errors import InputError
-from .contact_search import (POINT_FIELDS, SIDES, STATUS, check_inputs, solve_rigid_rows,
-                             solve_rows)
+from .contact_search import POINT_FIELDS, SIDES, STATUS, check_inputs, solve_rigid_rows, solve_rows
 
 __all__ = ["contact_table", "locate_jumps", "write_csv", "write_netcdf"]
 
@@ -230,7 +230,6 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
 
 def write_netcdf(table, path) -> Path:
     """Write a contact table to NetCDF-3 with the scipy engine (no netCDF4 needed), atomically."""
-    from .._atomic import atomic_path
 
     path = Path(path)
     with atomic_path(path) as tmp:
@@ -244,7 +243,6 @@ def write_csv(table, path) -> Path:
     The file is written atomically (temporary file, then rename); text
     variables (``status_reason``) are written as quoted strings.
     """
-    from .._atomic import atomic_open
 
     path = Path(path)
     cols, names = [np.asarray(table["y"].values, dtype=object)], ["y"]

@@ -55,11 +55,22 @@ from scipy.optimize import root
 
 from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
-from ..materials import STEEL, as_material_pair
 from ..hertzian import hertz_kernel
+from ..materials import STEEL, as_material_pair
 from ._checks import check_side
-from .contact_search import (SIDES, _SIGMA, SideContacts, _gapfun, _grid_gap, _Pose,
-                             _side_from_row, check_inputs, find_points, point_data, solve_rigid)
+from .contact_search import (
+    _SIGMA,
+    SIDES,
+    SideContacts,
+    _gapfun,
+    _grid_gap,
+    _Pose,
+    _side_from_row,
+    check_inputs,
+    find_points,
+    point_data,
+    solve_rigid,
+)
 
 __all__ = ["ElasticContact", "elastic_contact", "METHODS"]
 

@@ -18,10 +18,11 @@ import numpy as np
 from numba import njit
 
 from ..materials import as_material_pair
+from ._memo import grid_key, memo
 from .fft import _cropped_irfft2, _fft_shape, _kernel_transform, _padded_rfft2
 from .grid import Grid
-from ._memo import grid_key, memo
 from .influence import influence_kernel
+
 
 # --------------------------------------------------------------------------
 # operators

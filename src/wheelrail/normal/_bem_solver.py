@@ -16,10 +16,14 @@ import numpy as np
 from .._resources import guard
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError, NoContactError
+from ..halfspace._memo import grid_key, memo
 from ..halfspace.fft import InfluenceOperator, influence_operator
 from ..halfspace.grid import Grid
+from ..halfspace.precondition import InverseSymbolPreconditioner
 from ..materials import as_material_pair
+from ..patch import ContactPatch
 from ..results import NormalResult, Status
+from ._gap import _enlarged_bounds, _evaluate, contact_patches
 
 __all__ = ["ContactTruncatedWarning", "solve_normal", "hertz_grid", "polonsky_keer"]
 
@@ -195,8 +199,6 @@ def _preconditioner(grid, operator):
     """
     if grid.size < 2:
         return None
-    from ..halfspace._memo import grid_key, memo
-    from ..halfspace.precondition import InverseSymbolPreconditioner
 
     key = ("normal-preconditioner",) + grid_key(grid, operator.materials)
     return memo(key, lambda: InverseSymbolPreconditioner(operator.kernel[2, 2], grid.dx, grid.dy))
@@ -419,7 +421,6 @@ def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=Non
 
     ``square``: keep square elements of this size when enlarging (else the element count).
     """
-    from ._gap import _enlarged_bounds, _evaluate
 
     for it in range(max_enlarge + 1):
         h0 = np.array(_evaluate(gap, grid.X, grid.Y))
@@ -446,8 +447,6 @@ def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=Non
 def _patches_of(sol, materials, cells, frames=None, origins=None, A=float("nan"),
                 B=float("nan")):
     """One :class:`ContactPatch` per connected part of the contact of ``sol``."""
-    from ..patch import ContactPatch
-    from ._gap import contact_patches
 
     labels, _ = contact_patches(sol)
     out = []

@@ -17,6 +17,7 @@ import numpy as np
 from .._validation import as_float_array, integer, positive
 from ..errors import InputError, NoContactError
 from ..halfspace.grid import Grid
+from ..hertzian import hertz
 
 #: Default search box (xmin, xmax, ymin, ymax) [m]: ±20 mm around the origin, i.e. the
 #: default ±20 mm lateral window of :func:`wheelrail.geometry.separation` around the rigid
@@ -97,7 +98,6 @@ def _principal_curvatures(gap, xm, ym, hx, hy):
 
 def _hertz_penetration(gap, load, materials, xm, ym, spacing):
     """Hertz estimate of δ for ``load`` from the curvatures of h at its minimum."""
-    from ..hertzian import hertz   # hertz imports this package's base; import on use
 
     hx, hy = spacing
     for _ in range(3):

@@ -39,6 +39,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
+from ..hertzian import hertz_kernel
+from ..materials import as_material_pair
+from ..patch import ContactPatch
+from ._base import GapProblem
+from ._fast_separation import rail_slopes, separation_fast
+from ._gap import _check_search, _evaluate, _minimum
+from ._patch_kernel import strip_patch, weighted_means
 
 __all__ = ["Line", "Region", "VirtualPenetration", "runs", "kp_integrals",
            "hertz_penetration_factor", "hertz_shape", "hertz_ab"]
@@ -106,8 +113,6 @@ def _hertz_table():
     """ln a, ln b, ln p0, ln δ of Hertz (unit load, E* = 1, A·B = 1) on a grid of ln(A/B)."""
     t = _TABLE.get("hertz")
     if t is None:
-        from ..hertzian import hertz_kernel
-
         n = int(round(2 * _LN_MAX / _LN_STEP)) + 1
         lam = np.linspace(-_LN_MAX, _LN_MAX, n)
         A = np.exp(0.5 * lam)
@@ -128,8 +133,6 @@ def hertz_shape(A, B):
     A, B = float(A), float(B)
     lam = math.log(A / B)
     if abs(lam) > _LN_MAX:
-        from ..hertzian import hertz_kernel
-
         a, b, p0, d = hertz_kernel(1.0, A, B, 1.0)
         return float(a), float(b), float(p0), float(d)
     grid, la, lb, lp, ld = _hertz_table()
@@ -191,8 +194,6 @@ def _separation(problem, k, width, n):
     f = problem.frames[k]
     key = ("separation", f, width, n)
     if key not in problem.cache:
-        from ._fast_separation import separation_fast
-
         pose = problem.pose
         problem.cache[key] = separation_fast(
             problem.wheelset, problem.track, problem.side, y=pose["y"], z=pose["z"],
@@ -330,8 +331,6 @@ class VirtualPenetration:
 
     # ----------------------------------------------------------- Hertzian contact
     def from_contact(self, contact):
-        from ._base import GapProblem
-
         A, B = float(contact.A), float(contact.B)
         a, b = float(contact.a), float(contact.b)
         L = 4.0 * max(a, b)
@@ -345,8 +344,6 @@ class VirtualPenetration:
 
     # ----------------------------------------------------------- gap problems
     def _gap_line(self, problem, centre, ylim, n, dx):
-        from ._gap import _evaluate
-
         xm, ym, hmin = centre
         eta = np.linspace(ylim[0], ylim[1], n)
         X0 = np.full(n, xm)
@@ -359,8 +356,6 @@ class VirtualPenetration:
 
     def from_gap(self, problem):
         opts = self.option_values()
-        from ..materials import as_material_pair
-        from ._gap import _check_search, _evaluate, _minimum
 
         search = _check_search(problem.search)
         pair = as_material_pair(problem.materials)
@@ -378,7 +373,6 @@ class VirtualPenetration:
                     f"normal method {self.name!r}: the gap is not convex at its minimum "
                     f"(x, y) = ({xm!r}, {ym!r}) m (A = {A!r}, B = {B!r} 1/m); this patch cannot be "
                     "represented by a virtual-penetration method, use normal='bem'")
-            from ..hertzian import hertz_kernel
             if problem.load is not None:
                 a1, b1, _, d1 = hertz_kernel(float(problem.load), A, B, pair.E_star)
             else:
@@ -433,9 +427,6 @@ class VirtualPenetration:
 
     # ----------------------------------------------------------- patches
     def _make_patch(self, line, reg, pair, opts, frame, delta, extra=None):
-        from ..patch import ContactPatch
-        from ._patch_kernel import strip_patch
-
         strips = int(opts["strips"])
         cells = int(opts["cells"])
         eta_n = reg.eta
@@ -476,7 +467,6 @@ class VirtualPenetration:
         key = ("vp_lines", self.name, group_angle, width)
         if key in problem.cache:
             return problem.cache[key]
-        from ._fast_separation import rail_slopes
 
         sigma = 1.0 if problem.side == "right" else -1.0
         groups = problem.groups(group_angle, width)
@@ -501,14 +491,11 @@ class VirtualPenetration:
         return lines
 
     def _wheel_solve(self, problem, opts, group_angle=0.2, width=0.04):
-        from ..materials import as_material_pair
-
         pair = as_material_pair(problem.materials)
         lines = self._wheel_lines(problem, group_angle, width)
         if not lines:
             raise NoContactError(f"{problem.side} wheel: no candidate contact point")
 
-        from ._patch_kernel import weighted_means
 
         def solve_all(dz):
             out, Fz = [], 0.0

@@ -12,9 +12,9 @@ import math
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
-from ._gap import _scaled
-from ._bem_solver import _elements_for, _patches_of, _solve_enlarging, _square_grid
 from ..hertzian import _vertical_approach, hertz_kernel
+from ._bem_solver import _elements_for, _patches_of, _solve_enlarging, _square_grid
+from ._gap import _scaled, contact_patches
 
 __all__ = ["solve_wheel"]
 
@@ -193,7 +193,6 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     for st, sol in zip(setups, sols):
         if sol is None:
             continue
-        from ._gap import contact_patches
 
         labels, _ = contact_patches(sol)
         nlab = int(labels.max())

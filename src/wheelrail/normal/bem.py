@@ -74,13 +74,21 @@ References
 from __future__ import annotations
 
 from ..options import configured, option
+from ..patch import ContactPatch
 from ._base import NormalMethod
-from ._bem_solver import (ContactTruncatedWarning, _elements_for, _patches_of, _solution_info,
-                          _solve_enlarging, _square_grid, hertz_grid, polonsky_keer,
-                          solve_normal)
+from ._bem_solver import (
+    ContactTruncatedWarning,
+    _elements_for,
+    _patches_of,
+    _solution_info,
+    _solve_enlarging,
+    _square_grid,
+    hertz_grid,
+    polonsky_keer,
+    solve_normal,
+)
 from ._gap import _window
 from ._wheel_bem import solve_wheel
-from ..patch import ContactPatch
 
 __all__ = ["Bem", "ContactTruncatedWarning", "solve_normal", "hertz_grid", "polonsky_keer"]
 

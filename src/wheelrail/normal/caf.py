@@ -51,6 +51,11 @@ import numpy as np
 
 from .._validation import positive
 from ..errors import InputError
+from ..geometry._checks import check_side
+from ..geometry.contact_search import _Pose, find_points
+from ..geometry.touching import touching_heights
+from ..hertzian import hertz_kernel
+from ..materials import as_material_pair
 
 __all__ = ["CafTable", "caf_table", "cached_caf_table", "caf_contacts", "jump_gap",
            "jump_overlap", "profile_jump_gaps"]
@@ -350,8 +355,6 @@ class CafTable:
         side is not convex (A or B ≤ 0) or both lines coincide."""
         memo = self.__dict__.setdefault("_memo", {})
         if k not in memo:
-            from ..hertzian import hertz_kernel
-
             t_lim = float(self.jumps[k])
             l1, l2 = self.line(t_lim, k), self.line(t_lim, k + 1)
             if (min(l1["A"], l1["B"], l2["A"], l2["B"]) <= 0
@@ -413,9 +416,6 @@ def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tole
     -------
     CafTable
     """
-    from ..geometry.touching import touching_heights
-    from ..geometry._checks import check_side
-    from ..geometry.contact_search import _Pose, find_points
 
     check_side(side)
     step = float(positive("step", step))
@@ -491,8 +491,6 @@ def profile_jump_gaps(wheelset, track, table, k, side, tau):
     tau, gap : ndarray
         The distances where the other branch's point was found and its gap [m].
     """
-    from ..geometry.touching import touching_heights
-    from ..geometry.contact_search import _Pose, find_points
 
     if side not in (1, 2):
         raise InputError(f"side must be 1 or 2, got {side!r}")
@@ -581,7 +579,6 @@ def caf_contacts(table, t_y, load, materials, overlap="general"):
         contact (one, or two inside an overlap; Σ w_i = 1); the normal loads
         are N_i = w_i N with N = Q / Σ w_i cos γ_i.
     """
-    from ..materials import as_material_pair
 
     E_star = float(as_material_pair(materials).E_star)
     general = _overlap_kind(overlap) == "general"

@@ -13,17 +13,24 @@ References
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 
 import numpy as np
 
-from ..errors import InputError
-from ..hertzian import (_checked_curvatures, _make, _vertical_approach, hertz,
-                        hertz_from_penetration, hertz_kernel)
+from ..errors import InputError, NoContactError
+from ..hertzian import (
+    _checked_curvatures,
+    _make,
+    _vertical_approach,
+    hertz,
+    hertz_from_penetration,
+    hertz_kernel,
+)
 from ..materials import as_material_pair
 from ..options import configured
+from ..patch import ContactPatch
 from ._base import NormalMethod, PatchDescription
+from ._gap import _check_search, _minimum, _principal_curvatures
 
 __all__ = ["Hertz"]
 
@@ -80,15 +87,11 @@ class Hertz(NormalMethod, PatchDescription):
 
     def from_contact(self, contact):
         strips, cells = self.strips, self.cells
-        from ..patch import ContactPatch
 
         return (ContactPatch.from_hertz(contact, strips=strips, cells=cells),)
 
     def from_gap(self, problem):
         strips, cells = self.strips, self.cells
-        from ..patch import ContactPatch
-        from ..errors import NoContactError
-        from ._gap import _check_search, _minimum, _principal_curvatures
 
         search = _check_search(problem.search)
         xm, ym, hmin, spacing = _minimum(problem.gap, search)
@@ -117,7 +120,6 @@ class Hertz(NormalMethod, PatchDescription):
 
     def from_wheel(self, problem):
         strips, cells = self.strips, self.cells
-        from ..patch import ContactPatch
 
         pts = problem.points
         pair = as_material_pair(problem.materials)

@@ -47,8 +47,17 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import configured, option
+from . import _kp_kernel
 from ._base import NormalMethod, PatchDescription
-from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor
+from ._patch_kernel import positive_runs
+from ._strips import (
+    _LN_MAX,
+    Region,
+    VirtualPenetration,
+    _hertz_table,
+    hertz_ab,
+    hertz_penetration_factor,
+)
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
 
@@ -160,9 +169,6 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
         d0 = eps * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]
-        from . import _kp_kernel
-        from ._patch_kernel import positive_runs
-        from ._strips import _LN_MAX, _hertz_table
 
         # the regions in one kernel (the arithmetic of the loop below)
         Ax = line.extra.get("Ax_array")
@@ -216,9 +222,6 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
                bool(opts["shape_correction"]))
         args = line.extra.get(key)
         if args is None:
-            from . import _kp_kernel
-            from ._strips import _hertz_table
-
             eps = self._eps(line, opts)[0]
             ang = line.angle
             if ang is None:

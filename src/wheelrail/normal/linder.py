@@ -36,8 +36,9 @@ import math
 
 import numpy as np
 
-from ..options import configured, option
+from ..options import configured
 from ._base import NormalMethod, PatchDescription
+from ._patch_kernel import positive_runs
 from ._strips import Region, VirtualPenetration
 
 __all__ = ["Linder", "LINDER_FACTOR"]
@@ -86,8 +87,6 @@ class Linder(VirtualPenetration, NormalMethod, PatchDescription):
     )
 
     def _solve_line(self, line, delta, opts):
-        from ._patch_kernel import positive_runs
-
         d0 = LINDER_FACTOR * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]

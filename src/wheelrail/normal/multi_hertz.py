@@ -66,14 +66,21 @@ References
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
+from ..geometry.contact_search import _SIGMA, silhouette
+from ..hertzian import HertzContact, hertz, hertz_from_penetration, hertz_from_semiaxes
+from ..materials import as_material_pair
 from ..options import configured, option
+from ..patch import ContactFrame, ContactPatch
+from ..plausibility import disabled
 from ._base import NormalMethod, PatchDescription
-from ._strips import VirtualPenetration, hertz_shape
+from ._gap import _check_search, _minimum
+from ._strips import Line, VirtualPenetration, hertz_shape
+from .caf import cached_caf_table, caf_contacts
+from .stripes import _smoothed_B
 
 __all__ = ["MultiHertz", "sauvage_ellipses"]
 
@@ -182,7 +189,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     # ------------------------------------------------------------------ contact
     def from_contact(self, contact):
         opts = self.option_values()
-        from ..patch import ContactPatch
 
         self._variant(opts)
         return (ContactPatch.from_hertz(contact, strips=opts["strips"],
@@ -191,8 +197,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     # ------------------------------------------------------------------ lines
     def _curv(self, line):
         if "Bx" not in line.extra:
-            from .stripes import _smoothed_B
-
             Bs = _smoothed_B(line.eta, line.f, 1e-3)
             floor = 0.05 * line.B if line.B > 0 else 0.05 * float(np.max(np.abs(Bs)) + 1e-12)
             line.extra["Bx"] = np.maximum(Bs, floor)
@@ -220,9 +224,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         return [_R(e[4]) for e in self._ellipses(line, delta, opts)]
 
     def _hertz_patches(self, line, delta, opts, pair, frame_of):
-        from ..patch import ContactPatch
-        from ..hertzian import hertz_from_penetration
-
         variant = self._variant(opts)
         ell = self._ellipses(line, delta, opts)
         strips, cells = int(opts["strips"]), int(opts["cells"])
@@ -233,7 +234,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
             area = float(sum(float(h.area) for h in hcs))
             a = math.sqrt(area * ratio / math.pi)
             b = math.sqrt(area / (ratio * math.pi))
-            from ..hertzian import hertz_from_semiaxes
             hc = hertz_from_semiaxes(a, b, float(N.sum()), pair)
             eta_c = float(np.sum(N * line.eta[[e[0] for e in ell]]) / N.sum())
             p = ContactPatch.from_hertz(hc, strips=strips, cells=cells,
@@ -259,15 +259,12 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
             raise InputError("variant 'ayasse' works on the candidate contact points of a "
                              "wheel on its rail (its contact-angle function); use it with a "
                              "WheelRailPosition, or variant='pascal'/'sauvage' for a gap")
-        from ..materials import as_material_pair
-        from ._gap import _check_search, _minimum
 
         search = _check_search(problem.search)
         pair = as_material_pair(problem.materials)
         xm, ym, hmin, _ = _minimum(problem.gap, search)
         eta, f, Ax = self._gap_line(problem, (xm, ym, hmin),
                                     (search[2] - ym, search[3] - ym), 1601, 1e-3)
-        from ._strips import Line
 
         j = int(np.argmin(f))
         Bx0 = (f[j + 1] + f[j - 1] - 2 * f[j]) / (2 * (eta[1] - eta[0]) ** 2)
@@ -292,7 +289,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     # ------------------------------------------------------------------ wheel
     def from_wheel(self, problem):
         opts = self.option_values()
-        from ..materials import as_material_pair
 
         variant = self._variant(opts)
         if variant == "ayasse":
@@ -388,7 +384,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         pose = problem.pose
         if pose["yaw"] == 0.0:
             return 0.0
-        from ..geometry.contact_search import _SIGMA, silhouette
 
         ws = problem.wheelset
         s = np.array([float(wheel_y)])
@@ -399,10 +394,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         return float(x[0])
 
     def _ayasse_table(self, problem, opts):
-        from ..patch import ContactFrame, ContactPatch
-        from ..materials import as_material_pair
-        from .caf import caf_contacts, cached_caf_table
-
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
                              "overlap depends on it); got a prescribed approach")
@@ -453,9 +444,6 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     def _ayasse(self, problem, opts):
         if self._uses_tables(opts):
             return self._ayasse_table(problem, opts)
-        from ..patch import ContactPatch
-        from ..materials import as_material_pair
-        from ..hertzian import hertz
 
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
@@ -506,7 +494,6 @@ def _quiet(on):
     """No plausibility warnings inside the block when ``on`` (internal secondary ellipses)."""
     import contextlib
 
-    from ..plausibility import disabled
 
     return disabled() if on else contextlib.nullcontext()
 
@@ -515,7 +502,6 @@ def _hertz_fast(load, A, B, pair):
     """Hertz's solution for one contact from the interpolated unit-load solution
     (:func:`~wheelrail.normal._strips.hertz_shape`, relative error < 1e-5): a, b ∝
     (N/E*)^(1/3), δ ∝ (N/E*)^(2/3), p0 = 3N/(2πab) (Johnson 1985, eqs. 3.64–3.66)."""
-    from ..hertzian import HertzContact
 
     au, bu, _, du = hertz_shape(A, B)
     s = (load / pair.E_star) ** (1.0 / 3.0)
@@ -529,8 +515,6 @@ def _scale_patches(patches, factor, pair, limit=1e-3):
     ≤ ``limit``)."""
     from dataclasses import replace
 
-    from ..patch import ContactPatch
-    from ..hertzian import hertz
 
     if abs(factor - 1.0) > limit:
         raise InputError(f"multi-hertz: load closure factor {factor!r} is not within {limit!r} "

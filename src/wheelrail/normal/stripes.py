@@ -34,9 +34,12 @@ import math
 
 import numpy as np
 
+from ..errors import InputError
 from ..options import configured, option
 from ._base import NormalMethod, PatchDescription
-from ._strips import Region, VirtualPenetration, hertz_shape
+from ._patch_kernel import positive_runs
+from ._stripes_kernel import half_curvature, smooth_nodes, stripes_line_load
+from ._strips import Region, VirtualPenetration, _hertz_table, hertz_shape
 
 __all__ = ["Stripes", "stripes_constants"]
 
@@ -51,7 +54,6 @@ def stripes_constants(A, B):
 def _smoothing(eta, f, length):
     """(d2, kernel reversed): half the second derivative of f and the normalised Gaussian of
     ``length`` [m] (kernel None: no smoothing)."""
-    from ._stripes_kernel import half_curvature
 
     h = eta[1] - eta[0]
     d2 = half_curvature(np.ascontiguousarray(f, dtype=float), float(h))
@@ -89,8 +91,6 @@ def _smoothed_at(line, opts, sm, idx):
     v = done[idx]
     miss = np.isnan(v)
     if miss.any():
-        from ._stripes_kernel import smooth_nodes
-
         todo = idx[miss]
         done[todo] = smooth_nodes(d2, krev, todo)
         v = done[idx]
@@ -148,8 +148,6 @@ class Stripes(VirtualPenetration, NormalMethod, PatchDescription):
     def _line_data(self, line, opts):
         key = ("stripes", opts["smoothing"])
         if key not in line.extra:
-            from ..errors import InputError
-
             A, B = line.A, line.B
             if not (A > 0 and B > 0):
                 raise InputError(f"stripes: the curvatures at the reference point are not "
@@ -161,8 +159,6 @@ class Stripes(VirtualPenetration, NormalMethod, PatchDescription):
         return line.extra[key]
 
     def _solve_line(self, line, delta, opts):
-        from ._patch_kernel import positive_runs
-
         eps, comp, kp, sm = self._line_data(line, opts)
         h0 = eps * delta
         hi_all = h0 - line.f
@@ -196,7 +192,6 @@ class Stripes(VirtualPenetration, NormalMethod, PatchDescription):
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: with eq. (27) the strip force ½π a_i p_i h is
         # ½π k_p E* h_i h (a_i cancels), so the load needs no virtual ellipses
-        from ._stripes_kernel import stripes_line_load
 
         eps, comp, kp, _ = self._line_data(line, opts)
         c = 0.5 * math.pi * kp * line.extra["E_star"] * line.h
@@ -221,8 +216,6 @@ def _nm_table():
     grid value, computed at once (the table of :func:`~wheelrail.normal._strips.hertz_shape`
     interpolated for all of them; equal to the scalar look-up to round-off)."""
     if not _NM_TABLE:
-        from ._strips import _hertz_table
-
         grid, la, lb, _, _ = _hertz_table()
         lam = np.exp(np.arange(-_NM_K, _NM_K + 1) / 50.0)
         x = np.log(lam)

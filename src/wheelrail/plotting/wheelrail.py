@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.contact_search import silhouette
 from ._common import finish, new_figure
 from ._fields import field_arrays
 
@@ -99,7 +100,6 @@ def contact_profiles(result, *, path=None, title=None, cmap="inferno", window=0.
     """
     from matplotlib.colors import Normalize
 
-    from ..geometry.contact_search import silhouette
 
     pos = result.position
     ws, tr = pos.wheelset, pos.track

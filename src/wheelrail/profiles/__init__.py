@@ -17,33 +17,33 @@ Public names
 from __future__ import annotations
 
 from .core import Profile, ProfileWarning
+from .io import read as _read
+from .io import write as _write
+from .standard import available as _available
+from .standard import load as _load
 
 __all__ = ["Profile", "ProfileWarning", "load", "available", "read", "write"]
 
 
 def load(name: str, **options) -> Profile:
     """Standard profile by name (case-insensitive); see :func:`wheelrail.profiles.standard.load`."""
-    from .standard import load as _load
 
     return _load(name, **options)
 
 
 def available() -> list[str]:
     """Names (and aliases) of the built-in standard profiles."""
-    from .standard import available as _available
 
     return _available()
 
 
 def read(path, kind: str | None = None, **options) -> Profile:
     """Read a profile file; see :func:`wheelrail.profiles.io.read`."""
-    from .io import read as _read
 
     return _read(path, kind=kind, **options)
 
 
 def write(profile: Profile, path, fmt: str | None = None, **options) -> None:
     """Write a profile file; see :func:`wheelrail.profiles.io.write`."""
-    from .io import write as _write
 
     return _write(profile, path, fmt=fmt, **options)

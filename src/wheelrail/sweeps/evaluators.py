@@ -27,9 +27,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import tangential
-from ..hertzian import RADII_KEYS
+from .. import profiles, tangential
 from ..errors import InputError
+from ..geometry import Track, Wheelset, contact_points
+from ..hertzian import RADII_KEYS, hertz, hertz_from_radii, hertz_from_semiaxes
+from ..materials import Material
 
 __all__ = ["EVALUATORS", "STATUS_CODES", "get_evaluator", "CreepEvaluator"]
 
@@ -149,8 +151,6 @@ class CreepEvaluator:
         return {k: v for k, v in out.items() if k in keep}
 
     def _contact(self, cols, idx, material):
-        from ..hertzian import hertz, hertz_from_radii, hertz_from_semiaxes
-
         load = cols["load"][idx].astype(float)
         if "A" in cols:
             return hertz(load, cols["A"][idx].astype(float), cols["B"][idx].astype(float),
@@ -162,8 +162,6 @@ class CreepEvaluator:
         return hertz_from_radii(load, material=material, **radii)
 
     def _solve(self, spec, cols, idx, key, out) -> None:
-        from ..materials import Material
-
         method, E, nu = key
         contact = self._contact(cols, idx, Material(E, nu))
         opts = self.options_for(spec, method)
@@ -259,13 +257,10 @@ class GeometryEvaluator:
     def _profile(name):
         from pathlib import Path
 
-        from .. import profiles
 
         return profiles.read(name) if Path(name).is_file() else profiles.load(name)
 
     def evaluate(self, spec, cols: dict) -> dict:
-        from ..geometry import Track, Wheelset, contact_points
-
         m = len(next(iter(cols.values())))
         out = {k: np.full(m, np.nan) for k in self.outputs}
         out["status"] = np.full(m, STATUS_CODES["ok"], dtype=np.int8)

@@ -54,8 +54,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from ..errors import CaseFileError, InputError
 from .._toml import Reader, tomllib
+from ..errors import CaseFileError, InputError
+from .evaluators import get_evaluator
 
 __all__ = ["SweepSpec", "load_sweep", "sweep_from_dict", "expand_range"]
 
@@ -206,8 +207,6 @@ class SweepSpec:
     @classmethod
     def _make(cls, evaluator, fixed, axes, mode, options, chunk, source="<python>",
               sha=None) -> "SweepSpec":
-        from .evaluators import get_evaluator
-
         if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:
             raise InputError(f"chunk must be an integer >= 1 (points per chunk), got {chunk!r}")
         ev = get_evaluator(evaluator)
@@ -368,7 +367,6 @@ def load_sweep(path_or_str) -> SweepSpec:
 
 def sweep_from_dict(data: Mapping, source: str = "<dict>", sha256: str | None = None) -> SweepSpec:
     """Validate a parsed sweep case (``{"sweep": {...}}``) into a :class:`SweepSpec`."""
-    from .evaluators import get_evaluator
 
     r = Reader(source)
     r.unknown("", data, ("sweep",))

@@ -22,11 +22,10 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
-from ..tangential.table import (AXES, DEFAULT_TABLE, TABLE_VERSION, _coefficients,
-                                _spin_length)
+from ..tangential.table import AXES, DEFAULT_TABLE, TABLE_VERSION, _coefficients, _spin_length
+from .evaluators import STATUS_CODES
 from .run import sweep
 from .spec import SweepSpec
-from .evaluators import STATUS_CODES
 
 __all__ = ["build_table", "table_nodes", "GRID", "BUILD_CONTACT"]
 

@@ -77,9 +77,10 @@ import numpy as np
 
 from .._validation import as_float_array, in_range, positive, scalar_or_array
 from ..errors import InputError
-from ..results import CreepForces, Status
 from ..options import configured, option
+from ..results import CreepForces, Status
 from ._base import TangentialMethod
+from .linear import kalker_coefficients
 
 __all__ = [
     "carter_saturation_creepage",
@@ -266,8 +267,6 @@ def carter_ellipse_force(a, b, G, nu, Fn, mu, xi, form="global", stiffness="cart
         if stiffness == "carter":
             k = np.pi**2 * G * a * b / (4.0 * (1.0 - nu))
         elif stiffness == "kalker":
-            from .linear import kalker_coefficients
-
             k = G * a * b * kalker_coefficients(a / b, nu)[0]
         else:
             raise InputError(f"stiffness must be 'carter' or 'kalker', got {stiffness!r}")

@@ -44,9 +44,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import integer
-from ..results import CreepForces, Status
 from ..options import configured, option
+from ..patch import ContactPatch
+from ..results import CreepForces, Status
 from ._base import TangentialMethod
 from .fastsim import flexibilities, weighted_flexibility
 from .linear import kalker_coefficients
@@ -120,8 +120,6 @@ class Fastrip(TangentialMethod):
     ny: int = option(40, lo=2, hi=2000, doc="strips across an ellipse (Hertzian contacts)")
 
     def solve(self, contact, xi, eta, phi, mu):
-        from ..patch import ContactPatch
-
         ny = self.ny
         single = np.shape(contact.a) == ()
         xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))

@@ -58,9 +58,9 @@ import numpy as np
 
 from .._validation import as_float_array, integer, positive, scalar_or_array
 from ..errors import InputError
+from ..options import configured, option
 from ..results import CreepForces, Status
 from . import _fastsim_kernel as _k
-from ..options import configured, option
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 

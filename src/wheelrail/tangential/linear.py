@@ -92,8 +92,8 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from .._validation import in_range, positive, scalar_or_array
-from ..results import CreepForces, Status
 from ..options import configured
+from ..results import CreepForces, Status
 from ._base import TangentialMethod
 
 __all__ = [

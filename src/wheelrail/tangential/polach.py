@@ -137,8 +137,8 @@ from numba import njit
 
 from .._validation import positive, scalar_or_array
 from ..errors import InputError
-from ..results import CreepForces, Status
 from ..options import configured, option
+from ..results import CreepForces, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 

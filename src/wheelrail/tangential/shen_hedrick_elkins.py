@@ -42,9 +42,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import scalar_or_array
-from ..errors import InputError
-from ..results import CreepForces, Status
 from ..options import configured, option
+from ..results import CreepForces, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 

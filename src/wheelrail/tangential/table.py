@@ -85,9 +85,10 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..results import CreepForces, Status
 from ..options import configured, option
+from ..results import CreepForces, Status
 from ._base import TangentialMethod, get
+from .linear import kalker_coefficients
 
 __all__ = ["Table", "TableData", "load_table", "table_coordinates", "DEFAULT_TABLE",
            "TABLE_VERSION", "AXES"]
@@ -101,8 +102,6 @@ AXES = ("r", "theta", "s", "log_ab", "nu")
 _K_TOL = 1e-3  # |K| below which the bodies count as quasi-identical
 
 def _coefficients(ab, nu):
-    from .linear import kalker_coefficients
-
     C11, C22, C23, _ = kalker_coefficients(ab, nu)
     return C11, C22, C23
 

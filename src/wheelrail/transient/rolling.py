@@ -63,10 +63,17 @@ from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError
 from ..halfspace.influence import influence_kernel, kernel_offsets, rectangle_influence
 from ..halfspace.rolling import _BlockConvolution
-from ..tangential.exact import newton_step
 from ..materials import as_material_pair
 from ..normal.bem import hertz_grid, solve_normal
+from ..tangential.exact import newton_step
 from .regularised import dense_block, regularised_step
+from .strips import (
+    DenseOperator,
+    hertz_pressure,
+    preconditioner_kernel,
+    strip_grid,
+    strip_step_operators,
+)
 
 __all__ = ["TransientResult", "transient_rolling"]
 
@@ -430,8 +437,6 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             raise InputError("discretisation='strips' supports friction='exact' only")
         if scheme != "averaged":
             raise InputError("discretisation='strips' uses scheme='averaged'")
-        from .strips import (DenseOperator, hertz_pressure, preconditioner_kernel,
-                             strip_grid, strip_step_operators)
 
         strips = integer("strips", elements if strips is None else strips, 2)
         grid = strip_grid(contact, elements, strips)

@@ -4,6 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from wheelrail.halfspace import Grid, InfluenceOperator, point_influence, subsurface_stresses
+from wheelrail.hertzian import hertz_coefficients
+from wheelrail.normal._base import GapProblem
+from wheelrail.normal.bem import hertz_grid, solve_normal
+from wheelrail.normal.caf import caf_table, jump_gap, profile_jump_gaps
+
 from ._core import abs_row, band_row, max_row, register, rel_row
 from ._figures import convergence_figure
 
@@ -104,8 +110,6 @@ _TABLE2 = np.array([
 
 @register("hertz-table2", ["hertz"], "Hertz coefficients vs Piotrowski & Chollet Table 2")
 def hertz_vs_table2(quick):
-    from wheelrail.hertzian import hertz_coefficients
-
     theta, nm, m_ref, r_ref = _TABLE2.T
     m, n, r = hertz_coefficients(theta)
     kw = dict(source="PiotrowskiChollet2005",
@@ -132,7 +136,6 @@ def _semi_axes_from_pressure(sol):
 @register("bem-hertz", ["bem"], "BEM normal solver vs Hertz")
 def bem_vs_hertz(quick):
     wr = _wr()
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     mat = wr.Material(STEEL_E, STEEL_NU)
     rows = []
@@ -162,7 +165,6 @@ def bem_vs_hertz(quick):
 @register("bem-convergence", ["bem"], "BEM normal solver: observed order towards Hertz")
 def bem_convergence(quick):
     wr = _wr()
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     mat = wr.Material(STEEL_E, STEEL_NU)
     hc = wr.hertz_from_semiaxes(5e-3, 5e-3, 10e3, mat)
@@ -196,8 +198,6 @@ def _hertz_contact(ab, load=1e5):
 
 
 def _gap(c, **kw):
-    from wheelrail.normal._base import GapProblem
-
     wr = _wr()
     A, B = float(c.A), float(c.B)
     L = 4 * max(float(c.a), float(c.b))
@@ -290,7 +290,6 @@ def caf_jump_gaps(quick):
     generalisation) against the rigid gaps measured on the profiles by the
     contact search (S1002/60E1, tread and flange-root jumps, both sides)."""
     wr = _wr()
-    from wheelrail.normal.caf import caf_table, jump_gap, profile_jump_gaps
 
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
     tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
@@ -324,7 +323,6 @@ def caf_jump_gaps(quick):
           "Half-space influence coefficients vs Boussinesq/Cerruti and Love")
 def influence_vs_closed_forms(quick):
     wr = _wr()
-    from wheelrail.halfspace import Grid, InfluenceOperator, point_influence
 
     steel = wr.Material(STEEL_E, STEEL_NU)
     E, nu = steel.E, steel.nu
@@ -359,8 +357,6 @@ def influence_vs_closed_forms(quick):
           "Subsurface stresses under a Hertz contact vs Johnson's closed forms")
 def subsurface_vs_hertz(quick):
     wr = _wr()
-    from wheelrail.halfspace import subsurface_stresses
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     nu = 0.3
     mat = wr.Material(2.1e11, nu)

@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from wheelrail.fe import RollingCase, indent, solve
+from wheelrail.normal.bem import hertz_grid, solve_normal
+from wheelrail.tangential.exact import solve_rolling, solve_shift
+
 from ._core import abs_row, band_row, register, rel_row
 from ._figures import convergence_figure
 
@@ -27,8 +31,6 @@ def transient_steady(quick):
     wr = _wr()
     from scipy.optimize import brentq
 
-    from wheelrail.tangential.exact import solve_rolling, solve_shift
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     MU = 0.4
     hc = _table1()
@@ -101,7 +103,6 @@ def transient_regularised(quick):
 # --------------------------------------------------------------------------- FE
 def _fe_errors(h):
     wr = _wr()
-    from wheelrail.fe import RollingCase, indent
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
@@ -141,7 +142,6 @@ def fe_indentation(quick):
           full_only=True)
 def fe_rolling(quick):
     wr = _wr()
-    from wheelrail.fe import RollingCase, solve
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,

@@ -4,7 +4,22 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import abs_row, band_row, max_row, register, rel_row
+from wheelrail.contact.manchester import manchester_a22
+from wheelrail.halfspace import Grid
+from wheelrail.reference import (
+    carter_force_per_length,
+    carter_saturation_creepage,
+    carter_traction,
+    cattaneo_shift,
+    cattaneo_stick_radius,
+)
+from wheelrail.tangential import table as T
+from wheelrail.tangential.exact import solve_rolling, solve_shift
+from wheelrail.tangential.fastsim import flexibilities
+from wheelrail.tangential.linear import kalker_coefficients
+from wheelrail.tangential.polach import polach_forces
+
+from ._core import abs_row, band_row, max_row, register, rel_row, skipped_row
 from ._figures import convergence_figure, new_figure, to_base64
 
 # Kalker (1990) Table E.3 (= Kalker 1967; Johnson 1985 Table 8.1), (a/b, nu) -> C11, C22, C23,
@@ -39,7 +54,6 @@ def _default_contact():
 @register("carter-closed-form", ["carter"], "Carter's 2D theory vs Johnson's closed form")
 def carter_checks(quick):
     wr = _wr()
-    from wheelrail.tangential.carter import carter_force_per_length
 
     G, nu, mu, R = 8.0e10, 0.28, 0.3, 0.46
     mat = wr.Material.from_shear(G, nu)
@@ -115,8 +129,6 @@ def exact_vs_table(quick):
 
 
 def _carter_strip(nx, A=1e-3, P0=5e8, ny=21):
-    from wheelrail.halfspace import Grid
-
     grid = Grid.from_bounds(-A, A, -20 * A, 20 * A, nx, ny)
     p = P0 * np.sqrt(np.clip(1 - (grid.X / A) ** 2, 0, None))
     return grid, p
@@ -125,9 +137,6 @@ def _carter_strip(nx, A=1e-3, P0=5e8, ny=21):
 @register("exact-carter", ["exact"], "Exact theory in the 2D limit vs Carter (1926)")
 def exact_vs_carter(quick):
     wr = _wr()
-    from wheelrail.tangential.exact import solve_rolling
-    from wheelrail.reference import (carter_force_per_length, carter_saturation_creepage,
-                                     carter_traction)
 
     A, P0, MU = 1e-3, 5e8, 0.3
     mat = wr.Material(2.1e11, 0.25)
@@ -167,9 +176,6 @@ def exact_vs_carter(quick):
 @register("exact-cattaneo", ["exact"], "Exact theory, shift problem vs Cattaneo-Mindlin")
 def exact_vs_cattaneo(quick):
     wr = _wr()
-    from wheelrail.halfspace import Grid
-    from wheelrail.tangential.exact import solve_shift
-    from wheelrail.reference import cattaneo_shift, cattaneo_stick_radius
 
     A, P, MU = 1e-3, 1e3, 0.3
     rows = []
@@ -268,7 +274,6 @@ def manchester(quick):
     import csv
 
     wr = _wr()
-    from ._core import skipped_row
 
     data, shared = _manchester_paths()
     ref = "CONTACT rev. 2707, Manchester benchmark A-2.2 (tests/reference/data/contact_mbench_a22.csv)"
@@ -276,7 +281,6 @@ def manchester(quick):
         return [skipped_row("exact", ref, "Fn, Fx, Fs, p_max per wheel",
                             f"reference data not found ({data} and {shared})",
                             source="VollebregtCONTACT")]
-    from wheelrail.contact.manchester import manchester_a22
 
     cases = manchester_a22(shared / "benchmarks" / "manchester_a22_inputs.csv",
                            shared / "profiles" / "MBench_S1002_v3.prw",
@@ -334,7 +338,6 @@ def manchester(quick):
 @register("fastsim-linear-limit", ["fastsim"], "FASTSIM at small creepage vs Kalker's linear theory")
 def fastsim_linear(quick):
     wr = _wr()
-    from wheelrail.tangential.linear import kalker_coefficients
 
     mat = wr.Material.from_shear(82e9, 0.28)
     c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=mat)
@@ -378,8 +381,6 @@ def _fastsim_reference_fx(c, xi, mu):
     """Continuum simplified theory for pure xi, parabolic bound, integrated strip by strip."""
     from scipy import integrate
 
-    from wheelrail.tangential.fastsim import flexibilities
-    from wheelrail.tangential.linear import kalker_coefficients
 
     a, b, Fn = c.a, c.b, c.load
     C11, C22, C23, _ = kalker_coefficients(a / b, c.nu)
@@ -527,7 +528,6 @@ def closed_laws_slope(quick):
     # Polach (1999) closed form at eps = 1: F = Q mu (1/pi + 1/2)
     Q, mu = 1e5, 0.3
     xi1 = Q * mu / (0.25 * np.pi * G * c.a * c.b * c11)
-    from wheelrail.tangential.polach import polach_forces
 
     Fx = polach_forces(G, c.a, c.b, c11, c22, c23, np.asarray(xi1), np.asarray(0.0),
                        np.asarray(0.0), mu, Q)[0]
@@ -542,8 +542,6 @@ def closed_laws_slope(quick):
 @register("table-law", ["table"], "Tabulated creep-force law vs Kalker's table and the exact theory")
 def table_checks(quick):
     wr = _wr()
-    from wheelrail.tangential import table as T
-    from wheelrail.tangential.linear import kalker_coefficients
 
     m = wr.Material(2.1e11, 0.25)
     c = wr.hertz_from_semiaxes(5e-3, 5e-3, 1e4, m)

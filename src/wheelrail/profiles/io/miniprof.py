@@ -33,8 +33,16 @@ import numpy as np
 
 from ...errors import ProfileError
 from ..core import Profile
-from ._common import (POINT_DIST_MIN, append_row, check_row_count, chord_deviation_is_z_down,
-                      kind_from_extension, make_profile, read_lines, resolve_kind)
+from ._common import (
+    POINT_DIST_MIN,
+    append_row,
+    check_row_count,
+    chord_deviation_is_z_down,
+    kind_from_extension,
+    make_profile,
+    read_lines,
+    resolve_kind,
+)
 
 __all__ = ["read_miniprof", "looks_like_miniprof"]
 

@@ -236,8 +236,6 @@ References
 
 from __future__ import annotations
 
-import math
-
 from .coupled import solve_gap
 from .method import Exact, exact_single
 from .newton import newton_step

@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 from numba import njit
 
 #: Where the spin's rigid slip φ·x is evaluated inside an element, in element

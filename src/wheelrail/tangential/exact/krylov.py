@@ -17,6 +17,7 @@ from numba import njit
 
 from ._kernels import _REASSOC
 
+
 @njit(cache=True, fastmath=_REASSOC)
 def _orthogonalise(V, k, w, h):
     """Modified Gram–Schmidt of ``w`` against rows ``V[:k+1]``; fills ``h[:k+2]``."""

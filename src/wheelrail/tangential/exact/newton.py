@@ -8,14 +8,12 @@ preconditioner.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from ...errors import ConvergenceError, InputError
 from ...halfspace.rolling import _BlockConvolution
 from . import _kernels as K
 from .krylov import _gmres
+
 
 # --------------------------------------------------------------------------
 # driver

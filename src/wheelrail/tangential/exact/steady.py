@@ -15,13 +15,12 @@ from ..._validation import as_float_array, integer, positive
 from ...errors import ConvergenceError, InputError, NoContactError
 from ...halfspace.grid import Grid
 from ...halfspace.influence import influence_kernel
-from ...halfspace.rolling import (_block_convolution, _contact_box,
-                                  _rolling_and_influence_kernels)
+from ...halfspace.rolling import _block_convolution, _rolling_and_influence_kernels
 from ...materials import as_material_pair
 from ...results import TangentialResult
-from ._kernels import _SPIN_SHIFT
 from .nested import _rolling_traction
-from .newton import _gauss_seidel, _initial_traction, _newton
+from .newton import _gauss_seidel, _newton
+
 
 def _check_problem(grid, pressure, mu):
     if not isinstance(grid, Grid):
