@@ -9,6 +9,8 @@ import numpy as np
 from .._validation import as_float_array, in_range, integer, non_negative, positive
 from ..errors import InputError
 from ..materials import STEEL, Material
+from ..profiles import Profile
+from .materials import LinearElastic
 
 __all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "cone_wheel", "head_arc_rail"]
 
@@ -122,8 +124,6 @@ class RollingCase:
     meta: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self):
-        from ..profiles import Profile
-
         for name in ("wheel", "rail"):
             if not isinstance(getattr(self, name), Profile):
                 raise InputError(f"{name} must be a wheelrail Profile, got "
@@ -146,7 +146,6 @@ class RollingCase:
         s(self, "creepage", tuple(float(v) for v in c))
         s(self, "mu", float(non_negative("mu", self.mu)))
         if not isinstance(self.material, Material):
-            from .materials import LinearElastic
             if not isinstance(self.material, LinearElastic):
                 raise InputError(f"material must be a wheelrail.Material or "
                                  f"wheelrail.fe.LinearElastic, got {type(self.material).__name__}")
@@ -203,7 +202,6 @@ def cone_wheel(taper: float = 0.1, half_width: float = 0.04, n: int = 17):
     n : int
         Number of profile points.
     """
-    from ..profiles import Profile
 
     y = np.linspace(-half_width, half_width, integer("n", n))
     name = f"cone 1/{1 / taper:g}" if taper else "cylinder"
@@ -222,7 +220,6 @@ def head_arc_rail(radius: float = 0.3, half_width: float = 0.025, n: int = 201):
     n : int
         Number of profile points.
     """
-    from ..profiles import Profile
 
     R = float(positive("radius", radius))
     w = float(in_range("half_width", half_width, 0.0, R, lo_open=True, hi_open=True))

@@ -28,6 +28,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..materials import Material
+from ..normal.hertz import hertz
 from . import _kernels as K
 from .elements import Hex8
 from .materials import as_fe_material
@@ -50,7 +52,6 @@ def contact_geometry(case):
         ``normal`` the unit lateral tangent and normal (3,) of the undeformed contact
         plane (global axes).
     """
-    from ..normal.hertz import hertz
 
     rail = case.rail.rotated(case.inclination) if case.inclination else case.rail
     wheel = case.wheel
@@ -83,7 +84,6 @@ def contact_geometry(case):
     A = 0.5 * float(np.cos(np.arctan(wheel.slope(y_c - lat)))) / r_c
     B = 0.5 * (kw - kr)
     mat = as_fe_material(case.material, case.density)
-    from ..materials import Material
     # the vertical wheel load acts along the contact normal with Fn = load / cos(contact angle)
     delta = float(np.arctan(rail.slope(y_c)))
     hz = hertz(case.load / np.cos(delta), A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None

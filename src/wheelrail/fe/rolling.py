@@ -54,9 +54,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ._newton import newton
-from .model import build_model
+from ..tangential.linear import kalker_coefficients
+from ._newton import DirectSolver, ReusedFactorSolver, newton
+from .materials import as_fe_material
+from .model import build_model, contact_geometry
 from .patch import patch_from_contact
+from .restart import read_restart, write_restart
 from .static import free_dofs, static_equilibrium
 
 __all__ = ["RollingResult", "solve", "stable_time_step", "saturation_creepage"]
@@ -211,14 +214,11 @@ def saturation_creepage(case) -> float | None:
     .. [2] P.J. Vermeulen, K.L. Johnson, "Contact of nonspherical elastic bodies
        transmitting tangential forces", J. Appl. Mech. 31 (1964) 338-340 (cubic law).
     """
-    from .model import contact_geometry
 
     geo = contact_geometry(case)
     hz = geo["hertz"]
     if hz is None:
         return None
-    from ..tangential.linear import kalker_coefficients
-    from .materials import as_fe_material
 
     mat = as_fe_material(case.material, case.density)
     c11, c22, _, _ = (float(v) for v in kalker_coefficients(float(hz.a / hz.b), mat.nu))
@@ -249,8 +249,13 @@ def _warn_saturation(case):
 def _progress(progress, total, label):
     if not progress:
         return None
-    from rich.progress import (BarColumn, Progress, TextColumn, TimeElapsedColumn,
-                               TimeRemainingColumn)
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     p = Progress(TextColumn(label), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
                  TimeElapsedColumn(), TimeRemainingColumn(), transient=True)
@@ -295,7 +300,6 @@ def _steady(ds, name):
 
 def _restart_writer(io, model, dt, n_steps):
     """A callable ``maybe_write(k_done, state_fn)`` writing every ``every`` steps and at the end."""
-    from .restart import write_restart
 
     path = io["file"]
     every = io["every"] or max(1, n_steps // 10)
@@ -316,8 +320,6 @@ def _contact_state(c):
 
 
 def _solve_explicit(case, progress, output_every, io):
-    from .restart import read_restart
-
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
     dt_stable = stable_time_step(model)
@@ -462,7 +464,6 @@ def _solve_explicit(case, progress, output_every, io):
 
 def _implicit_start(case, io):
     """Model, stiffness, the loaded static state and the time grid of an implicit run."""
-    from ._newton import DirectSolver, ReusedFactorSolver
 
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
@@ -501,8 +502,6 @@ def _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, u, solver, k0
 
 
 def _solve_implicit_qs(case, progress, io):
-    from .restart import read_restart
-
     model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver = _implicit_start(case, io)
     beta_r = case.rayleigh[1]
     # viscous (Kelvin-Voigt) term β K (q − q_n)/Δt, backward Euler: tangent K (1 + β/Δt)
@@ -557,8 +556,6 @@ def _solve_implicit_qs(case, progress, io):
 
 
 def _solve_implicit_hht(case, progress, io):
-    from .restart import read_restart
-
     model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver = _implicit_start(case, io)
     al = case.hht_alpha
     beta, gamma = (1 - al) ** 2 / 4, 0.5 - al

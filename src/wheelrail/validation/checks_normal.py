@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+import wheelrail as wr
 from wheelrail.halfspace import Grid, InfluenceOperator, point_influence, subsurface_stresses
 from wheelrail.hertzian import hertz_coefficients
 from wheelrail.normal._base import GapProblem
@@ -17,7 +18,6 @@ STEEL_E, STEEL_NU = 2.1e11, 0.28
 
 
 def _wr():
-    import wheelrail as wr
 
     return wr
 

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+import wheelrail as wr
 from wheelrail.fe import RollingCase, indent, solve
 from wheelrail.normal.bem import hertz_grid, solve_normal
 from wheelrail.tangential.exact import solve_rolling, solve_shift
@@ -13,7 +14,6 @@ from ._figures import convergence_figure
 
 
 def _wr():
-    import wheelrail as wr
 
     return wr
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+import wheelrail
+import wheelrail as wr
 from wheelrail.contact.manchester import manchester_a22
 from wheelrail.halfspace import Grid
 from wheelrail.reference import (
@@ -39,7 +41,6 @@ KALKER_REF = "Kalker (1990) Table E.3 creep coefficients"
 
 
 def _wr():
-    import wheelrail as wr
 
     return wr
 
@@ -259,7 +260,6 @@ def exact_spin(quick):
 def _manchester_paths():
     from pathlib import Path
 
-    import wheelrail
 
     root = Path(wheelrail.__file__).resolve().parents[2]
     data = root / "tests" / "reference" / "data" / "contact_mbench_a22.csv"
