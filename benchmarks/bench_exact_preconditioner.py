@@ -164,7 +164,7 @@ def main() -> None:
     pair = as_material_pair(wr.STEEL)
     for n in args.sizes:
         grid, gap = hertz_grid(hc, elements=n, margin=1.1)
-        pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+        pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
         R, _ = R_ops._rolling_and_influence_kernels(grid, pair)
         g = MU * pn
         box, kernel, conv = R_ops._contact_box(grid, pair, R, g > 0.0)

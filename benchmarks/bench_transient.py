@@ -49,7 +49,7 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
           f"{wall / (steps - 1) * 1e3:.2f} ms/step; tangential solves {info['solves']}, "
           f"Newton {info['newton']}, GMRES {info['krylov']}")
     grid, gap = hertz_grid(hc, elements=elements)
-    pn = solve_normal(grid, gap, SEED, load=10e3).pressure
+    pn = solve_normal(grid, gap, SEED, Fn=10e3).pressure
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, SEED, (xi, 0, 0), mu=0.4,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
     # steady fixed point of the same time step h (kernel (now − old)/h of the scheme)
@@ -78,7 +78,7 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
           f"x = {settle * 1e3:.2f} mm = {settle / a:.2f} a")
     for n2 in (45, 60):
         g2, gap2 = hertz_grid(hc, elements=n2)
-        pn2 = solve_normal(g2, gap2, SEED, load=10e3).pressure
+        pn2 = solve_normal(g2, gap2, SEED, Fn=10e3).pressure
         x2 = brentq(lambda xi: solve_rolling(g2, pn2, SEED, (xi, 0, 0), mu=0.4,
                                              tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
         print(f"steady exact solver on {n2} elements: xi = {x2:.6e} (transient-30 differs "

@@ -30,5 +30,5 @@ def hertz_patch16():
 
     hc = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
     grid, gap = hertz_grid(hc, elements=16, margin=1.1)
-    normal = solve_normal(grid, gap, wr.STEEL, load=1e4)
+    normal = solve_normal(grid, gap, wr.STEEL, Fn=1e4)
     return grid, normal.pressure

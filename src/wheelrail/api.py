@@ -159,7 +159,7 @@ def solve(problem, creepage=None, mu=None, *, normal="hertz", tangential="fastsi
     mu = float(positive("mu", mu))
     if isinstance(problem, GapProblem):
         patches = nimpl.from_gap(problem)
-    elif all(hasattr(problem, k) for k in ("a", "b", "load", "A", "B", "materials")):
+    elif all(hasattr(problem, k) for k in ("a", "b", "Fn", "A", "B", "materials")):
         if np.shape(problem.a) != ():
             raise InputError("solve takes a single HertzContact; use creep_forces for batches")
         patches = nimpl.from_contact(problem)

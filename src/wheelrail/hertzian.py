@@ -281,8 +281,8 @@ class HertzContact:
         Maximum pressure [Pa].
     penetration : float or ndarray
         Approach of the two bodies δ [m].
-    load : float or ndarray
-        Normal force Fn [N].
+    Fn : float or ndarray
+        Normal force [N].
     A, B : float or ndarray
         Combined curvatures [1/m].
     materials : MaterialPair
@@ -293,17 +293,12 @@ class HertzContact:
     b: object
     p0: object
     penetration: object
-    load: object
+    Fn: object
     A: object
     B: object
     materials: MaterialPair
 
     # -- derived quantities -------------------------------------------------
-    @property
-    def Fn(self):
-        """Normal load [N] (alias of ``load``)."""
-        return self.load
-
     @property
     def area(self):
         """Contact area π a b [m²]."""
@@ -350,15 +345,14 @@ class HertzContact:
             raise InputError("a single HertzContact cannot be indexed")
         pick = lambda v: scalar_or_array(np.asarray(v)[index])  # noqa: E731
         return HertzContact(*(pick(getattr(self, f)) for f in
-                              ("a", "b", "p0", "penetration", "load", "A", "B")), self.materials)
+                              ("a", "b", "p0", "penetration", "Fn", "A", "B")), self.materials)
 
     def to_dict(self) -> dict:
         """JSON-friendly summary in SI units."""
         out = {}
-        for key in ("a", "b", "p0", "penetration", "load", "A", "B", "area"):
+        for key in ("a", "b", "p0", "penetration", "Fn", "A", "B", "area"):
             v = np.asarray(getattr(self, key))
             out[key] = v.tolist() if v.ndim else float(v)
-        out["Fn"] = out.pop("load")
         return out
 
 
@@ -390,12 +384,12 @@ def _make(a, b, p0, delta, load, A, B, pair) -> HertzContact:
     return contact
 
 
-def hertz(load, A, B, material) -> HertzContact:
-    """Solve the Hertz problem for a prescribed normal load.
+def hertz(Fn, A, B, material) -> HertzContact:
+    """Solve the Hertz problem for a prescribed normal force.
 
     Parameters
     ----------
-    load : float or array_like
+    Fn : float or array_like
         Normal force Fn [N], > 0. Arrays give a batch.
     A, B : float or array_like
         Combined curvatures along the rolling direction and laterally [1/m], > 0
@@ -409,7 +403,7 @@ def hertz(load, A, B, material) -> HertzContact:
     Examples
     --------
     >>> import wheelrail as wr
-    >>> c = wr.hertz(load=7500.0, A=0.5/0.46, B=0.5/0.30, material=wr.Material(2.1e11, 0.28))
+    >>> c = wr.hertz(Fn=7500.0, A=0.5/0.46, B=0.5/0.30, material=wr.Material(2.1e11, 0.28))
     >>> round(c.a * 1e3, 3), round(c.b * 1e3, 3)
     (3.033, 2.281)
 
@@ -418,11 +412,11 @@ def hertz(load, A, B, material) -> HertzContact:
     .. [1] Johnson, *Contact Mechanics* (1985), eqs. (3.64)–(3.66).
     """
     pair = as_material_pair(material)
-    load = positive("load", load)
+    Fn = positive("Fn", Fn)
     A, B = _checked_curvatures(A, B)
-    a, b, p0, delta = hertz_kernel(load, A, B, pair.E_star)
-    load, A, B = np.broadcast_arrays(load, A, B)
-    return _make(a, b, p0, delta, load, A, B, pair)
+    a, b, p0, delta = hertz_kernel(Fn, A, B, pair.E_star)
+    Fn, A, B = np.broadcast_arrays(Fn, A, B)
+    return _make(a, b, p0, delta, Fn, A, B, pair)
 
 
 #: Names of the principal radii [m] taken by :func:`hertz_from_radii` (case files, sweeps).
@@ -430,56 +424,56 @@ RADII_KEYS = ("wheel_rolling_radius", "wheel_profile_radius", "rail_profile_radi
               "rail_longitudinal_radius")
 
 
-def hertz_from_radii(load, wheel_rolling_radius, wheel_profile_radius=np.inf,
+def hertz_from_radii(Fn, wheel_rolling_radius, wheel_profile_radius=np.inf,
                      rail_profile_radius=np.inf, rail_longitudinal_radius=np.inf,
                      *, material) -> HertzContact:
     """Hertz solution from principal radii (see :func:`curvatures_from_radii`), all in m."""
     check_rolling_radius(wheel_rolling_radius)  # radii in mm are refused (plausibility)
     A, B = curvatures_from_radii(wheel_rolling_radius, wheel_profile_radius,
                                  rail_profile_radius, rail_longitudinal_radius)
-    return hertz(load, A, B, material)
+    return hertz(Fn, A, B, material)
 
 
-def hertz_from_semiaxes(a, b, load, material) -> HertzContact:
+def hertz_from_semiaxes(a, b, Fn, material) -> HertzContact:
     """Hertzian contact with prescribed semi-axes.
 
     Users often know ``a`` and ``b`` (from a measurement or another program);
-    the curvatures that produce them under ``load`` follow from Hertz theory.
+    the curvatures that produce them under ``Fn`` follow from Hertz theory.
 
     Parameters
     ----------
     a, b : float or array_like
         Semi-axes along x and y [m], > 0, with 1e-9 ≤ a/b ≤ 1e9.
-    load : float or array_like
+    Fn : float or array_like
         Normal force [N], > 0.
     material : Material or MaterialPair
     """
     pair = as_material_pair(material)
     a = positive("a", a)
     b = positive("b", b)
-    load = positive("load", load)
+    Fn = positive("Fn", Fn)
     ratio = a / b
     out = (ratio < _K_MIN) | (ratio > 1 / _K_MIN)
     if np.any(out):
         raise InputError(f"a/b = {_first(out, ratio)!r} is outside the valid range [1e-9, 1e9]")
-    A, B = curvatures_from_semiaxes(a, b, load, pair.E_star)
-    a, b, load = np.broadcast_arrays(a, b, load)
+    A, B = curvatures_from_semiaxes(a, b, Fn, pair.E_star)
+    a, b, Fn = np.broadcast_arrays(a, b, Fn)
     short = np.minimum(a, b)
-    p0 = 1.5 * load / (np.pi * a * b)
+    p0 = 1.5 * Fn / (np.pi * a * b)
     delta = p0 * short * _elliptic(short / np.maximum(a, b))[0] / pair.E_star  # as hertz_kernel
-    return _make(a, b, p0, delta, load, A, B, pair)
+    return _make(a, b, p0, delta, Fn, A, B, pair)
 
 
 def hertz_from_penetration(penetration, A, B, material) -> HertzContact:
-    """Inverse Hertz problem: load and patch from the approach δ [m] (δ > 0).
+    """Inverse Hertz problem: Fn and patch from the approach δ [m] (δ > 0).
 
-    Uses δ ∝ N^(2/3): the solution for a unit load is scaled, so it is exact.
+    Uses δ ∝ N^(2/3): the solution for a unit Fn is scaled, so it is exact.
     """
     pair = as_material_pair(material)
     delta = positive("penetration", penetration)
     A, B = _checked_curvatures(A, B)
     a1, b1, p01, d1 = hertz_kernel(1.0, A, B, pair.E_star)
-    s = np.sqrt(delta / d1)  # = load^(1/3): a, b, p0 scale with it, δ with its square
+    s = np.sqrt(delta / d1)  # = Fn^(1/3): a, b, p0 scale with it, δ with its square
     delta, A, B = np.broadcast_arrays(delta, A, B)
     return _make(a1 * s, b1 * s, p01 * s, delta, s**3, A, B, pair)
 

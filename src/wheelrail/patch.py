@@ -215,7 +215,7 @@ class ContactPatch:
         t = -1.0 + (np.arange(strips) + 0.5) * (2.0 / strips)
         half = np.sqrt(1.0 - t * t)
         p = float(contact.p0) * half[:, None] * _sample_profile("elliptic", cells)[None, :]
-        p0, load = float(contact.p0), float(contact.load)
+        p0, load = float(contact.p0), float(contact.Fn)
         if (all(math.isfinite(v) and v > 0 for v in (a, b, p0, load))
                 and isinstance(contact.materials, MaterialPair)):
             # what __post_init__ would check holds: float arrays (strips,), p finite >= 0
@@ -225,7 +225,7 @@ class ContactPatch:
                                 penetration=float(contact.penetration), A=float(contact.A),
                                 B=float(contact.B), hertz=contact, frame=frame, method=method)
         return cls(y=b * t, dy=np.full(strips, 2.0 * b / strips), x_lead=a * half,
-                   x_trail=-a * half, strip_pressure=p, Fn=float(contact.load),
+                   x_trail=-a * half, strip_pressure=p, Fn=float(contact.Fn),
                    materials=contact.materials, a=a, b=b,
                    penetration=float(contact.penetration), A=float(contact.A),
                    B=float(contact.B), hertz=contact, frame=frame, method=method)

@@ -133,7 +133,7 @@ def _batch(contact, mu, fx, fy, creepage, impl, shape, force_tol, maxiter, optio
 
 
 def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options):
-    Fn = float(contact.load)
+    Fn = float(contact.Fn)
     limit = mu * Fn
     Ft = float(np.hypot(Fx or 0.0, Fy or 0.0))
     if Ft >= limit:

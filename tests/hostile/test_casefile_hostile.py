@@ -26,7 +26,7 @@ from wheelrail.plausibility import PlausibilityWarning
 def base():
     return {
         "material": {"E": 2.1e11, "nu": 0.28},
-        "contact": {"load": 7500.0, "wheel_rolling_radius": 0.46, "rail_profile_radius": 0.30},
+        "contact": {"Fn": 7500.0, "wheel_rolling_radius": 0.46, "rail_profile_radius": 0.30},
         "creepage": {"xi": -1e-3, "eta": 0.0, "phi": 0.0},
         "friction": {"mu": 0.3},
         "method": {"normal": "hertz", "tangential": "fastsim", "fastsim": {"nx": 8, "ny": 8}},
@@ -87,15 +87,15 @@ DELETE = _Delete()
 
 # (path, value, tokens the error must contain)
 REFUSED = [
-    (("contact", "load"), -1.0, ["[contact]", "load", "-1.0"]),
-    (("contact", "load"), 0.0, ["load", "0.0"]),
-    (("contact", "load"), "7500", ["load", "7500"]),
-    (("contact", "load"), True, ["load", "True"]),
-    (("contact", "load"), float("nan"), ["load", "nan"]),
-    (("contact", "load"), float("inf"), ["load", "inf"]),
-    (("contact", "load"), 1e12, ["[contact]", "larger than the bodies' radii"]),
-    (("contact", "load"), [7500.0], ["load"]),
-    (("contact", "load"), DELETE, ["load", "missing"]),
+    (("contact", "Fn"), -1.0, ["[contact]", "Fn", "-1.0"]),
+    (("contact", "Fn"), 0.0, ["Fn", "0.0"]),
+    (("contact", "Fn"), "7500", ["Fn", "7500"]),
+    (("contact", "Fn"), True, ["Fn", "True"]),
+    (("contact", "Fn"), float("nan"), ["Fn", "nan"]),
+    (("contact", "Fn"), float("inf"), ["Fn", "inf"]),
+    (("contact", "Fn"), 1e12, ["[contact]", "larger than the bodies' radii"]),
+    (("contact", "Fn"), [7500.0], ["Fn"]),
+    (("contact", "Fn"), DELETE, ["Fn", "missing"]),
     (("contact", "wheel_rolling_radius"), 460.0, ["wheel_rolling_radius", "460", "mm given"]),
     (("contact", "wheel_rolling_radius"), 0.0, ["wheel_rolling_radius", "0.0"]),
     (("contact", "wheel_rolling_radius"), -0.46, ["wheel_rolling_radius", "-0.46"]),
@@ -169,9 +169,9 @@ def test_refused_at_read_time_naming_file_table_key_value(path, value, names, tm
 
 
 WARNED = [
-    (("contact", "load"), 7.5, "kN meant"),
-    (("contact", "load"), 50.0, "below 100 N"),
-    (("contact", "load"), 2e6, "more than any wheel load"),
+    (("contact", "Fn"), 7.5, "kN meant"),
+    (("contact", "Fn"), 50.0, "below 100 N"),
+    (("contact", "Fn"), 2e6, "more than any wheel load"),
     (("friction", "mu"), 1.5, "above 1"),
     (("material", "E"), 5e8, "GPa or MPa meant"),
     (("contact", "wheel_rolling_radius"), 0.03, "unusually small for a wheel"),
@@ -188,7 +188,7 @@ def test_unusual_values_are_solved_with_a_warning(path, value, text, tmp_path, c
     assert all(ln.startswith("wheelrail: warning: ") for ln in err), err
 
 
-@pytest.mark.parametrize("path,value", [(("friction", "mu"), 50.0), (("contact", "load"), 1e12)])
+@pytest.mark.parametrize("path,value", [(("friction", "mu"), 50.0), (("contact", "Fn"), 1e12)])
 def test_refusals_can_be_overridden(path, value, tmp_path, capsys):
     p = tmp_path / "forced.toml"
     p.write_text(to_toml(mutate(path, value)))
@@ -215,7 +215,7 @@ def test_api_refuses_the_same_values():
         wr.Wheelset(wr.profiles.load("S1002"), nominal_radius=460.0)
 
 
-KEYS = [("contact", "load"), ("friction", "mu"), ("material", "E"), ("material", "nu"),
+KEYS = [("contact", "Fn"), ("friction", "mu"), ("material", "E"), ("material", "nu"),
         ("creepage", "xi"), ("creepage", "eta"), ("creepage", "phi"),
         ("contact", "wheel_rolling_radius"), ("contact", "rail_profile_radius")]
 

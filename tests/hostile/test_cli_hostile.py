@@ -92,7 +92,7 @@ def test_geometry_strict_flags_derailed_rows(tmp_path, capsys):
 
 SOLVE_GOOD = """
 [contact]
-load = 7500.0
+Fn = 7500.0
 wheel_rolling_radius = 0.46
 rail_profile_radius = 0.30
 [creepage]

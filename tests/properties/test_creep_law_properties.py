@@ -67,7 +67,7 @@ def forces(impl, opts, contact, c, mu):
 
 
 def scale(contact, mu):
-    return mu * float(contact.load)
+    return mu * float(contact.Fn)
 
 
 @pytest.mark.parametrize("name", LAWS)

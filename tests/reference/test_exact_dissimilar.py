@@ -67,12 +67,12 @@ def test_panagiotopoulos_loop_converges_and_changes_pressure():
     pair = wr.MaterialPair(STEEL, ALU)
     hc = wr.hertz(2e3, A=5.0, B=5.0, material=pair)
     grid, gap = hertz_grid(hc, elements=20, margin=1.2)
-    sol = solve_gap(grid, gap, pair, load=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
+    sol = solve_gap(grid, gap, pair, Fn=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
     assert sol.outer_iterations >= 2
     assert sol.outer_change <= 1e-5
     assert sol.Fn == pytest.approx(2e3, rel=1e-6)
     # quasi-identical bodies need a single pass (Johnson's process)
-    same = solve_gap(grid, gap, STEEL, load=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
+    same = solve_gap(grid, gap, STEEL, Fn=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
     assert same.outer_iterations == 1
 
 

@@ -370,7 +370,7 @@ def test_kalker_linear_method_batch(steel):
     Fx, Fy, Mz = linear_forces(c.a, c.b, c.G, c.nu, cr[:, 0], cr[:, 1], cr[:, 2])
     assert np.allclose(r.Fx, Fx) and np.allclose(r.Fy, Fy) and np.allclose(r.Mz, Mz)
     assert r.Fx[0] < 0 and r.Fx[2] > 0
-    assert np.allclose(r.info["utilisation"], np.hypot(Fx, Fy) / (0.3 * c.load))
+    assert np.allclose(r.info["utilisation"], np.hypot(Fx, Fy) / (0.3 * c.Fn))
     single = wr.creep_forces(c[0], creepage=(1e-4, 0, 0), mu=0.3, method=Linear())
     assert isinstance(single.Fx, float) and single.Fx == pytest.approx(r.Fx[0])
     with pytest.raises(wr.InputError):

@@ -36,13 +36,13 @@ def _gap(c, **kw):
 def test_kik_piotrowski_default_reproduces_hertz(ab):
     c = _contact(ab)
     m = wr.normal.get("kik-piotrowski")
-    (p,) = m.from_gap(_gap(c, load=float(c.load)))
-    assert p.Fn == pytest.approx(float(c.load), rel=1e-6)
+    (p,) = m.from_gap(_gap(c, Fn=float(c.Fn)))
+    assert p.Fn == pytest.approx(float(c.Fn), rel=1e-6)
     assert p.area == pytest.approx(float(c.area), rel=0.02)
     assert p.p_max == pytest.approx(float(c.p0), rel=0.02)
     # prescribed penetration: the load of Hertz's approach
     (q,) = m.from_gap(_gap(c, penetration=1e-5 + float(c.penetration)))
-    assert q.Fn == pytest.approx(float(c.load), rel=0.02)
+    assert q.Fn == pytest.approx(float(c.Fn), rel=0.02)
     L, W = p.info["L_W"]
     assert L / W == pytest.approx(ab, rel=0.02)
 
@@ -52,8 +52,8 @@ def test_kik_piotrowski_shape_correction_keeps_area_moves_ratio(ab):
     """Seed 003 §3.2.1: the correction keeps L·W and moves L/W to the Hertz ratio."""
     c = _contact(ab)
     m = wr.normal.get("kik-piotrowski")
-    raw, = m.replace(**{"shape_correction": False}).from_gap(_gap(c, load=float(c.load)))
-    cor, = m.from_gap(_gap(c, load=float(c.load)))
+    raw, = m.replace(**{"shape_correction": False}).from_gap(_gap(c, Fn=float(c.Fn)))
+    cor, = m.from_gap(_gap(c, Fn=float(c.Fn)))
     assert cor.area == pytest.approx(raw.area, rel=0.05)
     r_raw = raw.info["L_W"][0] / raw.info["L_W"][1]
     r_cor = cor.info["L_W"][0] / cor.info["L_W"][1]
@@ -67,7 +67,7 @@ def test_original_factor_is_biased():
     m = wr.normal.get("kik-piotrowski")
     for ab in RATIOS:
         c = _contact(ab)
-        (p,) = m.replace(penetration_factor=0.55).from_gap(_gap(c, load=float(c.load)))
+        (p,) = m.replace(penetration_factor=0.55).from_gap(_gap(c, Fn=float(c.Fn)))
         assert 1.05 < p.area / float(c.area) < 1.2
         assert 0.85 < p.p_max / float(c.p0) < 0.95
 
@@ -88,9 +88,9 @@ def test_bad_penetration_factor_named(bad):
 
 def test_unrepresentable_gaps_rejected():
     """A gap without curvature along x (a line contact) or a saddle: clear InputError."""
-    line = GapProblem(lambda x, y: 0.0 * x + y**2, wr.STEEL, load=1e4,
+    line = GapProblem(lambda x, y: 0.0 * x + y**2, wr.STEEL, Fn=1e4,
                       search=(-0.01, 0.01, -0.01, 0.01))
-    saddle = GapProblem(lambda x, y: x**2 - 0.5 * y**2, wr.STEEL, load=1e4,
+    saddle = GapProblem(lambda x, y: x**2 - 0.5 * y**2, wr.STEEL, Fn=1e4,
                         search=(-0.01, 0.01, -0.01, 0.01))
     for name in ("kik-piotrowski", "linder", "stripes", "multi-hertz"):
         m = wr.normal.get(name)

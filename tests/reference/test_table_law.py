@@ -124,7 +124,7 @@ def test_full_slip_limit_and_batch_shapes():
     creep = np.array([[-0.5, 0.0, 0.0], [0.0, 0.5, 0.0], [0.3, -0.4, 0.0]])
     r = wr.creep_forces(c, creep, 0.3, method="table")
     assert r.Fx.shape == (3,)
-    np.testing.assert_allclose(np.hypot(r.Fx, r.Fy), 0.3 * c.load, rtol=1e-3)
+    np.testing.assert_allclose(np.hypot(r.Fx, r.Fy), 0.3 * c.Fn, rtol=1e-3)
     assert r.Fx[0] > 0 and r.Fy[1] < 0 and r.Fx[2] < 0 and r.Fy[2] > 0  # opposite to creepage
 
 

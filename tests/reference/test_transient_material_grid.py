@@ -27,7 +27,7 @@ def hc():
 
 def _steady(hc, n, margin=1.25):
     grid, gap = hertz_grid(hc, elements=n, margin=margin)
-    pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
     return grid, solve_rolling(grid, pn, wr.STEEL, (XI, 0.0, 0.0), mu=0.4).Fx
 
 

@@ -27,7 +27,7 @@ def table1():
 
 def _steady(hc, n, creepage):
     grid, gap = hertz_grid(hc, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=float(hc.load)).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=float(hc.Fn)).pressure
     return grid, pn, solve_rolling(grid, pn, wr.STEEL, creepage, mu=MU, tol=1e-10)
 
 
@@ -49,7 +49,7 @@ def test_first_step_is_the_cattaneo_shift(table1):
     res = wr.transient_rolling(table1, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
                                elements=n, scheme="centre")
     grid, gap = hertz_grid(table1, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
     sh = solve_shift(grid, pn, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
     fields = res.fields_at(x=h)
     assert np.allclose(fields.px.values, sh.px, atol=1e-6 * np.abs(sh.px).max())
@@ -60,7 +60,7 @@ def test_cattaneo_to_carter_final_creepage(table1):
     """Seed §3.1 on 10 elements: final ξ within 1 % of the steady exact solver's."""
     n = 10
     grid, gap = hertz_grid(table1, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
 
     def fx(xi):
         return solve_rolling(grid, pn, wr.STEEL, (xi, 0.0, 0.0), mu=MU, tol=1e-10).Fx - 2000.0
@@ -85,7 +85,7 @@ def test_centre_scheme_ends_on_its_steady_fixed_point(table1):
     n = 10
     grid, gap = hertz_grid(table1, elements=n)
     h = grid.dx / 2
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
     M = (influence_kernel(grid, wr.STEEL)[:2, :2]
          - shifted_influence_kernel(grid, wr.STEEL, h)[:2, :2]) / h
 
@@ -123,7 +123,7 @@ def test_seed_time_step_ends_on_the_steady_exact_solver(table1):
     (measured 0.12 %); the seed's centre scheme ends 4.1 % off on this grid (measured)."""
     n = 12
     grid, gap = hertz_grid(table1, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0.0, 0.0), mu=MU,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
     h = grid.dx / 3.7

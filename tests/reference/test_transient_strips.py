@@ -40,7 +40,7 @@ def test_strips_cover_the_ellipse_with_equal_counts(hc):
 
 def test_strips_converge_to_the_steady_exact_solver(hc):
     grid, gap = hertz_grid(hc, elements=60, margin=1.1)
-    pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
     ref = solve_rolling(grid, pn, wr.STEEL, (XI, 0.0, 0.0), mu=0.4).Fx
     a = float(hc.a)
     ns = np.array([8, 12, 16])
@@ -66,7 +66,7 @@ def test_strips_force_control_and_refusals(hc):
     assert plot_state(r, 1e-3).axes and plot_centreline(r).axes
     case = load_transient_case("""
 [contact]
-load = 10000.0
+Fn = 10000.0
 wheel_rolling_radius = 0.5
 wheel_profile_radius = -0.409
 rail_profile_radius = 0.3

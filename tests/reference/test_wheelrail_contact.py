@@ -152,7 +152,7 @@ def test_sweep_batch_equals_per_position_path(s1002):
 
 
 def test_hertz_contact_through_solve_equals_creep_forces():
-    c = wr.hertz(load=7500.0, A=1.087, B=1.667, material=wr.STEEL)
+    c = wr.hertz(Fn=7500.0, A=1.087, B=1.667, material=wr.STEEL)
     for law in ("fastsim", "polach", "linear", "shen-hedrick-elkins"):
         r = wr.solve(c, creepage=(-7e-4, 2e-4, 0.3), mu=0.3, normal="hertz", tangential=law)
         ref = wr.creep_forces(c, (-7e-4, 2e-4, 0.3), 0.3, method=law)
@@ -273,15 +273,15 @@ def test_gap_problem_two_bumps_bem_gives_two_patches_hertz_one():
     F = [0.0, 0.0]
     for _ in range(50):
         F = [float(wr.hertz_from_penetration(delta - F[1 - i] / (np.pi * E_star * d), 1.0, 2.0,
-                                             wr.STEEL).load)
+                                             wr.STEEL).Fn)
              for i, delta in enumerate((2.5e-5, 2.3e-5))]
     assert big.Fn == pytest.approx(F[0], rel=0.02)
     assert small.Fn == pytest.approx(F[1], rel=0.02)
     # without the interaction the loads would be 6-7 % higher: the test sees it
-    assert big.Fn < 0.96 * float(wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL).load)
+    assert big.Fn < 0.96 * float(wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL).Fn)
     h = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="hertz", tangential="fastsim")
     ref = wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL)
-    assert len(h.patches) == 1 and h.Fn == pytest.approx(float(ref.load), rel=1e-3)
+    assert len(h.patches) == 1 and h.Fn == pytest.approx(float(ref.Fn), rel=1e-3)
 
 
 @pytest.mark.parametrize("normal", ["hertz", "bem"])

@@ -163,7 +163,7 @@ def test_fastsim_single_ellipse_skips_only_the_checks():
     from wheelrail.errors import InputError
     from wheelrail.tangential import fastsim as fs
 
-    hc = wr.hertz(load=9e3, A=1.1, B=4.0, material=wr.STEEL)
+    hc = wr.hertz(Fn=9e3, A=1.1, B=4.0, material=wr.STEEL)
     law = fs.Fastsim(nx=12, ny=9)
     for xi, eta, phi in ((-4e-4, 2e-4, 0.5), (3e-3, -2e-3, -1.0), (0.0, 0.0, 0.0)):
         r = law.solve(hc, xi, eta, phi, 0.3)
@@ -174,7 +174,7 @@ def test_fastsim_single_ellipse_skips_only_the_checks():
         s = fs._profile("parabolic", 1.0 - (np.arange(12) + 0.5) * (2.0 / 12))
         discrete = (4.0 / (12 * 9)) * np.sum(fs._profile("parabolic", t) * np.sqrt(1 - t * t)) \
             * np.sum(s)
-        peak = 2.0 * hc.load / (np.pi * hc.a * hc.b) * (np.pi / 2.0 / discrete)
+        peak = 2.0 * hc.Fn / (np.pi * hc.a * hc.b) * (np.pi / 2.0 / discrete)
         ref = fs.fastsim_strips(*fs.hertz_strips(hc.a, hc.b, 9),
                                 peak * fs._profile("parabolic", t), L1[0], L2[0], L3[0], xi,
                                 eta, phi, 0.3, 12, profile="parabolic")
@@ -217,7 +217,7 @@ def test_patch_from_hertz_without_rechecks_equals_the_checked_patch():
     from wheelrail.patch import ContactPatch
     from wheelrail.errors import InputError
 
-    hc = wr.hertz(load=9e3, A=1.1, B=4.0, material=wr.STEEL)
+    hc = wr.hertz(Fn=9e3, A=1.1, B=4.0, material=wr.STEEL)
     fast = ContactPatch.from_hertz(hc, strips=12, cells=9)
     checked = dataclasses.replace(fast)            # runs __init__ and __post_init__
     for f in dataclasses.fields(ContactPatch):
@@ -230,7 +230,7 @@ def test_patch_from_hertz_without_rechecks_equals_the_checked_patch():
     assert fast.Fn == pytest.approx(np.sum(fast.strip_pressure * (2 * fast.x_lead / 9)[:, None]
                                            * fast.dy[:, None]), rel=0.02)
     with pytest.raises(InputError, match="Fn"):
-        ContactPatch.from_hertz(dataclasses.replace(hc, load=-1.0))
+        ContactPatch.from_hertz(dataclasses.replace(hc, Fn=-1.0))
 
 
 def _find_points_arrays(ws, tr, side, pose, tolerance, step=2e-4):

@@ -18,7 +18,7 @@ E = 2.1e11
 nu = 0.28
 
 [contact]
-load = 7500.0
+Fn = 7500.0
 A = 1.0869565
 B = 1.6666667
 
@@ -53,7 +53,7 @@ def test_full_case_from_file(tmp_path):
     assert case.source == str(path)
     assert case.materials == wr.MaterialPair.same(wr.Material(2.1e11, 0.28))
     assert case.contact.kind == "curvatures"
-    assert (case.contact.load, case.contact.A, case.contact.B) == (7500.0, 1.0869565, 1.6666667)
+    assert (case.contact.Fn, case.contact.A, case.contact.B) == (7500.0, 1.0869565, 1.6666667)
     assert case.creepage == (-0.0007, 0.0002, 0.1)
     assert case.mu == 0.2
     assert (case.normal, case.tangential) == (wr.normal.Hertz(), wr.tangential.Linear())
@@ -71,7 +71,7 @@ def test_text_and_path_give_the_same_case(tmp_path):
 
 
 def test_defaults_steel_zero_creepage_fastsim():
-    case = load_case("[contact]\nload = 1000.0\nA = 1.0\nB = 2.0\n[friction]\nmu = 0.3\n")
+    case = load_case("[contact]\nFn = 1000.0\nA = 1.0\nB = 2.0\n[friction]\nmu = 0.3\n")
     assert case.materials.wheel == wr.STEEL
     assert case.creepage == (0.0, 0.0, 0.0)
     assert (case.normal, case.tangential) == (wr.normal.Hertz(), wr.tangential.Fastsim())
@@ -174,14 +174,14 @@ def _error(text) -> str:
 
 
 def test_malformed_toml_names_line_and_column():
-    msg = _error("[contact]\nload = 7500.0\nA = \n")
+    msg = _error("[contact]\nFn = 7500.0\nA = \n")
     assert "<string>" in msg and "malformed TOML" in msg
     assert "line 3" in msg and "column" in msg
 
 
 def test_malformed_toml_in_file_names_the_file(tmp_path):
     path = tmp_path / "broken.toml"
-    path.write_text("[contact\nload = 1\n")
+    path.write_text("[contact\nFn = 1\n")
     with pytest.raises(CaseFileError, match="broken.toml.*line 1"):
         load_case(path)
 
@@ -192,7 +192,7 @@ def test_missing_file():
 
 
 @pytest.mark.parametrize("old, new, expected", [
-    ("load = 7500.0", "lod = 7500.0", r"\[contact\]: unknown key\(s\) 'lod'"),
+    ("Fn = 7500.0", "Fx0 = 7500.0", r"\[contact\]: unknown key\(s\) 'Fx0'"),
     ("[friction]", "[frction]", r"unknown table\(s\) 'frction'"),
     ("mu = 0.2", "mu = 0.2\ntemperature = 20.0", r"\[friction\]: unknown key\(s\) 'temperature'"),
     ('tangential = "linear"', 'tangential = "linear"\nsolver = "x"', r"unknown key\(s\) 'solver'"),
@@ -209,8 +209,8 @@ def test_unknown_names_are_errors(old, new, expected):
 
 
 @pytest.mark.parametrize("old, new, table_key, value", [
-    ("load = 7500.0", "load = -7500.0", "[contact] load", "-7500.0"),
-    ("load = 7500.0", "load = 0.0", "[contact] load", "0.0"),
+    ("Fn = 7500.0", "Fn = -7500.0", "[contact] Fn", "-7500.0"),
+    ("Fn = 7500.0", "Fn = 0.0", "[contact] Fn", "0.0"),
     ("mu = 0.2", "mu = 0.0", "[friction] mu", "0.0"),
     ("mu = 0.2", "mu = -0.1", "[friction] mu", "-0.1"),
     ("xi = -0.0007", "xi = nan", "[creepage] xi", "nan"),
@@ -252,7 +252,7 @@ def test_contact_description_must_be_unique():
 
 def test_missing_required_values():
     assert "missing table [friction]" in _error(_edit(FULL, "[friction]\nmu = 0.2", ""))
-    assert "[contact] load: missing" in _error(_edit(FULL, "load = 7500.0", ""))
+    assert "[contact] Fn: missing" in _error(_edit(FULL, "Fn = 7500.0", ""))
     assert "[material.rail] is missing" in _error(
         _edit(FULL, "[material]\nE = 2.1e11\nnu = 0.28", "[material.wheel]\nE = 2.1e11\nnu = 0.28"))
 

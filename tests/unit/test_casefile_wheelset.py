@@ -130,7 +130,7 @@ def test_bad_values_named_with_file_table_key_value(tmp_path, old, new, where, v
 
 
 def test_contact_tables_rejected_in_wheelset_case():
-    msg = _error(WS + "\n[contact]\nload = 1.0\nA = 1.0\nB = 1.0\n")
+    msg = _error(WS + "\n[contact]\nFn = 1.0\nA = 1.0\nB = 1.0\n")
     assert "[contact]" in msg and "wheelset case" in msg
 
 
@@ -180,7 +180,7 @@ def test_sweep_case_gives_dataset():
 # --------------------------------------------------------------------------- contact cases
 CONTACT = """
 [contact]
-load = 7500.0
+Fn = 7500.0
 A = 1.0869565
 B = 1.6666667
 [creepage]

@@ -25,7 +25,7 @@ SPIN = (0.0, 0.0, 3.0)
 
 def _problem(elements):
     grid, gap = hertz_grid(HC, elements=elements, margin=1.1)
-    return grid, solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    return grid, solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
 
 
 @pytest.fixture(scope="module")

@@ -82,7 +82,7 @@ def test_prescribed_approach_matches_force_control(hc):
     from wheelrail.normal.bem import hertz_grid, solve_normal
 
     grid, gap = hertz_grid(hc, elements=8)
-    delta = 0.9 * float(solve_normal(grid, gap, wr.STEEL, load=10e3).penetration)
+    delta = 0.9 * float(solve_normal(grid, gap, wr.STEEL, Fn=10e3).penetration)
     Fn = float(solve_normal(grid, gap, wr.STEEL, penetration=delta).pressure.sum()
                * grid.element_area)
     kw = dict(travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=1500.0, elements=8)

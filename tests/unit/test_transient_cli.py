@@ -12,7 +12,7 @@ from wheelrail.transient.loads import TravelFunction
 
 CASE = """
 [contact]
-load = 10000.0
+Fn = 10000.0
 wheel_rolling_radius = 0.5
 wheel_profile_radius = -0.409
 rail_profile_radius = 0.3

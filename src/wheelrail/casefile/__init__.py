@@ -15,7 +15,7 @@ optional)::
     nu = 0.28               # [material.wheel] and [material.rail], each with E, nu
 
     [contact]
-    load = 7500.0           # normal force Fn [N]
+    Fn = 7500.0           # normal force Fn [N]
     A = 1.0869565           # combined curvatures [1/m] ...
     B = 1.6666667
     # ... or principal radii [m] (concave negative, omitted = flat/straight):

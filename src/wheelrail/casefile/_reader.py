@@ -53,9 +53,9 @@ def read_materials(r: Reader, tbl: Mapping) -> MaterialPair:
 
 
 def read_contact(r: Reader, tbl: Mapping) -> ContactSpec:
-    allowed = ("load", "A", "B", "a", "b", *RADII_KEYS)
+    allowed = ("Fn", "A", "B", "a", "b", *RADII_KEYS)
     r.unknown("contact", tbl, allowed)
-    load = r.number("contact", tbl, "load", positive=True)
+    Fn = r.number("contact", tbl, "Fn", positive=True)
     groups = {"curvatures": [k for k in ("A", "B") if k in tbl],
               "semiaxes": [k for k in ("a", "b") if k in tbl],
               "radii": [k for k in RADII_KEYS if k in tbl]}
@@ -68,11 +68,11 @@ def read_contact(r: Reader, tbl: Mapping) -> ContactSpec:
     if kind == "curvatures":
         A = r.number("contact", tbl, "A", positive=True)
         B = r.number("contact", tbl, "B", positive=True)
-        return ContactSpec(load, kind, A=A, B=B)
+        return ContactSpec(Fn, kind, A=A, B=B)
     if kind == "semiaxes":
         a = r.number("contact", tbl, "a", positive=True)
         b = r.number("contact", tbl, "b", positive=True)
-        return ContactSpec(load, kind, a=a, b=b)
+        return ContactSpec(Fn, kind, a=a, b=b)
     radii = {"wheel_rolling_radius": r.number("contact", tbl, "wheel_rolling_radius",
                                               positive=True)}
     for k in RADII_KEYS[1:]:
@@ -81,7 +81,7 @@ def read_contact(r: Reader, tbl: Mapping) -> ContactSpec:
             if v == 0:
                 r.fail("contact", k, f"must be non-zero (omit it for a flat surface), got {v!r}")
             radii[k] = v
-    return ContactSpec(load, kind, radii=MappingProxyType(radii))
+    return ContactSpec(Fn, kind, radii=MappingProxyType(radii))
 
 
 def read_methods(r: Reader, tbl: Mapping):
@@ -140,14 +140,14 @@ def configure(r: Reader, table: str, cls, opts: Mapping):
         r.fail(table, None, str(exc))
 
 
-def read_forces(r: Reader, tbl: Mapping, load: float, mu: float) -> dict:
+def read_forces(r: Reader, tbl: Mapping, Fn: float, mu: float) -> dict:
     r.unknown("force", tbl, ("Fx", "Fy"))
     forces = {k: r.number("force", tbl, k) for k in ("Fx", "Fy") if k in tbl}
     if forces:
         ft = math.hypot(forces.get("Fx", 0.0), forces.get("Fy", 0.0))
-        if ft >= mu * load:
+        if ft >= mu * Fn:
             r.fail("force", None, f"|F| = {ft!r} N is not below the friction limit "
-                   f"mu * load = {mu * load!r} N: no creepage can produce it")
+                   f"mu * Fn = {mu * Fn!r} N: no creepage can produce it")
     return forces
 
 

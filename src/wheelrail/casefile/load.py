@@ -49,7 +49,7 @@ def load_case(path_or_str):
     --------
     >>> case = load_case('''
     ... [contact]
-    ... load = 7500.0
+    ... Fn = 7500.0
     ... A = 1.0869565
     ... B = 1.6666667
     ... [friction]
@@ -91,7 +91,7 @@ def case_from_dict(data: Mapping, source: str = "<dict>"):
     mu = r.number("friction", fr, "mu", positive=True)
     check_plausible(r, "friction", "mu", mu)
     normal, tangential, methods = read_methods(r, data.get("method", {}))
-    forces = read_forces(r, data.get("force", {}), contact.load, mu)
+    forces = read_forces(r, data.get("force", {}), contact.Fn, mu)
     case = Case(materials=materials, contact=contact, creepage=creepage, mu=mu, normal=normal,
                 tangential=tangential, methods=MappingProxyType(methods),
                 forces=MappingProxyType(forces), source=source)

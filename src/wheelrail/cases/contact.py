@@ -37,7 +37,7 @@ __all__ = ["Case", "ContactSpec", "CaseResult", "run_case", "solve_case", "DEFAU
 #: radius of 0.30 m (A = 0.5/0.46, B = 0.5/0.30 1/m), μ = 0.3, FASTSIM.
 DEFAULT_CASE = {
     "material": {"E": 2.1e11, "nu": 0.28},
-    "contact": {"load": 7500.0, "wheel_rolling_radius": 0.46, "rail_profile_radius": 0.30},
+    "contact": {"Fn": 7500.0, "wheel_rolling_radius": 0.46, "rail_profile_radius": 0.30},
     "creepage": {"xi": -1.0e-3, "eta": 0.0, "phi": 0.0},
     "friction": {"mu": 0.3},
     "method": {"normal": "hertz", "tangential": "fastsim"},
@@ -62,13 +62,13 @@ class ContactSpec:
 
     Attributes
     ----------
-    load : float
-        Normal force Fn [N].
+    Fn : float
+        Normal force [N].
     kind : str
         ``"curvatures"``, ``"semiaxes"`` or ``"radii"``.
     """
 
-    load: float
+    Fn: float
     kind: str
     A: float | None = None
     B: float | None = None
@@ -80,13 +80,13 @@ class ContactSpec:
         """The :class:`wheelrail.HertzContact` of this description."""
 
         if self.kind == "curvatures":
-            return hertz(self.load, self.A, self.B, material)
+            return hertz(self.Fn, self.A, self.B, material)
         if self.kind == "semiaxes":
-            return hertz_from_semiaxes(self.a, self.b, self.load, material)
-        return hertz_from_radii(self.load, material=material, **dict(self.radii))
+            return hertz_from_semiaxes(self.a, self.b, self.Fn, material)
+        return hertz_from_radii(self.Fn, material=material, **dict(self.radii))
 
     def to_dict(self) -> dict:
-        out = {"load": self.load}
+        out = {"Fn": self.Fn}
         if self.kind == "curvatures":
             out.update(A=self.A, B=self.B)
         elif self.kind == "semiaxes":
@@ -321,7 +321,7 @@ def _scalar(v):
 
 def _summary(case, contact, forces, patch, normal, xi, eta, phi, method=None,
              normal_method=None) -> dict:
-    Fn = contact.load if patch is None else patch.Fn
+    Fn = contact.Fn if patch is None else patch.Fn
     Ft = float(np.hypot(forces.Fx, forces.Fy))
     out = {
         "a": contact.a, "b": contact.b, "c": float(contact.c), "A": contact.A, "B": contact.B,

@@ -170,7 +170,7 @@ def run(args, console) -> int:
         why = "; ".join(f"{m}: {r}" for m, r in skipped.items())
         raise InputError(f"no curve to plot: every method was skipped ({why})")
     c = case.hertz_contact
-    title = (f"{case.source}: Fn = {c.load:.0f} N, a = {c.a * 1e3:.2f} mm, "
+    title = (f"{case.source}: Fn = {c.Fn:.0f} N, a = {c.a * 1e3:.2f} mm, "
              f"b = {c.b * 1e3:.2f} mm, μ = {case.mu:g}")
     creep_curves(values, normalised(forces, args.component), component=args.component,
                  force=FORCE_OF[args.component], path=args.out, title=title)

@@ -74,7 +74,7 @@ def step_hertz(ctx: DemoContext):
               newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(["load_N", "a_m", "b_m", "p0_Pa", "penetration_m", "area_m2"])
-        for row in zip(batch.load, batch.a, batch.b, batch.p0, batch.penetration, batch.area):
+        for row in zip(batch.Fn, batch.a, batch.b, batch.p0, batch.penetration, batch.area):
             w.writerow([f"{v:.9g}" for v in row])
     pressure_map(c, path=ctx.file("hertz_pressure.png", "Hertz pressure on the contact ellipse"),
                  title="Hertz pressure, built-in case")
@@ -149,7 +149,7 @@ def step_creep_curves(ctx: DemoContext):
         curves[comp] = {"creepage": values.tolist(), **{m: v.tolist() for m, v in norm.items()}}
     c = case.hertz_contact
     finish(fig, ctx.file("creep_curves.png", "creep curves, ξ and η"),
-           title=f"built-in case: Fn = {c.load:.0f} N, μ = {case.mu:g} (force / μFn)")
+           title=f"built-in case: Fn = {c.Fn:.0f} N, μ = {case.mu:g} (force / μFn)")
     ctx.results["creep_curves"] = curves
     return ("methods: " + ", ".join(m for m in curves["xi"] if m != "creepage")
             + (f" ({'; '.join(notes)})" if notes else ""))

@@ -138,7 +138,7 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, material
             Fx, Fs, Mz = (np.zeros(A.shape) for _ in range(3))
             Fx[act], Fs[act], Mz[act] = cf.Fx, cf.Fy, cf.Mz
             Fn = np.zeros(A.shape)
-            Fn[act] = hc.load
+            Fn[act] = hc.Fn
             g = np.where(valid, data["contact_angle"], 0.0)
             Fz = np.sum(sig * Fs * np.sin(g) + Fn * np.cos(g), axis=1)
             if last:

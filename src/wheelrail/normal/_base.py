@@ -21,7 +21,7 @@ options
     unit, default, bounds); :meth:`_check` may check their combination.
 ``from_contact(contact) -> tuple of ContactPatch``
     A single :class:`~wheelrail.hertzian.HertzContact` (load and
-    curvatures given): the patch(es) carrying ``contact.load``.
+    curvatures given): the patch(es) carrying ``contact.Fn``.
 ``from_gap(problem) -> tuple of ContactPatch``
     A :class:`GapProblem`: an undeformed gap h(x, y) with a prescribed load or
     approach.
@@ -60,17 +60,18 @@ class GapProblem:
         ``gap(x, y) -> h`` [m], vectorised over arrays of equal shape
         (contact-plane x, y in m, :mod:`wheelrail.conventions`).
     materials : Material or MaterialPair
-    load : float or None
+    Fn : float or None
         Prescribed normal force [N] ...
     penetration : float or None
-        ... or prescribed approach δ [m] (contact where h < δ); exactly one.
+        ... or prescribed penetration (approach of the bodies) δ [m]
+        (contact where h < δ); exactly one.
     search : (xmin, xmax, ymin, ymax) or None
         Box [m] in which the contact is looked for (default ±20 mm).
     """
 
     gap: object
     materials: object
-    load: float | None = None
+    Fn: float | None = None
     penetration: float | None = None
     search: tuple | None = None
 
@@ -78,9 +79,9 @@ class GapProblem:
         if not callable(self.gap):
             raise InputError(f"GapProblem.gap must be a callable h(x, y) [m], got "
                              f"{type(self.gap).__name__}")
-        if (self.load is None) == (self.penetration is None):
-            raise InputError("GapProblem: give exactly one of load= and penetration= "
-                             f"(got load={self.load!r}, penetration={self.penetration!r})")
+        if (self.Fn is None) == (self.penetration is None):
+            raise InputError("GapProblem: give exactly one of Fn= and penetration= "
+                             f"(got Fn={self.Fn!r}, penetration={self.penetration!r})")
 
 
 class NormalMethod(Method):

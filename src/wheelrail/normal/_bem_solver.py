@@ -41,7 +41,7 @@ def _dot(a, b) -> float:
     return float(np.multiply(a, b).sum())
 
 
-def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol=1e-8,
+def polonsky_keer(apply, h, dA, *, Fn=None, penetration=None, p_init=None, tol=1e-8,
                   maxiter=1000, precondition=None):
     """Bound-constrained (preconditioned) conjugate gradients for the discrete Signorini problem.
 
@@ -56,8 +56,8 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
         Undeformed separation h0 [m].
     dA : float
         Element area [m²].
-    load, penetration : float
-        Exactly one: total load [N] > 0 or approach δ [m].
+    Fn, penetration : float
+        Exactly one: total Fn [N] > 0 or approach δ [m].
     p_init : ndarray, optional
         Initial pressure (≥ 0, not all zero); default: proportional to the rigid
         interference.
@@ -69,7 +69,7 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
         approximate inverse of the influence operator (e.g.
         :class:`~wheelrail.halfspace.precondition.InverseSymbolPreconditioner`),
         applied to the residual restricted to the contact set; its output is
-        restricted again and, for load control, projected onto zero total load.
+        restricted again and, for Fn control, projected onto zero total Fn.
         None: the plain method of Polonsky & Keer.
 
     Returns
@@ -78,7 +78,7 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
         Pressure [Pa].
     delta : float
         Approach [m] (the prescribed one, or the mean of h0 + u_n over the
-        contact for load control).
+        contact for Fn control).
     iterations : int
     change : float
         Last relative pressure change.
@@ -89,23 +89,23 @@ def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol
     ``t = z + (g·z / g_old·z_old) t_old`` with ``z`` the restricted, projected
     preconditioned residual: Vollebregt (2014), §3–4.
     """
-    p, delta, it, change, _ = _pk(apply, h, dA, load, penetration, p_init, tol, maxiter,
+    p, delta, it, change, _ = _pk(apply, h, dA, Fn, penetration, p_init, tol, maxiter,
                                   precondition)
     return p, delta, it, change
 
 
-def _pk(apply, h, dA, load, penetration, p_init, tol, maxiter, precondition):
+def _pk(apply, h, dA, Fn, penetration, p_init, tol, maxiter, precondition):
     """:func:`polonsky_keer`, also returning ``u_n = apply(p)`` of the final pressure (private)."""
-    if (load is None) == (penetration is None):
-        raise InputError("give exactly one of load= and penetration=")
-    load_control = load is not None
+    if (Fn is None) == (penetration is None):
+        raise InputError("give exactly one of Fn= and penetration=")
+    load_control = Fn is not None
     if p_init is None:
-        p_init = _initial_pressure(apply, h, dA, load, penetration)
+        p_init = _initial_pressure(apply, h, dA, Fn, penetration)
     p = np.array(p_init, dtype=float)
     if load_control:
-        # a start carrying another load (e.g. the solution of a nearby load) is scaled to
+        # a start carrying another Fn (e.g. the solution of a nearby Fn) is scaled to
         # this one first: otherwise the iteration can stall on the start's contact area
-        p *= load / (dA * p.sum())
+        p *= Fn / (dA * p.sum())
     # work arrays, allocated once
     t = np.zeros_like(p)
     g = np.empty_like(p)
@@ -135,7 +135,7 @@ def _pk(apply, h, dA, load, penetration, p_init, tol, maxiter, precondition):
         else:
             z = precondition(gm)
             z *= Ic
-            if load_control:                     # keep the load: Σ z = 0 on the contact set
+            if load_control:                     # keep the Fn: Σ z = 0 on the contact set
                 z -= z.sum() / nI
                 z *= Ic
         G = _dot(gm, z)
@@ -168,7 +168,7 @@ def _pk(apply, h, dA, load, penetration, p_init, tol, maxiter, precondition):
             restart = False
         scale = 1.0
         if load_control:
-            scale = load / (dA * p.sum())
+            scale = Fn / (dA * p.sum())
             p *= scale
         total = p.sum()
         np.subtract(p, p_old, out=tmp)
@@ -204,9 +204,9 @@ def _preconditioner(grid, operator):
     return memo(key, lambda: InverseSymbolPreconditioner(operator.kernel[2, 2], grid.dx, grid.dy))
 
 
-def _initial_pressure(apply, h, dA, load, penetration):
+def _initial_pressure(apply, h, dA, Fn, penetration):
     """Pressure ∝ rigid interference, scaled by one operator application."""
-    if load is not None:
+    if Fn is not None:
         # interference of the rigid bodies pressed to a depth covering ~1/4 of the window
         depth = np.quantile(h, 0.25) - h.min()
         if depth <= 0:
@@ -215,14 +215,14 @@ def _initial_pressure(apply, h, dA, load, penetration):
         if not np.any(over > 0):
             over = np.ones_like(h)
         p = np.sqrt(over)
-        return p * (load / (dA * p.sum()))
+        return p * (Fn / (dA * p.sum()))
     over = np.maximum(penetration - h, 0.0)
     u = apply(over)
     k = over.max() / u[over > 0].max()
     return over * k
 
 
-def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol: float = 1e-8,
+def solve_normal(grid: Grid, gap, materials, *, Fn=None, penetration=None, tol: float = 1e-8,
                  maxiter: int = 2000, on_fail: str = "raise", operator=None,
                  initial=None, precondition: bool = True) -> NormalResult:
     """Solve the normal contact problem on a grid (non-Hertzian, half-space).
@@ -235,10 +235,10 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
         Undeformed separation h0 of the surfaces at the element centres [m]
         (any offset; for ``penetration`` control, contact needs h0 < δ somewhere).
     materials : Material or MaterialPair
-    load : float, optional
+    Fn : float, optional
         Prescribed normal force Fn [N], > 0.
     penetration : float, optional
-        Prescribed approach δ [m]. Exactly one of ``load`` and ``penetration``.
+        Prescribed approach δ [m]. Exactly one of ``Fn`` and ``penetration``.
     tol : float, optional
         Relative pressure change Σ|Δp|/Σp at which the iteration stops (1e-8).
     maxiter : int, optional
@@ -251,7 +251,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
         Reuse a prebuilt operator of the same grid (e.g. shared with a
         tangential solver).
     initial : ndarray, shape (nx, ny), optional
-        Starting pressure [Pa] (e.g. the solution of a nearby load).
+        Starting pressure [Pa] (e.g. the solution of a nearby Fn).
     precondition : bool, optional
         Use the FFT approximate inverse of the influence operator as the
         preconditioner of the conjugate gradients (default True; False: the
@@ -265,7 +265,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     Raises
     ------
     InputError
-        Bad arguments (load ≤ 0, both or none of load/penetration, wrong shape).
+        Bad arguments (Fn ≤ 0, both or none of Fn/penetration, wrong shape).
     NoContactError
         With prescribed penetration, if h0 − δ > 0 everywhere.
     ConvergenceError
@@ -287,7 +287,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     >>> from wheelrail.normal.bem import hertz_grid, solve_normal
     >>> hc = wr.hertz(10e3, A=1.0, B=1.0, material=wr.STEEL)
     >>> grid, h0 = hertz_grid(hc, elements=24)
-    >>> sol = solve_normal(grid, h0, wr.STEEL, load=10e3)
+    >>> sol = solve_normal(grid, h0, wr.STEEL, Fn=10e3)
     >>> abs(sol.p_max / hc.p0 - 1) < 0.03
     True
     """
@@ -295,15 +295,15 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
         raise InputError(f"grid must be a Grid, got {type(grid).__name__}")
     pair = as_material_pair(materials)
     h = grid.check_field("gap", gap)
-    if (load is None) == (penetration is None):
-        raise InputError("give exactly one of load= and penetration= "
-                         f"(got load={load!r}, penetration={penetration!r})")
+    if (Fn is None) == (penetration is None):
+        raise InputError("give exactly one of Fn= and penetration= "
+                         f"(got Fn={Fn!r}, penetration={penetration!r})")
     if on_fail not in ("raise", "status"):
         raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
     tol = float(positive("tol", tol))
     maxiter = integer("maxiter", maxiter)
-    if load is not None:
-        load = float(positive("load", load))
+    if Fn is not None:
+        Fn = float(positive("Fn", Fn))
     else:
         penetration = float(as_float_array("penetration", penetration))
         if np.all(h - penetration >= 0.0):
@@ -323,7 +323,7 @@ def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol
     if p_init is not None and not p_init.any():
         p_init = None
     pre = _preconditioner(grid, operator) if precondition else None
-    p, delta, iterations, change, u = _pk(apply, h, dA, load, penetration, p_init, tol, maxiter,
+    p, delta, iterations, change, u = _pk(apply, h, dA, Fn, penetration, p_init, tol, maxiter,
                                           pre)
     converged = change < tol
     if not converged:
@@ -415,7 +415,7 @@ def _square_grid(bounds, element_size) -> Grid:
     return Grid(cx - (nx - 1) / 2 * d, cy - (ny - 1) / 2 * d, d, d, nx, ny)
 
 
-def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=None, tol=1e-8,
+def _solve_enlarging(gap, grid, materials, search, *, Fn=None, penetration=None, tol=1e-8,
                      max_enlarge=4, square=None, initial=None):
     """Normal solve on ``grid``; move touched window edges out while the contact is truncated.
 
@@ -427,7 +427,7 @@ def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=Non
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ContactTruncatedWarning)
             start = initial if initial is not None and np.shape(initial) == grid.shape else None
-            sol = solve_normal(grid, h0, materials, load=load, penetration=penetration, tol=tol,
+            sol = solve_normal(grid, h0, materials, Fn=Fn, penetration=penetration, tol=tol,
                                initial=start)
         c = sol.contact
         if not sol.truncated or it == max_enlarge:

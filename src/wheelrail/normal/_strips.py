@@ -338,7 +338,7 @@ class VirtualPenetration:
         def gap(x, y):
             return A * np.asarray(x, dtype=float) ** 2 + B * np.asarray(y, dtype=float) ** 2
 
-        prob = GapProblem(gap, contact.materials, load=float(contact.load),
+        prob = GapProblem(gap, contact.materials, Fn=float(contact.Fn),
                           search=(-L, L, -L, L))
         return self.from_gap(prob)
 
@@ -373,8 +373,8 @@ class VirtualPenetration:
                     f"normal method {self.name!r}: the gap is not convex at its minimum "
                     f"(x, y) = ({xm!r}, {ym!r}) m (A = {A!r}, B = {B!r} 1/m); this patch cannot be "
                     "represented by a virtual-penetration method, use normal='bem'")
-            if problem.load is not None:
-                a1, b1, _, d1 = hertz_kernel(float(problem.load), A, B, pair.E_star)
+            if problem.Fn is not None:
+                a1, b1, _, d1 = hertz_kernel(float(problem.Fn), A, B, pair.E_star)
             else:
                 d = float(problem.penetration) - hmin
                 if not d > 0:
@@ -403,8 +403,8 @@ class VirtualPenetration:
         line = Line(eta, f, Ax, float(A), float(B), ref=int(np.argmin(np.abs(eta))))
         delta = self._gap_delta(problem, line, hmin, pair, opts, start=delta)
         regs = self._solve_line(line, delta, opts)
-        if problem.load is not None:
-            _rescale(regs, float(problem.load) / sum(r.N for r in regs))
+        if problem.Fn is not None:
+            _rescale(regs, float(problem.Fn) / sum(r.N for r in regs))
         patches = []
         for reg in regs:
             patches.append(self._make_patch(line, reg, pair, opts, frame=None,
@@ -417,7 +417,7 @@ class VirtualPenetration:
         line.extra["materials"] = pair
         if problem.penetration is not None:
             return float(problem.penetration) - hmin
-        Q = float(problem.load)
+        Q = float(problem.Fn)
         if start is None:
             _, _, _, d1 = hertz_shape(line.A, line.B)
             start = d1 * (Q / pair.E_star) ** (2.0 / 3.0) / 1.0

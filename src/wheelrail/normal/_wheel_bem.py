@@ -146,7 +146,7 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     def solve_all(dz=None, load=None):
         sols = []
         for st in setups:
-            kw = {"load": load / st["cos"]} if load is not None else {"penetration": dz * st["cos"]}
+            kw = {"Fn": load / st["cos"]} if load is not None else {"penetration": dz * st["cos"]}
             try:
                 sol, grid = _solve_enlarging(st["gap"], st["grid"], pair, st["search"], tol=tol,
                                              max_enlarge=max_enlarge, square=True,

@@ -172,7 +172,7 @@ class Bem(NormalMethod):
         n = _elements_for(2.0 * max(float(contact.a), float(contact.b)), self.grid_elements,
                           self.element_size)
         grid, gap = hertz_grid(contact, elements=n, margin=max(1.25, 1.0 + 3.0 / n))
-        sol = solve_normal(grid, gap, contact.materials, load=float(contact.load),
+        sol = solve_normal(grid, gap, contact.materials, Fn=float(contact.Fn),
                            tol=self.pressure_tol)
         return (ContactPatch.from_grid(grid, sol.pressure, sol.contact, contact.materials,
                                        penetration=sol.penetration, A=float(contact.A),
@@ -180,13 +180,13 @@ class Bem(NormalMethod):
                                        info=_solution_info(sol)),)
 
     def from_gap(self, problem):
-        w = _window(problem.gap, problem.penetration, problem.load, problem.materials,
+        w = _window(problem.gap, problem.penetration, problem.Fn, problem.materials,
                     self.grid_elements, self.window_margin, problem.search)
         grid = w["grid"]
         if self.element_size is not None:
             grid = _square_grid(grid.bounds, self.element_size)
         sol, grid = _solve_enlarging(problem.gap, grid, problem.materials, w["search"],
-                                     load=problem.load, penetration=problem.penetration,
+                                     Fn=problem.Fn, penetration=problem.penetration,
                                      tol=self.pressure_tol, max_enlarge=self.max_enlarge)
         return _patches_of(sol, problem.materials, self.cells, frames=None)
 

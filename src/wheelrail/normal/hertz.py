@@ -104,8 +104,8 @@ class Hertz(NormalMethod, PatchDescription):
                 raise InputError(f"the gap is not convex at its minimum (x, y) = ({xm!r}, {ym!r}) m "
                                  f"(principal curvatures {c.tolist()} 1/m): Hertz cannot "
                                  "represent it; use normal='bem'")
-            if problem.load is not None:
-                hc = hertz(problem.load, c[0], c[1], pair)
+            if problem.Fn is not None:
+                hc = hertz(problem.Fn, c[0], c[1], pair)
             else:
                 delta = float(problem.penetration) - hmin
                 if not delta > 0:

@@ -277,12 +277,12 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
                                      f"does not exceed the smallest gap {hmin!r} m")
         else:
             _, _, _, d1 = hertz_shape(line.A, line.B)
-            start = d1 * (float(problem.load) / pair.E_star) ** (2 / 3)
+            start = d1 * (float(problem.Fn) / pair.E_star) ** (2 / 3)
             delta = self._iterate(lambda d: self._line_load(line, d, opts)[1],
-                                  float(problem.load), start, "multi-hertz")
+                                  float(problem.Fn), start, "multi-hertz")
         patches = self._hertz_patches(line, delta, opts, pair, lambda e: None)
-        if problem.load is not None:
-            patches = _scale_patches(patches, float(problem.load) / sum(p.Fn for p in patches),
+        if problem.Fn is not None:
+            patches = _scale_patches(patches, float(problem.Fn) / sum(p.Fn for p in patches),
                                      pair)
         return tuple(patches)
 

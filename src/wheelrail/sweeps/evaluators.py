@@ -44,7 +44,7 @@ MESSAGE_LENGTH = 160  # characters kept of a failure message
 class CreepEvaluator:
     """Creep forces of a Hertzian contact (:func:`wheelrail.creep_forces`) at each point.
 
-    Inputs: ``xi, eta`` [-], ``phi`` [1/m], ``mu`` [-], ``load`` [N]; the
+    Inputs: ``xi, eta`` [-], ``phi`` [1/m], ``mu`` [-], ``Fn`` [N]; the
     contact as curvatures ``A, B`` [1/m], semi-axes ``a, b`` [m] or principal
     radii [m] (:data:`wheelrail.hertzian.RADII_KEYS`); material ``E`` [Pa],
     ``nu`` [-] (default steel, the same for wheel and rail); ``method`` (a
@@ -53,7 +53,7 @@ class CreepEvaluator:
     """
 
     name = "creep"
-    quantities = ("method", "xi", "eta", "phi", "mu", "load", "A", "B", "a", "b", *RADII_KEYS,
+    quantities = ("method", "xi", "eta", "phi", "mu", "Fn", "A", "B", "a", "b", *RADII_KEYS,
                   "E", "nu")
     outputs = {
         "Fx": ("f8", "N", "longitudinal creep force on the wheel"),
@@ -106,7 +106,7 @@ class CreepEvaluator:
         if unknown:
             raise InputError(f"unknown quantity {sorted(unknown)[0]!r}; the creep evaluator "
                              f"takes {', '.join(self.quantities)}")
-        for k in ("mu", "load"):
+        for k in ("mu", "Fn"):
             if k not in names:
                 raise InputError(f"{k!r} is required (a value or an axis)")
         groups = {"A, B": {"A", "B"} & names, "a, b": {"a", "b"} & names,
@@ -151,7 +151,7 @@ class CreepEvaluator:
         return {k: v for k, v in out.items() if k in keep}
 
     def _contact(self, cols, idx, material):
-        load = cols["load"][idx].astype(float)
+        load = cols["Fn"][idx].astype(float)
         if "A" in cols:
             return hertz(load, cols["A"][idx].astype(float), cols["B"][idx].astype(float),
                          material)
@@ -174,7 +174,7 @@ class CreepEvaluator:
         creep = np.stack([cols.get(k, np.zeros(len(cols["mu"])))[idx].astype(float)
                           for k in ("xi", "eta", "phi")], axis=1)
         r = impl.forces(contact, creep, cols["mu"][idx].astype(float))
-        for k, v in (("Fx", r.Fx), ("Fy", r.Fy), ("Mz", r.Mz), ("Fn", contact.load),
+        for k, v in (("Fx", r.Fx), ("Fy", r.Fy), ("Mz", r.Mz), ("Fn", contact.Fn),
                      ("a", contact.a), ("b", contact.b), ("p0", contact.p0)):
             out[k][idx] = np.asarray(v, float).reshape(-1)
         conv = (r.info or {}).get("converged")

@@ -13,7 +13,7 @@ TOML form (``[sweep]`` table; units SI as in case files)::
     [sweep]
     method = "fastsim"          # any creep-force method (or a list: an axis)
     mu = 0.3
-    load = 10000.0              # N
+    Fn = 10000.0              # N
     A = 1.087                   # 1/m; or a, b [m]; or radii [m] as in [contact]
     B = 1.667
     xi = {start = -0.004, stop = 0.004, num = 101}   # a range ...
@@ -35,7 +35,7 @@ optional ``scale = "log"`` (geometric spacing, start and stop > 0).
 The quantities each evaluator takes are listed in
 :data:`wheelrail.sweeps.evaluators.EVALUATORS`; the creep-force evaluator
 (default, ``evaluator = "creep"``) takes ``xi, eta`` [-], ``phi`` [1/m],
-``mu`` [-], ``load`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
+``mu`` [-], ``Fn`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
 :data:`wheelrail.hertzian.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
 ``method`` (names). The geometry evaluator (``evaluator = "geometry"``)
 takes ``y`` [m], ``yaw`` [rad], ``wheel``, ``rail`` (profile names or files),
@@ -178,7 +178,7 @@ class SweepSpec:
         Examples
         --------
         >>> from wheelrail.sweeps import SweepSpec
-        >>> s = SweepSpec.grid(method="linear", mu=0.3, load=1e4, A=1.0, B=1.5,
+        >>> s = SweepSpec.grid(method="linear", mu=0.3, Fn=1e4, A=1.0, B=1.5,
         ...                    xi=[-1e-3, 0.0, 1e-3], eta={"start": 0, "stop": 1e-3, "num": 2})
         >>> s.shape, s.size
         ((3, 2), 6)

@@ -40,7 +40,7 @@ GRID = {
 }
 #: Parameters of the physical contacts on which the nodes are computed (any
 #: values give the same dimensionless result, by similarity).
-BUILD_CONTACT = {"E": 2.1e11, "load": 1.0e4, "mu": 0.3, "c": 5.0e-3}
+BUILD_CONTACT = {"E": 2.1e11, "Fn": 1.0e4, "mu": 0.3, "c": 5.0e-3}
 
 
 def table_nodes(grid=None) -> dict:
@@ -51,7 +51,7 @@ def table_nodes(grid=None) -> dict:
     dict
         ``shape`` (the node grid without r = 1) and columns ``xi, eta`` [-],
         ``phi`` [1/m], ``a, b`` [m], ``nu`` [-] in C order of
-        (r, θ, s, a/b, ν); the contact has ``E``, ``load``, ``mu`` of
+        (r, θ, s, a/b, ν); the contact has ``E``, ``Fn``, ``mu`` of
         :data:`BUILD_CONTACT`.
     """
     g = dict(GRID if grid is None else grid)
@@ -61,7 +61,7 @@ def table_nodes(grid=None) -> dict:
     R, T, S, L, N = (v.reshape(-1) for v in (R, T, S, L, N))
     ab = np.exp(L)
     C11, C22, C23 = _coefficients(ab, N)
-    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "load", "mu"))
+    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "Fn", "mu"))
     G = E / (2.0 * (1.0 + N))
     b = c / np.sqrt(ab)
     spin_len = _spin_length(c, b, C11, C23)
@@ -112,9 +112,9 @@ def build_table(out=DEFAULT_TABLE, *, elements=40, workers=2, work=None, executo
     out = Path(out)
     work = Path(work) if work is not None else out.with_name(out.name + ".zarr")
     nodes = table_nodes(grid)
-    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "load", "mu"))
+    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "Fn", "mu"))
     spec = SweepSpec.from_points({k: nodes[k] for k in ("xi", "eta", "phi", "a", "b", "nu")},
-                                 method="exact", options={"elements": int(elements)}, load=load,
+                                 method="exact", options={"elements": int(elements)}, Fn=load,
                                  mu=mu, E=E, chunk=200)
     ds = sweep(spec, work, workers=workers, executor=executor, resume=work.exists(),
                progress=progress)

@@ -159,7 +159,7 @@ def as_creepage(creepage):
 
 
 def _check_contact(contact):
-    for attr in ("a", "b", "load", "materials"):
+    for attr in ("a", "b", "Fn", "materials"):
         if not hasattr(contact, attr):
             raise InputError(f"contact must be a HertzContact (from wheelrail.hertz), "
                              f"got {type(contact).__name__} without '{attr}'")
@@ -168,7 +168,7 @@ def _check_contact(contact):
 def broadcast_contact(contact, shape):
     from dataclasses import replace
 
-    names = ("a", "b", "p0", "penetration", "load", "A", "B")
+    names = ("a", "b", "p0", "penetration", "Fn", "A", "B")
     return replace(contact, **{n: np.broadcast_to(np.asarray(getattr(contact, n), float), shape).copy()
                                for n in names if hasattr(contact, n)})
 

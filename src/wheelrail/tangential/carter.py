@@ -343,13 +343,13 @@ class Carter(TangentialMethod):
                         f"{unit}; use method 'fastsim'/'polach'/'exact', or pass "
                         "lateral='ignore' to drop eta and phi")
         Fx, xi_sat = carter_ellipse_force(contact.a, contact.b, contact.G, contact.nu,
-                                          contact.load, mu, xi, form=form, stiffness=stiffness)
+                                          contact.Fn, mu, xi, form=form, stiffness=stiffness)
         full = np.abs(np.asarray(xi, float)) >= xi_sat
         zero = np.zeros_like(Fx)
         s = scalar_or_array
         status = Status.FULL_SLIP if np.all(full) else Status.CONVERGED
         return CreepForces(Fx=s(Fx), Fy=s(zero), Mz=s(zero.copy()),
-                           Fn=s(np.asarray(contact.load, float)), mu=s(np.asarray(mu, float)),
+                           Fn=s(np.asarray(contact.Fn, float)), mu=s(np.asarray(mu, float)),
                            method=self.name, status=status, iterations=None, fields=None,
                            info={"xi_saturation": s(xi_sat),
                                  "full_slip": full.item() if full.ndim == 0 else full})

@@ -130,7 +130,7 @@ class Fastrip(TangentialMethod):
             p = ContactPatch.from_hertz(c, strips=ny, cells=8)
             r = self.solve_patch(p, xi[k], eta[k], phi[k], mu[k])
             F[:, k] = (r.Fx, r.Fy, r.Mz)
-        Fn = np.atleast_1d(np.asarray(contact.load, dtype=float))
+        Fn = np.atleast_1d(np.asarray(contact.Fn, dtype=float))
         out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
         return CreepForces(Fx=out(F[0]), Fy=out(F[1]), Mz=out(F[2]), Fn=out(Fn),
                            mu=out(mu), method=self.name, status=Status.CONVERGED,

@@ -612,7 +612,7 @@ class Fastsim(TangentialMethod):
         want_fields = single if fields is None else bool(fields)
 
         a, b, Fn = (np.atleast_1d(np.asarray(v, dtype=float))
-                    for v in (contact.a, contact.b, contact.load))
+                    for v in (contact.a, contact.b, contact.Fn))
         xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))
         n = a.shape[0]
         G = float(contact.G)

@@ -408,7 +408,7 @@ class Linear(TangentialMethod):
     def solve(self, contact, xi, eta, phi, mu):
         """Linear creep forces for a (batch of) Hertzian contact(s); see the class docstring."""
         Fx, Fy, Mz = linear_forces(contact.a, contact.b, contact.G, contact.nu, xi, eta, phi)
-        Fn = np.asarray(contact.load, dtype=float)
+        Fn = np.asarray(contact.Fn, dtype=float)
         util = np.hypot(Fx, Fy) / (np.asarray(mu, dtype=float) * Fn)
         s = scalar_or_array
         return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu, float)),

@@ -386,7 +386,7 @@ class Polach(TangentialMethod):
                                               self.conditions)
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
-        Fn = np.asarray(contact.load, dtype=float)
+        Fn = np.asarray(contact.Fn, dtype=float)
         if speed is not None:
             try:
                 ok = np.broadcast_shapes(np.shape(speed), a.shape) == a.shape

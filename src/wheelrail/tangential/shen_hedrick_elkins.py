@@ -169,7 +169,7 @@ class ShenHedrickElkins(TangentialMethod):
         spin_moment = self.spin_moment
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
-        Fn = np.asarray(contact.load, dtype=float)
+        Fn = np.asarray(contact.Fn, dtype=float)
         C11, C22, C23, C33 = kalker_coefficients(a / b, contact.nu)
         Fx, Fy, Mz, ratio = shen_hedrick_elkins_forces(
             contact.G, a, b, np.asarray(C11), np.asarray(C22), np.asarray(C23),

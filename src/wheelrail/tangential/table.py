@@ -273,7 +273,7 @@ class Table(TangentialMethod):
         data = load_table(self.table)
         shape = np.shape(contact.a)
         a, b, Fn = (np.asarray(getattr(contact, k), float).reshape(-1)
-                    for k in ("a", "b", "load"))
+                    for k in ("a", "b", "Fn"))
         xs, es, ps, ms = (np.asarray(v, float).reshape(-1) for v in (xi, eta, phi, mu))
         pair = contact.materials
         nu = float(pair.nu)

@@ -385,7 +385,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         normal_name, normal_unit = "approach", "m"
         F3_const = not callable(approach)
     else:
-        F3 = _as_function("normal_force", float(contact.load) if normal_force is None
+        F3 = _as_function("normal_force", float(contact.Fn) if normal_force is None
                           else normal_force)
         normal_name, normal_unit = "normal_force", "N"
         F3_const = not callable(normal_force)
@@ -491,10 +491,10 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             gap_c = A_ * (X - centre) ** 2 + B_ * Y ** 2
             if approach is not None:
                 return solve_normal(grid, gap_c, pair, penetration=F, initial=initial)
-            return solve_normal(grid, gap_c, pair, load=F, initial=initial)
+            return solve_normal(grid, gap_c, pair, Fn=F, initial=initial)
         if approach is not None:
             return solve_normal(grid, gap, pair, penetration=F, initial=initial)
-        return solve_normal(grid, gap, pair, load=F, initial=initial)
+        return solve_normal(grid, gap, pair, Fn=F, initial=initial)
 
     nsol = normal(0.0, None)
     pn = np.array(nsol.pressure)

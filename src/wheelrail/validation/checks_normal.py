@@ -145,7 +145,7 @@ def bem_vs_hertz(quick):
     for aspect in ((1.0, 2.0) if quick else (1.0, 0.5, 2.0)):
         hc = wr.hertz_from_semiaxes(aspect * 4e-3, 4e-3, 10e3, mat)
         grid, h0 = hertz_grid(hc, elements=60)
-        sol = solve_normal(grid, h0, mat, load=10e3)
+        sol = solve_normal(grid, h0, mat, Fn=10e3)
         a, b = _semi_axes_from_pressure(sol)
         case = f"a/b = {aspect:g}, 60 elements"
         rows += [rel_row("bem", ref, f"p_max, {case}", sol.p_max, hc.p0, 0.01, **kw),
@@ -172,7 +172,7 @@ def bem_convergence(quick):
     h, e_d, e_p = [], [], []
     for n in ns:
         grid, h0 = hertz_grid(hc, elements=n)
-        s = solve_normal(grid, h0, mat, load=10e3)
+        s = solve_normal(grid, h0, mat, Fn=10e3)
         h.append(grid.dx)
         e_d.append(abs(s.penetration / hc.penetration - 1))
         e_p.append(abs(s.p_max / hc.p0 - 1))
@@ -219,7 +219,7 @@ def nonhertz_vs_hertz(quick):
         area, pmax, carea, cp0 = [], [], [], []
         for ab in ratios:
             c = _hertz_contact(ab)
-            r = wr.solve(_gap(c, load=float(c.load)), creepage=(0.0, 0.0, 0.0), mu=0.3,
+            r = wr.solve(_gap(c, Fn=float(c.Fn)), creepage=(0.0, 0.0, 0.0), mu=0.3,
                          normal=name, **variant)
             p = r.patches
             area.append(sum(q.area for q in p))
@@ -237,7 +237,7 @@ def nonhertz_vs_hertz(quick):
     ar, pr = [], []
     for ab in ratios:
         c = _hertz_contact(ab)
-        r = wr.solve(_gap(c, load=float(c.load)), creepage=(0.0, 0.0, 0.0), mu=0.3,
+        r = wr.solve(_gap(c, Fn=float(c.Fn)), creepage=(0.0, 0.0, 0.0), mu=0.3,
                      normal="linder")
         ar.append(sum(q.area for q in r.patches) / float(c.area))
         pr.append(max(q.p_max for q in r.patches) / float(c.p0))
@@ -362,7 +362,7 @@ def subsurface_vs_hertz(quick):
     mat = wr.Material(2.1e11, nu)
     hc = wr.hertz(10e3, A=1.0, B=1.0, material=mat)
     grid, h0 = hertz_grid(hc, elements=40)
-    sol = solve_normal(grid, h0, mat, load=10e3)
+    sol = solve_normal(grid, h0, mat, Fn=10e3)
     a, p0 = hc.a, hc.p0
     zr = np.linspace(0.1, 2.0, 20)
     st = subsurface_stresses(grid, None, None, sol.pressure, mat, zr * a,

@@ -39,7 +39,7 @@ def transient_steady(quick):
     # constant creepage: after 20 semi-axes the tractions are the steady ones (V dt = dx)
     n = 12
     grid, gap = hertz_grid(hc, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=float(hc.load)).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=float(hc.Fn)).pressure
     st = solve_rolling(grid, pn, wr.STEEL, (-5e-4, 0.0, 0.0), mu=MU, tol=1e-10)
     res = wr.transient_rolling(hc, travel=20 * float(hc.a), step=grid.dx, mu=MU,
                                creepage=(-5e-4, 0.0, 0.0), elements=n)
@@ -56,7 +56,7 @@ def transient_steady(quick):
     r1 = wr.transient_rolling(hc, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
                               elements=n2, scheme="centre")
     g2, gap2 = hertz_grid(hc, elements=n2)
-    pn2 = solve_normal(g2, gap2, wr.STEEL, load=10e3).pressure
+    pn2 = solve_normal(g2, gap2, wr.STEEL, Fn=10e3).pressure
     sh = solve_shift(g2, pn2, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
     rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (seed 001 §3.1)",
                         "Fy after the first step from rest, 10 el., scheme='centre'", r1.Fy[1], sh.Fy, 1e-6,
@@ -64,7 +64,7 @@ def transient_steady(quick):
     # Cattaneo to Carter: final creepage for a prescribed force
     n3 = 10
     g3, gap3 = hertz_grid(hc, elements=n3)
-    pn3 = solve_normal(g3, gap3, wr.STEEL, load=10e3).pressure
+    pn3 = solve_normal(g3, gap3, wr.STEEL, Fn=10e3).pressure
 
     def fx(x):
         return solve_rolling(g3, pn3, wr.STEEL, (x, 0.0, 0.0), mu=MU, tol=1e-10).Fx - 2000.0

@@ -340,7 +340,7 @@ def fastsim_linear(quick):
     wr = _wr()
 
     mat = wr.Material.from_shear(82e9, 0.28)
-    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=mat)
+    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3, material=mat)
     G, cc = c.G, c.c
     C11, C22, C23, _ = (float(v) for v in kalker_coefficients(c.a / c.b, c.nu))
     opts = dict(method="fastsim", nx=50, ny=50, fields=False)
@@ -364,13 +364,13 @@ def fastsim_linear(quick):
 def fastsim_published(quick):
     wr = _wr()
     mat = wr.Material.from_shear(82e9, 0.28)
-    c = wr.hertz_from_semiaxes(a=8e-3, b=4e-3, load=82e3, material=mat)
+    c = wr.hertz_from_semiaxes(a=8e-3, b=4e-3, Fn=82e3, material=mat)
     n = 200
     r = wr.creep_forces(c, (0.0, -0.000625, 0.625), 0.3, method="fastsim", nx=n, ny=n,
                         bound="elliptic", fields=False)
     return [rel_row("fastsim", "CONTACT user guide, FASTSIM example (elliptic bound, 200x200): "
                     "Fy/(mu Fn) = -0.596", "Fy/(mu Fn), a = 8, b = 4 mm, eta = -6.25e-4, "
-                    "phi = 0.625 1/m", r.Fy / (0.3 * c.load), -0.596, 3e-3,
+                    "phi = 0.625 1/m", r.Fy / (0.3 * c.Fn), -0.596, 3e-3,
                     source="VollebregtCONTACT",
                     tolerance_source="tests/reference/test_fastsim.py::test_published_case "
                                      "(3e-3: the guide's figure is two digits, -0.60; the "
@@ -382,7 +382,7 @@ def _fastsim_reference_fx(c, xi, mu):
     from scipy import integrate
 
 
-    a, b, Fn = c.a, c.b, c.load
+    a, b, Fn = c.a, c.b, c.Fn
     C11, C22, C23, _ = kalker_coefficients(a / b, c.nu)
     L1 = float(flexibilities(a, b, c.G, C11, C22, C23)[0])
     p0 = 2.0 * Fn / (np.pi * a * b)
@@ -404,7 +404,7 @@ def _fastsim_reference_fx(c, xi, mu):
 def fastsim_convergence(quick):
     wr = _wr()
     mat = wr.Material.from_shear(82e9, 0.28)
-    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=mat)
+    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3, material=mat)
     xi, mu = 1e-3, 0.3
     ref = _fastsim_reference_fx(c, xi, mu)
     ns = np.array([10, 20, 40, 80] if quick else [10, 20, 40, 80, 160])
@@ -460,14 +460,14 @@ def creep_curves(quick):
     n = 40
     ex = np.array([wr.creep_forces(c, (x, 0, 0), mu, method="exact", elements=n).Fx for x in xi])
     fig, ax = new_figure(4.6, 3.2)
-    ax.plot(-xi * 1e3, ex / (mu * c.load), "k-o", label=f"exact ({n} el.)")
+    ax.plot(-xi * 1e3, ex / (mu * c.Fn), "k-o", label=f"exact ({n} el.)")
     rows = []
     srcs = {"fastsim": "Kalker1982", "shen-hedrick-elkins": "ShenHedrickElkins1983",
             "polach": "Polach1999", "fastrip": "Sichani2016"}
     for name in ("fastsim", "shen-hedrick-elkins", "polach"):
         cr = np.column_stack([xi, 0 * xi, 0 * xi])
         fx = np.asarray(wr.creep_forces(c, cr, mu, method=name).Fx, float)
-        ax.plot(-xi * 1e3, fx / (mu * c.load), "-", label=name)
+        ax.plot(-xi * 1e3, fx / (mu * c.Fn), "-", label=name)
         # Polach's 1999 law is a model 5.01 % below the exact theory at xi = -2e-3 (a
         # limitation of the law, stated in the document), the other two within 5 %
         tol = 0.051 if name == "polach" else 0.05

@@ -37,7 +37,7 @@ __all__ = ["solve_gap"]
 # --------------------------------------------------------------------------
 # normal + tangential (Johnson's process / Panagiotopoulos' process)
 # --------------------------------------------------------------------------
-def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=None, mu=None,
+def solve_gap(grid, gap, materials, *, Fn=None, penetration=None, creepage=None, mu=None,
               shift=None, force=None, tol=1e-6, maxiter=100, normal_tol=1e-8,
               normal_maxiter=2000, outer_tol=1e-5, outer_maxiter=30, on_fail="raise",
               solver="newton") -> GapResult:
@@ -58,7 +58,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     gap : ndarray, shape (nx, ny)
         Undeformed separation h0 [m].
     materials : Material or MaterialPair
-    load, penetration : float
+    Fn, penetration : float
         Exactly one: normal force [N] or approach [m].
     creepage : sequence of 3 floats, optional
         (ξ, η, φ) for steady rolling.
@@ -90,7 +90,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     h0 = grid.check_field("gap", gap)
     tangential = creepage is not None or shift is not None or force is not None
     if not tangential:
-        normal = solve_normal(grid, h0, pair, load=load, penetration=penetration, tol=normal_tol,
+        normal = solve_normal(grid, h0, pair, Fn=Fn, penetration=penetration, tol=normal_tol,
                               maxiter=normal_maxiter, on_fail=on_fail)
         return GapResult(normal, None, 1, 0.0)
     if mu is None:
@@ -108,7 +108,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     outer = 0
     for outer in range(1, (outer_maxiter if coupled else 1) + 1):
         h = h0 if not coupled else h0 + conv_nt(pt)[0]
-        normal = solve_normal(grid, h, pair, load=load, penetration=penetration, tol=normal_tol,
+        normal = solve_normal(grid, h, pair, Fn=Fn, penetration=penetration, tol=normal_tol,
                               maxiter=normal_maxiter, on_fail=on_fail, operator=op)
         init = None if tang is None else np.stack((tang.px, tang.py))
         if creepage is not None:

@@ -59,7 +59,7 @@ def _normal_solution(grid, gap, pair, load, on_fail, initial=None):
     try:
         normal = _NORMAL_CACHE.pop(key)
     except KeyError:
-        normal = solve_normal(grid, gap, pair, load=float(load), on_fail=on_fail,
+        normal = solve_normal(grid, gap, pair, Fn=float(load), on_fail=on_fail,
                               initial=initial)
     _NORMAL_CACHE[key] = normal
     while len(_NORMAL_CACHE) > _NORMAL_CACHE_SIZE:
@@ -97,12 +97,12 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     pair = as_material_pair(contact.materials)
     creepage = (float(xi), float(eta), float(phi))
     if pair.K != 0.0:
-        return solve_gap(grid, gap, pair, load=float(contact.load), creepage=creepage,
+        return solve_gap(grid, gap, pair, Fn=float(contact.Fn), creepage=creepage,
                          mu=float(mu), tol=tol, maxiter=maxiter, on_fail=on_fail)
     a, b = float(contact.a), float(contact.b)
     hertz = float(contact.p0) * np.sqrt(np.clip(1.0 - (grid.X / a) ** 2 - (grid.Y / b) ** 2,
                                                 0.0, None))
-    normal = _normal_solution(grid, gap, pair, contact.load, on_fail, initial=hertz)
+    normal = _normal_solution(grid, gap, pair, contact.Fn, on_fail, initial=hertz)
     tang = solve_rolling(grid, normal.pressure, pair, creepage, float(mu), tol=tol,
                          maxiter=maxiter, on_fail=on_fail)
     return GapResult(normal, tang, 1, 0.0)
