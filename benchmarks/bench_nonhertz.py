@@ -147,7 +147,7 @@ def s1002_sweep(ys):
                     errs[label][k].append(e[k])
                 nm = wr.normal.get_class(normal)
                 try:
-                    prob = dataclasses.replace(prob0, vertical_load=None, approach=dz, cache={})
+                    prob = dataclasses.replace(prob0, vertical_load=None, vertical_approach=dz, cache={})
                     decl = nm.option_declarations()
                     ps, _ = nm(**{k: w for k, w in opts.items() if k in decl}).from_wheel(prob)
                     Fz = sum(p.Fn * np.cos(p.frame.contact_angle) for p in ps)

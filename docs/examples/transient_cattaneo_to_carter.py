@@ -18,8 +18,8 @@ out.mkdir(parents=True, exist_ok=True)
 contact = wr.hertz_from_radii(10e3, wheel_rolling_radius=0.5, rail_profile_radius=0.3,
                               wheel_profile_radius=-0.409, material=wr.Material(2.1e11, 0.3))
 a = float(contact.a)
-res = wr.transient_rolling(contact, travel=8 * a, step=a / 8, mu=0.4, normal_force=10e3,
-                           tangential_force=2000.0, elements=16)
+res = wr.transient_rolling(contact, travel=8 * a, step=a / 8, mu=0.4, Fn=10e3,
+                           Fx=2000.0, elements=16)
 ds = res.dataset                                   # xarray.Dataset over travel x [m]
 xi = ds["xi"].values
 steady = wr.solve_creepages(contact, 0.4, Fx=2000.0, method="exact", elements=16)

@@ -67,7 +67,7 @@ def test_cattaneo_to_carter_final_creepage(table1):
 
     xi_steady = brentq(fx, -3e-3, -1e-5, xtol=1e-12)
     res = wr.transient_rolling(table1, travel=16 * float(table1.a), step=grid.dx, mu=MU,
-                               tangential_force=2000.0, elements=n)
+                               Fx=2000.0, elements=n)
     assert np.allclose(res.Fx[1:], 2000.0, rtol=1e-6)
     assert res.xi[-1] == pytest.approx(xi_steady, rel=0.01)
     # Kalker's convention: a positive force on the wheel needs a negative creepage
@@ -98,7 +98,7 @@ def test_centre_scheme_ends_on_its_steady_fixed_point(table1):
 
     xi_h = brentq(fx, -3e-3, -1e-5, xtol=1e-13)
     res = wr.transient_rolling(table1, travel=16 * float(table1.a), step=h, mu=MU,
-                               tangential_force=2000.0, elements=n, scheme="centre")
+                               Fx=2000.0, elements=n, scheme="centre")
     assert res.xi[-1] == pytest.approx(xi_h, rel=1e-4)
 
 
@@ -127,7 +127,7 @@ def test_seed_time_step_ends_on_the_steady_exact_solver(table1):
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0.0, 0.0), mu=MU,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
     h = grid.dx / 3.7
-    kw = dict(travel=12 * float(table1.a), step=h, mu=MU, tangential_force=2000.0,
+    kw = dict(travel=12 * float(table1.a), step=h, mu=MU, Fx=2000.0,
               elements=n, frames=2)
     avg = wr.transient_rolling(table1, **kw)
     assert avg.xi[-1] == pytest.approx(xi_st, rel=0.01)

@@ -56,7 +56,7 @@ def test_strips_converge_to_the_steady_exact_solver(hc):
 
 
 def test_strips_force_control_and_refusals(hc):
-    r = wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+    r = wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              elements=8, strips=6, discretisation="strips", frames=2)
     assert r.Fx[1:] == pytest.approx(2000.0, rel=1e-6)
     assert r.grid.shape == (8, 6) and r.fields.X.shape == (8, 6)
@@ -79,13 +79,13 @@ elements = 8
 strips = 6
 frames = 2
 discretisation = "strips"
-tangential_force = 2000.0
+Fx = 2000.0
 """)
     assert case.run().xi == pytest.approx(r.xi, rel=1e-9)
-    with pytest.raises(wr.InputError, match="constant normal_force"):
-        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+    with pytest.raises(wr.InputError, match="constant Fn"):
+        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              elements=8, discretisation="strips",
-                             normal_force=lambda x: 1e4 + x)
+                             Fn=lambda x: 1e4 + x)
     with pytest.raises(wr.InputError, match="discretisation must be"):
-        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              elements=8, discretisation="hexagons")

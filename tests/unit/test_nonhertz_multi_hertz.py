@@ -93,7 +93,7 @@ def test_secondary_ellipses_do_not_warn():
     wp = wr.WheelRailPosition(ws, tr, -0.005, yaw=0.002, vertical_load=70e3)
     roll, zs = touching_poses(wp)
     prob = dataclasses.replace(wheel_problem(wp, "right", roll, zs["right"]),
-                               vertical_load=None, approach=2e-5, cache={})
+                               vertical_load=None, vertical_approach=2e-5, cache={})
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
         patches, _ = m.replace(**{"variant": "sauvage"}).from_wheel(prob)

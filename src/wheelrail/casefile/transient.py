@@ -15,7 +15,7 @@ __all__ = ["load_transient_case"]
 # --------------------------------------------------------------------------- transient case
 _TRANSIENT_TABLES = ("material", "contact", "friction", "transient")
 _TRANSIENT_KEYS = ("travel", "step", "elements", "friction", "epsilon", "scheme", "frames",
-                   "margin", "normal_force", "approach", "tangential_force", "xi", "eta", "phi",
+                   "margin", "Fn", "penetration", "Fx", "xi", "eta", "phi",
                    "discretisation", "strips")
 
 
@@ -49,8 +49,8 @@ def load_transient_case(path_or_str) -> TransientCase:
         scheme = "averaged"      # or "centre"
         discretisation = "uniform"   # "strips" (Paul–Hashemi; strips = 30) or "material"
         frames = 60              # traction fields stored
-        normal_force = 10000.0   # F3 [N] (default: [contact] load), or approach = δ [m]
-        tangential_force = 2000.0   # F1 [N] (ξ unknown) -- or xi = ..., eta, phi creepages
+        Fn = 10000.0             # normal force [N] (default: [contact] Fn), or penetration = δ [m]
+        Fx = 2000.0              # longitudinal force [N] (ξ unknown) -- or xi = ..., eta, phi
 
     Every load or creepage is a number (constant) or an inline table::
 
@@ -107,22 +107,22 @@ def load_transient_case(path_or_str) -> TransientCase:
     s["scheme"] = r.string("transient", t, "scheme", "averaged")
     if s["scheme"] not in ("averaged", "centre"):
         r.fail("transient", "scheme", f"must be 'averaged' or 'centre', got {s['scheme']!r}")
-    if "normal_force" in t and "approach" in t:
-        r.fail("transient", "approach", "give normal_force or approach, not both")
-    for key in ("normal_force", "approach", "tangential_force"):
+    if "Fn" in t and "penetration" in t:
+        r.fail("transient", "penetration", "give Fn or penetration, not both")
+    for key in ("Fn", "penetration", "Fx"):
         if key in t:
             s[key] = _read_travel_function(r, t, key)
     given = [k for k in ("xi", "eta", "phi") if k in t]
     cr = [(_read_travel_function(r, t, k) if k in t else None) for k in ("xi", "eta", "phi")]
-    if "tangential_force" in s:
+    if "Fx" in s:
         if "xi" in t:
-            r.fail("transient", "xi", "with tangential_force the creepage xi is the unknown: "
+            r.fail("transient", "xi", "with Fx the creepage xi is the unknown: "
                    "omit xi")
         if given:
             s["creepage"] = (None, cr[1] or 0.0, cr[2] or 0.0)
     else:
         if not given:
-            r.fail("transient", None, "give tangential_force (F1 [N]) or creepages xi, eta, "
+            r.fail("transient", None, "give Fx [N] or creepages xi, eta, "
                    "phi")
         s["creepage"] = tuple(c if c is not None else 0.0 for c in cr)
     case = TransientCase(materials=materials, contact=contact, mu=mu,

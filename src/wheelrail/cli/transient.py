@@ -53,7 +53,7 @@ def run(args, console) -> int:
                "steps": len(res.x) - 1, "wall_time_s": wall, "final": final,
                "solver": {k: res.info[k] for k in ("newton", "krylov", "solves")},
                "units": {"x": "m", "xi": "1", "eta": "1", "phi": "1/m", "Fn": "N", "Fx": "N",
-                         "Fy": "N", "p_max": "Pa", "approach": "m"}}
+                         "Fy": "N", "p_max": "Pa", "penetration": "m"}}
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     written = ["history.nc", "fields.nc", "summary.json"]
     if not args.no_figures:

@@ -162,7 +162,7 @@ class WheelProblem:
     materials : MaterialPair
     vertical_load : float or None
         Q [N] ...
-    approach : float or None
+    vertical_approach : float or None
         ... or the vertical approach dz [m] below the touching pose.
     roller_radius : float or None
     pose : dict
@@ -177,7 +177,7 @@ class WheelProblem:
     frames: tuple
     materials: object
     vertical_load: float | None
-    approach: float | None
+    vertical_approach: float | None
     roller_radius: float | None
     pose: dict
     wheelset: object = None
@@ -284,7 +284,7 @@ class WheelRailResult(ContactResult):
         ``{"left": (Fx, Fy, Fz), "right": (...)}``: forces on each wheel in the
         track frame [N] (x forward, y right, z up).
     pose : dict
-        ``y, yaw, roll`` and per side ``z`` (touching height) and ``approach`` [m].
+        ``y, yaw, roll`` and per side ``z`` (touching height) and ``vertical_approach`` [m].
     position : WheelRailPosition
     motion : Motion
     """
@@ -487,7 +487,7 @@ def _solve_sides(position, motion, mu, nimpl, timpl, vertical, roll, zs, Omega, 
             patches.append(PatchResult(p, fr, *c, side=side))
         force_track[side] = tuple(float(v) for v in F)
         pose[f"z_{side}"] = zs[side]
-        pose[f"approach_{side}"] = float(info["approach"])
+        pose[f"vertical_approach_{side}"] = float(info["vertical_approach"])
         pose[f"vertical_iterations_{side}"] = outer
     return WheelRailResult(tuple(patches), nimpl.name, timpl.name,
                            info={"mu": mu}, force_track=force_track, pose=pose,

@@ -84,14 +84,14 @@ class ElasticContact:
     Attributes
     ----------
     method : str
-    y, yaw, load : float
-        Prescribed lateral shift [m], yaw [rad], vertical load [N].
+    y, yaw, axle_load : float
+        Prescribed lateral shift [m], yaw [rad], vertical axle load [N].
     z, roll : float
         Height of the axle centre [m] (as in :func:`contact_points`) and roll [rad].
     left, right : SideContacts
         Contact points (elastic: all penetrating local minima; quasi-elastic:
         the one equivalent point per side).
-    normal_force_left, normal_force_right : ndarray, shape (n,)
+    Fn_left, Fn_right : ndarray, shape (n,)
         Normal force at each point [N] (compression positive).
     penetration_left, penetration_right : ndarray, shape (n,)
         Normal approach δ at each point [m] (elastic); −D-weighted mean gap (quasi-elastic).
@@ -108,13 +108,13 @@ class ElasticContact:
     method: str
     y: float
     yaw: float
-    load: float
+    axle_load: float
     z: float
     roll: float
     left: SideContacts
     right: SideContacts
-    normal_force_left: np.ndarray
-    normal_force_right: np.ndarray
+    Fn_left: np.ndarray
+    Fn_right: np.ndarray
     penetration_left: np.ndarray
     penetration_right: np.ndarray
     vertical_force_left: float
@@ -124,9 +124,9 @@ class ElasticContact:
     lateral_force: float
     info: dict = field(default_factory=dict)
 
-    def normal_force(self, side: str) -> np.ndarray:
+    def Fn(self, side: str) -> np.ndarray:
         """Normal forces of ``side`` [N]."""
-        return getattr(self, f"normal_force_{check_side(side)}")
+        return getattr(self, f"Fn_{check_side(side)}")
 
 
 def _unit_approach(A, B, E_star, where):
@@ -339,7 +339,7 @@ def _quasi_elastic(ws, tr, y, yaw, load, eps, step, z0, th0):
     return sol.x, out, {"iterations": int(sol.nfev), "epsilon": eps}
 
 
-def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", *,
+def elastic_contact(wheelset, track, y, axle_load, yaw=0.0, method: str = "elastic", *,
                     material=STEEL, epsilon: float = 5e-5, step: float = 2e-4) -> ElasticContact:
     """Normal forces at all contact points of a loaded wheelset (elastic or quasi-elastic).
 
@@ -349,8 +349,8 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
     track : Track
     y : float
         Lateral shift [m] (right positive).
-    load : float
-        Vertical wheelset load [N] (> 0), applied at the axle centre.
+    axle_load : float
+        Vertical wheelset load (axle load) [N] (> 0), applied at the axle centre.
     yaw : float
         Yaw angle [rad].
     method : {"elastic", "quasi-elastic"}
@@ -373,7 +373,7 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
     >>> import wheelrail as wr
     >>> ws = wr.Wheelset(wr.profiles.load("S1002"))
     >>> tr = wr.Track(wr.profiles.load("60E1"))
-    >>> res = wr.elastic_contact(ws, tr, 0.0, load=1.0e5)
+    >>> res = wr.elastic_contact(ws, tr, 0.0, axle_load=1.0e5)
     >>> round(res.vertical_force_left + res.vertical_force_right)
     100000
     """
@@ -382,17 +382,17 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
     if y.ndim != 0:
         raise InputError("elastic_contact takes a scalar y")
     y = float(y)
-    load = float(positive("load", load))
+    axle_load = float(positive("axle_load", axle_load))
     if method not in METHODS:
         raise InputError(f"method must be one of {METHODS}, got {method!r}")
     pair = as_material_pair(material)
     z0, th0, _ = solve_rigid(wheelset, track, np.array([y]), np.array([yaw]), step=step)
     if method == "elastic":
-        x, out, info = _elastic(wheelset, track, y, yaw, load, pair.E_star, step,
+        x, out, info = _elastic(wheelset, track, y, yaw, axle_load, pair.E_star, step,
                                 float(z0[0]), float(th0[0]))
     else:
         eps = float(positive("epsilon", epsilon))
-        x, out, info = _quasi_elastic(wheelset, track, y, yaw, load, eps, step,
+        x, out, info = _quasi_elastic(wheelset, track, y, yaw, axle_load, eps, step,
                                       float(z0[0]), float(th0[0]))
     info["rigid_z"] = float(z0[0])
     info["rigid_roll"] = float(th0[0])
@@ -407,6 +407,6 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
 
     L, R = keep("left"), keep("right")
     FyL, FyR = float(np.sum(L[3])), float(np.sum(R[3]))
-    return ElasticContact(method, y, yaw, load, float(x[0]), float(x[1]), L[0], R[0], L[2], R[2],
+    return ElasticContact(method, y, yaw, axle_load, float(x[0]), float(x[1]), L[0], R[0], L[2], R[2],
                           L[1], R[1], float(np.sum(L[4])), float(np.sum(R[4])), FyL, FyR,
                           -(FyL + FyR), info)

@@ -31,7 +31,7 @@ options
     vertical load the wheel carries or its vertical approach. The patches
     must carry the vertical load through their normal forces
     (Σ Fn cos γ = Q) and have their :class:`~wheelrail.patch.ContactFrame`;
-    the dict holds at least ``approach``, the vertical approach dz [m].
+    the dict holds at least ``vertical_approach``, the vertical approach dz [m].
 
 A method that cannot treat a kind of problem keeps the base implementation,
 which raises :class:`~wheelrail.errors.InputError` saying why. All inputs

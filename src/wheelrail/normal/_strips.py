@@ -512,8 +512,8 @@ class VirtualPenetration:
                 out.append(regs)
             return out, Fz
 
-        if problem.approach is not None:
-            dz = float(problem.approach)
+        if problem.vertical_approach is not None:
+            dz = float(problem.vertical_approach)
         else:
             Q = float(problem.vertical_load)
             l0 = lines[0]
@@ -532,7 +532,7 @@ class VirtualPenetration:
             dz = self._iterate(vertical, Q, start,
                                f"{problem.side} wheel, normal method {self.name!r}")
         sols, Fz = solve_all(dz)
-        if problem.approach is None:
+        if problem.vertical_approach is None:
             _rescale([r for regs in sols for r in regs], float(problem.vertical_load) / Fz)
         patches = []
         for line, regs in zip(lines, sols):
@@ -552,7 +552,7 @@ class VirtualPenetration:
         # field side first (as the other methods), i.e. by lateral track position
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
-        return tuple(patches), {"approach": float(dz), "groups": len(lines)}
+        return tuple(patches), {"vertical_approach": float(dz), "groups": len(lines)}
 
     @staticmethod
     def _eta_in_region_coords(reg, eta_c, e_nodes):

@@ -45,7 +45,7 @@ def _check_on_rail(problem, k, b):
     lo, hi = float(np.min(rail.y)), float(np.max(rail.y))
     if y - b < lo or y + b > hi:
         what = (f"vertical load {problem.vertical_load!r} N" if problem.vertical_load is not None
-                else f"vertical approach {problem.approach!r} m")
+                else f"vertical approach {problem.vertical_approach!r} m")
         raise InputError(
             f"{problem.side} wheel: the {what} gives a Hertz patch of half-width b = {b:.4g} m "
             f"around y = {y:.4g} m on the rail profile, which spans only [{lo:.4g}, {hi:.4g}] m: "
@@ -139,8 +139,8 @@ class Hertz(NormalMethod, PatchDescription):
             if isinstance(cache, dict):
                 cache[key] = unit
         d1 = unit[3]
-        if problem.approach is not None:
-            dz = float(problem.approach)
+        if problem.vertical_approach is not None:
+            dz = float(problem.vertical_approach)
         else:
             if np.all(bad):
                 raise InputError(f"{problem.side} wheel: no candidate contact point has convex "
@@ -166,5 +166,5 @@ class Hertz(NormalMethod, PatchDescription):
             _check_on_rail(problem, k, float(hc.b))
             patches.append(ContactPatch.from_hertz(hc, strips=strips, cells=cells,
                                                    frame=problem.frames[k]))
-        return tuple(patches), {"approach": dz}
+        return tuple(patches), {"vertical_approach": dz}
 

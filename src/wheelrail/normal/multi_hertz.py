@@ -310,8 +310,8 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
                 Fz += float(np.sum(N * np.cos(np.interp(eta, line.eta, line.angle))))
             return Fz
 
-        if problem.approach is not None:
-            dz = float(problem.approach)
+        if problem.vertical_approach is not None:
+            dz = float(problem.vertical_approach)
         else:
             Q = float(problem.vertical_load)
             l0 = lines[0]
@@ -326,7 +326,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
                                                separation=line.extra.get("separation")))
         if not patches:
             raise NoContactError(f"{problem.side} wheel: no contact at the approach {dz!r} m")
-        info = {"approach": float(dz), "variant": variant}
+        info = {"vertical_approach": float(dz), "variant": variant}
         if problem.vertical_load is not None:
             Fz = sum(p.Fn * math.cos(p.frame.contact_angle) for p in patches)
             limit = 1e-3 if jump is None else 1e-3 + abs(jump[1] - jump[0]) / float(Fz)
@@ -439,7 +439,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
                 dz = float(hc.penetration) / math.cos(ln["gamma"])
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
-        return tuple(patches), {"approach": float(dz), "variant": "ayasse", "caf": "table"}
+        return tuple(patches), {"vertical_approach": float(dz), "variant": "ayasse", "caf": "table"}
 
     def _ayasse(self, problem, opts):
         if self._uses_tables(opts):
@@ -487,7 +487,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
         dz = (s[k1] * cg[k1] + float(patches[0].penetration)) / cg[k1]
-        return tuple(patches), {"approach": float(dz), "variant": "ayasse"}
+        return tuple(patches), {"vertical_approach": float(dz), "variant": "ayasse"}
 
 
 def _quiet(on):

@@ -77,10 +77,10 @@ from .strips import (
 
 __all__ = ["TransientResult", "transient_rolling"]
 
-_SCALARS = ("xi", "eta", "phi", "Fn", "Fx", "Fy", "p_max", "approach",
+_SCALARS = ("xi", "eta", "phi", "Fn", "Fx", "Fy", "p_max", "penetration",
             "n_contact", "n_adhesion", "n_slip")
 _UNITS = {"x": "m", "xi": "1", "eta": "1", "phi": "1/m", "Fn": "N", "Fx": "N", "Fy": "N",
-          "p_max": "Pa", "approach": "m", "n_contact": "1", "n_adhesion": "1", "n_slip": "1"}
+          "p_max": "Pa", "penetration": "m", "n_contact": "1", "n_adhesion": "1", "n_slip": "1"}
 
 
 @dataclass(frozen=True)
@@ -94,7 +94,7 @@ class TransientResult:
         unloaded start, tangential tractions zero).
     history : dict of ndarray, shape (n,)
         ``xi, eta [-], phi [1/m]`` creepages, ``Fn, Fx, Fy`` [N] forces on the
-        wheel, ``p_max`` [Pa], ``approach`` [m], ``n_contact, n_adhesion,
+        wheel, ``p_max`` [Pa], ``penetration`` [m], ``n_contact, n_adhesion,
         n_slip`` element counts.
     grid : Grid
         The grid fixed to the contact.
@@ -260,10 +260,10 @@ def step_kernels(grid, materials, step, scheme="averaged"):
     return now, old
 
 
-def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=None,
-                      tangential_force=None, friction="exact", epsilon=None, elements=30,
+def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
+                      Fx=None, friction="exact", epsilon=None, elements=30,
                       margin=1.25, tol=1e-8, maxiter=100, force_tol=1e-7, frames=100,
-                      progress=False, scheme="averaged", approach=None,
+                      progress=False, scheme="averaged", penetration=None,
                       discretisation="uniform", strips=None) -> TransientResult:
     """Transient (instationary) rolling of a Hertzian contact by time stepping.
 
@@ -271,7 +271,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     ----------
     contact : HertzContact
         Defines the surfaces (curvatures A, B), the materials and, unless
-        ``normal_force`` is given, the normal load.
+        ``Fn`` is given, the normal load.
     travel : float
         Rolling distance [m], > 0.
     step : float
@@ -279,14 +279,14 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         contact length 2a.
     mu : float
         Friction coefficient [-], > 0.
-    normal_force : float or callable, optional
+    Fn : float or callable, optional
         F3(x) [N] (> 0), a constant or a function of travel x [m]; default the
         contact's load. A non-constant function solves the normal problem at
         every step.
     creepage : sequence of 3 (float or callable), optional
         (ξ [-], η [-], φ [1/m]) as constants or functions of travel [m].
-        With ``tangential_force`` the first entry must be None (ξ is unknown).
-    tangential_force : float or callable, optional
+        With ``Fx`` the first entry must be None (ξ is unknown).
+    Fx : float or callable, optional
         F1(x) [N] on the wheel (Kalker's convention: positive creepage gives a
         negative force); ξ becomes the unknown of each step.
     friction : {"exact", "regularised"}
@@ -318,9 +318,9 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         a run held at constant loads ends on Kalker's steady discretisation
         for any step; ``"centre"`` is the seed's eq. (2.10) at the element
         centres (accurate only for ``step = dx``).
-    approach : float or callable, optional
-        Prescribed approach δ(x) [m] (> 0) instead of ``normal_force``
-        (normal control by approach): the normal problem is solved for the
+    penetration : float or callable, optional
+        Prescribed penetration δ(x) [m] (> 0) instead of ``Fn``
+        (normal control by penetration): the normal problem is solved for the
         penetration at every step.
     discretisation : {"uniform", "strips", "material"}
         ``"uniform"``: the grid of :func:`~wheelrail.normal.bem.hertz_grid`
@@ -343,10 +343,10 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     Raises
     ------
     InputError
-        A step not in (0, 2a), a load or approach function that is not
+        A step not in (0, 2a), a load or penetration function that is not
         positive at some step (checked before the run, naming the travel and
         value), ``|F1| ≥ μ F3`` (the wheel would slide), an unknown friction
-        law or scheme, both ``normal_force`` and ``approach``.
+        law or scheme, both ``Fn`` and ``penetration``.
     ConvergenceError
         A step whose frictional problem or force iteration fails.
 
@@ -378,29 +378,29 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                          f"2a = {2 * a!r} m")
     if h > travel:
         raise InputError(f"step = {h!r} m is longer than travel = {travel!r} m")
-    if normal_force is not None and approach is not None:
-        raise InputError("give normal_force= or approach= (normal control), not both")
-    if approach is not None:
-        F3 = _as_function("approach", approach)
-        normal_name, normal_unit = "approach", "m"
-        F3_const = not callable(approach)
+    if Fn is not None and penetration is not None:
+        raise InputError("give Fn= or penetration= (normal control), not both")
+    if penetration is not None:
+        F3 = _as_function("penetration", penetration)
+        normal_name, normal_unit = "penetration", "m"
+        F3_const = not callable(penetration)
     else:
-        F3 = _as_function("normal_force", float(contact.Fn) if normal_force is None
-                          else normal_force)
-        normal_name, normal_unit = "normal_force", "N"
-        F3_const = not callable(normal_force)
-    if tangential_force is not None:
-        F1 = _as_function("tangential_force", tangential_force)
+        F3 = _as_function("Fn", float(contact.Fn) if Fn is None
+                          else Fn)
+        normal_name, normal_unit = "Fn", "N"
+        F3_const = not callable(Fn)
+    if Fx is not None:
+        F1 = _as_function("Fx", Fx)
         if creepage is None:
             creepage = (None, 0.0, 0.0)
         if len(creepage) != 3 or creepage[0] is not None:
-            raise InputError("with tangential_force, creepage must be (None, eta, phi): "
+            raise InputError("with Fx, creepage must be (None, eta, phi): "
                              f"xi is the unknown; got {creepage!r}")
         cr = (None,) + tuple(_as_function(n, c) for n, c in zip(("eta", "phi"), creepage[1:]))
     else:
         F1 = None
         if creepage is None or len(creepage) != 3 or any(c is None for c in creepage):
-            raise InputError(f"give creepage=(xi, eta, phi) or tangential_force=, got "
+            raise InputError(f"give creepage=(xi, eta, phi) or Fx=, got "
                              f"creepage={creepage!r}")
         cr = tuple(_as_function(n, c) for n, c in zip(("xi", "eta", "phi"), creepage))
 
@@ -408,7 +408,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     xs = np.arange(n) * h
     # every load function is checked at every step before the run: a load that turns
     # negative (or not finite) is named with its travel instead of failing mid-run
-    for name, fun in ((normal_name, F3), ("tangential_force", F1)) + tuple(
+    for name, fun in ((normal_name, F3), ("Fx", F1)) + tuple(
             zip(("xi", "eta", "phi"), cr)):
         if fun is None:
             continue
@@ -419,20 +419,20 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                              f"(the load function goes non-positive along the travel)")
         if name == normal_name:
             normal_vals = vals
-        if name == "tangential_force" and approach is None:
+        if name == "Fx" and penetration is None:
             bad = np.nonzero(~(np.abs(vals) < mu * normal_vals))[0]
             if bad.size:
                 k = int(bad[0])
-                raise InputError(f"tangential_force(x = {xs[k]!r} m) = {vals[k]!r} N must be "
-                                 f"smaller in magnitude than mu*normal_force = "
+                raise InputError(f"Fx(x = {xs[k]!r} m) = {vals[k]!r} N must be "
+                                 f"smaller in magnitude than mu*Fn = "
                                  f"{mu * normal_vals[k]!r} N (full sliding)")
 
     if scheme not in ("averaged", "centre"):
         raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
     if discretisation == "strips":
-        if not F3_const or approach is not None:
+        if not F3_const or penetration is not None:
             raise InputError("discretisation='strips' (Paul–Hashemi) needs a constant "
-                             "normal_force (the strips follow the Hertz ellipse)")
+                             "Fn (the strips follow the Hertz ellipse)")
         if friction != "exact":
             raise InputError("discretisation='strips' supports friction='exact' only")
         if scheme != "averaged":
@@ -489,10 +489,10 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             return _HertzNormal
         if material:
             gap_c = A_ * (X - centre) ** 2 + B_ * Y ** 2
-            if approach is not None:
+            if penetration is not None:
                 return solve_normal(grid, gap_c, pair, penetration=F, initial=initial)
             return solve_normal(grid, gap_c, pair, Fn=F, initial=initial)
-        if approach is not None:
+        if penetration is not None:
             return solve_normal(grid, gap, pair, penetration=F, initial=initial)
         return solve_normal(grid, gap, pair, Fn=F, initial=initial)
 
@@ -524,7 +524,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         hist["Fx"][k] = float((p[0] * dA).sum())
         hist["Fy"][k] = float((p[1] * dA).sum())
         hist["p_max"][k] = float(pn.max())
-        hist["approach"][k] = float(nsol.penetration)
+        hist["penetration"][k] = float(nsol.penetration)
         hist["n_contact"][k] = int(contact_.sum())
         hist["n_slip"][k] = int(slip.sum())
         hist["n_adhesion"][k] = int(contact_.sum() - slip.sum())
@@ -565,7 +565,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             g = mu * pn_new
             eta, phi = _evaluate("eta", cr[1], x), _evaluate("phi", cr[2], x)
             control = (_evaluate("xi", cr[0], x) if F1 is None
-                       else _evaluate("tangential_force", F1, x))
+                       else _evaluate("Fx", F1, x))
             key = (eta, phi, control)
             if (fixed is not None and not material and fixed[0] == key and np.array_equal(fixed[1], p)
                     and np.array_equal(pn, pn_new)):
@@ -618,7 +618,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                 target = control
                 Fn_k = float((pn_new * dA).sum())
                 if not abs(target) < mu * Fn_k:
-                    raise InputError(f"tangential_force({x!r} m) = {target!r} N must be smaller "
+                    raise InputError(f"Fx({x!r} m) = {target!r} N must be smaller "
                                      f"in magnitude than mu*Fn = {mu * Fn_k!r} N (full sliding)")
                 xi, p_new, s_new, slope = _xi_for_force(solve, target, xi_prev, slope, p, dA,
                                                         force_tol * mu * Fn_k, k, x)

@@ -71,7 +71,7 @@ def transient_steady(quick):
 
     xi_steady = brentq(fx, -3e-3, -1e-5, xtol=1e-12)
     r3 = wr.transient_rolling(hc, travel=16 * float(hc.a), step=g3.dx, mu=MU,
-                              tangential_force=2000.0, elements=n3)
+                              Fx=2000.0, elements=n3)
     rows.append(rel_row("transient", "steady exact theory at the same force (seed 001 §3.1, "
                         "'Cattaneo to Carter')", "final xi for Fx = 2 kN, 10 el.", r3.xi[-1],
                         xi_steady, 0.01, tolerance_source=tsrc, **kw))
