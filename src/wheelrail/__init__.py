@@ -28,7 +28,7 @@ from .errors import (
     WheelrailError,
 )
 from .materials import STEEL, Material, MaterialPair
-from .results import CreepForces, Status
+from .results import CreepForcesResult, Status
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {
@@ -109,7 +109,7 @@ def __dir__():
 
 
 __all__ = [
-    "__version__", "Material", "MaterialPair", "STEEL", "CreepForces", "Status", "conventions",
+    "__version__", "Material", "MaterialPair", "STEEL", "CreepForcesResult", "Status", "conventions",
     "WheelrailError", "InputError", "OptionError", "ConvergenceError", "NoContactError",
     "ProfileError", "CaseFileError",
     *_LAZY,

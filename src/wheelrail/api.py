@@ -11,7 +11,7 @@ from .contact.wheelrail import WheelRailPosition, solve_wheelrail
 from .errors import InputError
 from .normal import GapProblem
 from .options import split_options
-from .results import ContactResult, CreepForces, PatchResult
+from .results import ContactResult, CreepForcesResult, PatchResult
 from .tangential import as_creepage
 
 __all__ = ["creep_forces", "solve", "normal_methods", "tangential_methods"]
@@ -42,7 +42,7 @@ def tangential_methods() -> dict[str, type]:
     return _tangential.registry()
 
 
-def creep_forces(contact, creepage, mu, method="fastsim", **options) -> CreepForces:
+def creep_forces(contact, creepage, mu, method="fastsim", **options) -> CreepForcesResult:
     """Creep forces and spin moment on the wheel for given creepages.
 
     Parameters
@@ -66,7 +66,7 @@ def creep_forces(contact, creepage, mu, method="fastsim", **options) -> CreepFor
 
     Returns
     -------
-    CreepForces
+    CreepForcesResult
         ``Fx``, ``Fy`` [N], ``Mz`` [N·m] on the wheel; floats for a single
         case, arrays of shape (n,) for a batch.
 

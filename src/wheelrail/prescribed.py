@@ -32,7 +32,7 @@ from . import tangential as _tangential
 from ._validation import as_float_array, positive
 from .api import creep_forces
 from .errors import ConvergenceError, InputError
-from .results import CreepForces
+from .results import CreepForcesResult
 from .tangential import as_creepage
 from .tangential import broadcast_contact as _broadcast_contact
 from .tangential.linear import linear_stiffness
@@ -41,7 +41,7 @@ __all__ = ["solve_creepages"]
 
 
 def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), method="fastsim",
-                    *, force_tol=1e-6, maxiter=60, **options) -> CreepForces:
+                    *, force_tol=1e-6, maxiter=60, **options) -> CreepForcesResult:
     """Creepages that produce prescribed tangential forces, and the resulting creep forces.
 
     Parameters
@@ -69,7 +69,7 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
 
     Returns
     -------
-    CreepForces
+    CreepForcesResult
         The forces at the creepages found; ``info["xi"]``, ``info["eta"]``,
         ``info["phi"]`` hold the creepages, ``info["outer_iterations"]`` the
         number of creep-force evaluations.
@@ -126,7 +126,7 @@ def _batch(contact, mu, fx, fy, creepage, impl, shape, force_tol, maxiter, optio
     stack = lambda name: np.array([getattr(r, name) for r in res], dtype=float)  # noqa: E731
     info = {k: np.array([r.info.get(k, np.nan) for r in res], dtype=float)
             for k in ("xi", "eta", "phi", "outer_iterations")}
-    return CreepForces(Fx=stack("Fx"), Fy=stack("Fy"), Mz=stack("Mz"), Fn=stack("Fn"),
+    return CreepForcesResult(Fx=stack("Fx"), Fy=stack("Fy"), Mz=stack("Mz"), Fn=stack("Fn"),
                        mu=np.asarray(mu, float), method=res[0].method, status=res[0].status,
                        iterations=info["outer_iterations"], fields=tuple(r.fields for r in res),
                        info=info)

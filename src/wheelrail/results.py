@@ -17,7 +17,7 @@ import numpy as np
 from .halfspace.grid import Grid, contact_outline
 from .materials import MaterialPair
 
-__all__ = ["Status", "CreepForces", "to_jsonable", "PatchResult", "ContactResult", "PATCH_QUANTITIES",
+__all__ = ["Status", "CreepForcesResult", "to_jsonable", "PatchResult", "ContactResult", "PATCH_QUANTITIES",
            "NormalResult", "TangentialResult", "GapResult"]
 
 
@@ -48,7 +48,7 @@ def to_jsonable(value: Any):
 
 
 @dataclass(frozen=True)
-class CreepForces:
+class CreepForcesResult:
     """Tangential contact forces on the wheel (Kalker's sign convention).
 
     Attributes
@@ -123,7 +123,7 @@ class PatchResult:
     ----------
     patch : ContactPatch
         The patch from the normal method (strips, pressure, contact frame).
-    forces : CreepForces
+    forces : CreepForcesResult
         The tangential method's result on it (``fields`` for FASTSIM/exact).
     xi, eta, phi : float
         Creepages at the patch's reference point [-], [-], [1/m].

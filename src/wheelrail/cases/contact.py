@@ -209,7 +209,7 @@ class CaseResult:
     case : Case
     contact : HertzContact
         The Hertz ellipse used by the tangential method.
-    forces : CreepForces
+    forces : CreepForcesResult
         Creep forces (``fields`` holds traction fields for FASTSIM / exact).
     normal : NormalResult or None
         The boundary-element normal solution (``normal = "bem"``).

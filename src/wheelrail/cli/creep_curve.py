@@ -72,7 +72,7 @@ def sweep(case, component: str, values, methods, *, progress=None):
 
     Returns
     -------
-    forces : dict of str to CreepForces
+    forces : dict of str to CreepForcesResult
         The methods that ran (batch results of shape (n,)).
     skipped : dict of str to str
         Methods that cannot treat this

@@ -98,7 +98,7 @@ from ._search_kernels import (
 from .track import Track
 from .wheelset import Wheelset
 
-__all__ = ["ContactPoints", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS", "STATUS",
+__all__ = ["ContactPointsResult", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS", "STATUS",
            "ContactWarning", "RigidRows", "solve_rigid_rows", "classify_rows", "flange_geometry"]
 
 
@@ -835,7 +835,7 @@ class SideContacts:
 
 
 @dataclass(frozen=True)
-class ContactPoints:
+class ContactPointsResult:
     """Rigid contact of a wheelset at one lateral shift and yaw (frozen).
 
     Attributes
@@ -940,7 +940,7 @@ def check_inputs(ws, tr, yaw, tolerance, step):
 
 
 def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e-4,
-                   step=2e-4) -> ContactPoints:
+                   step=2e-4) -> ContactPointsResult:
     """All wheel–rail contact points of a wheelset at lateral shift ``y`` and yaw ``yaw``.
 
     Parameters
@@ -960,7 +960,7 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
 
     Returns
     -------
-    ContactPoints
+    ContactPointsResult
         With ``status`` ``"ok"``, ``"flange_climb"`` or ``"derailed"``;
         ``"derailed"`` also issues a :class:`ContactWarning`.
 
@@ -993,5 +993,5 @@ def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e
         import warnings
 
         warnings.warn(reasons[0], ContactWarning, stacklevel=2)
-    return ContactPoints(float(y), yaw, float(z[0]), float(th[0]), sides["left"],
+    return ContactPointsResult(float(y), yaw, float(z[0]), float(th[0]), sides["left"],
                          sides["right"], tolerance, STATUS[int(status[0])], reasons[0])

@@ -72,13 +72,13 @@ from .contact_search import (
     solve_rigid,
 )
 
-__all__ = ["ElasticContact", "elastic_contact", "METHODS"]
+__all__ = ["ElasticContactResult", "elastic_contact", "METHODS"]
 
 METHODS = ("elastic", "quasi-elastic")
 
 
 @dataclass(frozen=True)
-class ElasticContact:
+class ElasticContactResult:
     """Result of :func:`elastic_contact` (frozen, SI).
 
     Attributes
@@ -340,7 +340,7 @@ def _quasi_elastic(ws, tr, y, yaw, load, eps, step, z0, th0):
 
 
 def elastic_contact(wheelset, track, y, axle_load, yaw=0.0, method: str = "elastic", *,
-                    material=STEEL, epsilon: float = 5e-5, step: float = 2e-4) -> ElasticContact:
+                    material=STEEL, epsilon: float = 5e-5, step: float = 2e-4) -> ElasticContactResult:
     """Normal forces at all contact points of a loaded wheelset (elastic or quasi-elastic).
 
     Parameters
@@ -366,7 +366,7 @@ def elastic_contact(wheelset, track, y, axle_load, yaw=0.0, method: str = "elast
 
     Returns
     -------
-    ElasticContact
+    ElasticContactResult
 
     Examples
     --------
@@ -407,6 +407,6 @@ def elastic_contact(wheelset, track, y, axle_load, yaw=0.0, method: str = "elast
 
     L, R = keep("left"), keep("right")
     FyL, FyR = float(np.sum(L[3])), float(np.sum(R[3]))
-    return ElasticContact(method, y, yaw, axle_load, float(x[0]), float(x[1]), L[0], R[0], L[2], R[2],
+    return ElasticContactResult(method, y, yaw, axle_load, float(x[0]), float(x[1]), L[0], R[0], L[2], R[2],
                           L[1], R[1], float(np.sum(L[4])), float(np.sum(R[4])), FyL, FyR,
                           -(FyL + FyR), info)

@@ -62,7 +62,7 @@ def field_arrays(fields):
     Parameters
     ----------
     fields : mapping, xarray.Dataset or object
-        The ``fields`` of a :class:`wheelrail.CreepForces`.
+        The ``fields`` of a :class:`wheelrail.CreepForcesResult`.
 
     Returns
     -------

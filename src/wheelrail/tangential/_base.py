@@ -83,7 +83,7 @@ class TangentialMethod(Method):
 
         Returns
         -------
-        CreepForces
+        CreepForcesResult
             On the wheel, Kalker's convention; floats for a single case.
 
         Raises

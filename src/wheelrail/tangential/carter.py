@@ -78,7 +78,7 @@ import numpy as np
 from .._validation import as_float_array, in_range, positive, scalar_or_array
 from ..errors import InputError
 from ..options import configured, option
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -348,7 +348,7 @@ class Carter(TangentialMethod):
         zero = np.zeros_like(Fx)
         s = scalar_or_array
         status = Status.FULL_SLIP if np.all(full) else Status.CONVERGED
-        return CreepForces(Fx=s(Fx), Fy=s(zero), Mz=s(zero.copy()),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(zero), Mz=s(zero.copy()),
                            Fn=s(np.asarray(contact.Fn, float)), mu=s(np.asarray(mu, float)),
                            method=self.name, status=status, iterations=None, fields=None,
                            info={"xi_saturation": s(xi_sat),

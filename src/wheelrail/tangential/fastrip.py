@@ -46,7 +46,7 @@ import numpy as np
 
 from ..options import configured, option
 from ..patch import ContactPatch
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .fastsim import flexibilities, weighted_flexibility
 from .linear import kalker_coefficients
@@ -132,7 +132,7 @@ class Fastrip(TangentialMethod):
             F[:, k] = (r.Fx, r.Fy, r.Mz)
         Fn = np.atleast_1d(np.asarray(contact.Fn, dtype=float))
         out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
-        return CreepForces(Fx=out(F[0]), Fy=out(F[1]), Mz=out(F[2]), Fn=out(Fn),
+        return CreepForcesResult(Fx=out(F[0]), Fy=out(F[1]), Mz=out(F[2]), Fn=out(Fn),
                            mu=out(mu), method=self.name, status=Status.CONVERGED,
                            iterations=None, fields=None, info={"ny": ny})
 
@@ -163,6 +163,6 @@ class Fastrip(TangentialMethod):
         Fx, Fy = Fx * s, Fy * s
         Mz = Mz * s - xc * Fy + yc * Fx
         status = Status.FULL_SLIP if sat >= 1.0 else Status.CONVERGED
-        return CreepForces(Fx=Fx, Fy=Fy, Mz=float(Mz), Fn=patch.Fn, mu=mu, method=self.name,
+        return CreepForcesResult(Fx=Fx, Fy=Fy, Mz=float(Mz), Fn=patch.Fn, mu=mu, method=self.name,
                            status=status, iterations=None, fields=None,
                            info={"saturated_load_fraction": sat})

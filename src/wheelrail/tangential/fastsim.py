@@ -59,7 +59,7 @@ import numpy as np
 from .._validation import as_float_array, integer, positive, scalar_or_array
 from ..errors import InputError
 from ..options import configured, option
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from . import _fastsim_kernel as _k
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
@@ -340,7 +340,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
 
     Returns
     -------
-    CreepForces
+    CreepForcesResult
         ``Fx``, ``Fy`` [N] and ``Mz`` [N m] (about the origin of the
         coordinates) on the wheel; ``Fn`` = Σ p_z dA; ``fields`` if requested.
 
@@ -450,7 +450,7 @@ def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_
         x[empty] = (0.5 * (x_lead + x_trail))[empty, None]
         f = FastsimFields(x=x, y=np.repeat(y[:, None], nx, 1),
                           dx=dx, dy=dy, pressure=p, px=px, py=py, sx=sx, sy=sy, slip=slip, mu=mu_s)
-    return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz), Fn=Fn,
+    return CreepForcesResult(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz), Fn=Fn,
                        mu=mu_out, method="fastsim",
                        fields=f, info={"nx": nx, "ny": ny, "scheme": scheme})
 
@@ -675,7 +675,7 @@ class Fastsim(TangentialMethod):
         if single and f is not None and not np.any(f.adhesion):
             status = Status.FULL_SLIP
         out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
-        return CreepForces(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
+        return CreepForcesResult(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
                            method=self.name, status=status, iterations=None, fields=f, info=info)
 
     def solve_patch(self, patch, xi, eta, phi, mu):
@@ -765,7 +765,7 @@ class Fastsim(TangentialMethod):
             info["adhesion_fraction"] = r.fields.adhesion_fraction
             if not np.any(r.fields.adhesion):
                 status = Status.FULL_SLIP
-        return CreepForces(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
+        return CreepForcesResult(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
                            method=self.name, status=status, fields=r.fields, info=info)
 
     def _patch_forces(self, patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu, scheme,
@@ -819,6 +819,6 @@ class Fastsim(TangentialMethod):
             info["adhesion_fraction"] = f.adhesion_fraction
             if not np.any(f.adhesion):
                 status = Status.FULL_SLIP
-        return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
+        return CreepForcesResult(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
                            Fn=float(Fn), mu=mu, method=self.name, status=status,
                            fields=f, info=info)

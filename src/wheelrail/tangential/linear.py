@@ -93,7 +93,7 @@ from scipy.interpolate import PchipInterpolator
 
 from .._validation import in_range, positive, scalar_or_array
 from ..options import configured
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 
 __all__ = [
@@ -411,6 +411,6 @@ class Linear(TangentialMethod):
         Fn = np.asarray(contact.Fn, dtype=float)
         util = np.hypot(Fx, Fy) / (np.asarray(mu, dtype=float) * Fn)
         s = scalar_or_array
-        return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu, float)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu, float)),
                            method=self.name, status=Status.CONVERGED, iterations=None,
                            fields=None, info={"utilisation": s(util)})

@@ -138,7 +138,7 @@ from numba import njit
 from .._validation import positive, scalar_or_array
 from ..errors import InputError
 from ..options import configured, option
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -400,6 +400,6 @@ class Polach(TangentialMethod):
             contact.G, a, b, np.asarray(C11), np.asarray(C22), np.asarray(C23),
             xi, eta, phi, mu, Fn, kA=kA, kS=kS, speed=speed, A=A, B=B)
         s = scalar_or_array
-        return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
                            method=self.name, status=Status.CONVERGED,
                            info={"mu_slip": s(mu_slip)})

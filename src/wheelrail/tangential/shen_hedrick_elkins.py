@@ -43,7 +43,7 @@ import numpy as np
 
 from .._validation import scalar_or_array
 from ..options import configured, option
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -175,6 +175,6 @@ class ShenHedrickElkins(TangentialMethod):
             contact.G, a, b, np.asarray(C11), np.asarray(C22), np.asarray(C23),
             np.asarray(C33), xi, eta, phi, mu, Fn, spin_moment)
         s = scalar_or_array
-        return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
                            method=self.name, status=Status.CONVERGED,
                            info={"saturation": s(ratio)})

@@ -86,7 +86,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import configured, option
-from ..results import CreepForces, Status
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod, get
 from .linear import kalker_coefficients
 
@@ -331,7 +331,7 @@ class Table(TangentialMethod):
         def shaped(v):
             return v.reshape(shape) if shape else float(v[0])
 
-        return CreepForces(Fx=shaped(Fx), Fy=shaped(Fy), Mz=shaped(Mz),
+        return CreepForcesResult(Fx=shaped(Fx), Fy=shaped(Fy), Mz=shaped(Mz),
                            Fn=shaped(Fn), mu=shaped(ms), method=self.name, status=Status.CONVERGED,
                            info={"outside": out_mask.reshape(shape) if shape else bool(out_mask[0]),
                                  "table_version": data.meta.get("version")})

@@ -30,7 +30,7 @@ from ..._validation import scalar_or_array
 from ...materials import as_material_pair
 from ...normal.bem import hertz_grid, solve_normal
 from ...options import configured, option
-from ...results import CreepForces, GapResult, Status
+from ...results import CreepForcesResult, GapResult, Status
 from .._base import TangentialMethod
 from .coupled import solve_gap
 from .steady import solve_rolling
@@ -228,7 +228,7 @@ def _to_creep_forces(sols, shape, mu, name):
         "converged": (np.array([s.tangential.converged for s in sols]).reshape(shape)
                       if shape else bool(sols[0].tangential.converged)),
     }
-    return CreepForces(
+    return CreepForcesResult(
         Fx=arr(lambda s: s.Fx), Fy=arr(lambda s: s.Fy), Mz=arr(lambda s: s.Mz),
         Fn=arr(lambda s: s.Fn), mu=scalar_or_array(mu.reshape(shape)) if shape else float(mu[0]),
         method=name, status=status, iterations=iarr(lambda s: s.tangential.iterations),
@@ -287,7 +287,7 @@ def _solve_patches_exact(method, patches, creepages, mu, previous=None):
             full_slip = adh == 0.0
             status = (Status.NOT_CONVERGED if not sol.converged
                       else Status.FULL_SLIP if full_slip else Status.CONVERGED)
-            out[i] = CreepForces(Fx=Fx, Fy=Fy, Mz=Mz, Fn=p.Fn, mu=float(mu), method=method.name,
+            out[i] = CreepForcesResult(Fx=Fx, Fy=Fy, Mz=Mz, Fn=p.Fn, mu=float(mu), method=method.name,
                                  status=status, iterations=sol.iterations, fields=sol,
                                  info={"area": p.area, "p_max": p.p_max, "adhesion_area": adh,
                                        "tangential_iterations": sol.iterations,
