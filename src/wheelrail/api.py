@@ -24,7 +24,7 @@ def normal_methods() -> dict[str, type]:
     --------
     >>> import wheelrail as wr
     >>> list(wr.normal_methods())
-    ['hertz', 'multi-hertz', 'linder', 'kik-piotrowski', 'stripes', 'bem']
+    ['bem', 'hertz', 'kik-piotrowski', 'linder', 'multi-hertz', 'stripes']
     """
     return _normal.registry()
 
@@ -37,7 +37,7 @@ def tangential_methods() -> dict[str, type]:
     --------
     >>> import wheelrail as wr
     >>> list(wr.tangential_methods())
-    ['carter', 'linear', 'fastsim', 'fastrip', 'shen-hedrick-elkins', 'polach', 'exact', 'table']
+    ['carter', 'exact', 'fastrip', 'fastsim', 'linear', 'polach', 'shen-hedrick-elkins', 'table']
     """
     return _tangential.registry()
 
@@ -131,7 +131,7 @@ def solve(problem, creepage=None, mu=None, *, normal="hertz", tangential="fastsi
     Examples
     --------
     >>> import wheelrail as wr
-    >>> c = wr.hertz(load=7500.0, A=1.087, B=1.667, material=wr.STEEL)
+    >>> c = wr.hertz(Fn=7500.0, A=1.087, B=1.667, material=wr.STEEL)
     >>> r = wr.solve(c, creepage=(-7e-4, 0, 0), mu=0.3, normal="hertz", tangential="fastsim")
     >>> len(r.patches), r.Fx > 0
     (1, True)

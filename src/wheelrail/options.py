@@ -14,15 +14,15 @@ table)::
     >>> wr.tangential.Fastsim(nx=0)
     Traceback (most recent call last):
     ...
-    wheelrail.errors.InputError: fastsim: nx must be an integer in [1, 2000], got 0
+    wheelrail.errors.OptionError: fastsim: nx must be an integer in [1, 2000], got 0
 
 A method is chosen by name (``"fastsim"``: the class with its defaults) or by a
 configured object; :func:`resolve` turns either into an instance and
 :func:`split_options` routes the keyword options of :func:`wheelrail.solve` to
 the one method that declares each.
 
-This module is part of the core layer: it imports nothing above
-:mod:`wheelrail.errors`.
+This module is part of the core layer: it imports only the base layer
+(:mod:`wheelrail.errors`).
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ import numpy as np
 from .errors import InputError, OptionError
 
 __all__ = ["Option", "option", "Method", "configured", "resolve", "method_class",
-           "split_options"]
+           "split_options", "describe"]
 
 _KINDS = ("int", "float", "bool", "choice", "any")
 
@@ -409,3 +409,27 @@ def split_options(normal: type, tangential: type, options: Mapping) -> tuple[dic
                    f"normal=wheelrail.normal.{normal.__name__}({k}=...)" if n_ok else ""))
         (nopts if n_ok else topts)[k] = v
     return nopts, topts
+
+
+def describe(cls) -> str:
+    """Markdown description of a method class: name, options (unit, default, allowed
+    values, meaning) and references — generated from the declarations, so that the
+    documentation cannot drift from the code (the docs' methods page is made of these)."""
+    doc = (cls.__doc__ or "").strip().split("\n\n")[0].replace("\n", " ")
+    lines = [f"### `{cls.name}` — `{cls.__module__.rsplit('.', 1)[0]}.{cls.__name__}`", "",
+             doc, ""]
+    if cls.aliases:
+        lines += ["Also accepted: " + ", ".join(f"`{a}`" for a in cls.aliases) + ".", ""]
+    decls = cls.option_declarations()
+    if decls:
+        lines += ["| option | unit | default | allowed | meaning |", "|---|---|---|---|---|"]
+        for name, d in decls.items():
+            default = "`None`" if d.default is None else f"`{d.default!r}`"
+            lines.append(f"| `{name}` | {d.unit or '–'} | {default} | {d.describe()} | "
+                         f"{d.doc} |")
+    else:
+        lines.append("No options.")
+    if cls.references:
+        lines += ["", "References:", ""] + [f"- {r}" for r in cls.references]
+    return "\n".join(lines) + "\n"
+

@@ -119,11 +119,11 @@ class PatchDescription:
 
 
 def registry() -> dict[str, type]:
-    """Registry name -> class of every normal method defined so far (no aliases).
+    """Registry name -> class of every normal method defined so far, by name (no aliases).
 
     :func:`wheelrail.normal_methods` imports the whole family first.
     """
-    return {cls.name: cls for cls in dict.fromkeys(_REGISTRY.values())}
+    return {cls.name: cls for cls in sorted(set(_REGISTRY.values()), key=lambda c: c.name)}
 
 
 def get(spec, options=None, *, argname: str = "normal") -> NormalMethod:

@@ -118,7 +118,7 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
     --------
     >>> import wheelrail as wr
     >>> from wheelrail.sweeps import SweepSpec
-    >>> spec = SweepSpec.grid(method="linear", mu=0.3, load=1e4, A=1.0, B=1.5,
+    >>> spec = SweepSpec.grid(method="linear", mu=0.3, Fn=1e4, A=1.0, B=1.5,
     ...                       xi=[-1e-3, 0.0, 1e-3], eta=[0.0, 1e-3])
     >>> ds = wr.sweep(spec)
     >>> ds.Fx.dims, int((ds.status == 1).sum())

@@ -174,11 +174,11 @@ def broadcast_contact(contact, shape):
 
 
 def registry() -> dict[str, type]:
-    """Registry name -> class of every creep-force law defined so far (no aliases).
+    """Registry name -> class of every creep-force law defined so far, by name (no aliases).
 
     :func:`wheelrail.tangential_methods` imports the whole family first.
     """
-    return {cls.name: cls for cls in dict.fromkeys(_REGISTRY.values())}
+    return {cls.name: cls for cls in sorted(set(_REGISTRY.values()), key=lambda c: c.name)}
 
 
 def get(spec, options=None, *, argname: str = "tangential") -> TangentialMethod:

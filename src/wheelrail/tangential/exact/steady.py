@@ -127,11 +127,11 @@ def solve_rolling(grid, pressure, materials, creepage, mu, *, tol=1e-6, maxiter=
     Examples
     --------
     >>> import wheelrail as wr
-    >>> from wheelrail.halfspace import solve_rolling
+    >>> from wheelrail.tangential.exact import solve_rolling
     >>> from wheelrail.normal.bem import hertz_grid, solve_normal
     >>> hc = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
     >>> grid, gap = hertz_grid(hc, elements=20, margin=1.1)
-    >>> pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    >>> pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
     >>> sol = solve_rolling(grid, pn, wr.STEEL, (1e-3, 0.0, 0.0), mu=0.3)
     >>> bool(sol.Fx < 0), bool(sol.adhesion.any()), bool(sol.slip.any())
     (True, True, True)
