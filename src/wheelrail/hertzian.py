@@ -20,7 +20,7 @@ References
 .. [1] K.L. Johnson, *Contact Mechanics*, CUP 1985, §4.2, eqs. (3.64)–(3.66)
    and (4.32)–(4.36).
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), Table 2 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), Table 2.
 """
 
 from __future__ import annotations

@@ -31,7 +31,7 @@ References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005), §3 (strips, virtual
-   penetration) (seed 003).
+   penetration).
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990 (elliptic patches, exact theory on a grid).
 """

@@ -171,7 +171,7 @@ def plot_contact_angle(table, path):
 
 
 def plot_contact_positions(table, path):
-    """Contact-point positions on wheel and rail versus y (cf. seed 003, fig. 1)."""
+    """Contact-point positions on wheel and rail versus y (cf. Piotrowski & Chollet (2005), fig. 1)."""
     import numpy as np
 
     from ..plotting._common import finish, new_figure

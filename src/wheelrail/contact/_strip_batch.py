@@ -7,7 +7,7 @@ is the same as :func:`wheelrail.solve` with that method; what is shared
 across positions is the geometry, which dominates the time of the fast
 methods:
 
-* the rigid touching poses (Newton on (z, θ), seed 002 eqs. 2.1–2.3) of all
+* the rigid touching poses (Newton on (z, θ), Bosso et al. (2013), ch. 2 eqs. 2.1–2.3) of all
   positions in one vectorised call, as the Hertz fast path does;
 * the candidate contact points of every position and side in one
   vectorised :func:`~wheelrail.geometry.contact_search.find_points` call and

@@ -5,7 +5,7 @@ wheel (or the height of the axle), the wheelset's velocities and the track,
 :func:`solve_wheelrail`
 
 1. finds the pose at which each wheel touches its rail (roll from the rigid
-   contact constraint of both wheels, seed 002 eqs. 2.1–2.3, or prescribed)
+   contact constraint of both wheels, Bosso et al. (2013), ch. 2 eqs. 2.1–2.3, or prescribed)
    and every candidate contact point of each wheel
    (:func:`wheelrail.geometry.contact_points`: all local minima of the
    distance, so that two-point contact is seen);
@@ -30,9 +30,9 @@ plane to the right, Fn along the normal, σ = +1 right / −1 left)::
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.1–2.2, eqs. (2.1)–(2.4), (2.10).
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1–2.2, eqs. (2.1)–(2.4), (2.10).
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §1–2 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §1–2.
 .. [3] E.A.H. Vollebregt, *User guide for CONTACT*, Vtech CMCC: the wheel–rail
    module (vertical force per wheel, planar contact per patch).
 .. [4] P. Shackleton, S. Iwnicki, Comparison of wheel–rail contact codes for

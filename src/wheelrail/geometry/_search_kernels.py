@@ -6,7 +6,7 @@ with the same arithmetic: the vertical gap of one wheel point
 minimum (:func:`~wheelrail.geometry.contact_search._refine`), the refined global
 minimum of the gap of one pose (:func:`~wheelrail.geometry.contact_search._global_min`)
 and the damped Newton iteration on (z, θ) of the rigid contact constraint
-(seed 002, eqs. 2.1–2.3; :func:`~wheelrail.geometry.contact_search.solve_rigid`).
+(Bosso et al. (2013), ch. 2, eqs. 2.1–2.3; :func:`~wheelrail.geometry.contact_search.solve_rigid`).
 Running them as compiled loops removes the per-iteration array overhead that
 dominates a single wheelset position (one ``wr.solve`` per time step of a
 vehicle-dynamics simulation).

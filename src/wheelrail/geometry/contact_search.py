@@ -1,13 +1,13 @@
 """Rigid wheel–rail contact search: wheelset roll and height, all contact points.
 
-Problem (seed 002, §2.1.1, eqs. 2.1–2.3)
+Problem (Bosso et al. (2013), ch. 2, §2.1.1, eqs. 2.1–2.3)
 -----------------------------------------
 For a prescribed lateral shift ``y`` and yaw angle ``ψ`` of the wheelset the
 rigid contact constraint ``min d = 0`` on **both** sides fixes the roll angle
 ``θ(y, ψ)`` (eq. 2.1) and the vertical position ``z(y, ψ)`` (eq. 2.2). The
 distance ``d`` is evaluated on the whole profile, and *every* local minimum of
 ``d`` is reported with its separation, so that two- and three-point contact
-(seed 003, fig. 1) is detected: points whose separation is below a tolerance
+(Piotrowski & Chollet (2005), fig. 1) is detected: points whose separation is below a tolerance
 are potential contact points (they carry load in an elastic model).
 
 Frames and signs (see :mod:`wheelrail.geometry.wheelset`, :mod:`~wheelrail.geometry.track`)
@@ -62,10 +62,10 @@ along the wheel profile and refined by successive parabolic interpolation.
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.1.1, eqs. (2.1)–(2.3).
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1.1, eqs. (2.1)–(2.3).
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005) 455–483, fig. 1
-   (seed 003).
+  .
 .. [3] K. Wang, The track of wheel contact points and the calculation of
    wheel/rail geometric contact parameters, J. Southwest Jiaotong Univ. 1
    (1984) 89–99 (contact locus); W. Kik, J. Piotrowski, A fast approximate
@@ -497,7 +497,7 @@ def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, m
                      z0=None, roll0=None) -> RigidRows:
     """Roll and height satisfying ``min d = 0`` on both sides, row by row, never raising.
 
-    The same problem as :func:`solve_rigid` (seed 002, eqs. 2.1–2.3); every
+    The same problem as :func:`solve_rigid` (Bosso et al. (2013), ch. 2, eqs. 2.1–2.3); every
     row gets a status instead of one bad row aborting all of them. A damped
     Newton iteration is tried first; rows where it fails are solved by the
     bracketed fall-back (bisection on the roll angle, see :func:`_bracketed`),
@@ -565,7 +565,7 @@ def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, m
 
 def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxiter=60,
                 z0=None, roll0=None):
-    """Roll and height satisfying ``min d = 0`` on both sides (seed 002, eqs. 2.1–2.3).
+    """Roll and height satisfying ``min d = 0`` on both sides (Bosso et al. (2013), ch. 2, eqs. 2.1–2.3).
 
     Newton iteration on (z, θ): raising the wheelset by Δz and rolling it by Δθ
     about its centre moves a wheel point by ``(−(Z − zc)Δθ, Δz + (Y − y)Δθ)``

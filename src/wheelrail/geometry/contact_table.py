@@ -1,9 +1,9 @@
 """Contact tables: rigid contact geometry versus the lateral shift of the wheelset.
 
-:func:`contact_table` solves the rigid constraint (seed 002, eqs. 2.1–2.3)
+:func:`contact_table` solves the rigid constraint (Bosso et al. (2013), ch. 2, eqs. 2.1–2.3)
 for every lateral shift and returns an :class:`xarray.Dataset` with dimension
 ``y`` (and ``point`` for the per-point quantities of both sides), the
-rolling-radius difference Δr = r_right − r_left (seed 003, fig. 1), roll,
+rolling-radius difference Δr = r_right − r_left (Piotrowski & Chollet (2005), fig. 1), roll,
 height, contact angles, positions, radii, curvatures and separations, and the
 lateral shifts at which a contact point jumps (``jump_y``). Helpers write the
 table to CSV and NetCDF (scipy engine; no netCDF4 dependency).

@@ -1,6 +1,6 @@
 """Elastic and quasi-elastic wheelset–track contact (load sharing between contact points).
 
-Elastic contact (seed 002, §2.1.2, eq. 2.4)
+Elastic contact (Bosso et al. (2013), ch. 2, §2.1.2, eq. 2.4)
 -------------------------------------------
 The wheelset is held at lateral shift ``y`` and yaw ``ψ`` and loaded by a
 vertical force ``load`` at its centre (equal axle-box loads: no roll
@@ -21,16 +21,16 @@ the flanging wheel (S1002/60E1: about 6.5–7.5 mm) the flange force passes
 above the axle centre and no roll equilibrium of this loading exists (the
 wheel climbs); :class:`~wheelrail.errors.ConvergenceError` is raised. The
 quasi-elastic variant then returns a negative (tensile) force on the other
-wheel — the bilateral-constraint defect noted in seed 002, §2.1.3.
+wheel — the bilateral-constraint defect noted in Bosso et al. (2013), ch. 2, §2.1.3.
 
-Quasi-elastic contact (seed 002, §2.1.3, eq. 2.5)
+Quasi-elastic contact (Bosso et al. (2013), ch. 2, §2.1.3, eq. 2.5)
 -------------------------------------------------
 Schupp, Weidemann and Mauer replace ``min d = 0`` by the regularised
 (soft-minimum) distance
 
     D_ε = −ε ln( ∫ exp(−d(s)/ε) ds / ∫ ds ) = 0        (both sides),
 
-over the range where the wheel lies above the rail (the seed prints the
+over the range where the wheel lies above the rail (Bosso et al. (2013), ch. 2, print the
 exponent with the opposite sign convention for d). With (z, θ) from these
 two constraints, one equivalent contact per side is formed with the weights
 ``w(s) ∝ exp(−d(s)/ε)`` (mean position, contact angle, radius); the two normal
@@ -40,7 +40,7 @@ Here d is the vertical wheel–rail distance on the search grid.
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.1.2–2.1.3, eqs. (2.4), (2.5).
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1.2–2.1.3, eqs. (2.4), (2.5).
 .. [2] G. Schupp, C. Weidemann, L. Mauer, Modelling the contact between wheel
    and rail within multibody system simulation, VSD 41 (2004) 349–364.
 .. [3] K.L. Johnson, Contact Mechanics, CUP 1985, §4.2 (Hertz approach).

@@ -10,7 +10,7 @@ the numbers are those of the NumPy expressions they replace, to the last bit.
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3.
 """
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
 """Shared machinery of the virtual-penetration methods (private).
 
-Kik–Piotrowski, Linder and STRIPES (seed 003 §3) all work on *lines*: the
+Kik–Piotrowski, Linder and STRIPES (Piotrowski & Chollet (2005) §3) all work on *lines*: the
 separation f(η) of the profiles along the lateral coordinate η of one contact
 plane, with the longitudinal curvature A(η) of the undeformed distance
 (h(x, η) ≈ f(η) + A(η) x²). The bodies are virtually pressed together by δ0;
-the interpenetration g(η) = δ0 − f(η) > 0 (seed 003 eq. 4) marks the strips,
+the interpenetration g(η) = δ0 − f(η) > 0 (Piotrowski & Chollet (2005) eq. 4) marks the strips,
 and every strip is half-length x_l(η) = √(g/A) long (eq. 5 with A = 1/(2R)).
 
 This module holds
@@ -25,7 +25,7 @@ All quantities SI (m, N, Pa, 1/m).
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005) 455–483, §3 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, §3.
 .. [2] J. Piotrowski, W. Kik, A simplified model of wheel/rail contact mechanics
    for non-Hertzian problems and its application in rail vehicle dynamic
    simulations, VSD 46 (2008) 27–48.

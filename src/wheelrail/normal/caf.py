@@ -1,6 +1,6 @@
 """Ayasse's contact-angle-function (CAF) tables: piecewise-linear γ(t_y) with jump limits.
 
-Seed 003 §2.3 (Piotrowski & Chollet 2005, after Ayasse): with the roll of the
+Piotrowski & Chollet (2005) §2.3 (after Ayasse): with the roll of the
 wheelset neglected (§2.3.1) the relative motion of wheel and rail is a
 translation (t_y, t_z), and the contact parameters of one wheel–rail pair can
 be precomputed as functions of the lateral translation t_y alone (§2.3.2):
@@ -27,13 +27,13 @@ The multi-Hertz variant ``"ayasse"`` (:mod:`wheelrail.normal.multi_hertz`)
 reads these tables on the wheel–rail path: :func:`cached_caf_table` builds
 one per wheelset/track pair and side, :func:`caf_contacts` gives the
 contacts and their load shares at a lateral shift (eq. 3 overlaps). The
-checks of the seed's relations are in ``tests/reference/test_nonhertz_caf.py``.
+checks of Piotrowski & Chollet's relations are in ``tests/reference/test_nonhertz_caf.py``.
 
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005) 455–483, §2.3,
-   eq. (3) (seed 003).
+   eq. (3).
 .. [2] J.B. Ayasse, H. Chollet, J.L. Maupu, Paramètres caractéristiques du
    contact roue-rail, Rapport INRETS 225 (2000).
 .. [3] D.H. Douglas, T.K. Peucker, Algorithms for the reduction of the number
@@ -111,7 +111,7 @@ def _cos_ratio_m1(a, w):
 
 
 def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
-    """Overlap width of a jump on side 1 (seed 003 eq. 3 and a small-jump generalisation).
+    """Overlap width of a jump on side 1 (Piotrowski & Chollet (2005) eq. 3 and a small-jump generalisation).
 
     Side 1 is the side of the jump limit t_ylim where contact 1 is the rigid
     contact point; contact 2, rigidly separated from the rail there by a gap
@@ -122,8 +122,8 @@ def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
 
         Δt_y1 = cos γ1 · (δ1/2) / tan(γ2 − γ1)            (rate = 0)
 
-    It diverges as γ2 → γ1 (the small jump the seed says eq. 3 does not cover;
-    its generalisation, ref. [42] of the seed, is not given there). Here the
+    It diverges as γ2 → γ1 (the small jump Piotrowski & Chollet (2005) say eq. 3 does not cover;
+    its generalisation, their ref. [42], is not given there). Here the
     angle difference follows the two branches of the contact angle function,
     Δγ(τ) = |γ2 − γ1| + c τ, c the rate at which it grows with the distance τ
     from t_ylim (from the CAF slopes: ``rate`` = d(γ2 − γ1)/dτ, signed as
@@ -164,7 +164,7 @@ def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
 
     References
     ----------
-    .. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2.3.3, eq. (3) (seed 003).
+    .. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2.3.3, eq. (3).
     """
     g1, g2, d1, r = np.broadcast_arrays(*(np.asarray(v, dtype=float)
                                           for v in (gamma1, gamma2, delta1, rate)))
@@ -287,11 +287,11 @@ class CafTable:
         return self.gamma[i] + slope * (y - self.y[i]), slope
 
     def wheel_radius(self, y):
-        """Wheel profile radius R_wx [m] recovered from the CAF (seed 003 §2.3.2).
+        """Wheel profile radius R_wx [m] recovered from the CAF (Piotrowski & Chollet (2005) §2.3.2).
 
         R_rx + R_wx = −1/(cos γ dγ/dt_y) (radii convex positive; a concave
         wheel profile gives R_wx < 0; infinite where the line is flat). The
-        seed's relation is for a shift towards the wheel's flange; t_y is
+        paper's relation is for a shift towards the wheel's flange; t_y is
         positive to the right, so for the left wheel the sign of dγ/dt_y is
         reversed: R_rx + R_wx = +1/(cos γ dγ/dt_y).
         """
@@ -380,7 +380,7 @@ class CafTable:
     def overlaps(self, k, delta1, delta2, overlap="general"):
         """Overlap widths (Δt_y1, Δt_y2) [m] at jump ``k`` for the Hertz approaches δ1, δ2
         [m] of the two contacts: Δt_y1 below the jump limit (branch k, contact 1 the
-        rigid one), Δt_y2 above it (seed 003 eq. 3 on each side of the jump).
+        rigid one), Δt_y2 above it (Piotrowski & Chollet (2005) eq. 3 on each side of the jump).
 
         ``overlap="eq3"`` is eq. (3) with straight lines; ``"general"`` (default)
         lets the angle difference follow the two lines' slopes
@@ -395,7 +395,7 @@ class CafTable:
 
 def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tolerance=1e-3,
               jump=1e-3):
-    """Build the piecewise-linear CAF table of one side (seed 003 §2.3.2).
+    """Build the piecewise-linear CAF table of one side (Piotrowski & Chollet (2005) §2.3.2).
 
     Parameters
     ----------
@@ -545,7 +545,7 @@ def _overlap_kind(overlap):
 
 
 def caf_contacts(table, t_y, load, materials, overlap="general"):
-    """Ayasse's contacts of one wheel at shift ``t_y`` from its CAF table (seed 003 §2.3).
+    """Ayasse's contacts of one wheel at shift ``t_y`` from its CAF table (Piotrowski & Chollet (2005) §2.3).
 
     The rigid contact point lies on the branch of ``t_y``; near a jump limit
     t_ylim the two contacts of the neighbouring branches share the load over

@@ -64,9 +64,9 @@ class Hertz(NormalMethod, PatchDescription):
       :func:`wheelrail.contact_points`); the penetrations follow from the
       wheel's vertical approach dz, δ_k = dz cos γ_k − s_k (s_k the
       undeformed separation), and dz from Σ Fn_k cos γ_k = Q (the vertical
-      load) — the multi-point elastic contact of seed 002 eq. 2.4 with
+      load) — the multi-point elastic contact of Bosso et al. (2013), ch. 2 eq. 2.4 with
       Hertzian stiffness per point, or Piotrowski & Chollet's independent
-      ellipses (seed 003 §2).
+      ellipses (Piotrowski & Chollet (2005) §2).
 
     Other Parameters
     ----------------
@@ -77,7 +77,7 @@ class Hertz(NormalMethod, PatchDescription):
     References
     ----------
     .. [1] K.L. Johnson, *Contact Mechanics*, CUP 1985, §4.2.
-    .. [2] Seed 002, §2.1.2, eq. (2.4); seed 003, §2.
+    .. [2] Bosso et al. (2013), ch. 2, §2.1.2, eq. (2.4); Piotrowski & Chollet (2005), §2.
     """
 
     name = "hertz"

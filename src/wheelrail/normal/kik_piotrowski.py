@@ -1,7 +1,7 @@
 """Kik & Piotrowski's virtual-penetration method for non-Hertzian normal contact.
 
 The bodies are virtually pressed together by δ0 = ε δ; the interpenetration
-region (seed 003 eqs. 4–5) is taken as the contact patch, the pressure is
+region (Piotrowski & Chollet (2005) eqs. 4–5) is taken as the contact patch, the pressure is
 semi-elliptic along every strip with one peak p0 (eq. 12), and the load
 follows from the deflection condition at the reference point,
 2 w0 = δ (eqs. 13–16)::
@@ -28,7 +28,7 @@ gap reproduces Hertz's area, maximum pressure and load.
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22) (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22).
 .. [2] W. Kik, J. Piotrowski, A fast, approximate method to calculate normal load at
    contact between wheel and rail and creep forces during rolling, 2nd mini
    conference on contact mechanics and wear of rail/wheel systems, Budapest 1996.
@@ -94,7 +94,7 @@ def _penetration_factor_option(name, value):
 
 
 def shape_correction(eta, xl, h, j0):
-    """Kik & Piotrowski's shape correction of one region (seed 003 eqs. 17–22) (pure kernel).
+    """Kik & Piotrowski's shape correction of one region (Piotrowski & Chollet (2005) eqs. 17–22) (pure kernel).
 
     Parameters
     ----------
@@ -148,7 +148,7 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
 
     References
     ----------
-    .. [1] Seed 003 §3.2, eqs. (12)–(22); Piotrowski & Kik, VSD 46 (2008).
+    .. [1] Piotrowski & Chollet (2005) §3.2, eqs. (12)–(22); Piotrowski & Kik, VSD 46 (2008).
     """
 
     name = "kik-piotrowski"

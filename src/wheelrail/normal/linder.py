@@ -1,6 +1,6 @@
 """Linder's virtual-penetration method with per-strip virtual ellipses.
 
-The bodies are virtually pressed together by δ0 = 0.55 δ (seed 003 §3.1);
+The bodies are virtually pressed together by δ0 = 0.55 δ (Piotrowski & Chollet (2005) §3.1);
 the interpenetration region is the contact patch, cut into strips along the
 rolling direction. Every strip i (lateral position y_i from the middle of the
 region, half-length x_l(y_i) = √(2R g(y_i)), eq. 5) belongs to a virtual
@@ -25,7 +25,7 @@ traction bound along every strip carrying the strip's load (p0i' = 3π p0i/8).
 
 References
 ----------
-.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.1, eqs. (4)–(11) (seed 003).
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.1, eqs. (4)–(11).
 .. [2] C. Linder, Verschleiß von Eisenbahnrädern mit Unrundheiten, Diss. ETH
    Zürich Nr. 12342, 1997.
 """
@@ -75,7 +75,7 @@ class Linder(VirtualPenetration, NormalMethod, PatchDescription):
 
     References
     ----------
-    .. [1] Seed 003 §3.1, eqs. (4)–(11); Linder (1997).
+    .. [1] Piotrowski & Chollet (2005) §3.1, eqs. (4)–(11); Linder (1997).
     """
 
     name = "linder"

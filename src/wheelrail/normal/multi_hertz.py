@@ -1,6 +1,6 @@
 """Multi-Hertzian normal contact: a non-elliptic contact as a set of Hertz ellipses.
 
-Three variants (seed 003 §2), chosen with ``variant=``:
+Three variants (Piotrowski & Chollet (2005) §2), chosen with ``variant=``:
 
 ``"sauvage"`` / ``"sauvage-half"``
     Sauvage's secondary ellipses (§2.1, fig. 2). On the lateral line of each
@@ -19,7 +19,7 @@ Three variants (seed 003 §2), chosen with ``variant=``:
     ``"sauvage-half"`` in one contact plane are replaced by one ellipse with
     (a/b)_eq = Σ N_k (a_k/b_k) / Σ N_k, the total area and the total load, at
     the load-weighted position. (Pascal fitted the ellipse to wheelset
-    equilibrium forces; the weighted ratio is the rule quoted in the seed.)
+    equilibrium forces; the weighted ratio is the rule quoted by Piotrowski & Chollet (2005).)
 ``"ayasse"``
     Ayasse's contact-angle-function (CAF) method (§2.3, eq. 3): the two
     lowest candidate contact points of a wheel (contact angles γ1, γ2) share
@@ -46,7 +46,7 @@ Three variants (seed 003 §2), chosen with ``variant=``:
     approach of contact i under the wheel load at the jump limit; by default
     with the angle difference following the lines' slopes, ``caf_overlap``)
     the load moves linearly from one contact to the other
-    (:func:`~wheelrail.normal.caf.caf_contacts`). As in the seed (§2.3.1) the
+    (:func:`~wheelrail.normal.caf.caf_contacts`). As in Piotrowski & Chollet (2005, §2.3.1) the
     roll and yaw of the wheelset are neglected in the table (the contact
     geometry is that of a pure translation). ``caf="direct"`` keeps the
     per-pose form above (the candidate points of the actual pose).
@@ -55,7 +55,7 @@ On a single Hertzian contact every variant gives its Hertz ellipse.
 
 References
 ----------
-.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2, eqs. (1)–(3) (seed 003).
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2, eqs. (1)–(3).
 .. [2] J.P. Pascal, G. Sauvage, The available methods to calculate the
    wheel/rail forces in non Hertzian contact patches and rail damaging, VSD 22
    (1993) 263–275.
@@ -404,7 +404,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
             raise InputError(f"caf_range must be (start, stop) in m, got {rng!r}") from None
         # the relative lateral translation of the profiles at rail level: the wheelset's
         # shift plus the lateral displacement r0 sin θ of the wheel's running surface by the
-        # roll θ (the rotation of the profile itself is neglected, seed 003 §2.3.1)
+        # roll θ (the rotation of the profile itself is neglected §2.3.1)
         ty = float(problem.pose["y"]) + float(problem.wheelset.nominal_radius) * math.sin(
             float(problem.pose["roll"]))
         if not lo <= ty <= hi:

@@ -1,6 +1,6 @@
 """Ayasse & Chollet's semi-Hertzian method (STRIPES).
 
-Hertz's relations written with curvatures instead of semi-axes (seed 003
+Hertz's relations written with curvatures instead of semi-axes (Piotrowski & Chollet (2005)
 §3.3, Table 2: λ = A/B, n/m = b/a, δ = r a0²(A+B)). The crude interpenetration
 gives b_g/a_g = √λ instead of Hertz's b/a, so the longitudinal curvature is
 compensated (eq. 23)::
@@ -23,7 +23,7 @@ virtual semi-axis a_i/k_i = √(h0/A_c), k_i² = h_i/h0).
 
 References
 ----------
-.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.3, eqs. (23)–(27) (seed 003).
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.3, eqs. (23)–(27).
 .. [2] J.B. Ayasse, H. Chollet, Determination of the wheel rail contact patch in
    semi-Hertzian conditions, VSD 43 (2005) 161–172.
 """
@@ -45,7 +45,7 @@ __all__ = ["Stripes", "stripes_constants"]
 
 
 def stripes_constants(A, B):
-    """(h0/δ, A_c/A, p0 a / (h0 E*)) for the curvatures A, B [1/m] (Hertz, seed 003 eq. 23)."""
+    """(h0/δ, A_c/A, p0 a / (h0 E*)) for the curvatures A, B [1/m] (Hertz eq. 23)."""
     a, b, p0, d = hertz_shape(A, B)          # unit load, E* = 1
     h0 = b * b * B
     return h0 / d, (b / a) ** 2 * B / A, p0 * a / h0
@@ -132,7 +132,7 @@ class Stripes(VirtualPenetration, NormalMethod, PatchDescription):
 
     References
     ----------
-    .. [1] Seed 003 §3.3, eqs. (23)–(27); Ayasse & Chollet (2005).
+    .. [1] Piotrowski & Chollet (2005) §3.3, eqs. (23)–(27); Ayasse & Chollet (2005).
     """
 
     name = "stripes"

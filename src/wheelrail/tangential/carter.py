@@ -4,7 +4,7 @@ Carter (1926) solved the steady rolling of an elastic cylinder on an elastic
 plane (a line contact of half-width ``a`` along the rolling direction, Hertz
 pressure p(x) = p0 √(1 − x²/a²)) under a longitudinal creepage ξ. The contact
 splits into an adhesion (stick) zone of half-width ``c`` touching the
-**leading edge** and a slip zone at the trailing edge (review seed 002,
+**leading edge** and a slip zone at the trailing edge (Bosso et al. (2013), ch. 2,
 §2.2, Fig. 2.3). The traction is the difference of two semi-ellipses
 (Johnson 1985, §8.2)::
 
@@ -41,7 +41,7 @@ x, b across) are provided (option ``form``):
     a/b → 0 (Kalker's asymptote C11 = π²/(4(1 − ν))) but underestimates it
     for rounder patches (by 27 % for a circle with ν = 0, and by a factor
     ~4 at a/b = 10), the classical weakness of Carter's stiffness noted in
-    seed 002 (eq. 2.9 discussion);
+    Bosso et al. (2013), ch. 2 (eq. 2.9 discussion);
   - ``"kalker"``: k = G a b C11(a/b, ν), Kalker's linear theory (so the
     initial slope is exact; a common engineering choice).
 
@@ -68,7 +68,7 @@ References
 .. [3] J.B. Haines, E. Ollerton, Contact stress distributions on elliptical
    contact surfaces subjected to radial and tangential forces, Proc. IMechE
    177 (1963) 95–114.
-.. [4] Review of wheel–rail contact models, seed paper 002, §2.2 and Fig. 2.3.
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), §2.2 and Fig. 2.3.
 """
 
 from __future__ import annotations
@@ -149,7 +149,7 @@ def carter_traction(x, a, xi, mu, p0, G, nu):
 
     The difference of two semi-ellipses: μ p(x) over the whole contact minus
     a smaller semi-ellipse over the stick zone at the leading edge (Johnson
-    1985, §8.2; seed 002 Fig. 2.3).
+    1985, §8.2; Bosso et al. (2013), ch. 2 Fig. 2.3).
 
     Parameters
     ----------

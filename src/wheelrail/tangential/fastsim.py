@@ -21,7 +21,7 @@ Choices made here (all documented in the class docstring of :class:`Fastsim`):
   FASTSIM example (see :class:`Fastsim`, Notes).
 * **Flexibility**: ``flexibility="three"`` (default) uses one flexibility per
   creepage, L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a √(a/b)/(4 G C23)
-  (Piotrowski & Chollet 2005, eq. 11, seed 003; Kalker 1982), so that FASTSIM
+  (Piotrowski & Chollet 2005, eq. 11; Kalker 1982), so that FASTSIM
   reproduces Kalker's linear theory for pure ξ, pure η and pure φ (forces;
   the spin moment Mz is only approximated, C33 does not enter).
   ``flexibility="weighted"`` uses Kalker's single weighted flexibility
@@ -41,7 +41,7 @@ References
    Kluwer 1990 (simplified theory, FASTSIM).
 .. [3] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005) 455–483, eq. (11),
-   eqs. (24)–(26) (seed 003).
+   eqs. (24)–(26).
 .. [4] E.A.H. Vollebregt, *User guide for CONTACT, rolling and sliding contact
    with friction*, Vtech CMCC (TR09-03/20-01), section "The use of the
    FASTSIM algorithm" (example ``fastsim.inp``): the published FASTSIM case
@@ -183,7 +183,7 @@ def flexibilities(a, b, G, C11, C22, C23):
     ----------
     a, b : array_like
         Semi-axes along x and y [m] (for a strip of a non-elliptic patch: the
-        semi-axes of its virtual ellipse, seed 003 §3.1).
+        semi-axes of its virtual ellipse §3.1).
     G : float or array_like
         Combined shear modulus [Pa].
     C11, C22, C23 : array_like
@@ -196,7 +196,7 @@ def flexibilities(a, b, G, C11, C22, C23):
 
     References
     ----------
-    .. [1] Piotrowski & Chollet (2005), eq. (11) (seed 003); Kalker (1982).
+    .. [1] Piotrowski & Chollet (2005), eq. (11); Kalker (1982).
     """
     a, b, G, C11, C22, C23 = (np.asarray(v, dtype=float) for v in (a, b, G, C11, C22, C23))
     L1 = 8.0 * a / (3.0 * G * C11)
@@ -303,7 +303,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
     """FASTSIM on a contact patch described by strips (elliptic or not).
 
     This is the kernel used by the virtual-penetration methods (Linder,
-    Kik–Piotrowski, STRIPES; seed 003 §3): each strip has its own extent,
+    Kik–Piotrowski, STRIPES; Piotrowski & Chollet (2005) §3): each strip has its own extent,
     pressure and flexibilities.
 
     Parameters
@@ -319,7 +319,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
         together with ``profile``.
     L1, L2, L3 : float or array_like, shape (ny,)
         Flexibilities for ξ, η, φ [m/Pa] (e.g. :func:`flexibilities` with the
-        strip's virtual ellipse, seed 003 eqs. 11, 25–26). Pass the same value
+        strip's virtual ellipse eqs. 11, 25–26). Pass the same value
         three times for a single flexibility.
     xi, eta, phi : float
         Creepages [-], [-], [1/m] (Kalker's convention).
@@ -687,7 +687,7 @@ class Fastsim(TangentialMethod):
         the traction bound (``bound`` and ``ny`` do not apply; ``nx`` cells per
         strip, resampled from the patch), and one set of flexibilities
         L1, L2, L3 from the patch's equivalent ellipse (Kik & Piotrowski's
-        choice of one flexibility per patch; seed 003 §3.2). ``Mz`` is about
+        choice of one flexibility per patch; Piotrowski & Chollet (2005) §3.2). ``Mz`` is about
         the patch's centre of pressure; ``fields`` are returned for single
         patches unless ``fields=False``.
         """
@@ -696,7 +696,7 @@ class Fastsim(TangentialMethod):
             return self.solve(patch.hertz, f(float(xi)), f(float(eta)), f(float(phi)),
                               f(float(mu)))
         nx, flexibility, scheme, fields = self.nx, self.flexibility, self.scheme, self.fields
-        # a virtual-penetration patch may prescribe its own flexibilities (seed 003 §3):
+        # a virtual-penetration patch may prescribe its own flexibilities (Piotrowski & Chollet (2005) §3):
         # one weighted flexibility per patch (Kik-Piotrowski), per-strip virtual ellipses
         # (Linder, STRIPES), a parabolic traction bound along the strips (Linder)
         pinfo = patch.info

@@ -1,7 +1,7 @@
 """Kalker's linear theory of rolling contact (creep coefficients C11 … C33).
 
 In the limit of vanishing creepage the whole contact ellipse adheres and the
-creep forces are linear in the creepages (Kalker 1967; review seed 002,
+creep forces are linear in the creepages (Kalker 1967; Bosso et al. (2013), ch. 2,
 eq. 2.11). With Kalker's sign convention (:mod:`wheelrail.conventions`:
 forces on the wheel, creepage of the wheel relative to the rail) and
 c = √(ab)::
@@ -79,7 +79,7 @@ References
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer, 1990, Table E.3 and §1.7.
 .. [3] K.L. Johnson, *Contact Mechanics*, CUP 1985, §8.4 and Table 8.1.
-.. [4] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), eq. (2.11).
 """
 
 from __future__ import annotations
@@ -357,7 +357,7 @@ def linear_forces(a, b, G, nu, xi, eta, phi):
     Notes
     -----
     Fx = −G c² C11 ξ, Fy = −G c² (C22 η + c C23 φ), Mz = G c³ (C23 η − c C33 φ),
-    c = √(ab) (Kalker 1967; seed 002 eq. 2.11 with the sign convention of
+    c = √(ab) (Kalker 1967; Bosso et al. (2013), ch. 2 eq. 2.11 with the sign convention of
     :mod:`wheelrail.conventions`). Valid only for creepages small enough that
     the forces are well below μ Fn: the forces grow without bound.
     """
@@ -393,7 +393,7 @@ class Linear(TangentialMethod):
     ----------
     .. [1] J.J. Kalker, PhD thesis, Delft 1967; *Three-dimensional elastic
        bodies in rolling contact*, Kluwer 1990, Table E.3.
-    .. [2] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+    .. [2] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), eq. (2.11).
     """
 
     name = "linear"

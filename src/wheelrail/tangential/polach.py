@@ -62,7 +62,7 @@ it holds on dense parameter scans and in the property tests.
 
 Verification
 ------------
-The papers themselves could not be read (the review seed 002 only names the
+The papers themselves could not be read (the Bosso et al. (2013), ch. 2 only names the
 method, refs. [4, 24, 5] there, and states that the friction of [5] varies
 with velocity); no formula above is confirmed against Polach's printed text.
 What was checked, against independent public implementations (secondary

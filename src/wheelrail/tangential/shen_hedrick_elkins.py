@@ -34,7 +34,7 @@ References
    transmitting tangential forces, J. Appl. Mech. 31 (1964) 338–340.
 .. [3] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, linear theory (creep coefficients C11 … C33).
-.. [4] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), eq. (2.11).
 """
 
 from __future__ import annotations

@@ -6,13 +6,13 @@ particles cross the grid from the leading edge (largest x) backwards, so the
 particle at ``x`` at time t was at ``x + h`` one step earlier. With the
 displacement difference ``u = u(wheel) − u(rail)`` of
 :mod:`wheelrail.halfspace.influence` the slip of the wheel relative to the
-rail, divided by V, is (seed 001 eqs. 2.8–2.10)::
+rail, divided by V, is (Baeza et al. eqs. 2.8–2.10)::
 
     s(x) = w(x) + (u(x, t) − u(x + h, t − Δt)) / h,   w = (ξ − φ y, η + φ x),
 
 and with the influence kernel ``C`` (eq. 2.13)::
 
-    s = w + (C p + C_tn pn − C_h p_o) / h,          (seed eq. 2.19)
+    s = w + (C p + C_tn pn − C_h p_o) / h,          (Baeza et al., eq. 2.19)
 
 where ``C_h`` is the influence kernel evaluated at the offsets shifted by
 ``h`` (exactly, from Love's rectangle formulae: no interpolation of the old
@@ -24,10 +24,10 @@ and ``p_o = p`` this is exactly Kalker's discretised steady rolling, so a run
 held at constant loads ends on :func:`~wheelrail.halfspace.solve_rolling`.
 
 For ``h < dx`` the slip at the element centres alone (``scheme="centre"``,
-the seed's eq. 2.10 as written) ends on a different steady problem, kernel
+Baeza et al.'s eq. 2.10 as written) ends on a different steady problem, kernel
 ``(C − C_h)/h``, which tends to the centred derivative ``−∂C/∂x`` whose
 self-coefficient vanishes: ill-conditioned and off Kalker's solution (−1.9 %
-in ξ for seed §3.1 at 30 elements). The default ``scheme="averaged"``
+in ξ for Baeza et al. §3.1 at 30 elements). The default ``scheme="averaged"``
 averages the slip relation over the points ``x_I + k h`` inside the element
 length upstream of the centre (:func:`step_weights`); the carried
 displacements then telescope, and held steady the run ends on Kalker's
@@ -37,7 +37,7 @@ Normal force varying along the travel: the normal problem is solved at every
 step on the same grid (Polonsky–Keer, warm started); elements leaving the
 contact get zero traction (bound ``μ pn = 0``), elements entering start
 without traction but with the displacement carried from the previous step,
-which keeps the tractions physical (seed Fig. 1).
+which keeps the tractions physical (Baeza et al., Fig. 1).
 
 Prescribed tangential force F1(x): the longitudinal creepage ξ is the unknown
 of each step, found by a safeguarded secant iteration on ``Fx(ξ) = F1`` (Fx
@@ -46,7 +46,7 @@ decreases monotonically with ξ).
 References
 ----------
 .. [1] L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the
-   wheel–rail contact instationary process on contact parameters (seed 001),
+   wheel–rail contact instationary process on contact parameters (Baeza et al.),
    eqs. (2.5)–(2.13), (2.19)–(2.20), §3.1.
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, §5.2 (transient discretisation, steady state as its limit).
@@ -189,7 +189,7 @@ def shifted_influence_kernel(grid, materials, shift) -> np.ndarray:
     ``K[:, :, kx, ky]`` is the displacement difference [m/Pa] at
     ``((kx − nx + 1) dx + shift, (ky − ny + 1) dy)`` from an element carrying a
     unit traction: the displacement of the previous step seen by the particle
-    now at element I (seed 001 eq. 2.10, ``u_o``).
+    now at element I (Baeza et al. eq. 2.10, ``u_o``).
     """
     pair = as_material_pair(materials)
     ox, oy = kernel_offsets(grid)
@@ -230,7 +230,7 @@ def step_kernels(grid, materials, step, scheme="averaged"):
 
         s_I = w_I + Σ_J (now(I − J) p_J − old(I − J) p_old,J) / h
 
-    ``scheme="centre"``: the seed's eq. (2.10) at the element centres,
+    ``scheme="centre"``: Baeza et al.'s eq. (2.10) at the element centres,
     ``now = C`` and ``old = C`` at offsets shifted by ``h``
     (:func:`shifted_influence_kernel`). ``scheme="averaged"``: the slip
     averaged over the points of :func:`step_weights`; every kernel is
@@ -290,7 +290,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         F1(x) [N] on the wheel (Kalker's convention: positive creepage gives a
         negative force); ξ becomes the unknown of each step.
     friction : {"exact", "regularised"}
-        ``"exact"``: Coulomb's law with the adhesion/slip split (seed eq. 2.20),
+        ``"exact"``: Coulomb's law with the adhesion/slip split (Baeza et al., eq. 2.20),
         active-set Newton; ``"regularised"``: the smooth law of eq. (2.21)
         solved by Newton–Raphson (eq. 2.22), dense over the contact elements
         (:mod:`wheelrail.transient.regularised`); its ``n_slip`` counts
@@ -316,7 +316,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         Collocation of the slip (:func:`step_kernels`): ``"averaged"``
         (default) averages the slip over the element's upstream points so that
         a run held at constant loads ends on Kalker's steady discretisation
-        for any step; ``"centre"`` is the seed's eq. (2.10) at the element
+        for any step; ``"centre"`` is Baeza et al.'s eq. (2.10) at the element
         centres (accurate only for ``step = dx``).
     penetration : float or callable, optional
         Prescribed penetration δ(x) [m] (> 0) instead of ``Fn``
@@ -329,7 +329,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         elements): each particle keeps its element, the carried displacement
         is ``C p_old`` without shift, the rigid slip is taken about the moving
         contact centre, and the normal problem is solved every step for the
-        moved gap; held steady it oscillates with period ``dx/h`` steps. ``"strips"``: Paul–Hashemi (seed Fig. 2,
+        moved gap; held steady it oscillates with period ``dx/h`` steps. ``"strips"``: Paul–Hashemi (Baeza et al., Fig. 2,
         :mod:`wheelrail.transient.strips`): ``strips`` strips along x over the
         Hertz ellipse with ``elements`` elements each, Hertz pressure, dense
         operators; constant normal force and exact friction only.
@@ -352,7 +352,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
 
     References
     ----------
-    Seed 001 eqs. (2.8)–(2.13), (2.19)–(2.20); Kalker (1990) §5.2.
+    Baeza et al. eqs. (2.8)–(2.13), (2.19)–(2.20); Kalker (1990) §5.2.
     """
     if friction == "regularized":
         friction = "regularised"

@@ -2,7 +2,7 @@
 
 :func:`run` executes the registered checks (:data:`CHECKS`) — closed forms
 (Hertz, Carter, Cattaneo–Mindlin, Boussinesq/Cerruti, cone-on-circle
-tangency), Kalker's published creep coefficients, seed-paper tables, the
+tangency), Kalker's published creep coefficients, published tables and figures, the
 published output of the CONTACT program (Manchester benchmark A-2.2, the
 FASTSIM example of its user guide) and convergence studies with fitted
 orders — and returns a frozen :class:`ValidationReport` of

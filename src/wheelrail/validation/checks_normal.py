@@ -100,7 +100,7 @@ def hertz_vs_closed_form(quick):
     return rows
 
 
-# seed 003 (Piotrowski & Chollet 2005), Table 2: theta [deg], n/m, m, r
+# Piotrowski & Chollet (2005), Table 2: theta [deg], n/m, m, r
 _TABLE2 = np.array([
     [5, 0.0212, 11.238, 0.2969], [10, 0.0470, 6.612, 0.4280], [30, 0.1806, 2.731, 0.7263],
     [60, 0.4826, 1.486, 0.9376], [90, 1.0, 1.0, 1.0], [120, 2.0720, 0.7171, 0.9376],
@@ -114,7 +114,7 @@ def hertz_vs_table2(quick):
     m, n, r = hertz_coefficients(theta)
     kw = dict(source="PiotrowskiChollet2005",
               tolerance_source="tests/reference/test_hertz.py (4-digit table: rel 1e-3)")
-    ref = "Piotrowski & Chollet (2005) Table 2 (seed 003)"
+    ref = "Piotrowski & Chollet (2005) Table 2"
     return [max_row("hertz", ref, "coefficient m, theta 5-175 deg", m, m_ref, 1e-3, **kw),
             max_row("hertz", ref, "ratio n/m, theta 5-175 deg", n / m, nm, 1e-3, **kw),
             max_row("hertz", ref, "coefficient r, theta 5-175 deg", r, r_ref, 1e-3, **kw)]
@@ -213,7 +213,7 @@ def nonhertz_vs_hertz(quick):
     rows = []
     ref = "Hertz closed form on the same quadratic gap (Johnson 1985 §4.2)"
     tol_src = ("tests/reference/test_nonhertz_hertzian_gap.py (Hertz-consistent methods, "
-               "seed 003 §3: rel 0.02)")
+               "Piotrowski & Chollet (2005) §3: rel 0.02)")
     for name, variant in (("kik-piotrowski", {}), ("stripes", {}),
                           ("multi-hertz", {"variant": "sauvage"})):
         area, pmax, carea, cp0 = [], [], [], []
@@ -244,8 +244,8 @@ def nonhertz_vs_hertz(quick):
     kw = dict(source="Linder1997,PiotrowskiChollet2005", reference_method="hertz",
               tolerance_source=("band of the delta0 = 0.55 delta methods, "
                                 "tests/reference/test_nonhertz_hertzian_gap.py::"
-                                "test_original_factor_is_biased; seed 003 §3.1"))
-    ref = "Hertz closed form; bias of the constant penetration factor 0.55 (seed 003 §3.1)"
+                                "test_original_factor_is_biased; Piotrowski & Chollet (2005) §3.1"))
+    ref = "Hertz closed form; bias of the constant penetration factor 0.55 (Piotrowski & Chollet (2005) §3.1)"
     rows += [band_row("linder", ref, f"area / Hertz area, worst of a/b in {ratios}",
                       max(ar, key=lambda v: abs(v - 1.125)), 1.1, 1.05, 1.2, **kw),
              band_row("linder", ref, f"p_max / Hertz p0, worst of a/b in {ratios}",

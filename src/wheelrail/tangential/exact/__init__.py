@@ -219,8 +219,8 @@ References
 .. [2] E.A.H. Vollebregt, A Gauss–Seidel type solver for special convex
    programs, with application to frictional contact mechanics, J. Optim.
    Theory Appl. 87 (1995) 47–67 (ConvexGS).
-.. [3] L. Baeza et al., seed paper 001, §2.2–2.4, eqs. (2.9)–(2.20).
-.. [4] Review of wheel–rail contact models, seed paper 002, §2.2 (Johnson
+.. [3] L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail contact instationary process on contact parameters, §2.2–2.4, eqs. (2.9)–(2.20).
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), §2.2 (Johnson
    process; Panagiotopoulos process for K ≠ 0).
 .. [5] J. Zhao, E.A.H. Vollebregt, C.W. Oosterlee, A fast nonlinear conjugate
    gradient based method for 3D frictional contact problems, J. Comput. Phys.

@@ -48,7 +48,7 @@ def solve_gap(grid, gap, materials, *, Fn=None, penetration=None, creepage=None,
     problem at that pressure. For quasi-identical materials (``K = 0``) the
     two problems are uncoupled and this is Johnson's process. For ``K ≠ 0`` the
     tangential tractions change the normal displacements and vice versa; the
-    problems are alternated (Panagiotopoulos' process, seed 002 §2.3: normal
+    problems are alternated (Panagiotopoulos' process, Bosso et al. (2013), ch. 2 §2.3: normal
     with the current tangential tractions, tangential with the new pressure)
     until the tractions change by less than ``outer_tol`` (relative).
 
@@ -84,7 +84,7 @@ def solve_gap(grid, gap, materials, *, Fn=None, penetration=None, creepage=None,
        unilateral contact- and friction-boundary value problem, Ing.-Arch. 44
        (1975) 421–432.
     .. [2] Kalker (1990) §5.3 (KOMBI: alternation of NORM and TANG).
-    .. [3] Seed paper 002, §2.3, steps 1–4.
+    .. [3] Bosso et al. (2013), ch. 2, §2.3, steps 1–4.
     """
     pair = as_material_pair(materials)
     h0 = grid.check_field("gap", gap)

@@ -16,7 +16,7 @@ References
 ----------
 .. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, ch. 2 and 5.
-.. [2] Seed paper 002 (review), §2.2–2.3; seed paper 001 (Baeza et al.),
+.. [2] Bosso et al. (2013), ch. 2, §2.2–2.3; Baeza et al.,
    §2.2–2.4.
 """
 

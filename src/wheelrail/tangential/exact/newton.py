@@ -196,7 +196,7 @@ def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100,
     rolling kernel ``M``; the transient stepper
     (:func:`wheelrail.transient.transient_rolling`) calls it once per time step
     with ``K = C / (V Δt)`` and the displacement carried from the previous step
-    in ``b`` (seed 001, eq. 2.19).
+    in ``b`` (Baeza et al., eq. 2.19).
 
     Parameters
     ----------
@@ -239,7 +239,7 @@ def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100,
 
     References
     ----------
-    Zhao, Vollebregt & Oosterlee (2015); seed 001 eqs. (2.19)–(2.20).
+    Zhao, Vollebregt & Oosterlee (2015); Baeza et al. eqs. (2.19)–(2.20).
     """
     if conv is None:
         conv = _BlockConvolution(kernel)
