@@ -1,7 +1,7 @@
 """Rigid wheel–rail contact search: wheelset roll and height, all contact points.
 
 Problem (Bosso et al. (2013), ch. 2, §2.1.1, eqs. 2.1–2.3)
------------------------------------------
+----------------------------------------------------------
 For a prescribed lateral shift ``y`` and yaw angle ``ψ`` of the wheelset the
 rigid contact constraint ``min d = 0`` on **both** sides fixes the roll angle
 ``θ(y, ψ)`` (eq. 2.1) and the vertical position ``z(y, ψ)`` (eq. 2.2). The
@@ -64,8 +64,7 @@ References
 ----------
 .. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1.1, eqs. (2.1)–(2.3).
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005) 455–483, fig. 1
-  .
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, fig. 1.
 .. [3] K. Wang, The track of wheel contact points and the calculation of
    wheel/rail geometric contact parameters, J. Southwest Jiaotong Univ. 1
    (1984) 89–99 (contact locus); W. Kik, J. Piotrowski, A fast approximate

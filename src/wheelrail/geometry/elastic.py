@@ -1,7 +1,7 @@
 """Elastic and quasi-elastic wheelset–track contact (load sharing between contact points).
 
 Elastic contact (Bosso et al. (2013), ch. 2, §2.1.2, eq. 2.4)
--------------------------------------------
+-------------------------------------------------------------
 The wheelset is held at lateral shift ``y`` and yaw ``ψ`` and loaded by a
 vertical force ``load`` at its centre (equal axle-box loads: no roll
 moment); its height ``z`` and roll ``θ`` are free. Wherever the undeformed
@@ -24,7 +24,7 @@ quasi-elastic variant then returns a negative (tensile) force on the other
 wheel — the bilateral-constraint defect noted in Bosso et al. (2013), ch. 2, §2.1.3.
 
 Quasi-elastic contact (Bosso et al. (2013), ch. 2, §2.1.3, eq. 2.5)
--------------------------------------------------
+-------------------------------------------------------------------
 Schupp, Weidemann and Mauer replace ``min d = 0`` by the regularised
 (soft-minimum) distance
 
