@@ -135,8 +135,7 @@ class RailSupport:
     lateral_stiffness, vertical_stiffness : (float, float)
         (k1, k2) [N/m], > 0.
     lateral_damping, vertical_damping : (float, float)
-        (c1, c2) [N s/m], ≥ 0; with c1 + c2 = 0 the intermediate point follows the
-        springs (k1 u/(k1 + k2)).
+        (c1, c2) [N s/m], ≥ 0 with c1 + c2 > 0 (the intermediate point is massless).
     mass : (float, float)
         Effective mass of the rail head moving laterally and vertically [kg], > 0
         (a massless head would make the contact force depend on its own velocity).
@@ -155,6 +154,11 @@ class RailSupport:
         for name in ("lateral_damping", "vertical_damping"):
             object.__setattr__(self, name, _pair("RailSupport", name, getattr(self, name)))
         object.__setattr__(self, "mass", _pair("RailSupport", "mass", self.mass, open_lo=True))
+        for name in ("lateral_damping", "vertical_damping"):
+            if not sum(getattr(self, name)) > 0:
+                raise InputError(f"RailSupport: {name} must have c1 + c2 > 0 (the massless "
+                                 f"support point moves through its dampers), got "
+                                 f"{getattr(self, name)!r}")
 
     def direction(self, d: int) -> tuple:
         """(k1, c1, k2, c2, m) of direction 0 (lateral) or 1 (vertical)."""
@@ -430,6 +434,43 @@ class Assembly:
         self.rails = rails
         self.relax = relax
         self.off_frame, self.off_rails, self.off_relax = off_frame, off_rails, off_relax
+
+    def quasi_static(self, spin: bool = False):
+        """The positions that settle fast (heights, rolls, pitch, rail deflections; with
+        ``spin`` the free wheelsets' Ω) and the rows of their accelerations.
+
+        Returns
+        -------
+        cols, rows : list of int
+            State indices and the indices of the equations that vanish at equilibrium.
+        steps, scales : ndarray
+            Finite-difference steps and largest Newton steps of each.
+        """
+        cols, rows, steps, scales = [], [], [], []
+
+        def add(c, r, h, s):
+            cols.append(c)
+            rows.append(r)
+            steps.append(h)
+            scales.append(s)
+
+        for i in range(self.n_ws):
+            add(9 * i + 1, 9 * i + 5, 1e-8, 1e-4)          # z
+            add(9 * i + 2, 9 * i + 6, 1e-8, 1e-4)          # roll
+            if spin and self.model.spin == "free":
+                add(9 * i + 8, 9 * i + 8, 1e-5, 0.5)       # Ω
+        if self.frame:
+            of = self.off_frame
+            for k in (1, 2, 3):                            # z, roll, pitch
+                add(of + k, of + 5 + k, 1e-8, 1e-3)
+        if self.rails:
+            for i in range(self.n_ws):
+                for side in range(2):
+                    for d in range(2):
+                        rb = self.off_rails + 12 * i + 6 * side + 3 * d
+                        add(rb, rb, 1e-8, 1e-3)            # support point: ẇ = 0
+                        add(rb + 1, rb + 2, 1e-8, 1e-3)    # head: v̇ = 0
+        return cols, rows, np.array(steps), np.array(scales)
 
     def index(self, name: str) -> int:
         """Index of a state variable by name."""

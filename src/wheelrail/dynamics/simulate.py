@@ -259,37 +259,40 @@ class System:
                 for side in range(2):
                     rb = asm.off_rails + 12 * i + 6 * side + 3
                     x[rb], x[rb + 1] = w, u
-        # height and roll of each wheelset: Newton on the vertical and roll accelerations
-        free = [(9 * i + 1, 9 * i + 5) for i in range(nw)] + [(9 * i + 2, 9 * i + 6)
-                                                              for i in range(nw)]
-        free = [(p, a) for p, a in free if p not in given]
-        if not free:
-            return x
-        cols = [p for p, _ in free]
-        rows = [a for _, a in free]
+        # heights, rolls, rail deflections (and the free wheelsets' spin): Newton on their
+        # accelerations
+        cols, rows, steps, scales = self.asm.quasi_static(spin=True)
+        keep = [k for k, c in enumerate(cols) if c not in given]
+        cols, rows = [cols[k] for k in keep], [rows[k] for k in keep]
+        steps, scales = steps[keep], scales[keep]
         for i in range(nw):            # start slightly pressed in (a Hertz approach)
             if 9 * i + 1 not in given:
-                x[9 * i + 1] = self._touch_height(x, i) - 1e-4
-        scale = np.array([1e-4 if (c % 9) == 1 else 1e-4 for c in cols])
-        for _ in range(40):
-            f = self.rhs(0.0, x)[rows]
-            if np.max(np.abs(f)) < 1e-6:
-                break
+                x[9 * i + 1] = self._touch_height(x, i) - 5e-5
+        return self.equilibrium(x, cols, rows, steps, scales)
+
+    def equilibrium(self, x, cols, rows, steps, scales, t=0.0, maxiter=60):
+        """Newton iteration on ``x[cols]`` for ``rhs(t, x)[rows] = 0`` (finite-difference
+        Jacobian with the steps ``steps``, each Newton step limited to ``scales``)."""
+        x = np.array(x, dtype=float)
+        if not cols:
+            return x
+        for _ in range(maxiter):
+            f = self.rhs(t, x)[rows]
             J = np.empty((len(rows), len(cols)))
             for k, c in enumerate(cols):
                 xp = x.copy()
-                xp[c] += 1e-7
-                J[:, k] = (self.rhs(0.0, xp)[rows] - f) / 1e-7
+                xp[c] += steps[k]
+                J[:, k] = (self.rhs(t, xp)[rows] - f) / steps[k]
             try:
                 step = np.linalg.solve(J, -f)
             except np.linalg.LinAlgError:
                 raise ConvergenceError("static equilibrium: singular Jacobian") from None
-            step = np.clip(step, -scale, scale)
+            step = np.clip(step, -scales, scales)
             x[cols] += step
-        else:
-            raise ConvergenceError(f"static equilibrium not reached (residual "
-                                   f"{np.max(np.abs(f))!r} m/s²)")
-        return x
+            if np.all(np.abs(step) < 1e-6 * scales):
+                return x
+        raise ConvergenceError(f"static equilibrium not reached (last Newton step "
+                               f"{np.max(np.abs(step / scales))!r} of its limit)")
 
     def _touch_height(self, x, i):
         """Height z of wheelset ``i`` at which its lower wheel just touches its (displaced) rail."""
