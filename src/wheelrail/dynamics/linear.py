@@ -170,10 +170,18 @@ def linearise(system, *, y=0.0, steps=None):
 
     The equilibrium on tangent track at the lateral position ``y`` (heights,
     rolls, rails and the free wheelsets' spin solved) is perturbed state by state
-    (central differences: 20 µm, 20 µrad, 1 mm/s, 1 mrad/s, 0.01 rad/s); the fast
+    (central differences: 20 µm, 20 µrad, 20 µm/s, 20 µrad/s, 2e-4 rad/s of spin); the fast
     positions are condensed statically: with the Jacobian J, slow states S and
-    fast positions F whose acceleration rows R vanish,
-    A = J_SS − J_SF J_RF⁻¹ J_RS.
+    fast positions F whose acceleration rows R vanish, F = G S with
+    G = −J_RF⁻¹ J_RS, their velocities Ḟ = G_q q̇ (G_q: the part of G on the slow
+    positions q), and
+
+        A = J_SS + J_SF G + J_SV G_q (q̇ columns)
+
+    (J_SV: the slow equations' dependence on the fast velocities; the roll rate
+    that follows the lateral motion moves the contact points laterally by r0 θ̇,
+    which with the roll-induced shift of the contact points keeps the kinematic
+    wavelength of a cone at Klingel's).
 
     Returns
     -------
@@ -194,21 +202,17 @@ def linearise(system, *, y=0.0, steps=None):
             fast_vel.add(r)
     fast_pos = list(cols)
     slow = [k for k in range(asm.n) if k not in fast_pos and k not in fast_vel]
+    # central differences with small steps: FASTSIM's partial slip makes the forces
+    # cubic in the creepages already at ~1e-4, and the contact search resolves 0.2 µm
     h = np.empty(asm.n)
     for k, name in enumerate(asm.names):
         leaf = name.rsplit(".", 1)[-1]
-        if leaf in ("y", "z", "head", "support"):
-            h[k] = 2e-5
-        elif leaf in ("roll", "yaw", "pitch"):
-            h[k] = 2e-5
-        elif leaf in ("vy", "vz", "head_velocity"):
-            h[k] = 1e-3
-        elif leaf.endswith("_rate"):
-            h[k] = 1e-3
-        elif leaf == "omega":
-            h[k] = 1e-2
+        if leaf == "omega":
+            h[k] = 2e-4
+        elif leaf.startswith("Qt_"):
+            h[k] = 1.0           # relaxed creep forces [N]
         else:
-            h[k] = 10.0          # relaxed creep forces [N]
+            h[k] = 2e-5          # m, rad, m/s, rad/s
     if steps is not None:
         h[:] = steps
     n = asm.n
@@ -219,9 +223,25 @@ def linearise(system, *, y=0.0, steps=None):
         xm[k] -= h[k]
         J[:, k] = (system.rhs(0.0, xp) - system.rhs(0.0, xm)) / (2.0 * h[k])
     R = list(rows)
-    JRF = J[np.ix_(R, fast_pos)]
-    JRS = J[np.ix_(R, slow)]
-    A = J[np.ix_(slow, slow)] - J[np.ix_(slow, fast_pos)] @ np.linalg.solve(JRF, JRS)
+    # fast positions follow the slow states quasi-statically, ΔF = G ΔS, and so do their
+    # velocities, ΔḞ = G ΔṠ = G A ΔS (the roll rate of a wheelset moves its contact
+    # points laterally: this term sets the kinematic wavelength)
+    G = -np.linalg.solve(J[np.ix_(R, fast_pos)], J[np.ix_(R, slow)])
+    A = J[np.ix_(slow, slow)] + J[np.ix_(slow, fast_pos)] @ G
+    # fast velocities: Ḟ = G_q q̇ with G_q the part of G on the slow positions q (their
+    # velocities are slow states); each fast position's acceleration row is its velocity
+    # state (a rail's support point has none)
+    vel_of = {}
+    for j, k in enumerate(slow):
+        name = asm.names[k]
+        for pos, v in ((".y", ".vy"), (".yaw", ".yaw_rate")):
+            if name.endswith(pos):
+                vel_of[j] = slow.index(asm.names.index(name[: -len(pos)] + v))
+    for k, (c, r) in enumerate(zip(cols, rows)):
+        if r == c:
+            continue
+        for jq, jv in vel_of.items():
+            A[:, jv] += J[slow, r] * G[k, jq]
     return A, [asm.names[k] for k in slow], x0
 
 

@@ -458,7 +458,7 @@ class Assembly:
             add(9 * i + 1, 9 * i + 5, 1e-8, 1e-4)          # z
             add(9 * i + 2, 9 * i + 6, 1e-8, 1e-4)          # roll
             if spin and self.model.spin == "free":
-                add(9 * i + 8, 9 * i + 8, 1e-5, 0.5)       # Ω
+                add(9 * i + 8, 9 * i + 8, 1e-5, 0.02)      # Ω
         if self.frame:
             of = self.off_frame
             for k in (1, 2, 3):                            # z, roll, pitch

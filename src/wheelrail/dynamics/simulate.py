@@ -287,8 +287,23 @@ class System:
                 step = np.linalg.solve(J, -f)
             except np.linalg.LinAlgError:
                 raise ConvergenceError("static equilibrium: singular Jacobian") from None
-            step = np.clip(step, -scales, scales)
-            x[cols] += step
+            # the step limited as a whole (its direction kept), then halved while the
+            # residual, in units of the Newton step, grows (the contact is stiff and
+            # saturates: the linear model is good over a few micrometres only)
+            big = float(np.max(np.abs(step) / scales))
+            if big > 1.0:
+                step = step / big
+            w = np.abs(np.linalg.solve(J, f)) / scales
+            merit = float(np.max(w))
+            for _ in range(8):
+                xn = x.copy()
+                xn[cols] += step
+                fn = self.rhs(t, xn)[rows]
+                wn = np.abs(np.linalg.solve(J, fn)) / scales
+                if float(np.max(wn)) <= merit or float(np.max(np.abs(step) / scales)) < 1e-6:
+                    break
+                step = 0.5 * step
+            x = xn
             if np.all(np.abs(step) < 1e-6 * scales):
                 return x
         raise ConvergenceError(f"static equilibrium not reached (last Newton step "
