@@ -61,8 +61,8 @@ from numba import njit
 
 from ..normal._kp_kernel import kp_line_regions
 from ..normal._patch_kernel import weighted_means
-from ._fastlaws import (_interp, _kalker, creepage, fastsim_ellipse, kp_strips, march_strips,
-                        table_forces)
+from ._fastlaws import (_interp, _kalker, creepage, fastsim_ellipse, kp_strips, linear_forces,
+                        march_strips, table_forces)
 
 __all__ = ["wheel_contact", "PATCH_FIELDS", "WHEEL_FIELDS", "KMAX", "MP"]
 
@@ -192,7 +192,7 @@ def _refine(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, 
 def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
                   offset, z_top, angle,
                   y, zc, roll, yaw, V, Om, vy, vz, yaw_rate, roll_rate, mu,
-                  mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23,
+                  mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, c33,
                   fs_t, fs_half, fs_peak, fs_cells, fs_factor, rs_i0, rs_i1, rs_w,
                   ax_r, ax_t, ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo, tab_ab_hi,
                   out_p, out_w):
@@ -405,7 +405,10 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
             xi, eta, phi = creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dxa,
                                     PY[q] - y, PZ[q] - zc_t, PG[q])
             done = False
-            if tangential == 1:
+            if tangential == 2:
+                Fx, Fs, Mz = linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33)
+                done = True
+            elif tangential == 1:
                 done, Fx, Fs, Mz = table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, kx, c11,
                                                 c22, c23, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
                                                 tab_phi_max, tab_ab_lo, tab_ab_hi)
@@ -443,7 +446,7 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
                                      sg, pg, p1g, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
                                      offset, z_top, angle, y, zc_t, roll, yaw, st, ct, sp, cp, R,
                                      ph0, V, Om, vy, vz, yaw_rate, roll_rate, mu, mp, hz_lam,
-                                     hz_la, hz_lb, hz_ld, kx, c11, c22, c23, rs_i0, rs_i1, rs_w, ax_r,
+                                     hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, ax_r,
                                      ax_t, ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo,
                                      tab_ab_hi, P)
     # ------------------------------------------------ forces on the wheelset
@@ -498,7 +501,7 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
 def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, PU, dz, dmin, sg, pg, p1g,
                 wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, offset, z_top, angle, y, zc_t, roll,
                 yaw, st, ct, sp, cp, R, ph0, V, Om, vy, vz, yaw_rate, roll_rate, mu, mp,
-                hz_lam, hz_la, hz_lb, hz_ld, kx, c11, c22, c23, rs_i0, rs_i1, rs_w, ax_r, ax_t,
+                hz_lam, hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, ax_r, ax_t,
                 ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo, tab_ab_hi, P):
     """Kik–Piotrowski patches of one wheel and their creep forces (rows of ``P``)."""
     E_star = mp[2]
@@ -636,7 +639,10 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             xi, eta_cr, phi = creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dxa,
                                        Yp - y, z_p - zc_t, ang_m)
             done = False
-            if tangential == 1:
+            if tangential == 2:
+                Fx, Fs, Mz = linear_forces(a, b, G, xi, eta_cr, phi, kx, c11, c22, c23, c33)
+                done = True
+            elif tangential == 1:
                 done, Fx, Fs, Mz = table_forces(a, b, N, xi, eta_cr, phi, mu, G, nu, K, kx, c11,
                                                 c22, c23, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
                                                 tab_phi_max, tab_ab_lo, tab_ab_hi)

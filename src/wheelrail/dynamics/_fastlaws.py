@@ -26,7 +26,8 @@ from numba import njit
 
 from ..tangential._fastsim_kernel import fastsim_hertz_batch
 
-__all__ = ["creepage", "table_forces", "fastsim_ellipse", "kp_strips", "march_strips"]
+__all__ = ["creepage", "table_forces", "fastsim_ellipse", "kp_strips", "march_strips",
+           "linear_forces"]
 
 
 @njit(cache=True)
@@ -322,3 +323,18 @@ def march_strips(y, dy, xl, p, mu, L, xi, eta, phi, first_order):
         Fy += spy * area
         Mz += (sxpy - yk * spx) * area
     return Fx, Fy, Mz
+
+
+@njit(cache=True)
+def linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33):
+    """Kalker's linear theory on an ellipse (``wheelrail.tangential.linear.linear_forces``):
+    Fx = −G c² C11 ξ, Fy = −G c² (C22 η + c C23 φ), Mz = G c³ (C23 η − c C33 φ)."""
+    v = math.log(a / b)
+    C11 = _interp(v, kx, c11)
+    C22 = _interp(v, kx, c22)
+    C23 = _interp(v, kx, c23)
+    C33 = _interp(v, kx, c33)
+    c2 = a * b
+    c = math.sqrt(c2)
+    return (-G * c2 * C11 * xi, -G * c2 * (C22 * eta + c * C23 * phi),
+            G * c2 * c * (C23 * eta - c * C33 * phi))

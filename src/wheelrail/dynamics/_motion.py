@@ -349,13 +349,13 @@ def rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
             w = W[i, side]
             geo = geo_l if side == 0 else geo_r
             sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, off, zt, ang = geo
-            (mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, fs_t, fs_half, fs_peak,
+            (mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, c33, fs_t, fs_half, fs_peak,
              fs_cells, fs_factor, rs_i0, rs_i1, rs_w, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
              tab_phi_max, tab_ab_lo, tab_ab_hi) = meth
             total += wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape,
                                    sig, off, zt, ang, w[0], w[1], w[2], w[3], w[4], w[5], w[6],
                                    w[7], w[8], w[9], mu, mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld,
-                                   kx, c11, c22, c23, fs_t, fs_half, fs_peak, fs_cells,
+                                   kx, c11, c22, c23, c33, fs_t, fs_half, fs_peak, fs_cells,
                                    fs_factor, rs_i0, rs_i1, rs_w, ax_r, ax_t, ax_s, ax_l, ax_n,
                                    tab, tab_phi_max, tab_ab_lo, tab_ab_hi, OP[i, side],
                                    OW[i, side])

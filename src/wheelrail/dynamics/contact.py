@@ -46,6 +46,7 @@ from ..normal.hertz import Hertz
 from ..normal.kik_piotrowski import KikPiotrowski
 from ..plausibility import disabled
 from ..tangential.fastsim import Fastsim, _kalker_table, _profile, _resample_weights, _strip_t
+from ..tangential.linear import Linear, kalker_coefficients
 from ..tangential.table import Table, load_table
 from ._fastcontact import KMAX, MP, PATCH_FIELDS, WHEEL_FIELDS, wheel_contact
 
@@ -78,8 +79,8 @@ def _fast_support(nimpl, timpl) -> str:
     """Empty if the compiled path supports the configured methods, else the reason."""
     if type(nimpl) not in (Hertz, KikPiotrowski):
         return f"normal method {nimpl.name!r} (compiled: 'hertz', 'kik-piotrowski')"
-    if type(timpl) not in (Fastsim, Table):
-        return f"tangential method {timpl.name!r} (compiled: 'fastsim', 'table')"
+    if type(timpl) not in (Fastsim, Table, Linear):
+        return f"tangential method {timpl.name!r} (compiled: 'fastsim', 'table', 'linear')"
     if isinstance(timpl, Table) and timpl.outside == "exact":
         return "the table law with outside='exact' (the exact solver is not compiled)"
     return ""
@@ -95,7 +96,7 @@ class FastContact:
     normal : Hertz or KikPiotrowski
         Configured normal method. Kik–Piotrowski's options ``penetration_factor``,
         ``shape_correction``, ``strips`` and ``cells`` are honoured.
-    tangential : Fastsim or Table
+    tangential : Fastsim, Table or Linear
         Configured law. FASTSIM's ``nx``, ``ny``, ``bound``, ``flexibility`` and
         ``scheme`` are honoured (Kik–Piotrowski patches use one weighted flexibility
         per patch, as in the library). The table law's points outside its domain are
@@ -139,7 +140,8 @@ class FastContact:
                                    float(pl.offset), float(pl.z_top), float(pl.angle))
         mp = np.zeros(len(MP))
         mp[MP["normal"]] = 0 if isinstance(normal, Hertz) else 1
-        mp[MP["tangential"]] = 1 if isinstance(tangential, Table) else 0
+        mp[MP["tangential"]] = (1 if isinstance(tangential, Table) else
+                                2 if isinstance(tangential, Linear) else 0)
         mp[MP["E_star"]] = pair.E_star
         mp[MP["G"]] = pair.G
         mp[MP["nu"]] = pair.nu
@@ -166,6 +168,7 @@ class FastContact:
         self.table_raise = isinstance(tangential, Table) and tangential.outside == "raise"
         lam, la, lb, lp, ld = _hertz_table()
         kx, c11, c22, c23 = _kalker_table(float(pair.nu))
+        c33 = np.asarray(kalker_coefficients(np.exp(kx), float(pair.nu))[3], dtype=float)
         t = _strip_t(fs.ny)
         half = np.sqrt(1.0 - t * t)
         strip_peak = _profile(fs.bound, t)
@@ -186,7 +189,7 @@ class FastContact:
             tdom = (0.0, 1.0, 1.0)
         c_ = np.ascontiguousarray
         self.method = (mp, c_(lam), c_(la), c_(lb), c_(lp), c_(ld), c_(kx), c_(c11), c_(c22),
-                       c_(c23), c_(t), c_(half), c_(strip_peak), c_(s_cells),
+                       c_(c23), c_(c33), c_(t), c_(half), c_(strip_peak), c_(s_cells),
                        float(continuous / discrete), c_(i0), c_(i1), c_(w), *axes, tab, *tdom)
         self.ln_max = _LN_MAX
 

@@ -291,3 +291,81 @@ def linear_critical_speed(make_system, bracket=(5.0, 200.0), n=16, xtol=0.01) ->
                     "scan": (grid[:len(vals)], np.array(vals))}
         prev = a
     raise ConvergenceError(f"the linearised model is stable up to {bracket[1]!r} m/s")
+
+
+@dataclass(frozen=True)
+class LinearBogie:
+    """Boocock's linear theory of steady curving for a two-axle bogie (frozen, SI).
+
+    Two wheelsets at x = ±a (a = ``semi_wheelbase``, leading first) with conicity λ,
+    linear creep coefficients f11, f22 per wheel (no spin creep, no gravitational
+    stiffness), each joined to the frame by primary springs kx (longitudinal, at ±b)
+    and ky (lateral) per side; the frame joined to the car body, which follows the
+    track, by secondary springs (lateral ``ky2`` per side, yaw stiffness ``k_yaw2``).
+    In a curve of radius R (to the right; no cant deficiency, quasi-static), with y
+    and ψ of each body relative to its local track tangent::
+
+        lateral creep on wheelset i:  F_y = 2 f22 ψ_i
+        creep yaw moment:             M_i = −2 f11 l0 (λ y_i / r0 + l0 / R)
+        primary lateral:   −2 ky (y_i + a_i²/(2R) − y_f − a_i ψ_f)
+        primary yaw:       −2 kx b² (ψ_i + a_i/R − ψ_f)
+
+    and the frame's equilibrium with the reactions and its secondary suspension.
+
+    References
+    ----------
+    .. [1] D. Boocock, Steady-state motion of railway vehicles on curved track,
+       J. Mech. Eng. Sci. 11 (1969) 556–566.
+    .. [2] A.H. Wickens, *Fundamentals of rail vehicle dynamics*, 2003, ch. 9.
+    """
+
+    semi_wheelbase: float
+    nominal_radius: float
+    half_distance: float
+    conicity: float
+    f11: float
+    f22: float
+    kx: float
+    ky: float
+    b: float
+    ky2: float = 0.0
+    k_yaw2: float = 0.0
+
+    def curving(self, radius: float, direction: str = "right") -> dict:
+        """Steady curving: y [m] and yaw ψ [rad] of both wheelsets and the frame."""
+        a, r0, l0, lam = self.semi_wheelbase, self.nominal_radius, self.half_distance, self.conicity
+        f11, f22, kx, ky, b = self.f11, self.f22, self.kx, self.ky, self.b
+        k = (1.0 if direction == "right" else -1.0) / float(radius)
+        # unknowns u = (y1, ψ1, y2, ψ2, yf, ψf); rows: forces and moments = 0
+        A = np.zeros((6, 6))
+        rhs = np.zeros(6)
+        for i, xi in enumerate((a, -a)):
+            jy, jp = 2 * i, 2 * i + 1
+            # wheelset lateral: 2 f22 ψ − 2 ky (y + κ x²/2 − yf − x ψf) = 0
+            A[jy, jp] += 2 * f22
+            A[jy, jy] += -2 * ky
+            A[jy, 4] += 2 * ky
+            A[jy, 5] += 2 * ky * xi
+            rhs[jy] += 2 * ky * k * xi * xi / 2
+            # wheelset yaw: −2 f11 l0 (λ y / r0 + l0 κ) − 2 kx b² (ψ + κ x − ψf) = 0
+            A[jp, jy] += -2 * f11 * l0 * lam / r0
+            A[jp, jp] += -2 * kx * b * b
+            A[jp, 5] += 2 * kx * b * b
+            rhs[jp] += 2 * f11 * l0 * l0 * k + 2 * kx * b * b * k * xi
+            # frame lateral and yaw: the reactions
+            A[4, jy] += 2 * ky
+            A[4, 4] += -2 * ky
+            A[4, 5] += -2 * ky * xi
+            rhs[4] += -2 * ky * k * xi * xi / 2
+            A[5, jy] += 2 * ky * xi
+            A[5, 4] += -2 * ky * xi
+            A[5, 5] += -2 * ky * xi * xi
+            rhs[5] += -2 * ky * xi * k * xi * xi / 2
+            A[5, jp] += 2 * kx * b * b
+            A[5, 5] += -2 * kx * b * b
+            rhs[5] += -2 * kx * b * b * k * xi
+        A[4, 4] += -2 * self.ky2
+        A[5, 5] += -self.k_yaw2
+        u = np.linalg.solve(A, rhs)
+        return {"y": u[[0, 2]], "yaw": u[[1, 3]], "frame_y": float(u[4]),
+                "frame_yaw": float(u[5])}

@@ -38,11 +38,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..errors import ConvergenceError, InputError
+from ..errors import ConvergenceError, InputError, WheelrailError
 from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
 from ._motion import N_IN, derivative, rhs_fast, run_fixed, wheel_inputs
 from .contact import FastContact, contact_model
 from .layout import as_layout
+from ..geometry.contact_search import solve_rigid
 from ..geometry.touching import touching_heights
 from .model import GP, Assembly, BogieModel, WheelsetModel
 from .results import to_dataset
@@ -265,7 +266,18 @@ class System:
         keep = [k for k, c in enumerate(cols) if c not in given]
         cols, rows = [cols[k] for k in keep], [rows[k] for k in keep]
         steps, scales = steps[keep], scales[keep]
-        for i in range(nw):            # start slightly pressed in (a Hertz approach)
+        for i in range(nw):
+            # start from the rigid contact (roll of both wheels touching), pressed in slightly
+            if 9 * i + 2 not in given:
+                W = np.empty((nw, 2, N_IN))
+                wheel_inputs(0.0, x, asm.P, self.layout.arrays, self.V(0.0), self.s_ref(0.0),
+                             W)
+                try:
+                    _, th, _ = solve_rigid(self.model.wheelset, self.layout.track,
+                                           np.array([W[i, 0, 0]]), np.array([x[9 * i + 3]]))
+                    x[9 * i + 2] = float(th[0])
+                except WheelrailError:
+                    pass
             if 9 * i + 1 not in given:
                 x[9 * i + 1] = self._touch_height(x, i) - 5e-5
         return self.equilibrium(x, cols, rows, steps, scales)
@@ -306,6 +318,8 @@ class System:
             x = xn
             if np.all(np.abs(step) < 1e-6 * scales):
                 return x
+        if np.all(np.abs(step) < 1e-4 * scales):
+            return x              # stalled on the contact's resolution (0.2 µm), close enough
         raise ConvergenceError(f"static equilibrium not reached (last Newton step "
                                f"{np.max(np.abs(step / scales))!r} of its limit)")
 
