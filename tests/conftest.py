@@ -5,8 +5,9 @@ Hypothesis profiles
 ``ci``
     Derandomised (the examples of a test are a function of the test alone), no example
     database (a failure found once on some machine is never replayed from a local file),
-    no deadline and no ``too_slow`` health check (the CI machine is shared). Loaded when the ``CI`` environment variable is
-    set (``.ci/run`` sets ``CI=1``) or ``HYPOTHESIS_PROFILE=ci``.
+    no deadline and no ``too_slow`` health check (the CI machine is shared). Loaded when
+    the ``CI`` environment variable is set (``.ci/run`` sets ``CI=1``) or
+    ``HYPOTHESIS_PROFILE=ci``.
 ``dev``
     Random examples and the local example database (a failure found is replayed until it
     is fixed), no deadline and no ``too_slow`` health check. Loaded otherwise.
