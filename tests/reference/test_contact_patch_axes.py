@@ -57,7 +57,7 @@ def test_boundary_element_patch_equivalent_ellipse(ref):
     """The BEM patch of the same contact: its equivalent ellipse (the patch's area and its
     length/width ratio) and its extent are Hertz's to the grid's resolution (30 elements,
     measured 1 % and 3.3 %)."""
-    p = _patch("bem", elements=30)
+    p = _patch("bem", grid_elements=30)
     assert p.a == pytest.approx(ref["a"], rel=0.03)
     assert p.b == pytest.approx(ref["b"], rel=0.03)
     length, width = _extent(p)

@@ -27,7 +27,7 @@ class _Interrupted(Exception):
 def test_interrupted_chunk_write_is_not_marked_done_and_resume_computes_it(tmp_path,
                                                                           monkeypatch):
     loads, Bs = [1e4, 2e4, 3e4], [1.5, 4.0]
-    spec = SweepSpec.grid(method="linear", mu=0.3, load=loads, A=1.0, B=Bs, xi=[0.0], chunk=2)
+    spec = SweepSpec.grid(method="linear", mu=0.3, Fn=loads, A=1.0, B=Bs, xi=[0.0], chunk=2)
     blocks = spec.chunks()                       # 3 chunks of 2 points (one load each)
     assert len(blocks) == 3
     target = blocks[1]
