@@ -38,7 +38,7 @@ import numpy as np
 
 from .errors import InputError, OptionError
 
-__all__ = ["Option", "option", "Method", "configured", "resolve", "method_class",
+__all__ = ["Option", "option", "Method", "Registry", "configured", "resolve", "method_class",
            "split_options", "describe"]
 
 _KINDS = ("int", "float", "bool", "choice", "any")
@@ -252,6 +252,14 @@ class Method:
     aliases: ClassVar[tuple] = ()
     references: ClassVar[tuple] = ()
     family: ClassVar[str] = ""
+    #: the family's :class:`Registry` (set on the family base class); a subclass that
+    #: defines ``name`` is registered in it when it is defined
+    _registry: ClassVar["Registry | None"] = None
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "name" in cls.__dict__ and cls._registry is not None:
+            cls._registry.add(cls)
 
     def __post_init__(self):
         decls = self.option_declarations()
@@ -345,6 +353,38 @@ def _check_known(cls, options: Mapping) -> None:
         raise OptionError(f"{family}method {cls.name!r} does not accept option(s) "
                           f"{', '.join(unknown)}; its options: {', '.join(allowed) or 'none'}",
                           method=cls.name, option=unknown[0], reason=reason)
+
+
+class Registry:
+    """Name (and alias, lower case) -> class of one method family.
+
+    The family base class holds one (``_registry``); every subclass that
+    defines ``name`` is added when it is defined (:meth:`Method.__init_subclass__`).
+    """
+
+    def __init__(self, family: str):
+        self.family = family
+        self._by_key: dict[str, type] = {}
+
+    def add(self, cls) -> None:
+        for key in (cls.name, *cls.aliases):
+            taken = self._by_key.get(key.lower(), cls)
+            if taken is not cls:
+                raise TypeError(f"{self.family} method name {key!r} is taken by "
+                                f"{taken.__name__}")
+            self._by_key[key.lower()] = cls
+
+    def classes(self) -> dict[str, type]:
+        """Registry name -> class, sorted by name (no aliases)."""
+        return {c.name: c for c in sorted(set(self._by_key.values()), key=lambda c: c.name)}
+
+    def get(self, spec, base: type, options=None, *, argname: str = "method"):
+        """A configured instance from a name, class or instance (:func:`resolve`)."""
+        return resolve(spec, base, self._by_key, options, argname=argname)
+
+    def get_class(self, spec, base: type, *, argname: str = "method") -> type:
+        """The class of a method given by name, class or instance (:func:`method_class`)."""
+        return method_class(spec, base, self._by_key, argname=argname)
 
 
 def method_class(spec, base: type, registry: Mapping[str, type], *, argname: str = "method"):

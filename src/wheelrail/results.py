@@ -440,6 +440,16 @@ class TangentialResult:
                 "sy": np.asarray(self.sy)}
 
 
+def _tangential_field(name, doc):
+    """A field of the tangential solution of a :class:`GapResult` (zeros without one)."""
+    return property(lambda self: self._t(name, np.zeros(self.grid.shape)), doc=doc)
+
+
+def _tangential_force(name, doc):
+    """A force of the tangential solution of a :class:`GapResult` (0 without one)."""
+    return property(lambda self: float(self._t(name)), doc=doc)
+
+
 @dataclass(frozen=True)
 class GapResult:
     """Normal and tangential solution of one contact on a grid (frozen).
@@ -483,52 +493,25 @@ class GapResult:
     def _t(self, name, default=0.0):
         return default if self.tangential is None else getattr(self.tangential, name)
 
-    @property
-    def px(self):
-        return self._t("px", np.zeros(self.grid.shape))
-
-    @property
-    def py(self):
-        return self._t("py", np.zeros(self.grid.shape))
-
-    @property
-    def sx(self):
-        return self._t("sx", np.zeros(self.grid.shape))
-
-    @property
-    def sy(self):
-        return self._t("sy", np.zeros(self.grid.shape))
+    px = _tangential_field("px", "Tangential traction on the wheel along x [Pa].")
+    py = _tangential_field("py", "Tangential traction on the wheel along y [Pa].")
+    sx = _tangential_field("sx", "Slip along x (zero in adhesion) [-] or [m].")
+    sy = _tangential_field("sy", "Slip along y (zero in adhesion) [-] or [m].")
+    ux = _tangential_field("ux", "Tangential displacement difference along x [m].")
+    uy = _tangential_field("uy", "Tangential displacement difference along y [m].")
+    Fx = _tangential_force("Fx", "Tangential force on the wheel along x [N].")
+    Fy = _tangential_force("Fy", "Tangential force on the wheel along y [N].")
+    Mz = _tangential_force("Mz", "Moment of the tangential tractions about the grid origin [N·m].")
 
     @property
     def adhesion(self):
+        """Elements that stick (all contact elements without a tangential problem)."""
         return self._t("adhesion", self.contact.copy())
-
-    @property
-    def ux(self):
-        """Tangential displacement difference along x [m]."""
-        return self._t("ux", np.zeros(self.grid.shape))
-
-    @property
-    def uy(self):
-        """Tangential displacement difference along y [m]."""
-        return self._t("uy", np.zeros(self.grid.shape))
 
     @property
     def un(self):
         """Gap-opening normal displacement difference [m] (of the last normal solve)."""
         return self.normal.displacement
-
-    @property
-    def Fx(self) -> float:
-        return float(self._t("Fx"))
-
-    @property
-    def Fy(self) -> float:
-        return float(self._t("Fy"))
-
-    @property
-    def Mz(self) -> float:
-        return float(self._t("Mz"))
 
     def as_arrays(self) -> dict:
         """Plain arrays on the grid, indexed ``[i_x, i_y]``, for plotting and export.

@@ -18,7 +18,7 @@ coarse 10-element grid (the invariants hold on any grid, to the solver tolerance
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
@@ -105,6 +105,14 @@ def test_odd_symmetry(name, i, xi, eta, phi, mu):
 @PROP
 @given(i=contact_index, xi=creep, eta=creep, phi=spin, mu=frict,
        dxi=st.floats(-1e-6, 1e-6), deta=st.floats(-1e-6, 1e-6), dphi=st.floats(-1e-4, 1e-4))
+# regressions (issue 18): a symmetry plane against a subnormal neighbour. Fx is odd in ξ, so
+# Fx(0, η, φ) = 0 and Fx(5e-324, η, φ) must be as small; (Fy, Mz) are odd in (η, φ), so
+# Fy(ξ, 0, 0) = 0 and Fy(ξ, 5e-324, 0) likewise (Kalker 1990, ch. 1-2). The table law once
+# zeroed the exact symmetry point only: a jump of ~1e-7 μFn to its neighbours.
+@example(i=0, xi=0.0, eta=1e-3, phi=1.0, mu=0.3, dxi=5e-324, deta=0.0, dphi=0.0)
+@example(i=0, xi=0.0, eta=1e-3, phi=1.0, mu=0.3, dxi=-5e-324, deta=0.0, dphi=0.0)
+@example(i=0, xi=1e-3, eta=0.0, phi=0.0, mu=0.3, dxi=0.0, deta=5e-324, dphi=0.0)
+@example(i=0, xi=0.0, eta=0.0, phi=0.5, mu=0.3, dxi=5e-324, deta=0.0, dphi=0.0)
 def test_continuity(name, i, xi, eta, phi, mu, dxi, deta, dphi):
     impl, opts = law(name)
     contact = CONTACTS[i]

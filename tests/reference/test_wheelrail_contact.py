@@ -23,7 +23,6 @@ from wheelrail.errors import InputError, NoContactError, WheelrailError
 from wheelrail.profiles import Profile
 
 DATA = Path(__file__).parent / "data" / "contact_mbench_a22.csv"
-SHARED = Path(__file__).resolve().parents[2].parent / "shared" / "data"
 
 
 @pytest.fixture(scope="module")
@@ -196,16 +195,15 @@ def _contact_reference():
     return out
 
 
-@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/data is not present")
 @pytest.mark.parametrize("case", [1, 2, 14, 21])
-def test_manchester_a22_against_contact(case):
+def test_manchester_a22_against_contact(case, shared_data):
     """Exact theory on the same 0.2 mm grid as CONTACT's published run (forces converted to
     Kalker's convention: on the wheel, creepage of the wheel relative to the rail)."""
     from wheelrail.contact.manchester import manchester_a22
 
-    cases = manchester_a22(SHARED / "benchmarks" / "manchester_a22_inputs.csv",
-                           SHARED / "profiles" / "MBench_S1002_v3.prw",
-                           SHARED / "profiles" / "MBench_UIC60_v3.prr")
+    cases = manchester_a22(shared_data / "benchmarks" / "manchester_a22_inputs.csv",
+                           shared_data / "profiles" / "MBench_S1002_v3.prw",
+                           shared_data / "profiles" / "MBench_UIC60_v3.prr")
     c = cases[case - 1]
     res = wr.solve(c.position, motion=c.motion, mu=c.mu, normal="bem", tangential="exact",
                    element_size=2e-4)

@@ -12,7 +12,7 @@ from ..hertzian import RADII_KEYS
 from ..materials import STEEL, Material, MaterialPair
 
 __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_methods",
-           "read_forces", "configure", "check_plausible", "tomllib"]
+           "read_forces", "read_friction", "configure", "check_plausible", "tomllib"]
 
 from .. import normal as normal_family
 from .. import tangential as tangential_family
@@ -82,6 +82,15 @@ def read_contact(r: Reader, tbl: Mapping) -> ContactSpec:
                 r.fail("contact", k, f"must be non-zero (omit it for a flat surface), got {v!r}")
             radii[k] = v
     return ContactSpec(Fn, kind, radii=MappingProxyType(radii))
+
+
+def read_friction(r: Reader, data: Mapping) -> float:
+    """``[friction] mu`` (required, > 0, plausible: a percentage or a typo is refused)."""
+    fr = r.required_table(data, "friction")
+    r.unknown("friction", fr, ("mu",))
+    mu = r.number("friction", fr, "mu", positive=True)
+    check_plausible(r, "friction", "mu", mu)
+    return mu
 
 
 def read_methods(r: Reader, tbl: Mapping):

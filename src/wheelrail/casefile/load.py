@@ -10,9 +10,9 @@ from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError
 from ._reader import (
     Reader,
-    check_plausible,
     read_contact,
     read_forces,
+    read_friction,
     read_materials,
     read_methods,
     read_toml,
@@ -86,10 +86,7 @@ def case_from_dict(data: Mapping, source: str = "<dict>"):
     cr = data.get("creepage", {})
     r.unknown("creepage", cr, ("xi", "eta", "phi"))
     creepage = tuple(r.number("creepage", cr, k, default=0.0) for k in ("xi", "eta", "phi"))
-    fr = r.required_table(data, "friction")
-    r.unknown("friction", fr, ("mu",))
-    mu = r.number("friction", fr, "mu", positive=True)
-    check_plausible(r, "friction", "mu", mu)
+    mu = read_friction(r, data)
     normal, tangential, methods = read_methods(r, data.get("method", {}))
     forces = read_forces(r, data.get("force", {}), contact.Fn, mu)
     case = Case(materials=materials, contact=contact, creepage=creepage, mu=mu, normal=normal,

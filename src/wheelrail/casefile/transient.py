@@ -8,7 +8,7 @@ from typing import Mapping
 from ..cases.transient import TransientCase
 from ..errors import CaseFileError, InputError
 from ..transient.loads import KINDS, TravelFunction
-from ._reader import Reader, check_plausible, read_contact, read_materials, read_toml
+from ._reader import Reader, read_contact, read_friction, read_materials, read_toml
 
 __all__ = ["load_transient_case"]
 
@@ -71,10 +71,7 @@ def load_transient_case(path_or_str) -> TransientCase:
             raise CaseFileError(f"{source}: '{name}' must be a table [{name}], got {data[name]!r}")
     materials = read_materials(r, data.get("material", {}))
     contact = read_contact(r, r.required_table(data, "contact"))
-    fr = r.required_table(data, "friction")
-    r.unknown("friction", fr, ("mu",))
-    mu = r.number("friction", fr, "mu", positive=True)
-    check_plausible(r, "friction", "mu", mu)
+    mu = read_friction(r, data)
     t = r.required_table(data, "transient")
     r.unknown("transient", t, _TRANSIENT_KEYS)
     s: dict = {"travel": r.number("transient", t, "travel", positive=True),

@@ -14,7 +14,7 @@ from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError, ProfileError
 from ..geometry import Track, Wheelset
 from ..geometry.kinematics import Motion
-from ._reader import Reader, read_materials, read_methods
+from ._reader import Reader, read_friction, read_materials, read_methods
 
 __all__ = ["wheelset_case_from_dict", "is_wheelset_case", "MAX_POSITIONS"]
 
@@ -206,9 +206,7 @@ def wheelset_case_from_dict(r: Reader, data: Mapping) -> WheelsetCase:
     motion = _construct(r, "motion", lambda: Motion(**mkw))
 
     y, sweep, yaw, roll, load, z, tol = _read_position(r, r.required_table(data, "position"))
-    fr = r.required_table(data, "friction")
-    r.unknown("friction", fr, ("mu",))
-    mu = r.number("friction", fr, "mu", positive=True)
+    mu = read_friction(r, data)
     normal, tangential, methods = read_methods(r, data.get("method", {}))
     tables = {"wheelset": {"profile": wheel_src, "profile_right": wheel_r_src,
                            "nominal_radius": ws.nominal_radius, "flange_back": ws.flange_back,

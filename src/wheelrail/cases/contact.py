@@ -17,7 +17,6 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .. import normal as normal_family
 from .. import tangential as tangential_family
 from ..api import solve
 from ..conventions import CREEPAGE_UNITS, FORCE_UNITS
@@ -28,6 +27,7 @@ from ..normal import NormalMethod
 from ..prescribed import solve_creepages
 from ..results import to_jsonable
 from ..tangential import TangentialMethod
+from ._methods import configured_methods
 from .wheelset import WheelsetCase, solve_wheelset_case
 
 __all__ = ["Case", "ContactSpec", "CaseResult", "run_case", "solve_case", "DEFAULT_CASE", "UNITS",
@@ -133,19 +133,14 @@ class Case:
     source: str = "<case>"
 
     def __post_init__(self):
-        n = normal_family.get("hertz" if self.normal is None else self.normal)
-        t = tangential_family.get("fastsim" if self.tangential is None else self.tangential)
+        n, t, methods = configured_methods(self.normal, self.tangential, self.methods)
         object.__setattr__(self, "normal", n)
         object.__setattr__(self, "tangential", t)
-        methods = dict(self.methods)
-        methods.setdefault(n.name, n)
-        methods.setdefault(t.name, t)
-        object.__setattr__(self, "methods", MappingProxyType(methods))
+        object.__setattr__(self, "methods", methods)
 
     def with_tangential(self, name) -> "Case":
         """The case with another creep-force law: its configured object from
         :attr:`methods` (the case file's ``[method.<name>]``), else its defaults."""
-
         cls = tangential_family.get_class(name)
         return self.replace(tangential=self.methods.get(cls.name, cls()))
 

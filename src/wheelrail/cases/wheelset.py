@@ -10,8 +10,6 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .. import normal as normal_family
-from .. import tangential as tangential_family
 from ..api import solve
 from ..contact.sweep import wheelset_sweep
 from ..contact.wheelrail import WheelRailPosition
@@ -20,6 +18,7 @@ from ..materials import MaterialPair
 from ..normal import NormalMethod
 from ..results import to_jsonable
 from ..tangential import TangentialMethod
+from ._methods import configured_methods
 
 __all__ = ["WheelsetCase", "solve_wheelset_case"]
 
@@ -78,10 +77,10 @@ class WheelsetCase:
     tables: Mapping[str, Any] = field(default_factory=lambda: MappingProxyType({}))
 
     def __post_init__(self):
-        object.__setattr__(self, "normal",
-                           normal_family.get("hertz" if self.normal is None else self.normal))
-        object.__setattr__(self, "tangential", tangential_family.get(
-            "fastsim" if self.tangential is None else self.tangential))
+        n, t, methods = configured_methods(self.normal, self.tangential, self.methods)
+        object.__setattr__(self, "normal", n)
+        object.__setattr__(self, "tangential", t)
+        object.__setattr__(self, "methods", methods)
 
     def position(self, i: int = 0):
         """The :class:`wheelrail.WheelRailPosition` of shift number ``i``."""

@@ -80,7 +80,8 @@ def plot_profiles_in_contact(ws, tr, ys, path, side="right"):
     """Wheel and rail cross-sections of ``side`` with the contact points, one panel per y."""
     import numpy as np
 
-    from ..geometry.contact_search import _SIGMA, contact_points, silhouette
+    from ..geometry.contact_search import _SIGMA, silhouette
+    from ..geometry.points import contact_points
     from ..plotting._common import finish, new_figure
 
     n = len(ys)

@@ -30,7 +30,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError, WheelrailError
-from ..geometry.contact_search import _Pose, _side_from_row, find_points, solve_rigid
+from ..geometry.contact_search import _Pose, find_points, solve_rigid
+from ..geometry.points import _side_from_row
 from ..geometry.elastic import regularised_B_rows
 from ..geometry.touching import touching_heights
 from ..patch import ContactFrame

@@ -53,7 +53,8 @@ from .. import tangential as tangential_family
 from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
 from ..geometry import Track, Wheelset
-from ..geometry.contact_search import _Pose, _side_from_row, find_points, solve_rigid
+from ..geometry.contact_search import _Pose, find_points, solve_rigid
+from ..geometry.points import _side_from_row
 from ..geometry.elastic import _regularised_B
 from ..geometry.kinematics import Motion, creepage_kernel
 from ..geometry.separation import separation_at

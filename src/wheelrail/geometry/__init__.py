@@ -7,9 +7,10 @@ derailed wheel) and :data:`STATUS` (row status codes of contact tables).
 """
 
 from .conicity import equivalent_conicity
-from .contact_search import STATUS, ContactPointsResult, ContactWarning, SideContacts, contact_points
+from .contact_search import STATUS, ContactWarning
 from .contact_table import contact_table
 from .elastic import ElasticContactResult, elastic_contact
+from .points import ContactPointsResult, SideContacts, contact_points
 from .separation import Separation, separation, undeformed_distance
 from .track import Track
 from .wheelset import Wheelset

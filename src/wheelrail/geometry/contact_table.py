@@ -19,7 +19,8 @@ import numpy as np
 from .._atomic import atomic_open, atomic_path
 from .._validation import as_float_array, positive
 from ..errors import InputError
-from .contact_search import POINT_FIELDS, SIDES, STATUS, check_inputs, solve_rigid_rows, solve_rows
+from .contact_search import POINT_FIELDS, SIDES, STATUS, solve_rigid_rows
+from .points import check_inputs, solve_rows
 
 __all__ = ["contact_table", "locate_jumps", "write_csv", "write_netcdf"]
 

@@ -61,16 +61,14 @@ from ._checks import check_side
 from .contact_search import (
     _SIGMA,
     SIDES,
-    SideContacts,
     _gapfun,
     _grid_gap,
     _Pose,
-    _side_from_row,
-    check_inputs,
     find_points,
     point_data,
     solve_rigid,
 )
+from .points import SideContacts, _side_from_row, check_inputs
 
 __all__ = ["ElasticContactResult", "elastic_contact", "METHODS"]
 

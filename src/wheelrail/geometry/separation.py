@@ -42,7 +42,8 @@ from scipy.interpolate import CubicSpline
 from .._validation import as_float_array, non_negative, positive
 from ..errors import InputError
 from ._checks import check_side
-from .contact_search import _SIGMA, contact_points, silhouette
+from .contact_search import _SIGMA, silhouette
+from .points import contact_points
 
 __all__ = ["Separation", "separation", "separation_at", "undeformed_distance", "interpenetration",
            "undeformed_distance_kernel"]

@@ -43,11 +43,11 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from ..errors import InputError
-from ..options import Method, configured, method_class, option, resolve
+from ..options import Method, Registry, configured, option
 
 __all__ = ["NormalMethod", "GapProblem", "PatchDescription", "registry", "get", "get_class"]
 
-_REGISTRY: dict[str, type] = {}
+_REGISTRY = Registry("normal")
 
 
 @dataclass(frozen=True)
@@ -89,14 +89,7 @@ class NormalMethod(Method):
 
     family = "normal"
 
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if "name" in cls.__dict__:
-            for key in (cls.name, *cls.aliases):
-                if _REGISTRY.get(key.lower(), cls) is not cls:
-                    raise TypeError(f"normal method name {key!r} is taken by "
-                                    f"{_REGISTRY[key.lower()].__name__}")
-                _REGISTRY[key.lower()] = cls
+    _registry = _REGISTRY
 
     def from_contact(self, contact):
         raise InputError(f"normal method {self.name!r} cannot solve a Hertzian contact")
@@ -123,14 +116,14 @@ def registry() -> dict[str, type]:
 
     :func:`wheelrail.normal_methods` imports the whole family first.
     """
-    return {cls.name: cls for cls in sorted(set(_REGISTRY.values()), key=lambda c: c.name)}
+    return _REGISTRY.classes()
 
 
 def get(spec, options=None, *, argname: str = "normal") -> NormalMethod:
     """A configured normal method from a name, class or instance (and options)."""
-    return resolve(spec, NormalMethod, _REGISTRY, options, argname=argname)
+    return _REGISTRY.get(spec, NormalMethod, options, argname=argname)
 
 
 def get_class(spec, *, argname: str = "normal") -> type:
     """The class of a normal method given by name, class or instance."""
-    return method_class(spec, NormalMethod, _REGISTRY, argname=argname)
+    return _REGISTRY.get_class(spec, NormalMethod, argname=argname)

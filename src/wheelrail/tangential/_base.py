@@ -43,12 +43,12 @@ import numpy as np
 
 from .._validation import as_float_array, positive
 from ..errors import InputError, WheelrailError
-from ..options import Method, method_class, resolve
+from ..options import Method, Registry
 from ..plausibility import check_friction
 
 __all__ = ["TangentialMethod", "registry", "get", "get_class", "as_creepage", "broadcast_contact"]
 
-_REGISTRY: dict[str, type] = {}
+_REGISTRY = Registry("tangential")
 
 
 class TangentialMethod(Method):
@@ -56,14 +56,7 @@ class TangentialMethod(Method):
 
     family = "tangential"
 
-    def __init_subclass__(cls, **kwargs):
-        super().__init_subclass__(**kwargs)
-        if "name" in cls.__dict__:
-            for key in (cls.name, *cls.aliases):
-                if _REGISTRY.get(key.lower(), cls) is not cls:
-                    raise TypeError(f"tangential method name {key!r} is taken by "
-                                    f"{_REGISTRY[key.lower()].__name__}")
-                _REGISTRY[key.lower()] = cls
+    _registry = _REGISTRY
 
     def solve(self, contact, xi, eta, phi, mu):  # pragma: no cover - abstract
         raise NotImplementedError
@@ -178,14 +171,14 @@ def registry() -> dict[str, type]:
 
     :func:`wheelrail.tangential_methods` imports the whole family first.
     """
-    return {cls.name: cls for cls in sorted(set(_REGISTRY.values()), key=lambda c: c.name)}
+    return _REGISTRY.classes()
 
 
 def get(spec, options=None, *, argname: str = "tangential") -> TangentialMethod:
     """A configured creep-force law from a name, class or instance (and options)."""
-    return resolve(spec, TangentialMethod, _REGISTRY, options, argname=argname)
+    return _REGISTRY.get(spec, TangentialMethod, options, argname=argname)
 
 
 def get_class(spec, *, argname: str = "tangential") -> type:
     """The class of a creep-force law given by name, class or instance."""
-    return method_class(spec, TangentialMethod, _REGISTRY, argname=argname)
+    return _REGISTRY.get_class(spec, TangentialMethod, argname=argname)

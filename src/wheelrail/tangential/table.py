@@ -122,6 +122,16 @@ class TableData:
     def __init__(self, axes: dict, values: np.ndarray, meta: dict):
         from scipy.interpolate import RegularGridInterpolator
 
+        # Symmetry planes hold the exact solver's round-off (up to ~1e-7 mu Fn), not zero: Fx
+        # is odd in xi (zero where xi_hat = 0: theta = pi/2 or r = 0), (Fy, Mz) odd in
+        # (eta, phi) (zero where theta = 0 and s = 0). Left in, the interpolant is not odd and
+        # jumps at xi = 0 (the reflection sx flips the round-off); set to the exact zero.
+        values = np.array(values, copy=True)
+        fx, fyz = values[..., 0], values[..., 1:]
+        fx[:, np.isclose(axes["theta"], 0.5 * np.pi, rtol=0.0, atol=1e-12)] = 0.0
+        fx[axes["r"] == 0.0] = 0.0
+        t0, s0 = np.flatnonzero(axes["theta"] == 0.0), np.flatnonzero(axes["s"] == 0.0)
+        fyz[:, t0[:, None], s0[None, :]] = 0.0
         self.axes = axes
         self.values = values
         self.meta = meta
@@ -314,8 +324,8 @@ class Table(TangentialMethod):
         Fx = sx * f[:, 0] * ms * Fn
         Fy = sy * f[:, 1] * ms * Fn
         Mz = sy * f[:, 2] * ms * Fn * c
-        # symmetry: Fx is odd in xi, (Fy, Mz) odd in (eta, phi); the table's nodes on those
-        # axes hold the exact solver's round-off (~1e-9 mu Fn), set to the exact zero here
+        # symmetry: Fx is odd in xi, (Fy, Mz) odd in (eta, phi); the nodes on those planes are
+        # zero (TableData), so this only removes the rotation's last-bit residue (~1e-33)
         Fx = np.where(xs == 0.0, 0.0, Fx)
         lateral0 = (es == 0.0) & (ps == 0.0)
         Fy = np.where(lateral0, 0.0, Fy)
