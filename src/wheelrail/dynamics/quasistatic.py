@@ -55,9 +55,27 @@ _W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
 def nadal(contact_angle, mu):
     """Nadal's limit (tan γ − μ)/(1 + μ tan γ) of the derailment quotient Y/Q.
 
+    Parameters
+    ----------
+    contact_angle : float or array_like
+        Flange contact angle γ [rad].
+    mu : float or array_like
+        Coefficient of friction [-].
+
+    Returns
+    -------
+    float or ndarray
+        Limit of Y/Q [-] at which the flanging wheel starts to climb.
+
+    References
+    ----------
+    .. [1] M. J. Nadal, Locomotives à vapeur, Collection Encyclopédie
+       Scientifique, Bibliothèque de Mécanique Appliquée et Génie 186, Paris
+       (1908).
+
     Examples
     --------
-    >>> round(nadal(math.radians(70.0), 0.3), 4)
+    >>> round(float(nadal(math.radians(70.0), 0.3)), 4)
     1.3416
     """
     t = np.tan(contact_angle)
