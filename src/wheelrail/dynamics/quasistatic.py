@@ -69,9 +69,8 @@ def nadal(contact_angle, mu):
 
     References
     ----------
-    .. [1] M. J. Nadal, Locomotives à vapeur, Collection Encyclopédie
-       Scientifique, Bibliothèque de Mécanique Appliquée et Génie 186, Paris
-       (1908).
+    .. [1] M.J. Nadal, Théorie de la stabilité des locomotives, partie 2:
+       mouvement de lacet, Annales des Mines 10 (1896) 232.
 
     Examples
     --------
