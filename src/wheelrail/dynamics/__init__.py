@@ -16,11 +16,18 @@ References
 
 from __future__ import annotations
 
-from .contact import FastContact, GenericContact, contact_model
+from .contact import FastContact, GenericContact, configured_methods, contact_model
 from .layout import Curve, Irregularity, TrackLayout
+from .linear import LinearBogie, LinearWheelset, eigenvalues_over_speed, linearise
 from .model import BogieModel, RailSupport, Suspension, WheelsetModel
+from .quasistatic import CurvingResult, FlangeClimbResult, flange_climb, nadal, steady_curving
+from .reference import cone_track, klingel_wavelength
 from .simulate import Adaptive, FixedStep, SimulationResult, System, simulate
+from .stability import CriticalSpeedResult, critical_speed
 
 __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", "Irregularity",
            "TrackLayout", "simulate", "FixedStep", "Adaptive", "SimulationResult", "System",
-           "FastContact", "GenericContact", "contact_model"]
+           "FastContact", "GenericContact", "contact_model", "configured_methods",
+           "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
+           "steady_curving", "CurvingResult", "nadal", "LinearWheelset", "LinearBogie",
+           "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength"]

@@ -44,6 +44,7 @@ from ..materials import as_material_pair
 from ..normal._strips import _LN_MAX, _hertz_table
 from ..normal.hertz import Hertz
 from ..normal.kik_piotrowski import KikPiotrowski
+from ..options import split_options
 from ..plausibility import disabled
 from ..tangential.fastsim import Fastsim, _kalker_table, _profile, _resample_weights, _strip_t
 from ..tangential.linear import Linear, kalker_coefficients
@@ -312,8 +313,21 @@ class GenericContact:
         return len(rows)
 
 
+def configured_methods(normal, tangential, options=None):
+    """The configured normal and tangential methods from names or objects and options.
+
+    Each option goes to the one method that declares it (as :func:`wheelrail.solve`:
+    ``normal="kik-piotrowski", tangential="fastsim", nx=20`` is
+    ``tangential=wr.tangential.Fastsim(nx=20)``); an option declared by neither or
+    both is an :class:`~wheelrail.errors.InputError` naming both methods' options.
+    """
+    nopts, topts = split_options(normal_family.get_class(normal),
+                                 tangential_family.get_class(tangential), dict(options or {}))
+    return normal_family.get(normal, nopts), tangential_family.get(tangential, topts)
+
+
 def contact_model(wheelset, track, material, normal="kik-piotrowski", tangential="fastsim", *,
-                  contact="auto", **options):
+                  contact="auto", method_options=None, **options):
     """The contact evaluator for configured methods (:class:`FastContact` or :class:`GenericContact`).
 
     Parameters
@@ -322,11 +336,12 @@ def contact_model(wheelset, track, material, normal="kik-piotrowski", tangential
         Names or configured objects (``wr.normal.KikPiotrowski()``, ``wr.tangential.Table()``).
     contact : {"auto", "fast", "generic"}
         ``"auto"``: the compiled path where it supports the methods, else the generic one.
+    method_options : dict or None
+        Options of the two methods (:func:`configured_methods`).
     **options
         Options of :class:`FastContact` (``search_step``, ``line_step``, ...).
     """
-    nimpl = normal_family.get(normal)
-    timpl = tangential_family.get(tangential)
+    nimpl, timpl = configured_methods(normal, tangential, method_options)
     if contact not in ("auto", "fast", "generic"):
         raise InputError(f"contact must be 'auto', 'fast' or 'generic', got {contact!r}")
     if contact == "generic" or (contact == "auto" and _fast_support(nimpl, timpl)):

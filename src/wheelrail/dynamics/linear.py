@@ -271,6 +271,9 @@ def linear_critical_speed(make_system, bracket=(5.0, 200.0), n=16, xtol=0.01) ->
     def growth(V):
         A, _, _ = linearise(make_system(float(V)))
         ev = np.linalg.eigvals(A)
+        # structural zero modes (the spin held at V/r0, a neutral position) carry no
+        # stability information: their eigenvalue is 0 up to round-off
+        ev = ev[np.abs(ev) > 1e-6]
         return float(np.max(ev.real)), ev
 
     grid = np.linspace(bracket[0], bracket[1], n)

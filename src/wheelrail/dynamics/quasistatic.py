@@ -151,7 +151,7 @@ class CurvingResult:
 
 def steady_curving(model, track, radius, speed, normal="hertz", tangential="fastsim", *,
                    mu=0.3, cant=0.0, direction="right", initial=None, contact="auto",
-                   contact_options=None) -> CurvingResult:
+                   contact_options=None, **options) -> CurvingResult:
     """Equilibrium of a model in a circular curve at constant speed (module docstring).
 
     Parameters
@@ -169,6 +169,10 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
     initial : dict or None
         Start values by state name (e.g. ``{"ws0.y": -0.005}``); default: the
         wheelsets shifted towards the outer rail by 2 r0 l0/(0.2 R).
+    contact, contact_options
+        As :func:`~wheelrail.dynamics.simulate`.
+    **options
+        Options of the two methods, each to the one that declares it.
 
     Returns
     -------
@@ -178,7 +182,7 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
     layout = TrackLayout(section, curves=(Curve(radius, start=-1e7, length=math.inf,
                                                  cant=cant, direction=direction),))
     system = System(model, layout, speed, normal, tangential, mu=mu, contact=contact,
-                    contact_options=contact_options)
+                    contact_options=contact_options, method_options=options)
     asm = system.asm
     sgn = 1.0 if direction == "right" else -1.0
     r0, l0 = model.wheelset.nominal_radius, model.wheelset.e_tape
@@ -293,7 +297,7 @@ def _flange_start(wheelset, section):
 
 def flange_climb(model, track, yaw=0.01, normal="kik-piotrowski", tangential="fastsim", *,
                  mu=0.3, speed=10.0, y=None, contact="auto", contact_options=None,
-                 spin="free", roll_step=5e-5, roll_range=0.03) -> FlangeClimbResult:
+                 spin="free", roll_step=5e-5, roll_range=0.03, **options) -> FlangeClimbResult:
     """Quasi-static flange climb of a wheelset (Pascal's model; see the module docstring).
 
     The model's mass, inertia, axle load and wheelset are used; its suspension is
@@ -318,6 +322,10 @@ def flange_climb(model, track, yaw=0.01, normal="kik-piotrowski", tangential="fa
         iteration fails), up to ``roll_range`` beyond the start or past the flange tip.
     spin : {"free", "fixed"}
         The wheelset's spin balances the longitudinal creep torque, or Ω = V/r0.
+    contact, contact_options
+        As :func:`~wheelrail.dynamics.simulate`.
+    **options
+        Options of the two methods, each to the one that declares it.
 
     Returns
     -------
@@ -330,7 +338,7 @@ def flange_climb(model, track, yaw=0.01, normal="kik-piotrowski", tangential="fa
     free = dataclasses.replace(model, primary=Suspension(), rail=None, spin=spin)
     section = getattr(track, "track", track)
     system = System(free, section, speed, normal, tangential, mu=mu, contact=contact,
-                    contact_options=contact_options)
+                    contact_options=contact_options, method_options=options)
     asm = system.asm
     m, Ix = free.mass, free.inertia[0]
     r0 = free.wheelset.nominal_radius

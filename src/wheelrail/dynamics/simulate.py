@@ -145,11 +145,14 @@ class System:
         Position of the model (frame centre) along the track at t = 0 [m].
     contact_options : dict
         Options of :class:`~wheelrail.dynamics.contact.FastContact`.
+    method_options : dict
+        Options of the normal and tangential methods, each to the method that
+        declares it (:func:`~wheelrail.dynamics.contact.configured_methods`).
     """
 
     def __init__(self, model, track, speed, normal="kik-piotrowski", tangential="fastsim", *,
                  mu=0.3, deceleration=0.0, creep_relaxation=False, contact="auto", start=0.0,
-                 min_speed=0.5, contact_options=None):
+                 min_speed=0.5, contact_options=None, method_options=None):
         if not isinstance(model, (WheelsetModel, BogieModel)):
             raise InputError(f"model must be a WheelsetModel or BogieModel, got "
                              f"{type(model).__name__}")
@@ -167,7 +170,8 @@ class System:
         self.min_speed = float(min_speed)
         self.asm = Assembly(model, relax=bool(creep_relaxation))
         self.contact = contact_model(model.wheelset, self.layout.track, model.material, normal,
-                                     tangential, contact=contact, **(contact_options or {}))
+                                     tangential, contact=contact, method_options=method_options,
+                                     **(contact_options or {}))
         self.fast = isinstance(self.contact, FastContact)
         nw = self.asm.n_ws
         self.OP = np.zeros((nw, 2, KMAX, len(PATCH_FIELDS)))
@@ -566,7 +570,7 @@ def _run_adaptive(system, x0, duration, integ, out_dt, prog):
 def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential="fastsim", *,
              mu=0.3, integrator="rk4", output_step=None, initial=None, start=0.0,
              deceleration=0.0, creep_relaxation=False, contact="auto", contact_options=None,
-             progress=False) -> SimulationResult:
+             progress=False, **options) -> SimulationResult:
     """Integrate a wheelset or bogie model along a track in time.
 
     Parameters
@@ -605,18 +609,37 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
         Options of :class:`~wheelrail.dynamics.contact.FastContact`.
     progress : bool
         Show a progress bar (rich).
+    **options
+        Options of the two methods, each given to the one that declares it
+        (``tangential="fastsim", nx=20`` is ``tangential=wr.tangential.Fastsim(nx=20)``;
+        as :func:`wheelrail.solve`).
 
     Returns
     -------
     SimulationResult
         With ``.dataset`` (:class:`xarray.Dataset` over time).
+
+    Examples
+    --------
+    A conical wheelset on nearly knife-edge rails, released 1 mm off centre,
+    runs a kinematic (Klingel) oscillation:
+
+    >>> import wheelrail as wr
+    >>> from wheelrail.dynamics.reference import cone_track
+    >>> ws, track = cone_track(0.2, 0.46, 0.75, crown_radius=0.02)
+    >>> model = wr.dynamics.WheelsetModel(ws, 1813.0, (1120.0, 100.0, 1120.0), spin="fixed")
+    >>> res = wr.dynamics.simulate(model, track, 5.0, 0.2, normal="hertz",
+    ...                            tangential=wr.tangential.Fastsim(nx=10),
+    ...                            initial={"ws0.y": 0.001})
+    >>> res.dataset["y"].dims
+    ('time', 'wheelset')
     """
     integ = _integrator(integrator)
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise InputError(f"duration must be > 0 s, got {duration!r}")
     system = System(model, track, speed, normal, tangential, mu=mu, deceleration=deceleration,
                     creep_relaxation=creep_relaxation, contact=contact, start=start,
-                    contact_options=contact_options)
+                    contact_options=contact_options, method_options=options)
     x0 = system.initial_state(initial)
     if isinstance(integ, FixedStep):
         out_dt = integ.dt if output_step is None else float(output_step)

@@ -79,7 +79,7 @@ def _amplitude(t, y, window):
 def critical_speed(model, track, normal="hertz", tangential="fastsim", *, method="linear",
                    mu=0.3, bracket=(5.0, 200.0), start_speed=None, deceleration=2.0,
                    disturbance=0.005, threshold=2e-4, settle=2.0, window=None, dt=1e-3,
-                   contact="auto", progress=False) -> CriticalSpeedResult:
+                   contact="auto", progress=False, **options) -> CriticalSpeedResult:
     """Critical speed of a model on tangent track (see the module docstring).
 
     Parameters
@@ -108,6 +108,13 @@ def critical_speed(model, track, normal="hertz", tangential="fastsim", *, method
         start speed, from the linear analysis).
     dt : float
         Ramp: fixed step [s].
+    contact : {"auto", "fast", "generic"}
+        Compiled contact where it supports the methods, or the library's path.
+    progress : bool
+        Ramp: show a progress bar while settling.
+    **options
+        Options of the two methods, each to the one that declares it (as
+        :func:`~wheelrail.dynamics.simulate`).
 
     Returns
     -------
@@ -116,7 +123,8 @@ def critical_speed(model, track, normal="hertz", tangential="fastsim", *, method
     lay_track = getattr(track, "track", track)
 
     def make(V):
-        return System(model, lay_track, V, normal, tangential, mu=mu, contact=contact)
+        return System(model, lay_track, V, normal, tangential, mu=mu, contact=contact,
+                      method_options=options)
 
     if method == "linear":
         r = linear_critical_speed(make, bracket)
@@ -137,7 +145,7 @@ def critical_speed(model, track, normal="hertz", tangential="fastsim", *, method
     init = {f"ws{i}.y": disturbance for i in range(model.n_wheelsets)}
     settle_res = simulate(model, lay_track, V0, settle, normal, tangential, mu=mu,
                           integrator=FixedStep(dt=dt), initial=init, contact=contact,
-                          output_step=dt, progress=progress)
+                          output_step=dt, progress=progress, **options)
     # the ramp in pieces of 1 s (continued from the last state), stopped once the
     # oscillation has stayed below the threshold for a window
     pieces = []
@@ -146,7 +154,7 @@ def critical_speed(model, track, normal="hertz", tangential="fastsim", *, method
         span = min(1.0, (V - V_end) / deceleration)
         piece = simulate(model, lay_track, V, span, normal, tangential, mu=mu,
                          integrator=FixedStep(dt=dt), initial=x, deceleration=deceleration,
-                         contact=contact, output_step=dt, progress=False)
+                         contact=contact, output_step=dt, progress=False, **options)
         pieces.append((piece.t + t0, piece))
         x, V, t0 = piece.states[-1], float(piece.speed[-1]), t0 + float(piece.t[-1])
         tt = np.concatenate([p[0] for p in pieces])
