@@ -200,3 +200,37 @@ def test_compiled_contact_matches_wr_solve(s1002_60e1, normal, rtol):
             assert got[0] == pytest.approx(Fn, rel=rtol)
             assert abs(got[1] - Fx) <= rtol * mu * Fn
             assert abs(got[2] - Fs) <= rtol * mu * Fn
+
+
+def test_bogie_steady_curving_against_boocock_linear_theory():
+    """A two-axle bogie (semi-wheelbase 1.25 m, primary kx = ky = 2 MN/m per side at
+    b = 1 m) on conical wheels (λ = 0.05) in a 3000 m curve: the wheelsets' angles
+    of attack and lateral shifts from the full nonlinear model against Boocock's
+    linear theory of steady curving (Boocock 1969; Wickens 2003, ch. 9) with the
+    creep coefficients f11 = G a b C11, f22 = G a b C22 of the model's own Hertz
+    patch (Kalker 1990, Table E.3). The linear theory leaves out spin creep and the
+    gravitational stiffness (a few per cent here); the leading wheelset steers out,
+    the trailing one in, with nearly equal and opposite angles of attack."""
+    from wheelrail.tangential.linear import kalker_coefficients
+
+    lam = 0.05
+    ws, tr = cone_track(lam, R0, L0, crown_radius=0.02)
+    prim = Suspension(kx=2e6, ky=2e6, kz=1e6, cz=1e4, half_spacing=1.0)
+    bogie = wr.dynamics.BogieModel(ws, 1500.0, (800.0, 100.0, 800.0), prim, 2600.0,
+                                   (1700.0, 1700.0, 3000.0), 1.25,
+                                   Suspension(kz=4e5, cz=1e4), axle_load=50e3, spin="fixed")
+    radius = 3000.0
+    r = steady_curving(bogie, tr, radius, 5.0, "hertz", "linear")
+    P = {n: i for i, n in enumerate(PATCH_FIELDS)}
+    a, b = r.patches[0, 0, 0, P["a"]], r.patches[0, 0, 0, P["b"]]
+    mat = wr.STEEL
+    G = mat.E / (2 * (1 + mat.nu))
+    C11, C22, _, _ = kalker_coefficients(a / b, mat.nu)
+    f11, f22 = G * a * b * float(C11), G * a * b * float(C22)
+    ref = wr.dynamics.LinearBogie(1.25, R0, L0, lam, f11, f22, prim.kx, prim.ky,
+                                  1.0).curving(radius)
+    # Boocock's closed form for this case: the wheelsets' yaw angles are equal and opposite
+    assert ref["yaw"][0] == pytest.approx(-ref["yaw"][1], rel=1e-9)
+    np.testing.assert_allclose(r.yaw, ref["yaw"], rtol=0.06)
+    roll = np.array([r.state[r.names.index(f"ws{i}.roll")] for i in (0, 1)])
+    np.testing.assert_allclose(r.y + R0 * roll, ref["y"], rtol=0.03)
