@@ -42,7 +42,7 @@ def positions(ws, tr, ys, yaw, approach=3e-5):
     ``approach`` [m] into the rails (a loaded wheelset)."""
     from wheelrail.geometry.contact_search import solve_rigid
 
-    z, roll, _ = solve_rigid(ws, tr, ys, np.full_like(ys, yaw))
+    _z, roll, _ = solve_rigid(ws, tr, ys, np.full_like(ys, yaw))
     out = []
     for y, th in zip(ys, roll):
         zt, _ = touching_heights(ws, tr, np.array([y]), np.array([th]), np.array([yaw]))

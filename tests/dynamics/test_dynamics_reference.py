@@ -95,8 +95,8 @@ def test_linear_critical_speed_two_dof_wheelset(kx, published):
     f22 = 7.133 MN, no gravitational stiffness or spin; Wickens 2003, ch. 4;
     Iwnicki (ed.) 2006, ch. 8): critical speeds 74.04 m/s at kx = 1 MN/m and
     114.68 m/s at kx = 5 MN/m per axlebox."""
-    args = dict(m=1813.0, Iz=1120.0, r0=0.46, l0=0.7465, lam=0.2, f11=8.229e6, f22=7.133e6,
-                ky=2 * 3.884e6, kpsi=2 * kx * 1.0 ** 2)
+    args = {"m": 1813.0, "Iz": 1120.0, "r0": 0.46, "l0": 0.7465, "lam": 0.2, "f11": 8.229e6,
+            "f22": 7.133e6, "ky": 2 * 3.884e6, "kpsi": 2 * kx * 1.0 ** 2}
     w = LinearWheelset(1813.0, 1120.0, 0.46, 0.7465, 0.2, 8.229e6, 7.133e6,
                        lateral_stiffness=2 * 3.884e6,
                        yaw_stiffness=Suspension(kx=kx, half_spacing=1.0).yaw_stiffness)

@@ -27,7 +27,7 @@ def test_methods_by_name_object_or_options_are_the_same(cone):
     """normal/tangential as names with options, or as configured objects: one resolution
     (wheelrail.options), the same result; an option of neither method is refused by name."""
     model, tr = cone
-    kw = dict(initial={"ws0.y": 0.001}, output_step=0.01)
+    kw = {"initial": {"ws0.y": 0.001}, "output_step": 0.01}
     a = D.simulate(model, tr, 10.0, 0.05, "hertz", "fastsim", nx=8, **kw)
     b = D.simulate(model, tr, 10.0, 0.05, wr.normal.Hertz(), wr.tangential.Fastsim(nx=8), **kw)
     c = D.simulate(model, tr, 10.0, 0.05, "hertz", "fastsim", **kw)

@@ -127,7 +127,7 @@ class Irregularity:
 
     @classmethod
     def sine(cls, amplitude: float, wavelength: float, start: float = 0.0, cycles: float = 1.0,
-             step: float = 0.05) -> "Irregularity":
+             step: float = 0.05) -> Irregularity:
         """A sine of ``amplitude`` [m] and ``wavelength`` [m] over ``cycles`` periods from
         ``start`` [m] (a smooth 1 − cos ramp of amplitude is not added: it starts with zero
         value and non-zero slope, as a single lateral kink of the alignment)."""
@@ -142,7 +142,7 @@ class Irregularity:
 
     @classmethod
     def bump(cls, amplitude: float, length: float, start: float = 0.0,
-             step: float = 0.05) -> "Irregularity":
+             step: float = 0.05) -> Irregularity:
         """A lateral kink of the alignment: ½ A (1 − cos 2π (s − start)/length) over one
         ``length`` [m] (zero value and slope at both ends)."""
         if not (length > 0 and step > 0):

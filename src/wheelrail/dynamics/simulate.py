@@ -39,12 +39,12 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..errors import ConvergenceError, InputError, WheelrailError
+from ..geometry.contact_search import solve_rigid
+from ..geometry.touching import touching_heights
 from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
 from ._motion import N_IN, derivative, rhs_fast, run_fixed, wheel_inputs
 from .contact import FastContact, contact_model
 from .layout import as_layout
-from ..geometry.contact_search import solve_rigid
-from ..geometry.touching import touching_heights
 from .model import GP, Assembly, BogieModel, WheelsetModel
 from .results import to_dataset
 
@@ -409,7 +409,7 @@ def _progress(enabled, duration):
     """A rich progress bar over simulated time (or a no-op)."""
     if not enabled:
         return None
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn  # noqa: PLC0415
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
     prog = Progress(TextColumn("simulating"), BarColumn(), TextColumn("{task.completed:.3f} s of "
                     "{task.total:.3f} s"), TimeElapsedColumn(), transient=True)
