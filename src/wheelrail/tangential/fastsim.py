@@ -416,6 +416,12 @@ def _tame(xi, eta, phi, L1, L2, L3, reach):
     return xi * f, eta * f, phi * f
 
 
+def _flags(scheme):
+    """Kernel flags of a march (``_fastsim_kernel``): ``"euler"`` is CONTACT's FASTSIM, its
+    first-order march (1) and its slip rule with the spin scaled by L/L3 (2)."""
+    return 3 if scheme == "euler" else 0
+
+
 def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_out, scheme,
                   fields):
     """:func:`fastsim_strips` on checked, contiguous float arrays (shapes (ny,), p (ny, nx))."""
@@ -432,7 +438,7 @@ def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_
     kxi, keta, kphi = _tame(xi, eta, phi, np.min(L1), np.min(L2), np.min(L3), reach)
     Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3,
                                           float(kxi), float(keta), float(kphi), px, py, sx, sy,
-                                          slip, scheme == "euler")
+                                          slip, _flags(scheme))
     scale = max((abs(kv / v) for kv, v in ((kxi, xi), (keta, eta), (kphi, phi)) if v != 0.0),
                 default=1.0)
     if scale < 1.0:                       # creepages were tamed: the slip fields scale back
@@ -607,7 +613,7 @@ class Fastsim(TangentialMethod):
     def solve(self, contact, xi, eta, phi, mu):
         nx, ny, bound, flexibility = self.nx, self.ny, self.bound, self.flexibility
         scheme, fields = self.scheme, self.fields
-        first_order = scheme == "euler"
+        first_order = _flags(scheme)
         single = np.shape(contact.a) == ()
         want_fields = single if fields is None else bool(fields)
 
@@ -801,7 +807,7 @@ class Fastsim(TangentialMethod):
             slip = _EMPTY2B
         ok, Fx, Fy, Mz, Fn, xc, yc = _k.strip_patch_forces(
             y, dy, xl, xt, c_(sp), i0, i1, w, pinfo.get("traction_bound") == "parabolic", mu,
-            strip(L1), strip(L2), strip(L3), xi, eta, phi, _SLIP_RATE_CAP, scheme == "euler",
+            strip(L1), strip(L2), strip(L3), xi, eta, phi, _SLIP_RATE_CAP, _flags(scheme),
             want_fields, p, px, py, sx, sy, slip)
         if not ok:
             return None

@@ -393,7 +393,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
     strips : int, optional
         Number of strips (default ``elements``).
     settle : float
-        With ``scheme="interpolated"``, uniform grid and exact friction: once the
+        On the uniform grid with exact friction: once the
         loads stay constant to the end of the travel and a step changes the
         tractions by less than ``0.1·settle·μ·max pn``, the steady fixed point of the
         step (Kalker's steady rolling on the same grid, solved directly) is
@@ -624,8 +624,9 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
     if carry_u:
         n_up, f_up = _whole_and_fraction(h, grid.dx)
     # the steady fixed point of the step (Kalker's steady rolling with the interpolated
-    # scheme), tried once the tractions change little per step under constant loads
-    jump = (settle > 0 and carry_u and friction == "exact")
+    # scheme), tried once the tractions change little per step under constant loads; if
+    # its Newton iteration fails (the centre scheme at large dx/h) the run steps on
+    jump = settle > 0 and discretisation == "uniform" and friction == "exact"
     M_steady = None
     last_try = -10 ** 9
     d_prev = np.inf
