@@ -550,9 +550,16 @@ class Fastsim(TangentialMethod):
         spin term at the step mid-point); second order in the element size.
         ``"euler"``: the first-order backward-Euler march of CONTACT's
         FASTSIM (``M=3``) for steady rolling, u_i = u_{i−1} − δx w(x_i)
-        (full step into every element, rigid slip at the element centre);
-        use it to reproduce CONTACT's published FASTSIM numbers on a given
-        grid. Both converge to the same simplified-theory solution.
+        (full step into every element, rigid slip at the element centre)
+        with CONTACT's slip rule (the spin's rigid slip scaled by L1/L3,
+        L2/L3 also in slip elements); use it to reproduce CONTACT's
+        published FASTSIM numbers on a given grid. ``"midpoint"`` opposes the
+        true slip in slip elements (spin unscaled; module
+        :mod:`wheelrail.tangential._fastsim_kernel`): with spin near full slip
+        the two differ by the model, not only the discretisation (a = b = 6 mm,
+        ξ = η = 1e-3, φ = 0.1 1/m: −0.1 % / +0.6 % from the exact theory
+        against −2.1 % / +0.9 %); without spin, or in full adhesion, they
+        converge to the same solution.
     fields : bool or None, default None
         Return the surface fields (:class:`FastsimFields`); ``None`` means
         yes for a single case, no for a batch (forces-only fast path, all cases
@@ -606,7 +613,8 @@ class Fastsim(TangentialMethod):
     flexibility: str = option("three", choices=_FLEXIBILITIES,
                               doc="three flexibilities L1, L2, L3 or Kalker's weighted one")
     scheme: str = option("midpoint", choices=_SCHEMES,
-                         doc="second-order mid-point march, or CONTACT's first-order one")
+                         doc="second-order mid-point march, or CONTACT's FASTSIM (first-order "
+                             "march, spin scaled in slip)")
     fields: bool | None = option(None, choices=(None, True, False),
                                  doc="return traction fields (None: for single cases only)")
 

@@ -26,7 +26,8 @@ def _table1():
 
 
 @register("transient-steady-limit", ["transient"],
-          "Transient rolling vs the steady exact solver and the shift problem")
+          "Transient rolling vs the steady exact solver and the shift problem",
+          reference_kind="consistency")
 def transient_steady(quick):
     wr = _wr()
     from scipy.optimize import brentq
@@ -79,7 +80,8 @@ def transient_steady(quick):
 
 
 @register("transient-regularised", ["transient"],
-          "Regularised Coulomb law: convergence to the exact law as epsilon -> 0")
+          "Regularised Coulomb law: convergence to the exact law as epsilon -> 0",
+          reference_kind="consistency")
 def transient_regularised(quick):
     wr = _wr()
     hc = _table1()
@@ -113,7 +115,7 @@ def _fe_errors(h):
 
 
 @register("fe-indentation-hertz", ["fe"], "FE static indentation vs Hertz",
-          heavy="finite-element runs take 10-60 s")
+          heavy="finite-element runs take 10-60 s", reference_kind="closed form")
 def fe_indentation(quick):
     h = 1.5e-3 if quick else 1.0e-3
     r, hz = _fe_errors(h)
@@ -139,7 +141,7 @@ def fe_indentation(quick):
 
 
 @register("fe-rolling-exact", ["fe"], "FE steady rolling vs the exact half-space theory",
-          full_only=True)
+          full_only=True, reference_kind="consistency")
 def fe_rolling(quick):
     wr = _wr()
 
@@ -211,7 +213,8 @@ def cone_tangency(ws, tr, y, lam=LAM):
 
 
 @register("geometry-cone-circle", ["geometry"],
-          "Rigid contact search vs closed-form tangency of a cone on a circle")
+          "Rigid contact search vs closed-form tangency of a cone on a circle",
+          reference_kind="closed form")
 def geometry_cone(quick):
     wr = _wr()
     rows = []
