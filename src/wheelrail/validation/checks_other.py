@@ -75,7 +75,12 @@ def transient_steady(quick):
                               Fx=2000.0, elements=n3)
     rows.append(rel_row("transient", "steady exact theory at the same force (Baeza et al. §3.1, "
                         "'Cattaneo to Carter')", "final xi for Fx = 2 kN, 10 el.", r3.xi[-1],
-                        xi_steady, 0.01, tolerance_source=tsrc, **kw))
+                        xi_steady, 1e-4, tolerance_source=(
+                            "the run ends on the steady fixed point to the solver tolerances "
+                            "(force 1e-7 mu Fn, slip 1e-8: measured 2e-6 when stepping "
+                            "through, 1e-10 with the direct steady end state, settle=); "
+                            "issue 22: 1 % could "
+                            "not fail"), **kw))
     return rows
 
 

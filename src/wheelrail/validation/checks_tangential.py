@@ -369,12 +369,17 @@ def fastsim_linear(quick):
               tolerance_source="tests/reference/test_fastsim.py::test_linear_limit_pure_creepages")
     ref = "Kalker's linear theory with Table E.3 coefficients (nu interpolated)"
     case = "a/b = 1.5, nu = 0.28, 50x50"
+    # the flexibilities are chosen so that FASTSIM reproduces these slopes (L1 = 8a/(3GC11)
+    # ...): the rows check that construction to the discretisation error of the 50x50 grid
+    # (midpoint rule, O(1/n^2): measured below 1e-3), not an independent reference
+    kw["tolerance_source"] = ("construction of L1, L2, L3 (Kalker 1982): exact in the continuum, "
+                              "1e-3 for the 50x50 discretisation (issue 22: 1 % could not fail)")
     return [rel_row("fastsim", ref, f"Fx = -G c^2 C11 xi, {case}", rx.Fx, -G * cc**2 * C11 * 1e-7,
-                    0.01, **kw),
+                    1e-3, **kw),
             rel_row("fastsim", ref, f"Fy = -G c^2 C22 eta, {case}", ry.Fy,
-                    -G * cc**2 * C22 * 1e-7, 0.01, **kw),
+                    -G * cc**2 * C22 * 1e-7, 1e-3, **kw),
             rel_row("fastsim", ref, f"Fy = -G c^3 C23 phi, {case}", rs.Fy,
-                    -G * cc**3 * C23 * 1e-5, 0.01, **kw)]
+                    -G * cc**3 * C23 * 1e-5, 1e-3, **kw)]
 
 
 @register("fastsim-contact-published", ["fastsim"],
@@ -491,15 +496,21 @@ def creep_curves(quick):
         cr = np.column_stack([xi, 0 * xi, 0 * xi])
         fx = np.asarray(wr.creep_forces(c, cr, mu, method=name).Fx, float)
         ax.plot(-xi * 1e3, fx / (mu * c.Fn), "-", label=name)
-        # Polach's 1999 law is a model 5.01 % below the exact theory at xi = -2e-3 (a
-        # limitation of the law, stated in the document), the other two within 5 %
-        tol = 0.051 if name == "polach" else 0.05
-        tol_src = ("docs/choosing_a_method.md (measured: FASTSIM and Shen-Hedrick-Elkins within "
-                   "5 %, Polach within 5.1 % of the exact theory in pure xi up to saturation)")
+        # a fast law is a model of the exact theory: 5 % of the force is the accuracy the
+        # documents claim for them in pure xi (docs/choosing_a_method.md); Polach's 1999 law
+        # is 5.01 % below the exact theory at xi = -2e-3: a known limitation, reported as such
+        tol = 0.05
+        tol_src = ("docs/choosing_a_method.md (the fast laws within 5 % of the exact theory in "
+                   "pure xi up to saturation; issue 22: Polach's former 5.1 % sat just above "
+                   "its measured 5.01 %)")
+        known = ("Polach's 1999 law is 5.01 % below the exact theory at xi = -2e-3 (its "
+                 "single-parameter shape cannot follow Kalker's curve there): a limitation "
+                 "of the law, not a defect of the implementation (issue 22)"
+                 if name == "polach" else "")
         rows.append(max_row(name, f"Kalker's exact theory ({n} elements, Kalker 1990)",
                             "Fx on the creep curve xi = -2e-4 ... -5e-3 (default contact)", fx, ex,
                             tol, source=f"Kalker1990,{srcs[name]}", tolerance_source=tol_src,
-                            reference_method="exact"))
+                            reference_method="exact", known=known))
     # FaStrip: translational creepage in partial slip (its test case)
     cf = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
     errs = []
