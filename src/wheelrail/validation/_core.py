@@ -18,6 +18,9 @@ PASSED, FAILED, KNOWN, SKIPPED = "passed", "failed", "known-failure", "skipped"
 #: Kinds of reference, in report order; the first three are validation.
 REFERENCE_KINDS = ("closed form", "published", "other code", "consistency", "convergence")
 VALIDATION_KINDS = REFERENCE_KINDS[:3]
+#: wheelrail methods that evaluate a closed form (Hertz's and Carter's theories): a row whose
+#: reference comes from one of them can be validation; from any other method it is consistency.
+CLOSED_FORM_METHODS = ("hertz", "carter")
 
 
 @dataclass(frozen=True)
@@ -310,6 +313,8 @@ def run_check(check: Check, quick: bool) -> tuple[list[CheckResult], str | None]
     def kind_of(r):
         if r.kind == "convergence":
             return "convergence"
+        if r.reference_method and r.reference_method not in CLOSED_FORM_METHODS:
+            return "consistency"       # the reference value is another wheelrail computation
         return r.reference_kind or check.reference_kind
 
     return [replace(r, check=check.name, time=dt if r.status != SKIPPED else r.time,
