@@ -550,6 +550,8 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
     keep = set(np.unique(np.linspace(0, n - 1, min(frames, n)).round().astype(int)).tolist())
     keep.add(n - 1)
     keep = sorted(keep)
+    keep_index = {k: j for j, k in enumerate(keep)}
+    last_state = [None]
     nxy = grid.shape
     store = {k: np.zeros((len(keep),) + nxy) for k in ("px", "py", "pn")}
     state_store = np.zeros((len(keep),) + nxy, dtype=np.int8)
@@ -599,16 +601,27 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         hist["n_contact"][k] = int(contact_.sum())
         hist["n_slip"][k] = int(slip.sum())
         hist["n_adhesion"][k] = int(contact_.sum() - slip.sum())
-        if k in keep:
-            j = keep.index(k)
+        last_state[0] = np.where(slip, 2, np.where(contact_, 1, 0))
+        j = keep_index.get(k)
+        if j is not None:
             store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
-            state_store[j] = np.where(slip, 2, np.where(contact_, 1, 0))
+            state_store[j] = last_state[0]
+
+    def repeat(k, p, pn):
+        """Record step k as a repeat of step k − 1 (the steady fixed point: same values)."""
+        for v in hist.values():
+            v[k] = v[k - 1]
+        j = keep_index.get(k)
+        if j is not None:
+            store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
+            state_store[j] = last_state[0]
 
     record(0, 0.0, pn, p, np.zeros_like(p), nsol, 0.0 if F1 else _evaluate("xi", cr[0], 0.0),
            _evaluate("eta", cr[1], 0.0), _evaluate("phi", cr[2], 0.0))
 
     xi_prev, slope = 0.0, None
     fixed = None  # (loads, tractions, xi, slip) of a step that reproduced its input
+    repeating = False  # the last recorded step was a skipped repeat (same values as k − 1)
     skipped = 0
     # precondition with the upstream neighbour (the line solve of newton_step): the
     # averaged scheme couples each element strongly to it, and for the influence kernel
@@ -671,7 +684,11 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 # the previous step reproduced its input exactly under the same loads: the
                 # run has reached its steady fixed point and every such step repeats it
                 xi = fixed[2]
-                record(k, x, pn_new, p, fixed[3], nsol, xi, eta, phi)
+                if not repeating:
+                    record(k, x, pn_new, p, fixed[3], nsol, xi, eta, phi)
+                    repeating = True
+                else:
+                    repeat(k, p, pn_new)
                 skipped += 1
                 if bar is not None:
                     bar.advance(task)
@@ -782,6 +799,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 d_prev = d
             p, pn = p_new, pn_new
             record(k, x, pn, p, s_new, nsol, xi, eta, phi)
+            repeating = False
             if bar is not None:
                 bar.advance(task)
     finally:
