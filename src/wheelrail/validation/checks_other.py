@@ -47,12 +47,15 @@ def transient_steady(quick):
     err = np.abs(res.px[-1] - st.px).max() / np.abs(st.px).max()
     ref = "steady rolling, exact theory on the same grid (Kalker 1990 §5.2; Baeza et al. eq. 2.19)"
     tsrc = "tests/reference/test_transient_steady.py"
+    bound = ("tests/reference/test_transient_steady.py; the bound the solver tolerances "
+             "guarantee (slip residual 1e-8 per step, steady reference 1e-10), not the "
+             "measurement: the run ends on the steady fixed point (settle), measured ~1e-9")
     rows += [abs_row("transient", ref, "max traction difference / max abs(px) after 20 a, 12 el.",
-                     err, 0.0, 1e-4, tolerance_source=tsrc, **kw),
+                     err, 0.0, 1e-6, tolerance_source=bound, **kw),
              rel_row("transient", ref, "Fx after 20 a (xi = -5e-4, Baeza et al. Table 1 case)",
-                     res.Fx[-1], st.Fx, 1e-5, tolerance_source=tsrc, **kw)]
-    # first step from rest = Cattaneo shift problem (the element-centre scheme, eq. 2.10 as
-    # written; the default element-averaged scheme spreads the first shift over the element)
+                     res.Fx[-1], st.Fx, 1e-6, tolerance_source=bound, **kw)]
+    # first step from rest = Cattaneo shift problem (the element-centre and the default
+    # interpolated schemes both start with C p / h; the averaged one spreads the shift)
     n2, h, xi, eta = 10, 2e-4, -4e-4, 2e-4
     r1 = wr.transient_rolling(hc, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
                               elements=n2, scheme="centre")
@@ -61,7 +64,8 @@ def transient_steady(quick):
     sh = solve_shift(g2, pn2, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
     rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (Baeza et al. §3.1)",
                         "Fy after the first step from rest, 10 el., scheme='centre'", r1.Fy[1], sh.Fy, 1e-6,
-                        tolerance_source=tsrc, **kw))
+                        tolerance_source=tsrc + " (the step is solved to 1e-8, the shift problem "
+                        "to 1e-10: a bound, measured 2e-9)", **kw))
     # Cattaneo to Carter: final creepage for a prescribed force
     n3 = 10
     g3, gap3 = hertz_grid(hc, elements=n3)
