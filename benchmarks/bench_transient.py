@@ -32,7 +32,7 @@ from wheelrail.normal.bem import hertz_grid, solve_normal
 SEED = wr.Material(2.1e11, 0.3)
 
 
-def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
+def main(elements=30, steps=1801, h=5e-5, scheme="interpolated"):
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
     wr.transient_rolling(hc, travel=4e-4, step=2e-4, mu=0.4, Fx=2000.0,
                          elements=6)  # warm-up (numba cache)

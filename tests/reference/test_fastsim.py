@@ -111,9 +111,10 @@ def test_weighted_equals_three_for_pure_creepage(contact):
     """With ξ or η alone the weighted flexibility is that creepage's L: same forces.
 
     Pure spin loads both traction components; with three flexibilities the
-    slip of a sliding element is diag(L1, L2)(p − p_H)/Δx, not L3 (p − p_H)/Δx,
-    so the traction in the slip area (opposite to the slip) differs slightly
-    from the single-flexibility one; in adhesion both are identical.
+    traction of a sliding element opposes the true slip w − ∂u/∂x with
+    u = diag(L1, L2) p and the spin unscaled in w, not the slip of the
+    single flexibility L3, so the traction in the slip area differs slightly
+    (measured 0.6 % in Fy); in adhesion both are identical.
     """
     for cr in [(2e-3, 0, 0), (0, -2e-3, 0)]:
         r3 = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="three", fields=False)
@@ -122,7 +123,7 @@ def test_weighted_equals_three_for_pure_creepage(contact):
     cr = (0, 0, 0.4)
     r3 = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="three", fields=False)
     rw = wr.creep_forces(contact, cr, 0.3, method="fastsim", flexibility="weighted", fields=False)
-    assert rw.Fy == pytest.approx(r3.Fy, rel=5e-3) and rw.Fy != r3.Fy
+    assert rw.Fy == pytest.approx(r3.Fy, rel=1e-2) and rw.Fy != r3.Fy
     small = (0, 0, 1e-5)   # full adhesion: identical
     r3 = wr.creep_forces(contact, small, 0.3, method="fastsim", flexibility="three", fields=False)
     rw = wr.creep_forces(contact, small, 0.3, method="fastsim", flexibility="weighted", fields=False)
@@ -202,9 +203,13 @@ def test_force_grows_monotonically_to_saturation(contact):
 # L1 ≠ L2, Vollebregt & Voltr 2023) they move by ≈ 0.1 %: midpoint 200×200
 # −0.6487 / −0.5973, 400×400 −0.6483 / −0.5970; euler 200×200 −0.6389 /
 # −0.5959. The guide's own figure is two digits, −0.60, hence 3e-3 below.)
+# (Issue 22: ``scheme="euler"`` is CONTACT's FASTSIM, march and slip rule with the spin
+# scaled by L/L3 also in slip; the numbers above hold for it. The default "midpoint" now
+# opposes the true slip in slip elements and moves to −0.617 elliptic at 200×200, towards
+# the exact theory, −0.6162 on 80×80 elements (−0.6064 on 40×40), rows 1-2 below.)
 @pytest.mark.parametrize("bound, n, scheme, expected, rel", [
-    ("elliptic", 200, "midpoint", -0.596, 3e-3),
-    ("elliptic", 40, "midpoint", -0.605, 1.5e-2),
+    ("elliptic", 200, "midpoint", -0.616, 1e-2),
+    ("elliptic", 40, "midpoint", -0.616, 1.5e-2),
     ("elliptic", 200, "euler", -0.596, 2e-3),
     ("parabolic", 200, "euler", -0.636, 5e-3),
 ])
@@ -217,27 +222,22 @@ def test_published_case(published, bound, n, scheme, expected, rel):
     assert abs(r.Fx) < 1e-9 * abs(r.Fy)
 
 
-def test_published_case_schemes_share_the_limit(published):
-    """The first-order (CONTACT) and second-order schemes converge to the same value.
+def test_published_case_first_order_scheme_converges(published):
+    """CONTACT's first-order march (``scheme="euler"``) converges at order 1.
 
-    Richardson extrapolation of the first-order scheme, 2 F(400) − F(200), must
-    agree with the second-order scheme on the finer grid: the difference to
-    −0.636 is discretisation, not a different model. Also the published
-    two-digit value −0.64 (CONTACT user guide) for the parabolic bound.
+    Halving the element size halves the change (ratio 2 ± 0.3 from 200, 400,
+    800 elements): the difference to the converged simplified theory is
+    discretisation. Also the published two-digit value −0.64 (CONTACT user
+    guide) for the parabolic bound.
     """
     c = published
-    kw = dict(method="fastsim", bound="parabolic", fields=False)
+    kw = dict(method="fastsim", bound="parabolic", fields=False, scheme="euler")
     cr = (0.0, -0.000625, 0.625)
-    f = {(s, n): wr.creep_forces(c, cr, 0.3, nx=n, ny=n, scheme=s, **kw).Fy / (0.3 * c.Fn)
-         for s in ("midpoint", "euler") for n in (200, 400)}
-    extrapolated = 2 * f["euler", 400] - f["euler", 200]
-    assert extrapolated == pytest.approx(f["midpoint", 400], rel=1e-3)
-    # first order: halving the element size halves the error (ratio 2 ± 0.3)
-    ratio = (f["euler", 200] - f["midpoint", 400]) / (f["euler", 400] - f["midpoint", 400])
+    f = {n: wr.creep_forces(c, cr, 0.3, nx=n, ny=n, **kw).Fy / (0.3 * c.Fn)
+         for n in (200, 400, 800)}
+    ratio = (f[400] - f[200]) / (f[800] - f[400])
     assert 1.7 < ratio < 2.3
-    # second order: the midpoint scheme moves by < 0.1 % from 200 to 400
-    assert f["midpoint", 200] == pytest.approx(f["midpoint", 400], rel=1e-3)
-    assert round(f["euler", 200], 2) == -0.64  # the guide's two digits
+    assert round(f[200], 2) == -0.64  # the guide's two digits
 
 
 def test_published_case_ordering(published):

@@ -111,3 +111,25 @@ def test_cli_validate_only_one_check(tmp_path, capsys):
     out = capsys.readouterr().out
     assert "3 rows: 3 passed" in out and "total time" in out
     assert (tmp_path / "report.html").is_file()
+
+
+def test_rows_are_classified_by_reference_kind(quick):
+    """Issue 22: every row says what its reference is; a row whose reference value comes from
+    another numerical wheelrail method (the exact solver, the BEM, the transient stepper, the
+    linear theory's table …) is a consistency check and never counted as validation; only
+    closed forms written in wheelrail (Hertz, Carter) may supply a validation reference."""
+    from wheelrail.validation._core import REFERENCE_KINDS
+
+    report, paths = quick
+    for r in report.rows:
+        assert r.reference_kind in REFERENCE_KINDS, r
+        if r.reference_method not in ("", "hertz", "carter"):
+            assert not r.is_validation, r
+        if r.kind == "convergence":
+            assert r.reference_kind == "convergence"
+    counts = report.kind_counts()
+    assert all(counts[k] > 0 for k in REFERENCE_KINDS), counts
+    md = paths["md"].read_text(encoding="utf-8")
+    assert "## Consistency checks (not validation" in md
+    data = json.loads(paths["json"].read_text(encoding="utf-8"))
+    assert data["reference_kinds"] == counts

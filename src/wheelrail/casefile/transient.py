@@ -46,7 +46,7 @@ def load_transient_case(path_or_str) -> TransientCase:
         step = 5e-5              # V·Δt [m]
         elements = 30            # elements across 2a
         friction = "exact"       # or "regularised" (then epsilon = ... [-])
-        scheme = "averaged"      # or "centre"
+        scheme = "interpolated"  # or "averaged", "centre"
         discretisation = "uniform"   # "strips" (Paul–Hashemi; strips = 30) or "material"
         frames = 60              # traction fields stored
         Fn = 10000.0             # normal force [N] (default: [contact] Fn), or penetration = δ [m]
@@ -101,9 +101,10 @@ def load_transient_case(path_or_str) -> TransientCase:
         if isinstance(v, bool) or not isinstance(v, int) or v < 2:
             r.fail("transient", "strips", f"must be an integer >= 2, got {v!r}")
         s["strips"] = v
-    s["scheme"] = r.string("transient", t, "scheme", "averaged")
-    if s["scheme"] not in ("averaged", "centre"):
-        r.fail("transient", "scheme", f"must be 'averaged' or 'centre', got {s['scheme']!r}")
+    s["scheme"] = r.string("transient", t, "scheme", "interpolated")
+    if s["scheme"] not in ("interpolated", "averaged", "centre"):
+        r.fail("transient", "scheme", "must be 'interpolated', 'averaged' or 'centre', "
+               f"got {s['scheme']!r}")
     if "Fn" in t and "penetration" in t:
         r.fail("transient", "penetration", "give Fn or penetration, not both")
     for key in ("Fn", "penetration", "Fx"):

@@ -416,6 +416,12 @@ def _tame(xi, eta, phi, L1, L2, L3, reach):
     return xi * f, eta * f, phi * f
 
 
+def _flags(scheme):
+    """Kernel flags of a march (``_fastsim_kernel``): ``"euler"`` is CONTACT's FASTSIM, its
+    first-order march (1) and its slip rule with the spin scaled by L/L3 (2)."""
+    return 3 if scheme == "euler" else 0
+
+
 def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_out, scheme,
                   fields):
     """:func:`fastsim_strips` on checked, contiguous float arrays (shapes (ny,), p (ny, nx))."""
@@ -432,7 +438,7 @@ def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_
     kxi, keta, kphi = _tame(xi, eta, phi, np.min(L1), np.min(L2), np.min(L3), reach)
     Fx, Fy, Mz = _k.fastsim_strips_kernel(y, dy, x_lead, x_trail, bound, L1, L2, L3,
                                           float(kxi), float(keta), float(kphi), px, py, sx, sy,
-                                          slip, scheme == "euler")
+                                          slip, _flags(scheme))
     scale = max((abs(kv / v) for kv, v in ((kxi, xi), (keta, eta), (kphi, phi)) if v != 0.0),
                 default=1.0)
     if scale < 1.0:                       # creepages were tamed: the slip fields scale back
@@ -544,9 +550,16 @@ class Fastsim(TangentialMethod):
         spin term at the step mid-point); second order in the element size.
         ``"euler"``: the first-order backward-Euler march of CONTACT's
         FASTSIM (``M=3``) for steady rolling, u_i = u_{i−1} − δx w(x_i)
-        (full step into every element, rigid slip at the element centre);
-        use it to reproduce CONTACT's published FASTSIM numbers on a given
-        grid. Both converge to the same simplified-theory solution.
+        (full step into every element, rigid slip at the element centre)
+        with CONTACT's slip rule (the spin's rigid slip scaled by L1/L3,
+        L2/L3 also in slip elements); use it to reproduce CONTACT's
+        published FASTSIM numbers on a given grid. ``"midpoint"`` opposes the
+        true slip in slip elements (spin unscaled; module
+        :mod:`wheelrail.tangential._fastsim_kernel`): with spin near full slip
+        the two differ by the model, not only the discretisation (a = b = 6 mm,
+        ξ = η = 1e-3, φ = 0.1 1/m: −0.1 % / +0.6 % from the exact theory
+        against −2.1 % / +0.9 %); without spin, or in full adhesion, they
+        converge to the same solution.
     fields : bool or None, default None
         Return the surface fields (:class:`FastsimFields`); ``None`` means
         yes for a single case, no for a batch (forces-only fast path, all cases
@@ -600,14 +613,15 @@ class Fastsim(TangentialMethod):
     flexibility: str = option("three", choices=_FLEXIBILITIES,
                               doc="three flexibilities L1, L2, L3 or Kalker's weighted one")
     scheme: str = option("midpoint", choices=_SCHEMES,
-                         doc="second-order mid-point march, or CONTACT's first-order one")
+                         doc="second-order mid-point march, or CONTACT's FASTSIM (first-order "
+                             "march, spin scaled in slip)")
     fields: bool | None = option(None, choices=(None, True, False),
                                  doc="return traction fields (None: for single cases only)")
 
     def solve(self, contact, xi, eta, phi, mu):
         nx, ny, bound, flexibility = self.nx, self.ny, self.bound, self.flexibility
         scheme, fields = self.scheme, self.fields
-        first_order = scheme == "euler"
+        first_order = _flags(scheme)
         single = np.shape(contact.a) == ()
         want_fields = single if fields is None else bool(fields)
 
@@ -801,7 +815,7 @@ class Fastsim(TangentialMethod):
             slip = _EMPTY2B
         ok, Fx, Fy, Mz, Fn, xc, yc = _k.strip_patch_forces(
             y, dy, xl, xt, c_(sp), i0, i1, w, pinfo.get("traction_bound") == "parabolic", mu,
-            strip(L1), strip(L2), strip(L3), xi, eta, phi, _SLIP_RATE_CAP, scheme == "euler",
+            strip(L1), strip(L2), strip(L3), xi, eta, phi, _SLIP_RATE_CAP, _flags(scheme),
             want_fields, p, px, py, sx, sy, slip)
         if not ok:
             return None

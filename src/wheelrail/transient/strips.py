@@ -9,8 +9,8 @@ error along x, which suits longitudinal creepage.
 
 The elements have different lengths, so the influence operators are dense
 matrices (no FFT): Love's rectangle formulae with each source element's own
-half-length. The time step uses the element-averaged slip of
-:func:`wheelrail.transient.rolling.step_weights` with each target strip's own
+half-length. The time step uses the collocation of
+:func:`wheelrail.transient.rolling.step_points` with each target strip's own
 ``dx_j / h``. The pressure is Hertz's at the element centres, scaled so that
 the discrete total equals the normal force (Baeza et al. use the Hertzian normal
 contact; a constant normal force only).
@@ -100,12 +100,14 @@ def hertz_pressure(contact, sg: StripGrid, load) -> np.ndarray:
     return p * (float(load) / float((p * sg.area).sum()))
 
 
-def strip_step_operators(sg: StripGrid, materials, step, weights_of):
+def strip_step_operators(sg: StripGrid, materials, step, points_of):
     """Dense step operators ``(now, old)`` of shapes (2n, 3n) [m/Pa], n = nx·ny.
 
     Row ``τ n + q`` is the slip component τ (0: x, 1: y) of element q (flat
-    index of ``[i, j]``, C order) averaged over its collocation points
-    ``weights_of(dx_j, step)``; column ``κ n + r`` the traction κ (x, y, n)
+    index of ``[i, j]``, C order) at its collocation points
+    ``points_of(dx_j, step) = (now offsets, now weights, old offsets, old
+    weights)`` (:func:`~wheelrail.transient.rolling.step_points`, with the
+    strip's own element length); column ``κ n + r`` the traction κ (x, y, n)
     of element r; ``now`` at the current positions, ``old`` carried one
     step ``h = step`` upstream (:func:`~wheelrail.transient.rolling.step_kernels`).
     """
@@ -114,16 +116,17 @@ def strip_step_operators(sg: StripGrid, materials, step, weights_of):
     n = X.size
     hx = np.broadcast_to(sg.dx[None, :] / 2, sg.shape).ravel()
     strip = np.broadcast_to(np.arange(sg.ny)[None, :], sg.shape).ravel()
-    per = [weights_of(float(d), step) for d in sg.dx]
-    K = max(len(w) for _, w in per)
+    per = [points_of(float(d), step) for d in sg.dx]
     now = np.zeros((2 * n, 3 * n))
     old = np.zeros((2 * n, 3 * n))
     dY = Y[:, None] - Y[None, :]
-    for k in range(K):
-        w = np.array([ws[k] if k < len(ws) else 0.0 for _, ws in per])[strip]
-        s = np.array([off[k] if k < len(off) else 0.0 for off, _ in per])[strip]
-        for shift, target in ((0.0, now), (step, old)):
-            A = rectangle_influence(X[:, None] + s[:, None] + shift - X[None, :], dY,
+    for which, target in ((0, now), (2, old)):
+        K = max(len(pts[which]) for pts in per)
+        for k in range(K):
+            w = np.array([pts[which + 1][k] if k < len(pts[which]) else 0.0
+                          for pts in per])[strip]
+            s = np.array([pts[which][k] if k < len(pts[which]) else 0.0 for pts in per])[strip]
+            A = rectangle_influence(X[:, None] + s[:, None] - X[None, :], dY,
                                     hx[None, :], sg.dy / 2, pair.G, pair.nu, pair.K)
             for t in range(2):
                 for c in range(3):

@@ -149,4 +149,4 @@ def _skipped(check: Check, reason: str) -> CheckResult:
     from dataclasses import replace
 
     return replace(skipped_row(check.methods[0], check.title, "(not run)", reason),
-                   check=check.name)
+                   check=check.name, reference_kind=check.reference_kind)

@@ -15,6 +15,13 @@ __all__ = ["CheckResult", "ValidationReport", "Check", "CHECKS", "register", "re
 #: Row statuses.
 PASSED, FAILED, KNOWN, SKIPPED = "passed", "failed", "known-failure", "skipped"
 
+#: Kinds of reference, in report order; the first three are validation.
+REFERENCE_KINDS = ("closed form", "published", "other code", "consistency", "convergence")
+VALIDATION_KINDS = REFERENCE_KINDS[:3]
+#: wheelrail methods that evaluate a closed form (Hertz's and Carter's theories): a row whose
+#: reference comes from one of them can be validation; from any other method it is consistency.
+CLOSED_FORM_METHODS = ("hertz", "carter")
+
 
 @dataclass(frozen=True)
 class CheckResult:
@@ -68,6 +75,12 @@ class CheckResult:
     kind : {"reference", "convergence"}
         ``convergence``: a fitted order or a limit of the method's own grid
         sequence (a convergence study, not a comparison with a reference).
+    reference_kind : {"closed form", "published", "other code", "consistency", "convergence"}
+        What the reference is (:data:`REFERENCE_KINDS`): a closed form, a published
+        table or figure value, a published run of another code, or — not counted
+        as validation — wheelrail against itself (another of its methods, a
+        solver sharing its core, the same formula or table on both sides) or a
+        convergence study of its own grids.
     """
 
     method: str
@@ -88,6 +101,12 @@ class CheckResult:
     note: str = ""
     reference_method: str = ""
     kind: str = "reference"
+    reference_kind: str = ""
+
+    @property
+    def is_validation(self) -> bool:
+        """Whether the row compares with an independent reference (counted as validation)."""
+        return self.reference_kind in VALIDATION_KINDS
 
     def to_dict(self) -> dict:
         """All fields as JSON-ready values (the figure replaced by whether there is one)."""
@@ -141,6 +160,13 @@ class ValidationReport:
             out[r.status] += 1
         return out
 
+    def kind_counts(self) -> dict:
+        """Number of rows per reference kind (:data:`REFERENCE_KINDS`)."""
+        out = {k: 0 for k in REFERENCE_KINDS}
+        for r in self.rows:
+            out[r.reference_kind] = out.get(r.reference_kind, 0) + 1
+        return out
+
     def methods(self) -> list[str]:
         """Methods that appear in at least one row, in order of appearance."""
         seen: list[str] = []
@@ -178,19 +204,26 @@ class Check:
     title: str
     full_only: bool = False
     heavy: str = ""
+    reference_kind: str = ""
 
 
 #: Registry: name -> :class:`Check`, in report order.
 CHECKS: dict[str, Check] = {}
 
 
-def register(name, methods, title, full_only=False, heavy=""):
+def register(name, methods, title, full_only=False, heavy="", reference_kind=""):
     """Decorator adding a check function to :data:`CHECKS`.
 
-    ``heavy`` (a reason) marks checks the test suite skips to stay fast.
+    ``heavy`` (a reason) marks checks the test suite skips to stay fast;
+    ``reference_kind`` (:data:`REFERENCE_KINDS`) is the kind of the check's rows
+    unless a row says otherwise (convergence rows are always "convergence").
     """
+    if reference_kind not in REFERENCE_KINDS:
+        raise ValueError(f"check {name!r}: reference_kind must be one of {REFERENCE_KINDS}, "
+                         f"got {reference_kind!r}")
+
     def deco(func):
-        CHECKS[name] = Check(name, func, tuple(methods), title, full_only, heavy)
+        CHECKS[name] = Check(name, func, tuple(methods), title, full_only, heavy, reference_kind)
         return func
     return deco
 
@@ -202,7 +235,8 @@ def _status(ok, known):
 
 
 def _row(method, reference, quantity, value, ref, error, tol, ok, *, source, tolerance_source,
-         measure, known="", note="", figure=None, reference_method="", kind="reference"):
+         measure, known="", note="", figure=None, reference_method="", kind="reference",
+         reference_kind=""):
     value = float(value)
     ref = float(ref) if ref is not None else math.nan
     error = float(error)
@@ -212,7 +246,8 @@ def _row(method, reference, quantity, value, ref, error, tol, ok, *, source, tol
                        reference_value=ref, error=error, tolerance=tol, passed=ok,
                        time=math.nan, figure=figure, source=source, measure=measure,
                        tolerance_source=tolerance_source, status=_status(ok, known), note=note,
-                       reference_method=reference_method, kind=kind)
+                       reference_method=reference_method, kind=kind,
+                       reference_kind=reference_kind)
 
 
 def rel_row(method, reference, quantity, value, ref, tol, **kw):
@@ -274,5 +309,13 @@ def run_check(check: Check, quick: bool) -> tuple[list[CheckResult], str | None]
                             tolerance=math.nan, passed=False, time=math.nan, status=FAILED,
                             note=err)]
     dt = time.perf_counter() - t0
-    return [replace(r, check=check.name, time=dt if r.status != SKIPPED else r.time)
-            for r in rows], err
+
+    def kind_of(r):
+        if r.kind == "convergence":
+            return "convergence"
+        if r.reference_method and r.reference_method not in CLOSED_FORM_METHODS:
+            return "consistency"       # the reference value is another wheelrail computation
+        return r.reference_kind or check.reference_kind
+
+    return [replace(r, check=check.name, time=dt if r.status != SKIPPED else r.time,
+                    reference_kind=kind_of(r)) for r in rows], err

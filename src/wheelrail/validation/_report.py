@@ -57,7 +57,26 @@ def _header_lines(report) -> list[str]:
         f"Rows: {len(report.rows)} — {c['passed']} passed, {c['failed']} failed, "
         f"{c['known-failure']} known failures (reported defects or model limits), "
         f"{c['skipped']} skipped.",
+        "Rows by reference kind: " + ", ".join(f"{k} {v}" for k, v in report.kind_counts().items())
+        + f"; validation (closed form, published, other code): "
+        f"{sum(1 for r in report.rows if r.is_validation)} rows; consistency and convergence "
+        "rows compare wheelrail with itself and are not counted as validation.",
     ]
+
+
+#: Section titles of the reference kinds.
+_SECTIONS = {"closed form": "Validation: closed forms",
+             "published": "Validation: published tables and figures",
+             "other code": "Validation: published runs of another code",
+             "consistency": "Consistency checks (not validation: wheelrail against itself)",
+             "convergence": "Convergence studies (not validation: the method's own grids)"}
+
+
+def _grouped(rows):
+    """``(kind, rows)`` per reference kind in report order (rows of unknown kind last)."""
+    kinds = list(_SECTIONS) + sorted({r.reference_kind for r in rows} - set(_SECTIONS))
+    return [(k, [r for r in rows if r.reference_kind == k]) for k in kinds
+            if any(r.reference_kind == k for r in rows)]
 
 
 _ACCENTS = {'{\\"u}': "ü", '{\\"o}': "ö", '{\\"a}': "ä", "{\\ss}": "ß", "{\\'e}": "é",
@@ -81,21 +100,26 @@ def markdown(report) -> str:
     out = ["# Validation report", ""]
     for line in _header_lines(report):
         out += [line, ""]
-    out += ["Each row compares a method with an independent reference (never with its own "
-            "earlier output). *error* is relative unless the quantity says otherwise; a "
+    out += ["Validation rows compare a method with an independent reference: a closed form, a "
+            "published table or figure value, or a published run of another code; the "
+            "consistency and convergence sections that follow compare wheelrail with itself "
+            "and are not counted as validation. *error* is relative unless the quantity says otherwise; a "
             "tolerance written as an interval bounds the value itself (fitted orders, "
             "documented bias bands). *time* is the wall time of the check that produced the "
             "row.", ""]
-    out += ["| method | reference | quantity | value | reference value | error | tolerance | "
-            "status | time [s] |",
-            "|---|---|---|---|---|---|---|---|---|"]
-    for r in report.rows:
-        status = {"passed": "pass", "failed": "**FAIL**", "known-failure": "known failure",
-                  "skipped": "skipped"}[r.status]
-        out.append("| " + " | ".join(_md_cell(x) for x in (
-            f"`{r.method}`", r.reference, r.quantity, _num(r.value), _num(r.reference_value),
-            _err(r), _tol(r), status, f"{r.time:.2f}" if math.isfinite(r.time) else "–")) + " |")
-    out.append("")
+    for kind, rows in _grouped(report.rows):
+        out += [f"## {_SECTIONS.get(kind, kind or 'unclassified')}", ""]
+        out += ["| method | reference | quantity | value | reference value | error | "
+                "tolerance | status | time [s] |",
+                "|---|---|---|---|---|---|---|---|---|"]
+        for r in rows:
+            status = {"passed": "pass", "failed": "**FAIL**", "known-failure": "known failure",
+                      "skipped": "skipped"}[r.status]
+            out.append("| " + " | ".join(_md_cell(x) for x in (
+                f"`{r.method}`", r.reference, r.quantity, _num(r.value),
+                _num(r.reference_value), _err(r), _tol(r), status,
+                f"{r.time:.2f}" if math.isfinite(r.time) else "–")) + " |")
+        out.append("")
     notes = [r for r in report.rows if r.status in ("failed", "known-failure", "skipped")]
     if notes:
         out += ["## Failures, known failures and skipped rows", ""]
@@ -136,7 +160,7 @@ def write_json(report, path) -> Path:
     """Every number of the report (rows, environment, counts, citation keys) as JSON."""
     path = Path(path)
     data = {"quick": report.quick, "total_time_s": report.total_time,
-            "environment": report.environment, "counts": report.counts(),
+            "environment": report.environment, "counts": report.counts(), "reference_kinds": report.kind_counts(),
             "passed": report.passed, "errors": report.errors,
             "citations": report.citation_keys(),
             "rows": [r.to_dict() for r in report.rows]}
@@ -157,6 +181,30 @@ figcaption{font-size:12px;max-width:380px} pre{background:#f7f7f7;padding:8px;fo
 """
 
 
+def _html_table(rows, index) -> str:
+    """One HTML table of report rows (``index``: row id -> position, for figure links)."""
+    e = html.escape
+    parts = ["<table><thead><tr><th>method</th><th>reference</th><th>quantity</th>"
+             "<th>value</th><th>reference value</th><th>error</th><th>tolerance</th>"
+             "<th>status</th><th>time [s]</th><th>tolerance source / note</th>"
+             "<th>cites</th></tr></thead><tbody>"]
+    for r in rows:
+        i = index[id(r)]
+        fig = f" <a href='#fig{i}'>figure</a>" if r.figure else ""
+        note = e(r.tolerance_source) + (f"<br><b>{e(r.note)}</b>" if r.note else "")
+        parts.append(
+            f"<tr class='{e(r.status)}'><td><code>{e(r.method)}</code></td>"
+            f"<td>{e(r.reference)}</td><td>{e(r.quantity)}{fig}</td>"
+            f"<td class='num'>{e(_num(r.value))}</td>"
+            f"<td class='num'>{e(_num(r.reference_value))}</td>"
+            f"<td class='num'>{e(_err(r))}</td><td class='num'>{e(_tol(r))}</td>"
+            f"<td class='st'>{e(r.status)}</td>"
+            f"<td class='num'>{e(f'{r.time:.2f}' if math.isfinite(r.time) else '–')}</td>"
+            f"<td class='note'>{note}</td><td class='note'>{e(r.source)}</td></tr>")
+    parts.append("</tbody></table>")
+    return "".join(parts)
+
+
 def html_page(report) -> str:
     """The report as one self-contained HTML page (inline CSS, figures as data URIs)."""
     e = html.escape
@@ -165,26 +213,17 @@ def html_page(report) -> str:
              "<h1>wheelrail validation report</h1>"]
     for line in _header_lines(report):
         parts.append(f"<p>{e(line.replace('`', ''))}</p>")
-    parts.append("<p>Each row compares a method with an independent reference (never with its "
-                 "own earlier output). Error is relative unless the quantity says otherwise; an "
+    parts.append("<p>Validation rows compare a method with an independent reference (closed "
+                 "form, published table or figure, published run of another code); consistency "
+                 "and convergence rows compare wheelrail with itself and are not counted as "
+                 "validation. Error is relative unless the quantity says otherwise; an "
                  "interval tolerance bounds the value itself (fitted orders, bias bands).</p>")
-    parts.append("<table><thead><tr><th>method</th><th>reference</th><th>quantity</th>"
-                 "<th>value</th><th>reference value</th><th>error</th><th>tolerance</th>"
-                 "<th>status</th><th>time [s]</th><th>tolerance source / note</th>"
-                 "<th>cites</th></tr></thead><tbody>")
-    for i, r in enumerate(report.rows):
-        fig = f" <a href='#fig{i}'>figure</a>" if r.figure else ""
-        note = e(r.tolerance_source) + (f"<br><b>{e(r.note)}</b>" if r.note else "")
-        parts.append(
-            f"<tr class='{e(r.status)}'><td><code>{e(r.method)}</code></td>"
-            f"<td>{e(r.reference)}</td><td>{e(r.quantity)}{fig}</td>"
-            f"<td class='num'>{e(_num(r.value))}</td><td class='num'>{e(_num(r.reference_value))}</td>"
-            f"<td class='num'>{e(_err(r))}</td><td class='num'>{e(_tol(r))}</td>"
-            f"<td class='st'>{e(r.status)}</td>"
-            f"<td class='num'>{e(f'{r.time:.2f}' if math.isfinite(r.time) else '–')}</td>"
-            f"<td class='note'>{note}</td><td class='note'>{e(r.source)}</td></tr>")
-    parts.append("</tbody></table>")
+    index = {id(r): i for i, r in enumerate(report.rows)}
+    for kind, rows in _grouped(report.rows):
+        parts.append(f"<h2>{e(_SECTIONS.get(kind, kind or 'unclassified'))}</h2>")
+        parts.append(_html_table(rows, index))
     figs = [(i, r) for i, r in enumerate(report.rows) if r.figure]
+
     if figs:
         parts.append("<h2>Figures</h2>")
         for i, r in figs:

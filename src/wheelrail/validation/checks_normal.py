@@ -76,7 +76,8 @@ def hertz_closed_form(load, A, B, E_star):
     return a, b, p0, delta
 
 
-@register("hertz-closed-form", ["hertz"], "Hertz vs closed form with quadrature elliptic integrals")
+@register("hertz-closed-form", ["hertz"], "Hertz vs closed form with quadrature elliptic integrals",
+          reference_kind="closed form")
 def hertz_vs_closed_form(quick):
     wr = _wr()
     mat = wr.Material(STEEL_E, STEEL_NU)
@@ -108,7 +109,8 @@ _TABLE2 = np.array([
 ])
 
 
-@register("hertz-table2", ["hertz"], "Hertz coefficients vs Piotrowski & Chollet Table 2")
+@register("hertz-table2", ["hertz"], "Hertz coefficients vs Piotrowski & Chollet Table 2",
+          reference_kind="published")
 def hertz_vs_table2(quick):
     theta, nm, m_ref, r_ref = _TABLE2.T
     m, n, r = hertz_coefficients(theta)
@@ -133,7 +135,7 @@ def _semi_axes_from_pressure(sol):
     return fit(g.x, p[:, iy]), fit(g.y, p[ix, :])
 
 
-@register("bem-hertz", ["bem"], "BEM normal solver vs Hertz")
+@register("bem-hertz", ["bem"], "BEM normal solver vs Hertz", reference_kind="closed form")
 def bem_vs_hertz(quick):
     wr = _wr()
 
@@ -162,7 +164,8 @@ def bem_vs_hertz(quick):
     return rows
 
 
-@register("bem-convergence", ["bem"], "BEM normal solver: observed order towards Hertz")
+@register("bem-convergence", ["bem"], "BEM normal solver: observed order towards Hertz",
+          reference_kind="convergence")
 def bem_convergence(quick):
     wr = _wr()
 
@@ -206,7 +209,8 @@ def _gap(c, **kw):
 
 
 @register("nonhertz-hertzian-gap", ["kik-piotrowski", "stripes", "multi-hertz", "linder"],
-          "Non-Hertzian methods vs Hertz on a Hertzian (quadratic) gap")
+          "Non-Hertzian methods vs Hertz on a Hertzian (quadratic) gap",
+          reference_kind="closed form")
 def nonhertz_vs_hertz(quick):
     wr = _wr()
     ratios = (0.2, 1.0, 5.0) if quick else (0.2, 0.5, 1.0, 2.0, 5.0)
@@ -254,7 +258,8 @@ def nonhertz_vs_hertz(quick):
 
 
 @register("nonhertz-wheelrail-bem", ["kik-piotrowski", "stripes"],
-          "Non-Hertzian methods vs boundary elements on S1002/60E1", full_only=True)
+          "Non-Hertzian methods vs boundary elements on S1002/60E1", full_only=True,
+          reference_kind="consistency")
 def nonhertz_vs_bem(quick):
     wr = _wr()
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
@@ -283,7 +288,8 @@ def nonhertz_vs_bem(quick):
 
 
 @register("caf-jump-gaps", ["multi-hertz"],
-          "Ayasse's CAF tables: the rigid gap behind the jump overlaps vs the profiles")
+          "Ayasse's CAF tables: the rigid gap behind the jump overlaps vs the profiles",
+          reference_kind="published")
 def caf_jump_gaps(quick):
     """The gap of the second contact near a CAF jump, from the table's lines
     (jump_gap: straight lines = eq. 3's model; with the CAF slopes = the
@@ -320,7 +326,8 @@ def caf_jump_gaps(quick):
 
 # --------------------------------------------------------------------------- influence coefficients
 @register("influence-boussinesq-cerruti", ["halfspace"],
-          "Half-space influence coefficients vs Boussinesq/Cerruti and Love")
+          "Half-space influence coefficients vs Boussinesq/Cerruti and Love",
+          reference_kind="consistency")
 def influence_vs_closed_forms(quick):
     wr = _wr()
 
@@ -354,7 +361,8 @@ def influence_vs_closed_forms(quick):
 
 
 @register("subsurface-hertz-axis", ["halfspace"],
-          "Subsurface stresses under a Hertz contact vs Johnson's closed forms")
+          "Subsurface stresses under a Hertz contact vs Johnson's closed forms",
+          reference_kind="closed form")
 def subsurface_vs_hertz(quick):
     wr = _wr()
 
@@ -378,6 +386,12 @@ def subsurface_vs_hertz(quick):
     st2 = subsurface_stresses(grid, None, None, sol.pressure, mat, zz,
                               x=np.array([0.0]), y=np.array([0.0]))
     tau, z_at, _, _ = st2.max_location("tau_max")
+    # the depth of the maximum between the sample depths (0.48 a is one of them): the vertex
+    # of the parabola through the largest sample and its neighbours
+    f = np.asarray(st2.tau_max).reshape(len(zz), -1)[:, 0]
+    k = int(np.clip(np.argmax(f), 1, len(zz) - 2))
+    den = f[k - 1] - 2 * f[k] + f[k + 1]
+    z_at = zz[k] + 0.5 * (zz[1] - zz[0]) * (f[k - 1] - f[k + 1]) / den if den < 0 else z_at
     return [max_row("halfspace", ref, "sigma_zz / p0 on the axis, z = 0.1 ... 2 a",
                     st.szz[:, 0] / p0, sz / p0, 1e-3, scale=1.0, **kw),
             max_row("halfspace", ref, "sigma_xx / p0 on the axis, z = 0.1 ... 2 a",
@@ -385,4 +399,5 @@ def subsurface_vs_hertz(quick):
             rel_row("halfspace", "Johnson (1985) §4.2: tau_max = 0.31 p0 (nu = 0.3)",
                     "maximum shear stress below the centre", tau, 0.31 * p0, 0.01, **kw),
             abs_row("halfspace", "Johnson (1985) §4.2: depth 0.48 a (nu = 0.3)",
-                    "depth of the maximum shear / a", z_at / a, 0.48, 0.01, **kw)]
+                    "depth of the maximum shear / a (parabolic vertex between samples)",
+                    z_at / a, 0.48, 0.01, **kw)]

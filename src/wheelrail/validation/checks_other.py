@@ -26,7 +26,8 @@ def _table1():
 
 
 @register("transient-steady-limit", ["transient"],
-          "Transient rolling vs the steady exact solver and the shift problem")
+          "Transient rolling vs the steady exact solver and the shift problem",
+          reference_kind="consistency")
 def transient_steady(quick):
     wr = _wr()
     from scipy.optimize import brentq
@@ -46,12 +47,15 @@ def transient_steady(quick):
     err = np.abs(res.px[-1] - st.px).max() / np.abs(st.px).max()
     ref = "steady rolling, exact theory on the same grid (Kalker 1990 §5.2; Baeza et al. eq. 2.19)"
     tsrc = "tests/reference/test_transient_steady.py"
+    bound = ("tests/reference/test_transient_steady.py; the bound the solver tolerances "
+             "guarantee (slip residual 1e-8 per step, steady reference 1e-10), not the "
+             "measurement: the run ends on the steady fixed point (settle), measured ~1e-9")
     rows += [abs_row("transient", ref, "max traction difference / max abs(px) after 20 a, 12 el.",
-                     err, 0.0, 1e-4, tolerance_source=tsrc, **kw),
+                     err, 0.0, 1e-6, tolerance_source=bound, **kw),
              rel_row("transient", ref, "Fx after 20 a (xi = -5e-4, Baeza et al. Table 1 case)",
-                     res.Fx[-1], st.Fx, 1e-5, tolerance_source=tsrc, **kw)]
-    # first step from rest = Cattaneo shift problem (the element-centre scheme, eq. 2.10 as
-    # written; the default element-averaged scheme spreads the first shift over the element)
+                     res.Fx[-1], st.Fx, 1e-6, tolerance_source=bound, **kw)]
+    # first step from rest = Cattaneo shift problem (the element-centre and the default
+    # interpolated schemes both start with C p / h; the averaged one spreads the shift)
     n2, h, xi, eta = 10, 2e-4, -4e-4, 2e-4
     r1 = wr.transient_rolling(hc, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
                               elements=n2, scheme="centre")
@@ -60,7 +64,8 @@ def transient_steady(quick):
     sh = solve_shift(g2, pn2, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
     rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (Baeza et al. §3.1)",
                         "Fy after the first step from rest, 10 el., scheme='centre'", r1.Fy[1], sh.Fy, 1e-6,
-                        tolerance_source=tsrc, **kw))
+                        tolerance_source=tsrc + " (the step is solved to 1e-8, the shift problem "
+                        "to 1e-10: a bound, measured 2e-9)", **kw))
     # Cattaneo to Carter: final creepage for a prescribed force
     n3 = 10
     g3, gap3 = hertz_grid(hc, elements=n3)
@@ -74,12 +79,18 @@ def transient_steady(quick):
                               Fx=2000.0, elements=n3)
     rows.append(rel_row("transient", "steady exact theory at the same force (Baeza et al. §3.1, "
                         "'Cattaneo to Carter')", "final xi for Fx = 2 kN, 10 el.", r3.xi[-1],
-                        xi_steady, 0.01, tolerance_source=tsrc, **kw))
+                        xi_steady, 1e-4, tolerance_source=(
+                            "the run ends on the steady fixed point to the solver tolerances "
+                            "(force 1e-7 mu Fn, slip 1e-8: measured 2e-6 when stepping "
+                            "through, 1e-10 with the direct steady end state, settle=); "
+                            "issue 22: 1 % could "
+                            "not fail"), **kw))
     return rows
 
 
 @register("transient-regularised", ["transient"],
-          "Regularised Coulomb law: convergence to the exact law as epsilon -> 0")
+          "Regularised Coulomb law: convergence to the exact law as epsilon -> 0",
+          reference_kind="consistency")
 def transient_regularised(quick):
     wr = _wr()
     hc = _table1()
@@ -113,7 +124,7 @@ def _fe_errors(h):
 
 
 @register("fe-indentation-hertz", ["fe"], "FE static indentation vs Hertz",
-          heavy="finite-element runs take 10-60 s")
+          heavy="finite-element runs take 10-60 s", reference_kind="closed form")
 def fe_indentation(quick):
     h = 1.5e-3 if quick else 1.0e-3
     r, hz = _fe_errors(h)
@@ -139,7 +150,7 @@ def fe_indentation(quick):
 
 
 @register("fe-rolling-exact", ["fe"], "FE steady rolling vs the exact half-space theory",
-          full_only=True)
+          full_only=True, reference_kind="consistency")
 def fe_rolling(quick):
     wr = _wr()
 
@@ -211,7 +222,8 @@ def cone_tangency(ws, tr, y, lam=LAM):
 
 
 @register("geometry-cone-circle", ["geometry"],
-          "Rigid contact search vs closed-form tangency of a cone on a circle")
+          "Rigid contact search vs closed-form tangency of a cone on a circle",
+          reference_kind="closed form")
 def geometry_cone(quick):
     wr = _wr()
     rows = []

@@ -52,7 +52,8 @@ def _default_contact():
 
 
 # --------------------------------------------------------------------------- Carter
-@register("carter-closed-form", ["carter"], "Carter's 2D theory vs Johnson's closed form")
+@register("carter-closed-form", ["carter"], "Carter's 2D theory vs Johnson's closed form",
+          reference_kind="consistency")
 def carter_checks(quick):
     wr = _wr()
 
@@ -81,7 +82,8 @@ def carter_checks(quick):
 
 
 # --------------------------------------------------------------------------- linear theory
-@register("linear-kalker-table", ["linear"], "Kalker's linear theory vs his published table")
+@register("linear-kalker-table", ["linear"], "Kalker's linear theory vs his published table",
+          reference_kind="consistency")
 def linear_vs_table(quick):
     wr = _wr()
     got, ref = [], []
@@ -105,7 +107,8 @@ def linear_vs_table(quick):
 
 
 # --------------------------------------------------------------------------- exact theory
-@register("exact-kalker-coefficients", ["exact"], "Exact theory at small creepage vs Kalker's table")
+@register("exact-kalker-coefficients", ["exact"], "Exact theory at small creepage vs Kalker's table",
+          reference_kind="published")
 def exact_vs_table(quick):
     wr = _wr()
     mat = wr.Material(2.1e11, 0.25)
@@ -135,7 +138,8 @@ def _carter_strip(nx, A=1e-3, P0=5e8, ny=21):
     return grid, p
 
 
-@register("exact-carter", ["exact"], "Exact theory in the 2D limit vs Carter (1926)")
+@register("exact-carter", ["exact"], "Exact theory in the 2D limit vs Carter (1926)",
+          reference_kind="closed form")
 def exact_vs_carter(quick):
     wr = _wr()
 
@@ -174,7 +178,8 @@ def exact_vs_carter(quick):
     return rows
 
 
-@register("exact-cattaneo", ["exact"], "Exact theory, shift problem vs Cattaneo-Mindlin")
+@register("exact-cattaneo", ["exact"], "Exact theory, shift problem vs Cattaneo-Mindlin",
+          reference_kind="closed form")
 def exact_vs_cattaneo(quick):
     wr = _wr()
 
@@ -220,7 +225,8 @@ def exact_vs_cattaneo(quick):
 
 
 @register("exact-spin-convergence", ["exact"],
-          "Exact theory, pure spin: 40 elements vs the extrapolated limit", full_only=True)
+          "Exact theory, pure spin: 40 elements vs the extrapolated limit", full_only=True,
+          reference_kind="convergence")
 def exact_spin(quick):
     wr = _wr()
     rows = []
@@ -269,7 +275,7 @@ def _manchester_paths():
 
 @register("exact-manchester-contact", ["exact", "bem"],
           "BEM + exact theory vs CONTACT on Manchester benchmark A-2.2",
-          heavy="needs ../shared/data (benchmark inputs and profiles)")
+          heavy="needs ../shared/data (benchmark inputs and profiles)", reference_kind="other code")
 def manchester(quick):
     import csv
 
@@ -289,11 +295,14 @@ def manchester(quick):
     with open(data, encoding="utf-8") as fh:
         for r in csv.DictReader(line for line in fh if not line.startswith("#")):
             t = refs.setdefault((int(r["case"]), r["wheel"]),
-                                {"Fn_N": 0.0, "Fx_N": 0.0, "Fs_N": 0.0, "pmax_MPa": 0.0})
-            for k in ("Fn_N", "Fx_N", "Fs_N"):
+                                {"Fn_N": 0.0, "Fx_N": 0.0, "Fs_N": 0.0, "pmax_MPa": 0.0,
+                                 "area_mm2": 0.0})
+            for k in ("Fn_N", "Fx_N", "Fs_N", "area_mm2"):
                 t[k] += float(r[k])
             t["pmax_MPa"] = max(t["pmax_MPa"], float(r["pmax_MPa"]))
-    numbers = (1, 2, 14, 21) if quick else tuple(range(1, len(cases) + 1))
+    # quick: the tread cases 1, 2, the flange cases 14, 21 and case 11, whose right wheel is
+    # the worst of the benchmark (two patches where CONTACT merges them into one)
+    numbers = (1, 2, 11, 14, 21) if quick else tuple(range(1, len(cases) + 1))
     one, multi = [], []        # per wheel: (label, Fn, Fn_ref, Fx, Fx_ref, Fs, Fs_ref, pm, pm_ref)
     for k in numbers:
         c = cases[k - 1]
@@ -304,7 +313,7 @@ def manchester(quick):
             ps = res.side(side)                 # totals over the patches of the wheel
             row = (f"case {k} {side}", sum(q.Fn for q in ps), r["Fn_N"], sum(q.Fx for q in ps),
                    -r["Fx_N"], sum(q.Fs for q in ps), -r["Fs_N"], max(q.p_max for q in ps),
-                   r["pmax_MPa"] * 1e6)
+                   r["pmax_MPa"] * 1e6, sum(q.area for q in ps), r["area_mm2"] * 1e-6)
             (one if len(ps) == 1 else multi).append(row)
     kw = dict(source="VollebregtCONTACT,Vollebregt2022",
               tolerance_source="tests/reference/test_wheelrail_contact.py::"
@@ -316,8 +325,9 @@ def manchester(quick):
             (multi, "wheels where wheelrail finds two patches: "
                     + ", ".join(g[0] for g in multi),
              "Known difference of patch splitting, not hidden: CONTACT merges contact regions "
-             "closer than D_COMB into one patch, wheelrail keeps two; the totals differ by 3.6 % "
-             "of mu Fn in Fx and 2.8 % in p_max (as docs/validation/manchester_a22.md shows), "
+             "closer than D_COMB into one patch, wheelrail keeps two; the totals differ by 3.5 % "
+             "of mu Fn in Fx, 2.8 % in p_max and 12.6 % in the area (as "
+             "docs/validation/manchester_a22.md shows), "
              "more than the 1.5 % held for single patches (the test's comment 'all 21 cases "
              "within 1.2 %' holds for the 41 single-patch wheels only).")):
         if not group:
@@ -330,12 +340,20 @@ def manchester(quick):
                  max_row("exact", ref, f"Fs / (0.3 Fn), {what}", g[:, 4], g[:, 5], 0.015,
                          scale=sc, known=known, **kw),
                  max_row("bem", ref, f"p_max (bem normal solution), {what}", g[:, 6], g[:, 7],
-                         0.015, known=known, **kw)]
+                         0.015, known=known, **kw),
+                 max_row("bem", ref, f"contact area (bem normal solution), {what}", g[:, 8],
+                         g[:, 9], 0.08, known=known, **dict(kw, tolerance_source=(
+                             "discretisation of the contact edge: the area counts 0.04 mm2 "
+                             "elements, a flange patch has about 170 of which about 50 on its "
+                             "edge, placed differently from CONTACT's grid; measured up to 7.1 % "
+                             "over the 41 single-patch wheels (docs/validation/manchester_a22.md)"
+                         )))]
     return rows
 
 
 # --------------------------------------------------------------------------- FASTSIM
-@register("fastsim-linear-limit", ["fastsim"], "FASTSIM at small creepage vs Kalker's linear theory")
+@register("fastsim-linear-limit", ["fastsim"], "FASTSIM at small creepage vs Kalker's linear theory",
+          reference_kind="consistency")
 def fastsim_linear(quick):
     wr = _wr()
 
@@ -351,30 +369,37 @@ def fastsim_linear(quick):
               tolerance_source="tests/reference/test_fastsim.py::test_linear_limit_pure_creepages")
     ref = "Kalker's linear theory with Table E.3 coefficients (nu interpolated)"
     case = "a/b = 1.5, nu = 0.28, 50x50"
+    # the flexibilities are chosen so that FASTSIM reproduces these slopes (L1 = 8a/(3GC11)
+    # ...): the rows check that construction to the discretisation error of the 50x50 grid
+    # (midpoint rule, O(1/n^2): measured below 1e-3), not an independent reference
+    kw["tolerance_source"] = ("construction of L1, L2, L3 (Kalker 1982): exact in the continuum, "
+                              "1e-3 for the 50x50 discretisation (issue 22: 1 % could not fail)")
     return [rel_row("fastsim", ref, f"Fx = -G c^2 C11 xi, {case}", rx.Fx, -G * cc**2 * C11 * 1e-7,
-                    0.01, **kw),
+                    1e-3, **kw),
             rel_row("fastsim", ref, f"Fy = -G c^2 C22 eta, {case}", ry.Fy,
-                    -G * cc**2 * C22 * 1e-7, 0.01, **kw),
+                    -G * cc**2 * C22 * 1e-7, 1e-3, **kw),
             rel_row("fastsim", ref, f"Fy = -G c^3 C23 phi, {case}", rs.Fy,
-                    -G * cc**3 * C23 * 1e-5, 0.01, **kw)]
+                    -G * cc**3 * C23 * 1e-5, 1e-3, **kw)]
 
 
 @register("fastsim-contact-published", ["fastsim"],
-          "FASTSIM vs CONTACT's published FASTSIM example")
+          "FASTSIM vs CONTACT's published FASTSIM example", reference_kind="other code")
 def fastsim_published(quick):
     wr = _wr()
     mat = wr.Material.from_shear(82e9, 0.28)
     c = wr.hertz_from_semiaxes(a=8e-3, b=4e-3, Fn=82e3, material=mat)
     n = 200
+    # scheme="euler": CONTACT's FASTSIM (first-order march, spin scaled also in slip); the
+    # default midpoint scheme opposes the true slip and is compared with the exact theory
     r = wr.creep_forces(c, (0.0, -0.000625, 0.625), 0.3, method="fastsim", nx=n, ny=n,
-                        bound="elliptic", fields=False)
+                        bound="elliptic", fields=False, scheme="euler")
     return [rel_row("fastsim", "CONTACT user guide, FASTSIM example (elliptic bound, 200x200): "
-                    "Fy/(mu Fn) = -0.596", "Fy/(mu Fn), a = 8, b = 4 mm, eta = -6.25e-4, "
-                    "phi = 0.625 1/m", r.Fy / (0.3 * c.Fn), -0.596, 3e-3,
+                    "Fy/(mu Fn) = -0.596", "Fy/(mu Fn), scheme='euler', a = 8, b = 4 mm, "
+                    "eta = -6.25e-4, phi = 0.625 1/m", r.Fy / (0.3 * c.Fn), -0.596, 2e-3,
                     source="VollebregtCONTACT",
                     tolerance_source="tests/reference/test_fastsim.py::test_published_case "
-                                     "(3e-3: the guide's figure is two digits, -0.60; the "
-                                     "slip-direction rule moves FASTSIM by about 0.1 %)")]
+                                     "(2e-3: CONTACT's own discretisation variants spread "
+                                     "-0.5948 ... -0.5976)")]
 
 
 def _fastsim_reference_fx(c, xi, mu):
@@ -400,7 +425,8 @@ def _fastsim_reference_fx(c, xi, mu):
 
 
 @register("fastsim-convergence", ["fastsim"],
-          "FASTSIM grid convergence vs the continuum simplified theory")
+          "FASTSIM grid convergence vs the continuum simplified theory",
+          reference_kind="convergence")
 def fastsim_convergence(quick):
     wr = _wr()
     mat = wr.Material.from_shear(82e9, 0.28)
@@ -426,7 +452,8 @@ def fastsim_convergence(quick):
 
 
 @register("fastsim-combined-slip", ["fastsim"],
-          "FASTSIM (three flexibilities) near full slip vs the exact theory")
+          "FASTSIM (three flexibilities) near full slip vs the exact theory",
+          reference_kind="consistency")
 def fastsim_combined(quick):
     wr = _wr()
     c = _default_contact()
@@ -451,7 +478,8 @@ def fastsim_combined(quick):
 
 # --------------------------------------------------------------------------- creep curves vs exact
 @register("creep-curves-exact", ["fastsim", "shen-hedrick-elkins", "polach", "fastrip"],
-          "Creep curves of the fast laws vs the exact theory (pure xi)")
+          "Creep curves of the fast laws vs the exact theory (pure xi)",
+          reference_kind="consistency")
 def creep_curves(quick):
     wr = _wr()
     c = _default_contact()
@@ -468,15 +496,21 @@ def creep_curves(quick):
         cr = np.column_stack([xi, 0 * xi, 0 * xi])
         fx = np.asarray(wr.creep_forces(c, cr, mu, method=name).Fx, float)
         ax.plot(-xi * 1e3, fx / (mu * c.Fn), "-", label=name)
-        # Polach's 1999 law is a model 5.01 % below the exact theory at xi = -2e-3 (a
-        # limitation of the law, stated in the document), the other two within 5 %
-        tol = 0.051 if name == "polach" else 0.05
-        tol_src = ("docs/choosing_a_method.md (measured: FASTSIM and Shen-Hedrick-Elkins within "
-                   "5 %, Polach within 5.1 % of the exact theory in pure xi up to saturation)")
+        # a fast law is a model of the exact theory: 5 % of the force is the accuracy the
+        # documents claim for them in pure xi (docs/choosing_a_method.md); Polach's 1999 law
+        # is 5.01 % below the exact theory at xi = -2e-3: a known limitation, reported as such
+        tol = 0.05
+        tol_src = ("docs/choosing_a_method.md (the fast laws within 5 % of the exact theory in "
+                   "pure xi up to saturation; issue 22: Polach's former 5.1 % sat just above "
+                   "its measured 5.01 %)")
+        known = ("Polach's 1999 law is 5.01 % below the exact theory at xi = -2e-3 (its "
+                 "single-parameter shape cannot follow Kalker's curve there): a limitation "
+                 "of the law, not a defect of the implementation (issue 22)"
+                 if name == "polach" else "")
         rows.append(max_row(name, f"Kalker's exact theory ({n} elements, Kalker 1990)",
                             "Fx on the creep curve xi = -2e-4 ... -5e-3 (default contact)", fx, ex,
                             tol, source=f"Kalker1990,{srcs[name]}", tolerance_source=tol_src,
-                            reference_method="exact"))
+                            reference_method="exact", known=known))
     # FaStrip: translational creepage in partial slip (its test case)
     cf = wr.hertz(1e5, 1.0, 2.0, wr.STEEL)
     errs = []
@@ -502,7 +536,8 @@ def creep_curves(quick):
 
 
 @register("closed-laws-slope", ["shen-hedrick-elkins", "polach"],
-          "Shen-Hedrick-Elkins and Polach initial slope vs Kalker's table")
+          "Shen-Hedrick-Elkins and Polach initial slope vs Kalker's table",
+          reference_kind="consistency")
 def closed_laws_slope(quick):
     wr = _wr()
     G, a = 8.0e10, 6.0e-3
@@ -539,7 +574,8 @@ def closed_laws_slope(quick):
 
 
 # --------------------------------------------------------------------------- table
-@register("table-law", ["table"], "Tabulated creep-force law vs Kalker's table and the exact theory")
+@register("table-law", ["table"], "Tabulated creep-force law vs Kalker's table and the exact theory",
+          reference_kind="consistency")
 def table_checks(quick):
     wr = _wr()
 

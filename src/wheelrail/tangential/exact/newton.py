@@ -187,7 +187,7 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
 
 
 def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100, upwind=True,
-                krylov_conv=None):
+                krylov_conv=None, forcing=None):
     """One frictional step on a grid: the shared core of steady and transient rolling.
 
     Solves the discrete Coulomb problem ``s = b + K p`` with the traction bound
@@ -244,6 +244,6 @@ def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100,
     if conv is None:
         conv = _BlockConvolution(kernel)
     return _newton(kernel, conv, b, g, initial, tol, maxiter, upwind=upwind,
-                   krylov_conv=krylov_conv)
+                   krylov_conv=krylov_conv, forcing=forcing)
 
 
