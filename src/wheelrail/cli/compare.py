@@ -18,6 +18,8 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+from ._output import esc
+
 HELP = "compare every normal method (and FaStrip) with the exact solver on a wheelset position"
 
 #: (label, normal, tangential, options) — the reference last.
@@ -147,7 +149,7 @@ def run(args, console) -> int:
         kept = {}
         res = run_methods(position(y, yaw), case.motion, case.mu, methods, sides, keep=kept)
         for s in sides:
-            console.print(_table(res, s, f"wheelrail compare {args.case}: y = {y * 1e3:g} mm, "
+            console.print(_table(res, s, f"wheelrail compare {esc(args.case)}: y = {y * 1e3:g} mm, "
                                          f"{s} wheel, μ = {case.mu:g} (deviation from "
                                          f"{REFERENCE})"))
         if args.patches and not args.no_plots and kept:
@@ -155,7 +157,7 @@ def run(args, console) -> int:
             out.mkdir(parents=True, exist_ok=True)
             path = patch_figure(kept, sides[-1], out / "compare_patches.png",
                                 title=f"{args.case}: y = {y * 1e3:g} mm, {sides[-1]} wheel")
-            console.print(f"  {path}  — patches of every method, pressure in colour")
+            console.print(f"  {esc(path)}  — patches of every method, pressure in colour")
         return 0
     if args.y is not None:
         ys = np.linspace(args.y[0], args.y[1], int(args.y[2])) * 1e-3
@@ -193,7 +195,7 @@ def run(args, console) -> int:
     if not args.no_plots:
         files.append((_plot(rows, sides, out), "each quantity against the lateral shift"))
     for p, d in files:
-        console.print(f"  {p}  — {d}")
+        console.print(f"  {esc(p)}  — {d}")
     return 0
 
 

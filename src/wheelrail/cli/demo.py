@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from ._output import esc
+
 HELP = "run the built-in example with all available methods; write results and figures"
 
 
@@ -302,7 +304,7 @@ def run(args, console) -> int:
     out.mkdir(parents=True, exist_ok=True)
     ctx = DemoContext(out=out, console=console,
                       case=case_from_dict(DEFAULT_CASE, source="<built-in case>"))
-    console.print(f"[bold]wheelrail demo[/bold] → {out.resolve()}")
+    console.print(f"[bold]wheelrail demo[/bold] → {esc(out.resolve())}")
     failed = []
     status = {}
     for step in steps:
@@ -312,11 +314,11 @@ def run(args, console) -> int:
         except WheelrailError as exc:
             status[step.name] = "failed"
             failed.append(step.name)
-            console.print(f"[red]✗ {step.title}: {exc}[/red]")
+            console.print(f"[red]✗ {step.title}: {esc(exc)}[/red]")
             continue
         status[step.name] = "ok"
         dt = time.perf_counter() - t0
-        console.print(f"[green]✓[/green] {step.title} ({dt:.1f} s)" + (f": {note}" if note else ""))
+        console.print(f"[green]✓[/green] {step.title} ({dt:.1f} s)" + (f": {esc(note)}" if note else ""))
     ctx.results["steps"] = status
     write_json(ctx.results, ctx.file("results.json", "all numbers of the demo (SI units)"))
     from rich.table import Table

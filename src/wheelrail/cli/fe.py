@@ -27,6 +27,8 @@ Example::
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "finite-element rolling contact (or static indentation) of an [fe] case file"
 
 #: Measured cost per element and step [s] of the whole explicit loop, used for the time
@@ -164,7 +166,7 @@ def run(args, console) -> int:
         summary.update(Fx=r.Fx, Fy=r.Fy, p_max=r.p_max, a=r.a, b=r.b,
                        **{k: float(v) for k, v in r.info.items()})
         if args.restart:
-            console.print(f"continued from {args.restart} (step {r.info['restarted_at_step']})")
+            console.print(f"continued from {esc(args.restart)} (step {r.info['restarted_at_step']})")
         r.dataset.to_dataframe().to_csv(out / "history.csv")
         patch, u, mu = r.patch, r.u, case.mu
         model = r.model
@@ -182,5 +184,5 @@ def run(args, console) -> int:
             scale, unit = {"p_max": (1e-6, "MPa"), "a": (1e3, "mm"), "b": (1e3, "mm")}.get(
                 k, (1.0, "N"))
             console.print(f"  {k:6s} = {summary[k] * scale:10.4g} {unit}")
-    console.print(f"written to {out}/")
+    console.print(f"written to {esc(out)}/")
     return 0

@@ -12,6 +12,8 @@ Reads the case with :func:`wheelrail.casefile.load_transient_case`, runs
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "transient (instationary) rolling of a [transient] case file: NetCDF + figures"
 
 
@@ -74,5 +76,5 @@ def run(args, console) -> int:
     console.print(f"{len(res.x) - 1} steps in {wall:.2f} s ({wall / max(len(res.x) - 1, 1) * 1e3:.2f}"
                   f" ms/step); final ξ = {final['xi']:.6e}, Fx = {final['Fx']:.6g} N, "
                   f"Fn = {final['Fn']:.6g} N")
-    console.print(f"wrote {', '.join(written)} to {out}")
+    console.print(f"wrote {', '.join(written)} to {esc(out)}")
     return 0

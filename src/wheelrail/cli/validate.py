@@ -44,6 +44,6 @@ def run(args, console) -> int:
     for r in report.rows:
         if r.status in ("failed", "known-failure"):
             console.print(escape(f"  {r.status}: {r.method}, {r.quantity}: {r.note}"))
-    console.print(f"report: {paths['html']} (also {paths['json'].name}, {paths['md'].name}, "
+    console.print(f"report: {escape(str(paths['html']))} (also {paths['json'].name}, {paths['md'].name}, "
                   f"{paths['bib'].name})")
     return 0 if report.passed else 1

@@ -14,6 +14,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ._output import esc
+
 HELP = "wheelset on a track (real profiles): contact patches and forces, one position or a sweep"
 
 
@@ -188,12 +190,12 @@ def run(args, console) -> int:
     if not case.sweep:
         result, _, files = single_position(case, out, plots)
         if not args.quiet:
-            title = (f"wheelrail wheelset {args.case}: y = {case.y[0] * 1e3:g} mm, "
+            title = (f"wheelrail wheelset {esc(args.case)}: y = {case.y[0] * 1e3:g} mm, "
                      f"{result.normal} + {result.tangential}, μ = {case.mu:g}")
             console.print(patch_table(result, title))
             console.print(track_table(result))
             for path, desc in files:
-                console.print(f"  {path}  — {desc}")
+                console.print(f"  {esc(path)}  — {desc}")
         return 0
     both = args.csv == args.netcdf
     ds, files = sweep(case, out, plots=plots, csv=both or args.csv, netcdf=both or args.netcdf,
@@ -207,9 +209,9 @@ def run(args, console) -> int:
                       + (f", [yellow]{failed} failed[/yellow] (status/message in the files)"
                          if failed else ""))
         for y, msg in zip(ds["y"].values[status != "ok"][:5], ds["message"].values[status != "ok"]):
-            console.print(f"  y = {y * 1e3:g} mm: {msg}")
+            console.print(f"  y = {y * 1e3:g} mm: {esc(msg)}")
         for path, desc in files:
-            console.print(f"  {path}  — {desc}")
+            console.print(f"  {esc(path)}  — {desc}")
     if failed == status.size:
         from ..errors import WheelrailError
 
