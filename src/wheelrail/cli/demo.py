@@ -51,7 +51,9 @@ class Step:
 def step_case(ctx: DemoContext):
     """The built-in case as a case file, to edit and run with ``wheelrail solve``."""
     path = ctx.file("case.toml", "the built-in case (wheelrail solve case.toml)")
-    path.write_text(ctx.case.to_toml(), encoding="utf-8")
+    from .._atomic import write_text
+
+    write_text(path, ctx.case.to_toml())
     return f"run it yourself: wheelrail solve {path} --plot fields.png"
 
 
@@ -72,8 +74,10 @@ def step_hertz(ctx: DemoContext):
     ctx.results["hertz"] = c.to_dict()
     loads = np.linspace(2500.0, 20000.0, 8)
     batch = hertz(loads, c.A, c.B, ctx.case.materials)
-    with open(ctx.file("hertz_table.csv", "Hertz a, b, p0, δ against the load"), "w",
-              newline="", encoding="utf-8") as fh:
+    from .._atomic import atomic_open
+
+    with atomic_open(ctx.file("hertz_table.csv", "Hertz a, b, p0, δ against the load"), "w",
+                     newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(["load_N", "a_m", "b_m", "p0_Pa", "penetration_m", "area_m2"])
         for row in zip(batch.Fn, batch.a, batch.b, batch.p0, batch.penetration, batch.area):

@@ -32,9 +32,19 @@ def run(args, console) -> int:
     from ..sweeps import load_sweep, sweep
 
     spec = load_sweep(args.case)
-    ds, info = sweep(spec, args.out, workers=args.workers, scheduler=args.scheduler,
-                     executor=args.executor, resume=args.resume, progress=not args.quiet,
-                     timeout=args.timeout, summary=True)
+    try:
+        ds, info = sweep(spec, args.out, workers=args.workers, scheduler=args.scheduler,
+                         executor=args.executor, resume=args.resume, progress=not args.quiet,
+                         timeout=args.timeout, summary=True)
+    except KeyboardInterrupt:
+        import shlex
+        import sys
+
+        again = " ".join(shlex.quote(str(a)) for a in ("wheelrail", "sweep", args.case,
+                                                       "--out", args.out))
+        print(f"wheelrail: interrupted: the finished chunks are kept in {args.out}; continue "
+              f"with: {again} --resume", file=sys.stderr)
+        return 130
     ds.close()
     if not args.quiet:
         t = Table(title=f"wheelrail sweep {esc(args.case)}", title_justify="left")

@@ -27,7 +27,6 @@ def add_arguments(p) -> None:
 
 
 def run(args, console) -> int:
-    import json
     import time
     from pathlib import Path
 
@@ -47,8 +46,12 @@ def run(args, console) -> int:
     wall = time.perf_counter() - t0
     ds = res.dataset
     ds.attrs["case"] = str(args.case)
-    ds.to_netcdf(out / "history.nc")
-    res.fields.to_netcdf(out / "fields.nc")
+    from .._atomic import atomic_path
+
+    with atomic_path(out / "history.nc") as tmp:
+        ds.to_netcdf(tmp)
+    with atomic_path(out / "fields.nc") as tmp:
+        res.fields.to_netcdf(tmp)
     final = {k: float(v[-1]) for k, v in res.history.items()}
     summary = {"case": str(args.case), "settings": case.describe(), "mu": case.mu,
                "grid": [res.grid.nx, res.grid.ny], "dx": res.grid.dx, "dy": res.grid.dy,
@@ -56,7 +59,9 @@ def run(args, console) -> int:
                "solver": {k: res.info[k] for k in ("newton", "krylov", "solves")},
                "units": {"x": "m", "xi": "1", "eta": "1", "phi": "1/m", "Fn": "N", "Fx": "N",
                          "Fy": "N", "p_max": "Pa", "penetration": "m"}}
-    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    from ._output import write_json
+
+    write_json(summary, out / "summary.json")
     written = ["history.nc", "fields.nc", "summary.json"]
     if not args.no_figures:
         from ..transient.plot import plot_centreline, plot_creepage, plot_state

@@ -119,7 +119,9 @@ def write_sweep_csv(ds, path) -> Path:
             return str(int(v))
         return str(v)
 
-    with open(path, "w", newline="", encoding="utf-8") as fh:
+    from .._atomic import atomic_open
+
+    with atomic_open(path, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(names)
         for i in range(cols[0].size):
@@ -130,8 +132,10 @@ def write_sweep_csv(ds, path) -> Path:
 def write_sweep_netcdf(ds, path) -> Path:
     """NetCDF-3 (scipy engine, no netCDF4 library needed)."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    ds.to_netcdf(path, engine="scipy")
+    from .._atomic import atomic_path
+
+    with atomic_path(path) as tmp:
+        ds.to_netcdf(tmp, engine="scipy")
     return path
 
 

@@ -16,7 +16,15 @@ from .executors import make_executor
 from .spec import SweepSpec, load_sweep, sweep_from_dict
 from .store import SweepStore, _is_netcdf, open_sweep, provenance, to_netcdf
 
-__all__ = ["sweep", "SweepSummary", "evaluate_chunk"]
+__all__ = ["sweep", "SweepSummary", "SweepInterrupted", "evaluate_chunk"]
+
+
+class SweepInterrupted(WheelrailError):
+    """A sweep stopped before its end (lost workers or scheduler); ``path`` holds its chunks."""
+
+    def __init__(self, message, path=None):
+        super().__init__(message)
+        self.path = path
 
 
 @dataclass(frozen=True)
@@ -148,11 +156,11 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
     methods = ev.methods(spec) if hasattr(ev, "methods") else []
     with execu:  # connect first: an unreachable scheduler leaves no store behind
         if out.exists():
-            store = SweepStore.open(out, spec)
+            store = SweepStore.open(out, spec).lock()
         else:
             prov = provenance(spec, methods, {m: ev.options_for(spec, m) for m in methods}
                               if methods else dict(spec.options))
-            store = SweepStore.create(out, spec, prov)
+            store = SweepStore.create(out, spec, prov).lock()
         blocks = spec.chunks()
         done = store.done()
         todo = [(i, (spec, b)) for i, b in enumerate(blocks) if i not in done]
@@ -184,7 +192,17 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
 
         try:
             execu.run(evaluate_chunk, todo, on_result)
+        except (KeyboardInterrupt, WheelrailError):
+            raise
+        except Exception as exc:  # noqa: BLE001 - the executor (a lost worker or scheduler)
+            if isinstance(exc, OSError) and exc.filename is not None:
+                raise
+            raise SweepInterrupted(
+                f"sweep stopped by the executor ({execu.name}): {type(exc).__name__}: "
+                f"{' '.join(str(exc).split())[:200]}; the finished chunks are kept in "
+                f"{str(out)!r}: continue with --resume", out) from exc
         finally:
+            store.close()
             if bar is not None:
                 bar.stop()
     seconds = time.perf_counter() - t0
