@@ -88,12 +88,13 @@ def case_from_toml(path):
     from ..errors import CaseFileError
     from ..fe import RollingCase
 
+    from .._toml import read_input
+
     path = Path(path)
-    with open(path, "rb") as fh:
-        try:
-            doc = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise CaseFileError(f"{path}: {exc}") from exc
+    try:
+        doc = tomllib.loads(read_input(path).decode("utf-8", errors="replace"))
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseFileError(f"{path}: {exc}") from exc
     if "fe" not in doc:
         raise CaseFileError(f"{path}: no [fe] table")
     t = dict(doc["fe"])

@@ -235,7 +235,7 @@ def _connect(client_class, address: str, timeout: float):
     try:
         _probe(address, timeout)
     except OSError as exc:
-        raise InputError(f"{hint} not reachable within {timeout:g} s "
+        raise InputError(f"{hint} did not answer within {timeout:g} s "
                          f"({exc.strerror or type(exc).__name__}); {advice}") from None
     client = client_class.__new__(client_class)
     try:

@@ -185,8 +185,12 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
             task = bar.add_task(f"{spec.evaluator}/{'+'.join(methods)} "
                                 f"({execu.name}, {execu.workers} worker(s))", total=n_todo)
 
+        writing = []  # set while a result is written: such errors are not the executor's
+
         def on_result(chunk_id, outputs):
+            writing.append(chunk_id)
             store.write(chunk_id, blocks[chunk_id], outputs)
+            writing.pop()
             if bar is not None:
                 bar.advance(task, len(outputs["status"]))
 
@@ -195,7 +199,7 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
         except (KeyboardInterrupt, WheelrailError):
             raise
         except Exception as exc:  # noqa: BLE001 - the executor (a lost worker or scheduler)
-            if isinstance(exc, OSError) and exc.filename is not None:
+            if writing or execu.name == "serial":
                 raise
             raise SweepInterrupted(
                 f"sweep stopped by the executor ({execu.name}): {type(exc).__name__}: "

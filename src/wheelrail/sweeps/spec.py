@@ -54,7 +54,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .._toml import Reader, tomllib
+from .._toml import Reader, read_input, tomllib
 from ..errors import CaseFileError, InputError
 from .evaluators import get_evaluator
 
@@ -347,12 +347,7 @@ def load_sweep(path_or_str) -> SweepSpec:
     else:
         path = Path(path_or_str)
         source = str(path)
-        try:
-            raw = path.read_bytes()
-        except FileNotFoundError:
-            raise CaseFileError(f"{source}: sweep file not found") from None
-        except OSError as exc:
-            raise CaseFileError(f"{source}: cannot read sweep file: {exc}") from None
+        raw = read_input(path, "sweep file")
         sha = hashlib.sha256(raw).hexdigest()
         try:
             text = raw.decode("utf-8")

@@ -70,9 +70,16 @@ class SweepStore:
             fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError:
             fh.close()
+            try:
+                who = f" (process {int((self.path / _LOCK).read_text().split()[0])})"
+            except (OSError, ValueError, IndexError):
+                who = ""
             raise InputError(f"output {str(self.path)!r} is being written by another wheelrail "
-                             "sweep; wait for it to finish (then --resume if it was stopped) "
-                             "or choose another path") from None
+                             f"sweep{who}; wait for it to finish (then --resume if it was "
+                             "stopped) or choose another path") from None
+        fh.truncate(0)
+        fh.write(f"{os.getpid()}\n")
+        fh.flush()
         self._lock = fh
         return self
 

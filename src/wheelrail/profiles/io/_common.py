@@ -32,10 +32,17 @@ def read_lines(path) -> tuple[str, list[str]]:
     """Return (display name, lines) of a text file; undecodable bytes are replaced."""
     p = Path(os.fspath(path))
     name = str(p)
+    import stat
+
     try:
-        size = p.stat().st_size
+        st = p.stat()
     except OSError as exc:
         raise ProfileError(f"{name}: cannot read profile file ({exc.strerror or exc})") from exc
+    if not stat.S_ISREG(st.st_mode):  # a FIFO blocks, /dev/zero never ends
+        kind = ("a directory" if stat.S_ISDIR(st.st_mode) else "a FIFO (named pipe)"
+                if stat.S_ISFIFO(st.st_mode) else "a device or socket")
+        raise ProfileError(f"{name}: is {kind}; a profile file must be a regular file")
+    size = st.st_size
     if size > MAX_FILE_BYTES:
         raise ProfileError(f"{name}: file of {size} bytes is too large for a profile")
     try:
