@@ -351,3 +351,59 @@ def test_validation_report_is_written_atomically(tmp_path, monkeypatch):
     with pytest.raises(OSError, match="No space left"):
         _report.write_text(tmp_path / "report.html", "<html></html>")
     assert list(tmp_path.iterdir()) == []
+
+
+# --------------------------------------------------------------------------- internal errors
+def test_unexpected_error_names_the_command_and_file(tmp_path, capsys, monkeypatch):
+    import wheelrail.cases as cases
+
+    def broken(case):
+        raise ZeroDivisionError("float division by zero")
+
+    monkeypatch.setattr(cases, "solve_case", broken)
+    p = tmp_path / "case.toml"
+    p.write_text(CASE)
+    code, _, err = run_cli(["solve", p, "--json", tmp_path / "r.json"], capsys)
+    assert_clean_failure(code, err, "internal error", "solve", "case.toml", "r.json",
+                         "ZeroDivisionError")
+
+
+def test_multi_hertz_load_closure_is_a_convergence_failure():
+    import wheelrail as wr
+    from wheelrail.errors import ConvergenceError, InputError
+    from wheelrail.normal import multi_hertz
+
+    from wheelrail.materials import as_material_pair
+    from wheelrail.patch import ContactPatch
+
+    pair = as_material_pair(wr.STEEL)
+    hc = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.STEEL)
+    patch = ContactPatch.from_hertz(hc)
+    with pytest.raises(ConvergenceError, match=r"did not converge.*7500 N.*7575 N") as info:
+        multi_hertz._scale_patches([patch], 1.01, pair, target=7575.0)
+    assert not isinstance(info.value, InputError)
+    assert "kik-piotrowski" in str(info.value)
+
+
+def test_conicity_without_contact_names_the_position_not_an_array(monkeypatch):
+    import numpy as np
+
+    import wheelrail as wr
+    from wheelrail.errors import InputError
+    from wheelrail.geometry import Track, Wheelset, conicity
+
+    real = conicity.contact_table
+
+    def holed(*a, **k):
+        tab = real(*a, **k)
+        dr = tab["delta_r"].values.copy()
+        dr[3] = np.nan
+        return tab.assign(delta_r=("y", dr))
+
+    monkeypatch.setattr(conicity, "contact_table", holed)
+    ws = Wheelset(wr.profiles.load("S1002"))
+    tr = Track(wr.profiles.load("60E1"), inclination=1 / 40)
+    with pytest.raises(InputError) as info:
+        conicity.equivalent_conicity(ws, tr, 0.003)
+    msg = str(info.value)
+    assert "y = " in msg and " mm" in msg and "array" not in msg and "shape" not in msg

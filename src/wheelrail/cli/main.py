@@ -92,7 +92,19 @@ def _exit_code(exc: BaseException) -> int:
     return EXIT_ERROR
 
 
-def _message(exc: BaseException) -> str:
+def _inputs(args) -> str:
+    """The command and its file arguments (case, profiles, outputs) for an unexpected error."""
+    if args is None or getattr(args, "command", None) is None:
+        return ""
+    parts = [args.command]
+    for key in ("case", "wheel", "rail", "out", "json", "plot", "csv"):
+        v = getattr(args, key, None)
+        if isinstance(v, (str, bytes)) or hasattr(v, "__fspath__"):
+            parts.append(f"{key}={str(v)!r}" if key != "case" else repr(str(v)))
+    return " ".join(parts)
+
+
+def _message(exc: BaseException, args=None) -> str:
     from ..errors import WheelrailError, tidy
 
     text = tidy(" ".join(str(exc).split())) or type(exc).__name__
@@ -100,7 +112,9 @@ def _message(exc: BaseException) -> str:
         return text
     if isinstance(exc, OSError) and exc.filename is not None:
         return f"{exc.strerror or text}: {exc.filename}"
-    return f"{type(exc).__name__}: {text} (run with --debug for the traceback)"
+    where = _inputs(args)
+    where = f"internal error in 'wheelrail {where}': " if where else ""
+    return f"{where}{type(exc).__name__}: {text} (run with --debug for the traceback)"
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
@@ -141,6 +155,7 @@ def main(argv=None) -> int:
 
 
 def _main(argv, debug) -> int:
+    args = None
     try:
         parser = build_parser()
         try:
@@ -170,7 +185,7 @@ def _main(argv, debug) -> int:
     except Exception as exc:  # noqa: BLE001 - the CLI boundary
         if debug:
             raise
-        print(f"wheelrail: error: {_message(exc)}", file=sys.stderr)
+        print(f"wheelrail: error: {_message(exc, args)}", file=sys.stderr)
         return _exit_code(exc)
 
 
