@@ -69,6 +69,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--memory-limit", metavar="SIZE", default=None,
                         help="refuse boundary-element solves estimated to need more memory "
                              "(e.g. 8GB, 500MB, off; default min(4 GiB, half the RAM))")
+    parser.add_argument("--time-limit", metavar="DURATION", default=None,
+                        help="refuse jobs (sweeps, transient runs, boundary-element and exact "
+                             "grids) estimated to take longer (e.g. 3h, 30min, off; default 1h)")
     parser.add_argument("--no-plausibility-checks", action="store_true",
                         help="accept values outside the wheel-rail range (e.g. mu > 2, a patch "
                              "larger than the radii) without warning or refusal")
@@ -79,6 +82,10 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                        help="show tracebacks on errors")
         module.add_arguments(p)
+        if not any(a.dest == "estimate_only" for a in p._actions):
+            p.add_argument("--estimate-only", action="store_true",
+                           help="print the time and memory estimate of the first long "
+                                "computation and stop (nothing is computed or written)")
         p.set_defaults(_run=module.run)
     return parser
 
@@ -173,12 +180,25 @@ def _main(argv, debug) -> int:
         with contextlib.ExitStack() as stack:
             if args.memory_limit is not None:
                 stack.enter_context(_resources.limit(_resources.parse_size(args.memory_limit)))
+            if args.time_limit is not None:
+                stack.enter_context(_resources.time_limit_set(
+                    _resources.parse_duration(args.time_limit)))
+            if getattr(args, "estimate_only", False) and args.command != "fe":
+                stack.enter_context(_resources.estimating())
             if getattr(args, "no_plausibility_checks", False):
                 from ..plausibility import disabled
 
                 stack.enter_context(disabled())
             stack.enter_context(_resources.reporting(console))
-            return int(args._run(args, console) or 0)
+            try:
+                code = int(args._run(args, console) or 0)
+            except _resources.EstimateOnly as est:
+                console.print(f"estimate: {est}", markup=False, highlight=False)
+                return EXIT_OK
+            if getattr(args, "estimate_only", False) and args.command != "fe":
+                console.print("estimate: no long computation (below the guards' thresholds)",
+                              markup=False, highlight=False)
+            return code
     except KeyboardInterrupt:
         print("wheelrail: interrupted", file=sys.stderr)
         return 130

@@ -395,8 +395,14 @@ def hertz_grid(contact, elements: int = 64, margin: float = 1.25):
 def _elements_for(length, elements, element_size):
     """Elements across ``length`` [m]: from ``element_size`` [m] if given, else ``elements``."""
     if element_size is None:
-        return elements
-    return max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
+        n, what = int(elements), f"normal BEM with {int(elements)} elements"
+    else:
+        n = max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
+        what = (f"normal BEM with element_size = {float(element_size):g} m ({n} elements across "
+                f"{length * 1e3:.3g} mm)")
+    if element_size is not None or n > 1000:  # before the grid is built: no MemoryError
+        guard("bem_normal", int(min(1.6 * n * n, 1e18)), what)
+    return n
 
 
 def _solution_info(sol) -> dict:
@@ -412,6 +418,7 @@ def _square_grid(bounds, element_size) -> Grid:
     ny = max(int(math.ceil((bounds[3] - bounds[2]) / d)), 5)
     nx += 1 - nx % 2
     ny += 1 - ny % 2
+    guard("bem_normal", nx * ny, f"normal BEM with element_size = {d:g} m on a {nx}x{ny} grid")
     return Grid(cx - (nx - 1) / 2 * d, cy - (ny - 1) / 2 * d, d, d, nx, ny)
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from ..errors import InputError, WheelrailError
 from .evaluators import STATUS_CODES, get_evaluator
 from .executors import make_executor
+from .estimate import check_sweep
 from .spec import SweepSpec, load_sweep, sweep_from_dict
 from .store import SweepStore, _is_netcdf, open_sweep, provenance, to_netcdf
 
@@ -154,6 +155,11 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
         raise InputError(f"output {str(out)!r} exists; pass resume=True (--resume) to continue "
                          "it, or choose another path (nothing is overwritten)")
     methods = ev.methods(spec) if hasattr(ev, "methods") else []
+    # estimate (a few points measured here) and refuse past the limits: before any store
+    done_before = len(list((out / ".sweep_done").glob("[0-9]*"))) if out.exists() else 0
+    remaining = max(spec.size - done_before * spec.chunk, 0)
+    if remaining:
+        check_sweep(spec, remaining, getattr(execu, "workers", 1) or 1, execu.name)
     with execu:  # connect first: an unreachable scheduler leaves no store behind
         if out.exists():
             store = SweepStore.open(out, spec).lock()
