@@ -26,18 +26,50 @@ def add_arguments(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+#: CPU time per time step and grid cell [s] (benchmarks/bench_estimates.py: 30–60 elements
+#: across 2a, 1.5e3–5.6e3 cells, 17–85 ms per step on the 2-core machine at load ≈ 7).
+STEP_COST = 15e-6
+#: Start-up (kernels from the numba cache, influence coefficients) [s].
+STARTUP = 1.5
+
+
+def estimate(hc, settings) -> tuple[float, float, int]:
+    """Time [s], memory [bytes] and grid cells of a transient run, before it is set up.
+
+    The grid is square, about 1.25 × the elements across 2a on a side (30
+    elements: 39 × 39 cells); each step costs :data:`STEP_COST` per cell; the memory holds
+    the stored frames (about 10 fields of 8 bytes per cell), the history
+    (about 12 values per step) and the solver's FFT buffers.
+    """
+    import math
+
+    e = float(settings["elements"])
+    nx = int(math.ceil(1.25 * e)) + 1  # 30 elements: 39 x 39, 60: 75 x 75
+    cells = nx * nx
+    steps = float(settings["travel"]) / float(settings["step"])
+    frames = float(settings.get("frames", 60) or 60)
+    seconds = STARTUP + steps * cells * STEP_COST
+    memory = 200e6 + cells * (frames * 80.0 + 4 * 16 * 8) + steps * 12 * 8
+    return seconds, memory, cells
+
+
 def run(args, console) -> int:
     import time
     from pathlib import Path
 
     from ..casefile import load_transient_case
 
+    from .._resources import check
+
     case = load_transient_case(args.case)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
     hc = case.hertz_contact
     s = case.settings
     n_steps = int(s["travel"] / s["step"] + 1e-9)
+    seconds, memory, cells = estimate(hc, s)
+    check(f"transient run of {n_steps} steps on about {cells} grid cells", seconds, memory,
+          f"{STEP_COST * 1e6:.3g} µs per step and grid cell")
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
     console.print(f"transient rolling: a = {hc.a * 1e3:.3f} mm, b = {hc.b * 1e3:.3f} mm, "
                   f"{s['elements']} elements over 2a, V·Δt = {s['step'] * 1e3:.4g} mm, "
                   f"{n_steps} steps over {s['travel'] * 1e3:.4g} mm")
