@@ -132,6 +132,46 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
     print(f"wheelrail: warning: {text} ({category.__name__})", file=file or sys.stderr)
 
 
+#: Modules with numba kernels (``cache=True``) that nearly every command uses (FASTSIM, the
+#: contact search); without their cache files the first run compiles (about 10–20 s).
+KERNEL_MODULES = ("tangential/_fastsim_kernel", "geometry/_search_kernels")
+#: Commands that may compile kernels (not --help, not build-table's workers alone).
+_KERNEL_COMMANDS = ("solve", "creep-curve", "demo", "geometry", "wheelset", "sweep", "compare",
+                    "transient", "validate")
+
+
+def uncompiled_kernels() -> list[str]:
+    """Kernel modules without a numba cache file yet (their first use compiles them)."""
+    import os
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    extra = os.environ.get("NUMBA_CACHE_DIR")
+    missing = []
+    for mod in KERNEL_MODULES:
+        path = root / f"{mod}.py"
+        stem = path.stem
+        places = [path.parent / "__pycache__"]
+        if extra:
+            places.append(Path(extra))
+        if not any(any(d.rglob(f"{stem}.*.nbi")) for d in places if d.is_dir()):
+            missing.append(mod)
+    return missing
+
+
+def _compile_note(console, command) -> None:
+    """One line before the first use of the kernels (numba compiles them, about 10–20 s)."""
+    if command not in _KERNEL_COMMANDS or not getattr(console, "is_terminal", False):
+        return
+    try:
+        missing = uncompiled_kernels()
+    except OSError:  # pragma: no cover - unreadable install directory
+        return
+    if missing:
+        console.print("note: compiling numerical kernels on first use (about 10–20 s, once; "
+                      "cached afterwards)", markup=False, highlight=False)
+
+
 def make_console():
     """The rich console of the commands: no highlighting; no wrapping when piped.
 
@@ -190,6 +230,7 @@ def _main(argv, debug) -> int:
 
                 stack.enter_context(disabled())
             stack.enter_context(_resources.reporting(console))
+            _compile_note(console, args.command)
             try:
                 code = int(args._run(args, console) or 0)
             except _resources.EstimateOnly as est:
