@@ -89,3 +89,19 @@ def test_table_fits_80_columns_with_full_method_names():
     for label, *_ in compare.METHODS:
         assert label in text
     assert "…" not in text
+
+
+def test_validate_table_at_80_columns_is_not_one_word_per_line(tmp_path, monkeypatch, capsys):
+    from wheelrail.cli import main as cli_main
+
+    con = Console(width=80, record=True, highlight=False)
+    monkeypatch.setattr(cli_main, "make_console", lambda: con)
+    assert cli_main.main(["validate", "--quick", "--only", "hertz-table2", "--out",
+                          str(tmp_path)]) == 0
+    text = con.export_text()
+    lines = text.splitlines()
+    assert max(len(ln) for ln in lines) <= 80
+    table = [ln for ln in lines if "hertz" in ln.lower()]
+    assert len(table) >= 3  # each of the 3 rows starts on a line naming its method
+    body = [ln for ln in lines if ln.strip() and not ln.startswith(("report:", "3 rows"))]
+    assert len(body) <= 3 * 3 + 8, text  # not one word per line
