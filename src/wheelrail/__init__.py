@@ -64,6 +64,7 @@ _LAZY = {
     "plotting": ("wheelrail.plotting", None),
     "plausibility": ("wheelrail.plausibility", None),
     "fe": ("wheelrail.fe", None),
+    "dynamics": ("wheelrail.dynamics", None),
     "Profile": ("wheelrail.profiles", "Profile"),
     "Wheelset": ("wheelrail.geometry", "Wheelset"),
     "Track": ("wheelrail.geometry", "Track"),

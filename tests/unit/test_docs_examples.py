@@ -172,7 +172,13 @@ def check_nonhertzian_methods(out, v):
         assert fn == pytest.approx(printed["bem"], rel=0.02), name
 
 
+def check_wheelset_dynamics(out, v):
+    # Klingel (1883): kinematic wavelength 2 pi sqrt(r0 l0 / conicity) of a free conical wheelset
+    assert v["wavelength"] == pytest.approx(2 * math.pi * math.sqrt(0.46 * 0.75 / 0.2), rel=0.01)
+
+
 CHECKS = {
+    "wheelset_dynamics.py": check_wheelset_dynamics,
     "nonhertzian_methods.py": check_nonhertzian_methods,
     "transient_cattaneo_to_carter.py": check_transient_cattaneo_to_carter,
     "wheelset_on_track.py": check_wheelset_on_track,

@@ -39,6 +39,7 @@ COMMANDS = [
     ("sweep", "wheelrail.cli.sweep"),
     ("compare", "wheelrail.cli.compare"),
     ("transient", "wheelrail.cli.transient"),
+    ("dynamics", "wheelrail.cli.dynamics"),
     ("validate", "wheelrail.cli.validate"),
     ("build-table", "wheelrail.cli.build_table"),
 ]

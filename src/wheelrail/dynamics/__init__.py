@@ -1,0 +1,33 @@
+"""Wheelset and bogie dynamics with online multi-point contact.
+
+Vehicle models (:class:`WheelsetModel`, :class:`BogieModel` with their
+:class:`Suspension` and :class:`RailSupport`) run on a :class:`TrackLayout`
+(curves with cant and transitions, lateral :class:`Irregularity`) with the
+contact forces of every wheel evaluated by any normal × tangential method of
+the library at every evaluation (:func:`simulate`). Linear analysis and
+critical speeds: :func:`critical_speed`; quasi-static flange climb:
+:func:`flange_climb`; steady curving: :func:`steady_curving`.
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483.
+"""
+
+from __future__ import annotations
+
+from .contact import FastContact, GenericContact, configured_methods, contact_model
+from .layout import Curve, Irregularity, TrackLayout
+from .linear import LinearBogie, LinearWheelset, eigenvalues_over_speed, linearise
+from .model import BogieModel, RailSupport, Suspension, WheelsetModel
+from .quasistatic import CurvingResult, FlangeClimbResult, flange_climb, nadal, steady_curving
+from .reference import cone_track, klingel_wavelength
+from .simulate import Adaptive, FixedStep, SimulationResult, System, simulate
+from .stability import CriticalSpeedResult, critical_speed
+
+__all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", "Irregularity",
+           "TrackLayout", "simulate", "FixedStep", "Adaptive", "SimulationResult", "System",
+           "FastContact", "GenericContact", "contact_model", "configured_methods",
+           "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
+           "steady_curving", "CurvingResult", "nadal", "LinearWheelset", "LinearBogie",
+           "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength"]

@@ -1,0 +1,783 @@
+"""Compiled contact of one wheel on its rail for the time integration (private).
+
+One call of :func:`wheel_contact` does for one wheel what
+:func:`wheelrail.contact.wheelrail.solve_wheelrail` does with a prescribed
+height (``z=``), in one numba function so that a wheelset position costs tens
+of microseconds instead of milliseconds:
+
+1. **contact search** — the vertical gap d(s) between the wheel's contact locus
+   (its silhouette seen along the rail, Wang 1984; the formulas of
+   :func:`wheelrail.geometry.contact_search.silhouette`) and the rail, on a grid
+   of the wheel profile coordinate restricted to the part above the rail, its
+   local minima refined by successive parabolic interpolation (as
+   :func:`~wheelrail.geometry.contact_search._refine`); the point quantities
+   (contact angle, curvatures, position) as
+   :func:`wheelrail.geometry._search_kernels.point_data_rows`. The vertical
+   approach is dz = −min d; a point's penetration is −d_k cos γ_k (the library's
+   ``dz cos γ − separation``).
+2. **normal problem** — Hertz at every penetrating point (Hertz's unit-load
+   solution interpolated in ln(A/B), :func:`wheelrail.normal._strips.hertz_shape`)
+   or Kik–Piotrowski's virtual penetration on the profile separation of each
+   contact plane (Piotrowski & Chollet 2005, §3.2, eqs. 12–22; the separation
+   sampled in the plane and interpolated linearly on a uniform line, the regions,
+   strips and integrals by the library's own kernels
+   :func:`~wheelrail.normal._kp_kernel.kp_line_regions` and
+   :func:`~wheelrail.normal._patch_kernel.strip_patch`);
+3. **creepages** at each patch from the wheelset's velocities (the formulas of
+   :func:`wheelrail.geometry.kinematics.creepage_kernel`) and **creep forces** by
+   FASTSIM (Kalker 1982; the library's kernels
+   :func:`~wheelrail.tangential._fastsim_kernel.fastsim_hertz_batch` for
+   ellipses and :func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`
+   for strip patches) or by interpolation in the exact-theory table of
+   :class:`wheelrail.tangential.Table` (multilinear, in the frame of the
+   full-slip direction, as :class:`~wheelrail.tangential.table.TableData`);
+4. the forces in the track frame and their **generalised forces** on the
+   wheelset (lateral, vertical, roll, yaw, spin), split into the normal and the
+   tangential (creep) part.
+
+Frames and signs are those of :mod:`wheelrail.conventions` and
+:mod:`wheelrail.geometry.contact_search` (track frame x forward, y right, z up;
+roll positive with the right wheel higher, yaw positive with the right wheel
+moving backwards; forces on the wheel, Kalker's sign convention).
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, §1, §3.2
+   (multiple patches evaluated online during the integration).
+.. [2] J.J. Kalker, A fast algorithm for the simplified theory of rolling
+   contact, VSD 11 (1982) 1–13.
+.. [3] K. Wang, The track of wheel contact points and the calculation of
+   wheel/rail geometric contact parameters, J. Southwest Jiaotong Univ. 1
+   (1984) 89–99.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..normal._kp_kernel import kp_line_regions
+from ..normal._patch_kernel import weighted_means
+from ._fastlaws import (_interp, _kalker, creepage, fastsim_ellipse, kp_strips, linear_forces,
+                        march_strips, table_forces)
+
+__all__ = ["wheel_contact", "PATCH_FIELDS", "WHEEL_FIELDS", "KMAX", "MP"]
+
+#: Largest number of patches reported per wheel (more are solved, the smallest dropped).
+KMAX = 4
+#: Columns of the per-patch output of :func:`wheel_contact`.
+PATCH_FIELDS = ("Fn", "Fx", "Fs", "Mz", "contact_angle", "track_y", "track_z", "x", "wheel_y",
+                "rail_y", "a", "b", "xi", "eta", "phi", "p_max", "rolling_radius",
+                "penetration", "Fy_track", "Fz_track", "fallback")
+#: Entries of the per-wheel output of :func:`wheel_contact`.
+WHEEL_FIELDS = ("patches", "Qn_y", "Qn_z", "Qn_roll", "Qn_yaw", "Qn_spin", "Qt_y", "Qt_z",
+                "Qt_roll", "Qt_yaw", "Qt_spin", "Fx", "Fy", "Fz", "vertical_approach",
+                "min_gap", "fallbacks", "a_mean", "candidates")
+_NP = len(PATCH_FIELDS)
+_BIG = 1.0
+_KC = 8                # candidate minima kept per wheel
+
+#: Indices of the method parameters (the float array ``mp``).
+MP = {name: i for i, name in enumerate((
+    "normal", "tangential", "E_star", "G", "nu", "K", "eps", "shape_correction", "strips",
+    "cells", "line_step", "line_half_width", "group_angle", "tolerance", "nx", "ny",
+    "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop"))}
+
+
+# --------------------------------------------------------------------------- small helpers
+@njit(cache=True, inline="always")
+def _idx(u, inv_h, x):
+    if inv_h > 0.0:
+        i = int((x - u[0]) * inv_h)
+    else:
+        i = np.searchsorted(u, x) - 1
+    if i < 0:
+        i = 0
+    if i > u.shape[0] - 2:
+        i = u.shape[0] - 2
+    return i
+
+
+@njit(cache=True, inline="always")
+def _spline(u, inv_h, c, x):
+    """Value, slope and second derivative of a PiecewiseCubic at x."""
+    i = _idx(u, inv_h, x)
+    dx = x - u[i]
+    c0, c1, c2, c3 = c[0, i], c[1, i], c[2, i], c[3, i]
+    return (((c0 * dx + c1) * dx + c2) * dx + c3, (3.0 * c0 * dx + 2.0 * c1) * dx + c2,
+            6.0 * c0 * dx + 2.0 * c1)
+
+
+@njit(cache=True, inline="always")
+def _spline0(u, inv_h, c, x):
+    i = _idx(u, inv_h, x)
+    dx = x - u[i]
+    return ((c[0, i] * dx + c[1, i]) * dx + c[2, i]) * dx + c[3, i]
+
+
+@njit(cache=True, inline="always")
+def _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0):
+    """Contact locus point of wheel coordinate s: (Y, Z, x lead, r) (``silhouette``)."""
+    r = r0 - p
+    a = sig * (e_tape + s)
+    if sp == 0.0:
+        return y + (a * ct + r * st), zc + (a * st - r * ct), 0.0, r
+    # φ = asin(q) − φ0 with tan φ0 = B/cos ψ; sin φ and cos φ by the angle difference
+    # (no trigonometric call: cos φ0 = cos ψ / R, sin φ0 = B / R)
+    q = sig * p1 * ct * sp / R
+    if q > 1.0:
+        q = 1.0
+    elif q < -1.0:
+        q = -1.0
+    cq = math.sqrt(1.0 - q * q)
+    c0 = cp / R
+    s0 = -st * sp / R
+    sf = q * c0 - cq * s0
+    cf = cq * c0 + q * s0
+    xb = r * sf
+    yp = a * ct + r * cf * st
+    return y + xb * sp + yp * cp, zc + (a * st - r * cf * ct), xb * cp - r * cf * st * sp, r
+
+
+@njit(cache=True)
+def _gap(s, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0):
+    i = _idx(wu, winv, s)
+    dx = s - wu[i]
+    c0, c1, c2, c3 = wc[0, i], wc[1, i], wc[2, i], wc[3, i]
+    p = ((c0 * dx + c1) * dx + c2) * dx + c3
+    p1 = (3.0 * c0 * dx + 2.0 * c1) * dx + c2
+    Y, Z, _, _ = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+    u = sig * Y
+    if u < ru[0] or u > ru[ru.shape[0] - 1]:
+        return _BIG
+    return Z - _spline0(ru, rinv, rc, u)
+
+
+@njit(cache=True)
+def _refine(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct,
+            sp, cp, R, ph0):
+    """Minimum of the gap in [s0 − h, s0 + h] by golden-section search to h·0.618**levels.
+
+    Robust where the gap has a kink (a jump of a profile's curvature at the contact
+    point), where parabolic interpolation from a coarse grid can stall.
+    """
+    gr = 0.6180339887498949
+    a = max(s0 - h, lo)
+    b = min(s0 + h, hi)
+    c = b - gr * (b - a)
+    d = a + gr * (b - a)
+    fc = _gap(c, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+    fd = _gap(d, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+    for _ in range(levels):
+        if fc < fd:
+            b, d, fd = d, c, fc
+            c = b - gr * (b - a)
+            fc = _gap(c, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R,
+                      ph0)
+        else:
+            a, c, fc = c, d, fd
+            d = a + gr * (b - a)
+            fd = _gap(d, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R,
+                      ph0)
+    if fc < fd:
+        return c, fc
+    return d, fd
+
+
+# --------------------------------------------------------------------------- the wheel
+@njit(cache=True)
+def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
+                  offset, z_top, angle,
+                  y, zc, roll, yaw, V, Om, vy, vz, yaw_rate, roll_rate, mu,
+                  mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, c33,
+                  fs_t, fs_half, fs_peak, fs_cells, fs_factor, rs_i0, rs_i1, rs_w,
+                  ax_r, ax_t, ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo, tab_ab_hi,
+                  out_p, out_w):
+    """Contact patches and forces of one wheel at a pose (see the module docstring).
+
+    Parameters
+    ----------
+    sg, pg, p1g : ndarray, shape (m,)
+        Search grid of the wheel profile coordinate [m], profile height and slope there.
+    lo, hi : float
+        Usable range of the wheel profile coordinate [m].
+    wu, winv, wc ; ru, rinv, rc
+        Wheel and rail profile splines (``PiecewiseCubic``: breakpoints, inverse
+        spacing or 0, coefficients (4, n − 1)); the rail in side-local coordinates.
+    r0, e_tape, sig : float
+        Nominal radius [m], tape-circle half distance [m], +1 right / −1 left.
+    offset, z_top, angle : float
+        Rail placement (:class:`~wheelrail.geometry.track.RailPlacement`).
+    y, zc, roll, yaw : float
+        Pose of the wheelset relative to this rail: lateral shift [m], height of
+        the axle centre [m] (r0 + z), roll and yaw [rad].
+    V, Om, vy, vz, yaw_rate, roll_rate : float
+        Forward speed [m/s], angular velocity about the axle [rad/s], lateral and
+        vertical velocity relative to the rail [m/s], absolute yaw rate and roll
+        rate [rad/s].
+    mu : float
+        Friction coefficient [-].
+    mp : ndarray
+        Method parameters (indices :data:`MP`).
+    hz_* : ndarray
+        Hertz table (``_hertz_table``: ln(A/B) grid, ln a, ln b, ln p0, ln δ).
+    kx, c11, c22, c23 : ndarray
+        Kalker's coefficients against ln(a/b) for the material's ν.
+    fs_* : ndarray, float
+        FASTSIM strip data of an ellipse (as ``Fastsim.solve``).
+    rs_i0, rs_i1, rs_w : ndarray
+        Resampling of a strip patch's cells to FASTSIM's ``nx``.
+    ax_*, tab, tab_* : ndarray, float
+        The table law's axes, values in the full-slip frame and domain.
+    out_p : ndarray, shape (KMAX, len(PATCH_FIELDS))
+        Written: the patches (largest normal force first).
+    out_w : ndarray, shape (len(WHEEL_FIELDS),)
+        Written: per-wheel sums.
+    """
+    out_p[:, :] = 0.0
+    out_w[:] = 0.0
+    normal = int(mp[0])
+    tangential = int(mp[1])
+    E_star = mp[2]
+    G = mp[3]
+    nu = mp[4]
+    K = mp[5]
+    st, ct = math.sin(roll), math.cos(roll)
+    sp, cp = math.sin(yaw), math.cos(yaw)
+    Bc = -st * sp
+    R = math.hypot(cp, Bc)
+    ph0 = math.atan2(Bc, cp)
+    # ------------------------------------------------ search: grid part above the rail
+    m = sg.shape[0]
+    h = sg[1] - sg[0]
+    u_lo = ru[0] - e_tape - sig * y - 0.006
+    u_hi = ru[ru.shape[0] - 1] - e_tape - sig * y + 0.006
+    i_lo = max(int((u_lo - sg[0]) / h), 0)
+    i_hi = min(int((u_hi - sg[0]) / h) + 1, m - 1)
+    n = i_hi - i_lo + 1
+    if n < 3:
+        out_w[15] = _BIG
+        return 0
+    d = np.empty(n)
+    g = 0
+    for k in range(n):
+        i = i_lo + k
+        Y, Z, _, _ = _locus(sg[i], pg[i], p1g[i], r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+        u = sig * Y
+        if u < ru[0] or u > ru[ru.shape[0] - 1]:
+            d[k] = _BIG
+        else:
+            d[k] = Z - _spline0(ru, rinv, rc, u)
+        if d[k] < d[g]:
+            g = k
+    tol = mp[13]
+    # candidate grid minima: interior local minima within reach, and the global one
+    cand = np.empty(_KC, np.int64)
+    nc = 0
+    for k in range(n):
+        ok = k == g
+        if not ok and 0 < k < n - 1:
+            ok = (d[k] < d[k - 1] and d[k] <= d[k + 1] and d[k - 1] < _BIG and d[k + 1] < _BIG
+                  and d[k] - d[g] <= 5.0 * tol + 2e-3)
+        if ok:
+            # a shallow hump (< 0.1 µm) between this and the last kept minimum: one minimum
+            if nc > 0:
+                j = cand[nc - 1]
+                hump = d[j]
+                for q in range(j + 1, k + 1):
+                    if d[q] > hump:
+                        hump = d[q]
+                if hump - max(d[j], d[k]) < 1e-7:
+                    if d[k] < d[j]:
+                        cand[nc - 1] = k
+                    continue
+            if nc < _KC:
+                cand[nc] = k
+                nc += 1
+    # refined minima: the global one, then those that can penetrate (grid value minus the
+    # grid's error bound below the approach); the others cannot carry load
+    cs = np.empty(nc)
+    cd = np.empty(nc)
+    qg = 0
+    for q in range(nc):
+        if cand[q] == g:
+            qg = q
+    cs[qg], cd[qg] = _refine(sg[i_lo + g], h, lo, hi, 18, wu, winv, wc, ru, rinv, rc, r0,
+                             e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+    dmin = cd[qg]
+    m_ok = 0
+    for q in range(nc):
+        if q == qg:
+            cs[m_ok], cd[m_ok] = cs[qg], cd[qg]
+            qg = m_ok
+            m_ok += 1
+            continue
+        if d[cand[q]] - 1e-4 >= 0.0:
+            continue
+        s_r, d_r = _refine(sg[i_lo + cand[q]], h, lo, hi, 18, wu, winv, wc, ru, rinv, rc, r0,
+                           e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+        cs[m_ok] = s_r
+        cd[m_ok] = d_r
+        if d_r < dmin:
+            dmin = d_r
+        m_ok += 1
+    nc = m_ok
+    out_w[15] = dmin
+    out_w[18] = nc
+    if dmin >= 0.0 or dmin >= _BIG:
+        return 0
+    dz = -dmin
+    out_w[14] = dz
+    zc_t = zc + dz             # touching pose (the library's wheel problem)
+    # point data
+    PY = np.empty(nc)
+    PZ = np.empty(nc)
+    PX = np.empty(nc)
+    PG = np.empty(nc)
+    PR = np.empty(nc)
+    PA = np.empty(nc)
+    PB = np.empty(nc)
+    PU = np.empty(nc)
+    keep = np.zeros(nc, np.bool_)
+    for q in range(nc):
+        s = cs[q]
+        p, p1, p2 = _spline(wu, winv, wc, s)
+        Y, Z, xr, r = _locus(s, p, p1, r0, e_tape, sig, y, zc_t, st, ct, sp, cp, R, ph0)
+        u = sig * Y
+        zr, zr1, zr2 = _spline(ru, rinv, rc, u)
+        gam = math.atan(zr1)
+        kwx = 1.0 / (r * math.sqrt(1.0 + p1 * p1))
+        kwy = p2 / (1.0 + p1 * p1) ** 1.5
+        kry = -(zr2 / (1.0 + zr1 * zr1) ** 1.5)
+        B = 0.5 * (kwy + kry)
+        if not B > 0.0:
+            # the separation's curvature over ±1.5 mm (regularised_B_rows)
+            span = 1.5e-3
+            dm = _gap(s - span, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc_t, st, ct,
+                      sp, cp, R, ph0)
+            d0 = _gap(s, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc_t, st, ct, sp, cp,
+                      R, ph0)
+            dp = _gap(s + span, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc_t, st, ct,
+                      sp, cp, R, ph0)
+            B = 0.5 * (dm - 2.0 * d0 + dp) / span ** 2 * math.cos(gam) ** 3
+        PY[q] = Y
+        PZ[q] = Z
+        PX[q] = xr
+        PG[q] = gam
+        PR[q] = r
+        PA[q] = 0.5 * kwx
+        PB[q] = B
+        PU[q] = u
+        keep[q] = (cd[q] - dmin) * math.cos(gam) <= tol
+    if mp[21] == 1:
+        return 0
+    # ------------------------------------------------ normal problem
+    npt = 0
+    cap = 16
+    P = np.zeros((cap, _NP))
+    # per patch: strip description for FASTSIM (KP) -> solved right away below
+    fallbacks = 0
+    if normal == 0:
+        for q in range(nc):
+            pen = -cd[q] * math.cos(PG[q])
+            if not pen > 0.0 or npt >= cap:
+                continue
+            A = PA[q]
+            B = PB[q]
+            if not (A > 0.0 and B > 0.0):
+                continue
+            lam = math.log(A / B)
+            sab = math.sqrt(A * B)
+            la = _interp(lam, hz_lam, hz_la)
+            lb = _interp(lam, hz_lam, hz_lb)
+            lp = _interp(lam, hz_lam, hz_lp)
+            ld = _interp(lam, hz_lam, hz_ld)
+            d1 = math.exp(ld) * sab ** (1.0 / 3.0)        # approach at (N/E*) = 1
+            load = (pen / d1) ** 1.5                      # N / E*
+            Fn = E_star * load
+            a = math.exp(la) / sab ** (1.0 / 3.0) * load ** (1.0 / 3.0)
+            b = math.exp(lb) / sab ** (1.0 / 3.0) * load ** (1.0 / 3.0)
+            p0 = math.exp(lp) * sab ** (2.0 / 3.0) * E_star * load ** (1.0 / 3.0)
+            dxa = PX[q] - sig * (e_tape + cs[q]) * ct * sp
+            xi, eta, phi = creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dxa,
+                                    PY[q] - y, PZ[q] - zc_t, PG[q])
+            done = False
+            if tangential == 2:
+                Fx, Fs, Mz = linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33)
+                done = True
+            elif tangential == 1:
+                done, Fx, Fs, Mz = table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, kx, c11,
+                                                c22, c23, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
+                                                tab_phi_max, tab_ab_lo, tab_ab_hi)
+                if not done:
+                    fallbacks += 1
+            if not done:
+                Fx, Fs, Mz = fastsim_ellipse(a, b, Fn, mu, xi, eta, phi, G, mp[17] > 0, kx,
+                                              c11, c22, c23, fs_t, fs_half, fs_peak, fs_cells,
+                                              fs_factor, mp[16] > 0, mp[18] > 0)
+            row = P[npt]
+            row[0] = Fn
+            row[1] = Fx
+            row[2] = Fs
+            row[3] = Mz
+            row[4] = PG[q]
+            row[5] = PY[q]
+            row[6] = PZ[q]
+            row[7] = PX[q]
+            row[8] = cs[q]
+            zr = _spline0(ru, rinv, rc, PU[q])
+            ca, sa = math.cos(-angle), math.sin(-angle)
+            row[9] = ca * (PU[q] - offset) - sa * (zr + z_top)
+            row[10] = a
+            row[11] = b
+            row[12] = xi
+            row[13] = eta
+            row[14] = phi
+            row[15] = p0
+            row[16] = PR[q]
+            row[17] = pen
+            row[20] = 0.0 if done or tangential != 1 else 1.0
+            npt += 1
+    else:
+        npt, fallbacks = _kp_patches(d, i_lo, h, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, PU, dz, dmin,
+                                     sg, pg, p1g, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
+                                     offset, z_top, angle, y, zc_t, roll, yaw, st, ct, sp, cp, R,
+                                     ph0, V, Om, vy, vz, yaw_rate, roll_rate, mu, mp, hz_lam,
+                                     hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, ax_r,
+                                     ax_t, ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo,
+                                     tab_ab_hi, P)
+    # ------------------------------------------------ forces on the wheelset
+    order = np.argsort(-P[:npt, 0])
+    Fx_t = 0.0
+    Fy_t = 0.0
+    Fz_t = 0.0
+    a_w = 0.0
+    Fn_w = 0.0
+    for k in range(npt):
+        row = P[order[k]]
+        Fn, Fx, Fs, Mz, gam = row[0], row[1], row[2], row[3], row[4]
+        cg, sgm = math.cos(gam), math.sin(gam)
+        # track-frame forces, normal and tangential parts
+        Fyn = -sig * Fn * sgm
+        Fzn = Fn * cg
+        Fyt = Fs * cg
+        Fzt = sig * Fs * sgm
+        row[18] = Fyn + Fyt
+        row[19] = Fzn + Fzt
+        ddx = row[7] - sig * (e_tape + row[8]) * ct * sp
+        ddy = row[5] - y
+        ddz = row[6] - zc_t
+        # generalised forces (y, z, roll, yaw, spin), see wheelrail.dynamics.equations
+        out_w[1] += Fyn
+        out_w[2] += Fzn
+        out_w[3] += ddy * Fzn - ddz * Fyn
+        out_w[4] += ddx * Fyn
+        out_w[5] += -ddx * Fzn
+        out_w[6] += Fyt
+        out_w[7] += Fzt
+        out_w[8] += ddy * Fzt - ddz * Fyt
+        out_w[9] += ddx * Fyt - ddy * Fx + cg * Mz
+        out_w[10] += ddz * Fx - ddx * Fzt - sig * sgm * Mz
+        Fx_t += Fx
+        Fy_t += Fyn + Fyt
+        Fz_t += Fzn + Fzt
+        a_w += Fn * row[10]
+        Fn_w += Fn
+        if k < out_p.shape[0]:
+            out_p[k, :] = row
+    out_w[0] = min(npt, out_p.shape[0])
+    out_w[11] = Fx_t
+    out_w[12] = Fy_t
+    out_w[13] = Fz_t
+    out_w[16] = fallbacks
+    out_w[17] = a_w / Fn_w if Fn_w > 0 else 0.0
+    return npt
+
+
+@njit(cache=True)
+def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, PU, dz, dmin, sg, pg, p1g,
+                wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, offset, z_top, angle, y, zc_t, roll,
+                yaw, st, ct, sp, cp, R, ph0, V, Om, vy, vz, yaw_rate, roll_rate, mu, mp,
+                hz_lam, hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, ax_r, ax_t,
+                ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo, tab_ab_hi, P):
+    """Kik–Piotrowski patches of one wheel and their creep forces (rows of ``P``)."""
+    E_star = mp[2]
+    G = mp[3]
+    nu = mp[4]
+    K = mp[5]
+    eps_opt = mp[6]
+    correct = mp[7] > 0
+    strips = int(mp[8])
+    hl0 = mp[10]
+    half_min = mp[11]
+    group_angle = mp[12]
+    tangential = int(mp[1])
+    # candidate points by increasing gap; groups by contact plane (WheelProblem.groups)
+    idx = np.argsort(cd[:nc])
+    ref = np.full(nc, -1, np.int64)
+    nref = 0
+    refs = np.empty(nc, np.int64)
+    width = 0.04
+    for qq in range(nc):
+        q = idx[qq]
+        if not keep[q]:
+            continue
+        joined = False
+        for jj in range(nref):
+            r = refs[jj]
+            if abs(PG[q] - PG[r]) < group_angle and abs(PY[q] - PY[r]) < 0.4 * width:
+                ref[q] = r
+                joined = True
+                break
+        if not joined:
+            refs[nref] = q
+            ref[q] = q
+            nref += 1
+    npt = 0
+    fallbacks = 0
+    cap = P.shape[0]
+    lam_max = 14.0
+    for jj in range(nref):
+        r = refs[jj]
+        gam = PG[r]
+        cosf = math.cos(gam - sig * roll)
+        delta = dz * cosf                    # approach along this plane's normal
+        A_r, B_r = PA[r], PB[r]
+        if eps_opt > 0:
+            eps = eps_opt
+        elif A_r > 0 and B_r > 0:
+            # Hertz's area for the curvatures at the point: ε = a b √(AB)/δ (unit load)
+            lamr = math.log(A_r / B_r)
+            eps = math.exp(_interp(lamr, hz_lam, hz_la) + _interp(lamr, hz_lam, hz_lb)
+                           - _interp(lamr, hz_lam, hz_ld))
+        else:
+            eps = 0.55
+        d0 = eps * delta
+        sep_r = (cd[r] - dmin) * math.cos(gam)
+        if not d0 > sep_r:
+            continue
+        # line half width: the group's points and the region's extent on the search grid
+        # (where the vertical gap stays within the virtual penetration of the point's),
+        # widened while a region reaches a line end
+        half = half_min
+        cg_ = max(abs(math.cos(gam)), 0.2)
+        thr = cd[r] + 1.5 * d0 / cg_ + 2e-5
+        k0 = int(round((cs[r] - sg[0]) / hs)) - i_lo
+        ka = k0
+        while ka > 0 and dgrid[ka - 1] < thr:
+            ka -= 1
+        kb = k0
+        while kb < dgrid.shape[0] - 1 and dgrid[kb + 1] < thr:
+            kb += 1
+        ext = (max(cs[r] - (sg[0] + (i_lo + ka) * hs), (sg[0] + (i_lo + kb) * hs) - cs[r])
+               + hs) / cg_
+        for q in range(nc):
+            if ref[q] == r:
+                w_q = abs(PY[q] - PY[r]) / max(abs(math.cos(gam)), 0.2) + 0.003
+                if w_q > half:
+                    half = w_q
+        # node spacing: ~100 nodes across the region's Hertzian estimate, not below line_step
+        hl = max(hl0, 0.02 * ext)
+        half = min(max(half, ext + 4 * hl), 0.02)
+        for _ in range(4):
+            nl = int(2.0 * half / hl) + 1
+            if nl < 5:
+                nl = 5
+            eta = np.empty(nl)
+            for i in range(nl):
+                eta[i] = -half + i * hl
+            f, Ax, slope, rw, ok = _plane_line(eta, PU[r], gam, cosf, cs[r], sg, wu, winv, wc,
+                                               ru, rinv, rc, r0, e_tape, sig, y, zc_t, st, ct,
+                                               sp, cp, R, ph0)
+            if not ok:
+                break
+            reach = (d0 - f[0] > 0.0) or (d0 - f[nl - 1] > 0.0)
+            if not reach or half >= 0.02:
+                break
+            half = min(2.0 * half, 0.02)
+        if not ok or mp[21] == 2:
+            continue
+        okr, meta, eta_c, xl_c, peak = kp_line_regions(f, Ax, eta, hl, d0, eps, E_star, correct,
+                                                       hz_lam, hz_la, hz_lb, lam_max)
+        if not okr or mp[21] == 3:
+            continue
+        for kr in range(meta.shape[0]):
+            if npt >= cap:
+                break
+            i0 = int(meta[kr, 0])
+            i1 = int(meta[kr, 1])
+            N = meta[kr, 3]
+            if not N > 0:
+                continue
+            wts = np.empty(i1 - i0)
+            angs = np.empty(i1 - i0)
+            for i in range(i0, i1):
+                wts[i - i0] = d0 - f[i]
+                angs[i - i0] = math.atan(slope[i])
+            ang_m, eta_m = weighted_means(wts, angs, eta[i0:i1])
+            e0, e1 = eta[i0], eta[i1 - 1]
+            tt = (eta_m - e0) / (e1 - e0) if e1 > e0 else 0.0
+            eta_ref = eta_c[i0] + tt * (eta_c[i1 - 1] - eta_c[i0])
+            nxf = int(mp[14])
+            ys, dys, xls, spr, area, Lp, widthp, ycp = kp_strips(
+                eta_c[i0:i1].copy(), xl_c[i0:i1].copy(), peak[i0:i1].copy(), strips, nxf, N,
+                eta_ref, sig)
+            if not area > 0 or mp[21] == 4:
+                continue
+            ratio = Lp / widthp
+            a = math.sqrt(area * ratio / math.pi)
+            b = math.sqrt(area / (ratio * math.pi))
+            # the patch frame (WheelProblem.frame_at): rail point at eta_m of the plane
+            u_p = PU[r] + eta_m * math.cos(gam)
+            z_p = _spline0(ru, rinv, rc, u_p)
+            rad = _interp(eta_m, eta, rw)
+            Yp = sig * u_p
+            dxa = PX[r] - sig * (e_tape + cs[r] + (u_p - PU[r])) * ct * sp
+            xi, eta_cr, phi = creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dxa,
+                                       Yp - y, z_p - zc_t, ang_m)
+            done = False
+            if tangential == 2:
+                Fx, Fs, Mz = linear_forces(a, b, G, xi, eta_cr, phi, kx, c11, c22, c23, c33)
+                done = True
+            elif tangential == 1:
+                done, Fx, Fs, Mz = table_forces(a, b, N, xi, eta_cr, phi, mu, G, nu, K, kx, c11,
+                                                c22, c23, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
+                                                tab_phi_max, tab_ab_lo, tab_ab_hi)
+                if not done:
+                    fallbacks += 1
+            if not done:
+                C11, C22, C23 = _kalker(a / b, kx, c11, c22, c23)
+                L1 = 8.0 * a / (3.0 * G * C11)
+                L2 = 8.0 * a / (3.0 * G * C22)
+                L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
+                c = math.sqrt(a * b)
+                cphi = c * abs(phi)
+                nrm = math.sqrt(xi * xi + eta_cr * eta_cr + cphi * cphi)
+                Lw = (L1 * abs(xi) + L2 * abs(eta_cr) + L3 * cphi) / nrm if nrm > 0 else L1
+                Fx, Fs, Mz0 = march_strips(ys, dys, xls, spr, mu, Lw, xi, eta_cr, phi,
+                                           mp[18] > 0)
+                if not (math.isfinite(Fx) and math.isfinite(Fs) and math.isfinite(Mz0)):
+                    continue
+                Mz = Mz0 + ycp * Fx
+            pmax = 0.0
+            for i in range(i0, i1):
+                if peak[i] > pmax:
+                    pmax = peak[i]
+            row = P[npt]
+            row[0] = N
+            row[1] = Fx
+            row[2] = Fs
+            row[3] = Mz
+            row[4] = ang_m
+            row[5] = Yp
+            row[6] = z_p
+            row[7] = PX[r]
+            row[8] = cs[r] + (u_p - PU[r])
+            ca, sa = math.cos(-angle), math.sin(-angle)
+            row[9] = ca * (u_p - offset) - sa * (_spline0(ru, rinv, rc, u_p) + z_top)
+            row[10] = a
+            row[11] = b
+            row[12] = xi
+            row[13] = eta_cr
+            row[14] = phi
+            row[15] = pmax
+            row[16] = rad
+            row[17] = d0 / eps - (cd[r] - dmin) * math.cos(gam) if r >= 0 else 0.0
+            row[20] = 0.0 if done or tangential != 1 else 1.0
+            npt += 1
+    return npt, fallbacks
+
+
+@njit(cache=True, inline="always")
+def _quad(e, x, v, i, lo, hi):
+    """Quadratic (three-point Lagrange) interpolation of v(x) at e in [x_i, x_i+1]."""
+    j = i - 1 if i > lo else i
+    if j + 2 > hi:
+        j = hi - 2
+    x0, x1, x2 = x[j], x[j + 1], x[j + 2]
+    return (v[j] * (e - x1) * (e - x2) / ((x0 - x1) * (x0 - x2))
+            + v[j + 1] * (e - x0) * (e - x2) / ((x1 - x0) * (x1 - x2))
+            + v[j + 2] * (e - x0) * (e - x1) / ((x2 - x0) * (x2 - x1)))
+
+
+@njit(cache=True)
+def _plane_line(eta, u_c, gam, cosf, s_ref, sg, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
+                y, zc, st, ct, sp, cp, R, ph0):
+    """Profile separation along the contact plane of angle ``gam`` through the rail point
+    ``u_c`` (side-local), at the nodes ``eta`` (uniform): f [m], the longitudinal curvature
+    of the gap cosf/(2 r) [1/m], the rail's surface slope dZ/du [-] and the wheel radius [m].
+
+    Both profiles are sampled at the nodes' spacing along the plane around the point,
+    rotated into the plane and interpolated quadratically onto the nodes (what
+    ``separation_at`` does with splines); ``ok`` is
+    False when a monotone window is too short.
+    """
+    nl = eta.shape[0]
+    hl = eta[1] - eta[0]
+    t0, t1 = math.cos(gam), math.sin(gam)
+    n0, n1 = -t1, t0
+    z_c = _spline0(ru, rinv, rc, u_c)
+    half = -eta[0]
+    ns = nl + 9
+    ew = np.empty(ns)
+    zw = np.empty(ns)
+    rw = np.empty(ns)
+    er = np.empty(ns)
+    zr = np.empty(ns)
+    slr = np.empty(ns)
+    span = (half + 4 * hl) * max(abs(t0), 0.15)
+    ds = 2.0 * span / (ns - 1)
+    for k in range(ns):
+        s = s_ref - span + k * ds
+        p, p1, _ = _spline(wu, winv, wc, s)
+        Y, Z, _, r = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+        uw = sig * Y
+        ew[k] = (uw - u_c) * t0 + (Z - z_c) * t1
+        zw[k] = (uw - u_c) * n0 + (Z - z_c) * n1
+        rw[k] = r
+        u = u_c - span + k * ds
+        z, z1, _ = _spline(ru, rinv, rc, u)
+        er[k] = (u - u_c) * t0 + (z - z_c) * t1
+        zr[k] = (u - u_c) * n0 + (z - z_c) * n1
+        slr[k] = z1
+    f = np.empty(nl)
+    Ax = np.empty(nl)
+    slope = np.empty(nl)
+    rad = np.empty(nl)
+    # monotone windows around the plane origin
+    kw = ns // 2
+    w0 = kw
+    while w0 > 0 and ew[w0 - 1] < ew[w0]:
+        w0 -= 1
+    w1 = kw
+    while w1 < ns - 1 and ew[w1 + 1] > ew[w1]:
+        w1 += 1
+    r0_ = kw
+    while r0_ > 0 and er[r0_ - 1] < er[r0_]:
+        r0_ -= 1
+    r1_ = kw
+    while r1_ < ns - 1 and er[r1_ + 1] > er[r1_]:
+        r1_ += 1
+    if w1 - w0 < 3 or r1_ - r0_ < 3:
+        return f, Ax, slope, rad, False
+    iw = w0
+    ir = r0_
+    for i in range(nl):
+        e = eta[i]
+        outside = e < ew[w0] or e > ew[w1] or e < er[r0_] or e > er[r1_]
+        while iw < w1 - 1 and ew[iw + 1] < e:
+            iw += 1
+        while ir < r1_ - 1 and er[ir + 1] < e:
+            ir += 1
+        tw = min(max((e - ew[iw]) / (ew[iw + 1] - ew[iw]), 0.0), 1.0)
+        tr = min(max((e - er[ir]) / (er[ir + 1] - er[ir]), 0.0), 1.0)
+        zwi = _quad(e, ew, zw, iw, w0, w1)
+        zri = _quad(e, er, zr, ir, r0_, r1_)
+        rad[i] = rw[iw] + tw * (rw[iw + 1] - rw[iw])
+        slope[i] = slr[ir] + tr * (slr[ir + 1] - slr[ir])
+        f[i] = zwi - zri if not outside else _BIG
+        Ax[i] = cosf / (2.0 * rad[i])
+    return f, Ax, slope, rad, True

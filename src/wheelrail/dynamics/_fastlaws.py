@@ -1,0 +1,340 @@
+"""Compiled creep-force laws and helpers of the dynamics' contact path (private).
+
+Scalar versions, for one patch, of what the library's laws do on arrays:
+the creepages of a point (:func:`wheelrail.geometry.kinematics.creepage_kernel`),
+FASTSIM on an ellipse (:class:`wheelrail.tangential.Fastsim`, with the library's
+batch kernel), FASTSIM on the strips of a Kik–Piotrowski region with one weighted
+flexibility per patch (Kik & Piotrowski's choice; Piotrowski & Chollet 2005,
+§3.2–3.3, eqs. 24–26) and the table law (:class:`wheelrail.tangential.Table`:
+multilinear interpolation in the frame of the full-slip direction).
+
+References
+----------
+.. [1] J.J. Kalker, A fast algorithm for the simplified theory of rolling
+   contact, VSD 11 (1982) 1–13.
+.. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, §3.
+.. [3] J.J. Kalker, Book of tables for the Hertzian creep-force law, Budapest 1996.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..tangential._fastsim_kernel import fastsim_hertz_batch
+
+__all__ = ["creepage", "table_forces", "fastsim_ellipse", "kp_strips", "march_strips",
+           "linear_forces"]
+
+
+@njit(cache=True)
+def _interp(x, xp, fp):
+    """np.interp of one value (xp increasing)."""
+    n = xp.shape[0]
+    if x <= xp[0]:
+        return fp[0]
+    if x >= xp[n - 1]:
+        return fp[n - 1]
+    i = np.searchsorted(xp, x) - 1
+    t = (x - xp[i]) / (xp[i + 1] - xp[i])
+    return fp[i] + t * (fp[i + 1] - fp[i])
+
+
+@njit(cache=True)
+def _kalker(ab, kx, c11, c22, c23):
+    v = math.log(ab)
+    return _interp(v, kx, c11), _interp(v, kx, c22), _interp(v, kx, c23)
+
+
+
+@njit(cache=True)
+def creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dx, dy, dz, g):
+    """Creepages (ξ, η, φ) of one point (the scalar arithmetic of ``creepage_kernel``)."""
+    cps, sps = math.cos(yaw), math.sin(yaw)
+    cth, sth = math.cos(roll), math.sin(roll)
+    wX = Om * cth * sps - roll_rate * cps
+    wY = Om * cth * cps + roll_rate * sps
+    wZ = -Om * sth - yaw_rate
+    rX, rY, rZ = dx, -dy, dz
+    vX = V + (wY * rZ - wZ * rY)
+    vY = -vy + (wZ * rX - wX * rZ)
+    vZ = vz + (wX * rY - wY * rX)
+    cg, sg = math.cos(g), math.sin(g)
+    return vX / V, (-vY * cg + vZ * sig * sg) / V, (-wY * sig * sg - wZ * cg) / V
+
+
+# --------------------------------------------------------------------------- table law
+@njit(cache=True)
+def _axis_pos(ax, v):
+    """Index and weight of v on an increasing axis (linear extrapolation beyond the ends)."""
+    n = ax.shape[0]
+    i = np.searchsorted(ax, v) - 1
+    if i < 0:
+        i = 0
+    if i > n - 2:
+        i = n - 2
+    return i, (v - ax[i]) / (ax[i + 1] - ax[i])
+
+
+@njit(cache=True)
+def table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, kx, c11, c22, c23, ax_r, ax_t, ax_s,
+                 ax_l, ax_n, local, phi_max, ab_lo, ab_hi):
+    """Creep forces of one elliptic contact by the table law (``Table.solve`` for one point).
+
+    ``local`` holds the table values in the frame of the full-slip direction at
+    the nodes (:class:`~wheelrail.tangential.table.TableData`). Returns
+    ``(ok, Fx, Fy, Mz)``; ``ok`` is False outside the table's domain (the caller
+    then uses its fallback).
+    """
+    ab = a / b
+    if not (ab >= ab_lo * (1 - 1e-12) and ab <= ab_hi * (1 + 1e-12)):
+        return False, 0.0, 0.0, 0.0
+    if nu < ax_n[0] - 1e-12 or nu > ax_n[ax_n.shape[0] - 1] + 1e-12 or abs(K) > 1e-3:
+        return False, 0.0, 0.0, 0.0
+    C11, C22, C23 = _kalker(ab, kx, c11, c22, c23)
+    c2 = a * b
+    c = math.sqrt(c2)
+    unit = G / (3.0 * mu * Fn)
+    spin_len = math.hypot(c * C23, b * C11)
+    xh = unit * c2 * C11 * xi
+    ph = unit * c2 * spin_len * phi
+    eh = unit * c2 * C22 * eta + unit * c2 * c * C23 * phi
+    sx = -1.0 if xh < 0 else 1.0
+    sy = -1.0 if eh < 0 else 1.0
+    xh = abs(xh)
+    eh = abs(eh)
+    ph = ph * sy
+    if abs(ph) > phi_max * (1 + 1e-12):
+        return False, 0.0, 0.0, 0.0
+    rho = math.hypot(xh, eh)
+    theta = math.atan2(eh, xh)
+    coord = (rho / (1.0 + abs(ph) + rho), theta, ph / (1.0 + abs(ph)), math.log(ab), nu)
+    i0, w0 = _axis_pos(ax_r, coord[0])
+    i1, w1 = _axis_pos(ax_t, coord[1])
+    i2, w2 = _axis_pos(ax_s, coord[2])
+    i3, w3 = _axis_pos(ax_l, coord[3])
+    i4, w4 = _axis_pos(ax_n, coord[4])
+    f0 = 0.0
+    f1 = 0.0
+    f2 = 0.0
+    for k0 in range(2):
+        c0 = w0 if k0 else 1.0 - w0
+        for k1 in range(2):
+            c1 = c0 * (w1 if k1 else 1.0 - w1)
+            for k2 in range(2):
+                cc2 = c1 * (w2 if k2 else 1.0 - w2)
+                for k3 in range(2):
+                    c3 = cc2 * (w3 if k3 else 1.0 - w3)
+                    for k4 in range(2):
+                        cw = c3 * (w4 if k4 else 1.0 - w4)
+                        if cw == 0.0:
+                            continue
+                        f0 += cw * local[i0 + k0, i1 + k1, i2 + k2, i3 + k3, i4 + k4, 0]
+                        f1 += cw * local[i0 + k0, i1 + k1, i2 + k2, i3 + k3, i4 + k4, 1]
+                        f2 += cw * local[i0 + k0, i1 + k1, i2 + k2, i3 + k3, i4 + k4, 2]
+    alpha = math.atan2(math.sin(theta) / C22, math.cos(theta) / C11)
+    ca, sa = math.cos(alpha), math.sin(alpha)
+    fx = f0 * ca - f1 * sa
+    fy = f0 * sa + f1 * ca
+    ft = math.hypot(fx, fy)
+    if ft > 1.0:
+        fx /= ft
+        fy /= ft
+    Fx = sx * fx * mu * Fn
+    Fy = sy * fy * mu * Fn
+    Mz = sy * f2 * mu * Fn * c
+    if xi == 0.0:
+        Fx = 0.0
+    if eta == 0.0 and phi == 0.0:
+        Fy = 0.0
+        Mz = 0.0
+    return True, Fx, Fy, Mz
+
+
+# --------------------------------------------------------------------------- FASTSIM
+@njit(cache=True)
+def fastsim_ellipse(a, b, Fn, mu, xi, eta, phi, G, weighted, kx, c11, c22, c23, t, half,
+                     strip_peak, s_cells, peak_factor, parabolic, first_order):
+    """FASTSIM on a Hertz ellipse (``Fastsim.solve`` without fields, one case)."""
+    C11, C22, C23 = _kalker(a / b, kx, c11, c22, c23)
+    L1 = 8.0 * a / (3.0 * G * C11)
+    L2 = 8.0 * a / (3.0 * G * C22)
+    L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
+    if weighted:
+        c = math.sqrt(a * b)
+        cphi = c * abs(phi)
+        nrm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
+        if nrm > 0:
+            L1 = L2 = L3 = (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / nrm
+    if parabolic:
+        peak = 2.0 * Fn / (math.pi * a * b)
+    else:
+        peak = 1.5 * Fn / (math.pi * a * b)
+    A1 = np.empty(1)
+    arr = np.empty((10, 1))
+    arr[0, 0] = a
+    arr[1, 0] = b
+    arr[2, 0] = peak * peak_factor
+    arr[3, 0] = mu
+    arr[4, 0] = L1
+    arr[5, 0] = L2
+    arr[6, 0] = L3
+    # very large creepages: scaled together (same full-slip direction), as Fastsim's _tame
+    reach = max(a, b)
+    rate = max(abs(xi) / L1, abs(eta) / L2, abs(phi) * reach / L3)
+    f = 1.0 if rate <= 1e200 else 1e200 / rate
+    arr[7, 0] = xi * f
+    arr[8, 0] = eta * f
+    arr[9, 0] = phi * f
+    A1[0] = 0.0
+    Fx, Fy, Mz, _ = fastsim_hertz_batch(arr[0], arr[1], arr[2], arr[3], arr[4], arr[5], arr[6],
+                                        arr[7], arr[8], arr[9], t, half, strip_peak, s_cells,
+                                        first_order)
+    return Fx[0], Fy[0], Mz[0]
+
+
+@njit(cache=True)
+def kp_strips(eta_n, xl_n, pk_n, strips, nx, N, eta_ref, sign):
+    """FASTSIM strips of a Kik–Piotrowski region (the strip description of
+    :func:`~wheelrail.normal._patch_kernel.strip_patch` sampled directly at FASTSIM's
+    ``nx`` cells per strip: strips uniform over the region, x_l² and the peaks
+    interpolated linearly, semi-elliptic pressure along x, scaled to the force N).
+
+    Returns
+    -------
+    y, dy, xl : ndarray, shape (strips,), float, ndarray
+        Strip centres in the patch frame (y = sign·(η − η_ref)), width, half-lengths [m].
+    p : ndarray, shape (strips, nx)
+        Cell pressures [Pa] (cell i at x = xl (1 − (2i + 1)/nx)).
+    area, length, width, yc : float
+        Area [m²], length 2 max x_l and width [m], lateral centre of pressure [m].
+    """
+    n = eta_n.shape[0]
+    hn = eta_n[1] - eta_n[0] if n > 1 else 1e-4
+    lo = eta_n[0] - 0.5 * hn
+    hi = eta_n[n - 1] + 0.5 * hn
+    width = hi - lo
+    dy = width / strips
+    prof = np.empty(nx)
+    psum = 0.0
+    for i in range(nx):
+        s = 1.0 - (i + 0.5) * (2.0 / nx)
+        prof[i] = math.sqrt(max(1.0 - s * s, 0.0))
+        psum += prof[i]
+    y = np.empty(strips)
+    xl = np.empty(strips)
+    p = np.empty((strips, nx))
+    tot = 0.0
+    area = 0.0
+    lmax = 0.0
+    j = 0
+    for k in range(strips):
+        e = lo + (k + 0.5) * dy
+        while j < n - 1 and eta_n[j + 1] < e:
+            j += 1
+        # x_l² and the peak, linear between the nodes, zero at the region's ends
+        if e <= eta_n[0]:
+            tt = (e - lo) / (eta_n[0] - lo)
+            x2 = tt * xl_n[0] ** 2
+            pk = tt * pk_n[0]
+        elif e >= eta_n[n - 1]:
+            tt = (hi - e) / (hi - eta_n[n - 1])
+            x2 = tt * xl_n[n - 1] ** 2
+            pk = tt * pk_n[n - 1]
+        else:
+            tt = (e - eta_n[j]) / (eta_n[j + 1] - eta_n[j])
+            x2 = xl_n[j] ** 2 + tt * (xl_n[j + 1] ** 2 - xl_n[j] ** 2)
+            pk = pk_n[j] + tt * (pk_n[j + 1] - pk_n[j])
+        xk = math.sqrt(max(x2, 0.0))
+        kk = k if sign > 0 else strips - 1 - k
+        y[kk] = sign * (e - eta_ref)
+        xl[kk] = xk
+        for i in range(nx):
+            p[kk, i] = pk * prof[i]
+        tot += pk * psum * (2.0 * xk / nx) * dy
+        area += 2.0 * xk * dy
+        lmax = max(lmax, xk)
+    f = N / tot if tot > 0 else 0.0
+    # scaled to N; centre of pressure Σ y F_strip / N
+    yc = 0.0
+    for k in range(strips):
+        fs = 0.0
+        for i in range(nx):
+            p[k, i] *= f
+            fs += p[k, i]
+        yc += y[k] * fs * (2.0 * xl[k] / nx) * dy
+    yc = yc / N if N > 0 else 0.0
+    return y, dy, xl, p, area, 2.0 * lmax, width, yc
+
+
+@njit(cache=True)
+def march_strips(y, dy, xl, p, mu, L, xi, eta, phi, first_order):
+    """FASTSIM with one flexibility L over strips with cell pressures p (strips, nx).
+
+    The discrete equations of :func:`~wheelrail.tangential._fastsim_kernel.march_strip`
+    with L1 = L2 = L3 = L, where the slip rule is the elastic predictor scaled onto
+    the traction bound (Kalker 1982; ``saturate``'s exact solution for equal
+    flexibilities). Returns (Fx, Fy, Mz about the origin).
+    """
+    strips, nx = p.shape
+    Fx = 0.0
+    Fy = 0.0
+    Mz = 0.0
+    for k in range(strips):
+        length = 2.0 * xl[k]
+        if length <= 0.0:
+            continue
+        dx = length / nx
+        yk = y[k]
+        gx = (xi - phi * yk) / L
+        gy0 = eta / L
+        gs = phi / L
+        px = 0.0
+        py = 0.0
+        spx = 0.0
+        spy = 0.0
+        sxpy = 0.0
+        xp = xl[k]
+        hh = dx if first_order else 0.5 * dx
+        for i in range(nx):
+            xc = xl[k] - (i + 0.5) * dx
+            xm = xc if first_order else 0.5 * (xp + xc)
+            pxh = px - hh * gx
+            pyh = py - hh * (gy0 + gs * xm)
+            g = mu * p[k, i]
+            t2 = pxh * pxh + pyh * pyh
+            if t2 > g * g:
+                sc = g / math.sqrt(t2)
+                px = pxh * sc
+                py = pyh * sc
+            else:
+                px = pxh
+                py = pyh
+            spx += px
+            spy += py
+            sxpy += xc * py
+            xp = xc
+            hh = dx
+        area = dx * dy
+        Fx += spx * area
+        Fy += spy * area
+        Mz += (sxpy - yk * spx) * area
+    return Fx, Fy, Mz
+
+
+@njit(cache=True)
+def linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33):
+    """Kalker's linear theory on an ellipse (``wheelrail.tangential.linear.linear_forces``):
+    Fx = −G c² C11 ξ, Fy = −G c² (C22 η + c C23 φ), Mz = G c³ (C23 η − c C33 φ)."""
+    v = math.log(a / b)
+    C11 = _interp(v, kx, c11)
+    C22 = _interp(v, kx, c22)
+    C23 = _interp(v, kx, c23)
+    C33 = _interp(v, kx, c33)
+    c2 = a * b
+    c = math.sqrt(c2)
+    return (-G * c2 * C11 * xi, -G * c2 * (C22 * eta + c * C23 * phi),
+            G * c2 * c * (C23 * eta - c * C33 * phi))

@@ -1,0 +1,512 @@
+"""Compiled equations of motion of the wheelset and bogie models and the fixed-step integrator.
+
+The state layout and parameter vector are those of
+:class:`wheelrail.dynamics.model.Assembly`. The equations (derived with
+virtual work in the track-following frame; small angles in the suspension,
+the contact forces with their exact lever arms, see
+:mod:`wheelrail.dynamics._fastcontact`):
+
+wheelset i (coordinates y, z, θ, ψ relative to the local track frame at s_i)::
+
+    m ÿ  = Q_y + m a_y                a_y = −g sin φ − V² κ cos φ
+    m z̈  = Q_z + m a_z                a_z = −g cos φ + V² κ sin φ
+    Ix θ̈ = Q_θ + Iy Ω (ψ̇ + V κ)      (gyroscopic roll moment)
+    Iz ψ̈ = Q_ψ − Iy Ω θ̇ − Iz (V² κ' + V̇ κ)
+    Iy Ω̇ = Q_Ω                        (spin free; else Ω = V/r0)
+
+with Q the contact and suspension forces and the carried mass's apparent
+gravity (wheelset model), κ the track curvature, φ the cant angle. A
+primary spring set on side σ (lateral position σ b) deflects by
+d = (−σ b Δψ, Δy, Δz + σ b Δθ) relative to the frame point above it (frame
+pose at the wheelset's position x_i, curvature offsets included) and acts
+with F = −K d − C ḋ (− preload vertically). The frame (bogie) has the same
+equations with the secondary suspension to the car body, which follows the
+track centre line, and the body's apparent gravity acting on it. Rails: per
+side and direction m v̇ = F_r − k1 (u − w) − c1 (v − ẇ), ẇ = (k1 (u − w) +
+c1 v − k2 w)/(c1 + c2).
+
+References
+----------
+.. [1] A.H. Wickens, *Fundamentals of rail vehicle dynamics*, 2003, ch. 2–4.
+.. [2] J. Piotrowski, H. Chollet, VSD 43 (2005) 455–483, §2.2, §2.3.3.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ._fastcontact import wheel_contact
+from .model import GP, NGP, NWP, WP
+
+__all__ = ["layout_at", "heading_at", "wheel_inputs", "derivative", "rhs_fast", "run_fixed",
+           "N_IN"]
+
+#: Per-wheel contact inputs of :func:`wheel_inputs`.
+IN_FIELDS = ("y", "zc", "roll", "yaw", "V", "omega", "vy", "vz", "yaw_rate", "roll_rate")
+N_IN = len(IN_FIELDS)
+
+_G_NWS = GP["n_ws"]
+_G_FRAME = GP["has_frame"]
+_G_RAILS = GP["rails"]
+_G_RELAX = GP["relax"]
+_G_SPIN = GP["spin_free"]
+_G_G = GP["g"]
+_G_R0 = GP["r0"]
+_G_OF = GP["off_frame"]
+_G_OR = GP["off_rails"]
+_G_OX = GP["off_relax"]
+_G_FLOOR = GP["relax_floor"]
+_G_RAIL = (GP["rail_lat_k1"], GP["rail_ver_k1"])
+_G_FM = GP["frame_m"]
+_G_SEC = GP["sec_kx"]
+_G_BODY = GP["body_m"]
+_WP_IX = WP["Ix"]
+_WP_IY = WP["Iy"]
+_WP_IZ = WP["Iz"]
+_WP_B = WP["b"]
+_WP_CARRIED_M = WP["carried_m"]
+_WP_CX = WP["cx"]
+_WP_CY = WP["cy"]
+_WP_CZ = WP["cz"]
+_WP_KX = WP["kx"]
+_WP_KY = WP["ky"]
+_WP_KZ = WP["kz"]
+_WP_M = WP["m"]
+_WP_PRELOAD = WP["preload"]
+_WP_X = WP["x"]
+
+
+# --------------------------------------------------------------------------- layout
+@njit(cache=True)
+def layout_at(s, ks, kk, kp, kh, is0, ids, iy):
+    """κ [1/m], cant angle φ [rad], lateral irregularity [m] and its slope d/ds at ``s``."""
+    i = np.searchsorted(ks, s) - 1
+    if i < 0:
+        i = 0
+    if i > ks.shape[0] - 2:
+        i = ks.shape[0] - 2
+    t = (s - ks[i]) / (ks[i + 1] - ks[i])
+    kappa = kk[i] + t * (kk[i + 1] - kk[i])
+    phi = kp[i] + t * (kp[i + 1] - kp[i])
+    n = iy.shape[0]
+    u = (s - is0) / ids
+    j = int(math.floor(u))
+    if j < 0 or j >= n - 1:
+        return kappa, phi, 0.0, 0.0
+    tt = u - j
+    y0 = iy[j]
+    y1 = iy[j + 1]
+    m0 = 0.5 * (y1 - (iy[j - 1] if j > 0 else 0.0))
+    m1 = 0.5 * ((iy[j + 2] if j + 2 < n else 0.0) - y0)
+    t2 = tt * tt
+    t3 = t2 * tt
+    y = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + tt) * m0 + (-2 * t3 + 3 * t2) * y1 \
+        + (t3 - t2) * m1
+    dy = ((6 * t2 - 6 * tt) * y0 + (3 * t2 - 4 * tt + 1) * m0 + (-6 * t2 + 6 * tt) * y1
+          + (3 * t2 - 2 * tt) * m1) / ids
+    return kappa, phi, y, dy
+
+
+@njit(cache=True)
+def heading_at(s, ks, kk, kh):
+    """Heading of the track [rad] (∫κ ds) and dκ/ds at ``s``."""
+    i = np.searchsorted(ks, s) - 1
+    if i < 0:
+        i = 0
+    if i > ks.shape[0] - 2:
+        i = ks.shape[0] - 2
+    d = s - ks[i]
+    slope = (kk[i + 1] - kk[i]) / (ks[i + 1] - ks[i])
+    return kh[i] + kk[i] * d + 0.5 * slope * d * d, slope
+
+
+@njit(cache=True)
+def _offset(s0, x, ks, kk, kh):
+    """Lateral offset of the centre line at s0 + x from the tangent at s0 [m] (Simpson)."""
+    h0, _ = heading_at(s0, ks, kk, kh)
+    hm, _ = heading_at(s0 + 0.5 * x, ks, kk, kh)
+    h1, _ = heading_at(s0 + x, ks, kk, kh)
+    return x / 6.0 * (4.0 * (hm - h0) + (h1 - h0))
+
+
+# --------------------------------------------------------------------------- kinematics
+@njit(cache=True)
+def wheel_inputs(t, x, P, L, V, s_ref, W):
+    """Pose and velocities of every wheel relative to its rail (W: (n_ws, 2, N_IN))."""
+    ks, kk, kp, kh, is0, ids, iy = L
+    nw = int(P[_G_NWS])
+    rails = P[_G_RAILS] > 0
+    r0 = P[_G_R0]
+    orl = int(P[_G_OR])
+    for i in range(nw):
+        b = 9 * i
+        xi = P[NGP + NWP * i + _WP_X]
+        si = s_ref + xi
+        kappa, phi, yi, dyi = layout_at(si, ks, kk, kp, kh, is0, ids, iy)
+        om = x[b + 8] if P[_G_SPIN] > 0 else V / r0
+        for side in range(2):
+            ul = 0.0
+            vl = 0.0
+            uv = 0.0
+            vv = 0.0
+            if rails:
+                rb = orl + 12 * i + 6 * side
+                ul = x[rb + 1]
+                vl = x[rb + 2]
+                uv = x[rb + 4]
+                vv = x[rb + 5]
+            w = W[i, side]
+            w[0] = x[b] - yi - ul
+            w[1] = r0 + x[b + 1] - uv
+            w[2] = x[b + 2]
+            w[3] = x[b + 3]
+            w[4] = V
+            w[5] = om
+            w[6] = x[b + 4] - V * dyi - vl
+            w[7] = x[b + 5] - vv
+            w[8] = x[b + 7] + V * kappa
+            w[9] = x[b + 6]
+
+
+@njit(cache=True)
+def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
+    """State derivative ``dx`` from the contact's generalised forces (see the module docstring).
+
+    ``Qn``, ``Qt``: (n_ws, 2, 5) normal and tangential generalised forces of each
+    wheel (y, z, roll, yaw, spin); ``amean``: (n_ws, 2) load-weighted semi-axis a of
+    each wheel's patches [m] (creep relaxation).
+    """
+    ks, kk, kp, kh, is0, ids, iy = L
+    nw = int(P[_G_NWS])
+    frame = P[_G_FRAME] > 0
+    rails = P[_G_RAILS] > 0
+    relax = P[_G_RELAX] > 0
+    g = P[_G_G]
+    r0 = P[_G_R0]
+    of = int(P[_G_OF])
+    orl = int(P[_G_OR])
+    ox = int(P[_G_OX])
+    dx[:] = 0.0
+    # frame pose (zero for the wheelset model: the reference follows the track)
+    kf, phf, _, _ = layout_at(s_ref, ks, kk, kp, kh, is0, ids, iy)
+    hf, dkf = heading_at(s_ref, ks, kk, kh)
+    yf = zf = thf = chf = psf = 0.0
+    vyf = vzf = wthf = wchf = wpsf = 0.0
+    if frame:
+        yf, zf, thf, chf, psf = x[of], x[of + 1], x[of + 2], x[of + 3], x[of + 4]
+        vyf, vzf, wthf, wchf, wpsf = x[of + 5], x[of + 6], x[of + 7], x[of + 8], x[of + 9]
+    Qf = np.zeros(5)            # frame: y, z, roll, pitch, yaw
+    for i in range(nw):
+        b = 9 * i
+        pb = NGP + NWP * i
+        m = P[pb + _WP_M]
+        Ix = P[pb + _WP_IX]
+        Iy = P[pb + _WP_IY]
+        Iz = P[pb + _WP_IZ]
+        kx, ky, kz = P[pb + _WP_KX], P[pb + _WP_KY], P[pb + _WP_KZ]
+        cx, cy, cz = P[pb + _WP_CX], P[pb + _WP_CY], P[pb + _WP_CZ]
+        bs = P[pb + _WP_B]
+        xi = P[pb + _WP_X]
+        pre = P[pb + _WP_PRELOAD]
+        mc = P[pb + _WP_CARRIED_M]
+        si = s_ref + xi
+        kappa, phi, _, _ = layout_at(si, ks, kk, kp, kh, is0, ids, iy)
+        hi, dki = heading_at(si, ks, kk, kh)
+        cph, sph = math.cos(phi), math.sin(phi)
+        ay = -g * sph - V * V * kappa * cph
+        az = -g * cph + V * V * kappa * sph
+        y, z, th, ps = x[b], x[b + 1], x[b + 2], x[b + 3]
+        vy, vz, wth, wps = x[b + 4], x[b + 5], x[b + 6], x[b + 7]
+        om = x[b + 8] if P[_G_SPIN] > 0 else V / r0
+        Q = np.zeros(5)
+        for side in range(2):
+            for k in range(5):
+                Q[k] += Qn[i, side, k] + Qt[i, side, k]
+        Q[0] += mc * ay
+        Q[1] += mc * az
+        # primary suspension to the frame point above the axle
+        Yc = 0.0
+        dh = 0.0
+        ddh = 0.0
+        dphi = 0.0
+        if frame:
+            Yc = _offset(s_ref, xi, ks, kk, kh)
+            dh = hi - hf
+            ddh = V * (kappa - kf)
+            dphi = phi - phf
+        dy_ = y + Yc - (yf + xi * psf)
+        dvy = vy - (vyf + xi * wpsf)
+        for side in range(2):
+            sg = -1.0 if side == 0 else 1.0
+            d_x = -sg * bs * (ps + dh - psf)
+            v_x = -sg * bs * (wps + ddh - wpsf)
+            d_z = z + sg * bs * (th + dphi) - (zf + sg * bs * thf + xi * chf)
+            v_z = vz + sg * bs * wth - (vzf + sg * bs * wthf + xi * wchf)
+            Fx = -kx * d_x - cx * v_x
+            Fy = -ky * dy_ - cy * dvy
+            Fz = -kz * d_z - cz * v_z - pre
+            Q[0] += Fy
+            Q[1] += Fz
+            Q[2] += sg * bs * Fz
+            Q[3] += -sg * bs * Fx
+            # reactions on the frame (virtual work: F . dd/dq_frame)
+            Qf[0] += -Fy
+            Qf[4] += -xi * Fy + sg * bs * Fx
+            Qf[1] += -Fz
+            Qf[2] += -sg * bs * Fz
+            Qf[3] += -xi * Fz
+        dx[b] = vy
+        dx[b + 1] = vz
+        dx[b + 2] = wth
+        dx[b + 3] = wps
+        dx[b + 4] = Q[0] / m + ay
+        dx[b + 5] = Q[1] / m + az
+        dx[b + 6] = (Q[2] + Iy * om * (wps + V * kappa)) / Ix
+        dx[b + 7] = (Q[3] - Iy * om * wth) / Iz - (V * V * dki + aV * kappa)
+        dx[b + 8] = Q[4] / Iy if P[_G_SPIN] > 0 else aV / r0
+        # rails under this wheelset
+        if rails:
+            for side in range(2):
+                for d in range(2):
+                    rb = orl + 12 * i + 6 * side + 3 * d
+                    gb = _G_RAIL[d]
+                    k1, c1, k2, c2, mr = P[gb], P[gb + 1], P[gb + 2], P[gb + 3], P[gb + 4]
+                    w, u, v = x[rb], x[rb + 1], x[rb + 2]
+                    Fr = -(Qn[i, side, d] + Qt[i, side, d])
+                    if c1 + c2 > 0:
+                        wd = (k1 * (u - w) + c1 * v - k2 * w) / (c1 + c2)
+                    else:
+                        wd = k1 * v / (k1 + k2)
+                    dx[rb] = wd
+                    dx[rb + 1] = v
+                    dx[rb + 2] = (Fr - k1 * (u - w) - c1 * (v - wd)) / mr
+        if relax:
+            for side in range(2):
+                xb = ox + 10 * i + 5 * side
+                a = max(amean[i, side], P[_G_FLOOR])
+                for k in range(5):
+                    dx[xb + k] = (Qt[i, side, k] - x[xb + k]) * V / a
+    if frame:
+        mf = P[_G_FM]
+        Ifx, Ify, Ifz = P[_G_FM + 1], P[_G_FM + 2], P[_G_FM + 3]
+        skx, sky, skz = P[_G_SEC], P[_G_SEC + 1], P[_G_SEC + 2]
+        scx, scy, scz = P[_G_SEC + 3], P[_G_SEC + 4], P[_G_SEC + 5]
+        b2 = P[_G_SEC + 6]
+        mb = P[_G_BODY]
+        cph, sph = math.cos(phf), math.sin(phf)
+        ay = -g * sph - V * V * kf * cph
+        az = -g * cph + V * V * kf * sph
+        for side in range(2):
+            sg = -1.0 if side == 0 else 1.0
+            Fx = -skx * (-sg * b2 * psf) - scx * (-sg * b2 * wpsf)
+            Fy = -sky * yf - scy * vyf
+            Fz = -skz * (zf + sg * b2 * thf) - scz * (vzf + sg * b2 * wthf)
+            Qf[0] += Fy
+            Qf[1] += Fz
+            Qf[2] += sg * b2 * Fz
+            Qf[4] += -sg * b2 * Fx
+        dx[of] = vyf
+        dx[of + 1] = vzf
+        dx[of + 2] = wthf
+        dx[of + 3] = wchf
+        dx[of + 4] = wpsf
+        dx[of + 5] = Qf[0] / mf + ay * (mf + mb) / mf
+        dx[of + 6] = Qf[1] / mf + az * (mf + mb) / mf
+        dx[of + 7] = Qf[2] / Ifx
+        dx[of + 8] = Qf[3] / Ify
+        dx[of + 9] = Qf[4] / Ifz - (V * V * dkf + aV * kf)
+
+
+@njit(cache=True)
+def _split(OW, Qn, Qt, amean, relax, x, ox):
+    nw = OW.shape[0]
+    for i in range(nw):
+        for side in range(2):
+            for k in range(5):
+                Qn[i, side, k] = OW[i, side, 1 + k]
+                Qt[i, side, k] = OW[i, side, 6 + k]
+            amean[i, side] = OW[i, side, 17]
+
+
+@njit(cache=True)
+def rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
+    """State derivative with the compiled contact of every wheel (see ``wheel_contact``).
+
+    ``OP`` (n_ws, 2, KMAX, fields) and ``OW`` (n_ws, 2, fields) receive the contact
+    outputs. Returns the total number of patches.
+    """
+    V = max(V0 + aV * t, vmin)
+    s_ref = s0 + V0 * t + 0.5 * aV * t * t
+    nw = int(P[_G_NWS])
+    W = np.empty((nw, 2, N_IN))
+    wheel_inputs(t, x, P, L, V, s_ref, W)
+    total = 0
+    for i in range(nw):
+        for side in range(2):
+            w = W[i, side]
+            geo = geo_l if side == 0 else geo_r
+            sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, off, zt, ang = geo
+            (mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, c33, fs_t, fs_half, fs_peak,
+             fs_cells, fs_factor, rs_i0, rs_i1, rs_w, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
+             tab_phi_max, tab_ab_lo, tab_ab_hi) = meth
+            total += wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape,
+                                   sig, off, zt, ang, w[0], w[1], w[2], w[3], w[4], w[5], w[6],
+                                   w[7], w[8], w[9], mu, mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld,
+                                   kx, c11, c22, c23, c33, fs_t, fs_half, fs_peak, fs_cells,
+                                   fs_factor, rs_i0, rs_i1, rs_w, ax_r, ax_t, ax_s, ax_l, ax_n,
+                                   tab, tab_phi_max, tab_ab_lo, tab_ab_hi, OP[i, side],
+                                   OW[i, side])
+    Qn = np.empty((nw, 2, 5))
+    Qt = np.empty((nw, 2, 5))
+    amean = np.empty((nw, 2))
+    ox = int(P[_G_OX])
+    _split(OW, Qn, Qt, amean, P[_G_RELAX] > 0, x, ox)
+    if P[_G_RELAX] > 0:
+        Qr = np.empty((nw, 2, 5))
+        for i in range(nw):
+            for side in range(2):
+                for k in range(5):
+                    Qr[i, side, k] = x[ox + 10 * i + 5 * side + k]
+        derivative(t, x, P, L, V, aV, s_ref, Qn, Qr, amean, dx)
+        # the relaxation states move towards the steady creep forces
+        for i in range(nw):
+            for side in range(2):
+                a = max(amean[i, side], P[_G_FLOOR])
+                for k in range(5):
+                    j = ox + 10 * i + 5 * side + k
+                    dx[j] = (Qt[i, side, k] - x[j]) * V / a
+    else:
+        derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx)
+    return total
+
+
+@njit(cache=True)
+def _signature(OW, sig):
+    """Number of patches of every wheel (the contact configuration)."""
+    nw = OW.shape[0]
+    changed = False
+    for i in range(nw):
+        for side in range(2):
+            v = int(OW[i, side, 0])
+            if v != sig[2 * i + side]:
+                changed = True
+            sig[2 * i + side] = v
+    return changed
+
+
+@njit(cache=True)
+def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu,
+              scheme, max_halvings, T_out, X_out, OP_out, OW_out, events):
+    """Fixed-step explicit integration with the compiled contact (real-time path).
+
+    ``scheme`` 4: classical Runge–Kutta; 2: Heun. A step across which the contact
+    configuration (number of patches of a wheel) changes is redone in halves, down
+    to ``dt / 2**max_halvings``, so that no step of more than that size straddles a
+    contact jump (the configuration is checked at every step end; this costs no extra
+    contact evaluation, the end state's is the next step's first stage). Every
+    ``every`` steps the state and the contact outputs are written to the ``*_out``
+    arrays. ``events`` (k, 3) receives (t, wheel index 2 i + side, new patch count)
+    of each configuration change.
+
+    Returns (outputs written, events written, contact evaluations, rejected steps).
+    """
+    n = x0.shape[0]
+    nw = int(P[_G_NWS])
+    KM = OP_out.shape[3]
+    NF = OP_out.shape[4]
+    NWF = OW_out.shape[3]
+    x = x0.copy()
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    xt = np.empty(n)
+    xn = np.empty(n)
+    OP = np.zeros((nw, 2, KM, NF))
+    OW = np.zeros((nw, 2, NWF))
+    OPn = np.zeros((nw, 2, KM, NF))
+    OWn = np.zeros((nw, 2, NWF))
+    kn = np.empty(n)
+    sig = np.zeros(2 * nw, np.int64)
+    sign = np.zeros(2 * nw, np.int64)
+    t = t0
+    rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, k1)
+    nev = 1
+    _signature(OW, sig)
+    nout = 0
+    ne = 0
+    rejected = 0
+    for step in range(nsteps):
+        if step % every == 0 and nout < T_out.shape[0]:
+            T_out[nout] = t
+            X_out[nout] = x
+            OP_out[nout] = OP
+            OW_out[nout] = OW
+            nout += 1
+        t_end = t0 + (step + 1) * dt
+        h = dt
+        while t < t_end - 1e-12 * dt:
+            hh = min(h, t_end - t)
+            # one step from (t, x) with slope k1
+            if scheme == 4:
+                for j in range(n):
+                    xt[j] = x[j] + 0.5 * hh * k1[j]
+                rhs_fast(t + 0.5 * hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn,
+                         OWn, k2)
+                for j in range(n):
+                    xt[j] = x[j] + 0.5 * hh * k2[j]
+                rhs_fast(t + 0.5 * hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn,
+                         OWn, k3)
+                for j in range(n):
+                    xt[j] = x[j] + hh * k3[j]
+                rhs_fast(t + hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
+                         k4)
+                for j in range(n):
+                    xn[j] = x[j] + hh / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                nev += 3
+            else:
+                for j in range(n):
+                    xt[j] = x[j] + hh * k1[j]
+                rhs_fast(t + hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
+                         k2)
+                for j in range(n):
+                    xn[j] = x[j] + 0.5 * hh * (k1[j] + k2[j])
+                nev += 1
+            rhs_fast(t + hh, xn, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn, kn)
+            nev += 1
+            for j in range(2 * nw):
+                sign[j] = sig[j]
+            changed = _signature(OWn, sign)
+            if changed and hh > dt / 2.0 ** max_halvings * (1 + 1e-9):
+                h = 0.5 * hh          # the configuration changes inside: halve the step
+                rejected += 1
+                continue
+            t = t + hh
+            for j in range(n):
+                x[j] = xn[j]
+                k1[j] = kn[j]
+            OP[:] = OPn
+            OW[:] = OWn
+            if changed:
+                for j in range(2 * nw):
+                    if sign[j] != sig[j] and ne < events.shape[0]:
+                        events[ne, 0] = t
+                        events[ne, 1] = j
+                        events[ne, 2] = sign[j]
+                        ne += 1
+                    sig[j] = sign[j]
+                h = dt / 2.0 ** max_halvings        # leave the jump with small steps
+            else:
+                h = min(2.0 * hh, dt)
+        if not np.all(np.isfinite(x)):
+            break
+    if nout < T_out.shape[0]:
+        T_out[nout] = t
+        X_out[nout] = x
+        OP_out[nout] = OP
+        OW_out[nout] = OW
+        nout += 1
+    return nout, ne, nev, rejected

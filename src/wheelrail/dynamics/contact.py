@@ -1,0 +1,350 @@
+"""Contact forces of a wheel at a pose, for the time integration: compiled or through the library.
+
+Every evaluation of the equations of motion needs the patches and forces of
+every wheel at its current pose and velocity. Two paths give them in the same
+format (rows of :data:`~wheelrail.dynamics._fastcontact.PATCH_FIELDS` per
+patch, :data:`~wheelrail.dynamics._fastcontact.WHEEL_FIELDS` per wheel):
+
+* :class:`FastContact` — the compiled path of
+  :mod:`wheelrail.dynamics._fastcontact` for Hertz or Kik–Piotrowski normal
+  contact with FASTSIM or the table law (options of the configured methods
+  honoured; see the class);
+* :class:`GenericContact` — any normal × tangential method of the library, as
+  configured objects: the wheel problem of
+  :func:`wheelrail.contact.wheelrail.wheel_problem` at the wheel's touching pose
+  with the vertical approach of the current pose, the method's ``from_wheel``,
+  the creepages of :func:`wheelrail.geometry.kinematics.creepage_kernel` and the
+  law's ``solve_patches`` (what :func:`wheelrail.solve` does with ``z=``);
+  milliseconds per wheel.
+
+:func:`contact_model` picks the compiled path when it supports the methods
+(``contact="auto"``), or the one asked for.
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, §1–3.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .. import normal as normal_family
+from .. import tangential as tangential_family
+from ..contact.wheelrail import WheelRailPosition, _creepage_at, wheel_problem
+from ..errors import InputError
+from ..geometry._curves import SAMPLE_STEP, PiecewiseCubic
+from ..geometry.contact_search import _side_args
+from ..geometry.kinematics import Motion
+from ..geometry.touching import touching_heights
+from ..materials import as_material_pair
+from ..normal._strips import _LN_MAX, _hertz_table
+from ..normal.hertz import Hertz
+from ..normal.kik_piotrowski import KikPiotrowski
+from ..options import split_options
+from ..plausibility import disabled
+from ..tangential.fastsim import Fastsim, _kalker_table, _profile, _resample_weights, _strip_t
+from ..tangential.linear import Linear, kalker_coefficients
+from ..tangential.table import Table, load_table
+from ._fastcontact import KMAX, MP, PATCH_FIELDS, WHEEL_FIELDS, wheel_contact
+
+__all__ = ["FastContact", "GenericContact", "contact_model", "PATCH_FIELDS", "WHEEL_FIELDS",
+           "KMAX", "SIDES"]
+
+SIDES = ("left", "right")
+_SIGMA = {"left": -1.0, "right": 1.0}
+_P = {n: i for i, n in enumerate(PATCH_FIELDS)}
+_W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
+
+
+_UNIFORM: dict = {}
+
+
+def _uniform_wheel(wheelset, side):
+    """The wheel profile spline of ``side`` re-sampled every 0.05 mm (cached per curve)."""
+    wc = wheelset.curve(side)
+    hit = _UNIFORM.get(id(wc))
+    if hit is None or hit[0] is not wc:
+        (v,) = wc.eval(wc.u, 0)
+        hit = (wc, PiecewiseCubic.through(wc.u, v, uniform_step=SAMPLE_STEP))
+        if len(_UNIFORM) > 32:
+            _UNIFORM.clear()
+        _UNIFORM[id(wc)] = hit
+    return hit[1]
+
+
+def _fast_support(nimpl, timpl) -> str:
+    """Empty if the compiled path supports the configured methods, else the reason."""
+    if type(nimpl) not in (Hertz, KikPiotrowski):
+        return f"normal method {nimpl.name!r} (compiled: 'hertz', 'kik-piotrowski')"
+    if type(timpl) not in (Fastsim, Table, Linear):
+        return f"tangential method {timpl.name!r} (compiled: 'fastsim', 'table', 'linear')"
+    if isinstance(timpl, Table) and timpl.outside == "exact":
+        return "the table law with outside='exact' (the exact solver is not compiled)"
+    return ""
+
+
+class FastContact:
+    """Compiled contact of the wheels of a wheelset (see :mod:`wheelrail.dynamics._fastcontact`).
+
+    Parameters
+    ----------
+    wheelset, track : Wheelset, Track
+    material : Material or MaterialPair
+    normal : Hertz or KikPiotrowski
+        Configured normal method. Kik–Piotrowski's options ``penetration_factor``,
+        ``shape_correction``, ``strips`` and ``cells`` are honoured.
+    tangential : Fastsim, Table or Linear
+        Configured law. FASTSIM's ``nx``, ``ny``, ``bound``, ``flexibility`` and
+        ``scheme`` are honoured (Kik–Piotrowski patches use one weighted flexibility
+        per patch, as in the library). The table law's points outside its domain are
+        refused (``outside="raise"``: :class:`~wheelrail.errors.InputError` naming the
+        pose) or computed by FASTSIM with its defaults (``"fastsim"``).
+    search_step : float
+        Grid step of the contact search along the wheel profile [m] (minima refined
+        to ~1 µm).
+    line_step : float
+        Node spacing of Kik–Piotrowski's separation line [m].
+    line_half_width : float
+        Smallest half width of that line [m] (widened to the group's points and the
+        patch).
+    tolerance : float
+        Largest undeformed separation of a candidate point [m] (as
+        :class:`~wheelrail.contact.wheelrail.WheelRailPosition`).
+    """
+
+    kind = "compiled"
+
+    def __init__(self, wheelset, track, material, normal, tangential, *, search_step=5e-4,
+                 line_step=1e-4, line_half_width=6e-3, tolerance=5e-4):
+        why = _fast_support(normal, tangential)
+        if why:
+            raise InputError(f"contact='fast' does not support {why}; use contact='generic'")
+        self.wheelset, self.track = wheelset, track
+        self.normal, self.tangential = normal, tangential
+        pair = as_material_pair(material)
+        self.materials = pair
+        self.geometry = {}
+        for side in SIDES:
+            s, p, p1, lo, hi, h, wu, winv, wc, ru, rinv, rc, rh, r0, e, sig = _side_args(
+                wheelset, track, side, float(search_step))
+            # the wheel spline re-sampled on a uniform grid (evaluation without a search;
+            # differs from the library's spline by ~1e-10 m)
+            wcu = _uniform_wheel(wheelset, side)
+            wu, winv, wc = wcu.u, 1.0 / wcu._h, wcu.c
+            pl = track.placement(side)
+            self.geometry[side] = (s, p, p1, float(lo), float(hi), wu, float(winv), wc, ru,
+                                   float(rinv), rc, float(r0), float(e), float(sig),
+                                   float(pl.offset), float(pl.z_top), float(pl.angle))
+        mp = np.zeros(len(MP))
+        mp[MP["normal"]] = 0 if isinstance(normal, Hertz) else 1
+        mp[MP["tangential"]] = (1 if isinstance(tangential, Table) else
+                                2 if isinstance(tangential, Linear) else 0)
+        mp[MP["E_star"]] = pair.E_star
+        mp[MP["G"]] = pair.G
+        mp[MP["nu"]] = pair.nu
+        mp[MP["K"]] = float(getattr(pair, "K", 0.0))
+        if isinstance(normal, KikPiotrowski):
+            pf = normal.penetration_factor
+            mp[MP["eps"]] = -1.0 if isinstance(pf, str) else float(pf)
+            mp[MP["shape_correction"]] = 1.0 if normal.shape_correction else 0.0
+            mp[MP["strips"]] = normal.strips
+            mp[MP["cells"]] = normal.cells
+        else:
+            mp[MP["strips"]] = mp[MP["cells"]] = 2
+        mp[MP["line_step"]] = float(line_step)
+        mp[MP["line_half_width"]] = float(line_half_width)
+        mp[MP["group_angle"]] = 0.2
+        mp[MP["tolerance"]] = float(tolerance)
+        fs = tangential if isinstance(tangential, Fastsim) else Fastsim()
+        mp[MP["nx"]] = fs.nx
+        mp[MP["ny"]] = fs.ny
+        mp[MP["parabolic"]] = 1.0 if fs.bound == "parabolic" else 0.0
+        mp[MP["weighted"]] = 1.0 if fs.flexibility == "weighted" else 0.0
+        mp[MP["first_order"]] = 1.0 if fs.scheme == "euler" else 0.0
+        mp[MP["search_step"]] = float(search_step)
+        self.table_raise = isinstance(tangential, Table) and tangential.outside == "raise"
+        lam, la, lb, lp, ld = _hertz_table()
+        kx, c11, c22, c23 = _kalker_table(float(pair.nu))
+        c33 = np.asarray(kalker_coefficients(np.exp(kx), float(pair.nu))[3], dtype=float)
+        t = _strip_t(fs.ny)
+        half = np.sqrt(1.0 - t * t)
+        strip_peak = _profile(fs.bound, t)
+        s_cells = _profile(fs.bound, 1.0 - (np.arange(fs.nx) + 0.5) * (2.0 / fs.nx))
+        discrete = (4.0 / (fs.nx * fs.ny)) * np.sum(strip_peak * half) * np.sum(s_cells)
+        continuous = np.pi / 2.0 if fs.bound == "parabolic" else 2.0 * np.pi / 3.0
+        i0, i1, w = _resample_weights(int(mp[MP["cells"]]), fs.nx)
+        if isinstance(tangential, Table):
+            data = load_table(tangential.table)
+            axes = tuple(np.ascontiguousarray(data.axes[k], float) for k in
+                         ("r", "theta", "s", "log_ab", "nu"))
+            tab = np.ascontiguousarray(data._interp.values, dtype=float)
+            dom = data.domain
+            tdom = (float(dom["phi_hat"]), float(dom["aspect"][0]), float(dom["aspect"][1]))
+        else:
+            axes = tuple(np.array([0.0, 1.0]) for _ in range(5))
+            tab = np.zeros((2, 2, 2, 2, 2, 3))
+            tdom = (0.0, 1.0, 1.0)
+        c_ = np.ascontiguousarray
+        self.method = (mp, c_(lam), c_(la), c_(lb), c_(lp), c_(ld), c_(kx), c_(c11), c_(c22),
+                       c_(c23), c_(c33), c_(t), c_(half), c_(strip_peak), c_(s_cells),
+                       float(continuous / discrete), c_(i0), c_(i1), c_(w), *axes, tab, *tdom)
+        self.ln_max = _LN_MAX
+
+    def wheel(self, side, y, zc, roll, yaw, V, omega, vy, vz, yaw_rate, roll_rate, mu,
+              out_p, out_w):
+        """Fill ``out_p`` (KMAX, fields) and ``out_w`` for one wheel (see ``wheel_contact``)."""
+        n = wheel_contact(*self.geometry[side], float(y), float(zc), float(roll), float(yaw),
+                          float(V), float(omega), float(vy), float(vz), float(yaw_rate),
+                          float(roll_rate), float(mu), *self.method, out_p, out_w)
+        if self.table_raise and out_w[_W["fallbacks"]] > 0:
+            self._raise_outside(out_w[None, None], side=side, pose=(y, yaw))
+        return n
+
+    def _raise_outside(self, OW, side=None, pose=None):
+        """The table law met a contact outside its domain: refuse, as the law is configured."""
+        where = ""
+        if side is None:
+            hit = np.argwhere(OW[..., _W["fallbacks"]] > 0)[0]
+            side = SIDES[int(hit[-1])]
+            if OW.ndim == 3:
+                where = f" of wheelset {int(hit[0])}"
+        at = "" if pose is None else f" at y = {pose[0]!r} m, yaw = {pose[1]!r} rad"
+        raise InputError(
+            f"the table law met a contact outside its domain on the {side} wheel{where}{at} "
+            "(a/b or spin beyond the table, e.g. a flange contact); configure "
+            "wr.tangential.Table(outside='fastsim') to compute such points with FASTSIM")
+
+
+class GenericContact:
+    """Any configured normal × tangential method through the library (milliseconds per wheel).
+
+    The wheel problem at the wheel's touching pose (roll and yaw of the wheelset,
+    lateral shift relative to the rail) with the vertical approach of the current
+    pose, as :func:`wheelrail.solve` with ``z=``; creep forces on the patches by the
+    law's ``solve_patches``.
+    """
+
+    kind = "generic"
+
+    def __init__(self, wheelset, track, material, normal, tangential, *, tolerance=5e-4):
+        self.wheelset, self.track = wheelset, track
+        self.normal, self.tangential = normal, tangential
+        self.material = material
+        self.tolerance = float(tolerance)
+
+    def wheel(self, side, y, zc, roll, yaw, V, omega, vy, vz, yaw_rate, roll_rate, mu,
+              out_p, out_w):
+        out_p[:] = 0.0
+        out_w[:] = 0.0
+        ws, tr = self.wheelset, self.track
+        r0 = ws.nominal_radius
+        z = float(zc) - r0
+        zt, beside = touching_heights(ws, tr, np.array([float(y)]), np.array([float(roll)]),
+                                      np.array([float(yaw)]))
+        if beside[side][0]:
+            out_w[_W["min_gap"]] = 1.0
+            return 0
+        z_touch = float(zt[side][0])
+        dz = z_touch - z
+        out_w[_W["min_gap"]] = -dz
+        if not dz > 0:
+            return 0
+        sig = _SIGMA[side]
+        with disabled():
+            pos = WheelRailPosition(ws, tr, y=float(y), yaw=float(yaw), roll=float(roll), z=z,
+                                    material=self.material, tolerance=self.tolerance)
+            prob = wheel_problem(pos, side, float(roll), z_touch)
+            patches, info = self.normal.from_wheel(prob)
+            motion = Motion(speed=float(V), omega=float(omega), lateral_velocity=float(vy),
+                            vertical_velocity=float(vz), yaw_rate=float(yaw_rate),
+                            roll_rate=float(roll_rate))
+            zct = r0 + z_touch
+            cr = [_creepage_at(p.frame, sig, motion, float(omega), pos, float(roll), zct, None)
+                  for p in patches]
+            forces = self.tangential.solve_patches(patches, cr, float(mu))
+        out_w[_W["vertical_approach"]] = float(info["vertical_approach"])
+        rows = []
+        for p, c, f in zip(patches, cr, forces):
+            fr = p.frame
+            g = fr.contact_angle
+            Fn, Fx, Fs, Mz = float(p.Fn), float(f.Fx), float(f.Fy), float(f.Mz)
+            row = np.zeros(len(PATCH_FIELDS))
+            row[[_P[k] for k in ("Fn", "Fx", "Fs", "Mz", "contact_angle", "track_y", "track_z",
+                                 "x", "wheel_y", "rail_y", "a", "b", "xi", "eta", "phi",
+                                 "rolling_radius")]] = (
+                Fn, Fx, Fs, Mz, g, fr.track_y, fr.track_z, fr.x, fr.wheel_y, fr.rail_y,
+                float(p.a), float(p.b), *c, fr.rolling_radius)
+            row[_P["p_max"]] = float(getattr(p, "p_max", 0.0) or 0.0)
+            row[_P["penetration"]] = float(p.penetration or 0.0)
+            rows.append((row, p))
+        rows.sort(key=lambda r: -r[0][0])
+        ct = math.cos(roll)
+        sp = math.sin(yaw)
+        e = ws.e_tape
+        Q = np.zeros(10)
+        F = np.zeros(3)
+        a_w = Fn_w = 0.0
+        for k, (row, _) in enumerate(rows):
+            Fn, Fx, Fs, Mz, g = row[0], row[1], row[2], row[3], row[4]
+            cg, sgm = math.cos(g), math.sin(g)
+            Fyn, Fzn = -sig * Fn * sgm, Fn * cg
+            Fyt, Fzt = Fs * cg, sig * Fs * sgm
+            row[_P["Fy_track"]] = Fyn + Fyt
+            row[_P["Fz_track"]] = Fzn + Fzt
+            ddx = row[_P["x"]] - sig * (e + row[_P["wheel_y"]]) * ct * sp
+            ddy = row[_P["track_y"]] - y
+            ddz = row[_P["track_z"]] - (r0 + z_touch)
+            Q += (Fyn, Fzn, ddy * Fzn - ddz * Fyn, ddx * Fyn, -ddx * Fzn,
+                  Fyt, Fzt, ddy * Fzt - ddz * Fyt, ddx * Fyt - ddy * Fx + cg * Mz,
+                  ddz * Fx - ddx * Fzt - sig * sgm * Mz)
+            F += (Fx, Fyn + Fyt, Fzn + Fzt)
+            a_w += Fn * row[_P["a"]]
+            Fn_w += Fn
+            if k < out_p.shape[0]:
+                out_p[k] = row
+        out_w[1:11] = Q
+        out_w[11:14] = F
+        out_w[_W["patches"]] = min(len(rows), out_p.shape[0])
+        out_w[_W["a_mean"]] = a_w / Fn_w if Fn_w > 0 else 0.0
+        return len(rows)
+
+
+def configured_methods(normal, tangential, options=None):
+    """The configured normal and tangential methods from names or objects and options.
+
+    Each option goes to the one method that declares it (as :func:`wheelrail.solve`:
+    ``normal="kik-piotrowski", tangential="fastsim", nx=20`` is
+    ``tangential=wr.tangential.Fastsim(nx=20)``); an option declared by neither or
+    both is an :class:`~wheelrail.errors.InputError` naming both methods' options.
+    """
+    nopts, topts = split_options(normal_family.get_class(normal),
+                                 tangential_family.get_class(tangential), dict(options or {}))
+    return normal_family.get(normal, nopts), tangential_family.get(tangential, topts)
+
+
+def contact_model(wheelset, track, material, normal="kik-piotrowski", tangential="fastsim", *,
+                  contact="auto", method_options=None, **options):
+    """The contact evaluator for configured methods (:class:`FastContact` or :class:`GenericContact`).
+
+    Parameters
+    ----------
+    normal, tangential : str or configured method
+        Names or configured objects (``wr.normal.KikPiotrowski()``, ``wr.tangential.Table()``).
+    contact : {"auto", "fast", "generic"}
+        ``"auto"``: the compiled path where it supports the methods, else the generic one.
+    method_options : dict or None
+        Options of the two methods (:func:`configured_methods`).
+    **options
+        Options of :class:`FastContact` (``search_step``, ``line_step``, ...).
+    """
+    nimpl, timpl = configured_methods(normal, tangential, method_options)
+    if contact not in ("auto", "fast", "generic"):
+        raise InputError(f"contact must be 'auto', 'fast' or 'generic', got {contact!r}")
+    if contact == "generic" or (contact == "auto" and _fast_support(nimpl, timpl)):
+        tol = options.get("tolerance", 5e-4)
+        return GenericContact(wheelset, track, material, nimpl, timpl, tolerance=tol)
+    return FastContact(wheelset, track, material, nimpl, timpl, **options)

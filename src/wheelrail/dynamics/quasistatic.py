@@ -1,0 +1,441 @@
+"""Quasi-static analyses: steady curving and flange climb (Pascal's wheelset model).
+
+* :func:`steady_curving` — the equilibrium of a wheelset or bogie model in a
+  circular curve at constant speed: all accelerations zero (lateral, vertical,
+  roll, yaw, spin of every body, rail deflections), solved by a damped Newton
+  iteration on the full nonlinear model (the contact of every wheel by the
+  configured methods). A free wheelset (no suspension) on the tread settles
+  where it rolls without longitudinal creep, Δr(y) = 2 r0 l0/R (for constant
+  conicity λ: y = r0 l0/(λR); Wickens 2003, §2.4).
+* :func:`flange_climb` — Pascal's quasi-static wheelset (Piotrowski & Chollet
+  2005, §2.2, fig. 4): at a fixed yaw angle (angle of attack) the wheelset is
+  pushed laterally by a force H at rail level while its vertical load stays
+  constant; the normal loads of the patches follow from the equilibrium with the
+  creep forces (which unload the contact during flanging). The lateral shift is
+  the control variable (so that the maximum of H is passed); the result is the
+  derailment quotient Y/Q of each wheel along the path up to and beyond wheel
+  lift, compared with Nadal's limit (tan γ − μ)/(1 + μ tan γ) for the flange
+  angle reached (Nadal 1908; EN 14363).
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, §2.2.
+.. [2] M.J. Nadal, Théorie de la stabilité des locomotives, partie 2: mouvement
+   de lacet, Annales des Mines 10 (1896) 232; (Y/Q)_lim = (tan γ − μ)/(1 + μ tan γ).
+.. [3] A.H. Wickens, *Fundamentals of rail vehicle dynamics*, 2003, §2.4
+   (steady curving of a wheelset).
+.. [4] D. Boocock, Steady-state motion of railway vehicles on curved track,
+   J. Mech. Eng. Sci. 11 (1969) 556–566.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import ConvergenceError, InputError
+from ..geometry.contact_table import contact_table
+from ._fastcontact import PATCH_FIELDS, WHEEL_FIELDS
+from .layout import Curve, TrackLayout
+from .model import GRAVITY, Suspension, WheelsetModel
+from .simulate import System
+
+__all__ = ["steady_curving", "flange_climb", "nadal", "CurvingResult", "FlangeClimbResult"]
+
+_P = {n: i for i, n in enumerate(PATCH_FIELDS)}
+#: Contact angle [rad] from which a patch counts as on the flange flank (tread below).
+_FLANK = 0.8
+_W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
+
+
+def nadal(contact_angle, mu):
+    """Nadal's limit (tan γ − μ)/(1 + μ tan γ) of the derailment quotient Y/Q.
+
+    Parameters
+    ----------
+    contact_angle : float or array_like
+        Flange contact angle γ [rad].
+    mu : float or array_like
+        Coefficient of friction [-].
+
+    Returns
+    -------
+    float or ndarray
+        Limit of Y/Q [-] at which the flanging wheel starts to climb.
+
+    References
+    ----------
+    .. [1] M.J. Nadal, Théorie de la stabilité des locomotives, partie 2:
+       mouvement de lacet, Annales des Mines 10 (1896) 232.
+
+    Examples
+    --------
+    >>> round(float(nadal(math.radians(70.0), 0.3)), 4)
+    1.3416
+    """
+    t = np.tan(contact_angle)
+    return (t - mu) / (1.0 + mu * t)
+
+
+def _newton(fun, x0, scales, steps, maxiter=80, tol=1e-7):
+    """Damped Newton on fun(x) = 0 (finite-difference Jacobian, step limited to ``scales``
+    as a whole, halved while the residual in Newton-step units grows)."""
+    x = np.array(x0, dtype=float)
+    f = fun(x)
+    for _ in range(maxiter):
+        J = np.empty((f.size, x.size))
+        for k in range(x.size):
+            xp = x.copy()
+            xp[k] += steps[k]
+            J[:, k] = (fun(xp) - f) / steps[k]
+        try:
+            d = np.linalg.solve(J, -f)
+        except np.linalg.LinAlgError:
+            raise ConvergenceError("quasi-static equilibrium: singular Jacobian") from None
+        big = float(np.max(np.abs(d) / scales))
+        if big > 1.0:
+            d = d / big
+        merit = float(np.max(np.abs(np.linalg.solve(J, f)) / scales))
+        for _ in range(10):
+            xn = x + d
+            fn = fun(xn)
+            if float(np.max(np.abs(np.linalg.solve(J, fn)) / scales)) <= merit:
+                break
+            d = 0.5 * d
+        x, f = xn, fn
+        if np.all(np.abs(d) < tol * scales):
+            return x
+    raise ConvergenceError(f"quasi-static equilibrium not reached in {maxiter} Newton steps")
+
+
+@dataclass(frozen=True, eq=False)
+class CurvingResult:
+    """Steady curving equilibrium (frozen).
+
+    Attributes
+    ----------
+    state : ndarray
+        Equilibrium state (names in ``names``).
+    names : tuple of str
+    y, yaw : ndarray, shape (n_wheelsets,)
+        Lateral shift [m] (positive towards the outside of a curve to the right is
+        negative: y is to the right) and yaw relative to the track tangent [rad];
+        the angle of attack of a wheelset is its yaw (positive nose to the right).
+    wheels, patches : ndarray
+        Contact outputs (n_wheelsets, 2, ...) as in
+        :class:`~wheelrail.dynamics.simulate.SimulationResult`.
+    radius, speed, cant : float
+    """
+
+    state: np.ndarray
+    names: tuple
+    y: np.ndarray
+    yaw: np.ndarray
+    wheels: np.ndarray
+    patches: np.ndarray
+    radius: float
+    speed: float
+    cant: float
+    info: dict = field(default_factory=dict)
+
+    def contact_angles(self, wheelset=0, side="right") -> np.ndarray:
+        """Contact angles [rad] of the loaded patches of one wheel."""
+        k = 0 if side == "left" else 1
+        rows = self.patches[wheelset, k]
+        return rows[rows[:, _P["Fn"]] > 0, _P["contact_angle"]]
+
+
+def steady_curving(model, track, radius, speed, normal="hertz", tangential="fastsim", *,
+                   mu=0.3, cant=0.0, direction="right", initial=None, contact="auto",
+                   contact_options=None, **options) -> CurvingResult:
+    """Equilibrium of a model in a circular curve at constant speed (module docstring).
+
+    Parameters
+    ----------
+    model : WheelsetModel or BogieModel
+    track : Track or TrackLayout
+        The cross-section.
+    radius : float
+        Curve radius [m].
+    speed : float
+        [m/s].
+    cant : float
+        Superelevation [m].
+    direction : {"right", "left"}
+    initial : dict or None
+        Start values by state name (e.g. ``{"ws0.y": -0.005}``); default: the
+        wheelsets shifted towards the outer rail by 2 r0 l0/(0.2 R).
+    contact, contact_options
+        As :func:`~wheelrail.dynamics.simulate`.
+    **options
+        Options of the two methods, each to the one that declares it.
+
+    Returns
+    -------
+    CurvingResult
+    """
+    section = getattr(track, "track", track)
+    layout = TrackLayout(section, curves=(Curve(radius, start=-1e7, length=math.inf,
+                                                 cant=cant, direction=direction),))
+    system = System(model, layout, speed, normal, tangential, mu=mu, contact=contact,
+                    contact_options=contact_options, method_options=options)
+    asm = system.asm
+    sgn = 1.0 if direction == "right" else -1.0
+    r0, l0 = model.wheelset.nominal_radius, model.wheelset.e_tape
+    given = {}
+    for i in range(asm.n_ws):
+        given[f"ws{i}.y"] = -sgn * min(r0 * l0 / (0.2 * radius), 0.006)
+    if initial:
+        given.update(initial)
+    x = system.initial_state(given)
+    cols, rows, steps, scales = asm.quasi_static(spin=True)
+    cols, rows = list(cols), list(rows)
+    steps, scales = list(steps), list(scales)
+    for i in range(asm.n_ws):
+        for c, r, h, s in ((9 * i, 9 * i + 4, 1e-7, 2e-3), (9 * i + 3, 9 * i + 7, 1e-7, 5e-3)):
+            cols.append(c)
+            rows.append(r)
+            steps.append(h)
+            scales.append(s)
+    if asm.frame:
+        of = asm.off_frame
+        for c, r in ((of, of + 5), (of + 4, of + 9)):
+            cols.append(c)
+            rows.append(r)
+            steps.append(1e-7)
+            scales.append(2e-3)
+    if asm.relax:
+        raise InputError("steady_curving: creep relaxation does not change the steady state; "
+                         "use a model without it")
+    steps, scales = np.array(steps), np.array(scales)
+
+    def residual(v):
+        xx = x.copy()
+        xx[cols] = v
+        return system.rhs(0.0, xx)[rows]
+
+    v = _newton(residual, x[cols], scales, steps, maxiter=200)
+    x[cols] = v
+    system.rhs(0.0, x)
+    return CurvingResult(x, tuple(asm.names), x[[9 * i for i in range(asm.n_ws)]],
+                         x[[9 * i + 3 for i in range(asm.n_ws)]], system.OW.copy(),
+                         system.OP.copy(), float(radius), float(speed), float(cant),
+                         {"normal": system.contact.normal.name,
+                          "tangential": system.contact.tangential.name, "mu": mu,
+                          "direction": direction})
+
+
+@dataclass(frozen=True, eq=False)
+class FlangeClimbResult:
+    """Pascal's quasi-static flange climb (frozen; arrays along the lateral shift).
+
+    Attributes
+    ----------
+    y : ndarray
+        Lateral shift of the wheelset [m] (towards the flanging right wheel).
+    lateral_force : ndarray
+        External lateral force H at rail level [N] needed for equilibrium.
+    Y_over_Q : ndarray
+        Derailment quotient of the flanging (right) wheel.
+    vertical_load : ndarray
+        Q of the flanging wheel [N].
+    contact_angle : ndarray
+        Largest contact angle of the flanging wheel's loaded patches [rad].
+    tread_load : ndarray
+        Normal force of the flanging wheel's patches with contact angle < 0.8 rad [N]
+        (zero: the wheel has lifted off its tread and flange root).
+    friction_ratio : ndarray
+        Fy/Fn in the contact plane of the flange patch (μ when it slides laterally).
+    lift : int
+        Index of the first point without tread contact (−1: none).
+    peak : int
+        Index of the largest Y/Q.
+    nadal : float
+        Nadal's limit for the largest contact angle reached and μ.
+    """
+
+    y: np.ndarray
+    lateral_force: np.ndarray
+    Y_over_Q: np.ndarray
+    vertical_load: np.ndarray
+    contact_angle: np.ndarray
+    tread_load: np.ndarray
+    friction_ratio: np.ndarray
+    lift: int
+    peak: int
+    nadal: float
+    mu: float
+    yaw: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def flange_angle(self) -> float:
+        """Largest contact angle reached on the flange [rad]."""
+        return float(np.nanmax(self.contact_angle))
+
+    @property
+    def Y_over_Q_at_lift(self) -> float:
+        """The largest Y/Q of the path (reached on the flange after the lift)."""
+        return float(self.Y_over_Q[self.peak])
+
+
+def _flange_start(wheelset, section):
+    """Lateral shift [m] at which the right wheel's rigid contact first lies on the flange."""
+    tab = contact_table(wheelset, section, y=np.arange(0.0, 0.015, 2.5e-4))
+    g = np.asarray(tab["contact_angle_right_primary"].values, dtype=float)
+    yy = np.asarray(tab["y"].values, dtype=float)
+    on = np.flatnonzero(np.nan_to_num(g) >= 0.5)
+    if on.size == 0:
+        raise InputError("flange_climb: the right wheel's contact never reaches the flange "
+                         "(contact angle > 0.5 rad) for y up to 15 mm")
+    return float(yy[on[0]])
+
+
+def flange_climb(model, track, yaw=0.01, normal="kik-piotrowski", tangential="fastsim", *,
+                 mu=0.3, speed=10.0, y=None, contact="auto", contact_options=None,
+                 spin="free", roll_step=5e-5, roll_range=0.03, **options) -> FlangeClimbResult:
+    """Quasi-static flange climb of a wheelset (Pascal's model; see the module docstring).
+
+    The model's mass, inertia, axle load and wheelset are used; its suspension is
+    not (the wheelset is free but for the lateral force H at rail level, the
+    vertical load at the axle centre and the prescribed yaw).
+
+    Parameters
+    ----------
+    model : WheelsetModel
+    track : Track
+    yaw : float
+        Angle of attack [rad] (positive: the right wheel steers into its rail).
+    mu : float
+        Friction coefficient.
+    speed : float
+        [m/s] (creepages are independent of it).
+    y : float or None
+        Lateral shift [m] where the path starts (default 1 mm before the rigid
+        contact reaches the flange).
+    roll_step, roll_range : float
+        The path is followed in the roll angle [rad] (steps halved where the Newton
+        iteration fails), up to ``roll_range`` beyond the start or past the flange tip.
+    spin : {"free", "fixed"}
+        The wheelset's spin balances the longitudinal creep torque, or Ω = V/r0.
+    contact, contact_options
+        As :func:`~wheelrail.dynamics.simulate`.
+    **options
+        Options of the two methods, each to the one that declares it.
+
+    Returns
+    -------
+    FlangeClimbResult
+    """
+    if not isinstance(model, WheelsetModel):
+        raise InputError(f"flange_climb needs a WheelsetModel, got {type(model).__name__}")
+    if not (math.isfinite(yaw) and abs(yaw) < 0.1):
+        raise InputError(f"yaw must be a number in (-0.1, 0.1) rad, got {yaw!r}")
+    free = dataclasses.replace(model, primary=Suspension(), rail=None, spin=spin)
+    section = getattr(track, "track", track)
+    system = System(free, section, speed, normal, tangential, mu=mu, contact=contact,
+                    contact_options=contact_options, method_options=options)
+    asm = system.asm
+    m, Ix = free.mass, free.inertia[0]
+    r0 = free.wheelset.nominal_radius
+    if y is None:
+        # from 1 mm before the rigid flange contact (contact angle > 0.5 rad) on
+        ys = [_flange_start(free.wheelset, section) - 1e-3]
+    else:
+        ys = [float(y)]
+    x = system.initial_state({"ws0.y": float(ys[0]), "ws0.yaw": float(yaw)})
+    # unknowns z, roll, (Ω), H; equations ÿ, z̈, θ̈, (Ω̇) with H at rail level
+    # the path is followed in the roll angle, which grows monotonically as the flanging
+    # wheel unloads its tread and climbs (the lateral shift and the force H are found;
+    # a lateral-force or lateral-shift control fails at the lift, where H(y) is steep)
+    spin_cols = [8] if spin == "free" else []
+    out = {k: [] for k in ("y", "H", "yq", "Q", "gam", "tread", "fr")}
+
+    def solve_at(fixed, fixed_value, unknown_cols, guess):
+        sc = np.array([1e-4 if c in (0, 1, 2) else 0.02 for c in unknown_cols] + [2e4])
+        st = np.array([1e-8 if c in (0, 1, 2) else 1e-5 for c in unknown_cols] + [1.0])
+        rows = [4, 5, 6] + ([8] if spin == "free" else [])
+
+        def residual(u):
+            xx = x.copy()
+            xx[fixed] = fixed_value
+            xx[unknown_cols] = u[:-1]
+            d = system.rhs(0.0, xx)[rows].copy()
+            d[0] += u[-1] / m               # H at rail level: lateral ...
+            d[2] += u[-1] * r0 / Ix         # ... and its roll moment about the axle centre
+            return d
+
+        return _newton(residual, guess, sc, st)
+
+    # the first point at the given lateral shift
+    y0 = float(ys[0])
+    cols0 = [1, 2] + spin_cols
+    v = solve_at(0, y0, cols0, np.concatenate([x[cols0], [0.0]]))
+    x[0] = y0
+    x[cols0] = v[:-1]
+    cols = [0, 1] + spin_cols
+    v = np.concatenate([x[cols], [v[-1]]])
+    th, dth = float(x[2]), float(roll_step)
+    th_end = th + float(roll_range)
+    hist = None
+    n_fail = 0
+    while th <= th_end:
+        guess = v if hist is None else v + (v - hist[1]) * (dth / (th - hist[0]))
+        try:
+            v_new = solve_at(2, th + dth if out["y"] else th, cols, guess)
+        except ConvergenceError:
+            n_fail += 1
+            if n_fail > 6 or not out["y"]:
+                break
+            dth *= 0.5
+            continue
+        n_fail = 0
+        th_new = th + dth if out["y"] else th
+        hist = (th, v) if out["y"] else None
+        th, v = th_new, v_new
+        dth = min(2 * dth, float(roll_step))
+        xx = x.copy()
+        xx[2] = th
+        xx[cols] = v[:-1]
+        system.rhs(0.0, xx)
+        x = xx
+        yy = float(x[0])
+        OW, OP = system.OW[0, 1], system.OP[0, 1]
+        Q = OW[_W["Fz"]]
+        yq = -OW[_W["Fy"]] / Q if Q > 0 else math.nan
+        loaded = OP[:, _P["Fn"]] > 0
+        angles = OP[loaded, _P["contact_angle"]]
+        flange = loaded & (OP[:, _P["contact_angle"]] >= _FLANK)
+        tread = float(np.sum(OP[loaded & (OP[:, _P["contact_angle"]] < _FLANK), _P["Fn"]]))
+        if np.any(flange):
+            k = int(np.argmax(np.where(flange, OP[:, _P["Fn"]], -1.0)))
+            fr = OP[k, _P["Fs"]] / OP[k, _P["Fn"]]
+        else:
+            fr = math.nan
+        out["y"].append(yy)
+        out["H"].append(v[-1])
+        out["yq"].append(yq)
+        out["Q"].append(Q)
+        out["gam"].append(float(np.max(angles)) if angles.size else math.nan)
+        out["tread"].append(tread)
+        out["fr"].append(fr)
+        if len(out["gam"]) > 3 and out["gam"][-1] < 0.5 < max(out["gam"]):
+            break                           # past the flange tip
+    if not out["y"]:
+        raise ConvergenceError("flange_climb: no equilibrium at the first lateral shift")
+    arr = {k: np.array(v_) for k, v_ in out.items()}
+    on_flange = arr["gam"] >= _FLANK
+    lifted = np.flatnonzero(on_flange & (arr["tread"] <= 0.0))
+    lift = int(lifted[0]) if lifted.size else -1
+    peak = int(np.nanargmax(arr["yq"]))
+    gmax = float(np.nanmax(arr["gam"]))
+    return FlangeClimbResult(arr["y"], arr["H"], arr["yq"], arr["Q"], arr["gam"],
+                             arr["tread"], arr["fr"], lift, peak, float(nadal(gmax, mu)),
+                             float(mu), float(yaw),
+                             {"normal": system.contact.normal.name,
+                              "tangential": system.contact.tangential.name,
+                              "axle_load": free.axle_load, "weight": free.mass * GRAVITY})

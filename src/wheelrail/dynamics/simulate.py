@@ -1,0 +1,683 @@
+"""Time-domain simulation of a wheelset or bogie model on a track layout.
+
+:func:`simulate` integrates the equations of
+:mod:`wheelrail.dynamics._motion` with the contact forces of every wheel
+evaluated at every evaluation of the right-hand side (compiled path for Hertz
+or Kik–Piotrowski with FASTSIM or the table law, the library's methods
+otherwise; :mod:`wheelrail.dynamics.contact`), by
+
+* :class:`Adaptive` — :func:`scipy.integrate.solve_ivp` (``"RK45"``,
+  ``"DOP853"`` non-stiff; ``"Radau"``, ``"BDF"``, ``"LSODA"`` stiff). A change
+  of the contact configuration (the number of patches of a wheel: a contact
+  point appears, vanishes, or jumps) is a terminal event: the integration stops
+  there (located by :func:`scipy.optimize.brentq` on the dense output) and
+  restarts, so that no step straddles the kink;
+* :class:`FixedStep` — the classical Runge–Kutta (or Heun) scheme with a fixed
+  step for real-time use (compiled loop with the compiled contact): a step
+  across which the configuration changes is redone in halves, down to
+  ``dt / 2**max_halvings``.
+
+Results are a :class:`SimulationResult` whose :attr:`~SimulationResult.dataset`
+is an :class:`xarray.Dataset` over time.
+
+References
+----------
+.. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
+   dynamics including multi-point contact, VSD 43 (2005) 455–483 (contact
+   evaluated online during the integration; contact jumps).
+.. [2] E. Hairer, G. Wanner, *Solving ordinary differential equations II*,
+   Springer 1996 (stiff integrators; discontinuities handled by restarting).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..errors import ConvergenceError, InputError, WheelrailError
+from ..geometry.contact_search import solve_rigid
+from ..geometry.touching import touching_heights
+from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
+from ._motion import N_IN, derivative, rhs_fast, run_fixed, wheel_inputs
+from .contact import FastContact, contact_model
+from .layout import as_layout
+from .model import GP, Assembly, BogieModel, WheelsetModel
+from .results import to_dataset
+
+__all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System"]
+
+_W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
+_P = {n: i for i, n in enumerate(PATCH_FIELDS)}
+
+
+@dataclass(frozen=True)
+class FixedStep:
+    """Fixed-step explicit integration (frozen).
+
+    Parameters
+    ----------
+    dt : float
+        Step [s] (1 ms for real time).
+    scheme : {"rk4", "heun"}
+        Classical fourth-order Runge–Kutta (4 contact evaluations per step) or
+        Heun's second-order scheme (2).
+    max_halvings : int
+        A step across a change of the contact configuration is halved down to
+        dt/2**max_halvings.
+    """
+
+    dt: float = 1e-3
+    scheme: str = "rk4"
+    max_halvings: int = 6
+
+    def __post_init__(self):
+        if not (isinstance(self.dt, (int, float)) and math.isfinite(self.dt) and self.dt > 0):
+            raise InputError(f"FixedStep: dt must be > 0 s, got {self.dt!r}")
+        if self.scheme not in ("rk4", "heun"):
+            raise InputError(f"FixedStep: scheme must be 'rk4' or 'heun', got {self.scheme!r}")
+        if not (isinstance(self.max_halvings, int) and 0 <= self.max_halvings <= 30):
+            raise InputError(f"FixedStep: max_halvings must be an integer in [0, 30], got "
+                             f"{self.max_halvings!r}")
+
+
+@dataclass(frozen=True)
+class Adaptive:
+    """Adaptive integration with :func:`scipy.integrate.solve_ivp` (frozen).
+
+    Parameters
+    ----------
+    method : {"RK45", "DOP853", "RK23", "Radau", "BDF", "LSODA"}
+    rtol, atol : float
+        Tolerances (``atol`` on every state; states are in m, rad, m/s, rad/s, N).
+    max_step : float
+        Largest step [s].
+    """
+
+    method: str = "RK45"
+    rtol: float = 1e-6
+    atol: float = 1e-9
+    max_step: float = 2e-3
+
+    def __post_init__(self):
+        if self.method not in ("RK45", "DOP853", "RK23", "Radau", "BDF", "LSODA"):
+            raise InputError(f"Adaptive: method must be one of RK45, DOP853, RK23, Radau, BDF, "
+                             f"LSODA, got {self.method!r}")
+        for name in ("rtol", "atol", "max_step"):
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+                raise InputError(f"Adaptive: {name} must be > 0, got {v!r}")
+
+
+def _integrator(spec):
+    if isinstance(spec, (FixedStep, Adaptive)):
+        return spec
+    if spec in ("rk4", "heun"):
+        return FixedStep(scheme=spec)
+    if isinstance(spec, str):
+        return Adaptive(method=spec)
+    raise InputError(f"integrator must be FixedStep(...), Adaptive(...) or a name ('rk4', "
+                     f"'heun', 'RK45', 'Radau', ...), got {spec!r}")
+
+
+# --------------------------------------------------------------------------- the system
+class System:
+    """A model on a layout with its contact evaluator: right-hand side and contact outputs.
+
+    Parameters
+    ----------
+    model : WheelsetModel or BogieModel
+    track : Track or TrackLayout
+    speed : float
+        Speed at t = 0 [m/s].
+    normal, tangential : str or configured method
+    mu : float
+        Friction coefficient.
+    deceleration : float
+        dV/dt = −deceleration [m/s²] (a speed ramp), the speed floored at ``min_speed``.
+    creep_relaxation : bool
+        First-order relaxation of the creep forces (time constant a/V).
+    contact : {"auto", "fast", "generic"}
+    start : float
+        Position of the model (frame centre) along the track at t = 0 [m].
+    contact_options : dict
+        Options of :class:`~wheelrail.dynamics.contact.FastContact`.
+    method_options : dict
+        Options of the normal and tangential methods, each to the method that
+        declares it (:func:`~wheelrail.dynamics.contact.configured_methods`).
+    """
+
+    def __init__(self, model, track, speed, normal="kik-piotrowski", tangential="fastsim", *,
+                 mu=0.3, deceleration=0.0, creep_relaxation=False, contact="auto", start=0.0,
+                 min_speed=0.5, contact_options=None, method_options=None):
+        if not isinstance(model, (WheelsetModel, BogieModel)):
+            raise InputError(f"model must be a WheelsetModel or BogieModel, got "
+                             f"{type(model).__name__}")
+        self.model = model
+        self.layout = as_layout(track)
+        for name, v in (("speed", speed), ("mu", mu)):
+            if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v) and v > 0):
+                raise InputError(f"{name} must be a number > 0, got {v!r}")
+        if not (math.isfinite(deceleration)):
+            raise InputError(f"deceleration must be finite, got {deceleration!r}")
+        self.speed = float(speed)
+        self.mu = float(mu)
+        self.aV = -float(deceleration)
+        self.start = float(start)
+        self.min_speed = float(min_speed)
+        self.asm = Assembly(model, relax=bool(creep_relaxation))
+        self.contact = contact_model(model.wheelset, self.layout.track, model.material, normal,
+                                     tangential, contact=contact, method_options=method_options,
+                                     **(contact_options or {}))
+        self.fast = isinstance(self.contact, FastContact)
+        nw = self.asm.n_ws
+        self.OP = np.zeros((nw, 2, KMAX, len(PATCH_FIELDS)))
+        self.OW = np.zeros((nw, 2, len(WHEEL_FIELDS)))
+        self.n_eval = 0
+        self._last = None
+
+    # ---------------------------------------------------------------- evaluation
+    def V(self, t):
+        return max(self.speed + self.aV * t, self.min_speed)
+
+    def s_ref(self, t):
+        return self.start + self.speed * t + 0.5 * self.aV * t * t
+
+    def rhs(self, t, x):
+        """dx/dt at (t, x); the contact outputs of this evaluation in ``OP``, ``OW``."""
+        x = np.ascontiguousarray(x, dtype=float)
+        dx = np.empty_like(x)
+        self.n_eval += 1
+        if self.fast:
+            c = self.contact
+            rhs_fast(float(t), x, self.asm.P, self.layout.arrays, self.speed, self.aV,
+                     self.start, self.min_speed, c.geometry["left"], c.geometry["right"],
+                     c.method, self.mu, self.OP, self.OW, dx)
+            if c.table_raise and np.any(self.OW[..., _W["fallbacks"]] > 0):
+                c._raise_outside(self.OW)
+        else:
+            self._generic(t, x, dx)
+        self._last = (float(t), x.copy(), dx)
+        return dx
+
+    def _generic(self, t, x, dx):
+        nw = self.asm.n_ws
+        V = self.V(t)
+        W = np.empty((nw, 2, N_IN))
+        wheel_inputs(float(t), x, self.asm.P, self.layout.arrays, V, self.s_ref(t), W)
+        for i in range(nw):
+            for side, name in enumerate(("left", "right")):
+                w = W[i, side]
+                self.contact.wheel(name, *w, self.mu, self.OP[i, side], self.OW[i, side])
+        Qn = np.ascontiguousarray(self.OW[..., 1:6])
+        Qt = np.ascontiguousarray(self.OW[..., 6:11])
+        am = np.ascontiguousarray(self.OW[..., _W["a_mean"]])
+        if self.asm.relax:
+            ox = self.asm.off_relax
+            Qr = x[ox:ox + 10 * nw].reshape(nw, 2, 5).copy()
+            derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
+                       Qn, Qr, am, dx)
+            a = np.maximum(am, self.asm.P[GP["relax_floor"]])
+            rel = (Qt - Qr) * V / a[..., None]
+            dx[ox:ox + 10 * nw] = rel.reshape(-1)
+        else:
+            derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
+                       Qn, Qt, am, dx)
+
+    def signature(self, t, x):
+        """Patch count of every wheel at (t, x) (reuses the last evaluation when it is there)."""
+        if self._last is None or self._last[0] != float(t) or not np.array_equal(self._last[1], x):
+            self.rhs(t, x)
+        return tuple(int(v) for v in self.OW[..., 0].reshape(-1))
+
+    # ---------------------------------------------------------------- statics
+    def initial_state(self, initial=None):
+        """Static equilibrium on the track at t = 0 (y, yaw and velocities from ``initial``)."""
+        asm = self.asm
+        x = np.zeros(asm.n)
+        nw = asm.n_ws
+        r0 = asm.P[6]
+        for i in range(nw):
+            x[9 * i + 8] = self.speed / r0
+        given = {}
+        if initial is not None:
+            if isinstance(initial, dict):
+                for k, v in initial.items():
+                    given[asm.index(k)] = float(v)
+            else:
+                arr = np.asarray(initial, dtype=float)
+                if arr.shape != (asm.n,):
+                    raise InputError(f"initial must be a dict of state names or an array of "
+                                     f"shape ({asm.n},), got shape {arr.shape}")
+                return arr.copy()
+        for j, v in given.items():
+            x[j] = v
+        # rails: deflected by the static wheel load
+        Q = asm.wheel_load()
+        if asm.rails:
+            rail = self.model.rail
+            w, u = rail.static_deflection(-Q, 1)
+            for i in range(nw):
+                for side in range(2):
+                    rb = asm.off_rails + 12 * i + 6 * side + 3
+                    x[rb], x[rb + 1] = w, u
+        # heights, rolls, rail deflections (and the free wheelsets' spin): Newton on their
+        # accelerations
+        cols, rows, steps, scales = self.asm.quasi_static(spin=True)
+        keep = [k for k, c in enumerate(cols) if c not in given]
+        cols, rows = [cols[k] for k in keep], [rows[k] for k in keep]
+        steps, scales = steps[keep], scales[keep]
+        for i in range(nw):
+            # start from the rigid contact (roll of both wheels touching), pressed in slightly
+            if 9 * i + 2 not in given:
+                W = np.empty((nw, 2, N_IN))
+                wheel_inputs(0.0, x, asm.P, self.layout.arrays, self.V(0.0), self.s_ref(0.0),
+                             W)
+                try:
+                    _, th, _ = solve_rigid(self.model.wheelset, self.layout.track,
+                                           np.array([W[i, 0, 0]]), np.array([x[9 * i + 3]]))
+                    x[9 * i + 2] = float(th[0])
+                except WheelrailError:
+                    pass
+            if 9 * i + 1 not in given:
+                x[9 * i + 1] = self._touch_height(x, i) - 5e-5
+        return self.equilibrium(x, cols, rows, steps, scales)
+
+    def equilibrium(self, x, cols, rows, steps, scales, t=0.0, maxiter=60):
+        """Newton iteration on ``x[cols]`` for ``rhs(t, x)[rows] = 0`` (finite-difference
+        Jacobian with the steps ``steps``, each Newton step limited to ``scales``)."""
+        x = np.array(x, dtype=float)
+        if not cols:
+            return x
+        for _ in range(maxiter):
+            f = self.rhs(t, x)[rows]
+            J = np.empty((len(rows), len(cols)))
+            for k, c in enumerate(cols):
+                xp = x.copy()
+                xp[c] += steps[k]
+                J[:, k] = (self.rhs(t, xp)[rows] - f) / steps[k]
+            try:
+                step = np.linalg.solve(J, -f)
+            except np.linalg.LinAlgError:
+                raise ConvergenceError("static equilibrium: singular Jacobian") from None
+            # the step limited as a whole (its direction kept), then halved while the
+            # residual, in units of the Newton step, grows (the contact is stiff and
+            # saturates: the linear model is good over a few micrometres only)
+            big = float(np.max(np.abs(step) / scales))
+            if big > 1.0:
+                step = step / big
+            w = np.abs(np.linalg.solve(J, f)) / scales
+            merit = float(np.max(w))
+            for _ in range(8):
+                xn = x.copy()
+                xn[cols] += step
+                fn = self.rhs(t, xn)[rows]
+                wn = np.abs(np.linalg.solve(J, fn)) / scales
+                if float(np.max(wn)) <= merit or float(np.max(np.abs(step) / scales)) < 1e-6:
+                    break
+                step = 0.5 * step
+            x = xn
+            if np.all(np.abs(step) < 1e-6 * scales):
+                return x
+        if np.all(np.abs(step) < 1e-4 * scales):
+            return x              # stalled on the contact's resolution (0.2 µm), close enough
+        raise ConvergenceError(f"static equilibrium not reached (last Newton step "
+                               f"{np.max(np.abs(step / scales))!r} of its limit)")
+
+    def _touch_height(self, x, i):
+        """Height z of wheelset ``i`` at which its lower wheel just touches its (displaced) rail."""
+        W = np.empty((self.asm.n_ws, 2, N_IN))
+        wheel_inputs(0.0, x, self.asm.P, self.layout.arrays, self.V(0.0), self.s_ref(0.0), W)
+        r0 = self.asm.P[GP["r0"]]
+        best = -np.inf
+        for side, name in enumerate(("left", "right")):
+            w = W[i, side]
+            z, beside = touching_heights(self.model.wheelset, self.layout.track,
+                                         np.array([w[0]]), np.array([w[2]]), np.array([w[3]]))
+            if beside[name][0]:
+                raise InputError(f"wheelset {i}: the {name} wheel lies beside its rail at the "
+                                 f"initial lateral position {x[9 * i]!r} m")
+            # the wheel touches when zc_rel = r0 + z_touch, zc_rel = r0 + z − u_rail
+            best = max(best, float(z[name][0]) + (x[9 * i + 1] + r0 - w[1]))
+        return best
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationResult:
+    """Result of :func:`simulate` (frozen).
+
+    Attributes
+    ----------
+    t : ndarray, shape (n,)
+        Output times [s].
+    states : ndarray, shape (n, n_states)
+        State vectors (names in ``names``).
+    wheels : ndarray, shape (n, n_wheelsets, 2, len(WHEEL_FIELDS))
+        Per-wheel contact outputs (left, right).
+    patches : ndarray, shape (n, n_wheelsets, 2, KMAX, len(PATCH_FIELDS))
+        Per-patch contact outputs (largest normal force first; zero rows unused).
+    names : tuple of str
+    speed : ndarray, shape (n,)
+        Speed at the output times [m/s].
+    position : ndarray, shape (n,)
+        Position of the model along the track [m].
+    events : tuple of dict
+        Contact-configuration changes: ``t``, ``wheelset``, ``side``, ``patches``.
+    info : dict
+        Methods, integrator, CPU time, contact evaluations, real-time factor, ...
+    model, layout
+    """
+
+    t: np.ndarray
+    states: np.ndarray
+    wheels: np.ndarray
+    patches: np.ndarray
+    names: tuple
+    speed: np.ndarray
+    position: np.ndarray
+    events: tuple = ()
+    info: dict = field(default_factory=dict)
+    model: object = None
+    layout: object = None
+
+    def state(self, name: str) -> np.ndarray:
+        """Time series of one state (``"ws0.y"``, ``"frame.yaw"``, ...)."""
+        try:
+            return self.states[:, self.names.index(name)]
+        except ValueError:
+            raise InputError(f"no state {name!r}; states: {', '.join(self.names)}") from None
+
+    @property
+    def dataset(self):
+        """The result as an :class:`xarray.Dataset` over time
+        (:func:`wheelrail.dynamics.results.to_dataset`)."""
+        return to_dataset(self)
+
+
+# --------------------------------------------------------------------------- integration
+def _outputs(n_out, system):
+    nw = system.asm.n_ws
+    return (np.zeros(n_out), np.zeros((n_out, system.asm.n)),
+            np.zeros((n_out, nw, 2, KMAX, len(PATCH_FIELDS))),
+            np.zeros((n_out, nw, 2, len(WHEEL_FIELDS))))
+
+
+def _progress(enabled, duration):
+    """A rich progress bar over simulated time (or a no-op)."""
+    if not enabled:
+        return None
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
+
+    prog = Progress(TextColumn("simulating"), BarColumn(), TextColumn("{task.completed:.3f} s of "
+                    "{task.total:.3f} s"), TimeElapsedColumn(), transient=True)
+    prog.start()
+    prog.add_task("sim", total=duration)
+    return prog
+
+
+def _advance(prog, t):
+    if prog is not None:
+        prog.update(prog.task_ids[0], completed=t)
+
+
+def _run_fixed_compiled(system, x0, duration, integ, every, prog):
+    c = system.contact
+    dt = integ.dt
+    nsteps = int(round(duration / dt))
+    n_out = nsteps // every + 2
+    T, X, OP, OW = _outputs(n_out, system)
+    events = np.zeros((10000, 3))
+    chunk = max(1, int(round(0.05 / dt)))
+    chunk = max(every, chunk - chunk % every)
+    done, nout, ne, nev, rej = 0, 0, 0, 0, 0
+    x, t = x0.copy(), 0.0
+    scheme = 4 if integ.scheme == "rk4" else 2
+    while done < nsteps:
+        k = min(chunk, nsteps - done)
+        To, Xo, OPo, OWo = _outputs(k // every + 2, system)
+        ev = np.zeros((1000, 3))
+        no, nei, nv, rj = run_fixed(x, t, dt, k, every, system.asm.P, system.layout.arrays,
+                                    system.speed, system.aV, system.start, system.min_speed,
+                                    c.geometry["left"], c.geometry["right"], c.method,
+                                    system.mu, scheme, integ.max_halvings, To, Xo, OPo, OWo, ev)
+        if c.table_raise and np.any(OWo[:no, ..., _W["fallbacks"]] > 0):
+            c._raise_outside(OWo[:no][np.any(OWo[:no, ..., _W["fallbacks"]] > 0,
+                                             axis=(1, 2))][0])
+        # the last output of a chunk is its end state: the next chunk starts there
+        keep = no - 1 if done + k < nsteps else no
+        take = min(keep, n_out - nout)
+        T[nout:nout + take], X[nout:nout + take] = To[:take], Xo[:take]
+        OP[nout:nout + take], OW[nout:nout + take] = OPo[:take], OWo[:take]
+        nout += take
+        events[ne:ne + nei] = ev[:nei]
+        ne += nei
+        nev += nv
+        rej += rj
+        x, t = Xo[no - 1].copy(), float(To[no - 1])
+        done += k
+        _advance(prog, t)
+        if not np.all(np.isfinite(x)):
+            raise ConvergenceError(f"the state became non-finite at t = {t!r} s (step too "
+                                   "large for the stiffest mode? try a smaller dt or an "
+                                   "implicit Adaptive('Radau'))")
+    system.n_eval += nev
+    return T[:nout], X[:nout], OP[:nout], OW[:nout], events[:ne], rej
+
+
+def _run_fixed_python(system, x0, duration, integ, every, prog):
+    """The fixed-step scheme of :func:`run_fixed` in Python (generic contact)."""
+    dt = integ.dt
+    nsteps = int(round(duration / dt))
+    n_out = nsteps // every + 2
+    T, X, OP, OW = _outputs(n_out, system)
+    events, rej = [], 0
+    x, t = x0.copy(), 0.0
+    k1 = system.rhs(t, x)
+    sig = system.signature(t, x)
+    cur = (system.OP.copy(), system.OW.copy())
+    nout = 0
+    hmin = dt / 2.0 ** integ.max_halvings
+    for step in range(nsteps):
+        if step % every == 0:
+            T[nout], X[nout], OP[nout], OW[nout] = t, x, cur[0], cur[1]
+            nout += 1
+        t_end = (step + 1) * dt
+        h = dt
+        while t < t_end - 1e-12 * dt:
+            hh = min(h, t_end - t)
+            if integ.scheme == "rk4":
+                k2 = system.rhs(t + 0.5 * hh, x + 0.5 * hh * k1)
+                k3 = system.rhs(t + 0.5 * hh, x + 0.5 * hh * k2)
+                k4 = system.rhs(t + hh, x + hh * k3)
+                xn = x + hh / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+            else:
+                k2 = system.rhs(t + hh, x + hh * k1)
+                xn = x + 0.5 * hh * (k1 + k2)
+            kn = system.rhs(t + hh, xn)
+            new = tuple(int(v) for v in system.OW[..., 0].reshape(-1))
+            if new != sig and hh > hmin * (1 + 1e-9):
+                h = 0.5 * hh
+                rej += 1
+                continue
+            t, x, k1 = t + hh, xn, kn
+            cur = (system.OP.copy(), system.OW.copy())
+            if new != sig:
+                for j, (a, b) in enumerate(zip(sig, new)):
+                    if a != b:
+                        events.append((t, j, b))
+                sig = new
+                h = hmin
+            else:
+                h = min(2 * hh, dt)
+        if step % 50 == 0:
+            _advance(prog, t)
+        if not np.all(np.isfinite(x)):
+            raise ConvergenceError(f"the state became non-finite at t = {t!r} s")
+    T[nout], X[nout], OP[nout], OW[nout] = t, x, cur[0], cur[1]
+    nout += 1
+    return T[:nout], X[:nout], OP[:nout], OW[:nout], np.array(events).reshape(-1, 3), rej
+
+
+def _run_adaptive(system, x0, duration, integ, out_dt, prog):
+    """solve_ivp with the contact configuration as a terminal event (restart at each change)."""
+    t_out = np.arange(0.0, duration + 0.5 * out_dt, out_dt)
+    t_out[-1] = min(t_out[-1], duration)
+    T, X, OP, OW = _outputs(t_out.size, system)
+    events = []
+    t, x = 0.0, x0.copy()
+    k = 0
+    restarts = 0
+    while t < duration - 1e-12:
+        sig = system.signature(t, x)
+
+        def changed(tt, xx, sig=sig):
+            return 1.0 if system.signature(tt, xx) == sig else -1.0
+
+        changed.terminal = True
+        sol = solve_ivp(system.rhs, (t, duration), x, method=integ.method, rtol=integ.rtol,
+                        atol=integ.atol, max_step=integ.max_step, dense_output=True,
+                        events=changed)
+        if sol.status == -1:
+            raise ConvergenceError(f"solve_ivp failed at t = {sol.t[-1]!r} s: {sol.message}")
+        t_end = float(sol.t[-1])
+        if sol.status == 1:
+            t_ev = float(sol.t_events[0][0])
+            # continue just after the change (the dense output of the step that holds it)
+            t_new = min(t_ev + 1e-7, t_end)
+            x_new = sol.sol(t_new)
+            new = system.signature(t_new, x_new)
+            for j, (a, b) in enumerate(zip(sig, new)):
+                if a != b:
+                    events.append((t_ev, j, b))
+            restarts += 1
+            if restarts > 100000:
+                raise ConvergenceError("more than 100000 contact events: chattering contact")
+        else:
+            t_new, x_new = t_end, sol.y[:, -1]
+        while k < t_out.size and t_out[k] <= t_new + 1e-12:
+            xs = sol.sol(t_out[k]) if t_out[k] > t else x
+            system.rhs(t_out[k], xs)
+            T[k], X[k], OP[k], OW[k] = t_out[k], xs, system.OP, system.OW
+            k += 1
+        t, x = t_new, np.asarray(x_new, dtype=float)
+        _advance(prog, t)
+    return T[:k], X[:k], OP[:k], OW[:k], np.array(events).reshape(-1, 3), restarts
+
+
+def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential="fastsim", *,
+             mu=0.3, integrator="rk4", output_step=None, initial=None, start=0.0,
+             deceleration=0.0, creep_relaxation=False, contact="auto", contact_options=None,
+             progress=False, **options) -> SimulationResult:
+    """Integrate a wheelset or bogie model along a track in time.
+
+    Parameters
+    ----------
+    model : WheelsetModel or BogieModel
+    track : Track or TrackLayout
+        A cross-section (tangent track) or a :class:`~wheelrail.dynamics.TrackLayout`
+        with curves and an irregularity.
+    speed : float
+        Forward speed at t = 0 [m/s].
+    duration : float
+        Simulated time [s].
+    normal, tangential : str or configured method
+        Any normal method × creep-force law of the library, by name or as a
+        configured object (``wr.normal.KikPiotrowski()``, ``wr.tangential.Table()``).
+    mu : float
+        Friction coefficient [-].
+    integrator : FixedStep, Adaptive or str
+        ``"rk4"`` / ``"heun"`` (fixed step 1 ms) or a :func:`~scipy.integrate.solve_ivp`
+        method name (``"RK45"``, ``"Radau"``, ...), or a configured object.
+    output_step : float or None
+        Time between stored outputs [s] (default: the fixed step, or 1 ms).
+    initial : dict or ndarray or None
+        Initial state: values by state name (``{"ws0.y": 0.003}``; the rest from the
+        static equilibrium) or a whole state vector.
+    start : float
+        Position along the track at t = 0 [m].
+    deceleration : float
+        Constant deceleration [m/s²] (speed ramp; negative: acceleration).
+    creep_relaxation : bool
+        First-order relaxation of the creep forces with the time constant a/V
+        (a the patches' load-weighted semi-axis).
+    contact : {"auto", "fast", "generic"}
+        Compiled contact where it supports the methods, or the library's path.
+    contact_options : dict or None
+        Options of :class:`~wheelrail.dynamics.contact.FastContact`.
+    progress : bool
+        Show a progress bar (rich).
+    **options
+        Options of the two methods, each given to the one that declares it
+        (``tangential="fastsim", nx=20`` is ``tangential=wr.tangential.Fastsim(nx=20)``;
+        as :func:`wheelrail.solve`).
+
+    Returns
+    -------
+    SimulationResult
+        With ``.dataset`` (:class:`xarray.Dataset` over time).
+
+    Examples
+    --------
+    A conical wheelset on nearly knife-edge rails, released 1 mm off centre,
+    runs a kinematic (Klingel) oscillation:
+
+    >>> import wheelrail as wr
+    >>> from wheelrail.dynamics.reference import cone_track
+    >>> ws, track = cone_track(0.2, 0.46, 0.75, crown_radius=0.02)
+    >>> model = wr.dynamics.WheelsetModel(ws, 1813.0, (1120.0, 100.0, 1120.0), spin="fixed")
+    >>> res = wr.dynamics.simulate(model, track, 5.0, 0.2, normal="hertz",
+    ...                            tangential=wr.tangential.Fastsim(nx=10),
+    ...                            initial={"ws0.y": 0.001})
+    >>> res.dataset["y"].dims
+    ('time', 'wheelset')
+    """
+    integ = _integrator(integrator)
+    if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
+        raise InputError(f"duration must be > 0 s, got {duration!r}")
+    system = System(model, track, speed, normal, tangential, mu=mu, deceleration=deceleration,
+                    creep_relaxation=creep_relaxation, contact=contact, start=start,
+                    contact_options=contact_options, method_options=options)
+    x0 = system.initial_state(initial)
+    if isinstance(integ, FixedStep):
+        out_dt = integ.dt if output_step is None else float(output_step)
+        every = max(1, int(round(out_dt / integ.dt)))
+    else:
+        out_dt = 1e-3 if output_step is None else float(output_step)
+    if not out_dt > 0:
+        raise InputError(f"output_step must be > 0 s, got {output_step!r}")
+    prog = _progress(progress, float(duration))
+    n0 = system.n_eval
+    cpu = time.process_time()
+    try:
+        if isinstance(integ, FixedStep) and system.fast:
+            T, X, OP, OW, ev, rej = _run_fixed_compiled(system, x0, float(duration), integ,
+                                                        every, prog)
+            kind = f"fixed step {integ.scheme}, compiled loop"
+        elif isinstance(integ, FixedStep):
+            T, X, OP, OW, ev, rej = _run_fixed_python(system, x0, float(duration), integ,
+                                                      every, prog)
+            kind = f"fixed step {integ.scheme}"
+        else:
+            T, X, OP, OW, ev, rej = _run_adaptive(system, x0, float(duration), integ, out_dt,
+                                                  prog)
+            kind = f"solve_ivp {integ.method}"
+    finally:
+        if prog is not None:
+            prog.stop()
+    cpu = time.process_time() - cpu
+    events = tuple({"t": float(e[0]), "wheelset": int(e[1]) // 2,
+                    "side": ("left", "right")[int(e[1]) % 2], "patches": int(e[2])} for e in ev)
+    info = {"normal": system.contact.normal.name, "tangential": system.contact.tangential.name,
+            "contact_path": system.contact.kind, "integrator": kind,
+            "integrator_options": repr(integ), "mu": system.mu, "cpu_time": cpu,
+            "contact_evaluations": system.n_eval - n0,
+            "rejected_steps" if isinstance(integ, FixedStep) else "restarts": int(rej),
+            "real_time_factor": float(T[-1] - T[0]) / cpu if cpu > 0 else math.inf,
+            "creep_relaxation": bool(creep_relaxation)}
+    speed_t = np.maximum(system.speed + system.aV * T, system.min_speed)
+    pos = system.start + system.speed * T + 0.5 * system.aV * T * T
+    return SimulationResult(T, X, OW, OP, tuple(system.asm.names), speed_t, pos, events, info,
+                            model, system.layout)
