@@ -454,11 +454,11 @@ def hertz_from_semiaxes(a, b, Fn, material) -> HertzContact:
     a = positive("a", a)
     b = positive("b", b)
     Fn = positive("Fn", Fn)
-    check_semi_axes(a, b)  # mm given as m: refused (plausibility)
     ratio = a / b
     out = (ratio < _K_MIN) | (ratio > 1 / _K_MIN)
     if np.any(out):
         raise InputError(f"a/b = {_first(out, ratio)!r} is outside the valid range [1e-9, 1e9]")
+    check_semi_axes(a, b)  # mm given as m: refused (plausibility)
     A, B = curvatures_from_semiaxes(a, b, Fn, pair.E_star)
     a, b, Fn = np.broadcast_arrays(a, b, Fn)
     short = np.minimum(a, b)

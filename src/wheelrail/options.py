@@ -22,7 +22,8 @@ configured object; :func:`resolve` turns either into an instance and
 the one method that declares each.
 
 This module is part of the core layer: it imports only the base layer
-(:mod:`wheelrail.errors`).
+(:mod:`wheelrail.errors`, :mod:`wheelrail.plausibility` for the ``typical`` /
+``plausible`` ranges of options).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from typing import Any, Callable, ClassVar, Mapping
 
 import numpy as np
 
+from . import plausibility
 from .errors import InputError, OptionError
 
 __all__ = ["Option", "option", "Method", "Registry", "configured", "resolve", "method_class",
@@ -160,8 +162,6 @@ class Option:
 
     def _plausibility(self, name: str, v: float) -> None:
         """Warn outside :attr:`typical`, refuse outside :attr:`plausible` (with a unit hint)."""
-        from . import plausibility
-
         if not plausibility.enabled():
             return
         unit = f" {self.unit}" if self.unit else ""

@@ -108,7 +108,10 @@ def estimate_sweep(spec, points: int | None = None, workers: int = 1,
     -------
     SweepEstimate
     """
-    from .run import evaluate_chunk
+    ev = get_evaluator(spec.evaluator)
+
+    def evaluate_chunk(spec, block):  # as sweeps.run.evaluate_chunk (no import cycle)
+        return ev.evaluate(spec, spec.columns(block))
 
     points = spec.size if points is None else int(points)
     t0 = time.perf_counter()
