@@ -40,7 +40,7 @@ from .errors import InputError
 
 __all__ = ["Estimate", "EstimateOnly", "ResourceLimitError", "estimate", "guard", "check",
            "limit", "memory_limit", "time_limit", "time_limit_set", "parse_size",
-           "parse_duration", "estimating", "reporting", "DEFAULT_TIME_LIMIT"]
+           "parse_duration", "estimating", "suspended", "reporting", "DEFAULT_TIME_LIMIT"]
 
 #: kind -> (fixed bytes, bytes per cell, reference seconds, reference cells, time exponent)
 MODELS = {
@@ -65,11 +65,13 @@ class ResourceLimitError(InputError):
     """A job would need more memory or time than the limit (estimate in the message)."""
 
 
-class EstimateOnly(Exception):
+class EstimateOnly(BaseException):
     """Raised by :func:`check` inside :func:`estimating`: the job stops at its estimate.
 
     Not an error (the command line prints the estimate and exits with 0);
-    ``str()`` is the estimate.
+    ``str()`` is the estimate. A ``BaseException`` like ``KeyboardInterrupt``:
+    code that catches every ``Exception`` of one method or one sweep point
+    (and records it as failed) lets it through.
     """
 
 
@@ -156,6 +158,21 @@ def estimating():
         yield
     finally:
         _state["estimate_only"] -= 1
+
+
+@contextlib.contextmanager
+def suspended():
+    """A measurement in progress: no estimate-only stop, no limits' reports in the block.
+
+    The sweep estimate times a few real points; their solves must run even
+    under ``--estimate-only`` and must not print their own estimates.
+    """
+    saved = _state["estimate_only"], _state["notice"], _state["reporter"]
+    _state["estimate_only"], _state["notice"], _state["reporter"] = 0, None, None
+    try:
+        yield
+    finally:
+        _state["estimate_only"], _state["notice"], _state["reporter"] = saved
 
 
 def check(what: str, seconds: float, memory: float, detail: str = "") -> str:

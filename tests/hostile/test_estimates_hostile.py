@@ -153,3 +153,36 @@ def test_bem_estimate_only_writes_no_json(tmp_path, capsys):
     assert code == 0, err
     assert "estimate: normal BEM with element_size = 0.0002 m" in out
     assert not (tmp_path / "r.json").exists()
+
+
+def test_estimate_only_measures_real_solves_not_failures(tmp_path, monkeypatch):
+    """Under --estimate-only the exact solver's own guard must not turn the measured points
+    into quick failures (which made the estimate of an exact sweep 15 x too small)."""
+    from wheelrail.sweeps import evaluators, load_sweep
+    from wheelrail.sweeps.estimate import estimate_sweep
+
+    spec = load_sweep(_sweep(tmp_path, method="exact", num=4,
+                             extra="[sweep.options]\nelements = 8"))
+    ev = evaluators.get_evaluator(spec.evaluator)
+    statuses = []
+    real = type(ev).evaluate
+
+    def recording(self, spec, cols):
+        out = real(self, spec, cols)
+        statuses.extend(int(s) for s in out["status"])
+        return out
+
+    monkeypatch.setattr(type(ev), "evaluate", recording)
+    with _resources.estimating():
+        est = estimate_sweep(spec)
+    assert statuses and set(statuses) == {evaluators.STATUS_CODES["ok"]}, statuses
+    assert est.points == 4
+
+
+def test_estimate_only_propagates_through_catch_all_handlers():
+    with _resources.estimating():
+        with pytest.raises(_resources.EstimateOnly):
+            try:
+                _resources.check("job", 10.0, 1e6)
+            except Exception:  # noqa: BLE001 - what a per-point handler does
+                pytest.fail("EstimateOnly was caught as an Exception")

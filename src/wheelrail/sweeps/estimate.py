@@ -22,7 +22,7 @@ import math
 import time
 from dataclasses import dataclass
 
-from .._resources import check
+from .._resources import check, suspended
 from .evaluators import MESSAGE_LENGTH, get_evaluator
 
 __all__ = ["SweepEstimate", "estimate_sweep", "check_sweep"]
@@ -111,7 +111,8 @@ def estimate_sweep(spec, points: int | None = None, workers: int = 1,
     ev = get_evaluator(spec.evaluator)
 
     def evaluate_chunk(spec, block):  # as sweeps.run.evaluate_chunk (no import cycle)
-        return ev.evaluate(spec, spec.columns(block))
+        with suspended():  # real solves, also under --estimate-only; their guards stay quiet
+            return ev.evaluate(spec, spec.columns(block))
 
     points = spec.size if points is None else int(points)
     t0 = time.perf_counter()

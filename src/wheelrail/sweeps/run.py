@@ -155,12 +155,16 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
         raise InputError(f"output {str(out)!r} exists; pass resume=True (--resume) to continue "
                          "it, or choose another path (nothing is overwritten)")
     methods = ev.methods(spec) if hasattr(ev, "methods") else []
-    # estimate (a few points measured here) and refuse past the limits: before any store
+    # estimate (a few points measured here) and refuse past the limits: before any store,
+    # and before a local cluster starts; a remote scheduler is asked first (its workers)
     done_before = len(list((out / ".sweep_done").glob("[0-9]*"))) if out.exists() else 0
     remaining = max(spec.size - done_before * spec.chunk, 0)
-    if remaining:
+    remote = getattr(execu, "scheduler", None) is not None
+    if remaining and not remote:
         check_sweep(spec, remaining, getattr(execu, "workers", 1) or 1, execu.name)
     with execu:  # connect first: an unreachable scheduler leaves no store behind
+        if remaining and remote:
+            check_sweep(spec, remaining, execu.workers, "remote")
         if out.exists():
             store = SweepStore.open(out, spec).lock()
         else:
