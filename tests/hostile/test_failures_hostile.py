@@ -371,9 +371,8 @@ def test_unexpected_error_names_the_command_and_file(tmp_path, capsys, monkeypat
 def test_multi_hertz_load_closure_is_a_convergence_failure():
     import wheelrail as wr
     from wheelrail.errors import ConvergenceError, InputError
-    from wheelrail.normal import multi_hertz
-
     from wheelrail.materials import as_material_pair
+    from wheelrail.normal import multi_hertz
     from wheelrail.patch import ContactPatch
 
     pair = as_material_pair(wr.STEEL)
