@@ -48,9 +48,12 @@ with _resources.limit(None), _resources.time_limit_set(None):
             key = ln.split("=")[0].strip()
             lines.append({"elements": f"elements = {n}", "travel": "travel = 0.006",
                           "frames": "frames = 10"}.get(key, ln))
-        path = "bench_transient_case.toml"
-        open(path, "w").write("\n".join(lines) + "\n")
+        import os, tempfile
+        fd, path = tempfile.mkstemp(suffix=".toml")
+        with os.fdopen(fd, "w") as fh:
+            fh.write("\n".join(lines) + "\n")
         case = load_transient_case(path)
+        os.remove(path)
         seconds, memory, cells = estimate(case.hertz_contact, case.settings)
         steps = int(case.settings["travel"] / case.settings["step"] + 1e-9)
         size = f"{steps} steps x {cells} cells"
