@@ -16,7 +16,7 @@ from pathlib import Path
 
 from .errors import InputError
 
-__all__ = ["atomic_path", "atomic_open", "check_output_path"]
+__all__ = ["atomic_path", "atomic_open", "write_text", "naming", "check_output_path"]
 
 
 def _file_mode(path: Path) -> int:
@@ -30,6 +30,22 @@ def _file_mode(path: Path) -> int:
 
 
 @contextlib.contextmanager
+def naming(path):
+    """Re-raise an OSError without a file name (ENOSPC, EFBIG from ``write``) naming ``path``.
+
+    ``OSError: [Errno 28] No space left on device`` says nothing about which of
+    the outputs could not be written; inside this block it becomes the same
+    error with ``filename=path`` (shown as "No space left on device: PATH").
+    """
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename is not None or exc.errno is None:
+            raise
+        raise type(exc)(exc.errno, exc.strerror or str(exc), str(path)) from exc
+
+
+@contextlib.contextmanager
 def atomic_path(path):
     """Yield a temporary path beside ``path``; rename it to ``path`` if the block succeeds.
 
@@ -37,14 +53,16 @@ def atomic_path(path):
     name keeps the suffix, so format detection by extension still works.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{path.suffix}",
-                               dir=path.parent)
-    os.close(fd)
+    with naming(path):
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{path.suffix}",
+                                   dir=path.parent)
+        os.close(fd)
     try:
-        yield Path(tmp)
-        os.chmod(tmp, _file_mode(path))
-        os.replace(tmp, path)
+        with naming(path):
+            yield Path(tmp)
+            os.chmod(tmp, _file_mode(path))
+            os.replace(tmp, path)
     except BaseException:
         with contextlib.suppress(OSError):
             os.unlink(tmp)
@@ -59,6 +77,14 @@ def atomic_open(path, mode="w", **kwargs):
             yield fh
             fh.flush()
             os.fsync(fh.fileno())
+
+
+def write_text(path, text: str, encoding: str = "utf-8") -> Path:
+    """Write ``text`` to ``path`` atomically (see :func:`atomic_open`); returns the path."""
+    path = Path(path)
+    with atomic_open(path, "w", encoding=encoding, newline="\n") as fh:
+        fh.write(text)
+    return path
 
 
 def check_output_path(path, *, what="output", suffixes=None) -> Path:

@@ -1,10 +1,14 @@
-"""Resource guards for large boundary-element solves (private).
+"""Resource guards for long jobs: boundary-element and exact grids, sweeps, transient runs
+(private).
 
-Before a boundary-element solve the memory and time are estimated from the
-number of elements of its grid; a solve whose memory estimate exceeds the
+Before a long job its memory and time are estimated (grids: from the number
+of elements; sweeps: points × a measured cost per point; transient runs:
+steps × grid cells); a job whose estimate exceeds the memory or the time
 limit is refused with the estimate in the message (before any memory is
-allocated), and the command line shows a spinner with the estimate and the
-elapsed time for solves expected to take more than a few seconds.
+allocated), and the command line shows the estimate and a spinner for jobs
+expected to take more than a few seconds. With :func:`estimating` (the
+command-line option ``--estimate-only``) the first estimate ends the job:
+:class:`EstimateOnly` carries it, nothing is allocated or written.
 
 Estimates (``benchmarks/bench_resources.py`` measures them; 2-core machine,
 numpy/scipy FFT, peak resident memory including ~110 MB for the interpreter)
@@ -16,10 +20,13 @@ bem_normal    150 MB + 740 B per grid cell    9.7 s · (cells / 2.5e5)^1.2
 exact         150 MB + 2.3 kB per grid cell   8.4 s · (cells / 3.1e4)^0.85
 ============  =============================  ======================================
 
-The limit is, in this order: :func:`memory_limit` inside a :func:`limit`
-block; the environment variable ``WHEELRAIL_MEMORY_LIMIT`` (``"8GB"``,
-``"500MB"``, ``"2e9"`` bytes, or ``"off"``); the command-line option
-``wheelrail --memory-limit``; else min(4 GiB, half the physical memory).
+The memory limit is, in this order: :func:`memory_limit` inside a :func:`limit`
+block (the command-line option ``wheelrail --memory-limit``); the environment
+variable ``WHEELRAIL_MEMORY_LIMIT`` (``"8GB"``, ``"500MB"``, ``"2e9"`` bytes,
+or ``"off"``); else min(4 GiB, half the physical memory). The time limit
+likewise: :func:`time_limit_set` (``wheelrail --time-limit 3h``), the
+environment variable ``WHEELRAIL_TIME_LIMIT`` (``"90s"``, ``"30min"``,
+``"3h"``, seconds, or ``"off"``), else :data:`DEFAULT_TIME_LIMIT`.
 """
 
 from __future__ import annotations
@@ -31,8 +38,9 @@ from dataclasses import dataclass
 
 from .errors import InputError
 
-__all__ = ["Estimate", "ResourceLimitError", "estimate", "guard", "limit", "memory_limit",
-           "parse_size", "reporting"]
+__all__ = ["Estimate", "EstimateOnly", "ResourceLimitError", "estimate", "guard", "check",
+           "limit", "memory_limit", "time_limit", "time_limit_set", "parse_size",
+           "parse_duration", "estimating", "suspended", "reporting", "DEFAULT_TIME_LIMIT"]
 
 #: kind -> (fixed bytes, bytes per cell, reference seconds, reference cells, time exponent)
 MODELS = {
@@ -41,12 +49,30 @@ MODELS = {
 }
 #: Solves expected to take longer than this [s] show a spinner on the command line.
 PROGRESS_AFTER = 3.0
+#: Jobs estimated to take longer than this [s] are refused unless the limit is raised.
+DEFAULT_TIME_LIMIT = 3600.0
 
-_state: dict = {"limit": [], "reporter": None}
+_state: dict = {"limit": [], "time_limit": [], "reporter": None, "notice": None,
+                "estimate_only": 0}
+
+_HINT_MEMORY = ("raise the limit (wheelrail --memory-limit 16GB, WHEELRAIL_MEMORY_LIMIT=16GB "
+                "or 'off')")
+_HINT_TIME = ("raise the limit (wheelrail --time-limit 12h, WHEELRAIL_TIME_LIMIT=12h or "
+              "'off')")
 
 
 class ResourceLimitError(InputError):
-    """A solve would need more memory than the limit (estimate in the message)."""
+    """A job would need more memory or time than the limit (estimate in the message)."""
+
+
+class EstimateOnly(BaseException):
+    """Raised by :func:`check` inside :func:`estimating`: the job stops at its estimate.
+
+    Not an error (the command line prints the estimate and exits with 0);
+    ``str()`` is the estimate. A ``BaseException`` like ``KeyboardInterrupt``:
+    code that catches every ``Exception`` of one method or one sweep point
+    (and records it as failed) lets it through.
+    """
 
 
 @dataclass(frozen=True)
@@ -64,14 +90,134 @@ class Estimate:
 
 
 def _human(n: float) -> str:
-    for unit, f in (("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
+    for unit, f in (("PB", 1e15), ("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
         if n >= f:
             return f"{n / f:.3g} {unit}"
     return f"{n:.0f} B"
 
 
 def _duration(s: float) -> str:
-    return f"{s:.0f} s" if s < 120 else f"{s / 60:.0f} min"
+    if s < 120:
+        return f"{s:.2g} s" if s < 10 else f"{s:.0f} s"
+    if s < 7200:
+        return f"{s / 60:.0f} min"
+    if s < 2 * 86400:
+        return f"{s / 3600:.1f} h"
+    return f"{s / 86400:.3g} days"
+
+
+def parse_duration(text) -> float | None:
+    """'90s' → 90, '30min' → 1800, '3h' → 10800, '3600' → 3600 s; 'off'/'none' → None."""
+    s = str(text).strip().lower().replace(" ", "")
+    if s in ("off", "none", "inf", "unlimited"):
+        return None
+    factors = {"d": 86400.0, "h": 3600.0, "min": 60.0, "m": 60.0, "s": 1.0}
+    for suffix in sorted(factors, key=len, reverse=True):
+        if s.endswith(suffix):
+            num, f = s[:-len(suffix)], factors[suffix]
+            break
+    else:
+        num, f = s, 1.0
+    try:
+        val = float(num) * f
+    except ValueError:
+        raise InputError(f"time limit must be a duration like 90s, 30min, 3h or 'off', "
+                         f"got {text!r}") from None
+    if not val > 0 or val != val or val == float("inf"):
+        raise InputError(f"time limit must be a positive duration or 'off', got {text!r}")
+    return val
+
+
+def time_limit() -> float | None:
+    """The time limit [s] in force, or None for no limit (see the module docstring)."""
+    if _state["time_limit"]:
+        return _state["time_limit"][-1]
+    env = os.environ.get("WHEELRAIL_TIME_LIMIT")
+    if env:
+        return parse_duration(env)
+    return DEFAULT_TIME_LIMIT
+
+
+@contextlib.contextmanager
+def time_limit_set(duration):
+    """Use the time limit ``duration`` (seconds, a string like '3h', or None/'off') in the block."""
+    value = (duration if duration is None or isinstance(duration, (int, float))
+             else parse_duration(duration))
+    _state["time_limit"].append(None if value is None else float(value))
+    try:
+        yield
+    finally:
+        _state["time_limit"].pop()
+
+
+@contextlib.contextmanager
+def estimating():
+    """Inside the block the first :func:`check` (or :func:`guard`) raises :class:`EstimateOnly`."""
+    _state["estimate_only"] += 1
+    try:
+        yield
+    finally:
+        _state["estimate_only"] -= 1
+
+
+@contextlib.contextmanager
+def suspended():
+    """A measurement in progress: no estimate-only stop, no limits' reports in the block.
+
+    The sweep estimate times a few real points; their solves must run even
+    under ``--estimate-only`` and must not print their own estimates.
+    """
+    saved = _state["estimate_only"], _state["notice"], _state["reporter"]
+    _state["estimate_only"], _state["notice"], _state["reporter"] = 0, None, None
+    try:
+        yield
+    finally:
+        _state["estimate_only"], _state["notice"], _state["reporter"] = saved
+
+
+def check(what: str, seconds: float, memory: float, detail: str = "") -> str:
+    """Refuse a job estimated past the memory or time limit; announce long ones.
+
+    Parameters
+    ----------
+    what : str
+        The job, for messages (e.g. "sweep of 1000000 points").
+    seconds, memory : float
+        Estimated wall time [s] and peak memory [bytes].
+    detail : str
+        How the estimate was obtained (e.g. "12 ms per point, measured").
+
+    Returns
+    -------
+    str
+        The estimate as one line.
+
+    Raises
+    ------
+    EstimateOnly
+        Inside :func:`estimating` (before any limit is checked).
+    ResourceLimitError
+        With the estimate, the limit and how to override it.
+    """
+    text = (f"{what}: about {_duration(seconds)} and {_human(memory)}"
+            + (f" ({detail})" if detail else ""))
+    if _state["estimate_only"]:
+        raise EstimateOnly(text)
+    lim = memory_limit()
+    if lim is not None and memory > lim:
+        raise ResourceLimitError(f"{text} — more than the memory limit of {_human(lim)}; make "
+                                 f"the job smaller, or {_HINT_MEMORY}")
+    tlim = time_limit()
+    if tlim is not None and seconds > tlim:
+        raise ResourceLimitError(f"{text} — more than the time limit of {_duration(tlim)}; "
+                                 f"make the job smaller, or {_HINT_TIME}")
+    note = _state["notice"]
+    if note is not None and seconds > PROGRESS_AFTER:
+        note(text)
+    rep = _state["reporter"]
+    if rep is not None and seconds > PROGRESS_AFTER:
+        rep(text, seconds)
+    return text
 
 
 def parse_size(text) -> float | None:
@@ -149,15 +295,21 @@ def guard(kind: str, cells: int, what: str) -> Estimate:
         With the estimate, the limit and how to override it.
     """
     est = estimate(kind, cells)
+    text = f"{what}: {est.describe()}"
+    if _state["estimate_only"]:
+        raise EstimateOnly(text)
     lim = memory_limit()
     if lim is not None and est.memory > lim:
         raise ResourceLimitError(
-            f"{what}: {est.describe()} — more than the memory limit of {_human(lim)}; use fewer "
-            f"elements, or raise the limit (wheelrail --memory-limit 16GB, "
-            f"WHEELRAIL_MEMORY_LIMIT=16GB or 'off')")
+            f"{text} — more than the memory limit of {_human(lim)}; use fewer "
+            f"elements, or {_HINT_MEMORY}")
+    tlim = time_limit()
+    if tlim is not None and est.seconds > tlim:
+        raise ResourceLimitError(f"{text} — more than the time limit of {_duration(tlim)}; use "
+                                 f"fewer elements, or {_HINT_TIME}")
     rep = _state["reporter"]
     if rep is not None and est.seconds > PROGRESS_AFTER:
-        rep(f"{what}: {est.describe()}", est.seconds)
+        rep(text, est.seconds)
     return est
 
 
@@ -184,11 +336,14 @@ def reporting(console):
         else:
             status["obj"].update(text)
 
-    prev = _state["reporter"]
-    _state["reporter"] = report
+    def notice(text):
+        console.print(f"estimate: {text}", markup=False, highlight=False)
+
+    prev, prev_notice = _state["reporter"], _state["notice"]
+    _state["reporter"], _state["notice"] = report, notice
     try:
         yield
     finally:
-        _state["reporter"] = prev
+        _state["reporter"], _state["notice"] = prev, prev_notice
         if status["obj"] is not None:
             status["obj"].stop()

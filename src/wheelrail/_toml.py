@@ -18,7 +18,51 @@ try:  # Python >= 3.11
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["Reader", "read_toml", "tomllib"]
+__all__ = ["Reader", "read_toml", "read_input", "tomllib", "MAX_INPUT_BYTES"]
+
+#: Largest input file read [bytes] (a case with a 100 000-point table is about 10 MB).
+MAX_INPUT_BYTES = 64 * 2**20
+
+
+def read_input(path, what: str = "case file", max_bytes: int | None = None) -> bytes:
+    """The bytes of the regular file ``path``; CaseFileError naming it for anything else.
+
+    A FIFO would block for ever, ``/dev/zero`` would be read until memory runs
+    out and a directory cannot be read: only regular files of at most
+    ``max_bytes`` (default :data:`MAX_INPUT_BYTES`) are accepted, checked with
+    ``stat`` before the file is opened.
+    """
+    import os
+    import stat
+
+    if max_bytes is None:
+        max_bytes = MAX_INPUT_BYTES
+    source = str(path)
+    try:
+        st = os.stat(path)
+    except FileNotFoundError:
+        raise CaseFileError(f"{source}: {what} not found") from None
+    except OSError as exc:
+        raise CaseFileError(f"{source}: cannot read {what}: {exc.strerror or exc}") from None
+    if stat.S_ISDIR(st.st_mode):
+        raise CaseFileError(f"{source}: is a directory, not a {what}")
+    if not stat.S_ISREG(st.st_mode):
+        kind = ("a FIFO (named pipe)" if stat.S_ISFIFO(st.st_mode) else
+                "a device" if stat.S_ISCHR(st.st_mode) or stat.S_ISBLK(st.st_mode) else
+                "a socket" if stat.S_ISSOCK(st.st_mode) else "not a regular file")
+        raise CaseFileError(f"{source}: is {kind}; a {what} must be a regular file")
+    if st.st_size > max_bytes:
+        raise CaseFileError(f"{source}: {st.st_size / 2**20:.0f} MiB is too large for a {what} "
+                            f"(at most {max_bytes / 2**20:.0f} MiB)")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(max_bytes + 1)
+    except OSError as exc:
+        raise CaseFileError(f"{source}: cannot read {what}: {exc.strerror or exc}") from None
+    if len(data) > max_bytes:  # grew while being read
+        raise CaseFileError(f"{source}: too large for a {what} (at most "
+                            f"{max_bytes / 2**20:.0f} MiB)")
+    return data
 
 
 def read_toml(path_or_str):
@@ -29,10 +73,8 @@ def read_toml(path_or_str):
         path = Path(path_or_str)
         source = str(path)
         try:
-            text = path.read_text(encoding="utf-8")
-        except FileNotFoundError:
-            raise CaseFileError(f"{source}: case file not found") from None
-        except (OSError, UnicodeDecodeError) as exc:
+            text = read_input(path).decode("utf-8")
+        except UnicodeDecodeError as exc:
             raise CaseFileError(f"{source}: cannot read case file: {exc}") from None
     try:
         data = tomllib.loads(text)

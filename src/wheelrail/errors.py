@@ -12,6 +12,7 @@ __all__ = [
     "NoContactError",
     "ProfileError",
     "CaseFileError",
+    "ResolutionWarning",
 ]
 
 
@@ -74,3 +75,8 @@ class ProfileError(WheelrailError, ValueError):
 
 class CaseFileError(WheelrailError, ValueError):
     """A case file is malformed or holds an invalid value."""
+
+
+class ResolutionWarning(UserWarning):
+    """A grid too coarse for a converged result (too few elements across the contact patch,
+    an area far from the Hertz estimate): the result is returned but not trustworthy."""

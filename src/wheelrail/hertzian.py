@@ -33,7 +33,7 @@ import numpy as np
 from ._validation import as_float_array, positive, scalar_or_array
 from .errors import InputError
 from .materials import MaterialPair, as_material_pair
-from .plausibility import check_hertz, check_rolling_radius
+from .plausibility import check_conformal, check_hertz, check_rolling_radius, check_semi_axes
 
 __all__ = [
     "HertzContact",
@@ -431,7 +431,9 @@ def hertz_from_radii(Fn, wheel_rolling_radius, wheel_profile_radius=np.inf,
     check_rolling_radius(wheel_rolling_radius)  # radii in mm are refused (plausibility)
     A, B = curvatures_from_radii(wheel_rolling_radius, wheel_profile_radius,
                                  rail_profile_radius, rail_longitudinal_radius)
-    return hertz(Fn, A, B, material)
+    hc = hertz(Fn, A, B, material)
+    check_conformal(hc.b, wheel_profile_radius, rail_profile_radius)  # Hertz does not apply
+    return hc
 
 
 def hertz_from_semiaxes(a, b, Fn, material) -> HertzContact:
@@ -456,6 +458,7 @@ def hertz_from_semiaxes(a, b, Fn, material) -> HertzContact:
     out = (ratio < _K_MIN) | (ratio > 1 / _K_MIN)
     if np.any(out):
         raise InputError(f"a/b = {_first(out, ratio)!r} is outside the valid range [1e-9, 1e9]")
+    check_semi_axes(a, b)  # mm given as m: refused (plausibility)
     A, B = curvatures_from_semiaxes(a, b, Fn, pair.E_star)
     a, b, Fn = np.broadcast_arrays(a, b, Fn)
     short = np.minimum(a, b)

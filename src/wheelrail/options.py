@@ -22,7 +22,8 @@ configured object; :func:`resolve` turns either into an instance and
 the one method that declares each.
 
 This module is part of the core layer: it imports only the base layer
-(:mod:`wheelrail.errors`).
+(:mod:`wheelrail.errors`, :mod:`wheelrail.plausibility` for the ``typical`` /
+``plausible`` ranges of options).
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ from typing import Any, Callable, ClassVar, Mapping
 
 import numpy as np
 
+from . import plausibility
 from .errors import InputError, OptionError
 
 __all__ = ["Option", "option", "Method", "Registry", "configured", "resolve", "method_class",
@@ -70,6 +72,15 @@ class Option:
         ``check(name, value) -> value``: a further check (and normalisation)
         raising :class:`~wheelrail.errors.InputError` naming ``name`` and the
         value.
+    typical : (lo, hi) or None
+        The usual range of a number in wheel–rail contact: outside it a
+        :class:`~wheelrail.plausibility.PlausibilityWarning` names the value and
+        the likely unit slip (a length 1000 × too large: "mm given as m?").
+    plausible : (lo, hi) or None
+        Outside this range the value is refused
+        (:class:`~wheelrail.plausibility.ImplausibleInputError`, overridable
+        like every plausibility check). Both are skipped when the checks are
+        switched off (:func:`wheelrail.plausibility.disabled`).
     """
 
     kind: str
@@ -83,6 +94,8 @@ class Option:
     choices: tuple = ()
     allow_none: bool = False
     check: Callable | None = None
+    typical: tuple | None = None
+    plausible: tuple | None = None
 
     def __post_init__(self):
         if self.kind not in _KINDS:
@@ -142,7 +155,34 @@ class Option:
         if self.check is not None:
             out = self.check(name, value)
             value = value if out is None else out
+        if (self.typical or self.plausible) and isinstance(value, numbers.Real) \
+                and not isinstance(value, bool):
+            self._plausibility(name, float(value))
         return value
+
+    def _plausibility(self, name: str, v: float) -> None:
+        """Warn outside :attr:`typical`, refuse outside :attr:`plausible` (with a unit hint)."""
+        if not plausibility.enabled():
+            return
+        unit = f" {self.unit}" if self.unit else ""
+        hint = ""
+        lo, hi = self.typical or (None, None)
+        if self.unit == "m" and lo is not None:
+            if v > hi and lo <= v * 1e-3 <= hi:
+                hint = f" (mm given as m? {v:g} mm = {v * 1e-3:g} m)"
+            elif v < lo and lo <= v * 1e3 <= hi:
+                hint = f" (µm given as mm, or m as mm? {v * 1e3:g} would be usual)"
+        if self.plausible is not None:
+            plo, phi = self.plausible
+            if (plo is not None and v < plo) or (phi is not None and v > phi):
+                bounds = (f"at most {phi:g}" if plo is None else f"at least {plo:g}"
+                          if phi is None else f"{plo:g} … {phi:g}")
+                plausibility._refuse(f"{name} = {v:g}{unit} is not plausible for a wheel–rail "
+                                     f"contact (accepted: {bounds}{unit}){hint}")
+        if self.typical is not None and ((lo is not None and v < lo)
+                                         or (hi is not None and v > hi)):
+            plausibility._warn(f"{name} = {v:g}{unit} is outside the usual range "
+                               f"{lo:g} … {hi:g}{unit}{hint}")
 
     def _bounds(self, name, v):
         lo, hi = self.lo, self.hi
@@ -179,7 +219,8 @@ def _plain(v):
 
 def option(default, *, kind: str | None = None, unit: str = "", doc: str = "", lo=None,
            hi=None, lo_open: bool = False, hi_open: bool = False, choices: tuple = (),
-           allow_none: bool = False, check: Callable | None = None):
+           allow_none: bool = False, check: Callable | None = None, typical=None,
+           plausible=None):
     """Declare an option of a method: a dataclass field carrying its :class:`Option`.
 
     ``kind`` defaults from the default value (bool, int, float; a tuple of
@@ -199,7 +240,8 @@ def option(default, *, kind: str | None = None, unit: str = "", doc: str = "", l
         else:
             kind = "any"
     decl = Option(kind, default, unit, doc, lo, hi, lo_open, hi_open, tuple(choices),
-                  allow_none, check)
+                  allow_none, check, None if typical is None else tuple(typical),
+                  None if plausible is None else tuple(plausible))
     if default is not None or not (allow_none or None in choices):
         decl.validate("default", default)  # a declaration that refuses its own default is a bug
     return field(default=default, metadata={"option": decl})

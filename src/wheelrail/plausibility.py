@@ -35,6 +35,13 @@ Young's modulus E          1 GPa … 1000 GPa                  —
 friction coefficient μ     ≤ 1                               μ > 2
 wheel rolling radius       0.05 … 2 m                        > 2 m (mm given?)
 patch semi-axes a, b       ≤ 10 % of the relative radii      > the relative radii
+given semi-axes a, b       ≤ 20 mm                           > 50 mm (mm given?)
+patch against body radii   b ≤ 10 % of the profile radii     — (near-conformal)
+creepages ξ, η             |ξ| ≤ 0.05                        |ξ| > 1
+spin φ                     |φ| ≤ 20 1/m                      |φ| > 1000 1/m
+friction coefficient μ     μ ≥ 0.01                          —
+speed V                    0.1 … 150 m/s                     > 1000 m/s
+roller radius              0.1 … 2 m                         < 1 cm or > 10 m
 =========================  ===============================  =====================
 
 The relative radii are ``R_x = 1/(2A)`` and ``R_y = 1/(2B)`` (Johnson 1985,
@@ -60,7 +67,8 @@ from .errors import InputError
 
 __all__ = ["PlausibilityWarning", "ImplausibleInputError", "disabled", "enabled",
            "check_load", "check_modulus", "check_friction", "check_rolling_radius",
-           "check_patch", "check_hertz", "LIMITS"]
+           "check_patch", "check_hertz", "check_semi_axes", "check_conformal",
+           "check_creepage", "check_speed", "check_roller_radius", "LIMITS"]
 
 #: Limits used by the checks (SI units).
 LIMITS = {
@@ -69,6 +77,13 @@ LIMITS = {
     "mu_warn": 1.0, "mu_refuse": 2.0,     # -
     "radius_warn": (0.05, 2.0), "radius_refuse": 2.0,   # m
     "patch_warn": 0.1, "patch_refuse": 1.0,             # fraction of the relative radius
+    "semi_axis_warn": 0.02, "semi_axis_refuse": 0.05,   # m
+    "conformal_warn": 0.1,                              # b / smallest profile radius
+    "creepage_warn": 0.05, "creepage_refuse": 1.0,      # -
+    "spin_warn": 20.0, "spin_refuse": 1000.0,           # 1/m
+    "mu_low_warn": 0.01,                                # -
+    "speed_warn": (0.1, 150.0), "speed_refuse": 1000.0,  # m/s
+    "roller_warn": (0.1, 2.0), "roller_refuse": (0.01, 10.0),  # m
 }
 
 _OVERRIDE_HINT = ("override with wheelrail.plausibility.disabled(), "
@@ -152,6 +167,9 @@ def check_friction(mu, name: str = "mu") -> None:
     if not enabled():
         return
     m = _max(mu)
+    if _min(mu) < LIMITS["mu_low_warn"]:
+        _warn(f"{name} = {_fmt(_min(mu))} is below {LIMITS['mu_low_warn']:g}, less than any "
+              f"wheel–rail friction (0.05 on a greasy rail; a factor 100 too small?)")
     if m > LIMITS["mu_refuse"]:
         _refuse(f"{name} = {_fmt(m)} is not a plausible friction coefficient (wheel–rail "
                 f"friction is 0.05 … 0.6; a percentage given?)")
@@ -212,3 +230,92 @@ def check_hertz(contact) -> None:
         return
     check_load(contact.Fn, "Fn")
     check_patch(contact.a, contact.b, contact.A, contact.B)
+
+
+def check_semi_axes(a, b) -> None:
+    """Refuse given semi-axes above 50 mm (mm given as m?), warn above 20 mm [m]."""
+    if not enabled():
+        return
+    for name, v in (("a", a), ("b", b)):
+        m = _max(v)
+        if m > LIMITS["semi_axis_refuse"]:
+            _refuse(f"semi-axis {name} = {_fmt(m)} m is not a wheel–rail contact patch (a few "
+                    f"mm: mm given as m? {_fmt(m)} mm = {_fmt(m * 1e-3)} m)")
+        if m > LIMITS["semi_axis_warn"]:
+            _warn(f"semi-axis {name} = {_fmt(m)} m is above {LIMITS['semi_axis_warn']:g} m, "
+                  f"unusually large for a wheel–rail contact patch")
+
+
+def check_conformal(b, wheel_profile_radius, rail_profile_radius) -> None:
+    """Warn when the lateral semi-axis ``b`` exceeds 10 % of the profile radii [m].
+
+    A concave wheel profile radius close to the rail's (e.g. −0.3001 m on
+    0.3 m) makes B tiny and the Hertz patch very wide, but the bodies are then
+    nearly conformal: the half-space and the quadratic gap of Hertz theory no
+    longer apply (Johnson 1985, §4.1), whatever the relative radius says.
+    """
+    if not enabled():
+        return
+    radii = [abs(float(r)) for r in (wheel_profile_radius, rail_profile_radius)
+             if r is not None and np.isfinite(r) and r != 0]
+    if not radii:
+        return
+    rmin = min(radii)
+    bm = _max(b)
+    if bm > LIMITS["conformal_warn"] * rmin:
+        _warn(f"near-conformal contact: the Hertz semi-axis b = {_fmt(bm * 1e3)} mm exceeds "
+              f"{LIMITS['conformal_warn'] * 100:g} % of the profile radius {_fmt(rmin)} m "
+              f"(wheel {_fmt(wheel_profile_radius)} m, rail {_fmt(rail_profile_radius)} m): "
+              f"Hertz theory does not apply; use a non-Hertzian normal method on the profiles "
+              f"(normal = 'bem', or 'kik-piotrowski' with a wheelset case)")
+
+
+def check_creepage(xi=0.0, eta=0.0, phi=0.0) -> None:
+    """Refuse |ξ|, |η| > 1 and |φ| > 1000 1/m; warn above 0.05 and 20 1/m."""
+    if not enabled():
+        return
+    for name, v in (("xi", xi), ("eta", eta)):
+        m = float(np.max(np.abs(np.asarray(v, dtype=float))))
+        if m > LIMITS["creepage_refuse"]:
+            _refuse(f"creepage {name} = {_fmt(m)} is not a creepage (a relative slip: "
+                    f"wheel–rail values are below 0.01; a percentage or a velocity given?)")
+        if m > LIMITS["creepage_warn"]:
+            _warn(f"creepage {name} = {_fmt(m)} is above {LIMITS['creepage_warn']:g}, far into "
+                  f"full sliding for a wheel–rail contact")
+    m = float(np.max(np.abs(np.asarray(phi, dtype=float))))
+    if m > LIMITS["spin_refuse"]:
+        _refuse(f"spin phi = {_fmt(m)} 1/m is not a wheel–rail spin (sin(contact angle) / "
+                f"rolling radius is at most about 2 1/m; 1/mm or rad given?)")
+    if m > LIMITS["spin_warn"]:
+        _warn(f"spin phi = {_fmt(m)} 1/m is above {LIMITS['spin_warn']:g} 1/m, unusually large "
+              f"for a wheel–rail contact")
+
+
+def check_speed(v, name: str = "speed") -> None:
+    """Refuse a speed above 1000 m/s, warn outside 0.1 … 150 m/s (km/h given?)."""
+    if not enabled():
+        return
+    lo, hi = LIMITS["speed_warn"]
+    m = _max(np.abs(np.asarray(v, dtype=float)))
+    if m > LIMITS["speed_refuse"]:
+        _refuse(f"{name} = {_fmt(m)} m/s is not a train speed (the record is 160 m/s; km/h "
+                f"given? {_fmt(m)} km/h = {_fmt(m / 3.6)} m/s)")
+    if m > hi:
+        _warn(f"{name} = {_fmt(m)} m/s is above {hi:g} m/s, faster than any train in service "
+              f"(km/h given? {_fmt(m)} km/h = {_fmt(m / 3.6)} m/s)")
+    if 0 < m < lo:
+        _warn(f"{name} = {_fmt(m)} m/s is below {lo:g} m/s, unusually slow")
+
+
+def check_roller_radius(r, name: str = "roller_radius") -> None:
+    """Refuse a roller radius below 1 cm or above 10 m, warn outside 0.1 … 2 m [m]."""
+    if not enabled():
+        return
+    lo, hi = LIMITS["roller_warn"]
+    rlo, rhi = LIMITS["roller_refuse"]
+    m = float(r)
+    if m < rlo or m > rhi:
+        _refuse(f"{name} = {_fmt(m)} m is not the radius of a roller rig's roller (0.5 … 1.5 m"
+                + (")" if m < rlo else "; mm given?)"))
+    if m < lo or m > hi:
+        _warn(f"{name} = {_fmt(m)} m is outside {lo:g} … {hi:g} m, unusual for a roller rig")

@@ -17,14 +17,15 @@ __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_method
 from .. import normal as normal_family
 from .. import tangential as tangential_family
 from .._toml import Reader, read_toml, tomllib
-from ..plausibility import check_friction
+from ..plausibility import check_friction, check_semi_axes
 
 
-def check_plausible(r, table: str, key: str, value) -> None:
-    """Plausibility check of one value at read time (see :mod:`wheelrail.plausibility`)."""
+def check_plausible(r, table: str, key: str, value, check=check_friction) -> None:
+    """Plausibility ``check(value)`` at read time (see :mod:`wheelrail.plausibility`); a
+    refusal names the file, the table and the key."""
 
     try:
-        check_friction(value)
+        check(value)
     except InputError as exc:
         r.fail(table, key, str(exc))
 
@@ -72,6 +73,8 @@ def read_contact(r: Reader, tbl: Mapping) -> ContactSpec:
     if kind == "semiaxes":
         a = r.number("contact", tbl, "a", positive=True)
         b = r.number("contact", tbl, "b", positive=True)
+        check_plausible(r, "contact", "a" if a >= b else "b", None,
+                        lambda _: check_semi_axes(a, b))  # mm given as m: refused
         return ContactSpec(Fn, kind, a=a, b=b)
     radii = {"wheel_rolling_radius": r.number("contact", tbl, "wheel_rolling_radius",
                                               positive=True)}

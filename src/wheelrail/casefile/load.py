@@ -8,8 +8,10 @@ from typing import Mapping
 from ..cases.contact import Case
 from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError
+from ..plausibility import check_creepage
 from ._reader import (
     Reader,
+    check_plausible,
     read_contact,
     read_forces,
     read_friction,
@@ -86,6 +88,8 @@ def case_from_dict(data: Mapping, source: str = "<dict>"):
     cr = data.get("creepage", {})
     r.unknown("creepage", cr, ("xi", "eta", "phi"))
     creepage = tuple(r.number("creepage", cr, k, default=0.0) for k in ("xi", "eta", "phi"))
+    for k, v in zip(("xi", "eta", "phi"), creepage):
+        check_plausible(r, "creepage", k, v, lambda v, k=k: check_creepage(**{k: v}))
     mu = read_friction(r, data)
     normal, tangential, methods = read_methods(r, data.get("method", {}))
     forces = read_forces(r, data.get("force", {}), contact.Fn, mu)

@@ -26,6 +26,14 @@ ROWS = [
 ]
 
 
+def esc(value) -> str:
+    """``str(value)`` with rich markup escaped: user-given names (files, profiles) are echoed
+    literally, so ``c[/bold].toml`` prints as it is instead of raising ``MarkupError``."""
+    from rich.markup import escape
+
+    return escape(str(value))
+
+
 def _fmt(v) -> str:
     if isinstance(v, float):
         return f"{v:.6g}"

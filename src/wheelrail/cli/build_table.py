@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "build the creep-force table of method 'table' with the exact solver (resumable)"
 
 
@@ -24,5 +26,5 @@ def run(args, console) -> int:
 
     path = build_table(args.out, elements=args.elements, workers=args.workers,
                        executor=args.executor, work=args.work)
-    console.print(f"wrote [bold]{path}[/bold]")
+    console.print(f"wrote [bold]{esc(path)}[/bold]")
     return 0

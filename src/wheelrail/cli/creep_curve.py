@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "plot force/(mu Fn) against one creepage for several creep-force methods"
 
 DEFAULT_METHODS = "fastsim,polach,shen-hedrick-elkins,linear,carter"
@@ -143,7 +145,7 @@ def run_sweep_with_progress(console, case, component, values, methods, *, warn=T
         forces, skipped = sweep(case, component, values, methods,
                                 progress=lambda m: prog.update(task, advance=1, m=m))
     for m, why in (skipped.items() if warn else ()):
-        console.print(f"[yellow]skipped {m}: {why}[/yellow]")
+        console.print(f"[yellow]skipped {esc(m)}: {esc(why)}[/yellow]")
     return forces, skipped
 
 
@@ -174,8 +176,8 @@ def run(args, console) -> int:
              f"b = {c.b * 1e3:.2f} mm, μ = {case.mu:g}")
     creep_curves(values, normalised(forces, args.component), component=args.component,
                  force=FORCE_OF[args.component], path=args.out, title=title)
-    console.print(f"creep curves of {', '.join(forces)} plotted to [bold]{args.out}[/bold]")
+    console.print(f"creep curves of {', '.join(forces)} plotted to [bold]{esc(args.out)}[/bold]")
     if args.csv:
         write_csv(args.csv, args.component, values, forces)
-        console.print(f"curves written to [bold]{args.csv}[/bold]")
+        console.print(f"curves written to [bold]{esc(args.csv)}[/bold]")
     return 0

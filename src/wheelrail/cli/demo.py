@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
+from ._output import esc
+
 HELP = "run the built-in example with all available methods; write results and figures"
 
 
@@ -49,7 +51,9 @@ class Step:
 def step_case(ctx: DemoContext):
     """The built-in case as a case file, to edit and run with ``wheelrail solve``."""
     path = ctx.file("case.toml", "the built-in case (wheelrail solve case.toml)")
-    path.write_text(ctx.case.to_toml(), encoding="utf-8")
+    from .._atomic import write_text
+
+    write_text(path, ctx.case.to_toml())
     return f"run it yourself: wheelrail solve {path} --plot fields.png"
 
 
@@ -70,8 +74,10 @@ def step_hertz(ctx: DemoContext):
     ctx.results["hertz"] = c.to_dict()
     loads = np.linspace(2500.0, 20000.0, 8)
     batch = hertz(loads, c.A, c.B, ctx.case.materials)
-    with open(ctx.file("hertz_table.csv", "Hertz a, b, p0, δ against the load"), "w",
-              newline="", encoding="utf-8") as fh:
+    from .._atomic import atomic_open
+
+    with atomic_open(ctx.file("hertz_table.csv", "Hertz a, b, p0, δ against the load"), "w",
+                     newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(["load_N", "a_m", "b_m", "p0_Pa", "penetration_m", "area_m2"])
         for row in zip(batch.Fn, batch.a, batch.b, batch.p0, batch.penetration, batch.area):
@@ -302,7 +308,7 @@ def run(args, console) -> int:
     out.mkdir(parents=True, exist_ok=True)
     ctx = DemoContext(out=out, console=console,
                       case=case_from_dict(DEFAULT_CASE, source="<built-in case>"))
-    console.print(f"[bold]wheelrail demo[/bold] → {out.resolve()}")
+    console.print(f"[bold]wheelrail demo[/bold] → {esc(out.resolve())}")
     failed = []
     status = {}
     for step in steps:
@@ -312,11 +318,11 @@ def run(args, console) -> int:
         except WheelrailError as exc:
             status[step.name] = "failed"
             failed.append(step.name)
-            console.print(f"[red]✗ {step.title}: {exc}[/red]")
+            console.print(f"[red]✗ {step.title}: {esc(exc)}[/red]")
             continue
         status[step.name] = "ok"
         dt = time.perf_counter() - t0
-        console.print(f"[green]✓[/green] {step.title} ({dt:.1f} s)" + (f": {note}" if note else ""))
+        console.print(f"[green]✓[/green] {step.title} ({dt:.1f} s)" + (f": {esc(note)}" if note else ""))
     ctx.results["steps"] = status
     write_json(ctx.results, ctx.file("results.json", "all numbers of the demo (SI units)"))
     from rich.table import Table

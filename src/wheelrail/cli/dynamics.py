@@ -348,5 +348,7 @@ def run(args, console) -> int:
                   f"{summary['max_Y_over_Q']:.3f}, max |y| = "
                   f"{summary['max_lateral_shift_m'] * 1e3:.2f} mm, "
                   f"{summary['contact_changes']} contact-configuration changes")
-    console.print(f"wrote {', '.join(written)} to {out}")
+    from ._output import esc
+
+    console.print(f"wrote {', '.join(written)} to {esc(out)}")
     return 0

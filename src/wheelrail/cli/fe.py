@@ -27,6 +27,8 @@ Example::
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "finite-element rolling contact (or static indentation) of an [fe] case file"
 
 #: Measured cost per element and step [s] of the whole explicit loop, used for the time
@@ -86,12 +88,13 @@ def case_from_toml(path):
     from ..errors import CaseFileError
     from ..fe import RollingCase
 
+    from .._toml import read_input
+
     path = Path(path)
-    with open(path, "rb") as fh:
-        try:
-            doc = tomllib.load(fh)
-        except tomllib.TOMLDecodeError as exc:
-            raise CaseFileError(f"{path}: {exc}") from exc
+    try:
+        doc = tomllib.loads(read_input(path).decode("utf-8", errors="replace"))
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseFileError(f"{path}: {exc}") from exc
     if "fe" not in doc:
         raise CaseFileError(f"{path}: no [fe] table")
     t = dict(doc["fe"])
@@ -164,7 +167,7 @@ def run(args, console) -> int:
         summary.update(Fx=r.Fx, Fy=r.Fy, p_max=r.p_max, a=r.a, b=r.b,
                        **{k: float(v) for k, v in r.info.items()})
         if args.restart:
-            console.print(f"continued from {args.restart} (step {r.info['restarted_at_step']})")
+            console.print(f"continued from {esc(args.restart)} (step {r.info['restarted_at_step']})")
         r.dataset.to_dataframe().to_csv(out / "history.csv")
         patch, u, mu = r.patch, r.u, case.mu
         model = r.model
@@ -182,5 +185,5 @@ def run(args, console) -> int:
             scale, unit = {"p_max": (1e-6, "MPa"), "a": (1e3, "mm"), "b": (1e3, "mm")}.get(
                 k, (1.0, "N"))
             console.print(f"  {k:6s} = {summary[k] * scale:10.4g} {unit}")
-    console.print(f"written to {out}/")
+    console.print(f"written to {esc(out)}/")
     return 0

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ._output import esc
+
 HELP = "contact table (delta r, contact angles, contact points) of a wheelset on a track"
 
 
@@ -278,7 +280,7 @@ def print_row_summary(console, rows: dict, limit: int = 8) -> int:
     console.print(f"[yellow]{len(flagged)} of {sum(rows['counts'].values())} rows flagged: "
                   f"{counts}[/yellow]")
     for row in flagged[:limit]:
-        console.print(f"  {row['status']}: {row['reason']}")
+        console.print(f"  {row['status']}: {esc(row['reason'])}")
     if len(flagged) > limit:
         console.print(f"  … {len(flagged) - limit} more (column status_reason of the table)")
     return len(flagged)
@@ -371,7 +373,7 @@ def run(args, console) -> int:
         console.print("jumps of the contact point at y = " + ", ".join(
             f"{v * 1e3:.3f} mm ({s})" for v, s in zip(summary["jumps_y"], summary["jumps_side"])))
     for path, desc in files:
-        console.print(f"  {path}  — {desc}")
+        console.print(f"  {esc(path)}  — {desc}")
     n_flagged = print_row_summary(console, summary["rows"])
     if n_flagged and args.strict:
         console.print(f"[red]--strict: {n_flagged} flagged row(s)[/red]")

@@ -70,6 +70,9 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--memory-limit", metavar="SIZE", default=None,
                         help="refuse boundary-element solves estimated to need more memory "
                              "(e.g. 8GB, 500MB, off; default min(4 GiB, half the RAM))")
+    parser.add_argument("--time-limit", metavar="DURATION", default=None,
+                        help="refuse jobs (sweeps, transient runs, boundary-element and exact "
+                             "grids) estimated to take longer (e.g. 3h, 30min, off; default 1h)")
     parser.add_argument("--no-plausibility-checks", action="store_true",
                         help="accept values outside the wheel-rail range (e.g. mu > 2, a patch "
                              "larger than the radii) without warning or refusal")
@@ -80,6 +83,10 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                        help="show tracebacks on errors")
         module.add_arguments(p)
+        if not any(a.dest == "estimate_only" for a in p._actions):
+            p.add_argument("--estimate-only", action="store_true",
+                           help="print the time and memory estimate of the first long "
+                                "computation and stop (nothing is computed or written)")
         p.set_defaults(_run=module.run)
     return parser
 
@@ -93,7 +100,19 @@ def _exit_code(exc: BaseException) -> int:
     return EXIT_ERROR
 
 
-def _message(exc: BaseException) -> str:
+def _inputs(args) -> str:
+    """The command and its file arguments (case, profiles, outputs) for an unexpected error."""
+    if args is None or getattr(args, "command", None) is None:
+        return ""
+    parts = [args.command]
+    for key in ("case", "wheel", "rail", "out", "json", "plot", "csv"):
+        v = getattr(args, key, None)
+        if isinstance(v, (str, bytes)) or hasattr(v, "__fspath__"):
+            parts.append(f"{key}={str(v)!r}" if key != "case" else repr(str(v)))
+    return " ".join(parts)
+
+
+def _message(exc: BaseException, args=None) -> str:
     from ..errors import WheelrailError, tidy
 
     text = tidy(" ".join(str(exc).split())) or type(exc).__name__
@@ -101,7 +120,9 @@ def _message(exc: BaseException) -> str:
         return text
     if isinstance(exc, OSError) and exc.filename is not None:
         return f"{exc.strerror or text}: {exc.filename}"
-    return f"{type(exc).__name__}: {text} (run with --debug for the traceback)"
+    where = _inputs(args)
+    where = f"internal error in 'wheelrail {where}': " if where else ""
+    return f"{where}{type(exc).__name__}: {text} (run with --debug for the traceback)"
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None):
@@ -110,6 +131,46 @@ def _show_warning(message, category, filename, lineno, file=None, line=None):
 
     text = tidy(" ".join(str(message).split()))
     print(f"wheelrail: warning: {text} ({category.__name__})", file=file or sys.stderr)
+
+
+#: Modules with numba kernels (``cache=True``) that nearly every command uses (FASTSIM, the
+#: contact search); without their cache files the first run compiles (about 10–20 s).
+KERNEL_MODULES = ("tangential/_fastsim_kernel", "geometry/_search_kernels")
+#: Commands that may compile kernels (not --help, not build-table's workers alone).
+_KERNEL_COMMANDS = ("solve", "creep-curve", "demo", "geometry", "wheelset", "sweep", "compare",
+                    "transient", "validate")
+
+
+def uncompiled_kernels() -> list[str]:
+    """Kernel modules without a numba cache file yet (their first use compiles them)."""
+    import os
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    extra = os.environ.get("NUMBA_CACHE_DIR")
+    missing = []
+    for mod in KERNEL_MODULES:
+        path = root / f"{mod}.py"
+        stem = path.stem
+        places = [path.parent / "__pycache__"]
+        if extra:
+            places.append(Path(extra))
+        if not any(any(d.rglob(f"{stem}.*.nbi")) for d in places if d.is_dir()):
+            missing.append(mod)
+    return missing
+
+
+def _compile_note(console, command) -> None:
+    """One line before the first use of the kernels (numba compiles them, about 10–20 s)."""
+    if command not in _KERNEL_COMMANDS or not getattr(console, "is_terminal", False):
+        return
+    try:
+        missing = uncompiled_kernels()
+    except OSError:  # pragma: no cover - unreadable install directory
+        return
+    if missing:
+        console.print("note: compiling numerical kernels on first use (about 10–20 s, once; "
+                      "cached afterwards)", markup=False, highlight=False)
 
 
 def make_console():
@@ -142,6 +203,7 @@ def main(argv=None) -> int:
 
 
 def _main(argv, debug) -> int:
+    args = None
     try:
         parser = build_parser()
         try:
@@ -159,19 +221,33 @@ def _main(argv, debug) -> int:
         with contextlib.ExitStack() as stack:
             if args.memory_limit is not None:
                 stack.enter_context(_resources.limit(_resources.parse_size(args.memory_limit)))
+            if args.time_limit is not None:
+                stack.enter_context(_resources.time_limit_set(
+                    _resources.parse_duration(args.time_limit)))
+            if getattr(args, "estimate_only", False) and args.command != "fe":
+                stack.enter_context(_resources.estimating())
             if getattr(args, "no_plausibility_checks", False):
                 from ..plausibility import disabled
 
                 stack.enter_context(disabled())
             stack.enter_context(_resources.reporting(console))
-            return int(args._run(args, console) or 0)
+            _compile_note(console, args.command)
+            try:
+                code = int(args._run(args, console) or 0)
+            except _resources.EstimateOnly as est:
+                console.print(f"estimate: {est}", markup=False, highlight=False)
+                return EXIT_OK
+            if getattr(args, "estimate_only", False) and args.command != "fe":
+                console.print("estimate: no long computation (below the guards' thresholds)",
+                              markup=False, highlight=False)
+            return code
     except KeyboardInterrupt:
         print("wheelrail: interrupted", file=sys.stderr)
         return 130
     except Exception as exc:  # noqa: BLE001 - the CLI boundary
         if debug:
             raise
-        print(f"wheelrail: error: {_message(exc)}", file=sys.stderr)
+        print(f"wheelrail: error: {_message(exc, args)}", file=sys.stderr)
         return _exit_code(exc)
 
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "solve a TOML case file (normal contact + creep forces)"
 
 
@@ -52,9 +54,9 @@ def run(args, console) -> int:
         write_json(result.summary, args.json)
     what = plot_result(result, args.plot) if args.plot else None
     if not args.quiet:
-        console.print(summary_table(result.summary, title=f"wheelrail solve {args.case}"))
+        console.print(summary_table(result.summary, title=f"wheelrail solve {esc(args.case)}"))
         if args.json:
-            console.print(f"results written to [bold]{args.json}[/bold]")
+            console.print(f"results written to [bold]{esc(args.json)}[/bold]")
         if what:
-            console.print(f"{what} plotted to [bold]{args.plot}[/bold]")
+            console.print(f"{what} plotted to [bold]{esc(args.plot)}[/bold]")
     return 0

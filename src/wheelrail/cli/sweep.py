@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from ._output import esc
+
 HELP = "run a [sweep] case over axes of creepage, load, friction, ... (Zarr/NetCDF, resumable)"
 
 
@@ -30,12 +32,22 @@ def run(args, console) -> int:
     from ..sweeps import load_sweep, sweep
 
     spec = load_sweep(args.case)
-    ds, info = sweep(spec, args.out, workers=args.workers, scheduler=args.scheduler,
-                     executor=args.executor, resume=args.resume, progress=not args.quiet,
-                     timeout=args.timeout, summary=True)
+    try:
+        ds, info = sweep(spec, args.out, workers=args.workers, scheduler=args.scheduler,
+                         executor=args.executor, resume=args.resume, progress=not args.quiet,
+                         timeout=args.timeout, summary=True)
+    except KeyboardInterrupt:
+        import shlex
+        import sys
+
+        again = " ".join(shlex.quote(str(a)) for a in ("wheelrail", "sweep", args.case,
+                                                       "--out", args.out))
+        print(f"wheelrail: interrupted: the finished chunks are kept in {args.out}; continue "
+              f"with: {again} --resume", file=sys.stderr)
+        return 130
     ds.close()
     if not args.quiet:
-        t = Table(title=f"wheelrail sweep {args.case}", title_justify="left")
+        t = Table(title=f"wheelrail sweep {esc(args.case)}", title_justify="left")
         t.add_column("quantity")
         t.add_column("value", justify="right")
         t.add_row("points", str(info.points))
@@ -46,5 +58,5 @@ def run(args, console) -> int:
         t.add_row("points/s", f"{info.points_per_second:.1f}")
         t.add_row("executor", f"{info.executor} ({info.workers} worker(s))")
         console.print(t)
-        console.print(f"results in [bold]{args.out}[/bold]")
+        console.print(f"results in [bold]{esc(args.out)}[/bold]")
     return 1 if info.failed else 0

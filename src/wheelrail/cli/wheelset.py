@@ -14,6 +14,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ._output import esc
+
 HELP = "wheelset on a track (real profiles): contact patches and forces, one position or a sweep"
 
 
@@ -117,7 +119,9 @@ def write_sweep_csv(ds, path) -> Path:
             return str(int(v))
         return str(v)
 
-    with open(path, "w", newline="", encoding="utf-8") as fh:
+    from .._atomic import atomic_open
+
+    with atomic_open(path, "w", newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(names)
         for i in range(cols[0].size):
@@ -128,8 +132,10 @@ def write_sweep_csv(ds, path) -> Path:
 def write_sweep_netcdf(ds, path) -> Path:
     """NetCDF-3 (scipy engine, no netCDF4 library needed)."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    ds.to_netcdf(path, engine="scipy")
+    from .._atomic import atomic_path
+
+    with atomic_path(path) as tmp:
+        ds.to_netcdf(tmp, engine="scipy")
     return path
 
 
@@ -188,12 +194,12 @@ def run(args, console) -> int:
     if not case.sweep:
         result, _, files = single_position(case, out, plots)
         if not args.quiet:
-            title = (f"wheelrail wheelset {args.case}: y = {case.y[0] * 1e3:g} mm, "
+            title = (f"wheelrail wheelset {esc(args.case)}: y = {case.y[0] * 1e3:g} mm, "
                      f"{result.normal} + {result.tangential}, μ = {case.mu:g}")
             console.print(patch_table(result, title))
             console.print(track_table(result))
             for path, desc in files:
-                console.print(f"  {path}  — {desc}")
+                console.print(f"  {esc(path)}  — {desc}")
         return 0
     both = args.csv == args.netcdf
     ds, files = sweep(case, out, plots=plots, csv=both or args.csv, netcdf=both or args.netcdf,
@@ -207,9 +213,9 @@ def run(args, console) -> int:
                       + (f", [yellow]{failed} failed[/yellow] (status/message in the files)"
                          if failed else ""))
         for y, msg in zip(ds["y"].values[status != "ok"][:5], ds["message"].values[status != "ok"]):
-            console.print(f"  y = {y * 1e3:g} mm: {msg}")
+            console.print(f"  y = {y * 1e3:g} mm: {esc(msg)}")
         for path, desc in files:
-            console.print(f"  {path}  — {desc}")
+            console.print(f"  {esc(path)}  — {desc}")
     if failed == status.size:
         from ..errors import WheelrailError
 

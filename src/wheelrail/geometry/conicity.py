@@ -266,5 +266,13 @@ def equivalent_conicity(wheelset, track, amplitude=0.003, method: str = "integra
     ys = np.linspace(-half, half, n)
     tab = contact_table(wheelset, track, ys, yaw, step=step, refine_jumps=0)
     dr = tab["delta_r"].values
+    bad = ~np.isfinite(dr)
+    if bad.any():  # name the position instead of an array repr from the kernel's check
+        i = int(np.flatnonzero(bad)[0])
+        why = str(tab["status_reason"].values[i]) if "status_reason" in tab else ""
+        raise InputError(f"equivalent conicity of amplitude {float(np.max(amp)) * 1e3:g} mm "
+                         f"needs the rigid contact for |y| <= {half * 1e3:.3g} mm, but there is "
+                         f"none at y = {ys[i] * 1e3:.4g} mm ({int(bad.sum())} of {ys.size} "
+                         f"positions)" + (f": {why}" if why else ""))
     out = np.array([conicity_from_delta_r(ys, dr, a, method) for a in np.ravel(amp)])
     return float(out[0]) if np.ndim(amp) == 0 else out.reshape(np.shape(amp))

@@ -60,6 +60,7 @@ import numpy as np
 
 from .._validation import as_float_array, positive
 from ..errors import InputError
+from ..plausibility import check_roller_radius, check_speed
 
 __all__ = ["Motion", "creepages", "creepage_kernel"]
 
@@ -95,6 +96,7 @@ class Motion:
 
     def __post_init__(self):
         object.__setattr__(self, "speed", float(positive("speed", self.speed)))
+        check_speed(self.speed)  # km/h given: warned, a speed of 1e6 m/s refused
         if self.omega is not None:
             w = float(as_float_array("omega", self.omega))
             if not w > 0:
@@ -105,6 +107,7 @@ class Motion:
         if self.roller_radius is not None:
             object.__setattr__(self, "roller_radius",
                                float(positive("roller_radius", self.roller_radius)))
+            check_roller_radius(self.roller_radius)
 
     def angular_velocity(self, nominal_radius: float) -> float:
         """Ω [rad/s]: ``omega``, or V/r0 for free rolling."""

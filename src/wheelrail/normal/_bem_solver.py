@@ -392,11 +392,59 @@ def hertz_grid(contact, elements: int = 64, margin: float = 1.25):
 
 
 # --------------------------------------------------------------------------- normal method
+#: Fewest elements across the contact patch (each direction) for a converged BEM result.
+MIN_ACROSS = 8
+#: Largest relative difference of the BEM area from the Hertz area (smooth Hertzian gaps).
+AREA_TOLERANCE = 0.25
+
+
+def check_resolution(grid, contact, what: str, hertz_area: float | None = None) -> None:
+    """Warn (:class:`~wheelrail.errors.ResolutionWarning`) for a grid too coarse for ``contact``.
+
+    Parameters
+    ----------
+    grid : Grid
+    contact : ndarray of bool, shape (ny, nx) or (nx, ny)
+        Elements in contact.
+    what : str
+        The solve, for the message.
+    hertz_area : float, optional
+        Area of the Hertz solution of the same gap [m²]: a BEM area off by more
+        than :data:`AREA_TOLERANCE` is reported.
+    """
+    from ..errors import ResolutionWarning
+
+    c = np.asarray(contact, dtype=bool)
+    if not c.any():
+        return
+    across = [int(c.sum(axis=k).max()) for k in (0, 1)]
+    n = min(across)
+    if n < MIN_ACROSS:
+        warnings.warn(f"{what}: only {n} element(s) across the contact patch (fewer than "
+                      f"{MIN_ACROSS}): the area and pressure are not converged; use a smaller "
+                      f"element_size (about {min(grid.dx, grid.dy) * n / (2 * MIN_ACROSS):.2g} m) "
+                      f"or more grid_elements", ResolutionWarning, stacklevel=4)
+    if hertz_area is not None and hertz_area > 0:
+        area = float(c.sum()) * grid.element_area
+        if abs(area / hertz_area - 1.0) > AREA_TOLERANCE:
+            warnings.warn(f"{what}: contact area {area * 1e6:.4g} mm² is "
+                          f"{(area / hertz_area - 1.0) * 100:+.0f} % from the Hertz area "
+                          f"{hertz_area * 1e6:.4g} mm² of the same gap: the grid is too coarse "
+                          f"(use a smaller element_size or more grid_elements)",
+                          ResolutionWarning, stacklevel=4)
+
+
 def _elements_for(length, elements, element_size):
     """Elements across ``length`` [m]: from ``element_size`` [m] if given, else ``elements``."""
     if element_size is None:
-        return elements
-    return max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
+        n, what = int(elements), f"normal BEM with {int(elements)} elements"
+    else:
+        n = max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
+        what = (f"normal BEM with element_size = {float(element_size):g} m ({n} elements across "
+                f"{length * 1e3:.3g} mm)")
+    if element_size is not None or n > 1000:  # before the grid is built: no MemoryError
+        guard("bem_normal", int(min(1.6 * n * n, 1e18)), what)
+    return n
 
 
 def _solution_info(sol) -> dict:
@@ -412,6 +460,7 @@ def _square_grid(bounds, element_size) -> Grid:
     ny = max(int(math.ceil((bounds[3] - bounds[2]) / d)), 5)
     nx += 1 - nx % 2
     ny += 1 - ny % 2
+    guard("bem_normal", nx * ny, f"normal BEM with element_size = {d:g} m on a {nx}x{ny} grid")
     return Grid(cx - (nx - 1) / 2 * d, cy - (ny - 1) / 2 * d, d, d, nx, ny)
 
 

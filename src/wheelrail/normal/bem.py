@@ -73,10 +73,13 @@ References
 
 from __future__ import annotations
 
+import math
+
 from ..options import configured, option
 from ..patch import ContactPatch
 from ._base import NormalMethod
 from ._bem_solver import (
+    check_resolution,
     ContactTruncatedWarning,
     _elements_for,
     _patches_of,
@@ -155,7 +158,8 @@ class Bem(NormalMethod):
     grid_elements: int = option(40, lo=2, doc="elements along the longer side of the potential "
                                 "contact area (ignored when element_size is given)")
     element_size: float | None = option(None, kind="float", lo=0.0, lo_open=True, allow_none=True,
-                                        unit="m", doc="element size (square elements)")
+                                        unit="m", doc="element size (square elements)",
+                                        typical=(1e-6, 2e-3), plausible=(None, 0.05))
     window_margin: float = option(1.2, lo=0.0, hi=10.0, lo_open=True,
                                   doc="window half-size / half-size of the rigid "
                                       "interpenetration region")
@@ -174,6 +178,8 @@ class Bem(NormalMethod):
         grid, gap = hertz_grid(contact, elements=n, margin=max(1.25, 1.0 + 3.0 / n))
         sol = solve_normal(grid, gap, contact.materials, Fn=float(contact.Fn),
                            tol=self.pressure_tol)
+        check_resolution(grid, sol.contact, f"normal BEM on a {grid.nx}x{grid.ny} grid",
+                         hertz_area=math.pi * float(contact.a) * float(contact.b))
         return (ContactPatch.from_grid(grid, sol.pressure, sol.contact, contact.materials,
                                        penetration=sol.penetration, A=float(contact.A),
                                        B=float(contact.B), cells=self.cells, method="bem",
@@ -188,6 +194,7 @@ class Bem(NormalMethod):
         sol, grid = _solve_enlarging(problem.gap, grid, problem.materials, w["search"],
                                      Fn=problem.Fn, penetration=problem.penetration,
                                      tol=self.pressure_tol, max_enlarge=self.max_enlarge)
+        check_resolution(grid, sol.contact, f"normal BEM on a {grid.nx}x{grid.ny} grid")
         return _patches_of(sol, problem.materials, self.cells, frames=None)
 
     def from_wheel(self, problem):

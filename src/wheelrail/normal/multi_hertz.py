@@ -283,7 +283,7 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         patches = self._hertz_patches(line, delta, opts, pair, lambda e: None)
         if problem.Fn is not None:
             patches = _scale_patches(patches, float(problem.Fn) / sum(p.Fn for p in patches),
-                                     pair)
+                                     pair, target=float(problem.Fn))
         return tuple(patches)
 
     # ------------------------------------------------------------------ wheel
@@ -330,7 +330,8 @@ class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
         if problem.vertical_load is not None:
             Fz = sum(p.Fn * math.cos(p.frame.contact_angle) for p in patches)
             limit = 1e-3 if jump is None else 1e-3 + abs(jump[1] - jump[0]) / float(Fz)
-            patches = _scale_patches(patches, float(problem.vertical_load) / Fz, pair, limit)
+            patches = _scale_patches(patches, float(problem.vertical_load) / Fz, pair, limit,
+                                     target=float(problem.vertical_load))
             if jump is not None:
                 info["load_jump"] = jump
         sig = 1.0 if problem.side == "right" else -1.0
@@ -510,15 +511,26 @@ def _hertz_fast(load, A, B, pair):
                         float(A), float(B), pair)
 
 
-def _scale_patches(patches, factor, pair, limit=1e-3):
+def _scale_patches(patches, factor, pair, limit=1e-3, target=None):
     """Hertz patches rescaled to carry ``factor`` × their loads (load closure, |factor − 1|
-    ≤ ``limit``)."""
+    ≤ ``limit``).
+
+    Raises
+    ------
+    ConvergenceError
+        The approach search ended with patches carrying a load more than
+        ``limit`` away from ``target`` — a failure of the solver, not of the input.
+    """
     from dataclasses import replace
 
-
-    if abs(factor - 1.0) > limit:
-        raise InputError(f"multi-hertz: load closure factor {factor!r} is not within {limit!r} "
-                         "of 1")
+    if not abs(factor - 1.0) <= limit:
+        carried = sum(p.Fn for p in patches)
+        want = f" of the load {target:.6g} N" if target is not None else ""
+        raise ConvergenceError(
+            f"multi-hertz: the approach search did not converge: the patches carry "
+            f"{carried:.6g} N, {abs(factor - 1.0) * 100:.3g} % away{want} (tolerance "
+            f"{limit * 100:.3g} %); try method 'kik-piotrowski' or 'stripes', or a slightly "
+            "different position")
     out = []
     largest = max(range(len(patches)), key=lambda i: patches[i].Fn)
     for i, p in enumerate(patches):

@@ -61,6 +61,13 @@ def _bounded(submit, wait_one, tasks, on_result, limit):
             on_result(task_id, fut.result())
 
 
+def _ignore_sigint():
+    """Worker initializer: Ctrl-C stops the parent, which stops the workers (no tracebacks)."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
 class ProcessExecutor:
     """Evaluate chunks in ``workers`` local processes (spawned, so safe with numba threads)."""
 
@@ -75,7 +82,8 @@ class ProcessExecutor:
         from concurrent.futures import ProcessPoolExecutor
 
         self._pool = ProcessPoolExecutor(max_workers=self.workers,
-                                         mp_context=multiprocessing.get_context("spawn"))
+                                         mp_context=multiprocessing.get_context("spawn"),
+                                         initializer=_ignore_sigint)
         return self
 
     def __exit__(self, *exc):
@@ -89,8 +97,11 @@ class ProcessExecutor:
             done, _ = wait(list(pending), return_when=FIRST_COMPLETED)
             return next(iter(done))
 
-        _bounded(lambda *a: self._pool.submit(fn, *a), wait_one, tasks, on_result,
-                 2 * self.workers)
+        def submit(*a):
+            with _sigint_ignored():  # worker processes are started here: they ignore Ctrl-C
+                return self._pool.submit(fn, *a)
+
+        _bounded(submit, wait_one, tasks, on_result, 2 * self.workers)
 
 
 class DaskExecutor:
@@ -129,28 +140,38 @@ class DaskExecutor:
         import dask
 
         if self.scheduler is not None:
-            try:
-                with dask.config.set({"distributed.comm.timeouts.connect": f"{self.timeout}s"}):
-                    self._client = Client(self.scheduler, timeout=f"{self.timeout}s",
-                                          set_as_default=False)
-            except (OSError, TimeoutError) as exc:
-                raise InputError(f"Dask scheduler {self.scheduler!r} did not answer within "
-                                 f"{self.timeout:g} s ({type(exc).__name__}); is it running "
-                                 "and reachable?") from None
+            self._client = _connect(Client, self.scheduler, self.timeout)
             n = len(self._client.scheduler_info().get("workers", {}))
             self.workers = max(n, 1)
         else:
-            self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1,
-                                         processes=self.processes, dashboard_address=":0",
-                                         silence_logs=40)
+            with _sigint_ignored():  # workers inherit it: Ctrl-C stops this process only
+                self._cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1,
+                                             processes=self.processes, dashboard_address=":0",
+                                             silence_logs=40)
             self._client = Client(self._cluster, set_as_default=False)
         return self
 
     def __exit__(self, *exc):
-        if self._client is not None:
-            self._client.close()
-        if self._cluster is not None:
-            self._cluster.close()
+        import contextlib
+        import logging
+
+        # on an interrupt or a lost scheduler: close without Dask's shutdown warnings
+        quiet = exc[0] is not None
+        loggers = [logging.getLogger(n) for n in ("distributed", "tornado", "asyncio")]
+        levels = [lg.level for lg in loggers]
+        if quiet:
+            for lg in loggers:
+                lg.setLevel(logging.CRITICAL + 1)
+        try:
+            if self._client is not None:
+                with contextlib.suppress(Exception) if quiet else contextlib.nullcontext():
+                    self._client.close(timeout=5 if quiet else None)
+            if self._cluster is not None:
+                with contextlib.suppress(Exception) if quiet else contextlib.nullcontext():
+                    self._cluster.close(timeout=5 if quiet else None)
+        finally:
+            for lg, lv in zip(loggers, levels):
+                lg.setLevel(lv)
         return False
 
     def run(self, fn, tasks, on_result):
@@ -179,6 +200,82 @@ class DaskExecutor:
             fut.release()
             on_result(task_id, value)
             submit_next()
+
+
+def _probe(address: str, timeout: float) -> None:
+    """Open a TCP connection to ``address`` (``tcp://host:port``) within ``timeout`` seconds.
+
+    Raises
+    ------
+    OSError
+        Nobody listens there (refused, unreachable, timed out, unknown host).
+    """
+    import socket
+
+    hostport = address.split("://", 1)[-1]
+    host, _, port = hostport.rpartition(":")
+    if not host or not port.isdigit():
+        return  # not host:port (e.g. a unix socket or inproc address): let Dask try
+    with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout):
+        pass
+
+
+def _connect(client_class, address: str, timeout: float):
+    """A Dask client of the scheduler at ``address``, or one InputError naming it.
+
+    A failed connection leaves no half-built client behind whose destructor
+    would later print a traceback (it would time out closing a connection
+    that never opened).
+    """
+    import dask
+
+    hint = f"Dask scheduler {address!r}"
+    advice = ("is it running and reachable? Nothing was computed; run the command again "
+              "when it is (with --resume if the output already holds part of the sweep)")
+    try:
+        _probe(address, timeout)
+    except OSError as exc:
+        raise InputError(f"{hint} did not answer within {timeout:g} s "
+                         f"({exc.strerror or type(exc).__name__}); {advice}") from None
+    client = client_class.__new__(client_class)
+    try:
+        with dask.config.set({"distributed.comm.timeouts.connect": f"{timeout}s"}):
+            client.__init__(address, timeout=f"{timeout}s", set_as_default=False)
+    except Exception as exc:  # noqa: BLE001 - anything from the wire: not a Dask scheduler
+        import contextlib
+
+        client.status = "closed"  # its destructor has nothing to close
+        with contextlib.suppress(Exception):
+            client._loop_runner.stop()
+        what = (f"did not answer within {timeout:g} s ({type(exc).__name__})"
+                if isinstance(exc, (OSError, TimeoutError))
+                else "answered, but not in the Dask protocol")
+        raise InputError(f"{hint} {what}; {advice}") from None
+    return client
+
+
+class _sigint_ignored:
+    """Ignore SIGINT while worker processes are started (they inherit the disposition).
+
+    Ctrl-C then interrupts this process alone, which stops the workers itself,
+    instead of every worker printing its own KeyboardInterrupt traceback.
+    """
+
+    def __enter__(self):
+        import signal
+        import threading
+
+        self._saved = None
+        if threading.current_thread() is threading.main_thread():
+            self._saved = signal.signal(signal.SIGINT, signal.SIG_IGN)
+        return self
+
+    def __exit__(self, *exc):
+        import signal
+
+        if self._saved is not None:
+            signal.signal(signal.SIGINT, self._saved)
+        return False
 
 
 EXECUTORS = ("serial", "processes", "dask")

@@ -13,10 +13,19 @@ import numpy as np
 from ..errors import InputError, WheelrailError
 from .evaluators import STATUS_CODES, get_evaluator
 from .executors import make_executor
+from .estimate import check_sweep
 from .spec import SweepSpec, load_sweep, sweep_from_dict
 from .store import SweepStore, _is_netcdf, open_sweep, provenance, to_netcdf
 
-__all__ = ["sweep", "SweepSummary", "evaluate_chunk"]
+__all__ = ["sweep", "SweepSummary", "SweepInterrupted", "evaluate_chunk"]
+
+
+class SweepInterrupted(WheelrailError):
+    """A sweep stopped before its end (lost workers or scheduler); ``path`` holds its chunks."""
+
+    def __init__(self, message, path=None):
+        super().__init__(message)
+        self.path = path
 
 
 @dataclass(frozen=True)
@@ -146,13 +155,22 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
         raise InputError(f"output {str(out)!r} exists; pass resume=True (--resume) to continue "
                          "it, or choose another path (nothing is overwritten)")
     methods = ev.methods(spec) if hasattr(ev, "methods") else []
+    # estimate (a few points measured here) and refuse past the limits: before any store,
+    # and before a local cluster starts; a remote scheduler is asked first (its workers)
+    done_before = len(list((out / ".sweep_done").glob("[0-9]*"))) if out.exists() else 0
+    remaining = max(spec.size - done_before * spec.chunk, 0)
+    remote = getattr(execu, "scheduler", None) is not None
+    if remaining and not remote:
+        check_sweep(spec, remaining, getattr(execu, "workers", 1) or 1, execu.name)
     with execu:  # connect first: an unreachable scheduler leaves no store behind
+        if remaining and remote:
+            check_sweep(spec, remaining, execu.workers, "remote")
         if out.exists():
-            store = SweepStore.open(out, spec)
+            store = SweepStore.open(out, spec).lock()
         else:
             prov = provenance(spec, methods, {m: ev.options_for(spec, m) for m in methods}
                               if methods else dict(spec.options))
-            store = SweepStore.create(out, spec, prov)
+            store = SweepStore.create(out, spec, prov).lock()
         blocks = spec.chunks()
         done = store.done()
         todo = [(i, (spec, b)) for i, b in enumerate(blocks) if i not in done]
@@ -177,14 +195,28 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
             task = bar.add_task(f"{spec.evaluator}/{'+'.join(methods)} "
                                 f"({execu.name}, {execu.workers} worker(s))", total=n_todo)
 
+        writing = []  # set while a result is written: such errors are not the executor's
+
         def on_result(chunk_id, outputs):
+            writing.append(chunk_id)
             store.write(chunk_id, blocks[chunk_id], outputs)
+            writing.pop()
             if bar is not None:
                 bar.advance(task, len(outputs["status"]))
 
         try:
             execu.run(evaluate_chunk, todo, on_result)
+        except (KeyboardInterrupt, WheelrailError):
+            raise
+        except Exception as exc:  # noqa: BLE001 - the executor (a lost worker or scheduler)
+            if writing or execu.name == "serial":
+                raise
+            raise SweepInterrupted(
+                f"sweep stopped by the executor ({execu.name}): {type(exc).__name__}: "
+                f"{' '.join(str(exc).split())[:200]}; the finished chunks are kept in "
+                f"{str(out)!r}: continue with --resume", out) from exc
         finally:
+            store.close()
             if bar is not None:
                 bar.stop()
     seconds = time.perf_counter() - t0

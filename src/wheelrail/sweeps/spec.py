@@ -54,11 +54,14 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .._toml import Reader, tomllib
+from .._toml import Reader, read_input, tomllib
 from ..errors import CaseFileError, InputError
 from .evaluators import get_evaluator
 
 __all__ = ["SweepSpec", "load_sweep", "sweep_from_dict", "expand_range"]
+
+#: Most values of one axis (a range's ``num``); the whole sweep is limited by its estimate.
+MAX_AXIS_VALUES = 10_000_000
 
 _MODES = ("grid", "points")
 _SPEC_KEYS = ("evaluator", "chunk", "options", "material", "points")
@@ -85,6 +88,10 @@ def expand_range(name: str, value) -> np.ndarray:
         if isinstance(num, bool) or not isinstance(num, (int, np.integer)) or num < 1:
             raise InputError(f"axis {name!r}: num must be an integer >= 1 (an axis needs at "
                              f"least one value), got {num!r}")
+        if num > MAX_AXIS_VALUES:  # before allocating: 1e9 values are 8 GB for the axis alone
+            raise InputError(f"axis {name!r}: num = {num} values is more than the "
+                             f"{MAX_AXIS_VALUES} an axis may have (8 bytes each, and every "
+                             "point is computed); use fewer values")
         start, stop = value["start"], value["stop"]
         for k, v in (("start", start), ("stop", stop)):
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
@@ -242,7 +249,7 @@ class SweepSpec:
     @property
     def size(self) -> int:
         """Number of points."""
-        return int(np.prod(self.shape)) if self.shape else 1
+        return math.prod(self.shape) if self.shape else 1  # Python int: no overflow
 
     def chunk_shape(self) -> tuple:
         """Block shape of one chunk: whole trailing axes, a slab of one axis, ones before.
@@ -347,12 +354,7 @@ def load_sweep(path_or_str) -> SweepSpec:
     else:
         path = Path(path_or_str)
         source = str(path)
-        try:
-            raw = path.read_bytes()
-        except FileNotFoundError:
-            raise CaseFileError(f"{source}: sweep file not found") from None
-        except OSError as exc:
-            raise CaseFileError(f"{source}: cannot read sweep file: {exc}") from None
+        raw = read_input(path, "sweep file")
         sha = hashlib.sha256(raw).hexdigest()
         try:
             text = raw.decode("utf-8")

@@ -15,8 +15,12 @@ Layout of a sweep store ``table.zarr`` (Zarr format 2, readable with
   results and duplicates none: every chunk's data is written by exactly the
   one run that then marks it done.
 
-Only the process running the sweep writes (workers return arrays), so a
-store never sees concurrent writers.
+Only the process running the sweep writes (workers return arrays). A store
+is created in a temporary directory and renamed into place, so of two runs
+started at once with the same output one creates it and the other is refused
+naming it; a running sweep holds a lock (``.sweep_lock``, released when the
+process ends, also when killed), so a second ``--resume`` of a store being
+written is refused too.
 """
 
 from __future__ import annotations
@@ -25,10 +29,12 @@ import datetime as _dt
 import json
 import os
 import shutil
+import tempfile
 from pathlib import Path
 
 import numpy as np
 
+from .._atomic import naming
 from .._version import __version__
 from ..errors import InputError
 from .evaluators import MESSAGE_LENGTH, STATUS_CODES, get_evaluator
@@ -36,6 +42,7 @@ from .evaluators import MESSAGE_LENGTH, STATUS_CODES, get_evaluator
 __all__ = ["SweepStore", "open_sweep"]
 
 _DONE = ".sweep_done"
+_LOCK = ".sweep_lock"
 
 
 def _is_netcdf(path: Path) -> bool:
@@ -49,6 +56,38 @@ class SweepStore:
         self.path = Path(path)
         self.spec = spec
         self.done_dir = self.path / _DONE
+        self._lock = None
+
+    def lock(self) -> "SweepStore":
+        """Take the store's writer lock, or refuse naming the store if another run holds it."""
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - not POSIX: no lock
+            return self
+        with naming(self.path / _LOCK):
+            fh = open(self.path / _LOCK, "a")
+        try:
+            fcntl.flock(fh.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:
+            fh.close()
+            try:
+                who = f" (process {int((self.path / _LOCK).read_text().split()[0])})"
+            except (OSError, ValueError, IndexError):
+                who = ""
+            raise InputError(f"output {str(self.path)!r} is being written by another wheelrail "
+                             f"sweep{who}; wait for it to finish (then --resume if it was "
+                             "stopped) or choose another path") from None
+        fh.truncate(0)
+        fh.write(f"{os.getpid()}\n")
+        fh.flush()
+        self._lock = fh
+        return self
+
+    def close(self) -> None:
+        """Release the writer lock."""
+        if self._lock is not None:
+            self._lock.close()
+            self._lock = None
 
     # ------------------------------------------------------------------ life cycle
     @classmethod
@@ -85,9 +124,25 @@ class SweepStore:
         for name in data:
             encoding[name] = {"chunks": cs}
         ds = xr.Dataset(data, coords=coords, attrs=provenance)
-        ds.to_zarr(store.path, mode="w-", compute=False, encoding=encoding, zarr_format=2,
-                   consolidated=True)
-        store.done_dir.mkdir()
+        with naming(store.path):
+            store.path.parent.mkdir(parents=True, exist_ok=True)
+            tmp = Path(tempfile.mkdtemp(prefix=f".{store.path.name}.", suffix=".creating",
+                                        dir=store.path.parent))
+        try:
+            with naming(store.path):
+                ds.to_zarr(tmp, mode="w-", compute=False, encoding=encoding, zarr_format=2,
+                           consolidated=True)
+                (tmp / _DONE).mkdir()
+            try:  # atomic: of two runs creating the same store, one wins
+                os.rename(tmp, store.path)
+            except OSError:
+                raise InputError(f"output {str(store.path)!r} was created by another run at "
+                                 "the same time; wait for it to finish (then --resume if it "
+                                 "was stopped) or choose another path (nothing is "
+                                 "overwritten)") from None
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)
+            raise
         return store
 
     @classmethod
@@ -116,13 +171,16 @@ class SweepStore:
         """Write one chunk's outputs, then record it complete (atomic rename)."""
         import zarr
 
-        group = zarr.open_group(str(self.path), mode="r+")
+        with naming(self.path):
+            group = zarr.open_group(str(self.path), mode="r+")
         shape = tuple(s.stop - s.start for s in block)
         for name, values in outputs.items():
-            group[name][block] = np.asarray(values).reshape(shape)
+            with naming(self.path / name):
+                group[name][block] = np.asarray(values).reshape(shape)
         tmp = self.done_dir / f".{chunk_id}.tmp"
-        tmp.write_text("")
-        os.replace(tmp, self.done_dir / str(chunk_id))
+        with naming(tmp):
+            tmp.write_text("")
+            os.replace(tmp, self.done_dir / str(chunk_id))
 
 
 def provenance(spec, method_names, options) -> dict:
@@ -162,8 +220,9 @@ def to_netcdf(zarr_path: Path, out: Path) -> None:
     """Copy a finished Zarr store to NetCDF ``out`` (atomically) and delete the store."""
     import xarray as xr
 
-    tmp = out.with_name(out.name + ".tmp")
+    from .._atomic import atomic_path
+
     with xr.open_dataset(zarr_path, engine="zarr", chunks=None, consolidated=True) as ds:
-        ds.load().to_netcdf(tmp)
-    os.replace(tmp, out)
+        with atomic_path(out) as tmp:
+            ds.load().to_netcdf(tmp)
     shutil.rmtree(zarr_path)

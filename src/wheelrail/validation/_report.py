@@ -7,6 +7,7 @@ import json
 import math
 from pathlib import Path
 
+from .._atomic import write_text
 from ..citations import BIBLIOGRAPHY
 
 __all__ = ["write_report", "write_html", "write_json", "write_markdown", "markdown"]
@@ -152,7 +153,7 @@ def markdown(report) -> str:
 def write_markdown(report, path) -> Path:
     """Write :func:`markdown` to ``path``."""
     path = Path(path)
-    path.write_text(markdown(report), encoding="utf-8")
+    write_text(path, markdown(report))
     return path
 
 
@@ -164,7 +165,7 @@ def write_json(report, path) -> Path:
             "passed": report.passed, "errors": report.errors,
             "citations": report.citation_keys(),
             "rows": [r.to_dict() for r in report.rows]}
-    path.write_text(json.dumps(data, indent=1, allow_nan=False), encoding="utf-8")
+    write_text(path, json.dumps(data, indent=1, allow_nan=False))
     return path
 
 
@@ -244,7 +245,7 @@ def html_page(report) -> str:
 def write_html(report, path) -> Path:
     """Write :func:`html_page` to ``path``."""
     path = Path(path)
-    path.write_text(html_page(report), encoding="utf-8")
+    write_text(path, html_page(report))
     return path
 
 
@@ -265,7 +266,7 @@ def write_report(report, out) -> dict:
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     bib = out / "citations.bib"
-    bib.write_text(report.bibtex(), encoding="utf-8")
+    write_text(bib, report.bibtex())
     return {"html": write_html(report, out / "report.html"),
             "json": write_json(report, out / "report.json"),
             "md": write_markdown(report, out / "report.md"), "bib": bib}

@@ -32,10 +32,17 @@ def read_lines(path) -> tuple[str, list[str]]:
     """Return (display name, lines) of a text file; undecodable bytes are replaced."""
     p = Path(os.fspath(path))
     name = str(p)
+    import stat
+
     try:
-        size = p.stat().st_size
+        st = p.stat()
     except OSError as exc:
         raise ProfileError(f"{name}: cannot read profile file ({exc.strerror or exc})") from exc
+    if not stat.S_ISREG(st.st_mode):  # a FIFO blocks, /dev/zero never ends
+        kind = ("a directory" if stat.S_ISDIR(st.st_mode) else "a FIFO (named pipe)"
+                if stat.S_ISFIFO(st.st_mode) else "a device or socket")
+        raise ProfileError(f"{name}: is {kind}; a profile file must be a regular file")
+    size = st.st_size
     if size > MAX_FILE_BYTES:
         raise ProfileError(f"{name}: file of {size} bytes is too large for a profile")
     try:
@@ -193,6 +200,53 @@ def check_damage(y, z, source: str) -> None:
                 + (f" ({spike.size} such points)" if spike.size > 1 else ""))
 
 
+#: A wheel whose highest point rises more than this [m] above its median (and that has
+#: no flange below) has its flange pointing up: z down in the file read as z up.
+FLANGE_UP_HEIGHT = 0.010
+#: A gap between neighbouring points wider than this [m] and GAP_FACTOR × the median
+#: spacing is reported (points missing from a measurement or a cut file).
+GAP_WIDTH = 0.003
+GAP_FACTOR = 10.0
+
+
+def check_orientation(y, z, kind: str, source: str) -> None:
+    """Refuse a wheel whose flange points up (z down read as z up).
+
+    With z up a wheel's flange is its lowest part, 25–35 mm below the tread; a
+    profile whose highest point lies more than :data:`FLANGE_UP_HEIGHT` above
+    the median with nothing comparable below is the same wheel with z
+    pointing down. (A rail head profile has no such signature: its gauge and
+    field faces drop as far as a flange would.)
+    """
+    if y.size < 4:
+        return
+    med = float(np.median(z))
+    up, down = float(np.max(z)) - med, med - float(np.min(z))
+    hint = ("z pointing down in the file? Pass z_down=True (text files: a '# z: down' "
+            "comment) or negate z")
+    if kind == "wheel" and up > FLANGE_UP_HEIGHT and down < 0.3 * up:
+        j = int(np.argmax(z))
+        raise ProfileError(f"{source}: the wheel's flange points up (its tip at y = "
+                           f"{y[j] * 1e3:.1f} mm rises {up * 1e3:.1f} mm above the tread; with z "
+                           f"up a flange hangs below the tread) — {hint}")
+
+
+def check_gaps(y, z, kind: str, source: str) -> None:
+    """Warn (ProfileWarning) for a gap between points: a damaged or cut measurement."""
+    if y.size < 8:
+        return
+    ys = np.sort(np.asarray(y, dtype=float))
+    d = np.diff(ys)
+    med = float(np.median(d[d > 0])) if np.any(d > 0) else 0.0
+    i = int(np.argmax(d))
+    if med > 0 and d[i] > GAP_WIDTH and d[i] > GAP_FACTOR * med:
+        warnings.warn(f"{source}: no {kind} profile points between y = {ys[i] * 1e3:.2f} mm and "
+                      f"{ys[i + 1] * 1e3:.2f} mm (a gap of {d[i] * 1e3:.1f} mm, "
+                      f"{d[i] / med:.0f} × the median spacing of {med * 1e3:.2g} mm): points "
+                      f"missing from the measurement? The gap is bridged by a straight line",
+                      ProfileWarning, stacklevel=4)
+
+
 def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
                  point_dist_min=POINT_DIST_MIN, mirror_y=False, wheel_flange_check=True,
                  tape_circle=None, auto_tape_circle=True):
@@ -236,6 +290,9 @@ def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
         warnings.warn(f"{source}: dropped {info['n_foldback']} point(s) to keep the "
                       f"single-valued part z(y) (vertical faces, overhangs or foldbacks)",
                       ProfileWarning, stacklevel=4)
+    if fmt != "miniprof":  # MiniProf's reader detects the z direction from the shape itself
+        check_orientation(y, z, kind, source)
+    check_gaps(y, z, kind, source)
     if kind == "wheel" and wheel_flange_check and y.size >= 4 and np.ptp(y) > 0:
         i = int(np.argmin(z))
         frac = (y[i] - y[0]) / (y[-1] - y[0])

@@ -1,0 +1,107 @@
+"""Benchmark: the estimates shown (and enforced) before long jobs against measured runs.
+
+For each kind of long job — a sweep (``wheelrail.sweeps.estimate``: points ×
+a measured cost per point), a transient run (``wheelrail.cli.transient.estimate``:
+steps × grid cells), a normal BEM solve and an exact-theory solve
+(``wheelrail._resources.estimate``: from the grid cells) — three sizes are run,
+each in a fresh subprocess, and the estimate is printed beside the measured
+wall time, CPU time and peak resident memory (``ru_maxrss``), with the problem
+size and the machine load. Issue 23 asks for estimates within a factor 2 of
+the measured time on this kind of machine; the ratio columns show it against
+the wall time and against the CPU time (the better measure on a loaded machine).
+
+Run: ``python benchmarks/bench_estimates.py`` (about 2 minutes on 2 cores).
+The FE estimate (``wheelrail fe --estimate-only``) is benchmarked by
+``benchmarks/bench_fe.py``.
+"""
+
+import json
+import os
+import subprocess
+import sys
+
+CHILD = r"""
+import json, resource, sys, time
+import numpy as np
+import wheelrail as wr
+from wheelrail import _resources
+kind, n = sys.argv[1], int(sys.argv[2])
+hc = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.Material(2.1e11, 0.28))
+with _resources.limit(None), _resources.time_limit_set(None):
+    if kind == "sweep":
+        from wheelrail.sweeps import SweepSpec
+        from wheelrail.sweeps.estimate import estimate_sweep
+        spec = SweepSpec.grid(method="fastsim", mu=0.3, Fn=1e4, A=1.087, B=1.667,
+                              xi=np.linspace(-3e-3, 3e-3, n // 10), eta=np.linspace(0, 1e-3, 10),
+                              options={"nx": 20, "ny": 20}, chunk=1000)
+        est = estimate_sweep(spec)          # measures a few points (and warms the kernels)
+        size = f"{spec.size} points"
+        t, c = time.perf_counter(), time.process_time()
+        wr.sweep(spec, progress=False)
+        seconds, memory = est.seconds, est.memory
+    elif kind == "transient":
+        from wheelrail.casefile import load_transient_case
+        from wheelrail.cli.transient import estimate
+        text = open(sys.argv[3]).read()
+        lines = []
+        for ln in text.splitlines():
+            key = ln.split("=")[0].strip()
+            lines.append({"elements": f"elements = {n}", "travel": "travel = 0.006",
+                          "frames": "frames = 10"}.get(key, ln))
+        import os, tempfile
+        fd, path = tempfile.mkstemp(suffix=".toml")
+        with os.fdopen(fd, "w") as fh:
+            fh.write("\n".join(lines) + "\n")
+        case = load_transient_case(path)
+        os.remove(path)
+        seconds, memory, cells = estimate(case.hertz_contact, case.settings)
+        steps = int(case.settings["travel"] / case.settings["step"] + 1e-9)
+        size = f"{steps} steps x {cells} cells"
+        t, c = time.perf_counter(), time.process_time()
+        case.run(progress=False)
+    elif kind == "bem_normal":
+        g, h = wr.hertz_grid(hc, n)
+        est = _resources.estimate(kind, g.size)
+        seconds, memory, size = est.seconds, est.memory, f"{g.nx}x{g.ny} cells"
+        t, c = time.perf_counter(), time.process_time()
+        wr.solve_normal(g, h, hc.materials, Fn=7500.0)
+    else:
+        m = max(1.1, 1.0 + 3.0 / n)
+        g, _ = wr.hertz_grid(hc, n, margin=m)
+        est = _resources.estimate(kind, g.size)
+        seconds, memory, size = est.seconds, est.memory, f"{g.nx}x{g.ny} cells"
+        t, c = time.perf_counter(), time.process_time()
+        wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=n)
+    wall, cpu = time.perf_counter() - t, time.process_time() - c
+print(json.dumps({"size": size, "wall": wall, "cpu": cpu, "est_seconds": seconds,
+                  "est_memory": memory,
+                  "rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}))
+"""
+
+CASES = (("sweep", (2000, 8000, 32000)), ("transient", (20, 30, 45)),
+         ("bem_normal", (100, 200, 300)), ("exact", (30, 50, 80)))
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    transient_case = os.path.join(here, "..", "docs", "examples", "transient_cattaneo_carter.toml")
+    print(f"load average before: {os.getloadavg()} ({os.cpu_count()} cores)")
+    print(f"{'job':10s} {'size':>22s} {'wall':>8s} {'cpu':>8s} {'estimate':>9s} {'e/wall':>6s} "
+          f"{'e/cpu':>6s} {'peak RSS':>9s} {'estimate':>9s}")
+    for kind, sizes in CASES:
+        for n in sizes:
+            out = subprocess.run([sys.executable, "-c", CHILD, kind, str(n), transient_case],
+                                 capture_output=True, text=True, cwd=os.getcwd())
+            if out.returncode:
+                print(f"{kind:10s} {n:>22d} failed: {out.stderr.strip().splitlines()[-1]}")
+                continue
+            r = json.loads(out.stdout.strip().splitlines()[-1])
+            print(f"{kind:10s} {r['size']:>22s} {r['wall']:7.2f}s {r['cpu']:7.2f}s "
+                  f"{r['est_seconds']:8.2f}s {r['est_seconds'] / r['wall']:6.2f} "
+                  f"{r['est_seconds'] / max(r['cpu'], 1e-9):6.2f} "
+                  f"{r['rss'] / 1e6:7.0f}MB {r['est_memory'] / 1e6:7.0f}MB")
+    print(f"load average after: {os.getloadavg()}")
+
+
+if __name__ == "__main__":
+    main()
