@@ -3,7 +3,7 @@
 Element kernels work on precomputed shape-function gradients (small-strain
 kinematics in each body's own frame, so the gradients of the reference
 configuration are used throughout); the material enters through the Lamé
-constants (linear elasticity; a plastic material will add a state array).
+constants λ and G (the shear modulus; ``mu`` is reserved for the friction coefficient).
 """
 
 from __future__ import annotations
@@ -62,10 +62,10 @@ def hourglass_vectors(x: np.ndarray, dNdx0: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True, inline="always")
-def _strain_stress(dNdx, e, g, ue, lam, mu):
+def _strain_stress(dNdx, e, g, ue, lam, G):
     """Engineering strains (exx, eyy, ezz, gxy, gyz, gxz) and stresses (sxx, …, sxz) [Pa]
     at integration point g of element e from its nodal displacements ue (8, 3), linear
-    elasticity σ = λ tr ε I + 2μ ε (shared by the force and the stress kernels)."""
+    elasticity σ = λ tr ε I + 2G ε (G the shear modulus; shared by the force and the stress kernels)."""
     exx = eyy = ezz = gxy = gyz = gxz = 0.0
     for a in range(8):
         bx = dNdx[e, g, a, 0]
@@ -79,13 +79,13 @@ def _strain_stress(dNdx, e, g, ue, lam, mu):
         gxz += bz * ue[a, 0] + bx * ue[a, 2]
     tr = lam * (exx + eyy + ezz)
     return (exx, eyy, ezz, gxy, gyz, gxz,
-            tr + 2 * mu * exx, tr + 2 * mu * eyy, tr + 2 * mu * ezz,
-            mu * gxy, mu * gyz, mu * gxz)
+            tr + 2 * G * exx, tr + 2 * G * eyy, tr + 2 * G * ezz,
+            G * gxy, G * gyz, G * gxz)
 
 
 @njit(cache=True)
-def internal_force(u, conn, dNdx, wdet, lam, mu, gamma, khg, f):
-    """f += ∫ Bᵀσ dV (+ hourglass forces), σ = λ tr ε I + 2μ ε; returns the strain energy.
+def internal_force(u, conn, dNdx, wdet, lam, G, gamma, khg, f):
+    """f += ∫ Bᵀσ dV (+ hourglass forces), σ = λ tr ε I + 2G ε (G the shear modulus); returns the strain energy.
 
     u, f : (nn, 3); conn : (ne, 8); dNdx : (ne, ng, 8, 3); wdet : (ne, ng);
     gamma : (ne, 4, 8) or (0, 4, 8); khg : (ne,) hourglass stiffness [N/m].
@@ -103,7 +103,7 @@ def internal_force(u, conn, dNdx, wdet, lam, mu, gamma, khg, f):
             ue[a, 2] = u[n, 2]
         for g in range(ng):
             (exx, eyy, ezz, gxy, gyz, gxz,
-             sxx, syy, szz, sxy, syz, sxz) = _strain_stress(dNdx, e, g, ue, lam, mu)
+             sxx, syy, szz, sxy, syz, sxz) = _strain_stress(dNdx, e, g, ue, lam, G)
             w = wdet[e, g]
             energy += 0.5 * w * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz
                                  + sxz * gxz)
@@ -135,7 +135,7 @@ def internal_force(u, conn, dNdx, wdet, lam, mu, gamma, khg, f):
 
 
 @njit(cache=True)
-def stiffness_triplets(conn, dNdx, wdet, lam, mu, gamma, khg, rows, cols, vals):
+def stiffness_triplets(conn, dNdx, wdet, lam, G, gamma, khg, rows, cols, vals):
     """Element stiffness matrices as COO triplets (576 per element), dof = 3·node + i."""
     ne = conn.shape[0]
     ng = dNdx.shape[1]
@@ -154,14 +154,14 @@ def stiffness_triplets(conn, dNdx, wdet, lam, mu, gamma, khg, rows, cols, vals):
                     by = dNdx[e, g, b, 1]
                     bz = dNdx[e, g, b, 2]
                     dot = ax * bx + ay * by + az * bz
-                    # K_ab,ij = λ a_i b_j + μ a_j b_i + μ δ_ij (a·b)
+                    # K_ab,ij = λ a_i b_j + G a_j b_i + G δ_ij (a·b)
                     ka = (ax, ay, az)
                     kb = (bx, by, bz)
                     for i in range(3):
                         for j in range(3):
-                            v = lam * ka[i] * kb[j] + mu * ka[j] * kb[i]
+                            v = lam * ka[i] * kb[j] + G * ka[j] * kb[i]
                             if i == j:
-                                v += mu * dot
+                                v += G * dot
                             ke[3 * a + i, 3 * b + j] += w * v
         if has_hg:
             k = khg[e]
@@ -184,7 +184,7 @@ def stiffness_triplets(conn, dNdx, wdet, lam, mu, gamma, khg, rows, cols, vals):
 
 
 @njit(cache=True)
-def element_von_mises(u, conn, dNdx, lam, mu, out):
+def element_von_mises(u, conn, dNdx, lam, G, out):
     """Von Mises stress [Pa] at the element centre (mean over integration points)."""
     ne = conn.shape[0]
     ng = dNdx.shape[1]
@@ -197,7 +197,7 @@ def element_von_mises(u, conn, dNdx, lam, mu, out):
             ue[a, 2] = u[n, 2]
         acc = 0.0
         for g in range(ng):
-            sxx, syy, szz, sxy, syz, sxz = _strain_stress(dNdx, e, g, ue, lam, mu)[6:]
+            sxx, syy, szz, sxy, syz, sxz = _strain_stress(dNdx, e, g, ue, lam, G)[6:]
             acc += np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
                            + 3.0 * (sxy ** 2 + syz ** 2 + sxz ** 2))
         out[e] = acc / ng
@@ -237,6 +237,7 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
     area, kn, kt : (ns,)
         Tributary areas [m²] and normal / tangential penalties [Pa/m].
     mu : float
+        Coulomb friction coefficient [-].
     ft_old : (ns, 3)
         Tangential forces of the last converged step [N] (global frame).
     xm, dxm : (nx, ny, 3)

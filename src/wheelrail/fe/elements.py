@@ -53,14 +53,14 @@ class ElementData:
 
 
 @lru_cache(maxsize=16)
-def _hourglass_unit_stiffness(lam: float, mu: float) -> float:
+def _hourglass_unit_stiffness(lam: float, G: float) -> float:
     """Hourglass stiffness of a unit cube matching the fully integrated energy (per component)."""
     x = 0.5 * (K.XI + 1.0)[None]
     dN, w = K.shape_gradients(x, _FULL_POINTS, np.ones(8))
     n = 8 * 576
     rows, cols, vals = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n)
     conn = np.arange(8)[None]
-    K.stiffness_triplets(conn, dN, w, lam, mu, np.zeros((0, 4, 8)), np.zeros(0), rows, cols, vals)
+    K.stiffness_triplets(conn, dN, w, lam, G, np.zeros((0, 4, 8)), np.zeros(0), rows, cols, vals)
     Ke = np.zeros((24, 24))
     np.add.at(Ke, (rows[:576], cols[:576]), vals[:576])
     dN0, _ = K.shape_gradients(x, np.zeros((1, 3)), np.array([8.0]))
@@ -114,6 +114,6 @@ class Hex8:
         dN0 = b[:, None]
         w0 = volume[:, None].copy()
         gamma = K.hourglass_vectors(x, b)
-        k1 = _hourglass_unit_stiffness(material.lam, material.mu)
+        k1 = _hourglass_unit_stiffness(material.lam, material.shear_modulus)
         khg = self.hourglass * k1 * np.cbrt(volume)
         return ElementData(dN0, w0, gamma, khg, volume, length)

@@ -19,7 +19,7 @@ __all__ = ["LinearElastic", "as_fe_material"]
 
 @dataclass(frozen=True)
 class LinearElastic:
-    """Isotropic linear elasticity, σ = λ tr(ε) I + 2 μ ε (small strain).
+    """Isotropic linear elasticity, σ = λ tr(ε) I + 2 G ε (small strain; G the shear modulus).
 
     Parameters
     ----------
@@ -47,14 +47,19 @@ class LinearElastic:
         return self.E * self.nu / ((1 + self.nu) * (1 - 2 * self.nu))
 
     @property
-    def mu(self) -> float:
-        """Shear modulus μ = E / (2 (1 + ν)) [Pa]."""
+    def shear_modulus(self) -> float:
+        """Shear modulus (second Lamé constant) G = E / (2 (1 + ν)) [Pa]."""
         return self.E / (2 * (1 + self.nu))
 
     @property
+    def G(self) -> float:
+        """Alias of :attr:`shear_modulus` [Pa]."""
+        return self.shear_modulus
+
+    @property
     def wave_speed(self) -> float:
-        """Dilatational wave speed c = √((λ + 2μ)/ρ) [m/s] (sets the Courant step)."""
-        return ((self.lam + 2 * self.mu) / self.density) ** 0.5
+        """Dilatational wave speed c = √((λ + 2G)/ρ) [m/s] (sets the Courant step)."""
+        return ((self.lam + 2 * self.shear_modulus) / self.density) ** 0.5
 
 
 def as_fe_material(material, density: float = 7800.0) -> LinearElastic:

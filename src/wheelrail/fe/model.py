@@ -142,12 +142,12 @@ class Model:
         """Internal forces (n_nodes, 3) in the body frames and the strain energy [J]."""
         if f is None:
             f = np.zeros_like(u)
-        lam, mu = self.material.lam, self.material.mu
+        lam, G = self.material.lam, self.material.shear_modulus
         nw = self.nw
         e1 = K.internal_force(u[:nw], self.wheel.elements, self.edata_w.dNdx, self.edata_w.wdet,
-                              lam, mu, self.edata_w.gamma, self.edata_w.khg, f[:nw])
+                              lam, G, self.edata_w.gamma, self.edata_w.khg, f[:nw])
         e2 = K.internal_force(u[nw:], self.rail.elements, self.edata_r.dNdx, self.edata_r.wdet,
-                              lam, mu, self.edata_r.gamma, self.edata_r.khg, f[nw:])
+                              lam, G, self.edata_r.gamma, self.edata_r.khg, f[nw:])
         return f, e1 + e2
 
     def stiffness(self):
@@ -156,13 +156,13 @@ class Model:
 
         n = 3 * self.n_nodes + 1
         mats = []
-        lam, mu = self.material.lam, self.material.mu
+        lam, G = self.material.lam, self.material.shear_modulus
         for body, ed, off in ((self.wheel, self.edata_w, 0), (self.rail, self.edata_r, self.nw)):
             ne = body.n_elements
             rows = np.empty(ne * 576, np.int64)
             cols = np.empty(ne * 576, np.int64)
             vals = np.empty(ne * 576)
-            K.stiffness_triplets(body.elements + off, ed.dNdx, ed.wdet, lam, mu, ed.gamma,
+            K.stiffness_triplets(body.elements + off, ed.dNdx, ed.wdet, lam, G, ed.gamma,
                                  ed.khg, rows, cols, vals)
             mats.append(sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr())
         return (mats[0] + mats[1]).tocsr()
@@ -174,7 +174,7 @@ class Model:
                              (self.rail, self.edata_r, slice(self.nw, None))):
             vm = np.empty(body.n_elements)
             K.element_von_mises(u[sl], body.elements, ed.dNdx, self.material.lam,
-                                self.material.mu, vm)
+                                self.material.shear_modulus, vm)
             out.append(vm)
         return out
 

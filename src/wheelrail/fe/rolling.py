@@ -227,7 +227,7 @@ def saturation_creepage(case) -> float | None:
     if n == 0:
         return None
     stiff = float(np.hypot(c11 * xi / n, c22 * eta / n))
-    return float(3.0 * case.mu * geo["normal_load"] / (mat.mu * hz.a * hz.b * stiff))
+    return float(3.0 * case.mu * geo["normal_load"] / (mat.shear_modulus * hz.a * hz.b * stiff))
 
 
 def _warn_saturation(case):
