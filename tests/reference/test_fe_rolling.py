@@ -115,7 +115,7 @@ def test_seed000_rolling_geometric_spin_against_exact():
     Measured at 2 mm: Fx +0.8 %, Fy_contact +12 % (1.5 mm: +0.2 %, +9.0 %)."""
     from wheelrail.fe import seed000_case
 
-    r = solve(seed000_case(mesh_size=2e-3, mass_scaling=400, travel=0.02, element="reduced",
+    r = solve(seed000_case(load="printed", mesh_size=2e-3, mass_scaling=400, travel=0.02, element="reduced",
                            depth=4, half_width=3, half_length=3), progress=False)
     g = r.model.geometry
     phi = np.sin(g["delta"]) / g["r_c"]

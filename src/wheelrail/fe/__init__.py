@@ -34,18 +34,31 @@ References
    (2016) 157-166 (seed paper 000).
 """
 
-from .case import INTEGRATORS, RollingCase, cone_wheel, head_arc_rail, seed000_case
+import os as _os
+
+# The parallel kernels (numba, OpenMP layer) synchronise a few times per explicit step. With
+# GNU OpenMP's default (active, spinning) wait, a barrier on a shared or oversubscribed
+# machine costs a scheduler time slice: measured 5x slower than one thread at load 5 on
+# 2 cores. Passive waiting (threads sleep at barriers) avoids that; it must be set before
+# the OpenMP runtime starts. An explicit setting of the user's is kept.
+_os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+from .case import (INTEGRATORS, SEED000_TABLE3_HERTZ, RollingCase, cone_wheel, head_arc_rail,
+                   seed000_case, seed000_load)
 from .elements import Hex8
-from .materials import LinearElastic
+from .materials import (R900A_HARDENING, J2Plastic, LinearElastic, TabulatedHardening, Voce,
+                        r900a)
 from .mesh import MeshQualityError, check_quality
 from .model import build_model
 from .output import write_vtu
 from .restart import read_restart, write_restart
-from .rolling import RollingResult, saturation_creepage, solve, stable_time_step
+from .rolling import (RollingResult, plastic_fields, saturation_creepage, solve,
+                      stable_time_step, steady_window)
 from .static import IndentResult, indent
 
-__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "cone_wheel", "head_arc_rail",
+__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
            "solve", "indent", "RollingResult", "IndentResult",
-           "Hex8", "LinearElastic", "build_model", "write_vtu", "check_quality",
+           "Hex8", "LinearElastic", "J2Plastic", "Voce", "TabulatedHardening",
+           "R900A_HARDENING", "r900a", "plastic_fields", "steady_window", "build_model", "write_vtu", "check_quality",
            "MeshQualityError", "stable_time_step", "saturation_creepage", "read_restart",
            "write_restart"]

@@ -9,7 +9,7 @@ constants λ and G (the shear modulus; ``mu`` is reserved for the friction coeff
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 # hex8 natural coordinates of the nodes
 XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
@@ -223,8 +223,178 @@ def _bilinear_tangents(c, r, t):
 
 
 @njit(cache=True)
+def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift, reach, g0,
+           cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num,
+           c, q, dq):
+    """Contact of slave ``s`` (see :func:`node_to_surface`)."""
+    nx = x_ref.shape[0]
+    ny = y_ref.shape[0]
+    status[s] = 0
+    energy[s] = 0.0
+    pn[s] = 0.0
+    gap[s] = 1.0
+    slip_rate_num[s] = 0.0
+    for d in range(3):
+        fs[s, d] = 0.0
+        ft_new[s, d] = 0.0
+    X = xs[s, 0] + shift
+    Y = xs[s, 1]
+    if X < x_ref[0] or X > x_ref[nx - 1] or Y < y_ref[0] or Y > y_ref[ny - 1]:
+        return
+    i = np.searchsorted(x_ref, X) - 1
+    j = np.searchsorted(y_ref, Y) - 1
+    i = min(max(i, 0), nx - 2)
+    j = min(max(j, 0), ny - 2)
+    if xs[s, 2] - xm[i, j, 2] > reach:
+        return
+    r = 0.5
+    t = 0.5
+    found = False
+    for hop in range(4):
+        c[0] = xm[i, j]
+        c[1] = xm[i + 1, j]
+        c[2] = xm[i + 1, j + 1]
+        c[3] = xm[i, j + 1]
+        r = 0.5
+        t = 0.5
+        for it in range(6):
+            _bilinear(c, r, t, q)
+            # tangents
+            tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
+            d0 = xs[s, 0] - q[0]
+            d1 = xs[s, 1] - q[1]
+            d2 = xs[s, 2] - q[2]
+            a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
+            a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
+            a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
+            b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
+            b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
+            det = a11 * a22 - a12 * a12
+            drr = (a22 * b1 - a12 * b2) / det
+            dtt = (a11 * b2 - a12 * b1) / det
+            r += drr
+            t += dtt
+            if abs(drr) < 1e-12 and abs(dtt) < 1e-12:
+                break
+        tol = 1e-6
+        moved = False
+        if hop == 3:      # oscillating between two cells: on their common edge
+            found = True
+            break
+        if r < -tol and i > 0:
+            i -= 1
+            moved = True
+        elif r > 1 + tol and i < nx - 2:
+            i += 1
+            moved = True
+        if t < -tol and j > 0:
+            j -= 1
+            moved = True
+        elif t > 1 + tol and j < ny - 2:
+            j += 1
+            moved = True
+        if not moved:
+            found = True
+            break
+    if not found:
+        return
+    r = min(max(r, 0.0), 1.0)
+    t = min(max(t, 0.0), 1.0)
+    _bilinear(c, r, t, q)
+    tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
+    # continuous normal: bilinear interpolation of the nodal normals nm
+    n0 = ((1 - r) * (1 - t) * nm[i, j, 0] + r * (1 - t) * nm[i + 1, j, 0]
+          + r * t * nm[i + 1, j + 1, 0] + (1 - r) * t * nm[i, j + 1, 0])
+    n1 = ((1 - r) * (1 - t) * nm[i, j, 1] + r * (1 - t) * nm[i + 1, j, 1]
+          + r * t * nm[i + 1, j + 1, 1] + (1 - r) * t * nm[i, j + 1, 1])
+    n2 = ((1 - r) * (1 - t) * nm[i, j, 2] + r * (1 - t) * nm[i + 1, j, 2]
+          + r * t * nm[i + 1, j + 1, 2] + (1 - r) * t * nm[i, j + 1, 2])
+    nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+    n0 /= nn
+    n1 /= nn
+    n2 /= nn
+    g = (xs[s, 0] - q[0]) * n0 + (xs[s, 1] - q[1]) * n1 + (xs[s, 2] - q[2]) * n2
+    gap[s] = g
+    cell[s, 0] = i
+    cell[s, 1] = j
+    rt[s, 0] = r
+    rt[s, 1] = t
+    normal[s, 0] = n0
+    normal[s, 1] = n1
+    normal[s, 2] = n2
+    if g >= 0.0:
+        return
+    A = area[s]
+    # C1-regularized penalty: quadratic for overlaps below g0, linear beyond
+    dlt = -g
+    if dlt < g0:
+        fn = kn[s] * A * dlt * dlt / (2 * g0)
+        energy[s] = kn[s] * A * dlt ** 3 / (6 * g0)
+    else:
+        fn = kn[s] * A * (dlt - 0.5 * g0)
+        energy[s] = kn[s] * A * (0.5 * dlt * dlt - 0.5 * g0 * dlt + g0 * g0 / 6)
+    # relative increment of the slave w.r.t. the master point
+    wts = ((1 - r) * (1 - t), r * (1 - t), r * t, (1 - r) * t)
+    ii = (i, i + 1, i + 1, i)
+    jj = (j, j, j + 1, j + 1)
+    for d in range(3):
+        dq[d] = 0.0
+    for m in range(4):
+        for d in range(3):
+            dq[d] += wts[m] * dxm[ii[m], jj[m], d]
+    s0 = dxs[s, 0] - dq[0]
+    s1 = dxs[s, 1] - dq[1]
+    s2 = dxs[s, 2] - dq[2]
+    sn = s0 * n0 + s1 * n1 + s2 * n2
+    if cdamp[s] > 0.0:
+        fn -= cdamp[s] * sn * inv_dt
+        if fn < 0.0:
+            fn = 0.0
+    pn[s] = fn
+    s0 -= sn * n0
+    s1 -= sn * n1
+    s2 -= sn * n2
+    # previous tangential force, rotated into the current tangent plane
+    f0 = ft_old[s, 0]
+    f1 = ft_old[s, 1]
+    f2 = ft_old[s, 2]
+    fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    fnp = f0 * n0 + f1 * n1 + f2 * n2
+    f0 -= fnp * n0
+    f1 -= fnp * n1
+    f2 -= fnp * n2
+    fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    if fm2 > 0.0:
+        f0 *= fmag / fm2
+        f1 *= fmag / fm2
+        f2 *= fmag / fm2
+    k = kt[s] * A
+    f0 -= k * s0
+    f1 -= k * s1
+    f2 -= k * s2
+    ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    bound = mu * fn
+    if ftr > bound:
+        sc = bound / ftr
+        slip_rate_num[s] = (ftr - bound) / k
+        f0 *= sc
+        f1 *= sc
+        f2 *= sc
+        status[s] = 2
+    else:
+        status[s] = 1
+    ft_new[s, 0] = f0
+    ft_new[s, 1] = f1
+    ft_new[s, 2] = f2
+    fs[s, 0] = fn * n0 + f0
+    fs[s, 1] = fn * n1 + f1
+    fs[s, 2] = fn * n2 + f2
+
+
+@njit(cache=True, parallel=True)
 def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
-                    reach, g0, energy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num):
+                    reach, g0, cdamp, inv_dt, energy, fs, fm, gap, pn, ft_new, status, cell, rt,
+                    normal, slip_rate_num):
     """Penalty node-to-surface contact with Coulomb friction (return mapping).
 
     Slave nodes (wheel surface) against a structured master surface (rail,
@@ -254,6 +424,12 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
         Regularization overlap [m]: the normal force is kn A δ²/(2 g0) for an
         overlap δ < g0 and kn A (δ − g0/2) beyond (continuous tangent, so that
         Newton converges).
+    cdamp : (ns,)
+        Normal contact damping [N s/m]: a dashpot −c v_n on the relative normal velocity
+        v_n = (normal increment) · inv_dt of a closed pair (the normal force stays >= 0);
+        zeros for none.
+    inv_dt : float
+        1 / time step [1/s] (for the dashpot).
     energy : (ns,)
         Output: penalty energy of each slave [J].
 
@@ -261,170 +437,32 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
     the master nodes, gap (ns,), pn (ns,) normal force, ft_new (ns, 3), status
     (ns,) 0 open / 1 stick / 2 slip, cell (ns, 2), rt (ns, 2), normal (ns, 3),
     slip_rate_num (ns,) the slip increment length [m] (trial excess / kt A).
+
+    Parallel over the slaves (chunks); the master forces are scattered afterwards in
+    slave order, so the result does not depend on the number of threads.
     """
     ns = xs.shape[0]
-    nx = x_ref.shape[0]
-    ny = y_ref.shape[0]
-    c = np.empty((4, 3))
-    q = np.empty(3)
-    dq = np.empty(3)
+    nch = min(64, max(1, ns // 64))
+    for ch in prange(nch):
+        c = np.empty((4, 3))
+        q = np.empty(3)
+        dq = np.empty(3)
+        for s in range(ns * ch // nch, ns * (ch + 1) // nch):
+            _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
+                   reach, g0, cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt,
+                   normal, slip_rate_num, c, q, dq)
     for s in range(ns):
-        status[s] = 0
-        energy[s] = 0.0
-        pn[s] = 0.0
-        gap[s] = 1.0
-        slip_rate_num[s] = 0.0
-        for d in range(3):
-            fs[s, d] = 0.0
-            ft_new[s, d] = 0.0
-        X = xs[s, 0] + shift
-        Y = xs[s, 1]
-        if X < x_ref[0] or X > x_ref[nx - 1] or Y < y_ref[0] or Y > y_ref[ny - 1]:
-            continue
-        i = np.searchsorted(x_ref, X) - 1
-        j = np.searchsorted(y_ref, Y) - 1
-        i = min(max(i, 0), nx - 2)
-        j = min(max(j, 0), ny - 2)
-        if xs[s, 2] - xm[i, j, 2] > reach:
-            continue
-        r = 0.5
-        t = 0.5
-        found = False
-        for hop in range(4):
-            c[0] = xm[i, j]
-            c[1] = xm[i + 1, j]
-            c[2] = xm[i + 1, j + 1]
-            c[3] = xm[i, j + 1]
-            r = 0.5
-            t = 0.5
-            for it in range(6):
-                _bilinear(c, r, t, q)
-                # tangents
-                tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
-                d0 = xs[s, 0] - q[0]
-                d1 = xs[s, 1] - q[1]
-                d2 = xs[s, 2] - q[2]
-                a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
-                a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
-                a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
-                b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
-                b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
-                det = a11 * a22 - a12 * a12
-                drr = (a22 * b1 - a12 * b2) / det
-                dtt = (a11 * b2 - a12 * b1) / det
-                r += drr
-                t += dtt
-                if abs(drr) < 1e-12 and abs(dtt) < 1e-12:
-                    break
-            tol = 1e-6
-            moved = False
-            if hop == 3:      # oscillating between two cells: on their common edge
-                found = True
-                break
-            if r < -tol and i > 0:
-                i -= 1
-                moved = True
-            elif r > 1 + tol and i < nx - 2:
-                i += 1
-                moved = True
-            if t < -tol and j > 0:
-                j -= 1
-                moved = True
-            elif t > 1 + tol and j < ny - 2:
-                j += 1
-                moved = True
-            if not moved:
-                found = True
-                break
-        if not found:
-            continue
-        r = min(max(r, 0.0), 1.0)
-        t = min(max(t, 0.0), 1.0)
-        _bilinear(c, r, t, q)
-        tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
-        # continuous normal: bilinear interpolation of the nodal normals nm
-        n0 = ((1 - r) * (1 - t) * nm[i, j, 0] + r * (1 - t) * nm[i + 1, j, 0]
-              + r * t * nm[i + 1, j + 1, 0] + (1 - r) * t * nm[i, j + 1, 0])
-        n1 = ((1 - r) * (1 - t) * nm[i, j, 1] + r * (1 - t) * nm[i + 1, j, 1]
-              + r * t * nm[i + 1, j + 1, 1] + (1 - r) * t * nm[i, j + 1, 1])
-        n2 = ((1 - r) * (1 - t) * nm[i, j, 2] + r * (1 - t) * nm[i + 1, j, 2]
-              + r * t * nm[i + 1, j + 1, 2] + (1 - r) * t * nm[i, j + 1, 2])
-        nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
-        n0 /= nn
-        n1 /= nn
-        n2 /= nn
-        g = (xs[s, 0] - q[0]) * n0 + (xs[s, 1] - q[1]) * n1 + (xs[s, 2] - q[2]) * n2
-        gap[s] = g
-        cell[s, 0] = i
-        cell[s, 1] = j
-        rt[s, 0] = r
-        rt[s, 1] = t
-        normal[s, 0] = n0
-        normal[s, 1] = n1
-        normal[s, 2] = n2
-        if g >= 0.0:
-            continue
-        A = area[s]
-        # C1-regularized penalty: quadratic for overlaps below g0, linear beyond
-        dlt = -g
-        if dlt < g0:
-            fn = kn[s] * A * dlt * dlt / (2 * g0)
-            energy[s] = kn[s] * A * dlt ** 3 / (6 * g0)
-        else:
-            fn = kn[s] * A * (dlt - 0.5 * g0)
-            energy[s] = kn[s] * A * (0.5 * dlt * dlt - 0.5 * g0 * dlt + g0 * g0 / 6)
-        pn[s] = fn
-        # relative increment of the slave w.r.t. the master point
-        wts = ((1 - r) * (1 - t), r * (1 - t), r * t, (1 - r) * t)
-        ii = (i, i + 1, i + 1, i)
-        jj = (j, j, j + 1, j + 1)
-        for d in range(3):
-            dq[d] = 0.0
-        for m in range(4):
+        if status[s] > 0:
+            i = cell[s, 0]
+            j = cell[s, 1]
+            r = rt[s, 0]
+            t = rt[s, 1]
+            w0 = (1 - r) * (1 - t)
+            w1 = r * (1 - t)
+            w2 = r * t
+            w3 = (1 - r) * t
             for d in range(3):
-                dq[d] += wts[m] * dxm[ii[m], jj[m], d]
-        s0 = dxs[s, 0] - dq[0]
-        s1 = dxs[s, 1] - dq[1]
-        s2 = dxs[s, 2] - dq[2]
-        sn = s0 * n0 + s1 * n1 + s2 * n2
-        s0 -= sn * n0
-        s1 -= sn * n1
-        s2 -= sn * n2
-        # previous tangential force, rotated into the current tangent plane
-        f0 = ft_old[s, 0]
-        f1 = ft_old[s, 1]
-        f2 = ft_old[s, 2]
-        fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-        fnp = f0 * n0 + f1 * n1 + f2 * n2
-        f0 -= fnp * n0
-        f1 -= fnp * n1
-        f2 -= fnp * n2
-        fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-        if fm2 > 0.0:
-            f0 *= fmag / fm2
-            f1 *= fmag / fm2
-            f2 *= fmag / fm2
-        k = kt[s] * A
-        f0 -= k * s0
-        f1 -= k * s1
-        f2 -= k * s2
-        ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-        bound = mu * fn
-        if ftr > bound:
-            sc = bound / ftr
-            slip_rate_num[s] = (ftr - bound) / k
-            f0 *= sc
-            f1 *= sc
-            f2 *= sc
-            status[s] = 2
-        else:
-            status[s] = 1
-        ft_new[s, 0] = f0
-        ft_new[s, 1] = f1
-        ft_new[s, 2] = f2
-        fs[s, 0] = fn * n0 + f0
-        fs[s, 1] = fn * n1 + f1
-        fs[s, 2] = fn * n2 + f2
-        for m in range(4):
-            for d in range(3):
-                fm[ii[m], jj[m], d] -= wts[m] * fs[s, d]
+                fm[i, j, d] -= w0 * fs[s, d]
+                fm[i + 1, j, d] -= w1 * fs[s, d]
+                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
+                fm[i, j + 1, d] -= w3 * fs[s, d]

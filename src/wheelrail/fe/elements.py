@@ -47,9 +47,28 @@ class ElementData:
     length: np.ndarray
 
     @property
+    def n_points(self) -> int:
+        """Integration points per element."""
+        return int(self.dNdx.shape[1])
+
+    @property
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.dNdx, self.wdet, self.gamma, self.khg, self.volume,
                                       self.length))
+
+    def __getitem__(self, sl: slice) -> "ElementData":
+        """The data of a contiguous range of elements (views, no copy)."""
+        return ElementData(self.dNdx[sl], self.wdet[sl],
+                           self.gamma[sl] if self.gamma.shape[0] else self.gamma,
+                           self.khg[sl] if self.khg.shape[0] else self.khg,
+                           self.volume[sl], self.length[sl])
+
+    @staticmethod
+    def concatenate(parts) -> "ElementData":
+        """One ElementData of several (same element type), elements in the given order."""
+        cat = [np.concatenate([getattr(p, name) for p in parts])
+               for name in ("dNdx", "wdet", "gamma", "khg", "volume", "length")]
+        return ElementData(*cat)
 
 
 @lru_cache(maxsize=16)

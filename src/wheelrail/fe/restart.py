@@ -25,7 +25,7 @@ from ..errors import InputError
 
 __all__ = ["write_restart", "read_restart", "fingerprint"]
 
-_VERSION = 1
+_VERSION = 2
 
 
 def fingerprint(model, dt: float) -> dict:
@@ -36,7 +36,10 @@ def fingerprint(model, dt: float) -> dict:
             "load": case.load, "xi": case.creepage[0], "eta": case.creepage[1], "mu": case.mu,
             "speed": case.speed, "travel": float(model.geometry["travel"]),
             "element": case.element, "mass_scaling": case.mass_scaling,
-            "rayleigh_alpha": case.rayleigh[0], "rayleigh_beta": case.rayleigh[1]}
+            "rayleigh_alpha": case.rayleigh[0], "rayleigh_beta": case.rayleigh[1],
+            "contact_damping": case.contact_damping, "passes": case.passes,
+            "axle_damping": case.axle_damping,
+            "material": repr(model.material)}
 
 
 def write_restart(path, model, dt: float, state: dict) -> None:
