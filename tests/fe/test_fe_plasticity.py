@@ -41,7 +41,7 @@ class OneBody:
     def __init__(self, nodes, conn, mat, integration="reduced"):
         self.nodes, self.conn, self.mat = nodes, conn, mat
         self.ed = Hex8(integration).precompute(nodes, conn, mat)
-        self.ptr, self.slot = S.node_slots(conn, nodes.shape[0])
+        self.chunks = S.element_chunks(conn, nodes.shape[0])
         ng = self.ed.dNdx.shape[1]
         self.committed = np.zeros((conn.shape[0], ng, S.NSTATE))
         self.trial = self.committed.copy()
@@ -49,12 +49,11 @@ class OneBody:
 
     def force(self, u):
         f = np.zeros_like(u)
-        fe = np.zeros((self.conn.shape[0], 8, 3))
         en = np.zeros((self.conn.shape[0], 2))
         hp, tp, ts = self.hp
-        S.element_forces(u, self.conn, self.ptr, self.slot, self.ed.dNdx, self.ed.wdet,
+        S.element_forces(u, self.conn, self.chunks, self.ed.dNdx, self.ed.wdet,
                          self.ed.gamma, self.ed.khg, self.mat.lam, self.mat.G, True, hp, tp, ts,
-                         self.committed, self.trial, fe, f, en)
+                         self.committed, self.trial, f, en)
         return f
 
     def tangent(self, u):

@@ -83,20 +83,20 @@ def _pressure_forces(nodes, shape, pressure):
 def _solve(mat, integration, pressures, nr=24):
     nodes, conn, shape = _wedge(nr)
     ed = Hex8(integration).precompute(nodes, conn, mat)
-    ptr, slot = S.node_slots(conn, nodes.shape[0])
+    chunks = S.element_chunks(conn, nodes.shape[0])
     ne, ng = conn.shape[0], ed.dNdx.shape[1]
     st = np.zeros((ne, ng, S.NSTATE))
     trial = st.copy()
     hp, tp, ts = mat.kernel_parameters()
     Tm = _constraint_basis(nodes)
-    fe, en = np.zeros((ne, 8, 3)), np.zeros((ne, 2))
+    en = np.zeros((ne, 2))
     u = np.zeros_like(nodes)
     iterations = []
 
     def force(u):
         f = np.zeros_like(u)
-        S.element_forces(u, conn, ptr, slot, ed.dNdx, ed.wdet, ed.gamma, ed.khg, mat.lam, mat.G,
-                         True, hp, tp, ts, st, trial, fe, f, en)
+        S.element_forces(u, conn, chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, mat.lam, mat.G,
+                         True, hp, tp, ts, st, trial, f, en)
         return f
 
     for p in pressures:

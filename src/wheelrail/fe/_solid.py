@@ -5,14 +5,15 @@ Voigt order (xx, yy, zz, xy, yz, xz) with engineering shear strains.
 
 Parallel and deterministic
 --------------------------
-The internal force is computed in two parallel phases: element forces into a
-scratch array (ne, 8, 3) (``prange`` over element chunks), then a gather per node
-over the node's element slots in a fixed order (``prange`` over node chunks,
-:func:`node_slots`). No thread writes where another does, and every sum is taken in
-the same order whatever the number of threads: results are bitwise identical on
-1 and 2 threads. Energies are written per element and summed afterwards in
-element order. Two parallel regions per evaluation (few barriers: the step of an
-explicit run is short, and a shared machine punishes every barrier).
+The elements are split into contiguous chunks (:func:`element_chunks`) such that
+chunks of the same parity share no node; the even chunks are processed in parallel,
+then the odd ones, each chunk scattering its element forces into the nodal vector
+in element order. No two threads write to the same node at the same time, and every
+node receives its contributions in the same order whatever the number of threads:
+results are bitwise identical on 1 and 2 threads. Energies are written per element
+and summed afterwards in element order. Two parallel regions per evaluation (few
+barriers: the step of an explicit run is short, and a shared machine punishes every
+barrier).
 
 Plastic state
 -------------
@@ -53,14 +54,32 @@ P_INDEX = 6
 WP_INDEX = 13
 
 
-# ----------------------------------------------------------------------------- node slots
-def node_slots(conn, n_nodes):
-    """For the gather: ``ptr`` (n_nodes + 1,) and ``slot`` (8 ne,) with the element slots
-    e·8 + a of node n in ``slot[ptr[n]:ptr[n + 1]]`` (ascending)."""
-    flat = np.asarray(conn, dtype=np.int64).ravel()
-    slot = np.argsort(flat, kind="stable").astype(np.int64)
-    ptr = np.searchsorted(flat[slot], np.arange(n_nodes + 1)).astype(np.int64)
-    return ptr, slot
+# ----------------------------------------------------------------------------- chunks
+def element_chunks(conn, n_nodes, target: int = 32):
+    """Contiguous element chunks for the two-phase parallel scatter.
+
+    Returns ``bounds`` (nc + 1,): chunk c is elements bounds[c]:bounds[c + 1]. Every node is
+    touched by at most two consecutive chunks, so the even chunks share no node (phase 1,
+    in parallel), nor do the odd ones (phase 2). On a structured mesh numbered slab by slab
+    this holds when a chunk is longer than a slab; the number of chunks is halved from
+    ``target`` until it holds (1 chunk: serial). The chunks do not depend on the number of
+    threads, so neither do the sums.
+    """
+    conn = np.asarray(conn)
+    ne = conn.shape[0]
+    nc = int(target)
+    while nc > 1:
+        bounds = np.linspace(0, ne, nc + 1).round().astype(np.int64)
+        cid = np.repeat(np.arange(nc), np.diff(bounds))
+        lo = np.full(n_nodes, nc, np.int64)
+        hi = np.full(n_nodes, -1, np.int64)
+        np.minimum.at(lo, conn.ravel(), np.repeat(cid, 8))
+        np.maximum.at(hi, conn.ravel(), np.repeat(cid, 8))
+        used = hi >= 0
+        if np.all(hi[used] - lo[used] <= 1):
+            return bounds
+        nc //= 2
+    return np.array([0, ne], np.int64)
 
 
 # ----------------------------------------------------------------------------- J2 point law
@@ -303,96 +322,140 @@ def _point_stress(eps, e, g, lam, G, plastic, bbar, theta_bar, hp, tp, ts, st_in
                   + sig[4] * eps[4] + sig[5] * eps[5])
 
 
+@njit(cache=True, inline="always")
+def _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy):
+    """The one-point elastic element (the explicit fast path): forces added to f, energy."""
+    exx = eyy = ezz = gxy = gyz = gxz = 0.0
+    for a in range(8):
+        bx = dNdx[e, 0, a, 0]
+        by = dNdx[e, 0, a, 1]
+        bz = dNdx[e, 0, a, 2]
+        exx += bx * ue[a, 0]
+        eyy += by * ue[a, 1]
+        ezz += bz * ue[a, 2]
+        gxy += by * ue[a, 0] + bx * ue[a, 1]
+        gyz += bz * ue[a, 1] + by * ue[a, 2]
+        gxz += bz * ue[a, 0] + bx * ue[a, 2]
+    w = wdet[e, 0]
+    tr = lam * (exx + eyy + ezz)
+    sxx = w * (tr + 2.0 * G * exx)
+    syy = w * (tr + 2.0 * G * eyy)
+    szz = w * (tr + 2.0 * G * ezz)
+    sxy = w * G * gxy
+    syz = w * G * gyz
+    sxz = w * G * gxz
+    en = 0.5 * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz + sxz * gxz)
+    for a in range(8):
+        bx = dNdx[e, 0, a, 0]
+        by = dNdx[e, 0, a, 1]
+        bz = dNdx[e, 0, a, 2]
+        n = conn[e, a]
+        f[n, 0] += bx * sxx + by * sxy + bz * sxz
+        f[n, 1] += bx * sxy + by * syy + bz * syz
+        f[n, 2] += bx * sxz + by * syz + bz * szz
+    if has_hg:
+        en += _hourglass(e, ue, conn, gamma, khg, f)
+    energy[e, 0] = en
+    energy[e, 1] = 0.0
+
+
 @njit(cache=True, parallel=True)
-def element_forces(u, conn, ptr, slot, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
-                   st_in, st_out, fe, f, energy):
+def element_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+                   st_in, st_out, f, energy):
     """f = ∫ B̄ᵀσ dV (+ elastic hourglass forces), elastic or J2 elasto-plastic.
 
-    u, f : (nn, 3) (f is overwritten); conn : (ne, 8) node numbers into u; ptr, slot :
-    :func:`node_slots`; dNdx : (ne, ng, 8, 3); wdet : (ne, ng); gamma : (ne, 4, 8) or
-    (0, 4, 8); khg : (ne,); st_in, st_out : (ne, ng, NSTATE) (ignored if not ``plastic``);
-    fe : (ne, 8, 3) scratch; energy : (ne, 2) output, elastic strain energy (hourglass
-    included) and plastic work of each element [J]. B-bar (mean dilatation) for plastic,
-    fully integrated elements.
+    u, f : (nn, 3) (f is overwritten); conn : (ne, 8) node numbers into u; bounds :
+    (nc + 1,) contiguous element chunks of :func:`element_chunks` (no node shared by two
+    chunks of the same parity); dNdx : (ne, ng, 8, 3); wdet : (ne, ng); gamma : (ne, 4, 8)
+    or (0, 4, 8); khg : (ne,); st_in, st_out : (ne, ng, NSTATE) (ignored if not
+    ``plastic``); energy : (ne, 2) output, elastic strain energy (hourglass included) and
+    plastic work of each element [J]. B-bar (mean dilatation) for plastic, fully
+    integrated elements.
     """
     ne = conn.shape[0]
     ng = dNdx.shape[1]
     has_hg = gamma.shape[0] == ne
     bbar = plastic and ng > 1
-    nch = min(256, max(1, ne // 64))
-    for ch in prange(nch):
-        ue = np.empty((8, 3))
-        eps = np.empty(6)
-        sig = np.empty(6)
-        D = np.empty((6, 6))
-        bb = np.empty((8, 3))
-        for e in range(ne * ch // nch, ne * (ch + 1) // nch):
-            _gather(u, conn, e, ue)
-            for a in range(8):
-                fe[e, a, 0] = 0.0
-                fe[e, a, 1] = 0.0
-                fe[e, a, 2] = 0.0
-            theta_bar = 0.0
+    nc = bounds.shape[0] - 1
+    f[:, :] = 0.0
+    for parity in range(2):
+        for cc in prange((nc - parity + 1) // 2):
+            ch = 2 * cc + parity
+            ue = np.empty((8, 3))
+            eps = np.empty(6)
+            sig = np.empty(6)
+            D = np.empty((6, 6))
+            bb = np.empty((8, 3))
+            for e in range(bounds[ch], bounds[ch + 1]):
+                _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp,
+                         tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
+
+
+@njit(cache=True, inline="always")
+def _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp, tp, ts,
+             st_in, st_out, f, energy, ue, eps, sig, D, bb):
+    """Forces of element e added to f (its nodes), energies into energy[e]."""
+    ng = dNdx.shape[1]
+    _gather(u, conn, e, ue)
+    if ng == 1 and not plastic:
+        _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy)
+        return
+    theta_bar = 0.0
+    if bbar:
+        _mean_gradient(dNdx, wdet, e, bb)
+        for a in range(8):
+            theta_bar += bb[a, 0] * ue[a, 0] + bb[a, 1] * ue[a, 1] + bb[a, 2] * ue[a, 2]
+    e_el = 0.0
+    e_pl = 0.0
+    for g in range(ng):
+        _strain(dNdx, e, g, ue, eps)
+        w = wdet[e, g]
+        e_el += w * _point_stress(eps, e, g, lam, G, plastic, bbar, theta_bar, hp,
+                                  tp, ts, st_in, st_out, sig, D, False)
+        if plastic:
+            e_pl += w * st_out[e, g, 13]
+        sxx, syy, szz, sxy, syz, sxz = sig[0], sig[1], sig[2], sig[3], sig[4], sig[5]
+        pm3 = (sxx + syy + szz) / 3.0
+        for a in range(8):
+            bx = dNdx[e, g, a, 0]
+            by = dNdx[e, g, a, 1]
+            bz = dNdx[e, g, a, 2]
+            fx = bx * sxx + by * sxy + bz * sxz
+            fy = bx * sxy + by * syy + bz * syz
+            fz = bx * sxz + by * syz + bz * szz
             if bbar:
-                _mean_gradient(dNdx, wdet, e, bb)
-                for a in range(8):
-                    theta_bar += bb[a, 0] * ue[a, 0] + bb[a, 1] * ue[a, 1] + bb[a, 2] * ue[a, 2]
-            e_el = 0.0
-            e_pl = 0.0
-            for g in range(ng):
-                _strain(dNdx, e, g, ue, eps)
-                w = wdet[e, g]
-                e_el += w * _point_stress(eps, e, g, lam, G, plastic, bbar, theta_bar, hp,
-                                          tp, ts, st_in, st_out, sig, D, False)
-                if plastic:
-                    e_pl += w * st_out[e, g, 13]
-                sxx, syy, szz, sxy, syz, sxz = sig[0], sig[1], sig[2], sig[3], sig[4], sig[5]
-                pm3 = (sxx + syy + szz) / 3.0
-                for a in range(8):
-                    bx = dNdx[e, g, a, 0]
-                    by = dNdx[e, g, a, 1]
-                    bz = dNdx[e, g, a, 2]
-                    fx = bx * sxx + by * sxy + bz * sxz
-                    fy = bx * sxy + by * syy + bz * syz
-                    fz = bx * sxz + by * syz + bz * szz
-                    if bbar:
-                        fx += (bb[a, 0] - bx) * pm3
-                        fy += (bb[a, 1] - by) * pm3
-                        fz += (bb[a, 2] - bz) * pm3
-                    fe[e, a, 0] += w * fx
-                    fe[e, a, 1] += w * fy
-                    fe[e, a, 2] += w * fz
-            if has_hg:
-                k = khg[e]
-                for m in range(4):
-                    q0 = q1 = q2 = 0.0
-                    for a in range(8):
-                        gm = gamma[e, m, a]
-                        q0 += gm * ue[a, 0]
-                        q1 += gm * ue[a, 1]
-                        q2 += gm * ue[a, 2]
-                    e_el += 0.5 * k * (q0 * q0 + q1 * q1 + q2 * q2)
-                    for a in range(8):
-                        gm = k * gamma[e, m, a]
-                        fe[e, a, 0] += gm * q0
-                        fe[e, a, 1] += gm * q1
-                        fe[e, a, 2] += gm * q2
-            energy[e, 0] = e_el
-            energy[e, 1] = e_pl
-    nn = f.shape[0]
-    ff = fe.reshape((ne * 8, 3))
-    nchn = min(256, max(1, nn // 256))
-    for ch in prange(nchn):
-        for n in range(nn * ch // nchn, nn * (ch + 1) // nchn):
-            f0 = f1 = f2 = 0.0
-            for k in range(ptr[n], ptr[n + 1]):
-                j = slot[k]
-                f0 += ff[j, 0]
-                f1 += ff[j, 1]
-                f2 += ff[j, 2]
-            f[n, 0] = f0
-            f[n, 1] = f1
-            f[n, 2] = f2
+                fx += (bb[a, 0] - bx) * pm3
+                fy += (bb[a, 1] - by) * pm3
+                fz += (bb[a, 2] - bz) * pm3
+            n = conn[e, a]
+            f[n, 0] += w * fx
+            f[n, 1] += w * fy
+            f[n, 2] += w * fz
+    if has_hg:
+        e_el += _hourglass(e, ue, conn, gamma, khg, f)
+    energy[e, 0] = e_el
+    energy[e, 1] = e_pl
+
+
+@njit(cache=True, inline="always")
+def _hourglass(e, ue, conn, gamma, khg, f):
+    k = khg[e]
+    en = 0.0
+    for m in range(4):
+        q0 = q1 = q2 = 0.0
+        for a in range(8):
+            gm = gamma[e, m, a]
+            q0 += gm * ue[a, 0]
+            q1 += gm * ue[a, 1]
+            q2 += gm * ue[a, 2]
+        en += 0.5 * k * (q0 * q0 + q1 * q1 + q2 * q2)
+        for a in range(8):
+            gm = k * gamma[e, m, a]
+            n = conn[e, a]
+            f[n, 0] += gm * q0
+            f[n, 1] += gm * q1
+            f[n, 2] += gm * q2
+    return en
 
 
 @njit(cache=True, parallel=True)

@@ -147,8 +147,7 @@ class Model:
     element: object
     edata: object               # ElementData of all elements (wheel first, then rail)
     conn: np.ndarray
-    node_ptr: np.ndarray        # gather slots of the parallel force kernel (_solid.node_slots)
-    node_slot: np.ndarray
+    chunks: np.ndarray          # element chunks of the parallel force kernel (_solid.element_chunks)
     mass: np.ndarray            # (n_nodes,) lumped, unscaled [kg]
     fixed: np.ndarray           # (n_fixed,) node numbers
     slave: np.ndarray           # wheel surface nodes (flattened)
@@ -234,11 +233,10 @@ class Model:
         hp, tp, ts = self._hardening
         ed = self.edata
         buf = self._scratch("energy", (self.n_elements, 2))
-        fe = self._scratch("fe", (self.n_elements, 8, 3))
         st_in = state.committed if plastic else _NO_STATE
         st_out = state.trial if plastic else _NO_STATE
-        S.element_forces(u, self.conn, self.node_ptr, self.node_slot, ed.dNdx, ed.wdet, ed.gamma,
-                         ed.khg, lam, G, plastic, hp, tp, ts, st_in, st_out, fe, f, buf)
+        S.element_forces(u, self.conn, self.chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam, G,
+                         plastic, hp, tp, ts, st_in, st_out, f, buf)
         e_el = float(buf[:, 0].sum())
         e_pl = float(buf[:, 1].sum())
         if plastic:
@@ -430,14 +428,14 @@ def build_model(case, *, rolling: bool = True) -> Model:
         raise InputError(f"travel {travel!r} m needs more than half the wheel circumference")
     wheel = wheel_body(geo["radius_of_y"], th_axis, y_axis, d_axis)
 
-    from ._solid import node_slots
+    from ._solid import element_chunks
     from .elements import ElementData
 
     edata = ElementData.concatenate([elem.precompute(wheel.nodes, wheel.elements, mat),
                                      elem.precompute(rail.nodes, rail.elements, mat)])
     nw = wheel.n_nodes
     conn = np.concatenate([wheel.elements, rail.elements + nw])
-    ptr, slot = node_slots(conn, nw + rail.n_nodes)
+    chunks = element_chunks(conn, nw + rail.n_nodes)
     mass = np.zeros(nw + rail.n_nodes)
     vol = edata.volume
     np.add.at(mass, conn.ravel(), np.repeat(mat.density * vol / 8.0, 8))
@@ -449,7 +447,7 @@ def build_model(case, *, rolling: bool = True) -> Model:
     geo = dict(geo, a=a, b=b, travel=travel)
     p_ref = float(geo["hertz"].p0) if geo["hertz"] is not None else 1e-3 * mat.E
     g0 = 0.05 * p_ref / float(np.median(kn))
-    return Model(case, wheel, rail, mat, elem, edata, conn, ptr, slot, mass, fixed, slave, area,
+    return Model(case, wheel, rail, mat, elem, edata, conn, chunks, mass, fixed, slave, area,
                  master, kn, geo, geo["z_axle"], g0, (x_lo, x_hi))
 
 
