@@ -45,6 +45,7 @@ _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 from .case import (INTEGRATORS, SEED000_TABLE3_HERTZ, RollingCase, cone_wheel, head_arc_rail,
                    seed000_case, seed000_load)
+from .curves import creep_curve
 from .elements import Hex8
 from .materials import (R900A_HARDENING, J2Plastic, LinearElastic, TabulatedHardening, Voce,
                         r900a)
@@ -56,7 +57,7 @@ from .rolling import (RollingResult, plastic_fields, saturation_creepage, solve,
                       stable_time_step, steady_window)
 from .static import IndentResult, indent
 
-__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
+__all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
            "solve", "indent", "RollingResult", "IndentResult",
            "Hex8", "LinearElastic", "J2Plastic", "Voce", "TabulatedHardening",
            "R900A_HARDENING", "r900a", "plastic_fields", "steady_window", "build_model", "write_vtu", "check_quality",

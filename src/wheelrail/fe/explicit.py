@@ -3,8 +3,9 @@
 Lumped mass × ``mass_scaling``; step = ``courant`` × the smaller of the element
 Courant limit and the contact-spring limit (with its dashpot); Rayleigh damping
 C = α M + β K; normal contact dashpots at ``contact_damping`` of critical on the
-penalty springs. Step 1 (load) by dynamic relaxation: mass-proportional damping
-tuned to the lowest thickness mode, friction off. Step 2 rolls.
+penalty springs. Step 1 (load) by dynamic relaxation: the wheel touches the rail, the load rises
+smoothly, mass-proportional damping tuned to the lowest thickness mode and a critical
+axle dashpot, friction off. Step 2 rolls.
 
 Why contact dashpots
 --------------------
@@ -36,6 +37,7 @@ from ..errors import InputError
 from ._explicit import NCHUNK, advance, chunk_sum
 from .model import build_model
 from .patch import patch_from_contact
+from .rolling import _smoothstep
 from .rolling import (COLUMNS, RollingResult, contact_dashpots, contact_plane_forces,
                       contact_state, depth_profiles, history_dataset, plastic_fields,
                       progress_bar, restart_writer, speed_profile, stable_time_step,
@@ -68,11 +70,31 @@ def axle_dashpot(model, zeta: float, M_w: float) -> float:
 
 
 def relaxation_steps(case, model, dt) -> tuple[int, float]:
-    """Steps of the dynamic relaxation (12 periods of the lowest thickness mode) and its
-    mass-proportional damping coefficient [1/s] (twice that mode's angular frequency)."""
+    """Steps of the dynamic relaxation and its mass-proportional damping coefficient [1/s].
+
+    Damping: twice the angular frequency ω1 of the lowest thickness mode of the kept
+    bodies. Length: 12 periods of that mode; the load rises smoothly over the first 40 %
+    (a quasi-static load path for plastic bodies). During the relaxation the axle's inertia
+    is reduced so that its bounce on the Hertz stiffness is not slower than ω1 (only the
+    path to the static state changes), with a critical dashpot (:func:`relaxation_axle`).
+    """
     depth = model.wheel.axes[2][-1]
     omega1 = np.pi * model.material.wave_speed / (2 * depth) / np.sqrt(case.mass_scaling)
     return int(np.ceil(12 * 2 * np.pi / omega1 / dt)), 2.0 * omega1
+
+
+def relaxation_axle(model, M_w, omega1):
+    """(mass [kg], dashpot [N s/m]) of the axle dof during the dynamic relaxation."""
+    hz = model.geometry["hertz"]
+    if hz is None:
+        return M_w, omega1 * M_w
+    k = 1.5 * model.geometry["normal_load"] / float(hz.penetration)
+    M = min(M_w, k / omega1 ** 2)
+    return M, 2.0 * np.sqrt(k * M)
+
+
+#: Fraction of the dynamic relaxation over which the load rises (smooth step).
+RELAXATION_RAMP = 0.4
 
 
 def solve_explicit(case, progress, output_every, io):
@@ -105,6 +127,7 @@ def solve_explicit(case, progress, output_every, io):
     fcon = np.zeros((cidx.size, 3))
     cdamp = contact_dashpots(model, case.contact_damping)
     c_axle = axle_dashpot(model, case.axle_damping, M_w)
+    M_dr, c_axle_dr = relaxation_axle(model, M_w, 0.5 * a_dr)
     m_alpha_dr = a_dr * m
     m_alpha_roll = alpha * m
     f_int = np.zeros((n, 3))
@@ -141,8 +164,7 @@ def solve_explicit(case, progress, output_every, io):
     else:
         u = np.zeros((n, 3))
         v = np.zeros((n, 3))
-        hz = model.geometry["hertz"]
-        w = -float(hz.penetration) if hz is not None else 0.0
+        w = 0.0                           # touching: the load rises during the relaxation
         vw = 0.0
         k0, p0 = 0, 0
         fresh = True
@@ -155,17 +177,20 @@ def solve_explicit(case, progress, output_every, io):
         if fresh:
             # ---- step 1: dynamic relaxation to the static contact (friction off)
             psi = s = t = 0.0
+            w = 0.0                       # back at the start, touching; the load rises again
             v[:] = 0.0
             vw = 0.0
             ft = np.zeros((ns, 3))
             xs_prev = model.slave_positions(u, w, psi)
             xm_prev = model.master_positions(u, s)
+            n_ramp = max(1, int(RELAXATION_RAMP * n1))
             for k in range(n1):
                 c, e_int, fcw = forces(u, v, w, psi, s, xs_prev, xm_prev, ft, 0.0, False)
                 xs_prev, xm_prev = c["xs"], c["xm"]
                 advance(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon, dt,
                         partial)
-                aw = (fcw - load - a_dr * M_w * vw) / M_w
+                load_k = load * float(_smoothstep((k + 1) / n_ramp))
+                aw = (fcw - load_k - c_axle_dr * vw) / M_dr
                 vw += dt * aw
                 w += dt * vw
                 if bar is not None and k % 200 == 0:
