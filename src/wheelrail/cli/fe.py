@@ -7,7 +7,7 @@ The case file holds one ``[fe]`` table; every key is a
   profile file path (relative to the case file), or for the wheel
   ``"cylinder"`` / ``"cone"`` (a straight tread 80 mm wide, taper ``wheel_taper``,
   default 1/10), for the rail ``"arc"`` (a head arc of ``rail_head_radius`` [m],
-  default 0.3; seed 000's Hertzian case is ``wheel = "cone"``, ``rail = "arc"``,
+  default 0.3; the Hertzian case of Toumi et al. (2016) is ``wheel = "cone"``, ``rail = "arc"``,
   ``inclination = 0.0996686525`` = arctan(1/10));
 * ``E``, ``nu`` — the material (default steel 210 GPa, 0.28);
 * elasto-plastic bodies (:class:`wheelrail.fe.J2Plastic`): ``material = "r900a"`` (the R900A

@@ -1,4 +1,6 @@
-"""Array-in/array-out numba kernels of the FE engine (private).
+"""Array-in/array-out numba kernels of the FE engine (private): element geometry, the elastic
+stiffness triplets and the node-to-surface contact (the internal forces and the J2 plasticity
+are in :mod:`wheelrail.fe._solid`).
 
 Element kernels work on precomputed shape-function gradients (small-strain
 kinematics in each body's own frame, so the gradients of the reference
@@ -61,79 +63,6 @@ def hourglass_vectors(x: np.ndarray, dNdx0: np.ndarray) -> np.ndarray:
     return 0.125 * (HG[None] - np.einsum("ekj,eaj->eka", hx, dNdx0))
 
 
-@njit(cache=True, inline="always")
-def _strain_stress(dNdx, e, g, ue, lam, G):
-    """Engineering strains (exx, eyy, ezz, gxy, gyz, gxz) and stresses (sxx, …, sxz) [Pa]
-    at integration point g of element e from its nodal displacements ue (8, 3), linear
-    elasticity σ = λ tr ε I + 2G ε (G the shear modulus; shared by the force and the stress kernels)."""
-    exx = eyy = ezz = gxy = gyz = gxz = 0.0
-    for a in range(8):
-        bx = dNdx[e, g, a, 0]
-        by = dNdx[e, g, a, 1]
-        bz = dNdx[e, g, a, 2]
-        exx += bx * ue[a, 0]
-        eyy += by * ue[a, 1]
-        ezz += bz * ue[a, 2]
-        gxy += by * ue[a, 0] + bx * ue[a, 1]
-        gyz += bz * ue[a, 1] + by * ue[a, 2]
-        gxz += bz * ue[a, 0] + bx * ue[a, 2]
-    tr = lam * (exx + eyy + ezz)
-    return (exx, eyy, ezz, gxy, gyz, gxz,
-            tr + 2 * G * exx, tr + 2 * G * eyy, tr + 2 * G * ezz,
-            G * gxy, G * gyz, G * gxz)
-
-
-@njit(cache=True)
-def internal_force(u, conn, dNdx, wdet, lam, G, gamma, khg, f):
-    """f += ∫ Bᵀσ dV (+ hourglass forces), σ = λ tr ε I + 2G ε (G the shear modulus); returns the strain energy.
-
-    u, f : (nn, 3); conn : (ne, 8); dNdx : (ne, ng, 8, 3); wdet : (ne, ng);
-    gamma : (ne, 4, 8) or (0, 4, 8); khg : (ne,) hourglass stiffness [N/m].
-    """
-    ne = conn.shape[0]
-    ng = dNdx.shape[1]
-    has_hg = gamma.shape[0] == ne
-    ue = np.empty((8, 3))
-    energy = 0.0
-    for e in range(ne):
-        for a in range(8):
-            n = conn[e, a]
-            ue[a, 0] = u[n, 0]
-            ue[a, 1] = u[n, 1]
-            ue[a, 2] = u[n, 2]
-        for g in range(ng):
-            (exx, eyy, ezz, gxy, gyz, gxz,
-             sxx, syy, szz, sxy, syz, sxz) = _strain_stress(dNdx, e, g, ue, lam, G)
-            w = wdet[e, g]
-            energy += 0.5 * w * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz
-                                 + sxz * gxz)
-            for a in range(8):
-                bx = dNdx[e, g, a, 0]
-                by = dNdx[e, g, a, 1]
-                bz = dNdx[e, g, a, 2]
-                n = conn[e, a]
-                f[n, 0] += w * (bx * sxx + by * sxy + bz * sxz)
-                f[n, 1] += w * (bx * sxy + by * syy + bz * syz)
-                f[n, 2] += w * (bx * sxz + by * syz + bz * szz)
-        if has_hg:
-            k = khg[e]
-            for m in range(4):
-                q0 = q1 = q2 = 0.0
-                for a in range(8):
-                    gm = gamma[e, m, a]
-                    q0 += gm * ue[a, 0]
-                    q1 += gm * ue[a, 1]
-                    q2 += gm * ue[a, 2]
-                energy += 0.5 * k * (q0 * q0 + q1 * q1 + q2 * q2)
-                for a in range(8):
-                    gm = k * gamma[e, m, a]
-                    n = conn[e, a]
-                    f[n, 0] += gm * q0
-                    f[n, 1] += gm * q1
-                    f[n, 2] += gm * q2
-    return energy
-
-
 @njit(cache=True)
 def stiffness_triplets(conn, dNdx, wdet, lam, G, gamma, khg, rows, cols, vals):
     """Element stiffness matrices as COO triplets (576 per element), dof = 3·node + i."""
@@ -181,26 +110,6 @@ def stiffness_triplets(conn, dNdx, wdet, lam, G, gamma, khg, rows, cols, vals):
                         cols[base + c] = 3 * conn[e, b] + j
                         vals[base + c] = ke[3 * a + i, 3 * b + j]
                         c += 1
-
-
-@njit(cache=True)
-def element_von_mises(u, conn, dNdx, lam, G, out):
-    """Von Mises stress [Pa] at the element centre (mean over integration points)."""
-    ne = conn.shape[0]
-    ng = dNdx.shape[1]
-    ue = np.empty((8, 3))
-    for e in range(ne):
-        for a in range(8):
-            n = conn[e, a]
-            ue[a, 0] = u[n, 0]
-            ue[a, 1] = u[n, 1]
-            ue[a, 2] = u[n, 2]
-        acc = 0.0
-        for g in range(ng):
-            sxx, syy, szz, sxy, syz, sxz = _strain_stress(dNdx, e, g, ue, lam, G)[6:]
-            acc += np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
-                           + 3.0 * (sxy ** 2 + syz ** 2 + sxz ** 2))
-        out[e] = acc / ng
 
 
 @njit(cache=True)

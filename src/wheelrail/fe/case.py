@@ -34,7 +34,7 @@ class RollingCase:
     creepage : (float, float, float)
         (ξ [-], η [-], φ [1/m]). ξ is prescribed through the wheel's angular
         velocity (Toumi et al. eq. 1), η through a lateral drift −η V(t) of the
-        rail (the small-angle equivalent of the seed's yaw angle, its eqs. 2-3);
+        rail (the small-angle equivalent of the yaw angle of Toumi et al. 2016, eqs. 2-3);
         φ must be 0: spin arises from the geometry (conicity, rail inclination).
         |ξ| or |η| >= 0.05 is rejected; a creepage past the saturation estimate
         of the linear theory gives a warning in :func:`wheelrail.fe.solve`.
@@ -52,11 +52,11 @@ class RollingCase:
         Rail inclination [rad] (e.g. ``np.arctan(1/40)``), positive tilting the head towards
         the gauge side (see :meth:`Profile.rotated`).
     speed : float
-        Rolling speed V [m/s] (50 km/h in the seed paper).
+        Rolling speed V [m/s] (50 km/h in Toumi et al. 2016).
     travel : float, optional
         Rolled distance [m]; default 6 a + the ramp (enough for steady state).
     ramp : float
-        Fraction of ``travel`` over which the speed rises with a smooth step (0.135 in the seed).
+        Fraction of ``travel`` over which the speed rises with a smooth step (0.135 in Toumi et al. 2016).
     element : {"full", "reduced"}
         Hex8 integration (see :class:`wheelrail.fe.Hex8`).
     penalty : float
@@ -101,7 +101,7 @@ class RollingCase:
 
     References
     ----------
-    .. [1] M. Toumi, H. Chollet, H. Yin, Wear 366-367 (2016) 157-166 (seed paper 000),
+    .. [1] M. Toumi, H. Chollet, H. Yin, Wear 366-367 (2016) 157-166,
        §2, Table 1 and eq. (1).
     """
 

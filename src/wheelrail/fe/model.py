@@ -17,7 +17,7 @@ small strains under arbitrary rigid rotation (a co-rotational frame per body);
 the fictitious (centrifugal, Coriolis) body forces of the turning frame are
 neglected (ρ Ω² R ≈ 3 MN/m³ at 50 km/h, i.e. < 0.1 MPa over the kept rim).
 
-The rail's foot plane and the wheel's inner rim (the cut faces of seed 000's
+The rail's foot plane and the wheel's inner rim (the cut faces of Toumi et al.'s (2016)
 Fig. 1) are clamped in their body frames.
 """
 

@@ -82,7 +82,7 @@ def plot_patch(patch, mu: float, reference=None, path=None):
 
 
 def plot_history(dataset, path=None):
-    """Forces and energies over the travel (seed 000 Fig. 7)."""
+    """Forces and energies over the travel (Toumi, Chollet & Yin 2016, Fig. 7)."""
     import matplotlib
 
     if path is not None:

@@ -1,7 +1,7 @@
 """Restart files of a rolling run (NumPy ``.npz``; a leaf module).
 
 A restart file holds the complete state of an integrator at the end of a time
-step of the rolling step (seed 000's step 2): displacements and velocities in
+step of the rolling step (the second loading step of Toumi et al. 2016): displacements and velocities in
 the body frames, the axle dof and its velocity, the rigid motions (rolling angle
 ψ [rad], rail travel s [m], time t [s]), the contact history (tangential forces
 and the previous contact positions that define the next slip increment), the

@@ -140,7 +140,7 @@ def indent(case, *, increments: int | None = None) -> IndentResult:
 
     References
     ----------
-    .. [1] Toumi et al., Wear 366-367 (2016), step 1 of §2 and Table 3 (seed 000).
+    .. [1] Toumi et al., Wear 366-367 (2016), step 1 of §2 and Table 3.
     .. [2] K.L. Johnson, *Contact Mechanics*, CUP 1985, eqs. (3.64)-(3.66) (Hertz reference).
     """
     model = build_model(case, rolling=False)
