@@ -127,3 +127,30 @@ def test_seed000_rolling_geometric_spin_against_exact():
     assert r.Fy == pytest.approx(r.Fy_contact * np.cos(g["delta"])
                                  - float(r.dataset.Fn_contact[-len(r.dataset.Fx) // 4:].mean())
                                  * np.sin(g["delta"]), rel=0.02, abs=5.0)
+
+
+def test_creep_curve_slope_and_offset_against_exact():
+    """wr.fe.creep_curve in the linear range: the initial slope of the FE curve against the
+    exact theory's (Kalker 1990) at the same creepages, and a small offset (the elastic
+    rolling radius; Toumi et al. 2016, §4.1.3). Measured: slope −6.4 % (2 mm mesh, a/h = 1.5,
+    ξ = ±2e-4), offset −8e-6."""
+    from wheelrail.fe import creep_curve
+
+    xs = np.array([-2e-4, 2e-4])
+    ds = creep_curve(RollingCase(creepage=(0.0, 0.0, 0.0), **dict(KW, travel=0.016)), xs,
+                     progress=False)
+    hz = wr.hertz(7500.0, *_curvatures(), wr.Material(2.1e11, 0.28))
+    ex = [wr.creep_forces(hz, (x, 0, 0), 0.2, method="exact", elements=20).Fx for x in xs]
+    ex_slope = np.polyfit(xs, ex, 1)[0]
+    assert ds.attrs["fit_points"] == 2 and ds.attrs["force"] == "Fx"
+    assert ds.attrs["slope"] == pytest.approx(ex_slope, rel=0.10)
+    assert abs(ds.attrs["offset"]) < 1e-4
+    assert np.all(ds.Fx_std.values < 0.05 * 0.2 * 7500.0)
+    np.testing.assert_allclose(ds.shifted_creepage.values, xs - ds.attrs["offset"])
+
+
+def _curvatures():
+    from wheelrail.fe.model import contact_geometry
+
+    g = contact_geometry(RollingCase(**KW))
+    return g["A"], g["B"]
