@@ -287,7 +287,7 @@ def demo_step(ctx):
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
               creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3, element="reduced", mass_scaling=400,
-              depth=4, half_width=3, half_length=3, travel=0.010)
+              depth=4, half_width=3, half_length=3, travel=0.008)
     el = solve(RollingCase(**kw), progress=False)
     mat = J2Plastic(2.1e11, 0.28, 517.6e6 / 3.0, hardening=R900A_HARDENING)
     pl = solve(RollingCase(material=mat, **kw), progress=False)
