@@ -131,7 +131,10 @@ def return_map(eps, st_in, st_out, lam, G, hp, tp, ts, sig, D, tangent):
     x0, x1, x2, x3, x4, x5 = s0 - a0, s1 - a1, s2 - a2, s3 - a3, s4 - a4, s5 - a5
     q_tr = np.sqrt(1.5 * (x0 * x0 + x1 * x1 + x2 * x2 + 2.0 * (x3 * x3 + x4 * x4 + x5 * x5)))
     p_n = st_in[6]
-    sy, h = yield_stress(p_n, hp, tp, ts)
+    if p_n == 0.0 and tp.shape[0] == 0:
+        sy = hp[0]                       # virgin point: no exp (most points of a run)
+    else:
+        sy, h = yield_stress(p_n, hp, tp, ts)
     for k in range(NSTATE):
         st_out[k] = st_in[k]
     if q_tr <= sy * (1.0 + 1e-12):
