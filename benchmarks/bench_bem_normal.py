@@ -50,13 +50,13 @@ def run(n: int, repeat: int = 3, plain: bool = False) -> dict:
     t0 = time.perf_counter()
     op = InfluenceOperator(grid, wr.STEEL)
     t1 = time.perf_counter()
-    sol = solve_normal(grid, gap, wr.STEEL, load=10e3, operator=op, **kw)
+    sol = solve_normal(grid, gap, wr.STEEL, Fn=10e3, operator=op, **kw)
     _, peak = tracemalloc.get_traced_memory()
     tracemalloc.stop()
     ts, cs = [], []
     for _ in range(repeat):
         t0s, c0 = time.perf_counter(), time.process_time()
-        sol = solve_normal(grid, gap, wr.STEEL, load=10e3, operator=op, **kw)
+        sol = solve_normal(grid, gap, wr.STEEL, Fn=10e3, operator=op, **kw)
         ts.append(time.perf_counter() - t0s)
         cs.append(time.process_time() - c0)
     return {"n": n, "setup": t1 - t0, "solve": min(ts), "cpu": min(cs), "it": sol.iterations,

@@ -1,8 +1,8 @@
 """Benchmark: two-level (coarse-grid) preconditioners for the exact rolling solver.
 
 An experiment, kept so that the numbers recorded in the docstring of
-:mod:`wheelrail.halfspace.tangential` can be reproduced. The Newton systems of
-steady rolling (:func:`wheelrail.halfspace.tangential.newton_step`) are solved
+:mod:`wheelrail.tangential.exact` can be reproduced. The Newton systems of
+steady rolling (:func:`wheelrail.tangential.exact.newton_step`) are solved
 by GMRES right-preconditioned by a line solve along the rolling direction,
 which is local across it: the Krylov iterations grow with the grid. Here the
 line solve is combined with a coarse-grid correction on the adhesion area:
@@ -152,7 +152,8 @@ def main() -> None:
     import numpy as np
 
     import wheelrail as wr
-    from wheelrail.halfspace import tangential as T
+    from wheelrail.halfspace import rolling as R_ops
+    from wheelrail.tangential.exact import _kernels as K, newton as N
     from wheelrail.materials import as_material_pair
     from wheelrail.normal.bem import hertz_grid, solve_normal
 
@@ -163,14 +164,14 @@ def main() -> None:
     pair = as_material_pair(wr.STEEL)
     for n in args.sizes:
         grid, gap = hertz_grid(hc, elements=n, margin=1.1)
-        pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
-        R, _ = T._rolling_and_influence_kernels(grid, pair)
+        pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
+        R, _ = R_ops._rolling_and_influence_kernels(grid, pair)
         g = MU * pn
-        box, kernel, conv = T._contact_box(grid, pair, R, g > 0.0)
+        box, kernel, conv = R_ops._contact_box(grid, pair, R, g > 0.0)
         gb = g[box]
         shape = f"{gb.shape[0]}x{gb.shape[1]}"
         for name, (xi, eta, phi) in CASES.items():
-            b = np.stack((xi - phi * grid.Y, eta + phi * (grid.X + T._SPIN_SHIFT * grid.dx)))
+            b = np.stack((xi - phi * grid.Y, eta + phi * (grid.X + K._SPIN_SHIFT * grid.dx)))
             b = b[(slice(None),) + box]
             ref = None
             for cfg in ["line"] + list(args.config):
@@ -184,7 +185,7 @@ def main() -> None:
                 for _ in range(args.repeat + 1):               # first run: warm-up
                     sizes.clear()
                     c0 = time.process_time()
-                    p, _, it, _, kry = T._newton(kernel, conv, b, gb, None, 1e-6, 100,
+                    p, _, it, _, kry = N._newton(kernel, conv, b, gb, None, 1e-6, 100,
                                                  krylov_conv=conv.single, precondition=pre)
                     times.append(time.process_time() - c0)
                 F = p.sum(axis=(1, 2))

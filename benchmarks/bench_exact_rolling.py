@@ -61,19 +61,19 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
     import tracemalloc
 
     import wheelrail as wr
-    from wheelrail.halfspace import solve_rolling
+    from wheelrail.tangential.exact import solve_rolling
     from wheelrail.normal.bem import hertz_grid, solve_normal
 
     hc = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
     g8, h8 = hertz_grid(hc, elements=8, margin=1.5)
-    solve_rolling(g8, solve_normal(g8, h8, wr.STEEL, load=1e4).pressure, wr.STEEL,
+    solve_rolling(g8, solve_normal(g8, h8, wr.STEEL, Fn=1e4).pressure, wr.STEEL,
                   (1e-3, 0, 0), MU)                                   # numba warm-up
     grid, gap = hertz_grid(hc, elements=n, margin=1.1)
-    normal = solve_normal(grid, gap, wr.STEEL, load=1e4)              # builds the kernels
+    normal = solve_normal(grid, gap, wr.STEEL, Fn=1e4)              # builds the kernels
     tn, cn = [], []
     for _ in range(repeat):
         t0, c0 = time.perf_counter(), time.process_time()
-        normal = solve_normal(grid, gap, wr.STEEL, load=1e4)
+        normal = solve_normal(grid, gap, wr.STEEL, Fn=1e4)
         tn.append(time.perf_counter() - t0)
         cn.append(time.process_time() - c0)
     out = {"n": n, "grid": f"{grid.nx}x{grid.ny}", "normal_s": min(tn), "normal_cpu": min(cn),
@@ -85,11 +85,11 @@ def measure(n: int, repeat: int, memory: bool = False) -> dict:
     gh, hh = hertz_grid(hc, elements=n, margin=max(1.1, 1.0 + 3.0 / n))
     hz = float(hc.p0) * np.sqrt(np.clip(1.0 - (gh.X / float(hc.a)) ** 2
                                         - (gh.Y / float(hc.b)) ** 2, 0.0, None))
-    solve_normal(gh, hh, wr.STEEL, load=1e4, initial=hz)
+    solve_normal(gh, hh, wr.STEEL, Fn=1e4, initial=hz)
     ch = []
     for _ in range(repeat):
         c0 = time.process_time()
-        nh = solve_normal(gh, hh, wr.STEEL, load=1e4, initial=hz)
+        nh = solve_normal(gh, hh, wr.STEEL, Fn=1e4, initial=hz)
         ch.append(time.process_time() - c0)
     out["normal_hertz_cpu"] = min(ch)
     out["normal_hertz_iterations"] = nh.iterations

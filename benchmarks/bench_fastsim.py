@@ -22,7 +22,7 @@ import wheelrail as wr  # noqa: E402
 def main(n=20000, repeats=3):
     numba.set_num_threads(1)
     rng = np.random.default_rng(1)
-    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=wr.Material.from_shear(82e9, 0.28))
+    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3, material=wr.Material.from_shear(82e9, 0.28))
     cr = np.column_stack([rng.uniform(-3e-3, 3e-3, n), rng.uniform(-3e-3, 3e-3, n),
                           rng.uniform(-1.0, 1.0, n)])
     print(f"FASTSIM batch, {n} cases, a/b = 1.5, one thread (numba {numba.__version__})")

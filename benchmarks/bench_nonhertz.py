@@ -56,8 +56,7 @@ def hertzian_gap():
     say("| method | a/b | area | p_max | Fn at Hertz δ | L/W (Hertz a/b) |")
     say("|---|---|---|---|---|---|")
     for name, opts in cols:
-        m = wr.api.get_normal_method(name)
-        o = m.check_options(opts)
+        m = wr.normal.get(name, opts)
         for ab in (0.2, 0.5, 1.0, 2.0, 5.0):
             b = 5e-3 / np.sqrt(ab)
             c0 = wr.hertz_from_semiaxes(ab * b, b, 1e5, wr.STEEL)
@@ -66,8 +65,8 @@ def hertzian_gap():
             L = 4 * max(float(c.a), float(c.b))
             gp = GapProblem(lambda x, y: A * x**2 + B * y**2, wr.STEEL,
                             penetration=float(c.penetration), search=(-L, L, -L, L))
-            (p,) = m.from_contact(c, **o)
-            q = m.from_gap(gp, **o)
+            (p,) = m.from_contact(c)
+            q = m.from_gap(gp)
             lw = p.a / p.b if p.is_hertzian else p.info["L_W"][0] / p.info["L_W"][1]
             say(f"| {name} {opts or ''} | {ab:g} | {p.area / float(c.area):.3f} | "
                 f"{p.p_max / float(c.p0):.3f} | {sum(x.Fn for x in q) / 1e5:.3f} | "
@@ -146,11 +145,11 @@ def s1002_sweep(ys):
                 e = _err(t, r, 0.3)
                 for k in e:
                     errs[label][k].append(e[k])
-                nm = wr.api.get_normal_method(normal)
+                nm = wr.normal.get_class(normal)
                 try:
-                    prob = dataclasses.replace(prob0, vertical_load=None, approach=dz, cache={})
-                    ps, _ = nm.from_wheel(prob, **nm.check_options(
-                        {k: w for k, w in opts.items() if k in nm.options}))
+                    prob = dataclasses.replace(prob0, vertical_load=None, vertical_approach=dz, cache={})
+                    decl = nm.option_declarations()
+                    ps, _ = nm(**{k: w for k, w in opts.items() if k in decl}).from_wheel(prob)
                     Fz = sum(p.Fn * np.cos(p.frame.contact_angle) for p in ps)
                     errs[label]["Fn@δ"].append(Fz / Qref - 1)
                 except Exception:
@@ -216,23 +215,21 @@ def timings(clock=time.perf_counter, record=None):
     for normal, tangential in (("kik-piotrowski", "fastsim"), ("stripes", "fastsim"),
                                ("linder", "fastsim"), ("kik-piotrowski", "fastrip"),
                                ("hertz", "fastsim")):
-        nm = wr.api.get_normal_method(normal)
-        tm = wr.api.get_method(tangential)
-        no, to = nm.check_options({}), tm.check_options({"fields": False}
-                                                       if tangential == "fastsim" else {})
+        nm = wr.normal.get(normal)
+        tm = wr.tangential.get(tangential, {"fields": False} if tangential == "fastsim" else {})
         warm, cold, full = [], [], []
         for y in ys:
             wp = wr.WheelRailPosition(ws, tr, float(y), yaw=0.002, vertical_load=70e3)
             roll, zs = touching_poses(wp)
             prob = wheel_problem(wp, "right", roll, zs["right"])
             t0 = clock()
-            ps, _ = nm.from_wheel(prob, **no)
-            tm.solve_patches(ps, [(1e-3, 1e-3, 0.1)] * len(ps), 0.3, **to)
+            ps, _ = nm.from_wheel(prob)
+            tm.solve_patches(ps, [(1e-3, 1e-3, 0.1)] * len(ps), 0.3)
             cold.append((clock() - t0) / len(ps))
             for _ in range(5):
                 t0 = clock()
-                ps, _ = nm.from_wheel(prob, **no)
-                tm.solve_patches(ps, [(1e-3, 1e-3, 0.1)] * len(ps), 0.3, **to)
+                ps, _ = nm.from_wheel(prob)
+                tm.solve_patches(ps, [(1e-3, 1e-3, 0.1)] * len(ps), 0.3)
                 warm.append((clock() - t0) / len(ps))
             t0 = clock()
             wr.solve(wp, motion=motion, mu=0.3, normal=normal, tangential=tangential,

@@ -64,12 +64,12 @@ def timed_sweep(spec, **kw):
 
 def bench_sweeps(quick, repeats=2, which=("fastsim", "exact")):
     n = 41 if quick else 101
-    fast = SweepSpec.grid(method="fastsim", mu=0.3, load=1e4, A=1.087, B=1.667,
+    fast = SweepSpec.grid(method="fastsim", mu=0.3, Fn=1e4, A=1.087, B=1.667,
                           xi={"start": -0.004, "stop": 0.004, "num": n},
                           eta={"start": -0.004, "stop": 0.004, "num": n}, phi=[0.0, 0.5],
                           options={"nx": 20, "ny": 20}, chunk=1000)
     ne = (7, 9) if quick else (21, 25)
-    exact = SweepSpec.grid(method="exact", mu=0.3, load=1e4, A=1.087, B=1.667,
+    exact = SweepSpec.grid(method="exact", mu=0.3, Fn=1e4, A=1.087, B=1.667,
                            xi={"start": -0.003, "stop": 0.003, "num": ne[0]},
                            eta={"start": -0.003, "stop": 0.003, "num": ne[1]}, phi=[0.3],
                            options={"elements": 40}, chunk=15)

@@ -22,7 +22,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import newton_step, solve_rolling
+from wheelrail.tangential.exact import newton_step, solve_rolling
 from wheelrail.transient.measures import leading_edge_slip
 from wheelrail.transient.rolling import step_kernels
 from wheelrail.normal.bem import hertz_grid, solve_normal
@@ -34,14 +34,14 @@ SEED = wr.Material(2.1e11, 0.3)
 
 def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
-    wr.transient_rolling(hc, travel=4e-4, step=2e-4, mu=0.4, tangential_force=2000.0,
+    wr.transient_rolling(hc, travel=4e-4, step=2e-4, mu=0.4, Fx=2000.0,
                          elements=6)  # warm-up (numba cache)
     print(f"load (uptime): {os.getloadavg()}")
     print(f"scheme = {scheme!r}; a = {hc.a * 1e3:.3f} mm, b = {hc.b * 1e3:.3f} mm; elements over 2a = {elements}, "
           f"V*dt = {h * 1e3:.3f} mm, steps = {steps}")
     t0 = time.perf_counter()
     res = wr.transient_rolling(hc, travel=(steps - 1) * h, step=h, mu=0.4,
-                               tangential_force=2000.0, elements=elements, frames=20,
+                               Fx=2000.0, elements=elements, frames=20,
                                scheme=scheme)
     wall = time.perf_counter() - t0
     info = res.info
@@ -49,7 +49,7 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
           f"{wall / (steps - 1) * 1e3:.2f} ms/step; tangential solves {info['solves']}, "
           f"Newton {info['newton']}, GMRES {info['krylov']}")
     grid, gap = hertz_grid(hc, elements=elements)
-    pn = solve_normal(grid, gap, SEED, load=10e3).pressure
+    pn = solve_normal(grid, gap, SEED, Fn=10e3).pressure
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, SEED, (xi, 0, 0), mu=0.4,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
     # steady fixed point of the same time step h (kernel (now − old)/h of the scheme)
@@ -78,7 +78,7 @@ def main(elements=30, steps=1801, h=5e-5, scheme="averaged"):
           f"x = {settle * 1e3:.2f} mm = {settle / a:.2f} a")
     for n2 in (45, 60):
         g2, gap2 = hertz_grid(hc, elements=n2)
-        pn2 = solve_normal(g2, gap2, SEED, load=10e3).pressure
+        pn2 = solve_normal(g2, gap2, SEED, Fn=10e3).pressure
         x2 = brentq(lambda xi: solve_rolling(g2, pn2, SEED, (xi, 0, 0), mu=0.4,
                                              tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
         print(f"steady exact solver on {n2} elements: xi = {x2:.6e} (transient-30 differs "
@@ -99,8 +99,8 @@ def varying_loads(elements=15):
     for lam in (12.5e-3, 7.1e-3, 5e-3):
         t0 = time.perf_counter()
         r = wr.transient_rolling(
-            hc, travel=4 * lam, step=h, mu=0.4, tangential_force=2000.0, elements=elements,
-            normal_force=lambda x: 10e3 + 4.5e3 * np.sin(2 * np.pi * x / lam), frames=10**6)
+            hc, travel=4 * lam, step=h, mu=0.4, Fx=2000.0, elements=elements,
+            Fn=lambda x: 10e3 + 4.5e3 * np.sin(2 * np.pi * x / lam), frames=10**6)
         m = r.x >= lam
         lead = [(leading_edge_slip(r.state[k]), r.frame_x[k]) for k in range(len(r.frame_x))
                 if r.frame_x[k] >= lam]
@@ -109,7 +109,7 @@ def varying_loads(elements=15):
               f"; isolated leading-edge slip: up to {rows} rows, depth {depth} elements "
               f"(at x = {xl * 1e3:.2f} mm); {time.perf_counter() - t0:.1f} s")
         F1 = lambda x: 2000.0 + 1000.0 * np.sin(2 * np.pi * x / lam)  # noqa: E731
-        r = wr.transient_rolling(hc, travel=4 * lam, step=h, mu=0.4, tangential_force=F1,
+        r = wr.transient_rolling(hc, travel=4 * lam, step=h, mu=0.4, Fx=F1,
                                  elements=elements, frames=10**6)
         m = r.x >= lam
         same = np.mean(np.sign(r.xi[m]) == np.sign(F1(r.x[m])))
@@ -134,7 +134,7 @@ def convergence(travel=20e-3):
     for n in (30, 45, 60):
         t0 = time.perf_counter()
         runs[n] = wr.transient_rolling(hc, travel=travel, step=h, mu=0.4,
-                                       tangential_force=2000.0, elements=n, frames=2)
+                                       Fx=2000.0, elements=n, frames=2)
         print(f"  {n} elements (grid {runs[n].grid.nx}x{runs[n].grid.ny}): final xi "
               f"{runs[n].xi[-1]:.6e}; {time.perf_counter() - t0:.1f} s")
     late = runs[60].x >= 2 * a
@@ -147,7 +147,7 @@ def convergence(travel=20e-3):
     runs = {}
     for s in steps:
         runs[s] = wr.transient_rolling(hc, travel=travel, step=s, mu=0.4,
-                                       tangential_force=2000.0, elements=30, frames=2)
+                                       Fx=2000.0, elements=30, frames=2)
     ref = runs[steps[-1]]
     errs = []
     for s in steps[:-1]:
@@ -167,7 +167,7 @@ def strips(elements=30, steps=1801, h=5e-5):
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=SEED)
     t0 = time.perf_counter()
     res = wr.transient_rolling(hc, travel=(steps - 1) * h, step=h, mu=0.4,
-                               tangential_force=2000.0, elements=elements,
+                               Fx=2000.0, elements=elements,
                                discretisation="strips", frames=2)
     wall = time.perf_counter() - t0
     i = res.info

@@ -63,11 +63,10 @@ def cpu_per_call(fs, calls, repeat):
 
 def single(ws, tr, m, calls, repeat, breakdown):
     """Per-call CPU time of wr.solve for one position (both wheels), optionally split."""
-    from wheelrail.api import get_normal_method
     from wheelrail.contact.wheelrail import SIDES, touching_poses, wheel_problem
 
     for normal in ("hertz", "kik-piotrowski"):
-        nimpl = get_normal_method(normal)
+        nimpl = wr.normal.get(normal)
         for y in (0.0, 0.005, 0.0068):
             wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=10e3)
             r = wr.solve(wp, motion=m, mu=0.3, normal=normal, vertical="normal")

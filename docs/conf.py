@@ -33,6 +33,7 @@ extensions = [
     "sphinx.ext.mathjax",
     "sphinx_gallery.gen_gallery",
     "_docstrings",
+    "_methods_page",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}

@@ -15,7 +15,7 @@ path.write_text("""\
 E = 2.1e11
 nu = 0.28
 [contact]             # the contact ellipse, given by its semi-axes [m]
-load = 10000.0
+Fn = 10000.0
 a = 0.006
 b = 0.004
 [creepage]            # wheel relative to rail (Kalker's convention)

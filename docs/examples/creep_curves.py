@@ -25,7 +25,7 @@ print(f"a = {contact.a:.6e} m, b = {contact.b:.6e} m, G = {contact.G:.6e} Pa, nu
 fig, ax = plt.subplots()
 for method in ["linear", "carter", "fastsim", "shen-hedrick-elkins", "polach"]:
     r = wr.creep_forces(contact, creep, mu, method=method)   # one call for all 101 creepages
-    ax.plot(-xi * 1e3, r.Fx / (mu * contact.load), label=method)
+    ax.plot(-xi * 1e3, r.Fx / (mu * contact.Fn), label=method)
     print(f"{method}: Fx(xi={xi[10]:g}) = {r.Fx[10]:.3f} N, Fx(xi={xi[-1]:g}) = {r.Fx[-1]:.3f} N")
 # Small-creepage slope of the linear theory, as Kalker's coefficient C11 = -Fx / (G c^2 xi)
 lin = wr.creep_forces(contact, (-1e-6, 0.0, 0.0), mu, method="linear")

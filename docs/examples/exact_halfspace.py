@@ -18,7 +18,7 @@ mu = 0.3
 
 # Normal problem on a 40 x 40-element window around the Hertz ellipse (quadratic gap).
 grid, gap = wr.hertz_grid(contact, elements=40)        # wheelrail.normal.bem.hertz_grid
-normal = wr.solve_normal(grid, gap, contact.materials, load=contact.load)
+normal = wr.solve_normal(grid, gap, contact.materials, Fn=contact.Fn)
 print(f"bem_p_max = {normal.p_max:.6e} Pa (Hertz p0 = {contact.p0:.6e}), "
       f"bem_area = {normal.area:.6e} m2 (Hertz = {float(contact.area):.6e})")
 np.save(out / "bem_pressure.npy", normal.pressure)

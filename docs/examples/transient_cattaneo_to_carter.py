@@ -1,7 +1,7 @@
 """Transient rolling: from Cattaneo to Carter when a tangential force is applied at once
 =====================================================================================
 
-Seed 001 §3.1 on a coarse grid: F3 = 10 kN, F1 = 2 kN from the first step, μ = 0.4.
+Baeza et al. §3.1 on a coarse grid: F3 = 10 kN, F1 = 2 kN from the first step, μ = 0.4.
 The creepage overshoots, then settles on the steady rolling solution.
 Run: ``python transient_cattaneo_to_carter.py [OUT_DIR]``   (or set WHEELRAIL_OUT)
 """
@@ -14,12 +14,12 @@ from wheelrail.transient.plot import plot_creepage
 
 out = Path(sys.argv[1] if len(sys.argv) > 1 else os.environ.get("WHEELRAIL_OUT", "."))
 out.mkdir(parents=True, exist_ok=True)
-# wheel radius 0.5 m, concave wheel profile 0.409 m, rail crown 0.3 m (seed 001, Table 1)
+# wheel radius 0.5 m, concave wheel profile 0.409 m, rail crown 0.3 m (Baeza et al., Table 1)
 contact = wr.hertz_from_radii(10e3, wheel_rolling_radius=0.5, rail_profile_radius=0.3,
                               wheel_profile_radius=-0.409, material=wr.Material(2.1e11, 0.3))
 a = float(contact.a)
-res = wr.transient_rolling(contact, travel=8 * a, step=a / 8, mu=0.4, normal_force=10e3,
-                           tangential_force=2000.0, elements=16)
+res = wr.transient_rolling(contact, travel=8 * a, step=a / 8, mu=0.4, Fn=10e3,
+                           Fx=2000.0, elements=16)
 ds = res.dataset                                   # xarray.Dataset over travel x [m]
 xi = ds["xi"].values
 steady = wr.solve_creepages(contact, 0.4, Fx=2000.0, method="exact", elements=16)

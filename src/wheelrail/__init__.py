@@ -5,8 +5,11 @@ forces (Carter, Kalker's linear theory, FASTSIM, Shen–Hedrick–Elkins, Polach
 Kalker's exact theory) behind one API. SI units everywhere; Kalker's sign
 convention (:mod:`wheelrail.conventions`).
 
-Heavy sub-packages (geometry, profiles, half-space solvers, plotting) are
-imported lazily on first use.
+Every entry function and every method class is one attribute away
+(``wr.solve``, ``wr.creep_forces``, ``wr.tangential.Fastsim`` or
+``wr.Fastsim``, ``wr.normal.Bem`` or ``wr.Bem``); :func:`normal_methods` and
+:func:`tangential_methods` give name -> class. Everything but the core types
+is imported on first use, so that ``import wheelrail`` stays fast.
 """
 
 from __future__ import annotations
@@ -14,22 +17,47 @@ from __future__ import annotations
 import importlib
 
 from . import conventions
-from .api import available_methods, creep_forces, normal_methods, solve, tangential_methods
-from .errors import (CaseFileError, ConvergenceError, InputError, NoContactError, ProfileError,
-                     WheelrailError)
+from ._version import __version__
+from .errors import (
+    CaseFileError,
+    ConvergenceError,
+    InputError,
+    NoContactError,
+    OptionError,
+    ProfileError,
+    WheelrailError,
+)
 from .materials import STEEL, Material, MaterialPair
-from .normal.hertz import (HertzContact, curvatures_from_radii, hertz, hertz_from_penetration,
-                           hertz_from_radii, hertz_from_semiaxes, hertz_line)
-from .results import CreepForces, Status
-
-__version__ = "0.1.0"
+from .results import CreepForcesResult, Status
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {
+    # entry functions
+    "solve": ("wheelrail.api", "solve"),
+    "creep_forces": ("wheelrail.api", "creep_forces"),
+    "normal_methods": ("wheelrail.api", "normal_methods"),
+    "tangential_methods": ("wheelrail.api", "tangential_methods"),
+    "hertz": ("wheelrail.hertzian", "hertz"),
+    "hertz_from_semiaxes": ("wheelrail.hertzian", "hertz_from_semiaxes"),
+    "hertz_from_radii": ("wheelrail.hertzian", "hertz_from_radii"),
+    "hertz_from_penetration": ("wheelrail.hertzian", "hertz_from_penetration"),
+    "hertz_line": ("wheelrail.hertzian", "hertz_line"),
+    "curvatures_from_radii": ("wheelrail.hertzian", "curvatures_from_radii"),
+    "HertzContact": ("wheelrail.hertzian", "HertzContact"),
+    # method classes (also wr.normal.<Class>, wr.tangential.<Class>)
+    **{c: ("wheelrail.normal", c) for c in ("Hertz", "MultiHertz", "Linder", "KikPiotrowski",
+                                            "Stripes", "Bem")},
+    **{c: ("wheelrail.tangential", c) for c in ("Carter", "Linear", "Fastsim", "Fastrip",
+                                                "ShenHedrickElkins", "Polach", "Exact",
+                                                "Table")},
+    "tangential": ("wheelrail.tangential", None),
+    "options": ("wheelrail.options", None),
+    "cases": ("wheelrail.cases", None),
+    "casefile": ("wheelrail.casefile", None),
     "transient_rolling": ("wheelrail.transient", "transient_rolling"),
     "kalker_coefficients": ("wheelrail.tangential.linear", "kalker_coefficients"),
     "load_case": ("wheelrail.casefile", "load_case"),
-    "run_case": ("wheelrail.casefile", "run_case"),
+    "run_case": ("wheelrail.cases", "run_case"),
     "profiles": ("wheelrail.profiles", None),
     "geometry": ("wheelrail.geometry", None),
     "halfspace": ("wheelrail.halfspace", None),
@@ -44,12 +72,12 @@ _LAZY = {
     "contact_points": ("wheelrail.geometry", "contact_points"),
     "elastic_contact": ("wheelrail.geometry", "elastic_contact"),
     "solve_normal": ("wheelrail.normal.bem", "solve_normal"),
-    "solve_gap": ("wheelrail.contact", "solve_gap"),
+    "solve_gap": ("wheelrail.tangential.exact", "solve_gap"),
     "solve_gap_auto": ("wheelrail.contact", "solve_gap_auto"),
     "WheelRailPosition": ("wheelrail.contact.wheelrail", "WheelRailPosition"),
     "WheelRailResult": ("wheelrail.contact.wheelrail", "WheelRailResult"),
     "wheelset_sweep": ("wheelrail.contact.sweep", "wheelset_sweep"),
-    "ContactPatch": ("wheelrail.contact.patch", "ContactPatch"),
+    "ContactPatch": ("wheelrail.patch", "ContactPatch"),
     "Motion": ("wheelrail.geometry.kinematics", "Motion"),
     "GapProblem": ("wheelrail.normal._base", "GapProblem"),
     "normal": ("wheelrail.normal", None),
@@ -76,13 +104,13 @@ def __getattr__(name):
     raise AttributeError(f"module 'wheelrail' has no attribute {name!r}")
 
 
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))
+
+
 __all__ = [
-    "Material", "MaterialPair", "STEEL",
-    "HertzContact", "hertz", "hertz_from_semiaxes", "hertz_from_radii", "hertz_from_penetration",
-    "hertz_line", "curvatures_from_radii",
-    "creep_forces", "available_methods", "solve", "normal_methods", "tangential_methods",
-    "CreepForces", "Status", "conventions",
-    "WheelrailError", "InputError", "ConvergenceError", "NoContactError", "ProfileError",
-    "CaseFileError",
+    "__version__", "Material", "MaterialPair", "STEEL", "CreepForcesResult", "Status", "conventions",
+    "WheelrailError", "InputError", "OptionError", "ConvergenceError", "NoContactError",
+    "ProfileError", "CaseFileError",
     *_LAZY,
 ]

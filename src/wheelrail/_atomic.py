@@ -14,6 +14,8 @@ import os
 import tempfile
 from pathlib import Path
 
+from .errors import InputError
+
 __all__ = ["atomic_path", "atomic_open", "check_output_path"]
 
 
@@ -76,7 +78,6 @@ def check_output_path(path, *, what="output", suffixes=None) -> Path:
         The extension is not allowed, the path is a directory, or the
         directory cannot be created or written.
     """
-    from .errors import InputError
 
     path = Path(path)
     if suffixes is not None and path.suffix.lower() not in tuple(suffixes):

@@ -249,7 +249,7 @@ def _names_of(item) -> list[str]:
         value = getattr(item, attr, None)
         if isinstance(value, str):
             names.extend(_names_of(value))
-    # CreepForces, ContactPatch, method objects: a ``method`` or ``name`` string
+    # CreepForcesResult, ContactPatch, method objects: a ``method`` or ``name`` string
     if not names:
         for attr in ("method", "name"):
             value = getattr(item, attr, None)
@@ -299,7 +299,7 @@ def citation(*items) -> str:
         ``"transient"``, ``"fe"``, ``"geometry"``, ...; aliases such as
         ``"she"`` accepted), results (:class:`~wheelrail.results.ContactResult`,
         :class:`~wheelrail.contact.wheelrail.WheelRailResult`,
-        :class:`~wheelrail.results.CreepForces`, transient and FE results) or
+        :class:`~wheelrail.results.CreepForcesResult`, transient and FE results) or
         method objects. None: the references of every method of the package.
 
     Returns

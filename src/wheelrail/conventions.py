@@ -62,11 +62,32 @@ modulus,
 
 where C11 … C33 are Kalker's creep coefficients (Kalker 1967, 1990).
 
+Names
+-----
+One name per physical quantity across the public API (arguments, attributes,
+case-file keys, dataset variables); :data:`NAMES` lists them and
+:data:`RETIRED_NAMES` the synonyms that are not used (a test walks the public
+signatures):
+
+* ``Fn`` — normal contact force [N] (``wr.hertz(Fn=...)``, ``HertzContact.Fn``,
+  ``PatchResult.Fn``, ``[contact] Fn``, ``transient_rolling(Fn=...)``);
+* ``Fx``, ``Fy``, ``Mz`` — tangential forces [N] and spin moment [N·m] on the
+  wheel (a prescribed longitudinal force is ``Fx`` too);
+* ``penetration`` — approach of the two bodies along the contact normal, δ [m];
+* ``vertical_load`` — vertical force carried by one wheel of a wheelset (Q of
+  the literature) [N]; ``axle_load`` — the whole wheelset's [N];
+* ``vertical_approach`` — vertical displacement of a wheel below its touching
+  pose, dz [m];
+* ``mu`` — Coulomb friction coefficient [-] (never a modulus: the shear
+  modulus is ``G``);
+* ``xi``, ``eta``, ``phi`` — creepages [-], [-], [1/m].
+
 References
 ----------
 .. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer, 1990, ch. 1 and 2.
-.. [2] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+.. [2] J.J. Kalker, Wheel–rail rolling contact theory, Wear 144 (1991) 243–261,
+   eqs. (7)–(9) (linear theory in these signs).
 """
 
 #: Order of the components of a creepage vector.
@@ -83,7 +104,30 @@ CREEPAGE_OF = "wheel relative to rail"
 #: Sign of the linear creep force relative to creepage (Fx = SIGN * G c^2 C11 xi).
 LINEAR_FORCE_SIGN = -1.0
 
+#: name -> (unit, meaning): one name per physical quantity in the public API.
+NAMES = {
+    "Fn": ("N", "normal contact force"),
+    "Fx": ("N", "longitudinal tangential force on the wheel"),
+    "Fy": ("N", "lateral tangential force on the wheel"),
+    "Mz": ("N m", "spin moment on the wheel"),
+    "penetration": ("m", "approach of the bodies along the contact normal"),
+    "vertical_load": ("N", "vertical force carried by one wheel"),
+    "axle_load": ("N", "vertical force carried by a wheelset"),
+    "vertical_approach": ("m", "vertical displacement of a wheel below its touching pose"),
+    "mu": ("1", "Coulomb friction coefficient"),
+    "G": ("Pa", "(combined) shear modulus"),
+    "xi": ("1", "longitudinal creepage"),
+    "eta": ("1", "lateral creepage"),
+    "phi": ("1/m", "spin creepage"),
+}
+#: Synonyms that the public API does not use (name used instead).
+RETIRED_NAMES = {"load": "Fn", "normal_force": "Fn", "Q": "vertical_load", "delta": "penetration",
+                 "approach": "penetration", "dz": "vertical_approach",
+                 "tangential_force": "Fx"}
+
 __all__ = [
+    "NAMES",
+    "RETIRED_NAMES",
     "CREEPAGE_COMPONENTS",
     "CREEPAGE_UNITS",
     "FORCE_UNITS",

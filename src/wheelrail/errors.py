@@ -7,6 +7,7 @@ reading a traceback from deep inside numpy.
 __all__ = [
     "WheelrailError",
     "InputError",
+    "OptionError",
     "ConvergenceError",
     "NoContactError",
     "ProfileError",
@@ -36,6 +37,27 @@ class WheelrailError(Exception):
 
 class InputError(WheelrailError, ValueError):
     """An argument has a value outside its valid range (negative load, mu <= 0, NaN, ...)."""
+
+
+class OptionError(InputError):
+    """A method option is unknown or has a bad value.
+
+    Attributes
+    ----------
+    method : str
+        Registry name of the method.
+    option : str or None
+        The option (None for a check of a combination of options).
+    reason : str
+        The message without the method's name (what case files show after
+        the file, table and key).
+    """
+
+    def __init__(self, message, *, method="", option=None, reason=""):
+        super().__init__(message)
+        self.method = method
+        self.option = option
+        self.reason = reason or message
 
 
 class ConvergenceError(WheelrailError, RuntimeError):

@@ -10,6 +10,7 @@ from functools import cached_property
 
 from ._validation import in_range, positive
 from .errors import InputError
+from .plausibility import check_modulus
 
 __all__ = ["Material", "MaterialPair", "STEEL", "as_material_pair"]
 
@@ -37,7 +38,6 @@ class Material:
 
     def __post_init__(self):
         object.__setattr__(self, "E", float(positive("E", self.E)))
-        from .plausibility import check_modulus
 
         check_modulus(self.E)
         object.__setattr__(self, "nu", float(in_range("nu", self.nu, 0.0, 0.5, hi_open=True)))
@@ -127,6 +127,5 @@ def as_material_pair(material) -> MaterialPair:
         return material
     if isinstance(material, Material):
         return MaterialPair.same(material)
-    from .errors import InputError
 
     raise InputError(f"material must be a Material or MaterialPair, got {type(material).__name__}")

@@ -210,5 +210,5 @@ def check_hertz(contact) -> None:
     """
     if not enabled():
         return
-    check_load(contact.load)
+    check_load(contact.Fn, "Fn")
     check_patch(contact.a, contact.b, contact.A, contact.B)

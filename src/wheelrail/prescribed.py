@@ -28,17 +28,20 @@ from dataclasses import replace
 
 import numpy as np
 
+from . import tangential as _tangential
 from ._validation import as_float_array, positive
-from .api import _broadcast_contact, as_creepage, creep_forces, get_method
+from .api import creep_forces
 from .errors import ConvergenceError, InputError
-from .results import CreepForces
+from .results import CreepForcesResult
+from .tangential import as_creepage
+from .tangential import broadcast_contact as _broadcast_contact
 from .tangential.linear import linear_stiffness
 
 __all__ = ["solve_creepages"]
 
 
 def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), method="fastsim",
-                    *, force_tol=1e-6, maxiter=60, **options) -> CreepForces:
+                    *, force_tol=1e-6, maxiter=60, **options) -> CreepForcesResult:
     """Creepages that produce prescribed tangential forces, and the resulting creep forces.
 
     Parameters
@@ -62,11 +65,11 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
     maxiter : int
         Largest number of outer iterations.
     **options
-        Options of the creep-force law.
+        Options of the creep-force law (as for :func:`wheelrail.creep_forces`).
 
     Returns
     -------
-    CreepForces
+    CreepForcesResult
         The forces at the creepages found; ``info["xi"]``, ``info["eta"]``,
         ``info["phi"]`` hold the creepages, ``info["outer_iterations"]`` the
         number of creep-force evaluations.
@@ -89,7 +92,7 @@ def solve_creepages(contact, mu, Fx=None, Fy=None, creepage=(0.0, 0.0, 0.0), met
     """
     if Fx is None and Fy is None:
         raise InputError("give at least one prescribed force, Fx= or Fy= [N]")
-    impl = get_method(method)
+    impl = _tangential.get(method, options, argname="method")
     xi0, eta0, phi0 = as_creepage(creepage)
     if np.ndim(xi0) != 0:
         raise InputError("creepage must be a single (xi, eta, phi); batches follow the contact")
@@ -123,14 +126,14 @@ def _batch(contact, mu, fx, fy, creepage, impl, shape, force_tol, maxiter, optio
     stack = lambda name: np.array([getattr(r, name) for r in res], dtype=float)  # noqa: E731
     info = {k: np.array([r.info.get(k, np.nan) for r in res], dtype=float)
             for k in ("xi", "eta", "phi", "outer_iterations")}
-    return CreepForces(Fx=stack("Fx"), Fy=stack("Fy"), Mz=stack("Mz"), Fn=stack("Fn"),
+    return CreepForcesResult(Fx=stack("Fx"), Fy=stack("Fy"), Mz=stack("Mz"), Fn=stack("Fn"),
                        mu=np.asarray(mu, float), method=res[0].method, status=res[0].status,
                        iterations=info["outer_iterations"], fields=tuple(r.fields for r in res),
                        info=info)
 
 
 def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options):
-    Fn = float(contact.load)
+    Fn = float(contact.Fn)
     limit = mu * Fn
     Ft = float(np.hypot(Fx or 0.0, Fy or 0.0))
     if Ft >= limit:
@@ -142,7 +145,7 @@ def _single(contact, mu, Fx, Fy, creepage, impl, force_tol, maxiter, options):
 
     def evaluate(x, e):
         evals[0] += 1
-        return creep_forces(contact, (x, e, phi), mu, method=impl, **options)
+        return creep_forces(contact, (x, e, phi), mu, method=impl)
 
     # linear-theory stiffnesses -dFx/dxi, -dFy/deta [N] start the iteration
     k11, k22 = (float(k) for k in linear_stiffness(contact.a, contact.b, contact.G, contact.nu)[:2])

@@ -33,8 +33,12 @@ import numpy as np
 from ._validation import as_float_array, positive
 from .errors import InputError
 from .materials import as_material_pair
-from .tangential.carter import (carter_force_per_length, carter_saturation_creepage,
-                                carter_stick_zone, carter_traction)
+from .tangential.carter import (
+    carter_force_per_length,
+    carter_saturation_creepage,
+    carter_stick_zone,
+    carter_traction,
+)
 
 __all__ = [
     "cattaneo_stick_radius",

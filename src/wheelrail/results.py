@@ -14,7 +14,11 @@ from typing import Any, Mapping
 
 import numpy as np
 
-__all__ = ["Status", "CreepForces", "to_jsonable", "PatchResult", "ContactResult", "PATCH_QUANTITIES"]
+from .halfspace.grid import Grid, contact_outline
+from .materials import MaterialPair
+
+__all__ = ["Status", "CreepForcesResult", "to_jsonable", "PatchResult", "ContactResult", "PATCH_QUANTITIES",
+           "NormalResult", "TangentialResult", "GapResult"]
 
 
 class Status(enum.Enum):
@@ -44,7 +48,7 @@ def to_jsonable(value: Any):
 
 
 @dataclass(frozen=True)
-class CreepForces:
+class CreepForcesResult:
     """Tangential contact forces on the wheel (Kalker's sign convention).
 
     Attributes
@@ -119,7 +123,7 @@ class PatchResult:
     ----------
     patch : ContactPatch
         The patch from the normal method (strips, pressure, contact frame).
-    forces : CreepForces
+    forces : CreepForcesResult
         The tangential method's result on it (``fields`` for FASTSIM/exact).
     xi, eta, phi : float
         Creepages at the patch's reference point [-], [-], [1/m].
@@ -268,3 +272,259 @@ class ContactResult:
                             "Fn": self.Fn, "Fx": self.Fx, "Fy": self.Fy, "Mz": self.Mz,
                             "status": self.status,
                             "patches": [p.to_dict() for p in self.patches]})
+
+
+# --------------------------------------------------------------------------- grid solutions
+@dataclass(frozen=True)
+class NormalResult:
+    """Solution of the normal contact problem on a grid (frozen).
+
+    Attributes
+    ----------
+    grid : Grid
+    pressure : ndarray, shape (nx, ny)
+        Contact pressure [Pa], ≥ 0, compression positive.
+    gap : ndarray, shape (nx, ny)
+        Deformed gap e = h0 − δ + u_n [m] (≈ 0 in contact, > 0 outside).
+    displacement : ndarray, shape (nx, ny)
+        Gap-opening normal displacement difference u_n [m].
+    contact : ndarray of bool, shape (nx, ny)
+        Elements in contact (p > 0).
+    Fn : float
+        Normal force Σ p dA [N].
+    p_max : float
+        Largest element pressure [Pa].
+    penetration : float
+        Approach δ of the bodies [m] (prescribed, or found for a prescribed load).
+    area : float
+        Contact area (number of contact elements × dA) [m²].
+    iterations : int
+    status : Status
+        ``CONVERGED`` or ``NOT_CONVERGED`` (only with ``on_fail="status"``).
+    residual : float
+        Complementarity residual max(max|e| in contact, max(−e) outside) / max(u_n) [-].
+    truncated : bool
+        True if the contact reaches the outer row/column of the grid (the result
+        is then not the solution of the unbounded problem).
+    materials : MaterialPair
+    info : dict
+        Extra scalars (``change``: last relative pressure change).
+    """
+
+    grid: Grid
+    pressure: np.ndarray
+    gap: np.ndarray
+    displacement: np.ndarray
+    contact: np.ndarray
+    Fn: float
+    p_max: float
+    penetration: float
+    area: float
+    iterations: int
+    status: Status
+    residual: float
+    truncated: bool
+    materials: MaterialPair
+    info: dict = field(default_factory=dict)
+
+    @property
+    def centroid(self) -> tuple[float, float]:
+        """Centre of pressure (x, y) [m]."""
+        w = self.pressure.sum()
+        return (float((self.pressure * self.grid.X).sum() / w),
+                float((self.pressure * self.grid.Y).sum() / w))
+
+    def outline(self) -> list[np.ndarray]:
+        """Outline(s) of the contact area, see :func:`contact_outline`."""
+        return contact_outline(self.grid, self.contact)
+
+    def to_dict(self) -> dict:
+        """JSON-friendly scalars (fields left out)."""
+        out = {k: getattr(self, k) for k in ("Fn", "p_max", "penetration", "area", "iterations",
+                                             "status", "residual", "truncated")}
+        out["grid"] = {"x0": self.grid.x0, "y0": self.grid.y0, "dx": self.grid.dx,
+                       "dy": self.grid.dy, "nx": self.grid.nx, "ny": self.grid.ny}
+        out.update(self.info)
+        return to_jsonable(out)
+
+
+@dataclass(frozen=True)
+class TangentialResult:
+    """Tangential tractions and slip on a grid (frozen).
+
+    Attributes
+    ----------
+    grid : Grid
+    pressure : ndarray, shape (nx, ny)
+        Normal pressure used [Pa].
+    px, py : ndarray, shape (nx, ny)
+        Tangential traction on the wheel [Pa].
+    sx, sy : ndarray, shape (nx, ny)
+        Slip of the wheel relative to the rail: dimensionless slip velocity
+        (rolling) or slip distance [m] (shift); zero in adhesion and outside
+        the contact.
+    ux, uy : ndarray, shape (nx, ny)
+        Tangential displacement difference u(wheel) − u(rail) [m].
+    adhesion, slip : ndarray of bool, shape (nx, ny)
+        Elements in contact that stick / slide.
+    Fx, Fy : float
+        Tangential force on the wheel [N].
+    Mz : float
+        Moment of the tangential tractions about the grid origin [N·m].
+    mu : float
+    kind : str
+        ``"rolling"`` or ``"shift"``.
+    creepage : tuple
+        (ξ, η, φ) for rolling; the rigid shift (Wx, Wy) [m] for shift.
+    iterations : int
+        Newton iterations (``solver="newton"``; for a prescribed shift force,
+        summed over the outer iterations) or Gauss–Seidel sweeps.
+    converged : bool
+    residual : float
+        Newton: largest slip-equation residual / max |rigid slip|;
+        Gauss–Seidel: largest traction change of the last sweep / max μ·pn.
+    info : dict
+        ``solver``, ``krylov_iterations`` and ``coarse`` (rolling: the Newton
+        and Krylov counts of the nested-iteration levels), ``outer_iterations``
+        (shift).
+    """
+
+    grid: Grid
+    pressure: np.ndarray
+    px: np.ndarray
+    py: np.ndarray
+    sx: np.ndarray
+    sy: np.ndarray
+    ux: np.ndarray
+    uy: np.ndarray
+    adhesion: np.ndarray
+    slip: np.ndarray
+    Fx: float
+    Fy: float
+    Mz: float
+    mu: float
+    kind: str
+    creepage: tuple
+    iterations: int
+    converged: bool
+    residual: float
+    info: dict = field(default_factory=dict)
+
+    @property
+    def contact(self) -> np.ndarray:
+        """Elements with positive pressure, shape (nx, ny)."""
+        return self.pressure > 0.0
+
+    @property
+    def adhesion_area(self) -> float:
+        """Area of the adhesion zone [m²]."""
+        return float(np.count_nonzero(self.adhesion)) * self.grid.element_area
+
+    @property
+    def Ft(self) -> float:
+        """|F_t| = √(Fx² + Fy²) [N]."""
+        return float(np.hypot(self.Fx, self.Fy))
+
+    def as_arrays(self) -> dict:
+        """Plain arrays on the grid, indexed ``[i_x, i_y]``, for plotting and export.
+
+        Keys as :meth:`wheelrail.results.GapResult.as_arrays`: ``x``, ``y``
+        (element centres, m), ``px``, ``py``, ``p`` (Pa), ``adhesion``,
+        ``inside`` (bool), ``dA`` (element areas, m²), ``sx``, ``sy``.
+        """
+        g = self.grid
+        return {"x": g.X, "y": g.Y, "px": np.asarray(self.px), "py": np.asarray(self.py),
+                "p": np.asarray(self.pressure), "adhesion": np.asarray(self.adhesion, bool),
+                "inside": np.asarray(self.contact, bool),
+                "dA": np.full(g.shape, g.element_area), "sx": np.asarray(self.sx),
+                "sy": np.asarray(self.sy)}
+
+
+def _tangential_field(name, doc):
+    """A field of the tangential solution of a :class:`GapResult` (zeros without one)."""
+    return property(lambda self: self._t(name, np.zeros(self.grid.shape)), doc=doc)
+
+
+def _tangential_force(name, doc):
+    """A force of the tangential solution of a :class:`GapResult` (0 without one)."""
+    return property(lambda self: float(self._t(name)), doc=doc)
+
+
+@dataclass(frozen=True)
+class GapResult:
+    """Normal and tangential solution of one contact on a grid (frozen).
+
+    Attributes
+    ----------
+    normal : NormalResult
+        The (last) normal solution (:func:`wheelrail.normal.bem.solve_normal`).
+    tangential : TangentialResult or None
+        ``None`` when no tangential problem was asked for.
+    outer_iterations : int
+        Normal–tangential alternations (1 for quasi-identical bodies,
+        Johnson's process; more with ``K ≠ 0``, Panagiotopoulos' process).
+    outer_change : float
+        Last relative change of the tractions between alternations.
+    """
+
+    normal: object
+    tangential: object
+    outer_iterations: int
+    outer_change: float
+
+    # convenient views (grid, pressure, contact, Fn from the normal solution; tractions,
+    # slip, adhesion, tangential displacements and forces from the tangential one) ---------
+    @property
+    def grid(self) -> Grid:
+        return self.normal.grid
+
+    @property
+    def pressure(self) -> np.ndarray:
+        return self.normal.pressure
+
+    @property
+    def contact(self) -> np.ndarray:
+        return self.normal.contact
+
+    @property
+    def Fn(self) -> float:
+        return self.normal.Fn
+
+    def _t(self, name, default=0.0):
+        return default if self.tangential is None else getattr(self.tangential, name)
+
+    px = _tangential_field("px", "Tangential traction on the wheel along x [Pa].")
+    py = _tangential_field("py", "Tangential traction on the wheel along y [Pa].")
+    sx = _tangential_field("sx", "Slip along x (zero in adhesion) [-] or [m].")
+    sy = _tangential_field("sy", "Slip along y (zero in adhesion) [-] or [m].")
+    ux = _tangential_field("ux", "Tangential displacement difference along x [m].")
+    uy = _tangential_field("uy", "Tangential displacement difference along y [m].")
+    Fx = _tangential_force("Fx", "Tangential force on the wheel along x [N].")
+    Fy = _tangential_force("Fy", "Tangential force on the wheel along y [N].")
+    Mz = _tangential_force("Mz", "Moment of the tangential tractions about the grid origin [N·m].")
+
+    @property
+    def adhesion(self):
+        """Elements that stick (all contact elements without a tangential problem)."""
+        return self._t("adhesion", self.contact.copy())
+
+    @property
+    def un(self):
+        """Gap-opening normal displacement difference [m] (of the last normal solve)."""
+        return self.normal.displacement
+
+    def as_arrays(self) -> dict:
+        """Plain arrays on the grid, indexed ``[i_x, i_y]``, for plotting and export.
+
+        Keys: ``x``, ``y`` (element centres, m), ``px``, ``py``, ``p`` (Pa),
+        ``adhesion``, ``inside`` (bool), ``dA`` (element areas, m²), ``sx``, ``sy``
+        (slip, m/m).
+        """
+        if self.tangential is not None:
+            return self.tangential.as_arrays()
+        g = self.grid
+        return {"x": g.X, "y": g.Y, "px": np.asarray(self.px), "py": np.asarray(self.py),
+                "p": np.asarray(self.pressure), "adhesion": np.asarray(self.adhesion, bool),
+                "inside": np.asarray(self.contact, bool),
+                "dA": np.full(g.shape, g.element_area), "sx": np.asarray(self.sx),
+                "sy": np.asarray(self.sy)}

@@ -27,11 +27,11 @@ def test_order_of_convergence(aspect):
     h, e_delta, e_load, e_p0 = [], [], [], []
     for n in ELEMENTS:
         grid, h0 = hertz_grid(hc, elements=n)
-        by_load = solve_normal(grid, h0, STEEL, load=LOAD)
+        by_load = solve_normal(grid, h0, STEEL, Fn=LOAD)
         by_pen = solve_normal(grid, h0, STEEL, penetration=hc.penetration)
         h.append(1.0 / n)
         e_delta.append(abs(by_load.penetration / hc.penetration - 1))
-        e_load.append(abs(by_pen.Fn / hc.load - 1))
+        e_load.append(abs(by_pen.Fn / hc.Fn - 1))
         e_p0.append(abs(by_load.p_max / hc.p0 - 1))
     # errors decrease monotonically
     for e in (e_delta, e_load, e_p0):

@@ -7,7 +7,7 @@ observed order fitted by np.polyfit on log h / log |F(h) − F(h/2)|.
 
 The rigid slip φ·x of the spin is evaluated a sixth of an element upstream of the
 element centre (as Vollebregt's CONTACT does, FACPHI = 1/6; see
-:mod:`wheelrail.halfspace.tangential`). The element-centre placement is reproduced on the
+:mod:`wheelrail.tangential.exact`). The element-centre placement is reproduced on the
 same grid by adding η = −φ·dx/6 (the shift of φ·x is a uniform lateral creepage). Measured
 (Hertz a/b = 1.59, steel, μ = 0.3, BEM pressure, Fy of pure spin φ = 3 /m):
 

@@ -32,12 +32,12 @@ MU = 0.3
 
 @pytest.fixture(scope="module")
 def contact():
-    return wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3,
+    return wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3,
                                   material=wr.Material.from_shear(82e9, 0.28))
 
 
 def _reference_fx(c, xi, bound):
-    a, b, Fn = c.a, c.b, c.load
+    a, b, Fn = c.a, c.b, c.Fn
     C11, C22, C23, _ = kalker_coefficients(a / b, c.nu)
     L1 = float(flexibilities(a, b, c.G, C11, C22, C23)[0])
     p0 = (2.0 if bound == "parabolic" else 1.5) * Fn / (np.pi * a * b)
@@ -67,7 +67,7 @@ def _reference_fx(c, xi, bound):
 def test_observed_order_pure_xi(contact, bound, xi, band):
     ref = _reference_fx(contact, xi, bound)
     # partial slip: well inside the non-linear range
-    assert 0.25 < abs(ref) / (MU * contact.load) < 0.85
+    assert 0.25 < abs(ref) / (MU * contact.Fn) < 0.85
     ns = np.array([10, 20, 40, 80, 160])
     cr = np.array([[xi, 0.0, 0.0]])
     err = []

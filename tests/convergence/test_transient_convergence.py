@@ -29,7 +29,7 @@ def test_creepage_history_converges_in_the_time_step():
     xi = {}
     for m in (1, 2, 4, 16):
         r = wr.transient_rolling(hc, travel=8 * dx, step=dx / m, mu=0.4,
-                                 tangential_force=2000.0, elements=n, frames=2)
+                                 Fx=2000.0, elements=n, frames=2)
         xi[m] = r.xi[::m]  # at x = 0, dx, 2dx, ... (common travels)
     ref = xi[16]
     hs = np.array([dx, dx / 2, dx / 4])
@@ -46,7 +46,7 @@ def test_creepage_history_converges_under_grid_refinement():
     hc = _table1()
     a = float(hc.a)
     h = 2 * a / 32
-    xi = {n: wr.transient_rolling(hc, travel=8 * a, step=h, mu=0.4, tangential_force=2000.0,
+    xi = {n: wr.transient_rolling(hc, travel=8 * a, step=h, mu=0.4, Fx=2000.0,
                                   elements=n, frames=2).xi for n in (8, 16, 32)}
     x = np.arange(len(xi[32])) * h
     late = x >= 2 * a

@@ -92,7 +92,7 @@ def test_geometry_strict_flags_derailed_rows(tmp_path, capsys):
 
 SOLVE_GOOD = """
 [contact]
-load = 7500.0
+Fn = 7500.0
 wheel_rolling_radius = 0.46
 rail_profile_radius = 0.30
 [creepage]
@@ -121,7 +121,7 @@ def good_case(tmp_path):
 ])
 def test_solve_outputs_checked_before_solving(opt, value, names, good_case, tmp_path, capsys,
                                               monkeypatch):
-    import wheelrail.casefile as cf
+    import wheelrail.cases as cf
 
     def boom(case):  # the solve must not even start
         raise AssertionError("solved although the output is invalid")
@@ -186,7 +186,7 @@ def test_memory_guard_refuses_with_estimate(tmp_path, capsys):
     """Issue 11, failure 6: a big BEM solve is refused before allocating, estimate named."""
     p = tmp_path / "big.toml"
     p.write_text(SOLVE_GOOD + '[method]\nnormal = "bem"\ntangential = "fastsim"\n'
-                 '[method.bem]\nelements = 400\n')
+                 '[method.bem]\ngrid_elements = 400\n')
     code, _, err = run_cli(["--memory-limit", "200MB", "solve", p], capsys)
     assert_clean_failure(code, err, "memory limit", "MB", "501x501")
 

@@ -92,7 +92,7 @@ def test_every_writer_is_atomic(writer, tmp_path, full_disk, monkeypatch):
 
 def test_cli_full_disk_is_one_error_line(tmp_path, capsys, full_disk):
     p = tmp_path / "case.toml"
-    p.write_text("[contact]\nload = 7500.0\nA = 1.0\nB = 1.5\n[friction]\nmu = 0.3\n")
+    p.write_text("[contact]\nFn = 7500.0\nA = 1.0\nB = 1.5\n[friction]\nmu = 0.3\n")
     out = tmp_path / "res"
     out.mkdir()
     code, _, err = run_cli(["solve", p, "--json", out / "r.json"], capsys)

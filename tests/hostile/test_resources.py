@@ -39,9 +39,9 @@ def test_guard_refuses_before_allocating_and_can_be_overridden():
     grid, gap = wr.hertz_grid(hc, 40)
     with res.limit("50MB"):
         with pytest.raises(res.ResourceLimitError, match=r"51x51 grid: 2601 grid cells: about 152 MB"):
-            wr.solve_normal(grid, gap, wr.STEEL, load=7500.0)
+            wr.solve_normal(grid, gap, wr.STEEL, Fn=7500.0)
     with res.limit(None):
-        assert wr.solve_normal(grid, gap, wr.STEEL, load=7500.0).Fn == pytest.approx(7500.0)
+        assert wr.solve_normal(grid, gap, wr.STEEL, Fn=7500.0).Fn == pytest.approx(7500.0)
 
 
 def test_environment_variable(monkeypatch):

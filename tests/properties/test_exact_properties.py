@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
-from wheelrail.halfspace import solve_rolling
+from wheelrail.tangential.exact import solve_rolling
 
 HC = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
 MU = 0.3

@@ -15,7 +15,7 @@ flex = st.sampled_from(["three", "weighted"])
 
 
 def _contact(g):
-    return wr.hertz_from_semiaxes(a=5e-3 * np.sqrt(g), b=5e-3 / np.sqrt(g), load=60e3, material=MAT)
+    return wr.hertz_from_semiaxes(a=5e-3 * np.sqrt(g), b=5e-3 / np.sqrt(g), Fn=60e3, material=MAT)
 
 
 @settings(max_examples=40, deadline=None)
@@ -41,7 +41,7 @@ def test_odd_and_mirror_symmetry(xi, eta, phi, g, bound, flex):
     c = _contact(g)
     cr = np.array([[xi, eta, phi], [-xi, -eta, -phi], [xi, -eta, -phi]])
     r = wr.creep_forces(c, cr, 0.3, method="fastsim", nx=16, ny=16, bound=bound, flexibility=flex)
-    scale = 0.3 * c.load
+    scale = 0.3 * c.Fn
     # odd in the creepages
     assert np.allclose([r.Fx[1], r.Fy[1]], [-r.Fx[0], -r.Fy[0]], atol=1e-9 * scale)
     assert np.isclose(r.Mz[1], -r.Mz[0], atol=1e-9 * scale * c.a)

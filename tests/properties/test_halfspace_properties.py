@@ -41,13 +41,13 @@ def test_normal_solution_is_complementary_and_scales_like_hertz(load, A, B):
     w = 1.3
     g = Grid.from_bounds(-w * hc.a, w * hc.a, -w * hc.b, w * hc.b, 24, 24)
     h0 = A * g.X**2 + B * g.Y**2
-    sol = solve_normal(g, h0, mat, load=load)
+    sol = solve_normal(g, h0, mat, Fn=load)
     assert np.all(sol.pressure >= 0)
     assert abs(sol.Fn / load - 1) < 1e-12
     assert sol.residual < 1e-6
     assert np.all(sol.gap[~sol.contact] > -1e-6 * sol.penetration)
     # Hertz similarity: 8x the load on a 2x wider grid gives 4x the approach and 2x the pressure
     g2 = Grid.from_bounds(-2 * w * hc.a, 2 * w * hc.a, -2 * w * hc.b, 2 * w * hc.b, 24, 24)
-    sol2 = solve_normal(g2, A * g2.X**2 + B * g2.Y**2, mat, load=8 * load)
+    sol2 = solve_normal(g2, A * g2.X**2 + B * g2.Y**2, mat, Fn=8 * load)
     assert abs(sol2.penetration / (4 * sol.penetration) - 1) < 1e-6
     assert np.allclose(sol2.pressure, 2 * sol.pressure, rtol=0, atol=1e-6 * sol2.p_max)

@@ -23,10 +23,10 @@ def _gp(A, B, pen, c3=0.0, mirror=False):
 @settings(max_examples=12, deadline=None)
 @given(A=st.floats(0.3, 5.0), B=st.floats(0.3, 5.0), pen=st.floats(2e-5, 1.5e-4))
 def test_load_scales_as_three_halves(A, B, pen):
-    m = wr.api.get_normal_method("kik-piotrowski")
-    o = m.check_options({})
-    (p1,) = m.from_gap(_gp(A, B, pen), **o)
-    (p2,) = m.from_gap(_gp(A, B, 2 * pen), **o)
+    m = wr.normal.get("kik-piotrowski")
+    o = m
+    (p1,) = o.from_gap(_gp(A, B, pen))
+    (p2,) = o.from_gap(_gp(A, B, 2 * pen))
     assert p2.Fn > p1.Fn
     assert np.isclose(p2.Fn / p1.Fn, 2**1.5, rtol=0.02)
 
@@ -34,9 +34,9 @@ def test_load_scales_as_three_halves(A, B, pen):
 @settings(max_examples=8, deadline=None)
 @given(c3=st.floats(-60.0, 60.0), name=st.sampled_from(["kik-piotrowski", "linder", "stripes"]))
 def test_mirror_symmetry(c3, name):
-    m = wr.api.get_normal_method(name)
-    o = m.check_options({})
-    a = m.from_gap(_gp(1.0, 3.0, 8e-5, c3), **o)
-    b = m.from_gap(_gp(1.0, 3.0, 8e-5, c3, mirror=True), **o)
+    m = wr.normal.get(name)
+    o = m
+    a = o.from_gap(_gp(1.0, 3.0, 8e-5, c3))
+    b = o.from_gap(_gp(1.0, 3.0, 8e-5, c3, mirror=True))
     assert np.isclose(sum(p.Fn for p in a), sum(p.Fn for p in b), rtol=1e-3)
     assert np.isclose(sum(p.area for p in a), sum(p.area for p in b), rtol=1e-3)

@@ -42,7 +42,7 @@ def test_hertz_load_control(aspect):
     b = 4e-3
     hc = wr.hertz_from_semiaxes(aspect * b, b, LOAD, STEEL)
     grid, h0 = hertz_grid(hc, elements=60)
-    sol = solve_normal(grid, h0, STEEL, load=LOAD)
+    sol = solve_normal(grid, h0, STEEL, Fn=LOAD)
     assert sol.status is Status.CONVERGED and not sol.truncated
     assert sol.Fn == pytest.approx(LOAD, rel=1e-12)
     assert sol.p_max == pytest.approx(hc.p0, rel=0.01)
@@ -72,7 +72,7 @@ def test_hertz_penetration_control_dissimilar_materials():
     assert sol.Fn == pytest.approx(LOAD, rel=0.01)
     assert sol.p_max == pytest.approx(hc.p0, rel=0.01)
     # consistency of the two controls on the same grid
-    sol2 = solve_normal(grid, h0, pair, load=sol.Fn, operator=InfluenceOperator(grid, pair))
+    sol2 = solve_normal(grid, h0, pair, Fn=sol.Fn, operator=InfluenceOperator(grid, pair))
     assert sol2.penetration == pytest.approx(hc.penetration, rel=1e-6)
     assert np.max(np.abs(sol2.pressure - sol.pressure)) < 1e-5 * sol.p_max
 
@@ -80,7 +80,7 @@ def test_hertz_penetration_control_dissimilar_materials():
 def test_outline_of_circular_contact():
     hc = wr.hertz(LOAD, A=1.0, B=1.0, material=STEEL)
     grid, h0 = hertz_grid(hc, elements=40)
-    sol = solve_normal(grid, h0, STEEL, load=LOAD)
+    sol = solve_normal(grid, h0, STEEL, Fn=LOAD)
     polys = sol.outline()
     assert len(polys) == 1
     poly = polys[0]
@@ -99,7 +99,7 @@ def test_two_separate_contacts_give_two_outlines():
     grid = Grid.from_bounds(-4e-3, 4e-3, -2e-3, 2e-3, 64, 32)
     X, Y = grid.X, grid.Y
     h0 = np.minimum((X - 2e-3) ** 2 + Y**2, (X + 2e-3) ** 2 + Y**2) * 1.0
-    sol = solve_normal(grid, h0, STEEL, load=2e3)
+    sol = solve_normal(grid, h0, STEEL, Fn=2e3)
     assert len(sol.outline()) == 2
     # symmetric problem: equal halves
     left = sol.pressure[: 32].sum()
@@ -118,8 +118,8 @@ def test_no_contact_raises():
 @pytest.mark.parametrize("load", [0.0, -5.0, np.nan])
 def test_bad_load_raises(load):
     grid, h0 = hertz_grid(wr.hertz(LOAD, 1.0, 1.0, STEEL), elements=10)
-    with pytest.raises(InputError, match="load"):
-        solve_normal(grid, h0, STEEL, load=load)
+    with pytest.raises(InputError, match="Fn"):
+        solve_normal(grid, h0, STEEL, Fn=load)
 
 
 def test_argument_errors():
@@ -127,11 +127,11 @@ def test_argument_errors():
     with pytest.raises(InputError, match="exactly one"):
         solve_normal(grid, h0, STEEL)
     with pytest.raises(InputError, match="exactly one"):
-        solve_normal(grid, h0, STEEL, load=1.0, penetration=1e-5)
+        solve_normal(grid, h0, STEEL, Fn=1.0, penetration=1e-5)
     with pytest.raises(InputError, match="shape"):
-        solve_normal(grid, h0[:-1], STEEL, load=LOAD)
+        solve_normal(grid, h0[:-1], STEEL, Fn=LOAD)
     with pytest.raises(InputError, match="on_fail"):
-        solve_normal(grid, h0, STEEL, load=LOAD, on_fail="ignore")
+        solve_normal(grid, h0, STEEL, Fn=LOAD, on_fail="ignore")
 
 
 def test_window_too_small_warns_and_flags():
@@ -139,20 +139,20 @@ def test_window_too_small_warns_and_flags():
     grid = Grid.from_bounds(-0.8 * hc.a, 0.8 * hc.a, -0.8 * hc.b, 0.8 * hc.b, 30, 30)
     h0 = grid.X**2 + grid.Y**2
     with pytest.warns(ContactTruncatedWarning, match="edge"):
-        sol = solve_normal(grid, h0, STEEL, load=LOAD)
+        sol = solve_normal(grid, h0, STEEL, Fn=LOAD)
     assert sol.truncated
     # a proper window does not warn
     grid, h0 = hertz_grid(hc, elements=20)
     with warnings.catch_warnings():
         warnings.simplefilter("error", ContactTruncatedWarning)
-        assert not solve_normal(grid, h0, STEEL, load=LOAD).truncated
+        assert not solve_normal(grid, h0, STEEL, Fn=LOAD).truncated
 
 
 def test_non_convergence():
     grid, h0 = hertz_grid(wr.hertz(LOAD, 1.0, 2.0, STEEL), elements=30)
     with pytest.raises(ConvergenceError, match="did not converge"):
-        solve_normal(grid, h0, STEEL, load=LOAD, maxiter=3)
-    sol = solve_normal(grid, h0, STEEL, load=LOAD, maxiter=3, on_fail="status")
+        solve_normal(grid, h0, STEEL, Fn=LOAD, maxiter=3)
+    sol = solve_normal(grid, h0, STEEL, Fn=LOAD, maxiter=3, on_fail="status")
     assert sol.status is Status.NOT_CONVERGED and sol.iterations == 3
     assert sol.info["change"] > 1e-8
     assert sol.Fn == pytest.approx(LOAD)
@@ -177,8 +177,8 @@ def test_warm_start_from_another_load_gives_the_same_solution(factor):
     change the solution: the discrete Signorini problem has one solution."""
     hc = wr.hertz(1e4, 1.0, 2.0, wr.STEEL)
     grid, gap = hertz_grid(hc, elements=30)
-    first = solve_normal(grid, gap, wr.STEEL, load=1e4)
-    cold = solve_normal(grid, gap, wr.STEEL, load=1e4 * factor)
-    warm = solve_normal(grid, gap, wr.STEEL, load=1e4 * factor, initial=first.pressure)
+    first = solve_normal(grid, gap, wr.STEEL, Fn=1e4)
+    cold = solve_normal(grid, gap, wr.STEEL, Fn=1e4 * factor)
+    warm = solve_normal(grid, gap, wr.STEEL, Fn=1e4 * factor, initial=first.pressure)
     assert np.array_equal(cold.contact, warm.contact)
     np.testing.assert_allclose(warm.pressure, cold.pressure, rtol=0, atol=1e-6 * cold.p_max)

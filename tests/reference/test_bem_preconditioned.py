@@ -35,7 +35,7 @@ def test_preconditioned_equals_plain_load_control(aspect):
     """Same discrete solution to the solver tolerance (rectangular elements included)."""
     hc = wr.hertz_from_semiaxes(3e-3 * aspect, 3e-3, LOAD, STEEL)
     grid, h0 = hertz_grid(hc, elements=24)
-    pre, plain = _both(grid, h0, load=LOAD, tol=1e-10)
+    pre, plain = _both(grid, h0, Fn=LOAD, tol=1e-10)
     assert np.max(np.abs(pre.pressure - plain.pressure)) < 1e-7 * plain.p_max
     assert np.array_equal(pre.contact, plain.contact)
     assert pre.penetration == pytest.approx(plain.penetration, rel=1e-8)
@@ -59,7 +59,7 @@ def test_preconditioned_hertz_closed_form_small_grid():
     """Pressure, area and approach against Hertz on a 20-element grid (discretisation error)."""
     hc = wr.hertz_from_semiaxes(4e-3, 3e-3, LOAD, STEEL)
     grid, h0 = hertz_grid(hc, elements=20)
-    sol = solve_normal(grid, h0, STEEL, load=LOAD)
+    sol = solve_normal(grid, h0, STEEL, Fn=LOAD)
     assert sol.p_max == pytest.approx(hc.p0, rel=0.02)
     assert sol.penetration == pytest.approx(hc.penetration, rel=0.02)
     assert sol.area == pytest.approx(hc.area, rel=0.04)
@@ -74,7 +74,7 @@ def test_preconditioned_dissimilar_materials():
     pair = wr.MaterialPair(wr.Material(2.1e11, 0.28), wr.Material(7e10, 0.33))
     hc = wr.hertz(LOAD, A=1.0, B=1.5, material=pair)
     grid, h0 = hertz_grid(hc, elements=20)
-    pre, plain = _both(grid, h0, materials=pair, load=LOAD, tol=1e-10)
+    pre, plain = _both(grid, h0, materials=pair, Fn=LOAD, tol=1e-10)
     assert np.max(np.abs(pre.pressure - plain.pressure)) < 1e-7 * plain.p_max
     assert pre.p_max == pytest.approx(float(hc.p0), rel=0.03)
 
@@ -85,7 +85,7 @@ def test_iterations_nearly_grid_independent():
     counts = {}
     for n in (20, 60):
         grid, h0 = hertz_grid(hc, elements=n, margin=1.1)
-        pre, plain = _both(grid, h0, load=LOAD)
+        pre, plain = _both(grid, h0, Fn=LOAD)
         counts[n] = (pre.iterations, plain.iterations)
     (pre20, plain20), (pre60, plain60) = counts[20], counts[60]
     assert pre20 <= 20 and pre60 <= 20
@@ -117,8 +117,8 @@ def test_polonsky_keer_kernel_accepts_preconditioner():
     h = 200.0 * (grid.X ** 2 + grid.Y ** 2)
     apply = lambda p: (dense @ p.ravel()).reshape(p.shape)   # noqa: E731
     m = InverseSymbolPreconditioner(op.kernel, grid.dx, grid.dy)
-    pa, da, ia, _ = polonsky_keer(apply, h, grid.element_area, load=500.0, tol=1e-11)
-    pb, db, ib, _ = polonsky_keer(apply, h, grid.element_area, load=500.0, tol=1e-11,
+    pa, da, ia, _ = polonsky_keer(apply, h, grid.element_area, Fn=500.0, tol=1e-11)
+    pb, db, ib, _ = polonsky_keer(apply, h, grid.element_area, Fn=500.0, tol=1e-11,
                                   precondition=m)
     assert np.max(np.abs(pa - pb)) < 1e-8 * pa.max()
     assert db == pytest.approx(da, rel=1e-9)
@@ -136,7 +136,7 @@ def test_single_element_grid():
     """One element: no preconditioner; the pressure is the load over the element area."""
     grid = Grid.from_bounds(-1e-3, 1e-3, -1e-3, 1e-3, 1, 1)
     with pytest.warns(wr.normal.bem.ContactTruncatedWarning):
-        sol = solve_normal(grid, np.zeros(grid.shape), STEEL, load=100.0)
+        sol = solve_normal(grid, np.zeros(grid.shape), STEEL, Fn=100.0)
     assert sol.p_max == pytest.approx(100.0 / grid.element_area, rel=1e-12)
 
 
@@ -153,7 +153,7 @@ def test_preconditioned_equals_plain_random_gaps(nx, ny, ratio, A, B, wave, seed
     h0 = (A * grid.X ** 2 + B * grid.Y ** 2
           + wave * np.sin(kx * grid.X + rng.uniform(0, 6)) * np.cos(ky * grid.Y))
     h0 = h0 - h0.min()
-    kw = {"load": 2e3} if load_control else {"penetration": 0.5 * float(np.median(h0)) + 1e-7}
+    kw = {"Fn": 2e3} if load_control else {"penetration": 0.5 * float(np.median(h0)) + 1e-7}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ContactTruncatedWarning)
         pre, plain = _both(grid, h0, tol=1e-11, **kw)

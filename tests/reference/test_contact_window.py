@@ -22,7 +22,8 @@ import wheelrail as wr
 from wheelrail.errors import InputError, NoContactError
 from wheelrail.normal.bem import ContactTruncatedWarning, solve_normal
 from wheelrail.halfspace import Grid
-from wheelrail.contact import contact_patches, potential_contact_grid, solve_gap, solve_gap_auto
+from wheelrail.contact import contact_patches, potential_contact_grid, solve_gap_auto
+from wheelrail.tangential.exact import solve_gap
 
 STEEL = wr.Material(2.1e11, 0.28)
 # wheel rolling radius 0.46 m, rail crown radius 0.15 m (flat wheel profile)
@@ -46,7 +47,7 @@ def semi_axes_from_moments(sol):
 
 def test_hertzian_gap_with_prescribed_load():
     hc = wr.hertz(LOAD, A, B, STEEL)
-    sol = solve_gap_auto(hertz_gap, STEEL, load=LOAD, elements=60)
+    sol = solve_gap_auto(hertz_gap, STEEL, Fn=LOAD, elements=60)
     n = sol.normal
     assert not n.truncated
     assert n.info["window_enlargements"] == 0
@@ -76,25 +77,25 @@ def test_potential_contact_grid_rotated_hertzian_gap():
         return A * u**2 + B * v**2
 
     hc = wr.hertz(LOAD, A, B, STEEL)
-    grid, h0 = potential_contact_grid(h, load=LOAD, materials=STEEL, elements=45)
+    grid, h0 = potential_contact_grid(h, Fn=LOAD, materials=STEEL, elements=45)
     assert h0.shape == grid.shape
-    sol = solve_normal(grid, h0, STEEL, load=LOAD)
+    sol = solve_normal(grid, h0, STEEL, Fn=LOAD)
     assert not sol.truncated
     assert sol.p_max == pytest.approx(hc.p0, rel=0.02)
     assert sol.penetration == pytest.approx(hc.penetration, rel=0.02)
 
 
 def test_small_margin_is_enlarged_until_untruncated():
-    generous = solve_gap_auto(hertz_gap, STEEL, load=LOAD, margin=1.2)
+    generous = solve_gap_auto(hertz_gap, STEEL, Fn=LOAD, margin=1.2)
     with warnings.catch_warnings():
         warnings.simplefilter("error", ContactTruncatedWarning)
-        small = solve_gap_auto(hertz_gap, STEEL, load=LOAD, margin=0.5)
+        small = solve_gap_auto(hertz_gap, STEEL, Fn=LOAD, margin=0.5)
     assert not small.normal.truncated
     assert small.normal.info["window_enlargements"] >= 1
     # the first (margin 0.5) window was indeed too small: it truncates the contact
-    grid0, h0 = potential_contact_grid(hertz_gap, load=LOAD, materials=STEEL, margin=0.5)
+    grid0, h0 = potential_contact_grid(hertz_gap, Fn=LOAD, materials=STEEL, margin=0.5)
     with pytest.warns(ContactTruncatedWarning):
-        assert solve_normal(grid0, h0, STEEL, load=LOAD).truncated
+        assert solve_normal(grid0, h0, STEEL, Fn=LOAD).truncated
     assert small.Fn == pytest.approx(generous.Fn, rel=1e-9)
     assert small.normal.p_max == pytest.approx(generous.normal.p_max, rel=0.005)
     assert small.normal.penetration == pytest.approx(generous.normal.penetration, rel=0.005)
@@ -102,7 +103,7 @@ def test_small_margin_is_enlarged_until_untruncated():
 
 def test_still_truncated_after_max_enlarge_warns_with_sizes():
     with pytest.warns(ContactTruncatedWarning, match=r"after 0 enlargement.*61x\d+ elements"):
-        sol = solve_gap_auto(hertz_gap, STEEL, load=LOAD, margin=0.5, max_enlarge=0)
+        sol = solve_gap_auto(hertz_gap, STEEL, Fn=LOAD, margin=0.5, max_enlarge=0)
     assert sol.normal.truncated
 
 
@@ -149,7 +150,7 @@ def test_two_separated_bumps_give_two_patches():
         assert load == pytest.approx(alone.Fn, rel=0.03)
         # and the difference is the (small) interaction, of the predicted size and sign
         assert load / alone.Fn - 1 == pytest.approx(-2 / np.pi * a / d, rel=0.25)
-    assert alone.Fn == pytest.approx(hc.load, rel=0.03)
+    assert alone.Fn == pytest.approx(hc.Fn, rel=0.03)
 
 
 def test_real_profiles_window_contains_the_contact():
@@ -168,11 +169,11 @@ def test_real_profiles_window_contains_the_contact():
         return f(np.stack([X, Y], -1))
 
     search = (x[0], x[-1], sep.eta[0], sep.eta[-1])
-    sol = solve_gap_auto(gap, STEEL, load=LOAD, search=search)
+    sol = solve_gap_auto(gap, STEEL, Fn=LOAD, search=search)
     g = sol.grid
     assert not sol.normal.truncated and sol.normal.info["contact_patches"] == 1
     big = Grid(g.x0 - 8 * g.dx, g.y0 - 8 * g.dy, g.dx, g.dy, g.nx + 16, g.ny + 16)
-    ref = solve_normal(big, gap(big.X, big.Y), STEEL, load=LOAD)
+    ref = solve_normal(big, gap(big.X, big.Y), STEEL, Fn=LOAD)
     assert np.abs(ref.pressure[8:-8, 8:-8] - sol.pressure).max() < 1e-4 * ref.p_max
     assert sol.normal.penetration == pytest.approx(ref.penetration, rel=1e-5)
 
@@ -181,9 +182,9 @@ def test_rolling_problem_on_the_auto_window():
     """creepage/mu are passed to solve_gap; at small creepage Fx tends to Kalker's linear
     theory (Fx = −G c² C11 ξ, ``wr.creep_forces(method="linear")``); 31 elements: ~4 %."""
     xi = 1e-4
-    sol = solve_gap_auto(hertz_gap, STEEL, load=LOAD, creepage=(xi, 0.0, 0.0), mu=0.3, elements=31)
+    sol = solve_gap_auto(hertz_gap, STEEL, Fn=LOAD, creepage=(xi, 0.0, 0.0), mu=0.3, elements=31)
     assert sol.tangential is not None and not sol.normal.truncated
-    same = solve_gap(sol.grid, hertz_gap(sol.grid.X, sol.grid.Y), STEEL, load=LOAD,
+    same = solve_gap(sol.grid, hertz_gap(sol.grid.X, sol.grid.Y), STEEL, Fn=LOAD,
                      creepage=(xi, 0.0, 0.0), mu=0.3)
     assert sol.Fx == pytest.approx(same.Fx, rel=1e-12)
     linear = wr.creep_forces(wr.hertz(LOAD, A, B, STEEL), (xi, 0.0, 0.0), 0.3, method="linear")
@@ -222,10 +223,10 @@ def test_search_box_too_small_for_the_contact():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    ({"load": LOAD}, "materials"),
-    ({"load": LOAD, "penetration": 1e-4, "materials": STEEL}, "exactly one"),
+    ({"Fn": LOAD}, "materials"),
+    ({"Fn": LOAD, "penetration": 1e-4, "materials": STEEL}, "exactly one"),
     ({"materials": STEEL}, "exactly one"),
-    ({"load": -1.0, "materials": STEEL}, "load"),
+    ({"Fn": -1.0, "materials": STEEL}, "Fn"),
     ({"penetration": 2e-4, "margin": 0.0}, "margin"),
     ({"penetration": 2e-4, "elements": 2}, "elements"),
     ({"penetration": 2e-4, "search": (0.01, -0.01, -0.01, 0.01)}, "search"),
@@ -244,4 +245,4 @@ def test_gap_must_be_a_vectorised_callable():
     with pytest.raises(InputError, match="finite"):
         potential_contact_grid(lambda x, y: x * np.nan, penetration=1e-5)
     with pytest.raises(InputError, match="max_enlarge"):
-        solve_gap_auto(hertz_gap, STEEL, load=LOAD, max_enlarge=-1)
+        solve_gap_auto(hertz_gap, STEEL, Fn=LOAD, max_enlarge=-1)

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, solve_rolling
+from wheelrail.halfspace import Grid
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.reference import (carter_force_per_length, carter_saturation_creepage,
                                  carter_traction)
 

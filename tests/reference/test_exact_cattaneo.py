@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, solve_shift
+from wheelrail.halfspace import Grid
+from wheelrail.tangential.exact import solve_shift
 from wheelrail.reference import cattaneo_shift, cattaneo_stick_radius, cattaneo_traction
 
 A = 1e-3       # contact radius [m]

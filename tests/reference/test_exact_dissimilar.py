@@ -20,9 +20,10 @@ import pytest
 from scipy.optimize import brentq
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, solve_rolling
+from wheelrail.halfspace import Grid
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.normal.bem import hertz_grid
-from wheelrail.contact import solve_gap
+from wheelrail.tangential.exact import solve_gap
 
 STEEL = wr.Material(2.1e11, 0.28)
 ALU = wr.Material(7.0e10, 0.33)
@@ -66,12 +67,12 @@ def test_panagiotopoulos_loop_converges_and_changes_pressure():
     pair = wr.MaterialPair(STEEL, ALU)
     hc = wr.hertz(2e3, A=5.0, B=5.0, material=pair)
     grid, gap = hertz_grid(hc, elements=20, margin=1.2)
-    sol = solve_gap(grid, gap, pair, load=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
+    sol = solve_gap(grid, gap, pair, Fn=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
     assert sol.outer_iterations >= 2
     assert sol.outer_change <= 1e-5
     assert sol.Fn == pytest.approx(2e3, rel=1e-6)
     # quasi-identical bodies need a single pass (Johnson's process)
-    same = solve_gap(grid, gap, STEEL, load=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
+    same = solve_gap(grid, gap, STEEL, Fn=2e3, creepage=(1e-3, 0.0, 0.0), mu=0.3)
     assert same.outer_iterations == 1
 
 

@@ -32,12 +32,12 @@ MAT = wr.Material.from_shear(82e9, 0.28)
 
 @pytest.fixture(scope="module")
 def contact():
-    return wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=MAT)
+    return wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3, material=MAT)
 
 
 @pytest.fixture(scope="module")
 def published():
-    return wr.hertz_from_semiaxes(a=8e-3, b=4e-3, load=82e3, material=MAT)
+    return wr.hertz_from_semiaxes(a=8e-3, b=4e-3, Fn=82e3, material=MAT)
 
 
 def _coeffs(c):
@@ -144,18 +144,18 @@ def test_saturation(contact, bound):
     kw = dict(method="fastsim", nx=50, ny=50, bound=bound)
     r = wr.creep_forces(c, (0.03, 0.04, 0.0), mu, flexibility="weighted", **kw)
     assert r.status is wr.Status.FULL_SLIP
-    assert r.Ft == pytest.approx(mu * c.load, rel=2e-3)
+    assert r.Ft == pytest.approx(mu * c.Fn, rel=2e-3)
     assert r.Fx / r.Ft == pytest.approx(-0.6, rel=1e-3)
     assert r.Fy / r.Ft == pytest.approx(-0.8, rel=1e-3)
     r3 = wr.creep_forces(c, (0.03, 0.04, 0.0), mu, flexibility="three", **kw)
-    assert r3.Ft == pytest.approx(mu * c.load, rel=2e-3)
+    assert r3.Ft == pytest.approx(mu * c.Fn, rel=2e-3)
     assert (r3.Fx / r3.Ft, r3.Fy / r3.Ft) == pytest.approx((-0.6, -0.8), rel=2e-3)
     C11, C22 = _coeffs(c)[:2]
     d = np.array([0.03 * C11, 0.04 * C22])   # the predictor's direction: not the answer
     assert abs(r3.Fx / r3.Ft + d[0] / np.hypot(*d)) > 5e-3
     # discretisation only: the discrete bound integrates to Fn up to the mid-point error
     f = r.fields
-    assert float(np.sum(f.pressure * f.area)) == pytest.approx(c.load, rel=2e-3)
+    assert float(np.sum(f.pressure * f.area)) == pytest.approx(c.Fn, rel=2e-3)
     assert r.info["adhesion_fraction"] == 0.0
 
 
@@ -163,7 +163,7 @@ def test_force_grows_monotonically_to_saturation(contact):
     xi = np.geomspace(1e-6, 1.0, 40)
     cr = np.column_stack([xi, 0 * xi, 0 * xi])
     r = wr.creep_forces(contact, cr, 0.3, method="fastsim", fields=False)
-    F = -r.Fx / (0.3 * contact.load)
+    F = -r.Fx / (0.3 * contact.Fn)
     assert np.all(np.diff(F) >= 0)  # non-decreasing; constant once the patch slides
     assert np.all(np.diff(F[F < 0.99]) > 0)
     assert F[-1] == pytest.approx(1.0, rel=3e-3)
@@ -213,7 +213,7 @@ def test_published_case(published, bound, n, scheme, expected, rel):
     c = published
     r = wr.creep_forces(c, (0.0, -0.000625, 0.625), 0.3, method="fastsim", nx=n, ny=n, bound=bound,
                         scheme=scheme)
-    assert r.Fy / (0.3 * c.load) == pytest.approx(expected, rel=rel)
+    assert r.Fy / (0.3 * c.Fn) == pytest.approx(expected, rel=rel)
     assert abs(r.Fx) < 1e-9 * abs(r.Fy)
 
 
@@ -228,7 +228,7 @@ def test_published_case_schemes_share_the_limit(published):
     c = published
     kw = dict(method="fastsim", bound="parabolic", fields=False)
     cr = (0.0, -0.000625, 0.625)
-    f = {(s, n): wr.creep_forces(c, cr, 0.3, nx=n, ny=n, scheme=s, **kw).Fy / (0.3 * c.load)
+    f = {(s, n): wr.creep_forces(c, cr, 0.3, nx=n, ny=n, scheme=s, **kw).Fy / (0.3 * c.Fn)
          for s in ("midpoint", "euler") for n in (200, 400)}
     extrapolated = 2 * f["euler", 400] - f["euler", 200]
     assert extrapolated == pytest.approx(f["midpoint", 400], rel=1e-3)
@@ -296,7 +296,7 @@ def test_fields_and_batch_path_agree(contact, scheme):
 
 def test_batch_of_contacts():
     cs = wr.hertz_from_semiaxes(a=np.array([4e-3, 6e-3, 8e-3]), b=np.array([6e-3, 4e-3, 4e-3]),
-                                load=np.array([50e3, 80e3, 82e3]), material=MAT)
+                                Fn=np.array([50e3, 80e3, 82e3]), material=MAT)
     r = wr.creep_forces(cs, (1e-3, -5e-4, 0.2), np.array([0.2, 0.3, 0.4]), method="fastsim")
     assert r.Fx.shape == (3,)
     for k in range(3):
@@ -342,7 +342,7 @@ def test_strips_reproduce_hertz_method(contact):
     x = strip_cell_centres(xl, xt, n)
     p = c.pressure(x, y[:, None])  # Hertz pressure at the element centres
     # the method scales the sampled bound so that the discrete pressure carries exactly Fn
-    p = p * c.load / np.sum(p * (xl - xt)[:, None] / n * dy[:, None])
+    p = p * c.Fn / np.sum(p * (xl - xt)[:, None] / n * dy[:, None])
     r = fastsim_strips(y, dy, xl, xt, p, L1, L2, L3, 1e-3, 5e-4, -0.3, 0.3)
     rm = wr.creep_forces(c, (1e-3, 5e-4, -0.3), 0.3, method="fastsim", nx=n, ny=n, bound="elliptic")
     assert (r.Fx, r.Fy, r.Mz) == pytest.approx((rm.Fx, rm.Fy, rm.Mz), rel=1e-12)
@@ -353,8 +353,8 @@ def test_strips_reproduce_hertz_method(contact):
 def test_full_slip_never_exceeds_coulomb_bound_on_coarse_grids(contact, bound, n):
     """Coulomb: |F_t| <= mu Fn on every grid (the sampled bound carries exactly Fn)."""
     r = wr.creep_forces(contact, (0.05, 0.0, 0.0), 0.3, method="fastsim", nx=n, ny=n, bound=bound)
-    assert abs(r.Fx) <= 0.3 * contact.load * (1 + 1e-12)
-    assert abs(r.Fx) == pytest.approx(0.3 * contact.load, rel=1e-9)
+    assert abs(r.Fx) <= 0.3 * contact.Fn * (1 + 1e-12)
+    assert abs(r.Fx) == pytest.approx(0.3 * contact.Fn, rel=1e-9)
 
 
 def test_strips_empty_strips_are_ignored():
@@ -396,5 +396,5 @@ def test_bad_strip_input():
 def test_method_metadata():
     m = Fastsim()
     assert m.name == "fastsim" and any("1982" in ref for ref in m.references)
-    assert m.options["bound"] == "parabolic" and m.options["flexibility"] == "three"
-    assert m.options["scheme"] == "midpoint"
+    assert m.bound == "parabolic" and m.flexibility == "three"
+    assert m.scheme == "midpoint"

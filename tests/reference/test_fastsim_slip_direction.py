@@ -32,7 +32,7 @@ EXACT_100 = {
 
 @pytest.fixture(scope="module")
 def contact():
-    return wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=20e3, material=MAT)
+    return wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=20e3, material=MAT)
 
 
 @pytest.mark.parametrize("creepage", list(EXACT_100))
@@ -40,7 +40,7 @@ def test_direction_and_magnitude_against_exact(contact, creepage):
     """Direction within 1 % and |F| within 2 % of the exact theory (100 × 100 FASTSIM grid)."""
     fx, fy = EXACT_100[creepage]
     r = wr.creep_forces(contact, creepage, MU, method="fastsim", nx=100, ny=100, fields=False)
-    gx, gy = r.Fx / (MU * contact.load), r.Fy / (MU * contact.load)
+    gx, gy = r.Fx / (MU * contact.Fn), r.Fy / (MU * contact.Fn)
     ang, ang_ref = np.arctan2(gy, gx), np.arctan2(fy, fx)
     assert abs(ang - ang_ref) <= 0.01 * abs(ang_ref)
     assert np.hypot(gx, gy) == pytest.approx(np.hypot(fx, fy), rel=0.02)
@@ -88,13 +88,13 @@ def test_strip_path_uses_the_same_rule(contact):
                                                            rel=1e-10)
     # directly on strips (the non-elliptic path), 100 strips x 100 cells, against exact
     y, dy, xl, xt = hertz_strips(c.a, c.b, 100)
-    peak = 2 * c.load / (np.pi * c.a * c.b) * (1 - (y / c.b) ** 2)
+    peak = 2 * c.Fn / (np.pi * c.a * c.b) * (1 - (y / c.b) ** 2)
     r = fastsim_strips(y, dy, xl, xt, peak, L1, L2, L3, 3e-3, 3e-3, 0.0, MU, 100,
                        profile="parabolic", fields=False)
     fx, fy = EXACT_100[(3e-3, 3e-3, 0.0)]
     got = np.arctan2(r.Fy, r.Fx)
     assert abs(got - np.arctan2(fy, fx)) <= 0.01 * abs(np.arctan2(fy, fx))
-    assert np.hypot(r.Fx, r.Fy) / (MU * c.load) == pytest.approx(np.hypot(fx, fy), rel=0.02)
+    assert np.hypot(r.Fx, r.Fy) / (MU * c.Fn) == pytest.approx(np.hypot(fx, fy), rel=0.02)
 
 
 def test_one_flexibility_is_unchanged():
@@ -120,4 +120,4 @@ def test_huge_creepage_slides_at_mu_fn(contact, xi):
     for fields in (True, False):
         r = wr.creep_forces(contact, (xi, 1e-3, 0.1), MU, method="fastsim", fields=fields)
         assert np.isfinite([r.Fx, r.Fy, r.Mz]).all()
-        assert -r.Fx == pytest.approx(MU * contact.load, rel=1e-3)
+        assert -r.Fx == pytest.approx(MU * contact.Fn, rel=1e-3)

@@ -67,7 +67,7 @@ def test_point_load_stresses_traction_free_surface():
 def hertz_case():
     hc = wr.hertz(10e3, A=1.0, B=1.0, material=MAT)
     grid, h0 = hertz_grid(hc, elements=40)
-    sol = solve_normal(grid, h0, MAT, load=10e3)
+    sol = solve_normal(grid, h0, MAT, Fn=10e3)
     return hc, grid, sol
 
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.normal.hertz import hertz_coefficients
+from wheelrail.hertzian import hertz_coefficients
 
 # Seed 003 (Piotrowski & Chollet, VSD 43, 2005), Table 2: theta [deg], n/m, m, r
 TABLE2 = np.array([
@@ -59,7 +59,7 @@ def test_swap_of_curvatures_swaps_axes(steel):
 def test_inverse_problems_roundtrip(steel):
     c = wr.hertz(82e3, 0.8, 2.4, steel)
     back = wr.hertz_from_penetration(c.penetration, 0.8, 2.4, steel)
-    assert back.load == pytest.approx(82e3, rel=1e-9)
+    assert back.Fn == pytest.approx(82e3, rel=1e-9)
     c2 = wr.hertz_from_semiaxes(c.a, c.b, 82e3, steel)
     assert c2.A == pytest.approx(0.8, rel=1e-8)
     assert c2.B == pytest.approx(2.4, rel=1e-8)
@@ -86,11 +86,11 @@ def test_line_contact_limit(steel):
 
 
 @pytest.mark.parametrize("kwargs,match", [
-    (dict(load=-1.0, A=1.0, B=1.0), "load"),
-    (dict(load=0.0, A=1.0, B=1.0), "load"),
-    (dict(load=np.nan, A=1.0, B=1.0), "load"),
-    (dict(load=1.0, A=-1.0, B=1.0), "curvature A"),
-    (dict(load=1.0, A=0.0, B=1.0), "line contact"),
+    (dict(Fn=-1.0, A=1.0, B=1.0), "Fn"),
+    (dict(Fn=0.0, A=1.0, B=1.0), "Fn"),
+    (dict(Fn=np.nan, A=1.0, B=1.0), "Fn"),
+    (dict(Fn=1.0, A=-1.0, B=1.0), "curvature A"),
+    (dict(Fn=1.0, A=0.0, B=1.0), "line contact"),
 ])
 def test_bad_input(steel, kwargs, match):
     with pytest.raises(wr.InputError, match=match):
@@ -102,12 +102,12 @@ def test_batch(steel):
     c = wr.hertz(loads, 1.0, 2.0, steel)
     assert c.a.shape == (3,)
     np.testing.assert_allclose(c.a[1] / c.a[0], 10 ** (1 / 3), rtol=1e-12)
-    assert c[2].load == 1e5
+    assert c[2].Fn == 1e5
 
 
 def test_shape_ratio_secant_equals_bisection():
     """The secant solve of the Hertz shape equation agrees with plain bisection (1e-12)."""
-    from wheelrail.normal.hertz import _shape_ratio_bisection, shape_ratio
+    from wheelrail.hertzian import _shape_ratio_bisection, shape_ratio
 
     r = np.concatenate([[1.0, 1 + 1e-12, 1 + 1e-6, 1.001], np.logspace(0, 12, 500)])
     # near k = 1 the shape equation is flat: both agree to its own round-off (~2e-13)

@@ -24,7 +24,7 @@ from scipy.interpolate import PchipInterpolator
 
 import wheelrail as wr
 from wheelrail.tangential import linear
-from wheelrail.tangential.linear import (KalkerLinear, kalker_asymptotes, kalker_coefficients,
+from wheelrail.tangential.linear import (Linear, kalker_asymptotes, kalker_coefficients,
                                          kalker_table, linear_forces)
 
 # (a/b, nu) -> (C11, C22, C23), Kalker (1990) Table E.3, typed in independently of the package's
@@ -370,8 +370,8 @@ def test_kalker_linear_method_batch(steel):
     Fx, Fy, Mz = linear_forces(c.a, c.b, c.G, c.nu, cr[:, 0], cr[:, 1], cr[:, 2])
     assert np.allclose(r.Fx, Fx) and np.allclose(r.Fy, Fy) and np.allclose(r.Mz, Mz)
     assert r.Fx[0] < 0 and r.Fx[2] > 0
-    assert np.allclose(r.info["utilisation"], np.hypot(Fx, Fy) / (0.3 * c.load))
-    single = wr.creep_forces(c[0], creepage=(1e-4, 0, 0), mu=0.3, method=KalkerLinear())
+    assert np.allclose(r.info["utilisation"], np.hypot(Fx, Fy) / (0.3 * c.Fn))
+    single = wr.creep_forces(c[0], creepage=(1e-4, 0, 0), mu=0.3, method=Linear())
     assert isinstance(single.Fx, float) and single.Fx == pytest.approx(r.Fx[0])
     with pytest.raises(wr.InputError):
         wr.creep_forces(c, creepage=cr, mu=0.3, method="linear", nx=10)

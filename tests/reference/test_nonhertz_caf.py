@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.contact.wheelrail import touching_heights
+from wheelrail.geometry.touching import touching_heights
 from wheelrail.errors import InputError
 from wheelrail.geometry.contact_search import _Pose, find_points
 from wheelrail.normal.caf import (caf_contacts, caf_table, jump_gap, jump_overlap,

@@ -136,17 +136,17 @@ def test_fastsim_fused_equals_general_path(s1002, normal, creep, monkeypatch):
 
     if normal == "kik-piotrowski" and creep[0] > 1e100:
         creep = (1e140, -1e140, 0.0)
-    nm = wr.api.get_normal_method(normal)
-    tm = wr.api.get_method("fastsim")
+    nm = wr.normal.get(normal)
+    tm = wr.tangential.get("fastsim")
     for y in (0.0, 0.005):               # 0.005: two patches on the right wheel
-        ps, _ = nm.from_wheel(_problem(s1002, y), **nm.check_options({}))
+        ps, _ = nm.from_wheel(_problem(s1002, y))
         cr = [creep] * len(ps)
         opt = {"scheme": "euler", "nx": 13} if y else {}     # CONTACT's march, other cells
-        a = tm.solve_patches(ps, cr, 0.3, **tm.check_options({"fields": False, **opt}))
-        b = tm.solve_patches(ps, cr, 0.3, **tm.check_options({"fields": True, **opt}))
+        a = tm.replace(**{"fields": False, **opt}).solve_patches(ps, cr, 0.3)
+        b = tm.replace(**{"fields": True, **opt}).solve_patches(ps, cr, 0.3)
         with monkeypatch.context() as m:
             m.setattr(Fastsim, "_patch_forces", lambda *args: None)
-            g = tm.solve_patches(ps, cr, 0.3, **tm.check_options({"fields": True, **opt}))
+            g = tm.replace(**{"fields": True, **opt}).solve_patches(ps, cr, 0.3)
         for u, v, r in zip(a, b, g):
             assert u.fields is None and v.fields is not None
             s = 0.3 * r.Fn
@@ -168,11 +168,11 @@ def test_fastsim_fused_equals_general_path(s1002, normal, creep, monkeypatch):
 
 
 def test_fastsim_forces_only_rejects_bad_mu(s1002):
-    nm = wr.api.get_normal_method("kik-piotrowski")
-    tm = wr.api.get_method("fastsim")
-    ps, _ = nm.from_wheel(_problem(s1002, 0.0), **nm.check_options({}))
+    nm = wr.normal.get("kik-piotrowski")
+    tm = wr.tangential.get("fastsim")
+    ps, _ = nm.from_wheel(_problem(s1002, 0.0))
     with pytest.raises(wr.errors.InputError, match="mu must be > 0, got -0.3"):
-        tm.solve_patch(ps[0], 1e-3, 0.0, 0.0, -0.3, fields=False)
+        tm.replace(fields=False).solve_patch(ps[0], 1e-3, 0.0, 0.0, -0.3)
 
 
 def _forces(ps):
@@ -188,11 +188,11 @@ def _forces(ps):
 def test_cached_line_data_follow_options(s1002, normal, first, second):
     """A wheel problem solved once keeps line data in its cache; a second solve with
     other options must equal a solve of a fresh problem with those options."""
-    nm = wr.api.get_normal_method(normal)
+    nm = wr.normal.get(normal)
     prob = _problem(s1002, 0.005)
-    nm.from_wheel(prob, **nm.check_options(first))
-    again, _ = nm.from_wheel(prob, **nm.check_options(second))
-    fresh, _ = nm.from_wheel(_problem(s1002, 0.005), **nm.check_options(second))
+    nm.replace(**first).from_wheel(prob)
+    again, _ = nm.replace(**second).from_wheel(prob)
+    fresh, _ = nm.replace(**second).from_wheel(_problem(s1002, 0.005))
     np.testing.assert_array_equal(_forces(again), _forces(fresh))
     for p, q in zip(again, fresh):
         np.testing.assert_array_equal(p.strip_pressure, q.strip_pressure)
@@ -205,12 +205,12 @@ def test_cached_line_data_follow_options(s1002, normal, first, second):
 def test_cached_line_data_follow_the_load(s1002, normal):
     """The load changes the regions (STRIPES then needs its curvature at new nodes):
     the cached problem must give what a fresh one gives."""
-    nm = wr.api.get_normal_method(normal)
-    o = nm.check_options({})
+    nm = wr.normal.get(normal)
+    o = nm
     prob = _problem(s1002, -0.004, load=20e3)
-    small, _ = nm.from_wheel(prob, **o)
-    big, _ = nm.from_wheel(dataclasses.replace(prob, vertical_load=120e3), **o)
-    fresh, _ = nm.from_wheel(_problem(s1002, -0.004, load=120e3), **o)
+    small, _ = o.from_wheel(prob)
+    big, _ = o.from_wheel(dataclasses.replace(prob, vertical_load=120e3))
+    fresh, _ = o.from_wheel(_problem(s1002, -0.004, load=120e3))
     assert big[0].area > 2 * small[0].area
     np.testing.assert_array_equal(_forces(big), _forces(fresh))
     if normal == "stripes":
@@ -272,7 +272,7 @@ def test_separation_kernel_equals_full_splines(s1002):
 
 def test_stripes_n_over_m_table_equals_hertz():
     """The n/m table of STRIPES (all grid values at once) against Hertz's b/a per λ."""
-    from wheelrail.normal.hertz import hertz_kernel
+    from wheelrail.hertzian import hertz_kernel
     from wheelrail.normal.stripes import _NM_K, _n_over_m, _n_over_m_array, _nm_table
 
     q = np.arange(-_NM_K, _NM_K + 1) / 50.0
@@ -309,13 +309,13 @@ def test_kp_region_kernel_equals_python_loop(s1002, opts, monkeypatch):
     (still used beyond the Hertz table), on a wheel with two patches and a Hertzian gap."""
     from wheelrail.normal import _kp_kernel
 
-    nm = wr.api.get_normal_method("kik-piotrowski")
-    o = nm.check_options(opts)
+    nm = wr.normal.get("kik-piotrowski")
+    o = nm.replace(**opts)
     c = wr.hertz(1e5, 1.0, 4.0, wr.STEEL)
 
     def solve():
-        w, _ = nm.from_wheel(_problem(s1002, 0.005), **o)
-        return w + nm.from_contact(c, **o)
+        w, _ = o.from_wheel(_problem(s1002, 0.005))
+        return w + o.from_contact(c)
 
     fast = solve()
     with monkeypatch.context() as m:

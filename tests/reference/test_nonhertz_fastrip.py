@@ -28,7 +28,7 @@ def test_linear_slope_is_fastsim():
 
 def test_saturates_at_mu_fn():
     r = _f((0.05, 0.0, 0.0))
-    assert np.hypot(r.Fx, r.Fy) == pytest.approx(0.3 * float(C.load), rel=1e-3)
+    assert np.hypot(r.Fx, r.Fy) == pytest.approx(0.3 * float(C.Fn), rel=1e-3)
 
 
 @pytest.mark.parametrize("cr", [(1e-3, 0, 0), (0, 1e-3, 0), (1e-3, 1e-3, 0)])

@@ -35,14 +35,14 @@ def _gap(c, **kw):
 @pytest.mark.parametrize("ab", RATIOS)
 def test_kik_piotrowski_default_reproduces_hertz(ab):
     c = _contact(ab)
-    m = wr.api.get_normal_method("kik-piotrowski")
-    (p,) = m.from_gap(_gap(c, load=float(c.load)), **m.check_options({}))
-    assert p.Fn == pytest.approx(float(c.load), rel=1e-6)
+    m = wr.normal.get("kik-piotrowski")
+    (p,) = m.from_gap(_gap(c, Fn=float(c.Fn)))
+    assert p.Fn == pytest.approx(float(c.Fn), rel=1e-6)
     assert p.area == pytest.approx(float(c.area), rel=0.02)
     assert p.p_max == pytest.approx(float(c.p0), rel=0.02)
     # prescribed penetration: the load of Hertz's approach
-    (q,) = m.from_gap(_gap(c, penetration=1e-5 + float(c.penetration)), **m.check_options({}))
-    assert q.Fn == pytest.approx(float(c.load), rel=0.02)
+    (q,) = m.from_gap(_gap(c, penetration=1e-5 + float(c.penetration)))
+    assert q.Fn == pytest.approx(float(c.Fn), rel=0.02)
     L, W = p.info["L_W"]
     assert L / W == pytest.approx(ab, rel=0.02)
 
@@ -51,9 +51,9 @@ def test_kik_piotrowski_default_reproduces_hertz(ab):
 def test_kik_piotrowski_shape_correction_keeps_area_moves_ratio(ab):
     """Seed 003 §3.2.1: the correction keeps L·W and moves L/W to the Hertz ratio."""
     c = _contact(ab)
-    m = wr.api.get_normal_method("kik-piotrowski")
-    raw, = m.from_gap(_gap(c, load=float(c.load)), **m.check_options({"shape_correction": False}))
-    cor, = m.from_gap(_gap(c, load=float(c.load)), **m.check_options({}))
+    m = wr.normal.get("kik-piotrowski")
+    raw, = m.replace(**{"shape_correction": False}).from_gap(_gap(c, Fn=float(c.Fn)))
+    cor, = m.from_gap(_gap(c, Fn=float(c.Fn)))
     assert cor.area == pytest.approx(raw.area, rel=0.05)
     r_raw = raw.info["L_W"][0] / raw.info["L_W"][1]
     r_cor = cor.info["L_W"][0] / cor.info["L_W"][1]
@@ -64,11 +64,10 @@ def test_kik_piotrowski_shape_correction_keeps_area_moves_ratio(ab):
 
 def test_original_factor_is_biased():
     """δ0 = 0.55 δ enlarges the area (0.55 > ε_Hertz ≈ 0.5) and lowers p_max, at every a/b."""
-    m = wr.api.get_normal_method("kik-piotrowski")
+    m = wr.normal.get("kik-piotrowski")
     for ab in RATIOS:
         c = _contact(ab)
-        (p,) = m.from_gap(_gap(c, load=float(c.load)),
-                          **m.check_options({"penetration_factor": 0.55}))
+        (p,) = m.replace(penetration_factor=0.55).from_gap(_gap(c, Fn=float(c.Fn)))
         assert 1.05 < p.area / float(c.area) < 1.2
         assert 0.85 < p.p_max / float(c.p0) < 0.95
 
@@ -89,12 +88,12 @@ def test_bad_penetration_factor_named(bad):
 
 def test_unrepresentable_gaps_rejected():
     """A gap without curvature along x (a line contact) or a saddle: clear InputError."""
-    line = GapProblem(lambda x, y: 0.0 * x + y**2, wr.STEEL, load=1e4,
+    line = GapProblem(lambda x, y: 0.0 * x + y**2, wr.STEEL, Fn=1e4,
                       search=(-0.01, 0.01, -0.01, 0.01))
-    saddle = GapProblem(lambda x, y: x**2 - 0.5 * y**2, wr.STEEL, load=1e4,
+    saddle = GapProblem(lambda x, y: x**2 - 0.5 * y**2, wr.STEEL, Fn=1e4,
                         search=(-0.01, 0.01, -0.01, 0.01))
     for name in ("kik-piotrowski", "linder", "stripes", "multi-hertz"):
-        m = wr.api.get_normal_method(name)
+        m = wr.normal.get(name)
         for g in (line, saddle):
             with pytest.raises(InputError, match="search|convex|represent"):
-                m.from_gap(g, **m.check_options({}))
+                m.from_gap(g)

@@ -63,16 +63,17 @@ def test_kp_line_load_kernel_equals_regions(s1002):
     from wheelrail.normal._strips import VirtualPenetration
 
     ws, tr = s1002
-    kp = wr.api.get_normal_method("kik-piotrowski")
+    kp = wr.normal.get("kik-piotrowski")
     for y, corr in ((0.0, True), (0.005, True), (0.005, False)):
         wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=70e3)
         roll, zs = touching_poses(wp)
         prob = wheel_problem(wp, "right", roll, zs["right"])
-        opts = kp.check_options({"shape_correction": corr})
-        for line in kp._wheel_lines(prob):
+        m = kp.replace(shape_correction=corr)
+        opts = m.option_values()
+        for line in m._wheel_lines(prob):
             for d in (2e-5, 8e-5):
-                fast = kp._line_loads(line, d, opts)
-                slow = VirtualPenetration._line_loads(kp, line, d, opts)
+                fast = m._line_loads(line, d, opts)
+                slow = VirtualPenetration._line_loads(m, line, d, opts)
                 assert fast == pytest.approx(slow, rel=1e-9)
 
 
@@ -81,11 +82,11 @@ def test_stripes_line_load_equals_regions(s1002):
     from wheelrail.normal._strips import VirtualPenetration
 
     ws, tr = s1002
-    st = wr.api.get_normal_method("stripes")
+    st = wr.normal.get("stripes")
     wp = wr.WheelRailPosition(ws, tr, 0.005, yaw=0.002, vertical_load=70e3)
     roll, zs = touching_poses(wp)
     prob = wheel_problem(wp, "right", roll, zs["right"])
-    opts = st.check_options({})
+    opts = st.option_values()
     for line in st._wheel_lines(prob):
         for d in (2e-5, 8e-5):
             assert st._line_loads(line, d, opts) == pytest.approx(

@@ -75,7 +75,7 @@ def test_prescribed_approach(s1002):
     ws, tr = s1002
     wp = wr.WheelRailPosition(ws, tr, 0.002, vertical_load=70e3)
     r = wr.solve(wp, motion=MOTION, mu=0.3, normal="kik-piotrowski", vertical="normal")
-    dz = r.pose["approach_right"]
+    dz = r.pose["vertical_approach_right"]
     z = r.pose["z_right"] - dz
     wz = wr.WheelRailPosition(ws, tr, 0.002, roll=r.pose["roll"], z=z)
     r2 = wr.solve(wz, motion=MOTION, mu=0.3, normal="kik-piotrowski", vertical="normal")

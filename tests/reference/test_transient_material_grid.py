@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import solve_rolling
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 XI = -5.6e-4
@@ -27,7 +27,7 @@ def hc():
 
 def _steady(hc, n, margin=1.25):
     grid, gap = hertz_grid(hc, elements=n, margin=margin)
-    pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
     return grid, solve_rolling(grid, pn, wr.STEEL, (XI, 0.0, 0.0), mu=0.4).Fx
 
 

@@ -34,7 +34,7 @@ def test_regularised_converges_to_exact(hc):
 
 
 def test_regularised_force_control(hc):
-    r = wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+    r = wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              friction="regularised", epsilon=1e-5, elements=8)
     assert r.Fx[1:] == pytest.approx(2000.0, rel=1e-6)
     assert np.all(r.xi[1:] < 0)

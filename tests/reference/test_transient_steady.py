@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 
 import wheelrail as wr
 from wheelrail.halfspace.influence import influence_kernel
-from wheelrail.halfspace.tangential import newton_step, solve_rolling, solve_shift
+from wheelrail.tangential.exact import newton_step, solve_rolling, solve_shift
 from wheelrail.transient.rolling import shifted_influence_kernel
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
@@ -27,7 +27,7 @@ def table1():
 
 def _steady(hc, n, creepage):
     grid, gap = hertz_grid(hc, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=float(hc.load)).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=float(hc.Fn)).pressure
     return grid, pn, solve_rolling(grid, pn, wr.STEEL, creepage, mu=MU, tol=1e-10)
 
 
@@ -49,7 +49,7 @@ def test_first_step_is_the_cattaneo_shift(table1):
     res = wr.transient_rolling(table1, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
                                elements=n, scheme="centre")
     grid, gap = hertz_grid(table1, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
     sh = solve_shift(grid, pn, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
     fields = res.fields_at(x=h)
     assert np.allclose(fields.px.values, sh.px, atol=1e-6 * np.abs(sh.px).max())
@@ -60,14 +60,14 @@ def test_cattaneo_to_carter_final_creepage(table1):
     """Seed §3.1 on 10 elements: final ξ within 1 % of the steady exact solver's."""
     n = 10
     grid, gap = hertz_grid(table1, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
 
     def fx(xi):
         return solve_rolling(grid, pn, wr.STEEL, (xi, 0.0, 0.0), mu=MU, tol=1e-10).Fx - 2000.0
 
     xi_steady = brentq(fx, -3e-3, -1e-5, xtol=1e-12)
     res = wr.transient_rolling(table1, travel=16 * float(table1.a), step=grid.dx, mu=MU,
-                               tangential_force=2000.0, elements=n)
+                               Fx=2000.0, elements=n)
     assert np.allclose(res.Fx[1:], 2000.0, rtol=1e-6)
     assert res.xi[-1] == pytest.approx(xi_steady, rel=0.01)
     # Kalker's convention: a positive force on the wheel needs a negative creepage
@@ -85,7 +85,7 @@ def test_centre_scheme_ends_on_its_steady_fixed_point(table1):
     n = 10
     grid, gap = hertz_grid(table1, elements=n)
     h = grid.dx / 2
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
     M = (influence_kernel(grid, wr.STEEL)[:2, :2]
          - shifted_influence_kernel(grid, wr.STEEL, h)[:2, :2]) / h
 
@@ -98,7 +98,7 @@ def test_centre_scheme_ends_on_its_steady_fixed_point(table1):
 
     xi_h = brentq(fx, -3e-3, -1e-5, xtol=1e-13)
     res = wr.transient_rolling(table1, travel=16 * float(table1.a), step=h, mu=MU,
-                               tangential_force=2000.0, elements=n, scheme="centre")
+                               Fx=2000.0, elements=n, scheme="centre")
     assert res.xi[-1] == pytest.approx(xi_h, rel=1e-4)
 
 
@@ -107,7 +107,7 @@ def test_averaged_step_kernel_telescopes_to_kalkers_rolling_kernel(m):
     """Held steady, (now − old)/h of the averaged scheme is Kalker's M = (C − C_dx)/dx
     (Kalker 1990 §5.2) exactly for integer dx/h: an independent kernel (rolling_kernel)."""
     from wheelrail.halfspace.grid import Grid
-    from wheelrail.halfspace.tangential import rolling_kernel
+    from wheelrail.halfspace.rolling import rolling_kernel
     from wheelrail.transient.rolling import step_kernels
 
     g = Grid(0.0, 0.0, 2e-4, 3e-4, 7, 5)
@@ -123,11 +123,11 @@ def test_seed_time_step_ends_on_the_steady_exact_solver(table1):
     (measured 0.12 %); the seed's centre scheme ends 4.1 % off on this grid (measured)."""
     n = 12
     grid, gap = hertz_grid(table1, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=10e3).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=10e3).pressure
     xi_st = brentq(lambda xi: solve_rolling(grid, pn, wr.STEEL, (xi, 0.0, 0.0), mu=MU,
                                             tol=1e-10).Fx - 2000.0, -3e-3, -1e-5, xtol=1e-12)
     h = grid.dx / 3.7
-    kw = dict(travel=12 * float(table1.a), step=h, mu=MU, tangential_force=2000.0,
+    kw = dict(travel=12 * float(table1.a), step=h, mu=MU, Fx=2000.0,
               elements=n, frames=2)
     avg = wr.transient_rolling(table1, **kw)
     assert avg.xi[-1] == pytest.approx(xi_st, rel=0.01)

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.halfspace.tangential import solve_rolling
+from wheelrail.tangential.exact import solve_rolling
 from wheelrail.normal.bem import hertz_grid, solve_normal
 from wheelrail.transient.strips import hertz_pressure, strip_grid
 
@@ -40,7 +40,7 @@ def test_strips_cover_the_ellipse_with_equal_counts(hc):
 
 def test_strips_converge_to_the_steady_exact_solver(hc):
     grid, gap = hertz_grid(hc, elements=60, margin=1.1)
-    pn = solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
     ref = solve_rolling(grid, pn, wr.STEEL, (XI, 0.0, 0.0), mu=0.4).Fx
     a = float(hc.a)
     ns = np.array([8, 12, 16])
@@ -56,7 +56,7 @@ def test_strips_converge_to_the_steady_exact_solver(hc):
 
 
 def test_strips_force_control_and_refusals(hc):
-    r = wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+    r = wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              elements=8, strips=6, discretisation="strips", frames=2)
     assert r.Fx[1:] == pytest.approx(2000.0, rel=1e-6)
     assert r.grid.shape == (8, 6) and r.fields.X.shape == (8, 6)
@@ -66,7 +66,7 @@ def test_strips_force_control_and_refusals(hc):
     assert plot_state(r, 1e-3).axes and plot_centreline(r).axes
     case = load_transient_case("""
 [contact]
-load = 10000.0
+Fn = 10000.0
 wheel_rolling_radius = 0.5
 wheel_profile_radius = -0.409
 rail_profile_radius = 0.3
@@ -79,13 +79,13 @@ elements = 8
 strips = 6
 frames = 2
 discretisation = "strips"
-tangential_force = 2000.0
+Fx = 2000.0
 """)
     assert case.run().xi == pytest.approx(r.xi, rel=1e-9)
-    with pytest.raises(wr.InputError, match="constant normal_force"):
-        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+    with pytest.raises(wr.InputError, match="constant Fn"):
+        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              elements=8, discretisation="strips",
-                             normal_force=lambda x: 1e4 + x)
+                             Fn=lambda x: 1e4 + x)
     with pytest.raises(wr.InputError, match="discretisation must be"):
-        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, tangential_force=2000.0,
+        wr.transient_rolling(hc, travel=1e-3, step=2.5e-4, mu=0.4, Fx=2000.0,
                              elements=8, discretisation="hexagons")

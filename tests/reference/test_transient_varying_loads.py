@@ -52,8 +52,8 @@ def test_normal_force_variation_slips_at_the_leading_edge(setup):
     hc, h = setup
     depth = {}
     for lam in (12.5e-3, 5e-3):
-        r = _run(hc, h, lam, tangential_force=2000.0,
-                 normal_force=lambda x, lam=lam: 10e3 + 4.5e3 * np.sin(2 * np.pi * x / lam))
+        r = _run(hc, h, lam, Fx=2000.0,
+                 Fn=lambda x, lam=lam: 10e3 + 4.5e3 * np.sin(2 * np.pi * x / lam))
         late = r.x >= lam
         # Fig. 9: the creepage stays within the plotted band [−2e-3, 0]
         assert np.all((r.xi[late] > -2e-3) & (r.xi[late] < 0))
@@ -70,7 +70,7 @@ def test_constant_loads_slip_at_most_one_element_deep_at_the_leading_edge(setup)
     the pressure is tiny; depth 1): the deeper zones above come from the load variation."""
     hc, h = setup
     r = wr.transient_rolling(hc, travel=12 * float(hc.a), step=2 * h, mu=0.4, elements=N,
-                             tangential_force=2000.0, frames=3)
+                             Fx=2000.0, frames=3)
     assert leading_edge_slip(r.state[-1])[1] <= 1
 
 
@@ -79,7 +79,7 @@ def test_longitudinal_force_variation_same_sign_and_reverse_traction(setup):
     frac, extreme = {}, {}
     for lam in (12.5e-3, 5e-3):
         F1 = lambda x, lam=lam: 2000.0 + 1000.0 * np.sin(2 * np.pi * x / lam)  # noqa: E731
-        r = _run(hc, h, lam, tangential_force=F1)
+        r = _run(hc, h, lam, Fx=F1)
         late = r.x >= lam
         # Fig. 11: the creepage stays within the plotted band [−3e-3, 1.5e-3]
         assert np.all((r.xi[late] > -3e-3) & (r.xi[late] < 1.5e-3))

@@ -23,7 +23,6 @@ from wheelrail.errors import InputError, NoContactError, WheelrailError
 from wheelrail.profiles import Profile
 
 DATA = Path(__file__).parent / "data" / "contact_mbench_a22.csv"
-SHARED = Path(__file__).resolve().parents[2].parent / "shared" / "data"
 
 
 @pytest.fixture(scope="module")
@@ -152,7 +151,7 @@ def test_sweep_batch_equals_per_position_path(s1002):
 
 
 def test_hertz_contact_through_solve_equals_creep_forces():
-    c = wr.hertz(load=7500.0, A=1.087, B=1.667, material=wr.STEEL)
+    c = wr.hertz(Fn=7500.0, A=1.087, B=1.667, material=wr.STEEL)
     for law in ("fastsim", "polach", "linear", "shen-hedrick-elkins"):
         r = wr.solve(c, creepage=(-7e-4, 2e-4, 0.3), mu=0.3, normal="hertz", tangential=law)
         ref = wr.creep_forces(c, (-7e-4, 2e-4, 0.3), 0.3, method=law)
@@ -196,16 +195,15 @@ def _contact_reference():
     return out
 
 
-@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/data is not present")
 @pytest.mark.parametrize("case", [1, 2, 14, 21])
-def test_manchester_a22_against_contact(case):
+def test_manchester_a22_against_contact(case, shared_data):
     """Exact theory on the same 0.2 mm grid as CONTACT's published run (forces converted to
     Kalker's convention: on the wheel, creepage of the wheel relative to the rail)."""
     from wheelrail.contact.manchester import manchester_a22
 
-    cases = manchester_a22(SHARED / "benchmarks" / "manchester_a22_inputs.csv",
-                           SHARED / "profiles" / "MBench_S1002_v3.prw",
-                           SHARED / "profiles" / "MBench_UIC60_v3.prr")
+    cases = manchester_a22(shared_data / "benchmarks" / "manchester_a22_inputs.csv",
+                           shared_data / "profiles" / "MBench_S1002_v3.prw",
+                           shared_data / "profiles" / "MBench_UIC60_v3.prr")
     c = cases[case - 1]
     res = wr.solve(c.position, motion=c.motion, mu=c.mu, normal="bem", tangential="exact",
                    element_size=2e-4)
@@ -264,7 +262,7 @@ def test_gap_problem_two_bumps_bem_gives_two_patches_hertz_one():
 
     prob = wr.GapProblem(gap, wr.STEEL, penetration=2.5e-5, search=(-0.02, 0.02, -0.03, 0.03))
     b = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="bem", tangential="fastsim",
-                 elements=120)
+                 grid_elements=120)
     assert len(b.patches) == 2
     big, small = sorted(b.patches, key=lambda p: -p.Fn)
     # reference: two Hertz contacts, each lowered by the far-field (Boussinesq) displacement
@@ -273,15 +271,15 @@ def test_gap_problem_two_bumps_bem_gives_two_patches_hertz_one():
     F = [0.0, 0.0]
     for _ in range(50):
         F = [float(wr.hertz_from_penetration(delta - F[1 - i] / (np.pi * E_star * d), 1.0, 2.0,
-                                             wr.STEEL).load)
+                                             wr.STEEL).Fn)
              for i, delta in enumerate((2.5e-5, 2.3e-5))]
     assert big.Fn == pytest.approx(F[0], rel=0.02)
     assert small.Fn == pytest.approx(F[1], rel=0.02)
     # without the interaction the loads would be 6-7 % higher: the test sees it
-    assert big.Fn < 0.96 * float(wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL).load)
+    assert big.Fn < 0.96 * float(wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL).Fn)
     h = wr.solve(prob, creepage=(-1e-3, 0, 0), mu=0.3, normal="hertz", tangential="fastsim")
     ref = wr.hertz_from_penetration(2.5e-5, 1.0, 2.0, wr.STEEL)
-    assert len(h.patches) == 1 and h.Fn == pytest.approx(float(ref.load), rel=1e-3)
+    assert len(h.patches) == 1 and h.Fn == pytest.approx(float(ref.Fn), rel=1e-3)
 
 
 @pytest.mark.parametrize("normal", ["hertz", "bem"])

@@ -8,13 +8,12 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.api import METHODS
 
 C = wr.hertz(7500.0, 1.0869565, 1.6666667, wr.STEEL)
 OPTS = {"fastsim": {"nx": 6, "ny": 6}, "exact": {"elements": 8}}
 
 
-@pytest.mark.parametrize("method", list(METHODS))
+@pytest.mark.parametrize("method", list(wr.tangential_methods()))
 @pytest.mark.parametrize("creepage, mu, match", [
     ((np.nan, 0.0, 0.0), 0.3, "creepage must be finite"),
     ((0.0, np.inf, 0.0), 0.3, "creepage must be finite"),
@@ -41,9 +40,9 @@ def test_contact_must_be_a_hertz_contact():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(a=8e-3, b=-4e-3, load=1e4), "b must be > 0"),
-    (dict(a=8e-3, b=4e-3, load=0.0), "load must be > 0, got 0.0"),
-    (dict(a=1e-3, b=1e7, load=1e4), "a/b"),
+    (dict(a=8e-3, b=-4e-3, Fn=1e4), "b must be > 0"),
+    (dict(a=8e-3, b=4e-3, Fn=0.0), "Fn must be > 0, got 0.0"),
+    (dict(a=1e-3, b=1e7, Fn=1e4), "a/b"),
 ])
 def test_semiaxes_out_of_range(kwargs, match):
     with pytest.raises(wr.InputError, match=match):

@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.casefile import Case, case_from_dict, load_case, run_case, solve_case
+from wheelrail.casefile import case_from_dict, load_case
+from wheelrail.cases import Case, run_case, solve_case
 from wheelrail.errors import CaseFileError
 
 FULL = """
@@ -17,7 +18,7 @@ E = 2.1e11
 nu = 0.28
 
 [contact]
-load = 7500.0
+Fn = 7500.0
 A = 1.0869565
 B = 1.6666667
 
@@ -52,10 +53,10 @@ def test_full_case_from_file(tmp_path):
     assert case.source == str(path)
     assert case.materials == wr.MaterialPair.same(wr.Material(2.1e11, 0.28))
     assert case.contact.kind == "curvatures"
-    assert (case.contact.load, case.contact.A, case.contact.B) == (7500.0, 1.0869565, 1.6666667)
+    assert (case.contact.Fn, case.contact.A, case.contact.B) == (7500.0, 1.0869565, 1.6666667)
     assert case.creepage == (-0.0007, 0.0002, 0.1)
     assert case.mu == 0.2
-    assert (case.normal, case.tangential) == ("hertz", "linear")
+    assert (case.normal, case.tangential) == (wr.normal.Hertz(), wr.tangential.Linear())
     assert dict(case.forces) == {}
     with pytest.raises(Exception):  # frozen
         case.mu = 0.3
@@ -70,17 +71,18 @@ def test_text_and_path_give_the_same_case(tmp_path):
 
 
 def test_defaults_steel_zero_creepage_fastsim():
-    case = load_case("[contact]\nload = 1000.0\nA = 1.0\nB = 2.0\n[friction]\nmu = 0.3\n")
+    case = load_case("[contact]\nFn = 1000.0\nA = 1.0\nB = 2.0\n[friction]\nmu = 0.3\n")
     assert case.materials.wheel == wr.STEEL
     assert case.creepage == (0.0, 0.0, 0.0)
-    assert (case.normal, case.tangential) == ("hertz", "fastsim")
+    assert (case.normal, case.tangential) == (wr.normal.Hertz(), wr.tangential.Fastsim())
 
 
 def test_alias_resolved_and_options_kept():
     text = _edit(FULL, 'tangential = "linear"', 'tangential = "SHE"\n[method.fastsim]\nnx = 7')
     case = load_case(text)
-    assert case.tangential == "shen-hedrick-elkins"
-    assert dict(case.options["fastsim"]) == {"nx": 7}
+    assert case.tangential == wr.tangential.ShenHedrickElkins()
+    assert case.methods["fastsim"] == wr.tangential.Fastsim(nx=7)
+    assert case.with_tangential("fastsim").tangential == wr.tangential.Fastsim(nx=7)
 
 
 def test_material_pair():
@@ -101,7 +103,7 @@ def test_to_toml_round_trip():
     again = load_case(case.to_toml())
     for attr in ("materials", "contact", "creepage", "mu", "normal", "tangential"):
         assert getattr(again, attr) == getattr(case, attr), attr
-    assert dict(again.options["fastsim"]) == {"nx": 7, "bound": "elliptic"}
+    assert again.methods["fastsim"] == wr.tangential.Fastsim(nx=7, bound="elliptic")
     assert dict(again.forces) == {"Fy": 100.0}
 
 
@@ -172,14 +174,14 @@ def _error(text) -> str:
 
 
 def test_malformed_toml_names_line_and_column():
-    msg = _error("[contact]\nload = 7500.0\nA = \n")
+    msg = _error("[contact]\nFn = 7500.0\nA = \n")
     assert "<string>" in msg and "malformed TOML" in msg
     assert "line 3" in msg and "column" in msg
 
 
 def test_malformed_toml_in_file_names_the_file(tmp_path):
     path = tmp_path / "broken.toml"
-    path.write_text("[contact\nload = 1\n")
+    path.write_text("[contact\nFn = 1\n")
     with pytest.raises(CaseFileError, match="broken.toml.*line 1"):
         load_case(path)
 
@@ -190,7 +192,7 @@ def test_missing_file():
 
 
 @pytest.mark.parametrize("old, new, expected", [
-    ("load = 7500.0", "lod = 7500.0", r"\[contact\]: unknown key\(s\) 'lod'"),
+    ("Fn = 7500.0", "Fx0 = 7500.0", r"\[contact\]: unknown key\(s\) 'Fx0'"),
     ("[friction]", "[frction]", r"unknown table\(s\) 'frction'"),
     ("mu = 0.2", "mu = 0.2\ntemperature = 20.0", r"\[friction\]: unknown key\(s\) 'temperature'"),
     ('tangential = "linear"', 'tangential = "linear"\nsolver = "x"', r"unknown key\(s\) 'solver'"),
@@ -207,8 +209,8 @@ def test_unknown_names_are_errors(old, new, expected):
 
 
 @pytest.mark.parametrize("old, new, table_key, value", [
-    ("load = 7500.0", "load = -7500.0", "[contact] load", "-7500.0"),
-    ("load = 7500.0", "load = 0.0", "[contact] load", "0.0"),
+    ("Fn = 7500.0", "Fn = -7500.0", "[contact] Fn", "-7500.0"),
+    ("Fn = 7500.0", "Fn = 0.0", "[contact] Fn", "0.0"),
     ("mu = 0.2", "mu = 0.0", "[friction] mu", "0.0"),
     ("mu = 0.2", "mu = -0.1", "[friction] mu", "-0.1"),
     ("xi = -0.0007", "xi = nan", "[creepage] xi", "nan"),
@@ -237,8 +239,8 @@ def test_bad_option_of_chosen_method():
 
 
 def test_bem_elements_checked():
-    msg = _error(_edit(FULL, 'normal = "hertz"', 'normal = "bem"') + "[method.bem]\nelements = 2.5\n")
-    assert "[method.bem] elements" in msg and "2.5" in msg
+    msg = _error(_edit(FULL, 'normal = "hertz"', 'normal = "bem"') + "[method.bem]\ngrid_elements = 2.5\n")
+    assert "[method.bem] grid_elements" in msg and "2.5" in msg
 
 
 def test_contact_description_must_be_unique():
@@ -250,7 +252,7 @@ def test_contact_description_must_be_unique():
 
 def test_missing_required_values():
     assert "missing table [friction]" in _error(_edit(FULL, "[friction]\nmu = 0.2", ""))
-    assert "[contact] load: missing" in _error(_edit(FULL, "load = 7500.0", ""))
+    assert "[contact] Fn: missing" in _error(_edit(FULL, "Fn = 7500.0", ""))
     assert "[material.rail] is missing" in _error(
         _edit(FULL, "[material]\nE = 2.1e11\nnu = 0.28", "[material.wheel]\nE = 2.1e11\nnu = 0.28"))
 
@@ -273,7 +275,7 @@ def test_case_from_dict_rejects_non_table():
 
 
 def test_bem_normal_close_to_hertz():
-    text = _edit(FULL, 'normal = "hertz"', 'normal = "bem"') + "[method.bem]\nelements = 40\n"
+    text = _edit(FULL, 'normal = "hertz"', 'normal = "bem"') + "[method.bem]\ngrid_elements = 40\n"
     out = run_case(load_case(text))
     c = wr.hertz(7500.0, 1.0869565, 1.6666667, wr.Material(2.1e11, 0.28))
     assert out["normal_method"] == "bem"
@@ -309,7 +311,7 @@ def test_bem_with_exact_uses_bem_grid_and_reports_its_normal_solution():
     """
     text = (_edit(_edit(FULL, 'normal = "hertz"', 'normal = "bem"'),
                   'tangential = "linear"', 'tangential = "exact"')
-            + "[method.bem]\nelements = 31\n")
+            + "[method.bem]\ngrid_elements = 31\n")
     res = solve_case(load_case(text))
     out = res.summary
     sol = res.forces.fields

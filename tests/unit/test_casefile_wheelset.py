@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.casefile import (Case, WheelsetCase, load_case, load_contact_case, run_case,
-                                solve_case, solve_wheelset_case)
+from wheelrail.casefile import load_case, load_contact_case
+from wheelrail.cases import Case, WheelsetCase, run_case, solve_case, solve_wheelset_case
 from wheelrail.errors import CaseFileError, InputError
 
 WS = """
@@ -63,7 +63,7 @@ def test_reads_all_tables():
     assert case.motion.speed == 20.0 and case.motion.omega is None     # free rolling
     assert not case.sweep and case.y.tolist() == [0.003]
     assert case.vertical_load == (10000.0, 10000.0) and case.z is None and case.roll is None
-    assert (case.normal, case.tangential, case.mu) == ("hertz", "fastsim", 0.3)
+    assert (case.normal, case.tangential, case.mu) == (wr.normal.Hertz(), wr.tangential.Fastsim(), 0.3)
 
 
 def test_sweep_range_list_yaw_per_y_and_load_per_wheel():
@@ -130,7 +130,7 @@ def test_bad_values_named_with_file_table_key_value(tmp_path, old, new, where, v
 
 
 def test_contact_tables_rejected_in_wheelset_case():
-    msg = _error(WS + "\n[contact]\nload = 1.0\nA = 1.0\nB = 1.0\n")
+    msg = _error(WS + "\n[contact]\nFn = 1.0\nA = 1.0\nB = 1.0\n")
     assert "[contact]" in msg and "wheelset case" in msg
 
 
@@ -180,7 +180,7 @@ def test_sweep_case_gives_dataset():
 # --------------------------------------------------------------------------- contact cases
 CONTACT = """
 [contact]
-load = 7500.0
+Fn = 7500.0
 A = 1.0869565
 B = 1.6666667
 [creepage]
@@ -193,7 +193,7 @@ mu = 0.2
 normal = "{normal}"
 tangential = "{tangential}"
 [method.bem]
-elements = 24
+grid_elements = 24
 """
 
 

@@ -20,7 +20,7 @@ SPHERE = """
 E = 2.0e11
 nu = 0.25
 [contact]
-load = 10000.0
+Fn = 10000.0
 A = 1.25
 B = 1.25
 [creepage]
@@ -113,7 +113,7 @@ def test_solve_plot_fastsim_fields(tmp_path, capsys):
 
 def test_solve_bem_exact_writes_traction_and_pressure_figures(tmp_path):
     text = (SPHERE.format(method="exact").replace("[method]\n", '[method]\nnormal = "bem"\n')
-            + "[method.bem]\nelements = 21\n")
+            + "[method.bem]\ngrid_elements = 21\n")
     assert 'normal = "bem"' in text
     case = _write(tmp_path, text)
     png = tmp_path / "t.png"
@@ -126,15 +126,15 @@ def test_solve_bem_exact_writes_traction_and_pressure_figures(tmp_path):
 
 
 def test_bad_case_file_exit_2_one_line(tmp_path, capsys):
-    case = _write(tmp_path, SPHERE.format(method="linear").replace("load = 10000.0",
-                                                                    "load = -5.0"))
+    case = _write(tmp_path, SPHERE.format(method="linear").replace("Fn = 10000.0",
+                                                                    "Fn = -5.0"))
     assert main(["solve", case]) == 2
     err = _one_line_error(capsys)
-    assert "[contact] load" in err and "-5.0" in err and "case.toml" in err
+    assert "[contact] Fn" in err and "-5.0" in err and "case.toml" in err
 
 
 def test_malformed_toml_exit_2(tmp_path, capsys):
-    case = _write(tmp_path, "[contact]\nload = = 3\n")
+    case = _write(tmp_path, "[contact]\nFn = = 3\n")
     assert main(["solve", case]) == 2
     assert "line 2" in _one_line_error(capsys)
 
@@ -215,7 +215,7 @@ def test_demo_writes_its_files(tmp_path, capsys):
     c = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.Material(2.1e11, 0.28))
     assert res["hertz"]["a"] == pytest.approx(c.a, rel=1e-12)
     assert "linear" in res["creep_forces"]
-    assert wr.load_case(out / "case.toml").contact.load == 7500.0
+    assert wr.load_case(out / "case.toml").contact.Fn == 7500.0
     for name in ("results.json", "creep_curves.png", "hertz_table.csv"):
         assert (out / name).is_file(), name
     assert (out / "creep_curves.png").read_bytes()[:8] == PNG

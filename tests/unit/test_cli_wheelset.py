@@ -109,7 +109,7 @@ def test_bad_case_exit_2_names_file_table_key_value(tmp_path, capsys):
 
 
 def test_contact_case_refused_and_wheelset_case_refused_by_solve(tmp_path, capsys):
-    contact = _write(tmp_path, "[contact]\nload = 1e4\nA = 1.0\nB = 1.0\n[friction]\nmu = 0.3\n",
+    contact = _write(tmp_path, "[contact]\nFn = 1e4\nA = 1.0\nB = 1.0\n[friction]\nmu = 0.3\n",
                      "c.toml")
     assert main(["wheelset", contact, "--out", str(tmp_path / "o")]) == 2
     assert "not a wheelset case" in _one_line_error(capsys)

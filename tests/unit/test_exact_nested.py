@@ -12,8 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
-from wheelrail.halfspace import Grid, solve_rolling
-from wheelrail.halfspace.tangential import _coarsened, _prolongated
+from wheelrail.halfspace import Grid
+from wheelrail.tangential.exact import solve_rolling
+from wheelrail.tangential.exact.nested import _coarsened, _prolongated
 from wheelrail.normal.bem import hertz_grid, solve_normal
 
 HC = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)
@@ -24,7 +25,7 @@ SPIN = (0.0, 0.0, 3.0)
 
 def _problem(elements):
     grid, gap = hertz_grid(HC, elements=elements, margin=1.1)
-    return grid, solve_normal(grid, gap, wr.STEEL, load=1e4).pressure
+    return grid, solve_normal(grid, gap, wr.STEEL, Fn=1e4).pressure
 
 
 @pytest.fixture(scope="module")

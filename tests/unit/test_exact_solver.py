@@ -5,7 +5,8 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.errors import ConvergenceError, InputError, NoContactError
-from wheelrail.halfspace import Grid, solve_rolling, solve_shift
+from wheelrail.halfspace import Grid
+from wheelrail.tangential.exact import solve_rolling, solve_shift
 from wheelrail.results import Status
 
 HC = wr.hertz(1e4, A=1.0, B=2.0, material=wr.STEEL)

@@ -31,7 +31,7 @@ def test_elastic_cone_matches_hertz():
     for side in ("left", "right"):
         pts = getattr(res, side)
         assert pts.n == 1
-        N = res.normal_force(side)[0]
+        N = res.Fn(side)[0]
         assert N * np.cos(pts.contact_angle[0]) == pytest.approx(load / 2, rel=1e-8)
         hz = wr.hertz(N, pts.A[0], pts.B[0], wr.STEEL)
         assert getattr(res, f"penetration_{side}")[0] == pytest.approx(hz.penetration, rel=1e-6)
@@ -53,12 +53,12 @@ def test_elastic_equilibrium(pair, y):
     M = 0.0
     for side, sig in (("left", -1), ("right", 1)):
         p = getattr(res, side)
-        N = res.normal_force(side)
+        N = res.Fn(side)
         Fy = -sig * np.sin(p.contact_angle) * N
         Fz = np.cos(p.contact_angle) * N
         M += np.sum((p.track_y - y) * Fz - (p.track_z - zc) * Fy)
     assert abs(M) < 1e-8 * load
-    assert np.all(res.normal_force_left > 0) and np.all(res.normal_force_right > 0)
+    assert np.all(res.Fn_left > 0) and np.all(res.Fn_right > 0)
     # the leading (flanging) wheel carries more and the lateral force pushes back
     if y > 0:
         assert res.vertical_force_right > res.vertical_force_left
@@ -70,7 +70,7 @@ def test_load_sharing_in_two_point_contact(pair):
     ws, tr = pair
     res = wr.elastic_contact(ws, tr, 0.005, 1.0e5)
     assert res.right.n == 2
-    assert np.all(res.normal_force_right > 0.1 * res.normal_force_right.sum())
+    assert np.all(res.Fn_right > 0.1 * res.Fn_right.sum())
     # the points lie on separate zones with clearly different contact angles
     assert np.ptp(np.degrees(res.right.contact_angle)) > 5
 
@@ -155,4 +155,4 @@ def test_no_roll_equilibrium_in_steep_flange_contact(pair):
     with pytest.raises(ConvergenceError, match="no equilibrium exists"):
         wr.elastic_contact(ws, tr, 0.007, 1.0e5)
     qe = wr.elastic_contact(ws, tr, 0.007, 1.0e5, method="quasi-elastic")
-    assert qe.normal_force_left[0] < 0
+    assert qe.Fn_left[0] < 0

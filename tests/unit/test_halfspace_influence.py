@@ -224,5 +224,5 @@ def test_bem_halfspace_contact_import_in_any_order(module):
     import sys
 
     code = (f"import {module}; from wheelrail.normal.bem import solve_normal; "
-            "from wheelrail.contact import solve_gap; from wheelrail.halfspace import Grid")
+            "from wheelrail.tangential.exact import solve_gap; from wheelrail.halfspace import Grid")
     subprocess.run([sys.executable, "-c", code], check=True)

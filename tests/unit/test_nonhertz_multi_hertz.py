@@ -66,8 +66,8 @@ def test_sauvage_load_jump_is_bridged():
     wp = wr.WheelRailPosition(ws, tr, 0.0046, yaw=0.002, vertical_load=70e3)
     roll, zs = touching_poses(wp)
     prob = wheel_problem(wp, "right", roll, zs["right"])
-    m = wr.api.get_normal_method("multi-hertz")
-    patches, info = m.from_wheel(prob, **m.check_options({"variant": "sauvage"}))
+    m = wr.normal.get("multi-hertz")
+    patches, info = m.replace(**{"variant": "sauvage"}).from_wheel(prob)
     lo, hi = info["load_jump"]
     assert lo < 70e3 < hi
     Fz = sum(p.Fn * np.cos(p.frame.contact_angle) for p in patches)
@@ -89,12 +89,12 @@ def test_secondary_ellipses_do_not_warn():
 
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
     tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
-    m = wr.api.get_normal_method("multi-hertz")
+    m = wr.normal.get("multi-hertz")
     wp = wr.WheelRailPosition(ws, tr, -0.005, yaw=0.002, vertical_load=70e3)
     roll, zs = touching_poses(wp)
     prob = dataclasses.replace(wheel_problem(wp, "right", roll, zs["right"]),
-                               vertical_load=None, approach=2e-5, cache={})
+                               vertical_load=None, vertical_approach=2e-5, cache={})
     with warnings.catch_warnings():
         warnings.simplefilter("error", PlausibilityWarning)
-        patches, _ = m.from_wheel(prob, **m.check_options({"variant": "sauvage"}))
+        patches, _ = m.replace(**{"variant": "sauvage"}).from_wheel(prob)
     assert len(patches) >= 2 and min(p.Fn for p in patches) < 100.0

@@ -213,3 +213,34 @@ def test_missing_binary_and_bad_options(tmp_path):
         wr.profiles.read(g, bogus=1)
     with pytest.raises(ProfileError, match="unknown profile format"):
         wr.profiles.read(g, fmt="vampire")
+
+
+def test_load_takes_a_name_or_a_file(tmp_path):
+    """``wr.profiles.load`` reads a file given by path (as ``read``) and says what it looked for."""
+    import wheelrail as wr
+    from wheelrail.errors import ProfileError
+
+    s1002 = wr.profiles.load("s1002")
+    path = tmp_path / "s1002.csv"
+    wr.profiles.write(s1002, path)
+    again = wr.profiles.load(path, kind="wheel")
+    assert again.kind == "wheel"
+    np.testing.assert_allclose(again.z, s1002.z, atol=1e-9)
+    with pytest.raises(ProfileError, match="neither a built-in profile.*S1002.*nor an existing"):
+        wr.profiles.load(tmp_path / "missing.whl")
+
+
+def test_old_style_miniprof_without_a_blank_line_after_the_header(tmp_path):
+    """Old-style MiniProf files whose header is followed directly by the data rows (seen in
+    the field) read like those with the blank line: the same points."""
+    import wheelrail as wr
+
+    rows = "\n".join(f"{x:.1f} {max(0.0, 28.0 - 0.9 * x) + 0.01 * x:.3f}" for x in range(0, 131, 5))
+    with_blank = tmp_path / "a.whl"
+    without = tmp_path / "b.whl"
+    with_blank.write_text("MINIPROF wheel\nSerial 1234\n\n" + rows + "\n")
+    without.write_text("Miniprof wheel\nSerial 1234\n" + rows + "\n")
+    a = wr.profiles.read(with_blank)
+    b = wr.profiles.read(without)
+    np.testing.assert_array_equal(a.y, b.y)
+    np.testing.assert_array_equal(a.z, b.z)

@@ -11,7 +11,7 @@ CASE = """
 [sweep]
 method = "linear"
 mu = 0.3
-load = 10000.0
+Fn = 10000.0
 A = 1.087
 B = 1.667
 xi = {{start = -0.004, stop = 0.004, num = 11}}

@@ -14,7 +14,7 @@ import wheelrail as wr
 from wheelrail.errors import InputError
 from wheelrail.sweeps import DaskExecutor, SweepSpec, open_sweep, sweep
 
-BASE = dict(method="linear", mu=0.3, load=1e4, A=1.0, B=1.5)
+BASE = dict(method="linear", mu=0.3, Fn=1e4, A=1.0, B=1.5)
 STEEL = wr.Material(2.1e11, 0.28)
 
 
@@ -42,11 +42,11 @@ def test_grid_values_equal_direct_creep_forces():
 
 
 def test_a_failing_point_is_recorded_and_does_not_abort():
-    spec = SweepSpec.grid(**{**BASE, "load": [1e4, -5.0, 2e4]}, xi=[-1e-3, 0.0])
+    spec = SweepSpec.grid(**{**BASE, "Fn": [1e4, -5.0, 2e4]}, xi=[-1e-3, 0.0])
     ds = sweep(spec, progress=False)
     st = ds.status.values
     assert list(st[:, 0]) == [1, 3, 1] and list(st[:, 1]) == [1, 3, 1]
-    assert "load must be > 0, got -5.0" in str(ds.message.values[1, 0])
+    assert "Fn must be > 0, got -5.0" in str(ds.message.values[1, 0])
     assert np.isnan(ds.Fx.values[1, 0]) and np.isfinite(ds.Fx.values[0, 0])
 
 
@@ -84,7 +84,7 @@ def test_resume_after_sigkill_gives_the_uninterrupted_dataset(tmp_path):
         [sweep]
         method = "fastsim"
         mu = 0.3
-        load = 10000.0
+        Fn = 10000.0
         A = 1.087
         B = 1.667
         xi = {start = -0.004, stop = 0.004, num = 12}

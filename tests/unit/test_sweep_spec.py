@@ -6,13 +6,13 @@ import pytest
 from wheelrail.errors import CaseFileError, InputError
 from wheelrail.sweeps import SweepSpec, load_sweep
 
-BASE = dict(method="linear", mu=0.3, load=1e4, A=1.0, B=1.5)
+BASE = dict(method="linear", mu=0.3, Fn=1e4, A=1.0, B=1.5)
 
 CASE = """
 [sweep]
 method = "fastsim"
 mu = 0.3
-load = 10000.0
+Fn = 10000.0
 A = 1.087
 B = 1.667
 xi = {start = -0.004, stop = 0.004, num = 5}
@@ -81,19 +81,19 @@ def test_bad_axes_are_named(axis, match):
 
 
 @pytest.mark.parametrize("text, match", [
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\nxi = []\n",
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\nxi = []\n",
      r"<string>: \[sweep\] xi: axis 'xi' has no values"),
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\nxj = [1.0]\n",
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\nxj = [1.0]\n",
      r"\[sweep\]: unknown key\(s\) 'xj'"),
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\nmethod = 'nope'\n",
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\nmethod = 'nope'\n",
      r"unknown creep-force method 'nope'"),
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\n", r"give both A, B"),
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\nchunk = 0\n", r"chunk: must be an integer"),
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\n[sweep.options]\nnx = 3\n"
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\n", r"give both A, B"),
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\nchunk = 0\n", r"chunk: must be an integer"),
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\n[sweep.options]\nnx = 3\n"
      "[sweep.x]\n", r"unknown key\(s\) 'x'"),
-    ("[sweep]\nmethod = 'fastsim'\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\n[sweep.options]\n"
+    ("[sweep]\nmethod = 'fastsim'\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\n[sweep.options]\n"
      "elements = 3\n", r"does not accept option\(s\) elements"),
-    ("[sweep]\nmu = 0.3\nload = 1e4\nA = 1.0\nB = 1.0\n[sweep.points]\nxi = [1.0, 2.0]\n"
+    ("[sweep]\nmu = 0.3\nFn = 1e4\nA = 1.0\nB = 1.0\n[sweep.points]\nxi = [1.0, 2.0]\n"
      "eta = [1.0]\n", r"columns must have one length"),
 ])
 def test_toml_errors_name_file_table_key_and_value(text, match):

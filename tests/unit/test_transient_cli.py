@@ -12,7 +12,7 @@ from wheelrail.transient.loads import TravelFunction
 
 CASE = """
 [contact]
-load = 10000.0
+Fn = 10000.0
 wheel_rolling_radius = 0.5
 wheel_profile_radius = -0.409
 rail_profile_radius = 0.3
@@ -42,25 +42,25 @@ def test_travel_functions_match_their_formulas():
 
 
 def test_case_file_runs_like_the_python_call():
-    case = load_transient_case(CASE.format(extra='normal_force = {kind = "sine", mean = 1e4, '
+    case = load_transient_case(CASE.format(extra='Fn = {kind = "sine", mean = 1e4, '
                                            'amplitude = 2e3, wavelength = 2e-3}\n'
-                                           "tangential_force = 1500.0"))
+                                           "Fx = 1500.0"))
     res = case.run()
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL.__class__(2.1e11, 0.28))
     ref = wr.transient_rolling(
-        hc, travel=1e-3, step=2.5e-4, mu=0.4, elements=6, frames=3, tangential_force=1500.0,
-        normal_force=lambda x: 1e4 + 2e3 * np.sin(2 * np.pi * x / 2e-3))
+        hc, travel=1e-3, step=2.5e-4, mu=0.4, elements=6, frames=3, Fx=1500.0,
+        Fn=lambda x: 1e4 + 2e3 * np.sin(2 * np.pi * x / 2e-3))
     assert res.xi == pytest.approx(ref.xi, rel=1e-9)
     assert res.Fn == pytest.approx(1e4 + 2e3 * np.sin(2 * np.pi * res.x / 2e-3), rel=1e-6)
 
 
 @pytest.mark.parametrize("extra, match", [
-    ("tangential_force = 1500.0\nstep2 = 1", r"\[transient\]: unknown key\(s\) 'step2'"),
-    ('tangential_force = {kind = "ramp", a = 1}', r"\[transient\] tangential_force: kind must"),
+    ("Fx = 1500.0\nstep2 = 1", r"\[transient\]: unknown key\(s\) 'step2'"),
+    ('Fx = {kind = "ramp", a = 1}', r"\[transient\] Fx: kind must"),
     ("xi = -1e-4\nfriction = 'regularised'", r"\[transient\] epsilon: missing"),
-    ("tangential_force = 1500.0\nxi = -1e-4", r"\[transient\] xi: with tangential_force"),
-    ("", "give tangential_force"),
-    ("tangential_force = 1.0\nmargin = 0.5", r"\[transient\] margin: must be > 1, got 0.5"),
+    ("Fx = 1500.0\nxi = -1e-4", r"\[transient\] xi: with Fx"),
+    ("", "give Fx"),
+    ("Fx = 1.0\nmargin = 0.5", r"\[transient\] margin: must be > 1, got 0.5"),
 ])
 def test_bad_case_names_table_key_and_value(extra, match):
     with pytest.raises(wr.CaseFileError, match=match):
@@ -71,7 +71,7 @@ def test_cli_writes_netcdf_and_figures(tmp_path, capsys):
     import xarray as xr
 
     path = tmp_path / "case.toml"
-    path.write_text(CASE.format(extra='tangential_force = {kind = "table", x = [0.0, 1e-3], '
+    path.write_text(CASE.format(extra='Fx = {kind = "table", x = [0.0, 1e-3], '
                                       'value = [500.0, 1500.0]}'))
     out = tmp_path / "out"
     assert main(["transient", str(path), "--out", str(out), "--no-progress"]) == 0
@@ -82,6 +82,6 @@ def test_cli_writes_netcdf_and_figures(tmp_path, capsys):
     for name in ("fields.nc", "creepage.png", "centreline.png", "state.png"):
         assert (out / name).stat().st_size > 0
     bad = tmp_path / "bad.toml"
-    bad.write_text(CASE.format(extra="normal_force = -5.0\ntangential_force = 1.0"))
+    bad.write_text(CASE.format(extra="Fn = -5.0\nFx = 1.0"))
     assert main(["transient", str(bad), "--out", str(out)]) == 2
-    assert "normal_force(x = 0.0 m) = -5.0 N must be > 0" in capsys.readouterr().err
+    assert "Fn(x = 0.0 m) = -5.0 N must be > 0" in capsys.readouterr().err

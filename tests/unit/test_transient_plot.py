@@ -8,7 +8,7 @@ from wheelrail.transient.plot import plot_centreline, plot_creepage, plot_state
 
 def test_figures_written(tmp_path):
     hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
-    res = wr.transient_rolling(hc, travel=1.2e-3, step=3e-4, mu=0.4, tangential_force=2000.0,
+    res = wr.transient_rolling(hc, travel=1.2e-3, step=3e-4, mu=0.4, Fx=2000.0,
                                elements=6, frames=3)
     fig = plot_creepage(res, path=tmp_path / "xi.png")
     line = fig.axes[0].lines[0]

@@ -31,7 +31,7 @@ def _parse(text):
 
 
 def test_every_registered_method_has_a_citation():
-    for name in wr.normal_methods() + wr.tangential_methods() + ["transient", "fe", "geometry"]:
+    for name in [*wr.normal_methods(), *wr.tangential_methods(), "transient", "fe", "geometry"]:
         bib = wr.citation(name)
         assert bib.startswith("@") and len(_parse(bib)) >= 1, name
 
@@ -80,10 +80,7 @@ def test_import_stays_light():
 def test_bibtex_covers_the_methods_own_reference_lists():
     """Every paper a method's ``references`` attribute names (by first author and year)
     has a BibTeX entry among that method's citations."""
-    from wheelrail.api import get_method, get_normal_method
-
-    impls = [(n, get_normal_method(n)) for n in wr.normal_methods()]
-    impls += [(n, get_method(n)) for n in wr.tangential_methods()]
+    impls = [*wr.normal_methods().items(), *wr.tangential_methods().items()]
     for name, impl in impls:
         entries = [BIBLIOGRAPHY[k][1] for k in METHOD_REFERENCES[name]]
         for ref in impl.references:

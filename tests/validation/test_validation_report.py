@@ -43,7 +43,7 @@ def test_files_written_and_self_contained(quick):
 def test_every_registered_method_has_a_row_that_ran(quick):
     report, _ = quick
     ran = {r.method for r in report.rows if r.status != "skipped"}
-    for name in wr.normal_methods() + wr.tangential_methods():
+    for name in [*wr.normal_methods(), *wr.tangential_methods()]:
         assert name in ran, name
     for name in ("transient", "geometry", "halfspace"):
         assert name in ran, name

@@ -237,7 +237,7 @@ def _plot(rows, sides, out):
 
 
 def patch_figure(results, side, path, title=""):
-    """Patches of every method on one rail (seed 003 figs. 13, 18–22 in kind).
+    """Patches of every method on one rail (Piotrowski & Chollet (2005) figs. 13, 18–22 in kind).
 
     One row per method: the rail profile of the side (top of rail, lateral
     coordinate of the rail profile frame [mm]) and below it every patch in

@@ -29,25 +29,26 @@ def add_arguments(p) -> None:
 
 
 def default_case():
-    """The built-in case (:data:`wheelrail.casefile.DEFAULT_CASE`) with zero creepages."""
-    from ..casefile import DEFAULT_CASE, case_from_dict
+    """The built-in case (:data:`wheelrail.cases.DEFAULT_CASE`) with zero creepages."""
+    from ..casefile import case_from_dict
+    from ..cases import DEFAULT_CASE
 
     return case_from_dict(DEFAULT_CASE, source="<built-in case>").replace(creepage=(0.0, 0.0, 0.0))
 
 
 def parse_methods(text: str) -> list[str]:
     """Split and resolve method names; unknown names are an InputError."""
-    from ..api import METHODS, method_key
+    from .. import tangential
     from ..errors import InputError
 
     out = []
     for name in (m.strip() for m in text.split(",")):
         if not name:
             continue
-        key = method_key(name)
-        if key is None:
-            raise InputError(f"unknown creep-force method {name!r} in --methods; choose from "
-                             + ", ".join(METHODS))
+        try:
+            key = tangential.get_class(name, argname="creep-force").name
+        except InputError as exc:
+            raise InputError(f"--methods: {exc}") from None
         if key not in out:
             out.append(key)
     if not out:
@@ -71,7 +72,7 @@ def sweep(case, component: str, values, methods, *, progress=None):
 
     Returns
     -------
-    forces : dict of str to CreepForces
+    forces : dict of str to CreepForcesResult
         The methods that ran (batch results of shape (n,)).
     skipped : dict of str to str
         Methods that cannot treat this
@@ -90,7 +91,8 @@ def sweep(case, component: str, values, methods, *, progress=None):
     forces, skipped = {}, {}
     for m in methods:
         try:
-            forces[m] = creep_forces(contact, creep, case.mu, method=m, **case.options.get(m, {}))
+            forces[m] = creep_forces(contact, creep, case.mu,
+                                     method=case.with_tangential(m).tangential)
         except InputError as exc:  # e.g. Carter's theory has no lateral creepage
             skipped[m] = " ".join(str(exc).split())
         if progress is not None:
@@ -168,7 +170,7 @@ def run(args, console) -> int:
         why = "; ".join(f"{m}: {r}" for m, r in skipped.items())
         raise InputError(f"no curve to plot: every method was skipped ({why})")
     c = case.hertz_contact
-    title = (f"{case.source}: Fn = {c.load:.0f} N, a = {c.a * 1e3:.2f} mm, "
+    title = (f"{case.source}: Fn = {c.Fn:.0f} N, a = {c.a * 1e3:.2f} mm, "
              f"b = {c.b * 1e3:.2f} mm, μ = {case.mu:g}")
     creep_curves(values, normalised(forces, args.component), component=args.component,
                  force=FORCE_OF[args.component], path=args.out, title=title)

@@ -59,7 +59,7 @@ def step_hertz(ctx: DemoContext):
 
     import numpy as np
 
-    from ..normal.hertz import hertz
+    from ..hertzian import hertz
     from ..plotting import pressure_map
 
     c = ctx.case.hertz_contact
@@ -74,7 +74,7 @@ def step_hertz(ctx: DemoContext):
               newline="", encoding="utf-8") as fh:
         w = csv.writer(fh)
         w.writerow(["load_N", "a_m", "b_m", "p0_Pa", "penetration_m", "area_m2"])
-        for row in zip(batch.load, batch.a, batch.b, batch.p0, batch.penetration, batch.area):
+        for row in zip(batch.Fn, batch.a, batch.b, batch.p0, batch.penetration, batch.area):
             w.writerow([f"{v:.9g}" for v in row])
     pressure_map(c, path=ctx.file("hertz_pressure.png", "Hertz pressure on the contact ellipse"),
                  title="Hertz pressure, built-in case")
@@ -94,11 +94,11 @@ COMBINED = dict(CREEPAGES)["combined"]
 
 def step_creep_forces(ctx: DemoContext):
     """Every available creep-force method at a few creepage combinations."""
-    from ..api import available_methods, creep_forces
+    from ..api import creep_forces, tangential_methods
     from ..errors import InputError
 
     table = {}
-    for m in available_methods():
+    for m in tangential_methods():
         if m == "exact":
             continue  # the exact theory is slow; the demo keeps to the fast laws
         rows = {}
@@ -130,12 +130,12 @@ def step_creep_curves(ctx: DemoContext):
     """Creep curves in ξ and η for every available fast method (two panels)."""
     import numpy as np
 
-    from ..api import available_methods
+    from ..api import tangential_methods
     from ..plotting import creep_curves, new_figure
     from ..plotting._common import finish
     from .creep_curve import normalised, run_sweep_with_progress
 
-    methods = [m for m in available_methods() if m != "exact"]
+    methods = [m for m in tangential_methods() if m != "exact"]
     fig, axes = new_figure(1, 2, size=(12.0, 4.6))
     case = ctx.case.replace(creepage=(0.0, 0.0, 0.0))
     curves, notes = {}, []
@@ -149,7 +149,7 @@ def step_creep_curves(ctx: DemoContext):
         curves[comp] = {"creepage": values.tolist(), **{m: v.tolist() for m, v in norm.items()}}
     c = case.hertz_contact
     finish(fig, ctx.file("creep_curves.png", "creep curves, ξ and η"),
-           title=f"built-in case: Fn = {c.load:.0f} N, μ = {case.mu:g} (force / μFn)")
+           title=f"built-in case: Fn = {c.Fn:.0f} N, μ = {case.mu:g} (force / μFn)")
     ctx.results["creep_curves"] = curves
     return ("methods: " + ", ".join(m for m in curves["xi"] if m != "creepage")
             + (f" ({'; '.join(notes)})" if notes else ""))
@@ -157,7 +157,7 @@ def step_creep_curves(ctx: DemoContext):
 
 def step_fastsim_fields(ctx: DemoContext):
     """FASTSIM traction and adhesion/slip areas of the built-in case."""
-    from ..casefile import solve_case
+    from ..cases import solve_case
     from .solve import plot_result
 
     result = solve_case(ctx.case.replace(tangential="fastsim", creepage=COMBINED))
@@ -288,7 +288,8 @@ def add_arguments(p) -> None:
 def run(args, console) -> int:
     import time
 
-    from ..casefile import DEFAULT_CASE, case_from_dict
+    from ..casefile import case_from_dict
+    from ..cases import DEFAULT_CASE
     from ..errors import InputError, WheelrailError
     from ._output import write_json
 

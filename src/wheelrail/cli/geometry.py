@@ -80,7 +80,8 @@ def plot_profiles_in_contact(ws, tr, ys, path, side="right"):
     """Wheel and rail cross-sections of ``side`` with the contact points, one panel per y."""
     import numpy as np
 
-    from ..geometry.contact_search import _SIGMA, contact_points, silhouette
+    from ..geometry.contact_search import _SIGMA, silhouette
+    from ..geometry.points import contact_points
     from ..plotting._common import finish, new_figure
 
     n = len(ys)
@@ -171,7 +172,7 @@ def plot_contact_angle(table, path):
 
 
 def plot_contact_positions(table, path):
-    """Contact-point positions on wheel and rail versus y (cf. seed 003, fig. 1)."""
+    """Contact-point positions on wheel and rail versus y (cf. Piotrowski & Chollet (2005), fig. 1)."""
     import numpy as np
 
     from ..plotting._common import finish, new_figure

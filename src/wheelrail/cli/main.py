@@ -40,6 +40,7 @@ COMMANDS = [
     ("compare", "wheelrail.cli.compare"),
     ("transient", "wheelrail.cli.transient"),
     ("validate", "wheelrail.cli.validate"),
+    ("build-table", "wheelrail.cli.build_table"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2

@@ -21,8 +21,8 @@ def plot_result(result, path) -> str:
     from ..plotting import field_arrays, pressure_map, traction_field
 
     fields = result.forces.fields
-    title = f"{result.case.source}: {result.case.normal} + {result.summary['method']}"
-    bem = result.normal  # the boundary-element NormalSolution (normal = "bem") or None
+    title = f"{result.case.source}: {result.case.normal.name} + {result.summary['method']}"
+    bem = result.normal  # the boundary-element NormalResult (normal = "bem") or None
     if fields is not None and field_arrays(fields) is not None:
         traction_field(fields, mu=result.case.mu, contact=result.contact, path=path, title=title)
         if bem is None:
@@ -41,7 +41,8 @@ def plot_result(result, path) -> str:
 
 
 def run(args, console) -> int:
-    from ..casefile import load_contact_case as load_case, solve_case
+    from ..casefile import load_contact_case as load_case
+    from ..cases import solve_case
     from ._output import check_outputs, summary_table, write_json
 
     check_outputs(json=args.json, plot=args.plot)  # before the solve: paths and formats

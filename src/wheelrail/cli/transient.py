@@ -6,7 +6,7 @@ Reads the case with :func:`wheelrail.casefile.load_transient_case`, runs
 * ``history.nc`` — the scalar histories over the travel (``TransientResult.dataset``);
 * ``fields.nc`` — the stored traction fields (``TransientResult.fields``);
 * ``summary.json`` — the settings, final values and solver counts;
-* ``creepage.png``, ``centreline.png``, ``state.png`` — figures after seed 001
+* ``creepage.png``, ``centreline.png``, ``state.png`` — figures after Baeza et al.
   Figs. 8/9/11, 7 and 10/12 (unless ``--no-figures``).
 """
 
@@ -53,7 +53,7 @@ def run(args, console) -> int:
                "steps": len(res.x) - 1, "wall_time_s": wall, "final": final,
                "solver": {k: res.info[k] for k in ("newton", "krylov", "solves")},
                "units": {"x": "m", "xi": "1", "eta": "1", "phi": "1/m", "Fn": "N", "Fx": "N",
-                         "Fy": "N", "p_max": "Pa", "approach": "m"}}
+                         "Fy": "N", "p_max": "Pa", "penetration": "m"}}
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     written = ["history.nc", "fields.nc", "summary.json"]
     if not args.no_figures:
@@ -62,7 +62,7 @@ def run(args, console) -> int:
         plot_creepage(res, path=out / "creepage.png", title="longitudinal creepage")
         import numpy as np
 
-        # like the seed's Fig. 7: the build-up over the first semi-axes of travel
+        # like Baeza et al.'s Fig. 7: the build-up over the first semi-axes of travel
         early = res.frame_x[res.frame_x <= 5 * float(hc.a)]
         xs = early[np.unique(np.linspace(0, len(early) - 1, min(6, len(early))).round()
                              .astype(int))] if len(early) >= 3 else None

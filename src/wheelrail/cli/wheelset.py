@@ -135,7 +135,7 @@ def write_sweep_netcdf(ds, path) -> Path:
 
 def single_position(case, out: Path, plots: bool = True):
     """Solve one position; returns (result, summary dict, [(path, description)])."""
-    from ..casefile import solve_wheelset_case
+    from ..cases import solve_wheelset_case
     from ._output import write_json
 
     result = solve_wheelset_case(case)
@@ -154,7 +154,7 @@ def single_position(case, out: Path, plots: bool = True):
 
 def sweep(case, out: Path, *, plots=True, csv=True, netcdf=True, progress=None):
     """Solve the lateral-shift sweep; returns (dataset, [(path, description)])."""
-    from ..casefile import solve_wheelset_case
+    from ..cases import solve_wheelset_case
 
     ds = solve_wheelset_case(case, progress=progress)
     files = []
@@ -202,8 +202,8 @@ def run(args, console) -> int:
     failed = int(np.sum(status != "ok"))
     if not args.quiet:
         console.print(f"[bold]wheelset sweep[/bold]: {status.size} lateral shifts "
-                      f"{case.y[0] * 1e3:g} … {case.y[-1] * 1e3:g} mm, {case.normal} + "
-                      f"{case.tangential}, μ = {case.mu:g}; {status.size - failed} solved"
+                      f"{case.y[0] * 1e3:g} … {case.y[-1] * 1e3:g} mm, {case.normal.name} + "
+                      f"{case.tangential.name}, μ = {case.mu:g}; {status.size - failed} solved"
                       + (f", [yellow]{failed} failed[/yellow] (status/message in the files)"
                          if failed else ""))
         for y, msg in zip(ds["y"].values[status != "ok"][:5], ds["message"].values[status != "ok"]):

@@ -14,7 +14,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError, WheelrailError
-from ..normal.hertz import _vertical_approach, hertz_from_penetration, hertz_kernel
+from ..geometry.contact_search import _Pose, find_points, solve_rigid
+from ..geometry.elastic import regularised_B_rows
+from ..geometry.kinematics import creepage_kernel
+from ..geometry.touching import touching_heights
+from ..hertzian import _vertical_approach, hertz_from_penetration, hertz_kernel
+from ..materials import as_material_pair
+from .wheelrail import axle_offset_x
 
 __all__ = ["hertz_sweep"]
 
@@ -23,15 +29,12 @@ _SIGMA = {"left": -1.0, "right": 1.0}
 _TOL = 1e-5      # relative tolerance on the total vertical force (as solve_wheelrail)
 
 
-def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, material,
+def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, material,
                 tolerance, vertical, max_patches):
-    """All positions at once; returns the arrays of the sweep dataset (see wheelset_sweep)."""
-    from ..api import creep_forces
-    from ..geometry.contact_search import _Pose, find_points, solve_rigid
-    from ..geometry.elastic import regularised_B_rows
-    from ..geometry.kinematics import creepage_kernel
-    from ..materials import as_material_pair
-    from .wheelrail import axle_offset_x, touching_heights
+    """All positions at once; returns the arrays of the sweep dataset (see wheelset_sweep).
+
+    ``tangential`` is a configured creep-force law (its ``solve`` on the batch of
+    Hertz contacts of the active points)."""
 
     pair = as_material_pair(material)
     n = y.size
@@ -130,13 +133,12 @@ def hertz_sweep(ws, tr, y, yaw, roll, loads, z, motion, mu, tangential, topts, m
                 break
             hc = hertz_from_penetration(pen[act], A[act], B[act], pair)
             last = (Qn is None or vertical == "normal" or outer == 11)
-            opts = dict(topts)
-            cf = creep_forces(hc, np.stack([xi[act], eta[act], phi[act]], axis=1), mu,
-                              method=tangential, **opts)
+            cf = tangential.solve(hc, xi[act], eta[act], phi[act],
+                                  np.full(int(np.count_nonzero(act)), float(mu)))
             Fx, Fs, Mz = (np.zeros(A.shape) for _ in range(3))
             Fx[act], Fs[act], Mz[act] = cf.Fx, cf.Fy, cf.Mz
             Fn = np.zeros(A.shape)
-            Fn[act] = hc.load
+            Fn[act] = hc.Fn
             g = np.where(valid, data["contact_angle"], 0.0)
             Fz = np.sum(sig * Fs * np.sin(g) + Fn * np.cos(g), axis=1)
             if last:

@@ -7,7 +7,7 @@ is the same as :func:`wheelrail.solve` with that method; what is shared
 across positions is the geometry, which dominates the time of the fast
 methods:
 
-* the rigid touching poses (Newton on (z, θ), seed 002 eqs. 2.1–2.3) of all
+* the rigid touching poses (Newton on (z, θ), Bosso et al. (2013), ch. 2 eqs. 2.1–2.3) of all
   positions in one vectorised call, as the Hertz fast path does;
 * the candidate contact points of every position and side in one
   vectorised :func:`~wheelrail.geometry.contact_search.find_points` call and
@@ -29,8 +29,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import WheelrailError
-from .wheelrail import SIDES, WheelProblem, WheelRailPosition
+from ..errors import InputError, WheelrailError
+from ..geometry.contact_search import _Pose, find_points, solve_rigid
+from ..geometry.points import _side_from_row
+from ..geometry.elastic import regularised_B_rows
+from ..geometry.touching import touching_heights
+from ..patch import ContactFrame
+from ..plausibility import check_friction, disabled
+from .wheelrail import SIDES, WheelProblem, WheelRailPosition, _solve_sides, solve_wheelrail
 
 __all__ = ["strip_sweep"]
 
@@ -42,9 +48,6 @@ def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius, points=Tru
     ``{side: (data, count, A, B)}`` for the rows in ``ok`` (arrays over all
     rows; rows not ok hold NaN), or None when the batch cannot be formed.
     """
-    from ..geometry.contact_search import _Pose, find_points, solve_rigid
-    from ..geometry.elastic import regularised_B_rows
-    from .wheelrail import touching_heights
 
     n = y.size
     th = np.array(roll, dtype=float)
@@ -87,9 +90,6 @@ def _batched_geometry(ws, tr, y, yaw, roll, tolerance, roller_radius, points=Tru
 def _problem(position, side, roll, z, data, count, r, A, B, roller_radius):
     """The :class:`WheelProblem` of one side of one position from the batched rows
     (what :func:`~wheelrail.contact.wheelrail.wheel_problem` computes for one pose)."""
-    from ..errors import InputError
-    from ..geometry.contact_search import _side_from_row
-    from .patch import ContactFrame
 
     if data is None:        # a method that reads no candidate points (CAF tables)
         pts, k, A, B = None, 0, np.zeros((r + 1, 0)), np.zeros((r + 1, 0))
@@ -110,22 +110,19 @@ def _problem(position, side, roll, z, data, count, r, A, B, roller_radius):
                         position.wheelset, position.track)
 
 
-def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl, timpl, nopts,
-                topts, material, tolerance, vertical, record, advance=None):
+def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl, timpl,
+                material, tolerance, vertical, record, advance=None):
     """Solve every position; ``record(i, result)`` or ``record(i, exception)`` per position.
 
     Parameters are those of :func:`~wheelrail.contact.sweep.wheelset_sweep`
-    (``nimpl``, ``timpl`` method objects, ``nopts``, ``topts`` checked options).
+    (``nimpl``, ``timpl`` configured method objects).
     """
-    from ..api import solve
-    from ..plausibility import check_friction, disabled
-    from .wheelrail import _solve_sides
 
     n = y.size
     R = motion.roller_radius
     try:
         uses = getattr(nimpl, "_uses_tables", None)
-        points = not (uses is not None and uses(nopts))
+        points = not (uses is not None and uses(nimpl.option_values()))
         ok, rows, th, zs, pts = _batched_geometry(wheelset, track, y, yaw, roll, tolerance, R,
                                                   points)
         if not points:
@@ -150,11 +147,10 @@ def strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nim
                 probs = {s: _problem(pos, s, float(th[i]), zsi[s], *pts[s][:2], r,
                                      *pts[s][2:], R) for s in SIDES}
                 with disabled():
-                    res = _solve_sides(pos, motion, mu, nimpl, timpl, nopts, topts, vertical,
+                    res = _solve_sides(pos, motion, mu, nimpl, timpl, vertical,
                                        float(th[i]), zsi, Omega, R, problems=probs)
             else:
-                res = solve(pos, motion=motion, mu=mu, normal=nimpl, tangential=timpl,
-                            vertical=vertical, normal_options=nopts, tangential_options=topts)
+                res = solve_wheelrail(pos, motion, mu, nimpl, timpl, vertical)
         except WheelrailError as exc:
             record(i, exc)
         else:

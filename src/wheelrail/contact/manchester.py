@@ -31,7 +31,12 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import profiles
 from ..errors import InputError
+from ..geometry import Track, Wheelset
+from ..geometry.kinematics import Motion
+from ..materials import Material
+from .wheelrail import WheelRailPosition
 
 __all__ = ["ManchesterCase", "manchester_a22", "MU", "G", "NU"]
 
@@ -65,11 +70,6 @@ def manchester_a22(inputs, wheel_profile, rail_profile) -> list[ManchesterCase]:
     -------
     list of ManchesterCase
     """
-    from .. import profiles
-    from ..geometry import Track, Wheelset
-    from ..geometry.kinematics import Motion
-    from ..materials import Material
-    from .wheelrail import WheelRailPosition
 
     path = Path(inputs)
     try:

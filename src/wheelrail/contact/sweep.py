@@ -10,10 +10,17 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import normal as normal_family
+from .. import tangential as tangential_family
 from .._validation import as_float_array
 from ..errors import InputError, WheelrailError
-
-from .wheelrail import SIDES, WheelRailPosition
+from ..materials import STEEL
+from ..normal.hertz import Hertz
+from ..options import split_options
+from ..plausibility import check_friction, disabled
+from ._hertz_batch import check_vertical, hertz_sweep
+from ._strip_batch import strip_sweep
+from .wheelrail import SIDES, WheelRailPosition, solve_wheelrail
 
 __all__ = ["wheelset_sweep", "PATCH_VARIABLES"]
 
@@ -37,7 +44,7 @@ PATCH_VARIABLES = {
 def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None, z=None,
                    motion=None, mu=0.3, normal="hertz", tangential="fastsim", material=None,
                    max_patches=3, progress=None, vertical="total", tolerance=5e-4,
-                   batch=True, normal_options=None, tangential_options=None, **options):
+                   batch=True, **options):
     """Solve the wheel–rail contact at many lateral shifts.
 
     Parameters
@@ -54,7 +61,8 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         As in :class:`wheelrail.WheelRailPosition` (load per wheel [N], or axle height [m]).
     motion : Motion
     mu : float
-    normal, tangential : str
+    normal, tangential : str or method object
+        Names or configured methods, as for :func:`wheelrail.solve`.
     material : Material or MaterialPair, optional
     max_patches : int
         Patches per wheel kept in the dataset, ordered from the field side to
@@ -74,10 +82,9 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         normal and tangential solution per position
         (:mod:`wheelrail.contact._strip_batch`). ``False``: one
         :func:`wheelrail.solve` per position.
-    normal_options, tangential_options : dict, optional
-        Options for one method explicitly (as :func:`wheelrail.solve`).
     **options
-        Method options (see :func:`wheelrail.solve`).
+        Options of the two methods, each given to the one method that declares
+        it (as :func:`wheelrail.solve`).
 
     Returns
     -------
@@ -88,8 +95,6 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         ``n_patches``; per position: ``yaw``, ``roll`` [rad], ``status``
         ("ok" or "error") and ``message``.
     """
-    from ..api import solve
-    from ..materials import STEEL
 
     y = np.atleast_1d(as_float_array("y", y))
     if y.ndim != 1 or y.size == 0:
@@ -103,16 +108,12 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         raise InputError("motion=wheelrail.Motion(speed=...) is required")
     material = STEEL if material is None else material
     npat = int(max_patches)
-    from ..api import _split_options, get_method, get_normal_method
-    from ..normal.hertz import Hertz
-    from ._hertz_batch import check_vertical, hertz_sweep
 
     check_vertical(vertical)
-    nimpl, timpl = get_normal_method(normal), get_method(tangential)
-    nopts, topts = _split_options(nimpl, timpl, options)
-    nopts.update(normal_options or {})
-    topts.update(tangential_options or {})
-    nopts = nimpl.check_options(nopts)
+    nopts, topts = split_options(normal_family.get_class(normal),
+                                 tangential_family.get_class(tangential), options)
+    nimpl = normal_family.get(normal, nopts)
+    timpl = tangential_family.get(tangential, topts)
     if batch and isinstance(nimpl, Hertz):
         # validate the position arguments once, as WheelRailPosition does
         WheelRailPosition(wheelset, track, float(y[0]), float(yaw[0]),
@@ -121,13 +122,12 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
                           tolerance=tolerance)
         loads = None if vertical_load is None else np.broadcast_to(
             np.asarray(vertical_load, dtype=float), (2,))
-        from ..plausibility import check_friction, disabled
 
         check_friction(mu)
         with disabled():   # inputs checked above; small secondary patches are normal
             pp, ft, npc, status, message = hertz_sweep(
                 wheelset, track, y, np.asarray(yaw, float), roll, loads, z, motion, mu,
-                timpl.name, timpl.check_options(topts), material, tolerance, vertical, npat)
+                timpl, material, tolerance, vertical, npat)
         return _dataset(y, yaw, roll, pp, ft, npc, status, message, nimpl.name, timpl.name, mu,
                         motion)
     per_patch = {k: np.full((n, 2, npat), np.nan) for k in PATCH_VARIABLES}
@@ -159,10 +159,9 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     try:
         if batch:
             # other methods: poses and candidate points of all positions at once
-            from ._strip_batch import strip_sweep
 
             strip_sweep(wheelset, track, y, yaw, roll, vertical_load, z, motion, mu, nimpl,
-                        timpl, nopts, timpl.check_options(topts), material, tolerance, vertical,
+                        timpl, material, tolerance, vertical,
                         record, None if bar is None else (lambda: bar.advance(task)))
         for i in range(0 if batch else n):
             try:
@@ -170,8 +169,7 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
                                         None if np.isnan(roll[i]) else roll[i],
                                         vertical_load=vertical_load, z=z, material=material,
                                         tolerance=tolerance)
-                res = solve(pos, motion=motion, mu=mu, normal=nimpl, tangential=timpl,
-                            vertical=vertical, normal_options=nopts, tangential_options=topts)
+                res = solve_wheelrail(pos, motion, mu, nimpl, timpl, vertical)
             except WheelrailError as exc:
                 record(i, exc)
             else:

@@ -5,7 +5,7 @@ wheel (or the height of the axle), the wheelset's velocities and the track,
 :func:`solve_wheelrail`
 
 1. finds the pose at which each wheel touches its rail (roll from the rigid
-   contact constraint of both wheels, seed 002 eqs. 2.1–2.3, or prescribed)
+   contact constraint of both wheels, Bosso et al. (2013), ch. 2 eqs. 2.1–2.3, or prescribed)
    and every candidate contact point of each wheel
    (:func:`wheelrail.geometry.contact_points`: all local minima of the
    distance, so that two-point contact is seen);
@@ -30,9 +30,9 @@ plane to the right, Fn along the normal, σ = +1 right / −1 left)::
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.1–2.2, eqs. (2.1)–(2.4), (2.10).
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1–2.2, eqs. (2.1)–(2.4), (2.10).
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §1–2 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §1–2.
 .. [3] E.A.H. Vollebregt, *User guide for CONTACT*, Vtech CMCC: the wheel–rail
    module (vertical force per wheel, planar contact per patch).
 .. [4] P. Shackleton, S. Iwnicki, Comparison of wheel–rail contact codes for
@@ -48,11 +48,21 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import normal as normal_family
+from .. import tangential as tangential_family
 from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
+from ..geometry import Track, Wheelset
+from ..geometry.contact_search import _Pose, find_points, solve_rigid
+from ..geometry.points import _side_from_row
+from ..geometry.elastic import _regularised_B
+from ..geometry.kinematics import Motion, creepage_kernel
+from ..geometry.separation import separation_at
+from ..geometry.touching import touching_heights
 from ..materials import STEEL, as_material_pair
+from ..patch import ContactFrame
+from ..plausibility import check_friction, check_load, disabled
 from ..results import ContactResult, PatchResult, to_jsonable
-from .patch import ContactFrame
 
 __all__ = ["WheelRailPosition", "WheelProblem", "WheelRailResult", "solve_wheelrail", "SIDES"]
 
@@ -102,8 +112,6 @@ class WheelRailPosition:
     tolerance: float = 5e-4
 
     def __post_init__(self):
-        from ..geometry import Track, Wheelset
-
         if not isinstance(self.wheelset, Wheelset):
             raise InputError(f"wheelset must be a Wheelset, got {type(self.wheelset).__name__}")
         if not isinstance(self.track, Track):
@@ -120,8 +128,6 @@ class WheelRailPosition:
             raise InputError("give exactly one of vertical_load= (N per wheel) and z= (m), got "
                              f"vertical_load={self.vertical_load!r}, z={self.z!r}")
         if self.vertical_load is not None:
-            from ..plausibility import check_load
-
             q = np.broadcast_to(as_float_array("vertical_load", self.vertical_load), (2,))
             for side, v in zip(SIDES, q):
                 if not v > 0:
@@ -157,7 +163,7 @@ class WheelProblem:
     materials : MaterialPair
     vertical_load : float or None
         Q [N] ...
-    approach : float or None
+    vertical_approach : float or None
         ... or the vertical approach dz [m] below the touching pose.
     roller_radius : float or None
     pose : dict
@@ -172,7 +178,7 @@ class WheelProblem:
     frames: tuple
     materials: object
     vertical_load: float | None
-    approach: float | None
+    vertical_approach: float | None
     roller_radius: float | None
     pose: dict
     wheelset: object = None
@@ -182,7 +188,6 @@ class WheelProblem:
     def separation(self, k, width: float = 0.04, n: int = 801):
         """Profile separation around candidate point ``k`` (or a :class:`ContactFrame`) in its
         contact plane (:func:`wheelrail.geometry.separation.separation_at`); cached."""
-        from ..geometry.separation import separation_at
 
         f = self.frames[k] if not isinstance(k, ContactFrame) else k
         key = ("separation", f, width, n)
@@ -280,7 +285,7 @@ class WheelRailResult(ContactResult):
         ``{"left": (Fx, Fy, Fz), "right": (...)}``: forces on each wheel in the
         track frame [N] (x forward, y right, z up).
     pose : dict
-        ``y, yaw, roll`` and per side ``z`` (touching height) and ``approach`` [m].
+        ``y, yaw, roll`` and per side ``z`` (touching height) and ``vertical_approach`` [m].
     position : WheelRailPosition
     motion : Motion
     """
@@ -317,32 +322,11 @@ def _curve_value(curve, x: float) -> float:
     return ((float(c[0, i]) * dx + float(c[1, i])) * dx + float(c[2, i])) * dx + float(c[3, i])
 
 
-def touching_heights(wheelset, track, y, roll, yaw):
-    """Axle height at which each wheel just touches its rail, for prescribed roll (arrays).
-
-    Raising the axle by dz raises every gap by dz, so the height is minus the
-    smallest gap at height 0. Returns ``{side: z}`` and ``{side: beside}``
-    (shape (n,); ``beside`` marks rows where the wheel lies entirely beside
-    its rail).
-    """
-    from ..geometry.contact_search import _global_min, _Pose
-
-    pose = _Pose(np.asarray(y, float), np.zeros(np.size(y)), np.asarray(roll, float),
-                 np.asarray(yaw, float))
-    z, beside = {}, {}
-    for side in SIDES:
-        _, g, _ = _global_min(wheelset, track, side, pose, 2e-4, 5)
-        beside[side] = g >= 0.5
-        z[side] = -g
-    return z, beside
-
-
 def touching_poses(position):
     """Pose (z of each wheel, roll) at which each wheel just touches its rail.
 
     Returns ``roll`` and ``{side: z}``.
     """
-    from ..geometry.contact_search import solve_rigid
 
     ws, tr = position.wheelset, position.track
     y = np.array([position.y])
@@ -360,8 +344,6 @@ def touching_poses(position):
 
 def wheel_problem(position, side, roll, z, roller_radius=None) -> WheelProblem:
     """Candidate points, curvatures and frames of one wheel at its touching pose."""
-    from ..geometry.contact_search import _Pose, _side_from_row, find_points
-    from ..geometry.elastic import _regularised_B
 
     ws, tr = position.wheelset, position.track
     pose = _Pose(np.array([position.y]), np.array([z]), np.array([roll]),
@@ -400,8 +382,6 @@ def axle_offset_x(x, wheel_y, sigma, e_tape, roll, yaw):
 
 
 def _creepage_at(frame, sig, motion, Omega, position, roll, zc, R):
-    from ..geometry.kinematics import creepage_kernel
-
     dx = axle_offset_x(frame.x, frame.wheel_y, sig, position.wheelset.e_tape, roll, position.yaw)
     return tuple(float(v) for v in creepage_kernel(
         sig, motion.speed, Omega, motion.lateral_velocity, motion.vertical_velocity,
@@ -411,7 +391,6 @@ def _creepage_at(frame, sig, motion, Omega, position, roll, zc, R):
 
 
 def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
-                    normal_options=None, tangential_options=None,
                     vertical="total") -> WheelRailResult:
     """Contact patches and forces of a wheelset on a track (see the module docstring).
 
@@ -422,11 +401,11 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
         Velocities (:class:`wheelrail.Motion`).
     mu : float
         Friction coefficient [-], > 0.
-    normal, tangential : str or method object
-        Any names of :func:`wheelrail.normal_methods` and
-        :func:`wheelrail.tangential_methods`.
-    normal_options, tangential_options : dict
-        Options of the two methods.
+    normal : str or NormalMethod
+        A name of :func:`wheelrail.normal_methods` or a configured method
+        (``wr.normal.Bem(element_size=2e-4)``).
+    tangential : str or TangentialMethod
+        A name of :func:`wheelrail.tangential_methods` or a configured law.
     vertical : {"total", "normal"}
         What carries the prescribed vertical load: the total vertical force
         on the wheel, creep forces included (default; the normal problem is
@@ -438,34 +417,28 @@ def solve_wheelrail(position, motion, mu, normal="hertz", tangential="fastsim",
     -------
     WheelRailResult
     """
-    from ..api import get_method, get_normal_method
-    from ..geometry.kinematics import Motion
 
     if not isinstance(position, WheelRailPosition):
         raise InputError(f"position must be a WheelRailPosition, got {type(position).__name__}")
     if not isinstance(motion, Motion):
         raise InputError(f"motion must be a wheelrail.Motion, got {type(motion).__name__}")
     mu = float(positive("mu", mu))
-    nimpl = get_normal_method(normal)
-    timpl = get_method(tangential)
-    nopts = nimpl.check_options(dict(normal_options or {}))
-    topts = timpl.check_options(dict(tangential_options or {}))
+    nimpl = normal_family.get(normal)
+    timpl = tangential_family.get(tangential)
     ws = position.wheelset
     roll, zs = touching_poses(position)
     Omega = motion.angular_velocity(ws.nominal_radius)
     R = motion.roller_radius
     if vertical not in ("total", "normal"):
         raise InputError(f"vertical must be 'total' or 'normal', got {vertical!r}")
-    from ..plausibility import check_friction, disabled
 
     check_friction(mu)
     with disabled():   # the inputs are checked; patches of a few N are normal inside a wheel
-        return _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs,
-                            Omega, R)
+        return _solve_sides(position, motion, mu, nimpl, timpl, vertical, roll, zs, Omega, R)
 
 
-def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, roll, zs, Omega,
-                 R, problems=None) -> WheelRailResult:
+def _solve_sides(position, motion, mu, nimpl, timpl, vertical, roll, zs, Omega, R,
+                 problems=None) -> WheelRailResult:
     ws = position.wheelset
     patches, force_track, pose = [], {}, {"y": position.y, "yaw": position.yaw, "roll": roll}
     for side in SIDES:
@@ -478,11 +451,11 @@ def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, rol
         history = []            # (normal-load target, total vertical force)
         forces = None
         for outer in range(1, _MAX_VERTICAL + 1):
-            found, info = nimpl.from_wheel(prob, **nopts)
+            found, info = nimpl.from_wheel(prob)
             if not found:
                 raise InputError(f"no contact on the {side} wheel at y = {position.y!r} m")
             cr = [_creepage_at(p.frame, sig, motion, Omega, position, roll, zc, R) for p in found]
-            forces = timpl.solve_patches(found, cr, mu, previous=forces, **topts)
+            forces = timpl.solve_patches(found, cr, mu, previous=forces)
             F = np.zeros(3)
             for p, fr in zip(found, forces):
                 g = p.frame.contact_angle
@@ -515,11 +488,11 @@ def _solve_sides(position, motion, mu, nimpl, timpl, nopts, topts, vertical, rol
             patches.append(PatchResult(p, fr, *c, side=side))
         force_track[side] = tuple(float(v) for v in F)
         pose[f"z_{side}"] = zs[side]
-        pose[f"approach_{side}"] = float(info["approach"])
+        pose[f"vertical_approach_{side}"] = float(info["vertical_approach"])
         pose[f"vertical_iterations_{side}"] = outer
     return WheelRailResult(tuple(patches), nimpl.name, timpl.name,
                            info={"mu": mu}, force_track=force_track, pose=pose,
                            position=position, motion=motion)
 
 
-__all__ += ["touching_poses", "touching_heights", "wheel_problem"]
+__all__ += ["touching_poses", "wheel_problem"]

@@ -53,17 +53,24 @@ import warnings
 import numpy as np
 
 from .._validation import integer
+from ..normal._gap import (
+    DEFAULT_SEARCH,
+    _enlarged_bounds,
+    _evaluate,
+    _grid_on,
+    _window,
+    contact_patches,
+    potential_contact_grid,
+)
 from ..normal.bem import ContactTruncatedWarning
-from ..normal._gap import (DEFAULT_SEARCH, _enlarged_bounds, _evaluate, _grid_on, _window,
-                           contact_patches, potential_contact_grid)
-from .coupled import solve_gap
+from ..tangential.exact import solve_gap
 
 __all__ = ["DEFAULT_SEARCH", "contact_patches", "potential_contact_grid", "solve_gap_auto"]
 
 
 
 # --------------------------------------------------------------------------- helpers
-def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None, mu=None,
+def solve_gap_auto(gap, materials, *, Fn=None, penetration=None, creepage=None, mu=None,
                    elements=60, margin=1.2, search=None, max_enlarge=4, **solve_gap_options):
     """Solve the contact of an arbitrary gap on an automatically chosen window.
 
@@ -78,7 +85,7 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     gap : callable
         ``gap(x, y) -> h`` [m], vectorised (see :func:`potential_contact_grid`).
     materials : Material or MaterialPair
-    load, penetration : float
+    Fn, penetration : float
         Exactly one: normal force [N] or approach δ [m] (same datum as h).
     creepage, mu
         Tangential problem, as in :func:`~wheelrail.contact.solve_gap`.
@@ -92,7 +99,7 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
 
     Returns
     -------
-    GapSolution
+    GapResult
         Its ``grid`` is the final window. ``normal.info`` gains
         ``window_enlargements`` (int), ``contact_patches`` (int, connected
         components of the contact area, :func:`contact_patches`),
@@ -115,19 +122,19 @@ def solve_gap_auto(gap, materials, *, load=None, penetration=None, creepage=None
     --------
     >>> import wheelrail as wr
     >>> from wheelrail.contact import solve_gap_auto
-    >>> sol = solve_gap_auto(lambda x, y: x**2 + 2 * y**2, wr.STEEL, load=10e3, elements=31)
+    >>> sol = solve_gap_auto(lambda x, y: x**2 + 2 * y**2, wr.STEEL, Fn=10e3, elements=31)
     >>> sol.normal.truncated, sol.normal.info["contact_patches"]
     (False, 1)
     """
     max_enlarge = integer("max_enlarge", max_enlarge, 0)
-    w = _window(gap, penetration, load, materials, elements, margin, search)
+    w = _window(gap, penetration, Fn, materials, elements, margin, search)
     grid, search = w["grid"], w["search"]
     enlargements = 0
     while True:
         h0 = np.array(_evaluate(gap, grid.X, grid.Y))
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ContactTruncatedWarning)
-            sol = solve_gap(grid, h0, materials, load=load, penetration=penetration,
+            sol = solve_gap(grid, h0, materials, Fn=Fn, penetration=penetration,
                             creepage=creepage, mu=mu, **solve_gap_options)
         c = sol.normal.contact
         if not sol.normal.truncated or enlargements >= max_enlarge:

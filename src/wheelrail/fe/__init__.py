@@ -52,18 +52,30 @@ import os as _os
 # the OpenMP runtime starts. An explicit setting of the user's is kept.
 _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
-from .case import (INTEGRATORS, SEED000_TABLE3_HERTZ, RollingCase, cone_wheel, head_arc_rail,
-                   seed000_case, seed000_load)
+from .case import (
+                   INTEGRATORS,
+                   SEED000_TABLE3_HERTZ,
+                   RollingCase,
+                   cone_wheel,
+                   head_arc_rail,
+                   seed000_case,
+                   seed000_load,
+)
 from .curves import creep_curve
 from .elements import Hex8
-from .materials import (R900A_HARDENING, J2Plastic, LinearElastic, TabulatedHardening, Voce,
-                        r900a)
+from .materials import R900A_HARDENING, J2Plastic, LinearElastic, TabulatedHardening, Voce, r900a
 from .mesh import MeshQualityError, check_quality
 from .model import build_model
 from .output import write_vtu
 from .restart import read_restart, write_restart
-from .rolling import (RollingResult, plastic_fields, saturation_creepage, solve,
-                      stable_time_step, steady_window)
+from .rolling import (
+                   RollingResult,
+                   plastic_fields,
+                   saturation_creepage,
+                   solve,
+                   stable_time_step,
+                   steady_window,
+)
 from .static import IndentResult, indent
 
 __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",

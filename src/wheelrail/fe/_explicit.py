@@ -9,7 +9,6 @@ order, so that the results do not depend on the thread count.
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit, prange
 
 #: Node chunks of the partial sums (fixed: results independent of the threads).

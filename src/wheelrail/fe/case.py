@@ -9,6 +9,8 @@ import numpy as np
 from .._validation import as_float_array, in_range, integer, non_negative, positive
 from ..errors import InputError
 from ..materials import STEEL, Material
+from ..profiles import Profile
+from .materials import J2Plastic, LinearElastic, r900a
 
 __all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "cone_wheel",
            "head_arc_rail", "SEED000_TABLE3_HERTZ"]
@@ -138,8 +140,6 @@ class RollingCase:
     meta: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self):
-        from ..profiles import Profile
-
         for name in ("wheel", "rail"):
             if not isinstance(getattr(self, name), Profile):
                 raise InputError(f"{name} must be a wheelrail Profile, got "
@@ -162,7 +162,6 @@ class RollingCase:
         s(self, "creepage", tuple(float(v) for v in c))
         s(self, "mu", float(non_negative("mu", self.mu)))
         if not isinstance(self.material, Material):
-            from .materials import J2Plastic, LinearElastic
             if not isinstance(self.material, (LinearElastic, J2Plastic)):
                 raise InputError(f"material must be a wheelrail.Material, "
                                  f"wheelrail.fe.LinearElastic or wheelrail.fe.J2Plastic, got "
@@ -227,7 +226,6 @@ def cone_wheel(taper: float = 0.1, half_width: float = 0.04, n: int = 17):
     n : int
         Number of profile points.
     """
-    from ..profiles import Profile
 
     y = np.linspace(-half_width, half_width, integer("n", n))
     name = f"cone 1/{1 / taper:g}" if taper else "cylinder"
@@ -246,7 +244,6 @@ def head_arc_rail(radius: float = 0.3, half_width: float = 0.025, n: int = 201):
     n : int
         Number of profile points.
     """
-    from ..profiles import Profile
 
     R = float(positive("radius", radius))
     w = float(in_range("half_width", half_width, 0.0, R, lo_open=True, hi_open=True))
@@ -315,8 +312,6 @@ def seed000_case(load="table3", plastic: bool = False, **changes) -> RollingCase
     if isinstance(load, str):
         load = seed000_load(load)
     if plastic:
-        from .materials import r900a
-
         material = r900a()
     else:
         material = Material(E=2.1e11, nu=0.28)

@@ -16,6 +16,8 @@ import numpy as np
 
 from .._validation import as_float_array
 from ..errors import InputError
+from .model import contact_geometry
+from .rolling import solve
 
 __all__ = ["creep_curve"]
 
@@ -63,8 +65,6 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
 
     import xarray as xr
 
-    from .model import contact_geometry
-    from .rolling import solve
 
     if component not in _COMPONENTS:
         raise InputError(f"component must be 'xi' or 'eta', got {component!r}")

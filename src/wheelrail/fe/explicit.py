@@ -37,11 +37,24 @@ from ..errors import InputError
 from ._explicit import NCHUNK, advance, chunk_sum
 from .model import build_model
 from .patch import patch_from_contact
-from .rolling import _smoothstep
-from .rolling import (COLUMNS, RollingResult, contact_dashpots, contact_plane_forces,
-                      contact_state, depth_profiles, history_dataset, plastic_fields,
-                      progress_bar, restart_writer, speed_profile, stable_time_step,
-                      steady_statistics, steady_window)
+from .restart import read_restart
+from .rolling import (
+    COLUMNS,
+    RollingResult,
+    _smoothstep,
+    contact_dashpots,
+    contact_plane_forces,
+    contact_state,
+    depth_profiles,
+    history_dataset,
+    plastic_fields,
+    progress_bar,
+    restart_writer,
+    speed_profile,
+    stable_time_step,
+    steady_statistics,
+    steady_window,
+)
 
 __all__ = ["solve_explicit", "time_step"]
 
@@ -98,8 +111,6 @@ RELAXATION_RAMP = 0.4
 
 
 def solve_explicit(case, progress, output_every, io):
-    from .restart import read_restart
-
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
     dt, dt_stable = time_step(case, model)

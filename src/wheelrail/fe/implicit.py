@@ -30,12 +30,23 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._newton import newton
+from ._newton import DirectSolver, ReusedFactorSolver, newton
 from .model import build_model
 from .patch import patch_from_contact
-from .rolling import (COLUMNS, RollingResult, contact_plane_forces, contact_state,
-                      history_dataset, plastic_fields, progress_bar, restart_writer,
-                      speed_profile, steady_statistics, steady_window)
+from .restart import read_restart
+from .rolling import (
+    COLUMNS,
+    RollingResult,
+    contact_plane_forces,
+    contact_state,
+    history_dataset,
+    plastic_fields,
+    progress_bar,
+    restart_writer,
+    speed_profile,
+    steady_statistics,
+    steady_window,
+)
 from .static import free_dofs, static_equilibrium
 
 __all__ = ["solve_implicit_qs", "solve_implicit_hht"]
@@ -43,7 +54,6 @@ __all__ = ["solve_implicit_qs", "solve_implicit_hht"]
 
 def _implicit_start(case, io):
     """Model, stiffness, the loaded static state and the time grid of an implicit run."""
-    from ._newton import DirectSolver, ReusedFactorSolver
 
     model = build_model(case, rolling=True)
     travel = model.geometry["travel"]
@@ -116,8 +126,6 @@ def _internal_energy(model, u, state):
 
 
 def solve_implicit_qs(case, progress, io):
-    from .restart import read_restart
-
     (model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver,
      state) = _implicit_start(case, io)
     beta_r = case.rayleigh[1]
@@ -179,8 +187,6 @@ def solve_implicit_qs(case, progress, io):
 
 
 def solve_implicit_hht(case, progress, io):
-    from .restart import read_restart
-
     (model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver,
      state) = _implicit_start(case, io)
     al = case.hht_alpha

@@ -28,9 +28,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
+from ..materials import Material
+from ..normal.hertz import hertz
 from . import _kernels as K
 from . import _solid as S
-from .elements import Hex8
+from ._solid import element_chunks
+from .elements import ElementData, Hex8
 from .materials import as_fe_material
 from .mesh import depth_axis, graded_axis, rail_body, wheel_body
 
@@ -87,7 +90,6 @@ def contact_geometry(case):
         ``normal`` the unit lateral tangent and normal (3,) of the undeformed contact
         plane (global axes).
     """
-    from ..normal.hertz import hertz
 
     rail = case.rail.rotated(case.inclination) if case.inclination else case.rail
     wheel = case.wheel
@@ -120,7 +122,6 @@ def contact_geometry(case):
     A = 0.5 * float(np.cos(np.arctan(wheel.slope(y_c - lat)))) / r_c
     B = 0.5 * (kw - kr)
     mat = as_fe_material(case.material, case.density)
-    from ..materials import Material
     # the vertical wheel load acts along the contact normal with Fn = load / cos(contact angle)
     delta = float(np.arctan(rail.slope(y_c)))
     hz = hertz(case.load / np.cos(delta), A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
@@ -428,8 +429,6 @@ def build_model(case, *, rolling: bool = True) -> Model:
         raise InputError(f"travel {travel!r} m needs more than half the wheel circumference")
     wheel = wheel_body(geo["radius_of_y"], th_axis, y_axis, d_axis)
 
-    from ._solid import element_chunks
-    from .elements import ElementData
 
     edata = ElementData.concatenate([elem.precompute(wheel.nodes, wheel.elements, mat),
                                      elem.precompute(rail.nodes, rail.elements, mat)])

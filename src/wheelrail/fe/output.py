@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._solid import von_mises
+
 __all__ = ["write_vtu"]
 
 
@@ -34,7 +36,6 @@ def write_vtu(path, model, u, *, psi: float = 0.0, s: float = 0.0, w: float = 0.
     Q = model.rotation(psi)
     xw = (model.wheel.nodes + u[:nw]) @ Q.T + np.array([0.0, 0.0, model.z_axle + w])
     xr = model.rail.nodes + u[nw:] - np.array([s, 0.0, 0.0])
-    from ._solid import von_mises
 
     sig = np.concatenate(model.stress(u, state))
     nw_e = model.wheel.n_elements

@@ -49,6 +49,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..tangential.linear import kalker_coefficients
+from ._solid import von_mises
+from .explicit import solve_explicit
+from .implicit import solve_implicit_hht, solve_implicit_qs
+from .materials import as_fe_material
+from .model import contact_geometry
+from .restart import write_restart
+
 __all__ = ["RollingResult", "solve", "stable_time_step", "saturation_creepage",
            "steady_window", "plastic_fields"]
 
@@ -285,10 +293,7 @@ def solve(case, *, progress: bool = True, output_every: int | None = None,
     _warn_saturation(case)
     io = {"restart": restart, "file": restart_file, "every": restart_every}
     if case.integrator == "explicit":
-        from .explicit import solve_explicit
-
         return solve_explicit(case, progress, output_every, io)
-    from .implicit import solve_implicit_hht, solve_implicit_qs
 
     if case.integrator == "implicit-qs":
         return solve_implicit_qs(case, progress, io)
@@ -310,14 +315,11 @@ def saturation_creepage(case) -> float | None:
     .. [2] P.J. Vermeulen, K.L. Johnson, "Contact of nonspherical elastic bodies
        transmitting tangential forces", J. Appl. Mech. 31 (1964) 338-340 (cubic law).
     """
-    from .model import contact_geometry
 
     geo = contact_geometry(case)
     hz = geo["hertz"]
     if hz is None:
         return None
-    from ..tangential.linear import kalker_coefficients
-    from .materials import as_fe_material
 
     mat = as_fe_material(case.material, case.density)
     c11, c22, _, _ = (float(v) for v in kalker_coefficients(float(hz.a / hz.b), mat.nu))
@@ -348,8 +350,13 @@ def _warn_saturation(case):
 def progress_bar(progress, total, label):
     if not progress:
         return None
-    from rich.progress import (BarColumn, Progress, TextColumn, TimeElapsedColumn,
-                               TimeRemainingColumn)
+    from rich.progress import (
+        BarColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
 
     p = Progress(TextColumn(label), BarColumn(), TextColumn("{task.percentage:>3.0f}%"),
                  TimeElapsedColumn(), TimeRemainingColumn(), transient=True)
@@ -392,7 +399,6 @@ def history_dataset(rows, case, model, extra):
 
 def restart_writer(io, model, dt, n_steps):
     """A callable ``maybe_write(k_done, state_fn)`` writing every ``every`` steps and at the end."""
-    from .restart import write_restart
 
     path = io["file"]
     every = io["every"] or max(1, n_steps // 10)
@@ -424,7 +430,6 @@ def plastic_fields(model, u, state):
     """
     import xarray as xr
 
-    from ._solid import von_mises
 
     if state is None:
         return None

@@ -16,6 +16,7 @@ import numpy as np
 from ._newton import newton
 from .model import build_model
 from .patch import patch_from_contact
+from .rolling import plastic_fields
 
 __all__ = ["IndentResult", "indent", "static_equilibrium"]
 
@@ -147,7 +148,6 @@ def indent(case, *, increments: int | None = None) -> IndentResult:
     state = model.new_state()
     u, w, c, it = static_equilibrium(model, state=state, increments=increments)
     patch = patch_from_contact(model, c, 0.0)
-    from .rolling import plastic_fields
 
     return IndentResult(p_max=patch.attrs["p_max"], a=patch.attrs["a"], b=patch.attrs["b"],
                         Fn=patch.attrs["Fn"], approach=w, pressure=patch["pressure"],

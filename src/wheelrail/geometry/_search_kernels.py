@@ -6,7 +6,7 @@ with the same arithmetic: the vertical gap of one wheel point
 minimum (:func:`~wheelrail.geometry.contact_search._refine`), the refined global
 minimum of the gap of one pose (:func:`~wheelrail.geometry.contact_search._global_min`)
 and the damped Newton iteration on (z, θ) of the rigid contact constraint
-(seed 002, eqs. 2.1–2.3; :func:`~wheelrail.geometry.contact_search.solve_rigid`).
+(Bosso et al. (2013), ch. 2, eqs. 2.1–2.3; :func:`~wheelrail.geometry.contact_search.solve_rigid`).
 Running them as compiled loops removes the per-iteration array overhead that
 dominates a single wheelset position (one ``wr.solve`` per time step of a
 vehicle-dynamics simulation).
@@ -89,14 +89,32 @@ def _gap_point(s, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, th, psi,
     return Z - _eval0(ru, rinv, rc, u)
 
 
+#: Largest number of levels of the parabolic refinement, refining and moving ones together
+#: (:func:`_parabolic_point`, ``contact_search._parabolic``).
+_REFINE_MAX_ITER = 48
+#: Sub-grid points per grid step of the basin scan (:func:`_refine_point`,
+#: ``contact_search._refine``).
+_BASIN = 8
+#: A sub-grid point of the basin scan lower than the refined minimum by more than this [m]
+#: holds another minimum.
+_BASIN_MARGIN = 1e-12
+
+
 @njit(cache=True)
-def _refine_point(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc,
-                  th, psi, big):  # pragma: no cover - compiled
-    """One point of ``contact_search._refine``: successive parabolic interpolation."""
+def _parabolic_point(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc,
+                     th, psi, big):  # pragma: no cover - compiled
+    """Successive parabolic interpolation from ``s0`` (``contact_search._parabolic``): (s, f).
+
+    A level whose centre is not the best point so far does not count: the search moves to
+    the best point with the same ``h``.
+    """
     s = s0
     best_s = s
     best_f = np.inf
-    for _ in range(levels):
+    done = 0
+    for _ in range(_REFINE_MAX_ITER):
+        if done >= levels:
+            break
         sm = max(s - h, lo)
         sp = min(s + h, hi)
         fm = _gap_point(sm, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, th, psi, big)
@@ -108,6 +126,9 @@ def _refine_point(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape,
             best_s, best_f = sm, fm
         if fp < best_f:
             best_s, best_f = sp, fp
+        if best_s != s:
+            s = best_s       # not bracketed here: continue from the best point, same h
+            continue
         den = fm - 2.0 * f0 + fp
         if den > 0.0:
             shift = 0.5 * h * (fm - fp) / den
@@ -115,13 +136,41 @@ def _refine_point(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape,
             shift = -h
         else:
             shift = h
-        if best_s != s:
-            shift = 0.0
         shift = min(max(shift, -h), h)
-        s = min(max(best_s + shift, lo), hi)
+        s = min(max(s + shift, lo), hi)
         h = h / 8.0
+        done += 1
     f = _gap_point(s, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, th, psi, big)
-    return s if f <= best_f else best_s
+    if f <= best_f:
+        return s, f
+    return best_s, best_f
+
+
+@njit(cache=True)
+def _refine_point(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc,
+                  th, psi, big):  # pragma: no cover - compiled
+    """One point of ``contact_search._refine``: the lowest minimum within ``h`` of ``s0``.
+
+    Parabolic refinement from ``s0``, then a scan of ``[s0 − h, s0 + h]`` at ``h/8``: a
+    sub-grid point lower than the refined minimum (a second minimum in the grid cell, as
+    at a jump of the contact point) is refined from there with ``h/8``.
+    """
+    s1, f1 = _parabolic_point(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape,
+                              sig, y, zc, th, psi, big)
+    hs = h / _BASIN
+    kbest = 0
+    fbest = f1 - _BASIN_MARGIN
+    for k in range(-_BASIN, _BASIN + 1):
+        sk = min(max(s0 + k * hs, lo), hi)
+        fk = _gap_point(sk, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, th, psi, big)
+        if fk < fbest:
+            kbest, fbest = k, fk
+    if fbest < f1 - _BASIN_MARGIN:
+        s2, f2 = _parabolic_point(min(max(s0 + kbest * hs, lo), hi), hs, lo, hi, levels, wu,
+                                  winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, th, psi, big)
+        if f2 < f1:
+            return s2
+    return s1
 
 
 @njit(cache=True)

@@ -96,6 +96,7 @@ from scipy.optimize import brentq
 
 from .._validation import as_float_array, positive
 from ..errors import InputError
+from .contact_table import contact_table
 
 __all__ = ["equivalent_conicity", "conicity_from_delta_r", "METHODS"]
 
@@ -253,7 +254,6 @@ def equivalent_conicity(wheelset, track, amplitude=0.003, method: str = "integra
     >>> 0.05 < wr.equivalent_conicity(ws, tr, 0.003) < 0.4
     True
     """
-    from .contact_table import contact_table
 
     amp = positive("amplitude", amplitude)
     if method not in METHODS:

@@ -1,13 +1,13 @@
 """Rigid wheel–rail contact search: wheelset roll and height, all contact points.
 
-Problem (seed 002, §2.1.1, eqs. 2.1–2.3)
------------------------------------------
+Problem (Bosso et al. (2013), ch. 2, §2.1.1, eqs. 2.1–2.3)
+----------------------------------------------------------
 For a prescribed lateral shift ``y`` and yaw angle ``ψ`` of the wheelset the
 rigid contact constraint ``min d = 0`` on **both** sides fixes the roll angle
 ``θ(y, ψ)`` (eq. 2.1) and the vertical position ``z(y, ψ)`` (eq. 2.2). The
 distance ``d`` is evaluated on the whole profile, and *every* local minimum of
 ``d`` is reported with its separation, so that two- and three-point contact
-(seed 003, fig. 1) is detected: points whose separation is below a tolerance
+(Piotrowski & Chollet (2005), fig. 1) is detected: points whose separation is below a tolerance
 are potential contact points (they carry load in an elastic model).
 
 Frames and signs (see :mod:`wheelrail.geometry.wheelset`, :mod:`~wheelrail.geometry.track`)
@@ -62,10 +62,9 @@ along the wheel profile and refined by successive parabolic interpolation.
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.1.1, eqs. (2.1)–(2.3).
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1.1, eqs. (2.1)–(2.3).
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005) 455–483, fig. 1
-   (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, fig. 1.
 .. [3] K. Wang, The track of wheel contact points and the calculation of
    wheel/rail geometric contact parameters, J. Southwest Jiaotong Univ. 1
    (1984) 89–99 (contact locus); W. Kik, J. Piotrowski, A fast approximate
@@ -76,21 +75,32 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
 
-from .._validation import as_float_array, non_negative, positive
 from ..errors import ConvergenceError, InputError
-from ._checks import SIDES, check_side
+from ._checks import SIDES
 from ._curves import curvature
-from ._search_kernels import grid_gap_row
+from ._search_kernels import (
+    _BASIN,
+    _BASIN_MARGIN,
+    _REFINE_MAX_ITER,
+    POINT_ROWS,
+    global_min_rows,
+    grid_gap_row,
+    newton_rows,
+    order_points,
+    point_data_rows,
+    refine_rows,
+    select_minima,
+)
 from .track import Track
 from .wheelset import Wheelset
 
-__all__ = ["ContactPoints", "SideContacts", "contact_points", "SIDES", "POINT_FIELDS", "STATUS",
-           "ContactWarning", "RigidRows", "solve_rigid_rows", "classify_rows", "flange_geometry"]
+__all__ = ["SIDES", "POINT_FIELDS", "STATUS", "ContactWarning", "RigidRows", "solve_rigid",
+           "solve_rigid_rows", "classify_rows", "flange_geometry", "find_points", "silhouette"]
 
 
 class ContactWarning(UserWarning):
@@ -189,7 +199,7 @@ def _gapfun(ws, tr, side, y, zc, th, psi):
     return fun
 
 
-def _refine(fun, s0, h, lo, hi, levels=5):
+def _parabolic(fun, s0, h, lo, hi, levels=5):
     """Successive parabolic interpolation of a minimum of ``fun`` near ``s0`` (vectorised).
 
     Each level fits a parabola through ``s − h, s, s + h`` (one call of ``fun``
@@ -197,33 +207,72 @@ def _refine(fun, s0, h, lo, hi, levels=5):
     ``h`` by 8; five levels from the grid step 0.2 mm reach ~0.1 µm. The best
     point evaluated so far is returned, so a kink of the distance (a jump of
     a profile's curvature) cannot make the result worse than the grid point.
+    A level whose centre is not the best point so far (the parabola's vertex
+    missed the minimum of a strongly asymmetric gap, e.g. at the flange root
+    near a jump of the contact point) does not count: the search moves to the
+    best point with the same ``h`` (at most :data:`_REFINE_MAX_ITER` levels), so the
+    minimum stays within reach instead of being left ``h`` away. Returns (s, f).
     """
     s = np.asarray(s0, dtype=float).copy()
     n = s.size
+    h = np.broadcast_to(np.asarray(h, dtype=float), (n,)).copy()
+    done = np.zeros(n, dtype=int)
     best_s = s.copy()
     best_f = np.full(n, np.inf)
-    for _ in range(levels):
+    for _ in range(_REFINE_MAX_ITER):
+        active = done < levels
+        if not np.any(active):
+            break
         sm, sp = np.maximum(s - h, lo), np.minimum(s + h, hi)
         f = fun(np.concatenate([sm, s, sp]))
         fm, f0, fp = f[:n], f[n:2 * n], f[2 * n:]
         for cand_s, cand_f in ((s, f0), (sm, fm), (sp, fp)):
-            better = cand_f < best_f
+            better = active & (cand_f < best_f)
             best_s = np.where(better, cand_s, best_s)
             best_f = np.where(better, cand_f, best_f)
         den = fm - 2.0 * f0 + fp
         with np.errstate(divide="ignore", invalid="ignore"):
             shift = np.where(den > 0.0, 0.5 * h * (fm - fp) / den, np.where(fm < fp, -h, h))
-        # continue from the best point if the parabola's vertex left it behind
-        s = np.clip(best_s + np.clip(np.where(best_s == s, shift, 0.0), -h, h), lo, hi)
-        h = h / 8.0
+        # a centred level moves to the parabola's vertex and refines; otherwise continue
+        # from the best point with the same step
+        centred = active & (best_s == s)
+        s = np.where(centred, np.clip(s + np.clip(shift, -h, h), lo, hi),
+                     np.where(active, best_s, s))
+        h = np.where(centred, h / 8.0, h)
+        done = done + centred
     f = fun(s)
-    return np.where(f <= best_f, s, best_s)
+    keep = f <= best_f
+    return np.where(keep, s, best_s), np.where(keep, f, best_f)
+
+
+def _refine(fun, s0, h, lo, hi, levels=5):
+    """The lowest minimum of ``fun`` within ``h`` (the grid step) of the grid points ``s0``.
+
+    :func:`_parabolic` from ``s0``, then a scan of ``[s0 − h, s0 + h]`` at ``h/8``
+    (:data:`_BASIN`): near a jump of the contact point the gap has two minima in one
+    grid cell (0.13 mm apart for S1002/60E1 at y ≈ 6.25 mm), and the parabola finds the
+    one nearer its start. A sub-grid point lower than the refined minimum by more than
+    :data:`_BASIN_MARGIN` is refined from there with ``h/8``, the lower result kept.
+    """
+    s0 = np.asarray(s0, dtype=float)
+    n = s0.size
+    s1, f1 = _parabolic(fun, s0, h, lo, hi, levels)
+    hs = h / _BASIN
+    k = np.arange(-_BASIN, _BASIN + 1)
+    sk = np.clip(s0[None, :] + k[:, None] * hs, lo, hi)           # (2 _BASIN + 1, n)
+    fk = fun(sk.reshape(-1)).reshape(sk.shape)
+    j = np.argmin(fk, axis=0)
+    cols = np.arange(n)
+    other = fk[j, cols] < f1 - _BASIN_MARGIN
+    if not np.any(other):
+        return s1
+    s2, f2 = _parabolic(fun, sk[j, cols], hs, lo, hi, levels)
+    return np.where(other & (f2 < f1), s2, s1)
 
 
 def _refine_fast(ws, tr, side, step, s0, y, zc, th, psi, levels=5):
     """:func:`_refine` of the gap of ``side`` from the grid points ``s0`` (one pose each,
     arrays of shape (n,)), compiled (:func:`wheelrail.geometry._search_kernels.refine_rows`)."""
-    from ._search_kernels import refine_rows
 
     n = np.size(s0)
     arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
@@ -338,7 +387,6 @@ def _global_min(ws, tr, side, pose, step, levels=5):
     and the rail below it rises by its slope times the lateral motion.
     Compiled (:func:`wheelrail.geometry._search_kernels.global_min_rows`).
     """
-    from ._search_kernels import global_min_rows
 
     n = np.size(pose.y)
     arr = lambda v: np.ascontiguousarray(np.broadcast_to(np.asarray(v, dtype=float), (n,)))  # noqa: E731
@@ -398,7 +446,6 @@ def _newton(ws, tr, y, yaw, z, th, step, tol, maxiter):
     5 (shared by the active rows). Compiled
     (:func:`wheelrail.geometry._search_kernels.newton_rows`).
     """
-    from ._search_kernels import newton_rows
 
     c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
     return newton_rows(_side_args(ws, tr, "left", step), _side_args(ws, tr, "right", step),
@@ -491,7 +538,7 @@ def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, m
                      z0=None, roll0=None) -> RigidRows:
     """Roll and height satisfying ``min d = 0`` on both sides, row by row, never raising.
 
-    The same problem as :func:`solve_rigid` (seed 002, eqs. 2.1–2.3); every
+    The same problem as :func:`solve_rigid` (Bosso et al. (2013), ch. 2, eqs. 2.1–2.3); every
     row gets a status instead of one bad row aborting all of them. A damped
     Newton iteration is tried first; rows where it fails are solved by the
     bracketed fall-back (bisection on the roll angle, see :func:`_bracketed`),
@@ -559,7 +606,7 @@ def solve_rigid_rows(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, m
 
 def solve_rigid(ws: Wheelset, tr: Track, y, yaw, *, step=2e-4, tol=1e-10, maxiter=60,
                 z0=None, roll0=None):
-    """Roll and height satisfying ``min d = 0`` on both sides (seed 002, eqs. 2.1–2.3).
+    """Roll and height satisfying ``min d = 0`` on both sides (Bosso et al. (2013), ch. 2, eqs. 2.1–2.3).
 
     Newton iteration on (z, θ): raising the wheelset by Δz and rolling it by Δθ
     about its centre moves a wheel point by ``(−(Z − zc)Δθ, Δz + (Y − y)Δθ)``
@@ -706,8 +753,6 @@ def point_data(ws, tr, side, s, pose: _Pose) -> dict:
     s_arr = np.asarray(s, dtype=float)
     if s_arr.ndim == 1 and all(np.shape(v) == s_arr.shape for v in
                                (pose.y, pose.z, pose.roll, pose.yaw)):
-        from ._search_kernels import POINT_ROWS, point_data_rows
-
         args = _side_args(ws, tr, side, step=2e-4)
         pl = tr.placement(side)
         c = lambda v: np.ascontiguousarray(v, dtype=float)  # noqa: E731
@@ -756,7 +801,6 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
         :data:`POINT_FIELDS`, NaN-padded.
     count : ndarray of int, shape (n_rows,)
     """
-    from ._search_kernels import order_points, select_minima
 
     d, (s, lo, hi, h) = _grid_gap(ws, tr, side, pose, step)
     nrow = d.shape[0]
@@ -787,208 +831,3 @@ def find_points(ws, tr, side, pose: _Pose, *, step=2e-4, tolerance=1e-4, max_poi
     arr = np.full((len(data), nrow, npt), np.nan)
     arr[:, rows_o, slot] = vals[:, order]
     return dict(zip(data, arr)), count
-
-
-# --------------------------------------------------------------------------- results
-@dataclass(frozen=True)
-class SideContacts:
-    """Contact points on one side (arrays of shape (n,), field side first).
-
-    See :data:`POINT_FIELDS` for the meaning and units of every attribute;
-    ``primary`` is the index of the point with the smallest separation (the
-    rigid contact point).
-    """
-
-    wheel_y: np.ndarray
-    wheel_z: np.ndarray
-    rail_y: np.ndarray
-    rail_z: np.ndarray
-    track_y: np.ndarray
-    track_z: np.ndarray
-    x: np.ndarray
-    contact_angle: np.ndarray
-    rolling_radius: np.ndarray
-    wheel_curvature_x: np.ndarray
-    wheel_curvature_y: np.ndarray
-    rail_curvature_y: np.ndarray
-    A: np.ndarray
-    B: np.ndarray
-    separation: np.ndarray
-    gap: np.ndarray
-
-    @property
-    def n(self) -> int:
-        """Number of reported points."""
-        return int(np.size(self.separation))
-
-    @property
-    def primary(self) -> int:
-        """Index of the point with the smallest separation."""
-        return int(np.argmin(self.separation))
-
-    def in_contact(self, tolerance: float = 1e-6) -> np.ndarray:
-        """Mask of the points with separation ≤ ``tolerance`` [m]."""
-        return self.separation <= tolerance
-
-
-@dataclass(frozen=True)
-class ContactPoints:
-    """Rigid contact of a wheelset at one lateral shift and yaw (frozen).
-
-    Attributes
-    ----------
-    y, yaw : float
-        Prescribed lateral shift [m] and yaw [rad].
-    z, roll : float
-        Height of the axle centre above r0 over the top of rail [m] and roll
-        angle [rad] from the rigid constraint (positive: right wheel higher).
-    left, right : SideContacts
-        All points with separation ≤ ``tolerance``.
-    tolerance : float
-        Reporting tolerance on the separation [m].
-    status : str
-        ``"ok"``, ``"flange_climb"`` (the rigid contact lies on the flange
-        beyond its steepest point) or ``"derailed"`` (the wheel rides on its
-        flange tip); see :func:`classify_rows`.
-    reason : str
-        One line explaining a status other than ``"ok"``.
-    """
-
-    y: float
-    yaw: float
-    z: float
-    roll: float
-    left: SideContacts
-    right: SideContacts
-    tolerance: float
-    status: str = "ok"
-    reason: str = ""
-
-    def side(self, side: str) -> SideContacts:
-        """``left`` or ``right``."""
-        return getattr(self, check_side(side))
-
-    @property
-    def delta_r(self) -> float:
-        """Rolling radius difference r_right − r_left of the primary points [m]."""
-        return float(self.right.rolling_radius[self.right.primary]
-                     - self.left.rolling_radius[self.left.primary])
-
-
-def _side_from_row(data, count, row) -> SideContacts:
-    n = int(count[row])
-    return SideContacts(**{f.name: np.array(data[f.name][row, :n]) for f in fields(SideContacts)})
-
-
-def solve_rows(ws, tr, y, yaw, tolerance, step, *, detail=False):
-    """Rigid pose and all contact points of both sides for the shifts ``y`` (shape (n,)).
-
-    Returns ``z, roll`` (shape (n,)) and ``{side: (data, count)}`` of :func:`find_points`
-    (rows that could not be solved are NaN with count 0). With ``detail=True`` also
-    ``status`` (int8 codes of :data:`STATUS`, shape (n,)) and ``reasons`` (list of str).
-    Without it, a row without contact or solution raises (InputError, ConvergenceError).
-    """
-    yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
-    rows = solve_rigid_rows(ws, tr, y, yaw, step=step)
-    if not detail and np.any(rows.status >= 3):
-        i = int(np.flatnonzero(rows.status >= 3)[0])
-        raise (InputError if rows.status[i] == 3 else ConvergenceError)(rows.reason[i])
-    status, reasons = classify_rows(ws, y, rows.z, rows.wheel_y, rows.status, rows.roll)
-    reasons = [r or rr for r, rr in zip(reasons, rows.reason)]
-    good = np.flatnonzero(rows.status < 3)
-    pose = _Pose(y[good], rows.z[good], rows.roll[good], yaw[good])
-    sides = {}
-    for side in SIDES:
-        if good.size:
-            data, count = find_points(ws, tr, side, pose, step=step, tolerance=tolerance)
-        else:
-            data, count = {k: np.full((0, 1), np.nan) for k in POINT_FIELDS}, np.zeros(0, int)
-        npt = data["separation"].shape[1]
-        full = {k: np.full((y.size, npt), np.nan) for k in data}
-        for k in data:
-            full[k][good] = data[k]
-        cnt = np.zeros(y.size, dtype=int)
-        cnt[good] = count
-        sides[side] = (full, cnt)
-    if detail:
-        return rows.z, rows.roll, sides, status, reasons
-    return rows.z, rows.roll, sides
-
-
-def check_inputs(ws, tr, yaw, tolerance, step):
-    """Validate the common arguments of the contact functions; returns (yaw, tolerance, step).
-
-    ``yaw`` must be a scalar (returned as a float).
-    """
-    if not isinstance(ws, Wheelset):
-        raise InputError(f"wheelset must be a Wheelset, got {type(ws).__name__}")
-    if not isinstance(tr, Track):
-        raise InputError(f"track must be a Track, got {type(tr).__name__}")
-    yaw = as_float_array("yaw", yaw)
-    if yaw.ndim != 0:
-        raise InputError(f"yaw must be a scalar, got an array of shape {yaw.shape}")
-    if np.any(np.abs(yaw) > _MAX_YAW):
-        raise InputError(f"|yaw| must be <= {_MAX_YAW} rad, got {yaw!r}")
-    tolerance = float(non_negative("tolerance", tolerance))
-    step = float(positive("step", step))
-    if step > 2e-3:
-        raise InputError(f"step must be <= 2e-3 m (search grid on the wheel), got {step!r}")
-    return float(yaw), tolerance, step
-
-
-def contact_points(wheelset: Wheelset, track: Track, y, yaw=0.0, *, tolerance=1e-4,
-                   step=2e-4) -> ContactPoints:
-    """All wheel–rail contact points of a wheelset at lateral shift ``y`` and yaw ``yaw``.
-
-    Parameters
-    ----------
-    wheelset : Wheelset
-    track : Track
-    y : float
-        Lateral shift of the wheelset [m], positive to the right.
-    yaw : float
-        Yaw angle [rad] (|ψ| ≤ 0.2).
-    tolerance : float
-        Report every local minimum of the distance with separation ≤
-        ``tolerance`` [m] (default 0.1 mm): secondary / potential contact points.
-    step : float
-        Search grid spacing along the wheel profile [m] (default 0.2 mm);
-        minima are refined far below it.
-
-    Returns
-    -------
-    ContactPoints
-        With ``status`` ``"ok"``, ``"flange_climb"`` or ``"derailed"``;
-        ``"derailed"`` also issues a :class:`ContactWarning`.
-
-    Raises
-    ------
-    InputError
-        A wheel lies entirely beside its rail at this shift.
-    ConvergenceError
-        No pose satisfies the rigid constraint.
-
-    Examples
-    --------
-    >>> import wheelrail as wr
-    >>> ws = wr.Wheelset(wr.profiles.load("S1002"))
-    >>> tr = wr.Track(wr.profiles.load("60E1"))
-    >>> cp = wr.contact_points(ws, tr, 0.0)
-    >>> abs(cp.delta_r) < 1e-9
-    True
-    """
-    yaw, tolerance, step = check_inputs(wheelset, track, yaw, tolerance, step)
-    y = as_float_array("y", y)
-    if y.ndim != 0:
-        raise InputError("contact_points takes a scalar y; use contact_table for arrays")
-    z, th, rows, status, reasons = solve_rows(wheelset, track, y.reshape(1), yaw, tolerance,
-                                              step, detail=True)
-    if status[0] >= 3:
-        raise (InputError if status[0] == 3 else ConvergenceError)(reasons[0])
-    sides = {side: _side_from_row(*rows[side], 0) for side in SIDES}
-    if status[0] == STATUS_CODE["derailed"]:
-        import warnings
-
-        warnings.warn(reasons[0], ContactWarning, stacklevel=2)
-    return ContactPoints(float(y), yaw, float(z[0]), float(th[0]), sides["left"],
-                         sides["right"], tolerance, STATUS[int(status[0])], reasons[0])

@@ -1,9 +1,9 @@
 """Contact tables: rigid contact geometry versus the lateral shift of the wheelset.
 
-:func:`contact_table` solves the rigid constraint (seed 002, eqs. 2.1–2.3)
+:func:`contact_table` solves the rigid constraint (Bosso et al. (2013), ch. 2, eqs. 2.1–2.3)
 for every lateral shift and returns an :class:`xarray.Dataset` with dimension
 ``y`` (and ``point`` for the per-point quantities of both sides), the
-rolling-radius difference Δr = r_right − r_left (seed 003, fig. 1), roll,
+rolling-radius difference Δr = r_right − r_left (Piotrowski & Chollet (2005), fig. 1), roll,
 height, contact angles, positions, radii, curvatures and separations, and the
 lateral shifts at which a contact point jumps (``jump_y``). Helpers write the
 table to CSV and NetCDF (scipy engine; no netCDF4 dependency).
@@ -16,10 +16,11 @@ from pathlib import Path
 
 import numpy as np
 
+from .._atomic import atomic_open, atomic_path
 from .._validation import as_float_array, positive
 from ..errors import InputError
-from .contact_search import (POINT_FIELDS, SIDES, STATUS, check_inputs, solve_rigid_rows,
-                             solve_rows)
+from .contact_search import POINT_FIELDS, SIDES, STATUS, solve_rigid_rows
+from .points import check_inputs, solve_rows
 
 __all__ = ["contact_table", "locate_jumps", "write_csv", "write_netcdf"]
 
@@ -230,7 +231,6 @@ def contact_table(wheelset, track, y=None, yaw=0.0, *, tolerance=1e-4, step=2e-4
 
 def write_netcdf(table, path) -> Path:
     """Write a contact table to NetCDF-3 with the scipy engine (no netCDF4 needed), atomically."""
-    from .._atomic import atomic_path
 
     path = Path(path)
     with atomic_path(path) as tmp:
@@ -244,7 +244,6 @@ def write_csv(table, path) -> Path:
     The file is written atomically (temporary file, then rename); text
     variables (``status_reason``) are written as quoted strings.
     """
-    from .._atomic import atomic_open
 
     path = Path(path)
     cols, names = [np.asarray(table["y"].values, dtype=object)], ["y"]

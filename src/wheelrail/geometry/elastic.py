@@ -1,7 +1,7 @@
 """Elastic and quasi-elastic wheelset–track contact (load sharing between contact points).
 
-Elastic contact (seed 002, §2.1.2, eq. 2.4)
--------------------------------------------
+Elastic contact (Bosso et al. (2013), ch. 2, §2.1.2, eq. 2.4)
+-------------------------------------------------------------
 The wheelset is held at lateral shift ``y`` and yaw ``ψ`` and loaded by a
 vertical force ``load`` at its centre (equal axle-box loads: no roll
 moment); its height ``z`` and roll ``θ`` are free. Wherever the undeformed
@@ -21,16 +21,16 @@ the flanging wheel (S1002/60E1: about 6.5–7.5 mm) the flange force passes
 above the axle centre and no roll equilibrium of this loading exists (the
 wheel climbs); :class:`~wheelrail.errors.ConvergenceError` is raised. The
 quasi-elastic variant then returns a negative (tensile) force on the other
-wheel — the bilateral-constraint defect noted in seed 002, §2.1.3.
+wheel — the bilateral-constraint defect noted in Bosso et al. (2013), ch. 2, §2.1.3.
 
-Quasi-elastic contact (seed 002, §2.1.3, eq. 2.5)
--------------------------------------------------
+Quasi-elastic contact (Bosso et al. (2013), ch. 2, §2.1.3, eq. 2.5)
+-------------------------------------------------------------------
 Schupp, Weidemann and Mauer replace ``min d = 0`` by the regularised
 (soft-minimum) distance
 
     D_ε = −ε ln( ∫ exp(−d(s)/ε) ds / ∫ ds ) = 0        (both sides),
 
-over the range where the wheel lies above the rail (the seed prints the
+over the range where the wheel lies above the rail (Bosso et al. (2013), ch. 2, print the
 exponent with the opposite sign convention for d). With (z, θ) from these
 two constraints, one equivalent contact per side is formed with the weights
 ``w(s) ∝ exp(−d(s)/ε)`` (mean position, contact angle, radius); the two normal
@@ -40,7 +40,7 @@ Here d is the vertical wheel–rail distance on the search grid.
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.1.2–2.1.3, eqs. (2.4), (2.5).
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.1.2–2.1.3, eqs. (2.4), (2.5).
 .. [2] G. Schupp, C. Weidemann, L. Mauer, Modelling the contact between wheel
    and rail within multibody system simulation, VSD 41 (2004) 349–364.
 .. [3] K.L. Johnson, Contact Mechanics, CUP 1985, §4.2 (Hertz approach).
@@ -55,32 +55,41 @@ from scipy.optimize import root
 
 from .._validation import as_float_array, positive
 from ..errors import ConvergenceError, InputError
+from ..hertzian import hertz_kernel
 from ..materials import STEEL, as_material_pair
-from ..normal.hertz import hertz_kernel
 from ._checks import check_side
-from .contact_search import (SIDES, _SIGMA, SideContacts, _gapfun, _grid_gap, _Pose,
-                             _side_from_row, check_inputs, find_points, point_data, solve_rigid)
+from .contact_search import (
+    _SIGMA,
+    SIDES,
+    _gapfun,
+    _grid_gap,
+    _Pose,
+    find_points,
+    point_data,
+    solve_rigid,
+)
+from .points import SideContacts, _side_from_row, check_inputs
 
-__all__ = ["ElasticContact", "elastic_contact", "METHODS"]
+__all__ = ["ElasticContactResult", "elastic_contact", "METHODS"]
 
 METHODS = ("elastic", "quasi-elastic")
 
 
 @dataclass(frozen=True)
-class ElasticContact:
+class ElasticContactResult:
     """Result of :func:`elastic_contact` (frozen, SI).
 
     Attributes
     ----------
     method : str
-    y, yaw, load : float
-        Prescribed lateral shift [m], yaw [rad], vertical load [N].
+    y, yaw, axle_load : float
+        Prescribed lateral shift [m], yaw [rad], vertical axle load [N].
     z, roll : float
         Height of the axle centre [m] (as in :func:`contact_points`) and roll [rad].
     left, right : SideContacts
         Contact points (elastic: all penetrating local minima; quasi-elastic:
         the one equivalent point per side).
-    normal_force_left, normal_force_right : ndarray, shape (n,)
+    Fn_left, Fn_right : ndarray, shape (n,)
         Normal force at each point [N] (compression positive).
     penetration_left, penetration_right : ndarray, shape (n,)
         Normal approach δ at each point [m] (elastic); −D-weighted mean gap (quasi-elastic).
@@ -97,13 +106,13 @@ class ElasticContact:
     method: str
     y: float
     yaw: float
-    load: float
+    axle_load: float
     z: float
     roll: float
     left: SideContacts
     right: SideContacts
-    normal_force_left: np.ndarray
-    normal_force_right: np.ndarray
+    Fn_left: np.ndarray
+    Fn_right: np.ndarray
     penetration_left: np.ndarray
     penetration_right: np.ndarray
     vertical_force_left: float
@@ -113,9 +122,9 @@ class ElasticContact:
     lateral_force: float
     info: dict = field(default_factory=dict)
 
-    def normal_force(self, side: str) -> np.ndarray:
+    def Fn(self, side: str) -> np.ndarray:
         """Normal forces of ``side`` [N]."""
-        return getattr(self, f"normal_force_{check_side(side)}")
+        return getattr(self, f"Fn_{check_side(side)}")
 
 
 def _unit_approach(A, B, E_star, where):
@@ -328,8 +337,8 @@ def _quasi_elastic(ws, tr, y, yaw, load, eps, step, z0, th0):
     return sol.x, out, {"iterations": int(sol.nfev), "epsilon": eps}
 
 
-def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", *,
-                    material=STEEL, epsilon: float = 5e-5, step: float = 2e-4) -> ElasticContact:
+def elastic_contact(wheelset, track, y, axle_load, yaw=0.0, method: str = "elastic", *,
+                    material=STEEL, epsilon: float = 5e-5, step: float = 2e-4) -> ElasticContactResult:
     """Normal forces at all contact points of a loaded wheelset (elastic or quasi-elastic).
 
     Parameters
@@ -338,8 +347,8 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
     track : Track
     y : float
         Lateral shift [m] (right positive).
-    load : float
-        Vertical wheelset load [N] (> 0), applied at the axle centre.
+    axle_load : float
+        Vertical wheelset load (axle load) [N] (> 0), applied at the axle centre.
     yaw : float
         Yaw angle [rad].
     method : {"elastic", "quasi-elastic"}
@@ -355,14 +364,14 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
 
     Returns
     -------
-    ElasticContact
+    ElasticContactResult
 
     Examples
     --------
     >>> import wheelrail as wr
     >>> ws = wr.Wheelset(wr.profiles.load("S1002"))
     >>> tr = wr.Track(wr.profiles.load("60E1"))
-    >>> res = wr.elastic_contact(ws, tr, 0.0, load=1.0e5)
+    >>> res = wr.elastic_contact(ws, tr, 0.0, axle_load=1.0e5)
     >>> round(res.vertical_force_left + res.vertical_force_right)
     100000
     """
@@ -371,17 +380,17 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
     if y.ndim != 0:
         raise InputError("elastic_contact takes a scalar y")
     y = float(y)
-    load = float(positive("load", load))
+    axle_load = float(positive("axle_load", axle_load))
     if method not in METHODS:
         raise InputError(f"method must be one of {METHODS}, got {method!r}")
     pair = as_material_pair(material)
     z0, th0, _ = solve_rigid(wheelset, track, np.array([y]), np.array([yaw]), step=step)
     if method == "elastic":
-        x, out, info = _elastic(wheelset, track, y, yaw, load, pair.E_star, step,
+        x, out, info = _elastic(wheelset, track, y, yaw, axle_load, pair.E_star, step,
                                 float(z0[0]), float(th0[0]))
     else:
         eps = float(positive("epsilon", epsilon))
-        x, out, info = _quasi_elastic(wheelset, track, y, yaw, load, eps, step,
+        x, out, info = _quasi_elastic(wheelset, track, y, yaw, axle_load, eps, step,
                                       float(z0[0]), float(th0[0]))
     info["rigid_z"] = float(z0[0])
     info["rigid_roll"] = float(th0[0])
@@ -396,6 +405,6 @@ def elastic_contact(wheelset, track, y, load, yaw=0.0, method: str = "elastic", 
 
     L, R = keep("left"), keep("right")
     FyL, FyR = float(np.sum(L[3])), float(np.sum(R[3]))
-    return ElasticContact(method, y, yaw, load, float(x[0]), float(x[1]), L[0], R[0], L[2], R[2],
+    return ElasticContactResult(method, y, yaw, axle_load, float(x[0]), float(x[1]), L[0], R[0], L[2], R[2],
                           L[1], R[1], float(np.sum(L[4])), float(np.sum(R[4])), FyL, FyR,
                           -(FyL + FyR), info)

@@ -7,7 +7,7 @@ plane to the right, z along the normal into the rail; right-handed)::
 
     ξ = (v_w − v_r)·e_x / V,   η = (v_w − v_r)·e_y / V,   φ = (ω_w − ω_r)·e_z / V
 
-(seed 002, eq. 2.10; Kalker 1990 §1.4). The wheel material velocity at the
+(Bosso et al. (2013), ch. 2, eq. 2.10; Kalker 1990 §1.4). The wheel material velocity at the
 contact point P is ``v_w = v_c + ω_w × (P − C)`` with C the axle centre.
 
 Wheelset motion (track frame: x forward, y right, z up; pose as in
@@ -43,8 +43,8 @@ bodies; the difference is of the order of the creepage (second order).
 
 References
 ----------
-.. [1] Review of wheel–rail contact models (seed 002), §2.2, eq. (2.10).
-.. [2] Baeza et al. (seed 001), eqs. (2.1)–(2.6): creepages from rigid slip.
+.. [1] Review of wheel–rail contact models (Bosso et al. (2013), ch. 2), §2.2, eq. (2.10).
+.. [2] Baeza et al., eqs. (2.1)–(2.6): creepages from rigid slip.
 .. [3] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, §1.4 (creepage and spin).
 .. [4] A. Jaschinski, H. Chollet, S. Iwnicki, A. Wickens, J. von Würzen, The

@@ -4,9 +4,9 @@ For one contact point of a wheelset in rigid contact, the wheel and rail
 cross-sections are expressed in the contact frame: origin at the contact
 point on the rail, ``η`` along the common tangent (lateral coordinate of the
 contact plane), ``ζ`` along the common normal (positive into the wheel). The
-separation of the profiles is ``f(η) = ζ_wheel(η) − ζ_rail(η)`` (seed 003,
+separation of the profiles is ``f(η) = ζ_wheel(η) − ζ_rail(η)`` (Piotrowski & Chollet (2005),
 §3: ``f(y) = z1(y) + z2(y)``) and, for a penetration ``δ0``, the
-interpenetration function (seed 003, eq. 4)::
+interpenetration function (Piotrowski & Chollet (2005), eq. 4)::
 
     g(η) = δ0 − f(η)   where f(η) ≤ δ0,   0 elsewhere.
 
@@ -26,7 +26,7 @@ plane of the contact; its O(ψ) skew is neglected).
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3, eqs. (4), (5) (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3, eqs. (4), (5).
 .. [2] W. Kik, J. Piotrowski, A fast, approximate method to calculate normal
    load at contact between wheel and rail and creep forces during rolling,
    2nd Mini-Conference on Contact Mechanics, Budapest 1996.
@@ -42,14 +42,15 @@ from scipy.interpolate import CubicSpline
 from .._validation import as_float_array, non_negative, positive
 from ..errors import InputError
 from ._checks import check_side
-from .contact_search import _SIGMA, contact_points, silhouette
+from .contact_search import _SIGMA, silhouette
+from .points import contact_points
 
 __all__ = ["Separation", "separation", "separation_at", "undeformed_distance", "interpenetration",
            "undeformed_distance_kernel"]
 
 
 def interpenetration(f, delta):
-    """Interpenetration g = δ0 − f where f ≤ δ0, else 0 (seed 003, eq. 4) (pure kernel).
+    """Interpenetration g = δ0 − f where f ≤ δ0, else 0 (Piotrowski & Chollet (2005), eq. 4) (pure kernel).
 
     Parameters
     ----------
@@ -122,7 +123,7 @@ class Separation:
     point: int
 
     def interpenetration(self, delta) -> np.ndarray:
-        """g(η) for a virtual penetration ``delta`` [m] (seed 003, eq. 4)."""
+        """g(η) for a virtual penetration ``delta`` [m] (Piotrowski & Chollet (2005), eq. 4)."""
         return interpenetration(self.f, float(non_negative("delta", delta)))
 
     def distance(self, x) -> np.ndarray:

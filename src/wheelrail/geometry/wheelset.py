@@ -26,6 +26,7 @@ import numpy as np
 
 from .._validation import in_range, positive
 from ..errors import InputError, ProfileError
+from ..plausibility import check_rolling_radius
 from ._checks import check_profile, check_side
 from ._curves import PiecewiseCubic, sample_profile
 
@@ -79,7 +80,6 @@ class Wheelset:
         object.__setattr__(self, "flange_back", float(positive("flange_back", self.flange_back)))
         object.__setattr__(self, "tape_circle_offset",
                            float(in_range("tape_circle_offset", self.tape_circle_offset, 0.0, 0.5)))
-        from ..plausibility import check_rolling_radius
 
         check_rolling_radius(self.nominal_radius, "nominal_radius")
         if self.flange_back > 3.0:

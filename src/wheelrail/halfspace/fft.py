@@ -23,6 +23,7 @@ import scipy.fft as sfft
 
 from ..errors import InputError
 from ..materials import as_material_pair
+from ._memo import grid_key, memo
 from .influence import influence_kernel
 
 __all__ = ["ConvolutionOperator", "InfluenceOperator", "influence_operator"]
@@ -297,7 +298,6 @@ def influence_operator(grid, materials) -> "InfluenceOperator":
     The operator depends only on element size and counts and the materials;
     it is immutable apart from its lazily built block transforms.
     """
-    from ._memo import grid_key, memo
 
     pair = as_material_pair(materials)
     return memo(("operator",) + grid_key(grid, pair), lambda: InfluenceOperator(grid, pair))

@@ -17,7 +17,7 @@ import numpy as np
 from .._validation import as_float_array, integer, positive
 from ..errors import InputError
 
-__all__ = ["Grid"]
+__all__ = ["Grid", "contact_outline"]
 
 
 @dataclass(frozen=True)
@@ -125,3 +125,83 @@ class Grid:
         """The same window with ``factor`` times more elements along each axis."""
         factor = integer("factor", factor)
         return Grid.from_bounds(*self.bounds, self.nx * factor, self.ny * factor)
+
+
+# --------------------------------------------------------------------------- outline
+# crossing edges of a dual cell with corners c0=(i,j), c1=(i+1,j), c2=(i+1,j+1), c3=(i,j+1);
+# edge midpoints in doubled index coordinates
+def _edge_points(i, j):
+    return ((2 * i + 1, 2 * j), (2 * i + 2, 2 * j + 1), (2 * i + 1, 2 * j + 2), (2 * i, 2 * j + 1))
+
+
+def contact_outline(grid: Grid, mask) -> list[np.ndarray]:
+    """Closed outline polygon(s) of a set of elements (marching squares, level ½).
+
+    The outline passes through the midpoints between contact and non-contact
+    element centres (resolution one element). Diagonal neighbours are treated as
+    separate regions. Contacts touching the grid edge are closed along the edge.
+
+    Parameters
+    ----------
+    grid : Grid
+    mask : array_like of bool, shape (nx, ny)
+
+    Returns
+    -------
+    list of ndarray, each shape (m, 2)
+        Closed polygons (first point repeated last) of (x, y) vertices [m],
+        largest first.
+    """
+    m = np.asarray(mask, dtype=bool)
+    if m.shape != grid.shape:
+        raise InputError(f"mask must have the grid shape {grid.shape}, got {m.shape}")
+    pad = np.zeros((m.shape[0] + 2, m.shape[1] + 2), dtype=bool)
+    pad[1:-1, 1:-1] = m
+    c0, c1 = pad[:-1, :-1], pad[1:, :-1]
+    c2, c3 = pad[1:, 1:], pad[:-1, 1:]
+    mixed = ~((c0 == c1) & (c1 == c2) & (c2 == c3))
+    neighbours: dict = {}
+
+    def link(a, b):
+        neighbours.setdefault(a, []).append(b)
+        neighbours.setdefault(b, []).append(a)
+
+    for i, j in zip(*np.nonzero(mixed)):
+        corners = (c0[i, j], c1[i, j], c2[i, j], c3[i, j])
+        pts = _edge_points(i, j)
+        cross = [k for k in range(4) if corners[k] != corners[(k + 1) % 4]]
+        if len(cross) == 2:
+            link(pts[cross[0]], pts[cross[1]])
+        else:  # saddle: cut off the inside corners separately
+            if corners[0]:
+                link(pts[0], pts[3])
+                link(pts[1], pts[2])
+            else:
+                link(pts[0], pts[1])
+                link(pts[2], pts[3])
+    polygons = []
+    unvisited = set(neighbours)
+    while unvisited:
+        start = unvisited.pop()
+        ring = [start]
+        prev, cur = None, start
+        while True:
+            nxt = [q for q in neighbours[cur] if q != prev]
+            nxt = nxt[0] if nxt else neighbours[cur][0]
+            if nxt == start:
+                break
+            ring.append(nxt)
+            unvisited.discard(nxt)
+            prev, cur = cur, nxt
+        ring.append(start)
+        idx = np.asarray(ring, dtype=float) / 2.0 - 1.0     # element-index coordinates
+        xy = np.column_stack([grid.x0 + idx[:, 0] * grid.dx, grid.y0 + idx[:, 1] * grid.dy])
+        polygons.append(xy)
+
+    def _area(poly):
+        x, y = poly[:, 0], poly[:, 1]
+        return abs(float(np.multiply(x[:-1], y[1:]).sum())
+                   - float(np.multiply(x[1:], y[:-1]).sum())) / 2
+
+    polygons.sort(key=_area, reverse=True)
+    return polygons

@@ -37,7 +37,7 @@ with ``G``, ``ν``, ``K`` the combined constants of :class:`~wheelrail.materials
 (``K = 0`` for identical materials: no normal–tangential coupling).
 ``A[i, j]`` is the displacement difference ``u_i`` due to a unit point force
 ``j``. Integrating over a rectangle gives Love's (1929) closed forms used here
-(the seed paper 001, eqs. 2.14–2.18, gives the tangential ones for one body).
+(Baeza et al., eqs. 2.14–2.18, gives the tangential ones for one body).
 
 References
 ----------
@@ -47,7 +47,7 @@ References
    §3.3 (uniform pressure on a rectangle).
 .. [3] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, §1.6 and §5.
-.. [4] L. Baeza et al., Wheel–rail contact: instationary process, seed 001,
+.. [4] L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail contact instationary process on contact parameters,
    eqs. (2.13)–(2.18).
 """
 
@@ -183,7 +183,7 @@ def rectangle_influence(x, y, hx, hy, G, nu, K=0.0):
     ∫∫ 1/r = [s asinh(t/|s|) + t asinh(s/|t|)], ∫∫ s²/r³ = [t asinh(s/|t|)],
     ∫∫ s t/r³ = [−r], ∫∫ s/r² = [s atan(t/s) + t ln r], where [F] denotes
     F(x+hx, y+hy) − F(x−hx, y+hy) − F(x+hx, y−hy) + F(x−hx, y−hy); they are
-    the L1, L2, L3 of the seed paper 001 (eqs. 2.14–2.16) in asinh form.
+    the L1, L2, L3 of Baeza et al. (eqs. 2.14–2.16) in asinh form.
     """
     x, y = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float))
     s1, s2 = x - hx, x + hx
@@ -233,7 +233,7 @@ def influence_kernel(grid, materials) -> np.ndarray:
 
     References
     ----------
-    Love (1929); Kalker (1990) §5; seed 001 eqs. (2.13)–(2.18).
+    Love (1929); Kalker (1990) §5; Baeza et al. eqs. (2.13)–(2.18).
     """
     pair = as_material_pair(materials)
     # the antiderivatives are evaluated once on the lattice of element edges

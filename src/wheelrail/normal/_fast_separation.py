@@ -22,6 +22,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..geometry.contact_search import _SIGMA
+from ..geometry.separation import Separation, separation_at
+
 __all__ = ["spline_not_a_knot", "separation_fast", "plane_samples", "separation_kernel",
            "separation_window", "rail_slopes"]
 
@@ -359,8 +362,6 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
 
     Parameters and return value as there (SI units: m, rad).
     """
-    from ..geometry.contact_search import _SIGMA
-    from ..geometry.separation import Separation
 
     sig = _SIGMA[side]
     gam = float(contact_angle)
@@ -372,7 +373,6 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
         float(wheelset.e_tape), sig, float(y), float(wheelset.nominal_radius + z), float(roll),
         float(yaw), gam, float(wheel_y), u_c, float(width), int(n), 2001)
     if not ok:                           # degenerate window: the reference implementation
-        from ..geometry.separation import separation_at
 
         return separation_at(wheelset, track, side, y=y, z=z, roll=roll, yaw=yaw,
                              wheel_y=wheel_y, track_y=track_y, contact_angle=contact_angle,

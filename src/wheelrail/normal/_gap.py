@@ -17,6 +17,7 @@ import numpy as np
 from .._validation import as_float_array, integer, positive
 from ..errors import InputError, NoContactError
 from ..halfspace.grid import Grid
+from ..hertzian import hertz
 
 #: Default search box (xmin, xmax, ymin, ymax) [m]: ±20 mm around the origin, i.e. the
 #: default ±20 mm lateral window of :func:`wheelrail.geometry.separation` around the rigid
@@ -97,7 +98,6 @@ def _principal_curvatures(gap, xm, ym, hx, hy):
 
 def _hertz_penetration(gap, load, materials, xm, ym, spacing):
     """Hertz estimate of δ for ``load`` from the curvatures of h at its minimum."""
-    from .hertz import hertz   # hertz imports this package's base; import on use
 
     hx, hy = spacing
     for _ in range(3):
@@ -188,7 +188,7 @@ def _window(gap, penetration, load, materials, elements, margin, search):
     search = _check_search(search)
     xm, ym, hmin, spacing = _minimum(gap, search)
     if load is not None:
-        load = float(positive("load", load))
+        load = float(positive("Fn", load))
         if materials is None:
             raise InputError("materials= is needed to estimate the approach from load=")
         delta = _hertz_penetration(gap, load, materials, xm, ym, spacing)
@@ -208,7 +208,7 @@ def _window(gap, penetration, load, materials, elements, margin, search):
 
 
 # --------------------------------------------------------------------------- public
-def potential_contact_grid(gap, *, penetration=None, load=None, materials=None, elements=60,
+def potential_contact_grid(gap, *, penetration=None, Fn=None, materials=None, elements=60,
                            margin=1.2, search=None):
     """Grid (potential contact area) and gap array chosen from an arbitrary gap function.
 
@@ -223,12 +223,12 @@ def potential_contact_grid(gap, *, penetration=None, load=None, materials=None, 
         ``lambda x, y: f(np.stack([x, y], -1))``). Only evaluated inside ``search``.
     penetration : float, optional
         Prescribed approach δ [m], same datum as ``h`` (contact where h < δ).
-    load : float, optional
+    Fn : float, optional
         Prescribed normal force [N] > 0; δ is then estimated by Hertz's theory
         from the principal curvatures of h at its minimum (needs ``materials``).
-        Exactly one of ``penetration`` and ``load``.
+        Exactly one of ``penetration`` and ``Fn``.
     materials : Material or MaterialPair, optional
-        Needed with ``load``.
+        Needed with ``Fn``.
     elements : int
         Elements along the longer side of the window (made odd), >= 3; the
         element size is the same along the shorter side (aspect ≈ 1, odd count,
@@ -247,7 +247,7 @@ def potential_contact_grid(gap, *, penetration=None, load=None, materials=None, 
     grid : Grid
     gap : ndarray, shape (nx, ny)
         h at the element centres [m] (for :func:`solve_normal` / :func:`solve_gap`
-        with the same ``penetration`` or ``load``).
+        with the same ``penetration`` or ``Fn``).
 
     Raises
     ------
@@ -262,7 +262,7 @@ def potential_contact_grid(gap, *, penetration=None, load=None, materials=None, 
     For a prescribed penetration and ``margin >= 1`` the window contains
     {h < δ}, hence the elastic contact (u_n ≥ 0 in e = h − δ + u_n; exact for
     quasi-identical materials, see the module notes for K ≠ 0). For a
-    prescribed load the window rests on a Hertz estimate of δ; use
+    prescribed Fn the window rests on a Hertz estimate of δ; use
     :func:`solve_gap_auto`, which checks the solution for truncation and
     enlarges the window. Separate minima below δ are covered by one window
     (bounding box of all of them).
@@ -273,12 +273,12 @@ def potential_contact_grid(gap, *, penetration=None, load=None, materials=None, 
     >>> from wheelrail.contact import potential_contact_grid
     >>> from wheelrail.normal.bem import solve_normal
     >>> h = lambda x, y: 1.0 * x**2 + 2.0 * y**2
-    >>> grid, h0 = potential_contact_grid(h, load=10e3, materials=wr.STEEL, elements=31)
-    >>> sol = solve_normal(grid, h0, wr.STEEL, load=10e3)
+    >>> grid, h0 = potential_contact_grid(h, Fn=10e3, materials=wr.STEEL, elements=31)
+    >>> sol = solve_normal(grid, h0, wr.STEEL, Fn=10e3)
     >>> sol.truncated, abs(sol.p_max / wr.hertz(10e3, 1.0, 2.0, wr.STEEL).p0 - 1) < 0.03
     (False, True)
     """
-    w = _window(gap, penetration, load, materials, elements, margin, search)
+    w = _window(gap, penetration, Fn, materials, elements, margin, search)
     grid = w["grid"]
     return grid, np.array(_evaluate(gap, grid.X, grid.Y))
 
@@ -291,7 +291,7 @@ def contact_patches(solution):
 
     Parameters
     ----------
-    solution : NormalSolution or GapSolution
+    solution : NormalResult or GapResult
         Anything with ``grid``, ``contact`` (nx, ny) bool and ``pressure`` (nx, ny) [Pa].
 
     Returns

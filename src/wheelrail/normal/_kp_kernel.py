@@ -11,7 +11,7 @@ arithmetic–geometric mean, so that the integrals need no SciPy call.
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22) (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22).
 .. [2] M. Abramowitz, I.A. Stegun, *Handbook of mathematical functions*, 17.6
    (arithmetic–geometric mean for K and E).
 """

@@ -2,7 +2,7 @@
 
 :func:`strip_patch` turns the nodes of one solved region (lateral positions
 η, strip half-lengths x_l, peak pressures) into the ``strips`` × ``cells``
-description of :class:`~wheelrail.contact.patch.ContactPatch`: the equations
+description of :class:`~wheelrail.patch.ContactPatch`: the equations
 of ``VirtualPenetration._make_patch`` (:mod:`wheelrail.normal._strips`) in
 one call. Sums follow NumPy's pairwise summation (:func:`pairwise_sum`), so
 the numbers are those of the NumPy expressions they replace, to the last bit.
@@ -10,7 +10,7 @@ the numbers are those of the NumPy expressions they replace, to the last bit.
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3.
 """
 
 from __future__ import annotations

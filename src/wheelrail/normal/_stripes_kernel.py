@@ -1,14 +1,14 @@
 """Numba kernel of the STRIPES load iteration (private; pure array-in/array-out).
 
 :func:`stripes_line_load` is ``Stripes._line_loads`` (:mod:`wheelrail.normal.stripes`)
-in one call: with seed 003 eq. (27) the force of strip i is ½π k_p E* h_i h
+in one call: with Piotrowski & Chollet (2005) eq. (27) the force of strip i is ½π k_p E* h_i h
 (a_i cancels), so the load of a line is a sum over its interpenetration
 regions.
 
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3.3, eqs. (23)–(27) (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3.3, eqs. (23)–(27).
 """
 
 from __future__ import annotations

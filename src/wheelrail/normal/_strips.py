@@ -1,10 +1,10 @@
 """Shared machinery of the virtual-penetration methods (private).
 
-Kik–Piotrowski, Linder and STRIPES (seed 003 §3) all work on *lines*: the
+Kik–Piotrowski, Linder and STRIPES (Piotrowski & Chollet (2005) §3) all work on *lines*: the
 separation f(η) of the profiles along the lateral coordinate η of one contact
 plane, with the longitudinal curvature A(η) of the undeformed distance
 (h(x, η) ≈ f(η) + A(η) x²). The bodies are virtually pressed together by δ0;
-the interpenetration g(η) = δ0 − f(η) > 0 (seed 003 eq. 4) marks the strips,
+the interpenetration g(η) = δ0 − f(η) > 0 (Piotrowski & Chollet (2005) eq. 4) marks the strips,
 and every strip is half-length x_l(η) = √(g/A) long (eq. 5 with A = 1/(2R)).
 
 This module holds
@@ -25,7 +25,7 @@ All quantities SI (m, N, Pa, 1/m).
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005) 455–483, §3 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005) 455–483, §3.
 .. [2] J. Piotrowski, W. Kik, A simplified model of wheel/rail contact mechanics
    for non-Hertzian problems and its application in rail vehicle dynamic
    simulations, VSD 46 (2008) 27–48.
@@ -39,6 +39,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
+from ..hertzian import hertz_kernel
+from ..materials import as_material_pair
+from ..patch import ContactPatch
+from ._base import GapProblem
+from ._fast_separation import rail_slopes, separation_fast
+from ._gap import _check_search, _evaluate, _minimum
+from ._patch_kernel import strip_patch, weighted_means
 
 __all__ = ["Line", "Region", "VirtualPenetration", "runs", "kp_integrals",
            "hertz_penetration_factor", "hertz_shape", "hertz_ab"]
@@ -106,8 +113,6 @@ def _hertz_table():
     """ln a, ln b, ln p0, ln δ of Hertz (unit load, E* = 1, A·B = 1) on a grid of ln(A/B)."""
     t = _TABLE.get("hertz")
     if t is None:
-        from .hertz import hertz_kernel
-
         n = int(round(2 * _LN_MAX / _LN_STEP)) + 1
         lam = np.linspace(-_LN_MAX, _LN_MAX, n)
         A = np.exp(0.5 * lam)
@@ -121,15 +126,13 @@ def hertz_shape(A, B):
     """Hertz's unit-load solution (a, b, p0, δ; load 1 N, E* = 1 Pa) for curvatures A, B [1/m].
 
     Interpolated (linear in ln(A/B), step 0.005, relative error < 1e-5) in a
-    table of :func:`wheelrail.normal.hertz.hertz_kernel` with A·B = 1, scaled
+    table of :func:`wheelrail.hertzian.hertz_kernel` with A·B = 1, scaled
     to s = √(AB) by a, b ∝ s^(-1/3), p0 ∝ s^(2/3), δ ∝ s^(1/3) (Johnson
     1985, eqs. 3.64–3.66).
     """
     A, B = float(A), float(B)
     lam = math.log(A / B)
     if abs(lam) > _LN_MAX:
-        from .hertz import hertz_kernel
-
         a, b, p0, d = hertz_kernel(1.0, A, B, 1.0)
         return float(a), float(b), float(p0), float(d)
     grid, la, lb, lp, ld = _hertz_table()
@@ -191,8 +194,6 @@ def _separation(problem, k, width, n):
     f = problem.frames[k]
     key = ("separation", f, width, n)
     if key not in problem.cache:
-        from ._fast_separation import separation_fast
-
         pose = problem.pose
         problem.cache[key] = separation_fast(
             problem.wheelset, problem.track, problem.side, y=pose["y"], z=pose["z"],
@@ -329,9 +330,7 @@ class VirtualPenetration:
                                f"{best[1]!r} m, load {best[2]!r} N)")
 
     # ----------------------------------------------------------- Hertzian contact
-    def from_contact(self, contact, **opts):
-        from ._base import GapProblem
-
+    def from_contact(self, contact):
         A, B = float(contact.A), float(contact.B)
         a, b = float(contact.a), float(contact.b)
         L = 4.0 * max(a, b)
@@ -339,14 +338,12 @@ class VirtualPenetration:
         def gap(x, y):
             return A * np.asarray(x, dtype=float) ** 2 + B * np.asarray(y, dtype=float) ** 2
 
-        prob = GapProblem(gap, contact.materials, load=float(contact.load),
+        prob = GapProblem(gap, contact.materials, Fn=float(contact.Fn),
                           search=(-L, L, -L, L))
-        return self.from_gap(prob, **opts)
+        return self.from_gap(prob)
 
     # ----------------------------------------------------------- gap problems
     def _gap_line(self, problem, centre, ylim, n, dx):
-        from ._gap import _evaluate
-
         xm, ym, hmin = centre
         eta = np.linspace(ylim[0], ylim[1], n)
         X0 = np.full(n, xm)
@@ -357,9 +354,8 @@ class VirtualPenetration:
         Ax = (hp + hm - 2.0 * h0) / (2.0 * dx * dx)
         return eta, h0 - hmin, Ax
 
-    def from_gap(self, problem, **opts):
-        from ..materials import as_material_pair
-        from ._gap import _check_search, _evaluate, _minimum
+    def from_gap(self, problem):
+        opts = self.option_values()
 
         search = _check_search(problem.search)
         pair = as_material_pair(problem.materials)
@@ -377,9 +373,8 @@ class VirtualPenetration:
                     f"normal method {self.name!r}: the gap is not convex at its minimum "
                     f"(x, y) = ({xm!r}, {ym!r}) m (A = {A!r}, B = {B!r} 1/m); this patch cannot be "
                     "represented by a virtual-penetration method, use normal='bem'")
-            from .hertz import hertz_kernel
-            if problem.load is not None:
-                a1, b1, _, d1 = hertz_kernel(float(problem.load), A, B, pair.E_star)
+            if problem.Fn is not None:
+                a1, b1, _, d1 = hertz_kernel(float(problem.Fn), A, B, pair.E_star)
             else:
                 d = float(problem.penetration) - hmin
                 if not d > 0:
@@ -408,8 +403,8 @@ class VirtualPenetration:
         line = Line(eta, f, Ax, float(A), float(B), ref=int(np.argmin(np.abs(eta))))
         delta = self._gap_delta(problem, line, hmin, pair, opts, start=delta)
         regs = self._solve_line(line, delta, opts)
-        if problem.load is not None:
-            _rescale(regs, float(problem.load) / sum(r.N for r in regs))
+        if problem.Fn is not None:
+            _rescale(regs, float(problem.Fn) / sum(r.N for r in regs))
         patches = []
         for reg in regs:
             patches.append(self._make_patch(line, reg, pair, opts, frame=None,
@@ -422,7 +417,7 @@ class VirtualPenetration:
         line.extra["materials"] = pair
         if problem.penetration is not None:
             return float(problem.penetration) - hmin
-        Q = float(problem.load)
+        Q = float(problem.Fn)
         if start is None:
             _, _, _, d1 = hertz_shape(line.A, line.B)
             start = d1 * (Q / pair.E_star) ** (2.0 / 3.0) / 1.0
@@ -432,11 +427,8 @@ class VirtualPenetration:
 
     # ----------------------------------------------------------- patches
     def _make_patch(self, line, reg, pair, opts, frame, delta, extra=None):
-        from ..contact.patch import ContactPatch
-        from ._patch_kernel import strip_patch
-
-        strips = int(opts.get("strips", self._default_strips))
-        cells = int(opts.get("cells", self._default_cells))
+        strips = int(opts["strips"])
+        cells = int(opts["cells"])
         eta_n = reg.eta
         eta_ref = float(reg.info.get("eta_ref", eta_n[reg.j0 - reg.nodes.start]))
         # strips: x_l² (linear in the interpenetration) and the peaks interpolated from the
@@ -475,7 +467,6 @@ class VirtualPenetration:
         key = ("vp_lines", self.name, group_angle, width)
         if key in problem.cache:
             return problem.cache[key]
-        from ._fast_separation import rail_slopes
 
         sigma = 1.0 if problem.side == "right" else -1.0
         groups = problem.groups(group_angle, width)
@@ -500,14 +491,11 @@ class VirtualPenetration:
         return lines
 
     def _wheel_solve(self, problem, opts, group_angle=0.2, width=0.04):
-        from ..materials import as_material_pair
-
         pair = as_material_pair(problem.materials)
         lines = self._wheel_lines(problem, group_angle, width)
         if not lines:
             raise NoContactError(f"{problem.side} wheel: no candidate contact point")
 
-        from ._patch_kernel import weighted_means
 
         def solve_all(dz):
             out, Fz = [], 0.0
@@ -524,8 +512,8 @@ class VirtualPenetration:
                 out.append(regs)
             return out, Fz
 
-        if problem.approach is not None:
-            dz = float(problem.approach)
+        if problem.vertical_approach is not None:
+            dz = float(problem.vertical_approach)
         else:
             Q = float(problem.vertical_load)
             l0 = lines[0]
@@ -544,7 +532,7 @@ class VirtualPenetration:
             dz = self._iterate(vertical, Q, start,
                                f"{problem.side} wheel, normal method {self.name!r}")
         sols, Fz = solve_all(dz)
-        if problem.approach is None:
+        if problem.vertical_approach is None:
             _rescale([r for regs in sols for r in regs], float(problem.vertical_load) / Fz)
         patches = []
         for line, regs in zip(lines, sols):
@@ -564,7 +552,7 @@ class VirtualPenetration:
         # field side first (as the other methods), i.e. by lateral track position
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
-        return tuple(patches), {"approach": float(dz), "groups": len(lines)}
+        return tuple(patches), {"vertical_approach": float(dz), "groups": len(lines)}
 
     @staticmethod
     def _eta_in_region_coords(reg, eta_c, e_nodes):
@@ -574,5 +562,6 @@ class VirtualPenetration:
         t = (eta_c - e_nodes[0]) / (e_nodes[-1] - e_nodes[0])
         return float(reg.eta[0] + t * (reg.eta[-1] - reg.eta[0]))
 
-    def from_wheel(self, problem, **opts):
+    def from_wheel(self, problem):
+        opts = self.option_values()
         return self._wheel_solve(problem, opts)

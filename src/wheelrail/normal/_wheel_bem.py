@@ -12,9 +12,9 @@ import math
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
-from ._gap import _scaled
-from .bem import _elements_for, _patches_of, _solve_enlarging, _square_grid
-from .hertz import _vertical_approach, hertz_kernel
+from ..hertzian import _vertical_approach, hertz_kernel
+from ._bem_solver import _elements_for, _patches_of, _solve_enlarging, _square_grid
+from ._gap import _scaled, contact_patches
 
 __all__ = ["solve_wheel"]
 
@@ -114,8 +114,8 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     # Hertz estimate of the vertical approach: sizes the windows
     d1 = np.full(A.shape, np.inf)
     d1[ok] = hertz_kernel(1.0, A[ok], B[ok], pair.E_star)[3]
-    if problem.approach is not None:
-        dz_est = float(problem.approach)
+    if problem.vertical_approach is not None:
+        dz_est = float(problem.vertical_approach)
     elif ok.any():
         dz_est = _vertical_approach(float(problem.vertical_load), sep[ok], cosg[ok], d1[ok])
     else:   # conformal everywhere: a rough estimate, the window enlargement corrects it
@@ -132,7 +132,7 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
                 raise
             what = (f"vertical load {problem.vertical_load!r} N"
                     if problem.vertical_load is not None
-                    else f"vertical approach {problem.approach!r} m")
+                    else f"vertical approach {problem.vertical_approach!r} m")
             raise InputError(f"{problem.side} wheel: with the {what} the interpenetration "
                              f"reaches beyond the {width!r} m of profile around the contact: "
                              "these profiles cannot carry that load (or raise width=)") from None
@@ -146,7 +146,7 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     def solve_all(dz=None, load=None):
         sols = []
         for st in setups:
-            kw = {"load": load / st["cos"]} if load is not None else {"penetration": dz * st["cos"]}
+            kw = {"Fn": load / st["cos"]} if load is not None else {"penetration": dz * st["cos"]}
             try:
                 sol, grid = _solve_enlarging(st["gap"], st["grid"], pair, st["search"], tol=tol,
                                              max_enlarge=max_enlarge, square=True,
@@ -159,8 +159,8 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
         return sols
 
     iterations = 1
-    if problem.approach is not None:
-        dz = float(problem.approach)
+    if problem.vertical_approach is not None:
+        dz = float(problem.vertical_approach)
         sols = solve_all(dz=dz)
     elif len(setups) == 1:
         sols = solve_all(load=float(problem.vertical_load))
@@ -193,7 +193,6 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
     for st, sol in zip(setups, sols):
         if sol is None:
             continue
-        from ._gap import contact_patches
 
         labels, _ = contact_patches(sol)
         nlab = int(labels.max())
@@ -208,5 +207,5 @@ def solve_wheel(problem, *, elements, element_size, margin, tol, max_enlarge, ce
             p.info.update(centre_rail_y=at.rail_y, centre_wheel_y=at.wheel_y,
                           centre_track_y=at.track_y)
         patches.extend(found)
-    return tuple(patches), {"approach": float(dz), "iterations": iterations,
+    return tuple(patches), {"vertical_approach": float(dz), "iterations": iterations,
                             "groups": len(setups)}

@@ -73,556 +73,31 @@ References
 
 from __future__ import annotations
 
-import math
-import warnings
-from dataclasses import dataclass, field
-
-import numpy as np
-
-from .._resources import guard
-from .._validation import as_float_array, integer, positive
-from ..errors import ConvergenceError, InputError, NoContactError
-from ..halfspace.fft import InfluenceOperator, influence_operator
-from ..halfspace.grid import Grid
-from ..materials import MaterialPair, as_material_pair
-from ..results import Status, to_jsonable
+from ..options import configured, option
+from ..patch import ContactPatch
 from ._base import NormalMethod
+from ._bem_solver import (
+    ContactTruncatedWarning,
+    _elements_for,
+    _patches_of,
+    _solution_info,
+    _solve_enlarging,
+    _square_grid,
+    hertz_grid,
+    polonsky_keer,
+    solve_normal,
+)
+from ._gap import _window
+from ._wheel_bem import solve_wheel
 
-__all__ = ["Bem", "NormalSolution", "ContactTruncatedWarning", "solve_normal", "hertz_grid",
-           "contact_outline", "polonsky_keer"]
-
-
-class ContactTruncatedWarning(UserWarning):
-    """The contact area reaches the edge of the grid: the window is too small."""
-
-
-# --------------------------------------------------------------------------- result
-@dataclass(frozen=True)
-class NormalSolution:
-    """Solution of the normal contact problem on a grid (frozen).
-
-    Attributes
-    ----------
-    grid : Grid
-    pressure : ndarray, shape (nx, ny)
-        Contact pressure [Pa], ≥ 0, compression positive.
-    gap : ndarray, shape (nx, ny)
-        Deformed gap e = h0 − δ + u_n [m] (≈ 0 in contact, > 0 outside).
-    displacement : ndarray, shape (nx, ny)
-        Gap-opening normal displacement difference u_n [m].
-    contact : ndarray of bool, shape (nx, ny)
-        Elements in contact (p > 0).
-    Fn : float
-        Normal force Σ p dA [N].
-    p_max : float
-        Largest element pressure [Pa].
-    penetration : float
-        Approach δ of the bodies [m] (prescribed, or found for a prescribed load).
-    area : float
-        Contact area (number of contact elements × dA) [m²].
-    iterations : int
-    status : Status
-        ``CONVERGED`` or ``NOT_CONVERGED`` (only with ``on_fail="status"``).
-    residual : float
-        Complementarity residual max(max|e| in contact, max(−e) outside) / max(u_n) [-].
-    truncated : bool
-        True if the contact reaches the outer row/column of the grid (the result
-        is then not the solution of the unbounded problem).
-    materials : MaterialPair
-    info : dict
-        Extra scalars (``change``: last relative pressure change).
-    """
-
-    grid: Grid
-    pressure: np.ndarray
-    gap: np.ndarray
-    displacement: np.ndarray
-    contact: np.ndarray
-    Fn: float
-    p_max: float
-    penetration: float
-    area: float
-    iterations: int
-    status: Status
-    residual: float
-    truncated: bool
-    materials: MaterialPair
-    info: dict = field(default_factory=dict)
-
-    @property
-    def centroid(self) -> tuple[float, float]:
-        """Centre of pressure (x, y) [m]."""
-        w = self.pressure.sum()
-        return (float((self.pressure * self.grid.X).sum() / w),
-                float((self.pressure * self.grid.Y).sum() / w))
-
-    def outline(self) -> list[np.ndarray]:
-        """Outline(s) of the contact area, see :func:`contact_outline`."""
-        return contact_outline(self.grid, self.contact)
-
-    def to_dict(self) -> dict:
-        """JSON-friendly scalars (fields left out)."""
-        out = {k: getattr(self, k) for k in ("Fn", "p_max", "penetration", "area", "iterations",
-                                             "status", "residual", "truncated")}
-        out["grid"] = {"x0": self.grid.x0, "y0": self.grid.y0, "dx": self.grid.dx,
-                       "dy": self.grid.dy, "nx": self.grid.nx, "ny": self.grid.ny}
-        out.update(self.info)
-        return to_jsonable(out)
+__all__ = ["Bem", "ContactTruncatedWarning", "solve_normal", "hertz_grid", "polonsky_keer"]
 
 
-# --------------------------------------------------------------------------- outline
-# crossing edges of a dual cell with corners c0=(i,j), c1=(i+1,j), c2=(i+1,j+1), c3=(i,j+1);
-# edge midpoints in doubled index coordinates
-def _edge_points(i, j):
-    return ((2 * i + 1, 2 * j), (2 * i + 2, 2 * j + 1), (2 * i + 1, 2 * j + 2), (2 * i, 2 * j + 1))
-
-
-def contact_outline(grid: Grid, mask) -> list[np.ndarray]:
-    """Closed outline polygon(s) of a set of elements (marching squares, level ½).
-
-    The outline passes through the midpoints between contact and non-contact
-    element centres (resolution one element). Diagonal neighbours are treated as
-    separate regions. Contacts touching the grid edge are closed along the edge.
-
-    Parameters
-    ----------
-    grid : Grid
-    mask : array_like of bool, shape (nx, ny)
-
-    Returns
-    -------
-    list of ndarray, each shape (m, 2)
-        Closed polygons (first point repeated last) of (x, y) vertices [m],
-        largest first.
-    """
-    m = np.asarray(mask, dtype=bool)
-    if m.shape != grid.shape:
-        raise InputError(f"mask must have the grid shape {grid.shape}, got {m.shape}")
-    pad = np.zeros((m.shape[0] + 2, m.shape[1] + 2), dtype=bool)
-    pad[1:-1, 1:-1] = m
-    c0, c1 = pad[:-1, :-1], pad[1:, :-1]
-    c2, c3 = pad[1:, 1:], pad[:-1, 1:]
-    mixed = ~((c0 == c1) & (c1 == c2) & (c2 == c3))
-    neighbours: dict = {}
-
-    def link(a, b):
-        neighbours.setdefault(a, []).append(b)
-        neighbours.setdefault(b, []).append(a)
-
-    for i, j in zip(*np.nonzero(mixed)):
-        corners = (c0[i, j], c1[i, j], c2[i, j], c3[i, j])
-        pts = _edge_points(i, j)
-        cross = [k for k in range(4) if corners[k] != corners[(k + 1) % 4]]
-        if len(cross) == 2:
-            link(pts[cross[0]], pts[cross[1]])
-        else:  # saddle: cut off the inside corners separately
-            if corners[0]:
-                link(pts[0], pts[3])
-                link(pts[1], pts[2])
-            else:
-                link(pts[0], pts[1])
-                link(pts[2], pts[3])
-    polygons = []
-    unvisited = set(neighbours)
-    while unvisited:
-        start = unvisited.pop()
-        ring = [start]
-        prev, cur = None, start
-        while True:
-            nxt = [q for q in neighbours[cur] if q != prev]
-            nxt = nxt[0] if nxt else neighbours[cur][0]
-            if nxt == start:
-                break
-            ring.append(nxt)
-            unvisited.discard(nxt)
-            prev, cur = cur, nxt
-        ring.append(start)
-        idx = np.asarray(ring, dtype=float) / 2.0 - 1.0     # element-index coordinates
-        xy = np.column_stack([grid.x0 + idx[:, 0] * grid.dx, grid.y0 + idx[:, 1] * grid.dy])
-        polygons.append(xy)
-
-    def _area(poly):
-        x, y = poly[:, 0], poly[:, 1]
-        return abs(_dot(x[:-1], y[1:]) - _dot(x[1:], y[:-1])) / 2
-
-    polygons.sort(key=_area, reverse=True)
-    return polygons
-
-
-# --------------------------------------------------------------------------- kernel
-def _dot(a, b) -> float:
-    """Dot product of two 1-D arrays without BLAS (private).
-
-    ``np.dot`` calls a multi-threaded BLAS ``ddot`` for long vectors, which is
-    several times slower than one core when the machine's cores are busy.
-    """
-    return float(np.multiply(a, b).sum())
-
-
-def polonsky_keer(apply, h, dA, *, load=None, penetration=None, p_init=None, tol=1e-8,
-                  maxiter=1000, precondition=None):
-    """Bound-constrained (preconditioned) conjugate gradients for the discrete Signorini problem.
-
-    Pure kernel.
-
-    Parameters
-    ----------
-    apply : callable
-        ``apply(p) -> u_n``, the symmetric positive-definite influence operator
-        (nx, ny) → (nx, ny) [Pa → m].
-    h : ndarray, shape (nx, ny)
-        Undeformed separation h0 [m].
-    dA : float
-        Element area [m²].
-    load, penetration : float
-        Exactly one: total load [N] > 0 or approach δ [m].
-    p_init : ndarray, optional
-        Initial pressure (≥ 0, not all zero); default: proportional to the rigid
-        interference.
-    tol : float
-        Stop when Σ|p_k − p_{k−1}| / Σ p_k < tol.
-    maxiter : int
-    precondition : callable, optional
-        ``precondition(r) -> z`` [m → Pa], a symmetric positive (semi-)definite
-        approximate inverse of the influence operator (e.g.
-        :class:`~wheelrail.halfspace.precondition.InverseSymbolPreconditioner`),
-        applied to the residual restricted to the contact set; its output is
-        restricted again and, for load control, projected onto zero total load.
-        None: the plain method of Polonsky & Keer.
-
-    Returns
-    -------
-    p : ndarray
-        Pressure [Pa].
-    delta : float
-        Approach [m] (the prescribed one, or the mean of h0 + u_n over the
-        contact for load control).
-    iterations : int
-    change : float
-        Last relative pressure change.
-
-    References
-    ----------
-    Polonsky & Keer (1999), §3, steps (i)–(x); the preconditioned direction
-    ``t = z + (g·z / g_old·z_old) t_old`` with ``z`` the restricted, projected
-    preconditioned residual: Vollebregt (2014), §3–4.
-    """
-    p, delta, it, change, _ = _pk(apply, h, dA, load, penetration, p_init, tol, maxiter,
-                                  precondition)
-    return p, delta, it, change
-
-
-def _pk(apply, h, dA, load, penetration, p_init, tol, maxiter, precondition):
-    """:func:`polonsky_keer`, also returning ``u_n = apply(p)`` of the final pressure (private)."""
-    if (load is None) == (penetration is None):
-        raise InputError("give exactly one of load= and penetration=")
-    load_control = load is not None
-    if p_init is None:
-        p_init = _initial_pressure(apply, h, dA, load, penetration)
-    p = np.array(p_init, dtype=float)
-    if load_control:
-        # a start carrying another load (e.g. the solution of a nearby load) is scaled to
-        # this one first: otherwise the iteration can stall on the start's contact area
-        p *= load / (dA * p.sum())
-    # work arrays, allocated once
-    t = np.zeros_like(p)
-    g = np.empty_like(p)
-    gm = np.empty_like(p)
-    tmp = np.empty_like(p)
-    p_old = np.empty_like(p)
-    Ic = np.empty(p.shape, dtype=bool)
-    overlap = np.empty(p.shape, dtype=bool)
-    G_old = 1.0
-    restart = True      # δ = 0 in the paper: steepest descent step
-    change = np.inf
-    it = 0
-    u = apply(p)
-    for it in range(1, maxiter + 1):
-        np.greater(p, 0.0, out=Ic)
-        nI = int(np.count_nonzero(Ic))
-        if nI == 0:
-            raise NoContactError("the pressure vanished everywhere during the iteration")
-        np.add(u, h, out=g)
-        if load_control:
-            g -= np.sum(g, where=Ic) / nI
-        else:
-            g -= penetration
-        np.multiply(g, Ic, out=gm)               # residual on the contact set, 0 elsewhere
-        if precondition is None:
-            z = gm
-        else:
-            z = precondition(gm)
-            z *= Ic
-            if load_control:                     # keep the load: Σ z = 0 on the contact set
-                z -= z.sum() / nI
-                z *= Ic
-        G = _dot(gm, z)
-        if restart:
-            t[...] = z
-        else:
-            t *= G / G_old
-            t += z
-            t *= Ic
-        G_old = G
-        r_raw = apply(t)
-        denom = _dot(r_raw, t)
-        if load_control:
-            denom -= np.sum(r_raw, where=Ic) / nI * t.sum()
-        if G == 0.0 or denom == 0.0:
-            change = 0.0
-            break
-        tau = _dot(gm, t) / denom
-        p_old[...] = p
-        np.multiply(t, tau, out=tmp)
-        p -= tmp
-        clipped = bool(p.min() < 0.0)
-        np.maximum(p, 0.0, out=p)
-        np.equal(p, 0.0, out=overlap)
-        overlap &= g < 0.0
-        if overlap.any():
-            restart = True
-            p[overlap] -= tau * g[overlap]
-        else:
-            restart = False
-        scale = 1.0
-        if load_control:
-            scale = load / (dA * p.sum())
-            p *= scale
-        total = p.sum()
-        np.subtract(p, p_old, out=tmp)
-        np.abs(tmp, out=tmp)
-        change = float(tmp.sum() / total) if total > 0 else np.inf
-        if change < tol:
-            break
-        if clipped or restart or it % 20 == 0:
-            u = apply(p)
-        else:   # linear step, active set unchanged: A p follows without a convolution
-            r_raw *= tau
-            u -= r_raw
-            u *= scale
-    u = apply(p)
-    if load_control:
-        np.add(u, h, out=g)
-        delta = float(np.sum(g, where=p > 0.0) / np.count_nonzero(p > 0.0))
-    else:
-        delta = float(penetration)
-    return p, delta, it, change, u
-
-
-# --------------------------------------------------------------------------- entry
-def _preconditioner(grid, operator):
-    """The :class:`InverseSymbolPreconditioner` of ``operator``'s normal block (memoised).
-
-    None for a single element (nothing to precondition).
-    """
-    if grid.size < 2:
-        return None
-    from ..halfspace._memo import grid_key, memo
-    from ..halfspace.precondition import InverseSymbolPreconditioner
-
-    key = ("normal-preconditioner",) + grid_key(grid, operator.materials)
-    return memo(key, lambda: InverseSymbolPreconditioner(operator.kernel[2, 2], grid.dx, grid.dy))
-
-
-def _initial_pressure(apply, h, dA, load, penetration):
-    """Pressure ∝ rigid interference, scaled by one operator application."""
-    if load is not None:
-        # interference of the rigid bodies pressed to a depth covering ~1/4 of the window
-        depth = np.quantile(h, 0.25) - h.min()
-        if depth <= 0:
-            depth = np.ptp(h) if np.ptp(h) > 0 else 1.0
-        over = np.maximum(h.min() + depth - h, 0.0)
-        if not np.any(over > 0):
-            over = np.ones_like(h)
-        p = np.sqrt(over)
-        return p * (load / (dA * p.sum()))
-    over = np.maximum(penetration - h, 0.0)
-    u = apply(over)
-    k = over.max() / u[over > 0].max()
-    return over * k
-
-
-def solve_normal(grid: Grid, gap, materials, *, load=None, penetration=None, tol: float = 1e-8,
-                 maxiter: int = 2000, on_fail: str = "raise", operator=None,
-                 initial=None, precondition: bool = True) -> NormalSolution:
-    """Solve the normal contact problem on a grid (non-Hertzian, half-space).
-
-    Parameters
-    ----------
-    grid : Grid
-        Element grid covering (with some margin) the expected contact area.
-    gap : array_like, shape (nx, ny)
-        Undeformed separation h0 of the surfaces at the element centres [m]
-        (any offset; for ``penetration`` control, contact needs h0 < δ somewhere).
-    materials : Material or MaterialPair
-    load : float, optional
-        Prescribed normal force Fn [N], > 0.
-    penetration : float, optional
-        Prescribed approach δ [m]. Exactly one of ``load`` and ``penetration``.
-    tol : float, optional
-        Relative pressure change Σ|Δp|/Σp at which the iteration stops (1e-8).
-    maxiter : int, optional
-        Iteration limit (2000).
-    on_fail : {"raise", "status"}
-        Non-convergence raises :class:`~wheelrail.errors.ConvergenceError`
-        ("raise", default) or returns the last iterate with
-        ``status = Status.NOT_CONVERGED``.
-    operator : InfluenceOperator, optional
-        Reuse a prebuilt operator of the same grid (e.g. shared with a
-        tangential solver).
-    initial : ndarray, shape (nx, ny), optional
-        Starting pressure [Pa] (e.g. the solution of a nearby load).
-    precondition : bool, optional
-        Use the FFT approximate inverse of the influence operator as the
-        preconditioner of the conjugate gradients (default True; False: the
-        plain method of Polonsky & Keer). Both converge to the same discrete
-        solution; the preconditioned iteration count hardly grows with the grid.
-
-    Returns
-    -------
-    NormalSolution
-
-    Raises
-    ------
-    InputError
-        Bad arguments (load ≤ 0, both or none of load/penetration, wrong shape).
-    NoContactError
-        With prescribed penetration, if h0 − δ > 0 everywhere.
-    ConvergenceError
-        If the iteration limit is hit and ``on_fail="raise"``.
-
-    Warns
-    -----
-    ContactTruncatedWarning
-        If the contact reaches the grid boundary (``truncated`` is then True).
-
-    Notes
-    -----
-    Deformed gap e = h0 − δ + u_n, u_n the gap-opening displacement difference
-    (:mod:`wheelrail.halfspace.influence`). Algorithm: Polonsky & Keer (1999).
-
-    Examples
-    --------
-    >>> import wheelrail as wr
-    >>> from wheelrail.normal.bem import hertz_grid, solve_normal
-    >>> hc = wr.hertz(10e3, A=1.0, B=1.0, material=wr.STEEL)
-    >>> grid, h0 = hertz_grid(hc, elements=24)
-    >>> sol = solve_normal(grid, h0, wr.STEEL, load=10e3)
-    >>> abs(sol.p_max / hc.p0 - 1) < 0.03
-    True
-    """
-    if not isinstance(grid, Grid):
-        raise InputError(f"grid must be a Grid, got {type(grid).__name__}")
-    pair = as_material_pair(materials)
-    h = grid.check_field("gap", gap)
-    if (load is None) == (penetration is None):
-        raise InputError("give exactly one of load= and penetration= "
-                         f"(got load={load!r}, penetration={penetration!r})")
-    if on_fail not in ("raise", "status"):
-        raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
-    tol = float(positive("tol", tol))
-    maxiter = integer("maxiter", maxiter)
-    if load is not None:
-        load = float(positive("load", load))
-    else:
-        penetration = float(as_float_array("penetration", penetration))
-        if np.all(h - penetration >= 0.0):
-            raise NoContactError(
-                f"no contact: the undeformed gap minus the penetration is >= 0 everywhere "
-                f"(min(gap) = {h.min()!r} m, penetration = {penetration!r} m)")
-    guard("bem_normal", grid.size, f"normal BEM on a {grid.nx}x{grid.ny} grid")  # memory/time
-    if operator is None:
-        operator = influence_operator(grid, pair)
-    elif not isinstance(operator, InfluenceOperator) or operator.grid != grid:
-        raise InputError("operator must be an InfluenceOperator built on the same grid")
-    block = operator.block(2, 2)
-    apply = block.apply
-    dA = grid.element_area
-
-    p_init = None if initial is None else np.clip(grid.check_field("initial", initial), 0, None)
-    if p_init is not None and not p_init.any():
-        p_init = None
-    pre = _preconditioner(grid, operator) if precondition else None
-    p, delta, iterations, change, u = _pk(apply, h, dA, load, penetration, p_init, tol, maxiter,
-                                          pre)
-    converged = change < tol
-    if not converged:
-        msg = (f"normal BEM (Polonsky-Keer) did not converge in {iterations} iterations "
-               f"(relative pressure change {change:.3g} > tol={tol:g}, grid {grid.nx}x{grid.ny})")
-        if on_fail == "raise":
-            raise ConvergenceError(msg)
-
-    e = h - delta + u
-    contact = p > 0.0
-    scale = max(float(np.abs(u).max()), np.finfo(float).tiny)
-    viol_in = float(np.abs(e[contact]).max()) if contact.any() else 0.0
-    viol_out = float(np.maximum(-e[~contact], 0.0).max()) if (~contact).any() else 0.0
-    residual = max(viol_in, viol_out) / scale
-    truncated = bool(contact[0].any() or contact[-1].any() or contact[:, 0].any()
-                     or contact[:, -1].any())
-    if truncated:
-        warnings.warn(
-            f"the contact area reaches the edge of the {grid.nx}x{grid.ny} grid "
-            f"(bounds {tuple(round(b, 9) for b in grid.bounds)} m): enlarge the window; "
-            "the result is truncated", ContactTruncatedWarning, stacklevel=2)
-    for arr in (p, e, u, contact):
-        arr.setflags(write=False)
-    return NormalSolution(
-        grid=grid, pressure=p, gap=e, displacement=u, contact=contact,
-        Fn=float(p.sum() * dA), p_max=float(p.max()), penetration=float(delta),
-        area=float(contact.sum() * dA), iterations=int(iterations),
-        status=Status.CONVERGED if converged else Status.NOT_CONVERGED,
-        residual=float(residual), truncated=truncated, materials=pair,
-        info={"change": float(change)})
-
-
-def hertz_grid(contact, elements: int = 64, margin: float = 1.25):
-    """Grid and quadratic gap h0 = A x² + B y² around a Hertzian contact.
-
-    Parameters
-    ----------
-    contact : HertzContact
-        A single (non-batch) Hertz contact; its ``A``, ``B``, ``a``, ``b`` are used.
-    elements : int
-        Elements across the Hertz patch in each direction (2a/dx = 2b/dy), ≥ 2.
-    margin : float
-        Half-width of the window in units of the semi-axes (> 1): the window is
-        [−margin·a, margin·a] × [−margin·b, margin·b], rounded up to a whole,
-        odd number of elements so that an element is centred on the origin.
-
-    Returns
-    -------
-    grid : Grid
-    gap : ndarray, shape (nx, ny)
-        A x² + B y² at the element centres [m].
-    """
-    if np.shape(contact.a) != ():
-        raise InputError("hertz_grid needs a single HertzContact, got a batch")
-    elements = integer("elements", elements, 2)
-    margin = float(as_float_array("margin", margin))
-    if not margin > 1.0:
-        raise InputError(f"margin must be > 1, got {margin!r}")
-    a, b = float(contact.a), float(contact.b)
-    dx, dy = 2.0 * a / elements, 2.0 * b / elements
-    n = math.ceil(2.0 * margin * a / dx - 1e-9)
-    n += 1 - n % 2
-    grid = Grid(-(n - 1) / 2 * dx, -(n - 1) / 2 * dy, dx, dy, n, n)
-    gap = float(contact.A) * grid.X**2 + float(contact.B) * grid.Y**2
-    return grid, gap
-
-
-# --------------------------------------------------------------------------- normal method
-def _elements_for(length, elements, element_size):
-    """Elements across ``length`` [m]: from ``element_size`` [m] if given, else ``elements``."""
-    if element_size is None:
-        return elements
-    return max(int(math.ceil(length / float(positive("element_size", element_size)) - 1e-9)), 2)
-
-
+@configured
 class Bem(NormalMethod):
     """Boundary elements on the elastic half-space (the exact normal problem).
 
-    * a :class:`~wheelrail.normal.hertz.HertzContact`: the quadratic gap on a
+    * a :class:`~wheelrail.hertzian.HertzContact`: the quadratic gap on a
       window around the ellipse (:func:`hertz_grid`), load prescribed;
     * a gap h(x, y): the window from the gap (:mod:`wheelrail.contact.window`),
       enlarged while the contact touches its edge; every connected part of
@@ -641,15 +116,15 @@ class Bem(NormalMethod):
 
     Other Parameters
     ----------------
-    elements : int, default 40
+    grid_elements : int, default 40
         Elements along the longer side of the potential contact area
         (ignored when ``element_size`` is given).
     element_size : float or None
         Element size [m] (square elements), e.g. 2e-4 for a 0.2 mm grid.
-    margin : float, default 1.2
+    window_margin : float, default 1.2
         Window half-size / half-size of the rigid interpenetration region.
-    tol : float, default 1e-8
-        Polonsky–Keer tolerance.
+    pressure_tol : float, default 1e-8
+        Polonsky–Keer tolerance of the pressure solve.
     max_enlarge : int, default 4
         Window enlargements when the contact reaches the window edge.
     cells : int, default 40
@@ -677,105 +152,46 @@ class Bem(NormalMethod):
         "on the multi-level multi-summation and conjugate gradient techniques, Wear 231 (1999) "
         "206-219.",
     )
-    options = {"elements": 40, "element_size": None, "margin": 1.2, "tol": 1e-8,
-               "max_enlarge": 4, "cells": 40, "group_angle": 0.2, "width": 0.04}
+    grid_elements: int = option(40, lo=2, doc="elements along the longer side of the potential "
+                                "contact area (ignored when element_size is given)")
+    element_size: float | None = option(None, kind="float", lo=0.0, lo_open=True, allow_none=True,
+                                        unit="m", doc="element size (square elements)")
+    window_margin: float = option(1.2, lo=0.0, hi=10.0, lo_open=True,
+                                  doc="window half-size / half-size of the rigid "
+                                      "interpenetration region")
+    pressure_tol: float = option(1e-8, lo=0.0, hi=1.0, lo_open=True, hi_open=True,
+                                 doc="Polonsky-Keer tolerance of the pressure solve")
+    max_enlarge: int = option(4, lo=0, doc="window enlargements when the contact reaches its edge")
+    cells: int = option(40, lo=2, hi=2000, doc="cells per strip of the patch description")
+    group_angle: float = option(0.2, lo=0.0, hi=3.2, lo_open=True, unit="rad",
+                                doc="largest contact-angle difference of points on one grid")
+    width: float = option(0.04, lo=0.0, hi=0.2, lo_open=True, unit="m",
+                          doc="extent of the lateral separation function around a group")
 
-    def from_contact(self, contact, elements=40, element_size=None, margin=1.2, tol=1e-8,
-                     max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
-        from ..contact.patch import ContactPatch
-
-        n = _elements_for(2.0 * max(float(contact.a), float(contact.b)), elements, element_size)
+    def from_contact(self, contact):
+        n = _elements_for(2.0 * max(float(contact.a), float(contact.b)), self.grid_elements,
+                          self.element_size)
         grid, gap = hertz_grid(contact, elements=n, margin=max(1.25, 1.0 + 3.0 / n))
-        sol = solve_normal(grid, gap, contact.materials, load=float(contact.load), tol=tol)
+        sol = solve_normal(grid, gap, contact.materials, Fn=float(contact.Fn),
+                           tol=self.pressure_tol)
         return (ContactPatch.from_grid(grid, sol.pressure, sol.contact, contact.materials,
                                        penetration=sol.penetration, A=float(contact.A),
-                                       B=float(contact.B), cells=cells, method="bem",
+                                       B=float(contact.B), cells=self.cells, method="bem",
                                        info=_solution_info(sol)),)
 
-    def from_gap(self, problem, elements=40, element_size=None, margin=1.2, tol=1e-8,
-                 max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
-        from ._gap import _window
-
-        w = _window(problem.gap, problem.penetration, problem.load, problem.materials,
-                    elements, margin, problem.search)
+    def from_gap(self, problem):
+        w = _window(problem.gap, problem.penetration, problem.Fn, problem.materials,
+                    self.grid_elements, self.window_margin, problem.search)
         grid = w["grid"]
-        if element_size is not None:
-            grid = _square_grid(grid.bounds, element_size)
+        if self.element_size is not None:
+            grid = _square_grid(grid.bounds, self.element_size)
         sol, grid = _solve_enlarging(problem.gap, grid, problem.materials, w["search"],
-                                     load=problem.load, penetration=problem.penetration, tol=tol,
-                                     max_enlarge=max_enlarge)
-        return _patches_of(sol, problem.materials, cells, frames=None)
+                                     Fn=problem.Fn, penetration=problem.penetration,
+                                     tol=self.pressure_tol, max_enlarge=self.max_enlarge)
+        return _patches_of(sol, problem.materials, self.cells, frames=None)
 
-    def from_wheel(self, problem, elements=40, element_size=None, margin=1.2, tol=1e-8,
-                   max_enlarge=4, cells=40, group_angle=0.2, width=0.04):
-        from ._wheel_bem import solve_wheel
-
-        return solve_wheel(problem, elements=elements, element_size=element_size, margin=margin,
-                           tol=tol, max_enlarge=max_enlarge, cells=cells,
-                           group_angle=float(positive("group_angle", group_angle)),
-                           width=float(positive("width", width)))
-
-
-def _solution_info(sol) -> dict:
-    return {"iterations": sol.iterations, "truncated": sol.truncated, "status": sol.status,
-            "normal_solution": sol}
-
-
-def _square_grid(bounds, element_size) -> Grid:
-    """Grid on ``bounds`` with square elements of ``element_size`` (odd counts, centred)."""
-    d = float(positive("element_size", element_size))
-    cx, cy = 0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3])
-    nx = max(int(math.ceil((bounds[1] - bounds[0]) / d)), 5)
-    ny = max(int(math.ceil((bounds[3] - bounds[2]) / d)), 5)
-    nx += 1 - nx % 2
-    ny += 1 - ny % 2
-    return Grid(cx - (nx - 1) / 2 * d, cy - (ny - 1) / 2 * d, d, d, nx, ny)
-
-
-def _solve_enlarging(gap, grid, materials, search, *, load=None, penetration=None, tol=1e-8,
-                     max_enlarge=4, square=None, initial=None):
-    """Normal solve on ``grid``; move touched window edges out while the contact is truncated.
-
-    ``square``: keep square elements of this size when enlarging (else the element count).
-    """
-    from ._gap import _enlarged_bounds, _evaluate
-
-    for it in range(max_enlarge + 1):
-        h0 = np.array(_evaluate(gap, grid.X, grid.Y))
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", ContactTruncatedWarning)
-            start = initial if initial is not None and np.shape(initial) == grid.shape else None
-            sol = solve_normal(grid, h0, materials, load=load, penetration=penetration, tol=tol,
-                               initial=start)
-        c = sol.contact
-        if not sol.truncated or it == max_enlarge:
-            break
-        b = _enlarged_bounds(grid, c, search)
-        if b is None:
-            break
-        grid = (_square_grid(b, grid.dx) if square or grid.dx == grid.dy
-                else Grid.from_bounds(*b, nx=grid.nx, ny=grid.ny))
-    if sol.truncated:
-        warnings.warn(f"the contact still reaches the edge of the window "
-                      f"{tuple(round(v, 9) for v in sol.grid.bounds)} m; the result is truncated",
-                      ContactTruncatedWarning, stacklevel=3)
-    return sol, grid
-
-
-def _patches_of(sol, materials, cells, frames=None, origins=None, A=float("nan"),
-                B=float("nan")):
-    """One :class:`ContactPatch` per connected part of the contact of ``sol``."""
-    from ..contact.patch import ContactPatch
-    from ._gap import contact_patches
-
-    labels, _ = contact_patches(sol)
-    out = []
-    for k in range(1, int(labels.max()) + 1):
-        frame = None if frames is None else frames[k - 1]
-        origin = (0.0, 0.0) if origins is None else origins[k - 1]
-        info = _solution_info(sol)
-        info["origin"] = origin
-        out.append(ContactPatch.from_grid(sol.grid, sol.pressure, labels == k, materials,
-                                          penetration=sol.penetration, A=A, B=B, cells=cells,
-                                          frame=frame, origin=origin, method="bem", info=info))
-    return tuple(out)
+    def from_wheel(self, problem):
+        return solve_wheel(problem, elements=self.grid_elements, element_size=self.element_size,
+                           margin=self.window_margin, tol=self.pressure_tol,
+                           max_enlarge=self.max_enlarge, cells=self.cells,
+                           group_angle=self.group_angle, width=self.width)

@@ -1,6 +1,6 @@
 """Ayasse's contact-angle-function (CAF) tables: piecewise-linear γ(t_y) with jump limits.
 
-Seed 003 §2.3 (Piotrowski & Chollet 2005, after Ayasse): with the roll of the
+Piotrowski & Chollet (2005) §2.3 (after Ayasse): with the roll of the
 wheelset neglected (§2.3.1) the relative motion of wheel and rail is a
 translation (t_y, t_z), and the contact parameters of one wheel–rail pair can
 be precomputed as functions of the lateral translation t_y alone (§2.3.2):
@@ -18,7 +18,7 @@ be precomputed as functions of the lateral translation t_y alone (§2.3.2):
   one ellipse to the other.
 
 :func:`caf_table` builds the table from the profiles (rigid touching height
-of the translated wheel, :func:`~wheelrail.contact.wheelrail.touching_heights`
+of the translated wheel, :func:`~wheelrail.geometry.touching.touching_heights`
 with zero roll and yaw; the rigid contact point is the candidate point of
 smallest separation, :func:`~wheelrail.geometry.contact_search.find_points`).
 All lengths in m, angles in rad, radii in m.
@@ -27,13 +27,13 @@ The multi-Hertz variant ``"ayasse"`` (:mod:`wheelrail.normal.multi_hertz`)
 reads these tables on the wheel–rail path: :func:`cached_caf_table` builds
 one per wheelset/track pair and side, :func:`caf_contacts` gives the
 contacts and their load shares at a lateral shift (eq. 3 overlaps). The
-checks of the seed's relations are in ``tests/reference/test_nonhertz_caf.py``.
+checks of Piotrowski & Chollet's relations are in ``tests/reference/test_nonhertz_caf.py``.
 
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005) 455–483, §2.3,
-   eq. (3) (seed 003).
+   eq. (3).
 .. [2] J.B. Ayasse, H. Chollet, J.L. Maupu, Paramètres caractéristiques du
    contact roue-rail, Rapport INRETS 225 (2000).
 .. [3] D.H. Douglas, T.K. Peucker, Algorithms for the reduction of the number
@@ -51,6 +51,11 @@ import numpy as np
 
 from .._validation import positive
 from ..errors import InputError
+from ..geometry._checks import check_side
+from ..geometry.contact_search import _Pose, find_points
+from ..geometry.touching import touching_heights
+from ..hertzian import hertz_kernel
+from ..materials import as_material_pair
 
 __all__ = ["CafTable", "caf_table", "cached_caf_table", "caf_contacts", "jump_gap",
            "jump_overlap", "profile_jump_gaps"]
@@ -106,7 +111,7 @@ def _cos_ratio_m1(a, w):
 
 
 def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
-    """Overlap width of a jump on side 1 (seed 003 eq. 3 and a small-jump generalisation).
+    """Overlap width of a jump on side 1 (Piotrowski & Chollet (2005) eq. 3 and a small-jump generalisation).
 
     Side 1 is the side of the jump limit t_ylim where contact 1 is the rigid
     contact point; contact 2, rigidly separated from the rail there by a gap
@@ -117,8 +122,8 @@ def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
 
         Δt_y1 = cos γ1 · (δ1/2) / tan(γ2 − γ1)            (rate = 0)
 
-    It diverges as γ2 → γ1 (the small jump the seed says eq. 3 does not cover;
-    its generalisation, ref. [42] of the seed, is not given there). Here the
+    It diverges as γ2 → γ1 (the small jump Piotrowski & Chollet (2005) say eq. 3 does not cover;
+    its generalisation, their ref. [42], is not given there). Here the
     angle difference follows the two branches of the contact angle function,
     Δγ(τ) = |γ2 − γ1| + c τ, c the rate at which it grows with the distance τ
     from t_ylim (from the CAF slopes: ``rate`` = d(γ2 − γ1)/dτ, signed as
@@ -159,7 +164,7 @@ def jump_overlap(gamma1, gamma2, delta1, rate=0.0):
 
     References
     ----------
-    .. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2.3.3, eq. (3) (seed 003).
+    .. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2.3.3, eq. (3).
     """
     g1, g2, d1, r = np.broadcast_arrays(*(np.asarray(v, dtype=float)
                                           for v in (gamma1, gamma2, delta1, rate)))
@@ -282,11 +287,11 @@ class CafTable:
         return self.gamma[i] + slope * (y - self.y[i]), slope
 
     def wheel_radius(self, y):
-        """Wheel profile radius R_wx [m] recovered from the CAF (seed 003 §2.3.2).
+        """Wheel profile radius R_wx [m] recovered from the CAF (Piotrowski & Chollet (2005) §2.3.2).
 
         R_rx + R_wx = −1/(cos γ dγ/dt_y) (radii convex positive; a concave
         wheel profile gives R_wx < 0; infinite where the line is flat). The
-        seed's relation is for a shift towards the wheel's flange; t_y is
+        paper's relation is for a shift towards the wheel's flange; t_y is
         positive to the right, so for the left wheel the sign of dγ/dt_y is
         reversed: R_rx + R_wx = +1/(cos γ dγ/dt_y).
         """
@@ -350,8 +355,6 @@ class CafTable:
         side is not convex (A or B ≤ 0) or both lines coincide."""
         memo = self.__dict__.setdefault("_memo", {})
         if k not in memo:
-            from .hertz import hertz_kernel
-
             t_lim = float(self.jumps[k])
             l1, l2 = self.line(t_lim, k), self.line(t_lim, k + 1)
             if (min(l1["A"], l1["B"], l2["A"], l2["B"]) <= 0
@@ -377,7 +380,7 @@ class CafTable:
     def overlaps(self, k, delta1, delta2, overlap="general"):
         """Overlap widths (Δt_y1, Δt_y2) [m] at jump ``k`` for the Hertz approaches δ1, δ2
         [m] of the two contacts: Δt_y1 below the jump limit (branch k, contact 1 the
-        rigid one), Δt_y2 above it (seed 003 eq. 3 on each side of the jump).
+        rigid one), Δt_y2 above it (Piotrowski & Chollet (2005) eq. 3 on each side of the jump).
 
         ``overlap="eq3"`` is eq. (3) with straight lines; ``"general"`` (default)
         lets the angle difference follow the two lines' slopes
@@ -392,7 +395,7 @@ class CafTable:
 
 def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tolerance=1e-3,
               jump=1e-3):
-    """Build the piecewise-linear CAF table of one side (seed 003 §2.3.2).
+    """Build the piecewise-linear CAF table of one side (Piotrowski & Chollet (2005) §2.3.2).
 
     Parameters
     ----------
@@ -413,9 +416,6 @@ def caf_table(wheelset, track, side="right", y=(-0.01, 0.01), *, step=5e-5, tole
     -------
     CafTable
     """
-    from ..contact.wheelrail import touching_heights
-    from ..geometry._checks import check_side
-    from ..geometry.contact_search import _Pose, find_points
 
     check_side(side)
     step = float(positive("step", step))
@@ -491,8 +491,6 @@ def profile_jump_gaps(wheelset, track, table, k, side, tau):
     tau, gap : ndarray
         The distances where the other branch's point was found and its gap [m].
     """
-    from ..contact.wheelrail import touching_heights
-    from ..geometry.contact_search import _Pose, find_points
 
     if side not in (1, 2):
         raise InputError(f"side must be 1 or 2, got {side!r}")
@@ -547,7 +545,7 @@ def _overlap_kind(overlap):
 
 
 def caf_contacts(table, t_y, load, materials, overlap="general"):
-    """Ayasse's contacts of one wheel at shift ``t_y`` from its CAF table (seed 003 §2.3).
+    """Ayasse's contacts of one wheel at shift ``t_y`` from its CAF table (Piotrowski & Chollet (2005) §2.3).
 
     The rigid contact point lies on the branch of ``t_y``; near a jump limit
     t_ylim the two contacts of the neighbouring branches share the load over
@@ -581,7 +579,6 @@ def caf_contacts(table, t_y, load, materials, overlap="general"):
         contact (one, or two inside an overlap; Σ w_i = 1); the normal loads
         are N_i = w_i N with N = Q / Σ w_i cos γ_i.
     """
-    from ..materials import as_material_pair
 
     E_star = float(as_material_pair(materials).E_star)
     general = _overlap_kind(overlap) == "general"

@@ -1,7 +1,7 @@
 """Kik & Piotrowski's virtual-penetration method for non-Hertzian normal contact.
 
 The bodies are virtually pressed together by δ0 = ε δ; the interpenetration
-region (seed 003 eqs. 4–5) is taken as the contact patch, the pressure is
+region (Piotrowski & Chollet (2005) eqs. 4–5) is taken as the contact patch, the pressure is
 semi-elliptic along every strip with one peak p0 (eq. 12), and the load
 follows from the deflection condition at the reference point,
 2 w0 = δ (eqs. 13–16)::
@@ -28,7 +28,7 @@ gap reproduces Hertz's area, maximum pressure and load.
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22) (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), §3.2, eqs. (12)–(22).
 .. [2] W. Kik, J. Piotrowski, A fast, approximate method to calculate normal load at
    contact between wheel and rail and creep forces during rolling, 2nd mini
    conference on contact mechanics and wear of rail/wheel systems, Budapest 1996.
@@ -40,12 +40,24 @@ References
 from __future__ import annotations
 
 import math
+import numbers
+from typing import Any
 
 import numpy as np
 
 from ..errors import InputError
-from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_ab, hertz_penetration_factor
+from ..options import configured, option
+from . import _kp_kernel
+from ._base import NormalMethod, PatchDescription
+from ._patch_kernel import positive_runs
+from ._strips import (
+    _LN_MAX,
+    Region,
+    VirtualPenetration,
+    _hertz_table,
+    hertz_ab,
+    hertz_penetration_factor,
+)
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
 
@@ -68,8 +80,21 @@ def penetration_factor(value, A, B):
     return v, "given"
 
 
+def _penetration_factor_option(name, value):
+    """The ``penetration_factor`` option: ``"hertz"`` or a number in (0, 1]."""
+    if isinstance(value, str):
+        if value != "hertz":
+            raise InputError(f"{name} must be 'hertz' or a number in (0, 1], got {value!r}")
+        return value
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise InputError(f"{name} must be 'hertz' or a number in (0, 1], got {value!r}")
+    if not (math.isfinite(float(value)) and 0.0 < float(value) <= 1.0):
+        raise InputError(f"{name} must lie in (0, 1], got {value!r}")
+    return float(value)
+
+
 def shape_correction(eta, xl, h, j0):
-    """Kik & Piotrowski's shape correction of one region (seed 003 eqs. 17–22) (pure kernel).
+    """Kik & Piotrowski's shape correction of one region (Piotrowski & Chollet (2005) eqs. 17–22) (pure kernel).
 
     Parameters
     ----------
@@ -97,7 +122,8 @@ def shape_correction(eta, xl, h, j0):
     return eta_c, xl * sx, h * sy, alpha
 
 
-class KikPiotrowski(VirtualPenetration, NormalMethod):
+@configured
+class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
     """Kik–Piotrowski virtual penetration as a normal method (see the module docstring).
 
     Works on a gap h(x, y) (rolling direction x; load or approach prescribed),
@@ -122,7 +148,7 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
 
     References
     ----------
-    .. [1] Seed 003 §3.2, eqs. (12)–(22); Piotrowski & Kik, VSD 46 (2008).
+    .. [1] Piotrowski & Chollet (2005) §3.2, eqs. (12)–(22); Piotrowski & Kik, VSD 46 (2008).
     """
 
     name = "kik-piotrowski"
@@ -133,18 +159,16 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
         "non-Hertzian problems and its application in rail vehicle dynamic simulations, "
         "Vehicle System Dynamics 46 (2008) 27-48.",
     )
-    options = {"penetration_factor": "hertz", "shape_correction": True, "strips": 40,
-               "cells": 40}
+    penetration_factor: Any = option("hertz", kind="any", check=_penetration_factor_option,
+                                     doc="epsilon = delta0/delta: 'hertz' or a number in (0, 1]")
+    shape_correction: bool = option(True, doc="Kik & Piotrowski's length/width correction")
 
     def _solve_line(self, line, delta, opts):
         eps, how = self._eps(line, opts)
-        correct = bool(opts.get("shape_correction", True))
+        correct = bool(opts["shape_correction"])
         d0 = eps * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]
-        from . import _kp_kernel
-        from ._patch_kernel import positive_runs
-        from ._strips import _LN_MAX, _hertz_table
 
         # the regions in one kernel (the arithmetic of the loop below)
         Ax = line.extra.get("Ax_array")
@@ -194,13 +218,10 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
 
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: the same equations as _solve_line in one kernel
-        key = ("kp_load", opts.get("penetration_factor", "hertz"),
-               bool(opts.get("shape_correction", True)))
+        key = ("kp_load", opts["penetration_factor"],
+               bool(opts["shape_correction"]))
         args = line.extra.get(key)
         if args is None:
-            from . import _kp_kernel
-            from ._strips import _hertz_table
-
             eps = self._eps(line, opts)[0]
             ang = line.angle
             if ang is None:
@@ -216,9 +237,9 @@ class KikPiotrowski(VirtualPenetration, NormalMethod):
     @staticmethod
     def _eps(line, opts):
         """(ε, how) of the line for the option penetration_factor (cached on the line)."""
-        key = ("eps", opts.get("penetration_factor", "hertz"))
+        key = ("eps", opts["penetration_factor"])
         if key not in line.extra:
-            line.extra[key] = penetration_factor(opts.get("penetration_factor", "hertz"),
+            line.extra[key] = penetration_factor(opts["penetration_factor"],
                                                  line.A, line.B)
         return line.extra[key]
 

@@ -1,6 +1,6 @@
 """Linder's virtual-penetration method with per-strip virtual ellipses.
 
-The bodies are virtually pressed together by δ0 = 0.55 δ (seed 003 §3.1);
+The bodies are virtually pressed together by δ0 = 0.55 δ (Piotrowski & Chollet (2005) §3.1);
 the interpenetration region is the contact patch, cut into strips along the
 rolling direction. Every strip i (lateral position y_i from the middle of the
 region, half-length x_l(y_i) = √(2R g(y_i)), eq. 5) belongs to a virtual
@@ -25,7 +25,7 @@ traction bound along every strip carrying the strip's load (p0i' = 3π p0i/8).
 
 References
 ----------
-.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.1, eqs. (4)–(11) (seed 003).
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.1, eqs. (4)–(11).
 .. [2] C. Linder, Verschleiß von Eisenbahnrädern mit Unrundheiten, Diss. ETH
    Zürich Nr. 12342, 1997.
 """
@@ -36,7 +36,9 @@ import math
 
 import numpy as np
 
-from ._base import NormalMethod
+from ..options import configured
+from ._base import NormalMethod, PatchDescription
+from ._patch_kernel import positive_runs
 from ._strips import Region, VirtualPenetration
 
 __all__ = ["Linder", "LINDER_FACTOR"]
@@ -59,7 +61,8 @@ def hertz_load_from_axes(a, b, delta, E_star):
     return 2.0 * np.pi * a * b * E_star * delta / (3.0 * s * K)
 
 
-class Linder(VirtualPenetration, NormalMethod):
+@configured
+class Linder(VirtualPenetration, NormalMethod, PatchDescription):
     """Linder's method as a normal method (see the module docstring).
 
     Problems: a gap h(x, y), a Hertzian contact, a wheel on its rail (as
@@ -72,7 +75,7 @@ class Linder(VirtualPenetration, NormalMethod):
 
     References
     ----------
-    .. [1] Seed 003 §3.1, eqs. (4)–(11); Linder (1997).
+    .. [1] Piotrowski & Chollet (2005) §3.1, eqs. (4)–(11); Linder (1997).
     """
 
     name = "linder"
@@ -82,11 +85,8 @@ class Linder(VirtualPenetration, NormalMethod):
         "C. Linder, Verschleiss von Eisenbahnraedern mit Unrundheiten, Dissertation ETH "
         "Zuerich Nr. 12342, 1997.",
     )
-    options = {"strips": 40, "cells": 40}
 
     def _solve_line(self, line, delta, opts):
-        from ._patch_kernel import positive_runs
-
         d0 = LINDER_FACTOR * delta
         g = d0 - line.f
         E_star = line.extra["E_star"]

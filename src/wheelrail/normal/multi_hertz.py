@@ -1,6 +1,6 @@
 """Multi-Hertzian normal contact: a non-elliptic contact as a set of Hertz ellipses.
 
-Three variants (seed 003 §2), chosen with ``variant=``:
+Three variants (Piotrowski & Chollet (2005) §2), chosen with ``variant=``:
 
 ``"sauvage"`` / ``"sauvage-half"``
     Sauvage's secondary ellipses (§2.1, fig. 2). On the lateral line of each
@@ -19,7 +19,7 @@ Three variants (seed 003 §2), chosen with ``variant=``:
     ``"sauvage-half"`` in one contact plane are replaced by one ellipse with
     (a/b)_eq = Σ N_k (a_k/b_k) / Σ N_k, the total area and the total load, at
     the load-weighted position. (Pascal fitted the ellipse to wheelset
-    equilibrium forces; the weighted ratio is the rule quoted in the seed.)
+    equilibrium forces; the weighted ratio is the rule quoted by Piotrowski & Chollet (2005).)
 ``"ayasse"``
     Ayasse's contact-angle-function (CAF) method (§2.3, eq. 3): the two
     lowest candidate contact points of a wheel (contact angles γ1, γ2) share
@@ -46,7 +46,7 @@ Three variants (seed 003 §2), chosen with ``variant=``:
     approach of contact i under the wheel load at the jump limit; by default
     with the angle difference following the lines' slopes, ``caf_overlap``)
     the load moves linearly from one contact to the other
-    (:func:`~wheelrail.normal.caf.caf_contacts`). As in the seed (§2.3.1) the
+    (:func:`~wheelrail.normal.caf.caf_contacts`). As in Piotrowski & Chollet (2005, §2.3.1) the
     roll and yaw of the wheelset are neglected in the table (the contact
     geometry is that of a pure translation). ``caf="direct"`` keeps the
     per-pose form above (the candidate points of the actual pose).
@@ -55,7 +55,7 @@ On a single Hertzian contact every variant gives its Hertz ellipse.
 
 References
 ----------
-.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2, eqs. (1)–(3) (seed 003).
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §2, eqs. (1)–(3).
 .. [2] J.P. Pascal, G. Sauvage, The available methods to calculate the
    wheel/rail forces in non Hertzian contact patches and rail damaging, VSD 22
    (1993) 263–275.
@@ -70,8 +70,17 @@ import math
 import numpy as np
 
 from ..errors import ConvergenceError, InputError, NoContactError
-from ._base import NormalMethod
-from ._strips import VirtualPenetration, hertz_shape
+from ..geometry.contact_search import _SIGMA, silhouette
+from ..hertzian import HertzContact, hertz, hertz_from_penetration, hertz_from_semiaxes
+from ..materials import as_material_pair
+from ..options import configured, option
+from ..patch import ContactFrame, ContactPatch
+from ..plausibility import disabled
+from ._base import NormalMethod, PatchDescription
+from ._gap import _check_search, _minimum
+from ._strips import Line, VirtualPenetration, hertz_shape
+from .caf import cached_caf_table, caf_contacts
+from .stripes import _smoothed_B
 
 __all__ = ["MultiHertz", "sauvage_ellipses"]
 
@@ -114,7 +123,19 @@ def sauvage_ellipses(eta, f, Ax, Bx, h1_factor, delta, max_ellipses=7):
     return out
 
 
-class MultiHertz(VirtualPenetration, NormalMethod):
+def _caf_range(name, value):
+    """The ``caf_range`` option: (start, stop) [m], start < stop, as a tuple of floats."""
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise InputError(f"{name} must be (start, stop) in m, got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise InputError(f"{name} must be (start, stop) in m with start < stop, got {value!r}")
+    return (lo, hi)
+
+
+@configured
+class MultiHertz(VirtualPenetration, NormalMethod, PatchDescription):
     """Multi-Hertzian methods (Sauvage, Pascal, Ayasse); see the module docstring.
 
     Other Parameters
@@ -147,30 +168,35 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         "J.B. Ayasse, H. Chollet, J.L. Maupu, Parametres caracteristiques du contact "
         "roue-rail, Rapport INRETS 225, 2000.",
     )
-    options = {"variant": "pascal", "max_ellipses": 7, "strips": 40, "cells": 40,
-               "caf": "table", "caf_range": (-0.02, 0.02), "caf_tolerance": 2e-4,
-               "caf_overlap": "general"}
+    variant: str = option("pascal", choices=VARIANTS, doc="multi-Hertzian variant")
+    max_ellipses: int = option(7, lo=1, hi=20, doc="most ellipses per contact plane")
+    caf: str = option("table", choices=("table", "direct"),
+                      doc="variant 'ayasse' on a wheel: CAF tables or the pose's points")
+    caf_range: tuple = option((-0.02, 0.02), kind="any", unit="m", check=_caf_range,
+                              doc="lateral shifts (start, stop) covered by the CAF tables")
+    caf_tolerance: float = option(2e-4, lo=0.0, lo_open=True, unit="rad",
+                                  doc="largest deviation of the CAF lines from the contact angle")
+    caf_overlap: str = option("general", choices=("general", "eq3"),
+                              doc="overlap widths at a jump of the CAF tables")
 
     @staticmethod
     def _variant(opts):
-        v = opts.get("variant", "pascal")
+        v = opts["variant"]
         if v not in VARIANTS:
             raise InputError(f"variant must be one of {', '.join(VARIANTS)}, got {v!r}")
         return v
 
     # ------------------------------------------------------------------ contact
-    def from_contact(self, contact, **opts):
-        from ..contact.patch import ContactPatch
+    def from_contact(self, contact):
+        opts = self.option_values()
 
         self._variant(opts)
-        return (ContactPatch.from_hertz(contact, strips=opts.get("strips", 40),
-                                        cells=opts.get("cells", 40), method=self.name),)
+        return (ContactPatch.from_hertz(contact, strips=opts["strips"],
+                                        cells=opts["cells"], method=self.name),)
 
     # ------------------------------------------------------------------ lines
     def _curv(self, line):
         if "Bx" not in line.extra:
-            from .stripes import _smoothed_B
-
             Bs = _smoothed_B(line.eta, line.f, 1e-3)
             floor = 0.05 * line.B if line.B > 0 else 0.05 * float(np.max(np.abs(Bs)) + 1e-12)
             line.extra["Bx"] = np.maximum(Bs, floor)
@@ -184,7 +210,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         E_star = line.extra["E_star"]
         out = []
         for k, hk, dk in sauvage_ellipses(line.eta, line.f, line.Ax, Bx, c, delta,
-                                          int(opts.get("max_ellipses", 7))):
+                                          int(opts["max_ellipses"])):
             A, B = float(line.Ax[k]), float(Bx[k])
             _, _, _, d1 = hertz_shape(A, B)
             d1 = d1 / E_star ** (2.0 / 3.0)          # approach of a unit load [m/N^(2/3)]
@@ -198,12 +224,9 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         return [_R(e[4]) for e in self._ellipses(line, delta, opts)]
 
     def _hertz_patches(self, line, delta, opts, pair, frame_of):
-        from ..contact.patch import ContactPatch
-        from .hertz import hertz_from_penetration
-
         variant = self._variant(opts)
         ell = self._ellipses(line, delta, opts)
-        strips, cells = int(opts.get("strips", 40)), int(opts.get("cells", 40))
+        strips, cells = int(opts["strips"]), int(opts["cells"])
         if variant == "pascal" and len(ell) > 1:
             hcs = [hertz_from_penetration(e[3], e[1], e[2], pair) for e in ell]
             N = np.array([e[4] for e in ell])
@@ -211,7 +234,6 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             area = float(sum(float(h.area) for h in hcs))
             a = math.sqrt(area * ratio / math.pi)
             b = math.sqrt(area / (ratio * math.pi))
-            from .hertz import hertz_from_semiaxes
             hc = hertz_from_semiaxes(a, b, float(N.sum()), pair)
             eta_c = float(np.sum(N * line.eta[[e[0] for e in ell]]) / N.sum())
             p = ContactPatch.from_hertz(hc, strips=strips, cells=cells,
@@ -231,20 +253,18 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         return out
 
     # ------------------------------------------------------------------ gap
-    def from_gap(self, problem, **opts):
+    def from_gap(self, problem):
+        opts = self.option_values()
         if self._variant(opts) == "ayasse":
             raise InputError("variant 'ayasse' works on the candidate contact points of a "
                              "wheel on its rail (its contact-angle function); use it with a "
                              "WheelRailPosition, or variant='pascal'/'sauvage' for a gap")
-        from ..materials import as_material_pair
-        from ._gap import _check_search, _minimum
 
         search = _check_search(problem.search)
         pair = as_material_pair(problem.materials)
         xm, ym, hmin, _ = _minimum(problem.gap, search)
         eta, f, Ax = self._gap_line(problem, (xm, ym, hmin),
                                     (search[2] - ym, search[3] - ym), 1601, 1e-3)
-        from ._strips import Line
 
         j = int(np.argmin(f))
         Bx0 = (f[j + 1] + f[j - 1] - 2 * f[j]) / (2 * (eta[1] - eta[0]) ** 2)
@@ -257,18 +277,18 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                                      f"does not exceed the smallest gap {hmin!r} m")
         else:
             _, _, _, d1 = hertz_shape(line.A, line.B)
-            start = d1 * (float(problem.load) / pair.E_star) ** (2 / 3)
+            start = d1 * (float(problem.Fn) / pair.E_star) ** (2 / 3)
             delta = self._iterate(lambda d: self._line_load(line, d, opts)[1],
-                                  float(problem.load), start, "multi-hertz")
+                                  float(problem.Fn), start, "multi-hertz")
         patches = self._hertz_patches(line, delta, opts, pair, lambda e: None)
-        if problem.load is not None:
-            patches = _scale_patches(patches, float(problem.load) / sum(p.Fn for p in patches),
+        if problem.Fn is not None:
+            patches = _scale_patches(patches, float(problem.Fn) / sum(p.Fn for p in patches),
                                      pair)
         return tuple(patches)
 
     # ------------------------------------------------------------------ wheel
-    def from_wheel(self, problem, **opts):
-        from ..materials import as_material_pair
+    def from_wheel(self, problem):
+        opts = self.option_values()
 
         variant = self._variant(opts)
         if variant == "ayasse":
@@ -290,8 +310,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                 Fz += float(np.sum(N * np.cos(np.interp(eta, line.eta, line.angle))))
             return Fz
 
-        if problem.approach is not None:
-            dz = float(problem.approach)
+        if problem.vertical_approach is not None:
+            dz = float(problem.vertical_approach)
         else:
             Q = float(problem.vertical_load)
             l0 = lines[0]
@@ -306,7 +326,7 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                                                separation=line.extra.get("separation")))
         if not patches:
             raise NoContactError(f"{problem.side} wheel: no contact at the approach {dz!r} m")
-        info = {"approach": float(dz), "variant": variant}
+        info = {"vertical_approach": float(dz), "variant": variant}
         if problem.vertical_load is not None:
             Fz = sum(p.Fn * math.cos(p.frame.contact_angle) for p in patches)
             limit = 1e-3 if jump is None else 1e-3 + abs(jump[1] - jump[0]) / float(Fz)
@@ -350,10 +370,10 @@ class MultiHertz(VirtualPenetration, NormalMethod):
     @staticmethod
     def _uses_tables(opts):
         """True when the options select variant "ayasse" with the CAF tables."""
-        caf = opts.get("caf", "table")
+        caf = opts["caf"]
         if caf not in ("table", "direct"):
             raise InputError(f"caf must be 'table' or 'direct', got {caf!r}")
-        return opts.get("variant", "pascal") == "ayasse" and caf == "table"
+        return opts["variant"] == "ayasse" and caf == "table"
 
     @staticmethod
     def _lead(problem, wheel_y):
@@ -364,7 +384,6 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         pose = problem.pose
         if pose["yaw"] == 0.0:
             return 0.0
-        from ..geometry.contact_search import _SIGMA, silhouette
 
         ws = problem.wheelset
         s = np.array([float(wheel_y)])
@@ -375,21 +394,17 @@ class MultiHertz(VirtualPenetration, NormalMethod):
         return float(x[0])
 
     def _ayasse_table(self, problem, opts):
-        from ..contact.patch import ContactFrame, ContactPatch
-        from ..materials import as_material_pair
-        from .caf import caf_contacts, cached_caf_table
-
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
                              "overlap depends on it); got a prescribed approach")
-        rng = opts.get("caf_range", (-0.02, 0.02))
+        rng = opts["caf_range"]
         try:
             lo, hi = (float(v) for v in rng)
         except (TypeError, ValueError):
             raise InputError(f"caf_range must be (start, stop) in m, got {rng!r}") from None
         # the relative lateral translation of the profiles at rail level: the wheelset's
         # shift plus the lateral displacement r0 sin θ of the wheel's running surface by the
-        # roll θ (the rotation of the profile itself is neglected, seed 003 §2.3.1)
+        # roll θ (the rotation of the profile itself is neglected §2.3.1)
         ty = float(problem.pose["y"]) + float(problem.wheelset.nominal_radius) * math.sin(
             float(problem.pose["roll"]))
         if not lo <= ty <= hi:
@@ -397,10 +412,10 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                              f"lies outside the CAF table range caf_range = {rng!r} m; widen "
                              "caf_range or use caf='direct'")
         table = cached_caf_table(problem.wheelset, problem.track, problem.side, (lo, hi),
-                                 tolerance=float(opts.get("caf_tolerance", 2e-4)))
+                                 tolerance=float(opts["caf_tolerance"]))
         pair = as_material_pair(problem.materials)
         Q = float(problem.vertical_load)
-        contacts = caf_contacts(table, ty, Q, pair, overlap=opts.get("caf_overlap", "general"))
+        contacts = caf_contacts(table, ty, Q, pair, overlap=opts["caf_overlap"])
         extra_A = 0.0 if problem.roller_radius is None else 0.5 / problem.roller_radius
         N = Q / sum(w * math.cos(ln["gamma"]) for w, ln, _ in contacts)
         rigid = table.branch_of(ty)
@@ -415,8 +430,8 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             frame = ContactFrame(problem.side, ln["wheel_y"], ln["rail_y"], ln["track_y"],
                                  ln["track_z"], self._lead(problem, ln["wheel_y"]), ln["gamma"],
                                  ln["rolling_radius"])
-            p = ContactPatch.from_hertz(hc, strips=int(opts.get("strips", 40)),
-                                        cells=int(opts.get("cells", 40)), frame=frame,
+            p = ContactPatch.from_hertz(hc, strips=int(opts["strips"]),
+                                        cells=int(opts["cells"]), frame=frame,
                                         method=self.name)
             p.info.update({"variant": "ayasse", "share": w, "caf": "table"})
             patches.append(p)
@@ -424,14 +439,11 @@ class MultiHertz(VirtualPenetration, NormalMethod):
                 dz = float(hc.penetration) / math.cos(ln["gamma"])
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
-        return tuple(patches), {"approach": float(dz), "variant": "ayasse", "caf": "table"}
+        return tuple(patches), {"vertical_approach": float(dz), "variant": "ayasse", "caf": "table"}
 
     def _ayasse(self, problem, opts):
         if self._uses_tables(opts):
             return self._ayasse_table(problem, opts)
-        from ..contact.patch import ContactPatch
-        from ..materials import as_material_pair
-        from .hertz import hertz
 
         if problem.vertical_load is None:
             raise InputError("variant 'ayasse' needs the vertical load of the wheel (the CAF "
@@ -467,22 +479,21 @@ class MultiHertz(VirtualPenetration, NormalMethod):
             if w <= 0:
                 continue
             hc = hertz(w * N, A[k], B[k], pair)
-            p = ContactPatch.from_hertz(hc, strips=int(opts.get("strips", 40)),
-                                        cells=int(opts.get("cells", 40)),
+            p = ContactPatch.from_hertz(hc, strips=int(opts["strips"]),
+                                        cells=int(opts["cells"]),
                                         frame=problem.frames[k], method=self.name)
             p.info.update({"variant": "ayasse", "share": w})
             patches.append(p)
         sig = 1.0 if problem.side == "right" else -1.0
         patches.sort(key=lambda p: -sig * p.frame.track_y)
         dz = (s[k1] * cg[k1] + float(patches[0].penetration)) / cg[k1]
-        return tuple(patches), {"approach": float(dz), "variant": "ayasse"}
+        return tuple(patches), {"vertical_approach": float(dz), "variant": "ayasse"}
 
 
 def _quiet(on):
     """No plausibility warnings inside the block when ``on`` (internal secondary ellipses)."""
     import contextlib
 
-    from ..plausibility import disabled
 
     return disabled() if on else contextlib.nullcontext()
 
@@ -491,7 +502,6 @@ def _hertz_fast(load, A, B, pair):
     """Hertz's solution for one contact from the interpolated unit-load solution
     (:func:`~wheelrail.normal._strips.hertz_shape`, relative error < 1e-5): a, b ∝
     (N/E*)^(1/3), δ ∝ (N/E*)^(2/3), p0 = 3N/(2πab) (Johnson 1985, eqs. 3.64–3.66)."""
-    from .hertz import HertzContact
 
     au, bu, _, du = hertz_shape(A, B)
     s = (load / pair.E_star) ** (1.0 / 3.0)
@@ -505,8 +515,6 @@ def _scale_patches(patches, factor, pair, limit=1e-3):
     ≤ ``limit``)."""
     from dataclasses import replace
 
-    from ..contact.patch import ContactPatch
-    from .hertz import hertz
 
     if abs(factor - 1.0) > limit:
         raise InputError(f"multi-hertz: load closure factor {factor!r} is not within {limit!r} "

@@ -1,6 +1,6 @@
 """Ayasse & Chollet's semi-Hertzian method (STRIPES).
 
-Hertz's relations written with curvatures instead of semi-axes (seed 003
+Hertz's relations written with curvatures instead of semi-axes (Piotrowski & Chollet (2005)
 §3.3, Table 2: λ = A/B, n/m = b/a, δ = r a0²(A+B)). The crude interpenetration
 gives b_g/a_g = √λ instead of Hertz's b/a, so the longitudinal curvature is
 compensated (eq. 23)::
@@ -23,7 +23,7 @@ virtual semi-axis a_i/k_i = √(h0/A_c), k_i² = h_i/h0).
 
 References
 ----------
-.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.3, eqs. (23)–(27) (seed 003).
+.. [1] J. Piotrowski, H. Chollet, VSD 43 (2005), §3.3, eqs. (23)–(27).
 .. [2] J.B. Ayasse, H. Chollet, Determination of the wheel rail contact patch in
    semi-Hertzian conditions, VSD 43 (2005) 161–172.
 """
@@ -34,14 +34,18 @@ import math
 
 import numpy as np
 
-from ._base import NormalMethod
-from ._strips import Region, VirtualPenetration, hertz_shape
+from ..errors import InputError
+from ..options import configured, option
+from ._base import NormalMethod, PatchDescription
+from ._patch_kernel import positive_runs
+from ._stripes_kernel import half_curvature, smooth_nodes, stripes_line_load
+from ._strips import Region, VirtualPenetration, _hertz_table, hertz_shape
 
 __all__ = ["Stripes", "stripes_constants"]
 
 
 def stripes_constants(A, B):
-    """(h0/δ, A_c/A, p0 a / (h0 E*)) for the curvatures A, B [1/m] (Hertz, seed 003 eq. 23)."""
+    """(h0/δ, A_c/A, p0 a / (h0 E*)) for the curvatures A, B [1/m] (Hertz eq. 23)."""
     a, b, p0, d = hertz_shape(A, B)          # unit load, E* = 1
     h0 = b * b * B
     return h0 / d, (b / a) ** 2 * B / A, p0 * a / h0
@@ -50,7 +54,6 @@ def stripes_constants(A, B):
 def _smoothing(eta, f, length):
     """(d2, kernel reversed): half the second derivative of f and the normalised Gaussian of
     ``length`` [m] (kernel None: no smoothing)."""
-    from ._stripes_kernel import half_curvature
 
     h = eta[1] - eta[0]
     d2 = half_curvature(np.ascontiguousarray(f, dtype=float), float(h))
@@ -81,15 +84,13 @@ def _smoothed_at(line, opts, sm, idx):
     d2, krev = sm
     if krev is None:
         return d2[idx]
-    key = ("stripes_B", opts.get("smoothing", 0.002))
+    key = ("stripes_B", opts["smoothing"])
     done = line.extra.get(key)
     if done is None:
         done = line.extra[key] = np.full(d2.size, np.nan)
     v = done[idx]
     miss = np.isnan(v)
     if miss.any():
-        from ._stripes_kernel import smooth_nodes
-
         todo = idx[miss]
         done[todo] = smooth_nodes(d2, krev, todo)
         v = done[idx]
@@ -119,7 +120,8 @@ def _smoothed_B(eta, f, length):
     return _smoothed_range(sm, 0, sm[0].size)
 
 
-class Stripes(VirtualPenetration, NormalMethod):
+@configured
+class Stripes(VirtualPenetration, NormalMethod, PatchDescription):
     """STRIPES (semi-Hertzian) as a normal method (see the module docstring).
 
     Other Parameters
@@ -130,7 +132,7 @@ class Stripes(VirtualPenetration, NormalMethod):
 
     References
     ----------
-    .. [1] Seed 003 §3.3, eqs. (23)–(27); Ayasse & Chollet (2005).
+    .. [1] Piotrowski & Chollet (2005) §3.3, eqs. (23)–(27); Ayasse & Chollet (2005).
     """
 
     name = "stripes"
@@ -140,26 +142,23 @@ class Stripes(VirtualPenetration, NormalMethod):
         "J.B. Ayasse, H. Chollet, Determination of the wheel rail contact patch in "
         "semi-Hertzian conditions, Vehicle System Dynamics 43 (2005) 161-172.",
     )
-    options = {"smoothing": 0.002, "strips": 40, "cells": 40}
+    smoothing: float = option(0.002, lo=0.0, unit="m",
+                              doc="length of the Gaussian smoothing of B(y)")
 
     def _line_data(self, line, opts):
-        key = ("stripes", opts.get("smoothing", 0.002))
+        key = ("stripes", opts["smoothing"])
         if key not in line.extra:
-            from ..errors import InputError
-
             A, B = line.A, line.B
             if not (A > 0 and B > 0):
                 raise InputError(f"stripes: the curvatures at the reference point are not "
                                  f"convex (A = {A!r}, B = {B!r} 1/m); use normal='bem'")
             eps, comp, kp = stripes_constants(A, B)
             # B(y) smoothed: computed on the nodes of the regions only (_solve_line)
-            sm = _smoothing(line.eta, line.f, float(opts.get("smoothing", 0.002)))
+            sm = _smoothing(line.eta, line.f, float(opts["smoothing"]))
             line.extra[key] = (eps, comp, kp, sm)
         return line.extra[key]
 
     def _solve_line(self, line, delta, opts):
-        from ._patch_kernel import positive_runs
-
         eps, comp, kp, sm = self._line_data(line, opts)
         h0 = eps * delta
         hi_all = h0 - line.f
@@ -178,7 +177,7 @@ class Stripes(VirtualPenetration, NormalMethod):
             # per-strip virtual ellipse (eqs. 25-26): a_v = a_i / k_i, b_v = a_v (n/m)(λ_i),
             # λ_i with the smoothed B, floored (negative between close patches: small
             # positive); only at the nodes the patch's strips read (1 elsewhere, unused)
-            idx = _read_nodes(line.eta[i0:i1], int(opts.get("strips", self._default_strips)))
+            idx = _read_nodes(line.eta[i0:i1], int(opts["strips"]))
             Bs = np.maximum(_smoothed_at(line, opts, sm, i0 + idx), 0.05 * line.B)
             nm = np.ones(i1 - i0)
             nm[idx] = _n_over_m_array(line.Ax[i0 + idx] / Bs)
@@ -193,7 +192,6 @@ class Stripes(VirtualPenetration, NormalMethod):
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: with eq. (27) the strip force ½π a_i p_i h is
         # ½π k_p E* h_i h (a_i cancels), so the load needs no virtual ellipses
-        from ._stripes_kernel import stripes_line_load
 
         eps, comp, kp, _ = self._line_data(line, opts)
         c = 0.5 * math.pi * kp * line.extra["E_star"] * line.h
@@ -218,8 +216,6 @@ def _nm_table():
     grid value, computed at once (the table of :func:`~wheelrail.normal._strips.hertz_shape`
     interpolated for all of them; equal to the scalar look-up to round-off)."""
     if not _NM_TABLE:
-        from ._strips import _hertz_table
-
         grid, la, lb, _, _ = _hertz_table()
         lam = np.exp(np.arange(-_NM_K, _NM_K + 1) / 50.0)
         x = np.log(lam)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import warnings
 from pathlib import Path
 
+from .._atomic import atomic_path
+
 __all__ = ["new_figure", "finish"]
 
 
@@ -39,8 +41,6 @@ def finish(fig, path=None, title=None, dpi: int = 130):
     if title:
         fig.suptitle(title, fontsize="medium")
     if path is not None:
-        from .._atomic import atomic_path
-
         path = Path(path)
         fmt = path.suffix.lstrip(".").lower() or None
         with atomic_path(path) as tmp, warnings.catch_warnings():  # no half-written figure

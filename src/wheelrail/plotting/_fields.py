@@ -1,8 +1,8 @@
 """Normalise the traction fields of the tangential methods to plain arrays (numpy only).
 
 The fields of the package's methods know their own layout: a container with an
-``as_arrays()`` method (the exact theory's :class:`wheelrail.contact.GapSolution` and
-:class:`wheelrail.halfspace.TangentialSolution`,
+``as_arrays()`` method (the exact theory's :class:`wheelrail.results.GapResult` and
+:class:`wheelrail.halfspace.TangentialResult`,
 FASTSIM's :class:`wheelrail.tangential.fastsim.FastsimFields`) gives its arrays
 itself. For other containers (a user's mapping, ``xarray.Dataset`` or object)
 :func:`field_arrays` looks up the usual names and guesses the grid orientation.
@@ -62,7 +62,7 @@ def field_arrays(fields):
     Parameters
     ----------
     fields : mapping, xarray.Dataset or object
-        The ``fields`` of a :class:`wheelrail.CreepForces`.
+        The ``fields`` of a :class:`wheelrail.CreepForcesResult`.
 
     Returns
     -------

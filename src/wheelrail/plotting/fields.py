@@ -44,7 +44,7 @@ def traction_field(result_fields, *, mu=None, contact=None, path=None, title=Non
     Parameters
     ----------
     result_fields : mapping, xarray.Dataset or object
-        ``CreepForces.fields`` of FASTSIM or the exact theory: grid
+        ``CreepForcesResult.fields`` of FASTSIM or the exact theory: grid
         coordinates ``x``, ``y`` [m], tractions ``px``, ``py`` [Pa] on the
         wheel and, if available, pressure ``p`` [Pa] and an adhesion/slip mask
         (see :func:`wheelrail.plotting.field_arrays` for the names understood).

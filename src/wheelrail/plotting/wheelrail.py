@@ -3,7 +3,7 @@
 * :func:`contact_profiles` — wheel and rail profiles of both sides at the
   solved pose with every patch drawn on the rail head (coloured by its
   pressure), and below each side a top view of the patches' pressure on the
-  rail surface (seed 003, figs. 1 and 13);
+  rail surface (Piotrowski & Chollet (2005), figs. 1 and 13);
 * :func:`adhesion_maps` — adhesion and slip areas of every patch (from the
   tangential method's fields: FASTSIM strips or the exact theory's grid);
 * :func:`sweep_forces` — forces and patch positions over a lateral-shift
@@ -19,13 +19,14 @@ angle), the drawing's projection of the inclined contact plane.
 References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
-   dynamics including multi-point contact, VSD 43 (2005), figs. 1 and 13 (seed 003).
+   dynamics including multi-point contact, VSD 43 (2005), figs. 1 and 13.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from ..geometry.contact_search import silhouette
 from ._common import finish, new_figure
 from ._fields import field_arrays
 
@@ -99,7 +100,6 @@ def contact_profiles(result, *, path=None, title=None, cmap="inferno", window=0.
     """
     from matplotlib.colors import Normalize
 
-    from ..geometry.contact_search import silhouette
 
     pos = result.position
     ws, tr = pos.wheelset, pos.track

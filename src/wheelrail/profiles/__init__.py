@@ -4,9 +4,10 @@ Public names
 ------------
 ``Profile``
     Frozen cross-section z(y); conventions in :mod:`wheelrail.profiles.core`.
-``load(name)``
+``load(name_or_path)``
     A standard profile generated from its geometric definition
-    (``"S1002"``, ``"60E1"``/``"UIC60"``, ``"54E1"``/``"UIC54"``).
+    (``"S1002"``, ``"60E1"``/``"UIC60"``, ``"54E1"``/``"UIC54"``), or a
+    profile file (then as :func:`read`).
 ``available()``
     Names accepted by :func:`load`.
 ``read(path, kind=None)`` / ``write(profile, path, fmt=None)``
@@ -16,34 +17,62 @@ Public names
 
 from __future__ import annotations
 
+from pathlib import Path
+
+from ..errors import ProfileError
 from .core import Profile, ProfileWarning
+from .io import read as _read
+from .io import write as _write
+from .standard import available as _available
+from .standard import load as _load
 
 __all__ = ["Profile", "ProfileWarning", "load", "available", "read", "write"]
 
 
-def load(name: str, **options) -> Profile:
-    """Standard profile by name (case-insensitive); see :func:`wheelrail.profiles.standard.load`."""
-    from .standard import load as _load
+def load(name, kind: str | None = None, **options) -> Profile:
+    """A standard profile by name, or a profile file by path.
 
-    return _load(name, **options)
+    Parameters
+    ----------
+    name : str or os.PathLike
+        A built-in name (case-insensitive, :func:`available`; options are
+        passed to its generator, :mod:`wheelrail.profiles.standard`), or the
+        path of a profile file (Simpack ``.prr``/``.prw``, MiniProf
+        ``.ban``/``.whl``, text/CSV; read with :func:`read`, ``kind`` and
+        ``options`` passed on).
+    kind : {"wheel", "rail"}, optional
+        For files: the body, when the format does not say it.
+
+    Raises
+    ------
+    ProfileError
+        Neither a built-in name nor an existing file: the message lists the
+        names and the path looked for.
+    """
+    if isinstance(name, str) and name.strip().lower().replace("_", "").replace("-", "") in {
+            n.lower().replace("_", "").replace("-", "") for n in _available()}:
+        return _load(name, **options)
+    path = Path(name).expanduser()
+    if path.is_file():
+        return _read(path, kind=kind, **options)
+    raise ProfileError(f"{str(name)!r} is neither a built-in profile (available: "
+                       f"{', '.join(_available())}) nor an existing profile file "
+                       f"({path.resolve()})")
 
 
 def available() -> list[str]:
     """Names (and aliases) of the built-in standard profiles."""
-    from .standard import available as _available
 
     return _available()
 
 
 def read(path, kind: str | None = None, **options) -> Profile:
     """Read a profile file; see :func:`wheelrail.profiles.io.read`."""
-    from .io import read as _read
 
     return _read(path, kind=kind, **options)
 
 
 def write(profile: Profile, path, fmt: str | None = None, **options) -> None:
     """Write a profile file; see :func:`wheelrail.profiles.io.write`."""
-    from .io import write as _write
 
     return _write(profile, path, fmt=fmt, **options)

@@ -27,8 +27,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..casefile import RADII_KEYS
+from .. import profiles, tangential
 from ..errors import InputError
+from ..geometry import Track, Wheelset, contact_points
+from ..hertzian import RADII_KEYS, hertz, hertz_from_radii, hertz_from_semiaxes
+from ..materials import Material
 
 __all__ = ["EVALUATORS", "STATUS_CODES", "get_evaluator", "CreepEvaluator"]
 
@@ -41,16 +44,16 @@ MESSAGE_LENGTH = 160  # characters kept of a failure message
 class CreepEvaluator:
     """Creep forces of a Hertzian contact (:func:`wheelrail.creep_forces`) at each point.
 
-    Inputs: ``xi, eta`` [-], ``phi`` [1/m], ``mu`` [-], ``load`` [N]; the
+    Inputs: ``xi, eta`` [-], ``phi`` [1/m], ``mu`` [-], ``Fn`` [N]; the
     contact as curvatures ``A, B`` [1/m], semi-axes ``a, b`` [m] or principal
-    radii [m] (:data:`wheelrail.casefile.RADII_KEYS`); material ``E`` [Pa],
+    radii [m] (:data:`wheelrail.hertzian.RADII_KEYS`); material ``E`` [Pa],
     ``nu`` [-] (default steel, the same for wheel and rail); ``method`` (a
     name, default ``"fastsim"``). With a ``method`` axis, ``options`` maps each
     method name to its options.
     """
 
     name = "creep"
-    quantities = ("method", "xi", "eta", "phi", "mu", "load", "A", "B", "a", "b", *RADII_KEYS,
+    quantities = ("method", "xi", "eta", "phi", "mu", "Fn", "A", "B", "a", "b", *RADII_KEYS,
                   "E", "nu")
     outputs = {
         "Fx": ("f8", "N", "longitudinal creep force on the wheel"),
@@ -73,26 +76,20 @@ class CreepEvaluator:
 
     def methods(self, spec) -> list[str]:
         """Registry names of the methods of the sweep."""
-        from ..api import method_key
-
         if "method" in spec.fixed:
             given = [spec.fixed["method"]]
         else:
             given = dict(spec.axes).get("method", np.array(["fastsim"], dtype=object)).tolist()
         out = []
         for m in given:
-            if not isinstance(m, str) or method_key(m) is None:
-                from ..api import METHODS
-
+            if not isinstance(m, str):
                 raise InputError(f"unknown creep-force method {m!r}; choose one of "
-                                 + ", ".join(METHODS))
-            out.append(method_key(m))
+                                 + ", ".join(tangential.registry()))
+            out.append(tangential.get_class(m, argname="creep-force").name)
         return out
 
     def options_for(self, spec, method: str) -> dict:
         """Options of ``method`` (flat options, or ``options[method]`` with a method axis)."""
-        from ..api import method_key
-
         opts = dict(spec.options)
         if "method" in spec.fixed or "method" not in dict(spec.axes):
             return opts
@@ -100,18 +97,16 @@ class CreepEvaluator:
             if not isinstance(v, dict) and not hasattr(v, "items"):
                 raise InputError(f"with a method axis, options must be given per method "
                                  f"([sweep.options.<method>]), got option {k!r} = {v!r}")
-        return {k: v for name, o in opts.items() if method_key(name) == method
+        return {k: v for name, o in opts.items() if tangential.get_class(name).name == method
                 for k, v in dict(o).items()}
 
     def check(self, spec) -> None:
-        from ..api import get_method
-
         names = self._names(spec)
         unknown = names - set(self.quantities)
         if unknown:
             raise InputError(f"unknown quantity {sorted(unknown)[0]!r}; the creep evaluator "
                              f"takes {', '.join(self.quantities)}")
-        for k in ("mu", "load"):
+        for k in ("mu", "Fn"):
             if k not in names:
                 raise InputError(f"{k!r} is required (a value or an axis)")
         groups = {"A, B": {"A", "B"} & names, "a, b": {"a", "b"} & names,
@@ -125,8 +120,7 @@ class CreepEvaluator:
         if used[0] == "radii" and "wheel_rolling_radius" not in names:
             raise InputError("wheel_rolling_radius is required with radii")
         for m in self.methods(spec):
-            impl = get_method(m)
-            impl.check_options(self.options_for(spec, m))
+            tangential.get(m, self.options_for(spec, m))
 
     # ------------------------------------------------------------------ evaluation
     def evaluate(self, spec, cols: dict) -> dict:
@@ -157,9 +151,7 @@ class CreepEvaluator:
         return {k: v for k, v in out.items() if k in keep}
 
     def _contact(self, cols, idx, material):
-        from ..normal.hertz import hertz, hertz_from_radii, hertz_from_semiaxes
-
-        load = cols["load"][idx].astype(float)
+        load = cols["Fn"][idx].astype(float)
         if "A" in cols:
             return hertz(load, cols["A"][idx].astype(float), cols["B"][idx].astype(float),
                          material)
@@ -170,21 +162,19 @@ class CreepEvaluator:
         return hertz_from_radii(load, material=material, **radii)
 
     def _solve(self, spec, cols, idx, key, out) -> None:
-        from ..api import creep_forces, get_method
-        from ..materials import Material
-
         method, E, nu = key
         contact = self._contact(cols, idx, Material(E, nu))
         opts = self.options_for(spec, method)
-        impl = get_method(method)
-        if "on_fail" in impl.options:
+        decl = tangential.get_class(method).option_declarations()
+        if "on_fail" in decl:
             opts.setdefault("on_fail", "status")  # a non-converged point is recorded, not raised
-        if "progress" in impl.options:
+        if "progress" in decl:
             opts.setdefault("progress", False)    # the sweep shows its own progress
+        impl = tangential.get(method, opts)
         creep = np.stack([cols.get(k, np.zeros(len(cols["mu"])))[idx].astype(float)
                           for k in ("xi", "eta", "phi")], axis=1)
-        r = creep_forces(contact, creep, cols["mu"][idx].astype(float), method=method, **opts)
-        for k, v in (("Fx", r.Fx), ("Fy", r.Fy), ("Mz", r.Mz), ("Fn", contact.load),
+        r = impl.forces(contact, creep, cols["mu"][idx].astype(float))
+        for k, v in (("Fx", r.Fx), ("Fy", r.Fy), ("Mz", r.Mz), ("Fn", contact.Fn),
                      ("a", contact.a), ("b", contact.b), ("p0", contact.p0)):
             out[k][idx] = np.asarray(v, float).reshape(-1)
         conv = (r.info or {}).get("converged")
@@ -267,13 +257,10 @@ class GeometryEvaluator:
     def _profile(name):
         from pathlib import Path
 
-        from .. import profiles
 
         return profiles.read(name) if Path(name).is_file() else profiles.load(name)
 
     def evaluate(self, spec, cols: dict) -> dict:
-        from ..geometry import Track, Wheelset, contact_points
-
         m = len(next(iter(cols.values())))
         out = {k: np.full(m, np.nan) for k in self.outputs}
         out["status"] = np.full(m, STATUS_CODES["ok"], dtype=np.int8)

@@ -10,10 +10,10 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import InputError, WheelrailError
 from .evaluators import STATUS_CODES, get_evaluator
 from .executors import make_executor
-from .spec import SweepSpec, load_sweep
+from .spec import SweepSpec, load_sweep, sweep_from_dict
 from .store import SweepStore, _is_netcdf, open_sweep, provenance, to_netcdf
 
 __all__ = ["sweep", "SweepSummary", "evaluate_chunk"]
@@ -62,8 +62,6 @@ def _as_spec(spec) -> SweepSpec:
     if isinstance(spec, (str, os.PathLike)):
         return load_sweep(spec)
     if isinstance(spec, dict):
-        from .spec import sweep_from_dict
-
         return sweep_from_dict(spec if "sweep" in spec else {"sweep": spec})
     raise InputError(f"spec must be a SweepSpec, a TOML path or a dict, got {type(spec).__name__}")
 
@@ -120,7 +118,7 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
     --------
     >>> import wheelrail as wr
     >>> from wheelrail.sweeps import SweepSpec
-    >>> spec = SweepSpec.grid(method="linear", mu=0.3, load=1e4, A=1.0, B=1.5,
+    >>> spec = SweepSpec.grid(method="linear", mu=0.3, Fn=1e4, A=1.0, B=1.5,
     ...                       xi=[-1e-3, 0.0, 1e-3], eta=[0.0, 1e-3])
     >>> ds = wr.sweep(spec)
     >>> ds.Fx.dims, int((ds.status == 1).sum())
@@ -163,8 +161,14 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
         t0 = time.perf_counter()
         bar = task = None
         if show:
-            from rich.progress import (BarColumn, MofNCompleteColumn, Progress, TextColumn,
-                                       TimeElapsedColumn, TimeRemainingColumn)
+            from rich.progress import (
+                BarColumn,
+                MofNCompleteColumn,
+                Progress,
+                TextColumn,
+                TimeElapsedColumn,
+                TimeRemainingColumn,
+            )
 
             bar = Progress(TextColumn("[bold]sweep[/] {task.description}"), BarColumn(),
                            MofNCompleteColumn(), TextColumn("points"), TimeElapsedColumn(),
@@ -207,8 +211,6 @@ def _require() -> None:
         import dask  # noqa: F401
         import zarr  # noqa: F401
     except ImportError as exc:
-        from ..errors import WheelrailError
-
         raise WheelrailError(f"wheelrail.sweep needs zarr and dask[distributed] ({exc}); "
                              "install them with: pip install 'wheelrail[sweep]'") from None
 

@@ -13,7 +13,7 @@ TOML form (``[sweep]`` table; units SI as in case files)::
     [sweep]
     method = "fastsim"          # any creep-force method (or a list: an axis)
     mu = 0.3
-    load = 10000.0              # N
+    Fn = 10000.0              # N
     A = 1.087                   # 1/m; or a, b [m]; or radii [m] as in [contact]
     B = 1.667
     xi = {start = -0.004, stop = 0.004, num = 101}   # a range ...
@@ -35,8 +35,8 @@ optional ``scale = "log"`` (geometric spacing, start and stop > 0).
 The quantities each evaluator takes are listed in
 :data:`wheelrail.sweeps.evaluators.EVALUATORS`; the creep-force evaluator
 (default, ``evaluator = "creep"``) takes ``xi, eta`` [-], ``phi`` [1/m],
-``mu`` [-], ``load`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
-:data:`wheelrail.casefile.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
+``mu`` [-], ``Fn`` [N], ``A, B`` [1/m] or ``a, b`` [m] or the radii of
+:data:`wheelrail.hertzian.RADII_KEYS` [m], ``E`` [Pa], ``nu`` [-] and
 ``method`` (names). The geometry evaluator (``evaluator = "geometry"``)
 takes ``y`` [m], ``yaw`` [rad], ``wheel``, ``rail`` (profile names or files),
 ``gauge``, ``inclination``, ``nominal_radius``, ``flange_back``.
@@ -54,7 +54,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .._toml import Reader, tomllib
 from ..errors import CaseFileError, InputError
+from .evaluators import get_evaluator
 
 __all__ = ["SweepSpec", "load_sweep", "sweep_from_dict", "expand_range"]
 
@@ -176,7 +178,7 @@ class SweepSpec:
         Examples
         --------
         >>> from wheelrail.sweeps import SweepSpec
-        >>> s = SweepSpec.grid(method="linear", mu=0.3, load=1e4, A=1.0, B=1.5,
+        >>> s = SweepSpec.grid(method="linear", mu=0.3, Fn=1e4, A=1.0, B=1.5,
         ...                    xi=[-1e-3, 0.0, 1e-3], eta={"start": 0, "stop": 1e-3, "num": 2})
         >>> s.shape, s.size
         ((3, 2), 6)
@@ -205,8 +207,6 @@ class SweepSpec:
     @classmethod
     def _make(cls, evaluator, fixed, axes, mode, options, chunk, source="<python>",
               sha=None) -> "SweepSpec":
-        from .evaluators import get_evaluator
-
         if isinstance(chunk, bool) or not isinstance(chunk, (int, np.integer)) or chunk < 1:
             raise InputError(f"chunk must be an integer >= 1 (points per chunk), got {chunk!r}")
         ev = get_evaluator(evaluator)
@@ -340,8 +340,6 @@ def load_sweep(path_or_str) -> SweepSpec:
         Unreadable or malformed file, unknown keys, axes without values; the
         message names the file, the table, the key and the value.
     """
-    from ..casefile import tomllib
-
     sha = None
     if isinstance(path_or_str, str) and ("\n" in path_or_str or "=" in path_or_str):
         text, source = path_or_str, "<string>"
@@ -369,10 +367,8 @@ def load_sweep(path_or_str) -> SweepSpec:
 
 def sweep_from_dict(data: Mapping, source: str = "<dict>", sha256: str | None = None) -> SweepSpec:
     """Validate a parsed sweep case (``{"sweep": {...}}``) into a :class:`SweepSpec`."""
-    from ..casefile import _Reader
-    from .evaluators import get_evaluator
 
-    r = _Reader(source)
+    r = Reader(source)
     r.unknown("", data, ("sweep",))
     tbl = r.required_table(data, "sweep")
     if not isinstance(tbl, Mapping):

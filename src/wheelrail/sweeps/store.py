@@ -29,6 +29,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._version import __version__
 from ..errors import InputError
 from .evaluators import MESSAGE_LENGTH, STATUS_CODES, get_evaluator
 
@@ -126,7 +127,6 @@ class SweepStore:
 
 def provenance(spec, method_names, options) -> dict:
     """Attributes recording what produced a store."""
-    from .. import __version__
 
     return {
         "title": "wheelrail sweep",

@@ -12,7 +12,7 @@ displacement difference is ``u = L p`` and the (non-dimensional) slip of the
 wheel relative to the rail is ``s = w − ∂u/∂x`` with rigid slip
 ``w = (ξ − φ y, η + φ x)``. In the adhesion area s = 0, i.e. along a strip
 ``∂p/∂x = g`` with, for three flexibilities (Piotrowski & Chollet 2005,
-seed 003 eq. 11),
+Piotrowski & Chollet (2005) eq. 11),
 
     g_x = ξ/L1 − φ y/L3,      g_y = η/L2 + φ x/L3,
 
@@ -63,7 +63,7 @@ References
    contact, Vehicle System Dynamics 11 (1982) 1–13.
 .. [2] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005), §3.1 eq. (11),
-   §3.3 eqs. (24)–(26) (seed 003).
+   §3.3 eqs. (24)–(26).
 .. [3] E.A.H. Vollebregt, P. Voltr, FASTSIM with three flexibilities (2023):
    the traction in the slip area must oppose the local slip.
 """
@@ -420,7 +420,7 @@ def strip_patch_forces(y, dy, x_lead, x_trail, sp, i0, i1, w, parabolic, mu, L1,
     """FASTSIM on a strip patch, resampling and centre of pressure fused (fields optional).
 
     The same discrete equations as ``Fastsim.solve_patch`` on a non-elliptic
-    :class:`~wheelrail.contact.patch.ContactPatch` followed by
+    :class:`~wheelrail.patch.ContactPatch` followed by
     :func:`fastsim_strips_kernel` (without fields), in one call: the patch's
     ``m`` cells per strip are resampled to ``nx`` by linear interpolation
     (indices ``i0``, ``i1``, weights ``w``) keeping each strip's force,

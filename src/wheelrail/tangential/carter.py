@@ -4,7 +4,7 @@ Carter (1926) solved the steady rolling of an elastic cylinder on an elastic
 plane (a line contact of half-width ``a`` along the rolling direction, Hertz
 pressure p(x) = p0 √(1 − x²/a²)) under a longitudinal creepage ξ. The contact
 splits into an adhesion (stick) zone of half-width ``c`` touching the
-**leading edge** and a slip zone at the trailing edge (review seed 002,
+**leading edge** and a slip zone at the trailing edge (Bosso et al. (2013), ch. 2,
 §2.2, Fig. 2.3). The traction is the difference of two semi-ellipses
 (Johnson 1985, §8.2)::
 
@@ -41,7 +41,7 @@ x, b across) are provided (option ``form``):
     a/b → 0 (Kalker's asymptote C11 = π²/(4(1 − ν))) but underestimates it
     for rounder patches (by 27 % for a circle with ν = 0, and by a factor
     ~4 at a/b = 10), the classical weakness of Carter's stiffness noted in
-    seed 002 (eq. 2.9 discussion);
+    Bosso et al. (2013), ch. 2 (eq. 2.9 discussion);
   - ``"kalker"``: k = G a b C11(a/b, ν), Kalker's linear theory (so the
     initial slope is exact; a common engineering choice).
 
@@ -68,7 +68,7 @@ References
 .. [3] J.B. Haines, E. Ollerton, Contact stress distributions on elliptical
    contact surfaces subjected to radial and tangential forces, Proc. IMechE
    177 (1963) 95–114.
-.. [4] Review of wheel–rail contact models, seed paper 002, §2.2 and Fig. 2.3.
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), §2.2 and Fig. 2.3.
 """
 
 from __future__ import annotations
@@ -77,8 +77,10 @@ import numpy as np
 
 from .._validation import as_float_array, in_range, positive, scalar_or_array
 from ..errors import InputError
-from ..results import CreepForces, Status
+from ..options import configured, option
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
+from .linear import kalker_coefficients
 
 __all__ = [
     "carter_saturation_creepage",
@@ -147,7 +149,7 @@ def carter_traction(x, a, xi, mu, p0, G, nu):
 
     The difference of two semi-ellipses: μ p(x) over the whole contact minus
     a smaller semi-ellipse over the stick zone at the leading edge (Johnson
-    1985, §8.2; seed 002 Fig. 2.3).
+    1985, §8.2; Bosso et al. (2013), ch. 2 Fig. 2.3).
 
     Parameters
     ----------
@@ -265,8 +267,6 @@ def carter_ellipse_force(a, b, G, nu, Fn, mu, xi, form="global", stiffness="cart
         if stiffness == "carter":
             k = np.pi**2 * G * a * b / (4.0 * (1.0 - nu))
         elif stiffness == "kalker":
-            from .linear import kalker_coefficients
-
             k = G * a * b * kalker_coefficients(a / b, nu)[0]
         else:
             raise InputError(f"stiffness must be 'carter' or 'kalker', got {stiffness!r}")
@@ -283,10 +283,11 @@ def carter_ellipse_force(a, b, G, nu, Fn, mu, xi, form="global", stiffness="cart
     raise InputError(f"form must be 'global' or 'strip', got {form!r}")
 
 
+@configured
 class Carter(TangentialMethod):
     """Carter's theory of tractive rolling (longitudinal creep only).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
@@ -321,17 +322,16 @@ class Carter(TangentialMethod):
         "subjected to radial and tangential forces, Proc. IMechE 177 (1963) 95-114.",
         "K.L. Johnson, Contact Mechanics, Cambridge University Press, 1985, sections 8.2, 8.4.",
     )
-    options = {"form": "global", "stiffness": "carter", "lateral": "error"}
+    form: str = option("global", choices=("global", "strip"),
+                       doc="Carter's curve for the whole ellipse, or strip by strip")
+    stiffness: str = option("carter", choices=("carter", "kalker"),
+                            doc="initial slope of the global curve")
+    lateral: str = option("error", choices=("error", "ignore"),
+                          doc="non-zero eta or phi: refuse, or ignore (Fy = Mz = 0)")
 
-    def solve(self, contact, xi, eta, phi, mu, form="global", stiffness="carter",
-              lateral="error"):
+    def solve(self, contact, xi, eta, phi, mu):
         """Carter creep force for a (batch of) Hertzian contact(s); see the class docstring."""
-        if form not in ("global", "strip"):
-            raise InputError(f"option form must be 'global' or 'strip', got {form!r}")
-        if stiffness not in ("carter", "kalker"):
-            raise InputError(f"option stiffness must be 'carter' or 'kalker', got {stiffness!r}")
-        if lateral not in ("error", "ignore"):
-            raise InputError(f"option lateral must be 'error' or 'ignore', got {lateral!r}")
+        form, stiffness, lateral = self.form, self.stiffness, self.lateral
         eta = np.asarray(eta, float)
         phi = np.asarray(phi, float)
         if lateral == "error":
@@ -343,13 +343,13 @@ class Carter(TangentialMethod):
                         f"{unit}; use method 'fastsim'/'polach'/'exact', or pass "
                         "lateral='ignore' to drop eta and phi")
         Fx, xi_sat = carter_ellipse_force(contact.a, contact.b, contact.G, contact.nu,
-                                          contact.load, mu, xi, form=form, stiffness=stiffness)
+                                          contact.Fn, mu, xi, form=form, stiffness=stiffness)
         full = np.abs(np.asarray(xi, float)) >= xi_sat
         zero = np.zeros_like(Fx)
         s = scalar_or_array
         status = Status.FULL_SLIP if np.all(full) else Status.CONVERGED
-        return CreepForces(Fx=s(Fx), Fy=s(zero), Mz=s(zero.copy()),
-                           Fn=s(np.asarray(contact.load, float)), mu=s(np.asarray(mu, float)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(zero), Mz=s(zero.copy()),
+                           Fn=s(np.asarray(contact.Fn, float)), mu=s(np.asarray(mu, float)),
                            method=self.name, status=status, iterations=None, fields=None,
                            info={"xi_saturation": s(xi_sat),
                                  "full_slip": full.item() if full.ndim == 0 else full})

@@ -44,13 +44,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from .._validation import integer
-from ..results import CreepForces, Status
+from ..options import configured, option
+from ..patch import ContactPatch
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .fastsim import flexibilities, weighted_flexibility
 from .linear import kalker_coefficients
 
-__all__ = ["FaStrip", "fastrip_strips"]
+__all__ = ["Fastrip", "fastrip_strips"]
 
 
 def fastrip_strips(y, dy, a_s, xc, P, L1, L2, L3, xi, eta, phi, mu):
@@ -95,7 +96,8 @@ def fastrip_strips(y, dy, a_s, xc, P, L1, L2, L3, xi, eta, phi, mu):
     return Fx, Fy, Mz, (float(np.sum((P * dy)[sat])) / tot if tot > 0 else 0.0)
 
 
-class FaStrip(TangentialMethod):
+@configured
+class Fastrip(TangentialMethod):
     """FaStrip strip theory as a creep-force law (see the module docstring).
 
     Works on every patch (Hertzian ellipses through their strips, the
@@ -115,12 +117,10 @@ class FaStrip(TangentialMethod):
         "of the wheel-rail contact, Vehicle System Dynamics 54 (2016) 748-764.",
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
     )
-    options = {"ny": 40}
+    ny: int = option(40, lo=2, hi=2000, doc="strips across an ellipse (Hertzian contacts)")
 
-    def solve(self, contact, xi, eta, phi, mu, ny=40):
-        from ..contact.patch import ContactPatch
-
-        ny = integer("ny", ny)
+    def solve(self, contact, xi, eta, phi, mu):
+        ny = self.ny
         single = np.shape(contact.a) == ()
         xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))
         n = xi.shape[0]
@@ -130,13 +130,13 @@ class FaStrip(TangentialMethod):
             p = ContactPatch.from_hertz(c, strips=ny, cells=8)
             r = self.solve_patch(p, xi[k], eta[k], phi[k], mu[k])
             F[:, k] = (r.Fx, r.Fy, r.Mz)
-        Fn = np.atleast_1d(np.asarray(contact.load, dtype=float))
+        Fn = np.atleast_1d(np.asarray(contact.Fn, dtype=float))
         out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
-        return CreepForces(Fx=out(F[0]), Fy=out(F[1]), Mz=out(F[2]), Fn=out(Fn),
+        return CreepForcesResult(Fx=out(F[0]), Fy=out(F[1]), Mz=out(F[2]), Fn=out(Fn),
                            mu=out(mu), method=self.name, status=Status.CONVERGED,
                            iterations=None, fields=None, info={"ny": ny})
 
-    def solve_patch(self, patch, xi, eta, phi, mu, ny=40):
+    def solve_patch(self, patch, xi, eta, phi, mu):
         xi, eta, phi, mu = float(xi), float(eta), float(phi), float(mu)
         G, nu = patch.materials.G, patch.materials.nu
         axes = patch.info.get("strip_semiaxes")
@@ -163,6 +163,6 @@ class FaStrip(TangentialMethod):
         Fx, Fy = Fx * s, Fy * s
         Mz = Mz * s - xc * Fy + yc * Fx
         status = Status.FULL_SLIP if sat >= 1.0 else Status.CONVERGED
-        return CreepForces(Fx=Fx, Fy=Fy, Mz=float(Mz), Fn=patch.Fn, mu=mu, method=self.name,
+        return CreepForcesResult(Fx=Fx, Fy=Fy, Mz=float(Mz), Fn=patch.Fn, mu=mu, method=self.name,
                            status=status, iterations=None, fields=None,
                            info={"saturated_load_fraction": sat})

@@ -21,7 +21,7 @@ Choices made here (all documented in the class docstring of :class:`Fastsim`):
   FASTSIM example (see :class:`Fastsim`, Notes).
 * **Flexibility**: ``flexibility="three"`` (default) uses one flexibility per
   creepage, L1 = 8a/(3 G C11), L2 = 8a/(3 G C22), L3 = π a √(a/b)/(4 G C23)
-  (Piotrowski & Chollet 2005, eq. 11, seed 003; Kalker 1982), so that FASTSIM
+  (Piotrowski & Chollet 2005, eq. 11; Kalker 1982), so that FASTSIM
   reproduces Kalker's linear theory for pure ξ, pure η and pure φ (forces;
   the spin moment Mz is only approximated, C33 does not enter).
   ``flexibility="weighted"`` uses Kalker's single weighted flexibility
@@ -41,7 +41,7 @@ References
    Kluwer 1990 (simplified theory, FASTSIM).
 .. [3] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005) 455–483, eq. (11),
-   eqs. (24)–(26) (seed 003).
+   eqs. (24)–(26).
 .. [4] E.A.H. Vollebregt, *User guide for CONTACT, rolling and sliding contact
    with friction*, Vtech CMCC (TR09-03/20-01), section "The use of the
    FASTSIM algorithm" (example ``fastsim.inp``): the published FASTSIM case
@@ -58,7 +58,8 @@ import numpy as np
 
 from .._validation import as_float_array, integer, positive, scalar_or_array
 from ..errors import InputError
-from ..results import CreepForces, Status
+from ..options import configured, option
+from ..results import CreepForcesResult, Status
 from . import _fastsim_kernel as _k
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
@@ -163,7 +164,7 @@ class FastsimFields:
     def as_arrays(self) -> dict:
         """Plain arrays indexed ``[i_x, i_y]`` (the strip arrays transposed), for plotting.
 
-        Keys as :meth:`wheelrail.contact.GapSolution.as_arrays`: ``x``, ``y`` [m],
+        Keys as :meth:`wheelrail.results.GapResult.as_arrays`: ``x``, ``y`` [m],
         ``px``, ``py``, ``p`` [Pa], ``adhesion``, ``inside`` (bool), ``dA`` [m²],
         ``sx``, ``sy`` [-].
         """
@@ -182,7 +183,7 @@ def flexibilities(a, b, G, C11, C22, C23):
     ----------
     a, b : array_like
         Semi-axes along x and y [m] (for a strip of a non-elliptic patch: the
-        semi-axes of its virtual ellipse, seed 003 §3.1).
+        semi-axes of its virtual ellipse §3.1).
     G : float or array_like
         Combined shear modulus [Pa].
     C11, C22, C23 : array_like
@@ -195,7 +196,7 @@ def flexibilities(a, b, G, C11, C22, C23):
 
     References
     ----------
-    .. [1] Piotrowski & Chollet (2005), eq. (11) (seed 003); Kalker (1982).
+    .. [1] Piotrowski & Chollet (2005), eq. (11); Kalker (1982).
     """
     a, b, G, C11, C22, C23 = (np.asarray(v, dtype=float) for v in (a, b, G, C11, C22, C23))
     L1 = 8.0 * a / (3.0 * G * C11)
@@ -302,7 +303,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
     """FASTSIM on a contact patch described by strips (elliptic or not).
 
     This is the kernel used by the virtual-penetration methods (Linder,
-    Kik–Piotrowski, STRIPES; seed 003 §3): each strip has its own extent,
+    Kik–Piotrowski, STRIPES; Piotrowski & Chollet (2005) §3): each strip has its own extent,
     pressure and flexibilities.
 
     Parameters
@@ -318,7 +319,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
         together with ``profile``.
     L1, L2, L3 : float or array_like, shape (ny,)
         Flexibilities for ξ, η, φ [m/Pa] (e.g. :func:`flexibilities` with the
-        strip's virtual ellipse, seed 003 eqs. 11, 25–26). Pass the same value
+        strip's virtual ellipse eqs. 11, 25–26). Pass the same value
         three times for a single flexibility.
     xi, eta, phi : float
         Creepages [-], [-], [1/m] (Kalker's convention).
@@ -339,7 +340,7 @@ def fastsim_strips(y, dy, x_lead, x_trail, pressure, L1, L2, L3, xi, eta, phi, m
 
     Returns
     -------
-    CreepForces
+    CreepForcesResult
         ``Fx``, ``Fy`` [N] and ``Mz`` [N m] (about the origin of the
         coordinates) on the wheel; ``Fn`` = Σ p_z dA; ``fields`` if requested.
 
@@ -449,7 +450,7 @@ def _solve_strips(y, dy, x_lead, x_trail, p, L1, L2, L3, xi, eta, phi, mu_s, mu_
         x[empty] = (0.5 * (x_lead + x_trail))[empty, None]
         f = FastsimFields(x=x, y=np.repeat(y[:, None], nx, 1),
                           dx=dx, dy=dy, pressure=p, px=px, py=py, sx=sx, sy=sy, slip=slip, mu=mu_s)
-    return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz), Fn=Fn,
+    return CreepForcesResult(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz), Fn=Fn,
                        mu=mu_out, method="fastsim",
                        fields=f, info={"nx": nx, "ny": ny, "scheme": scheme})
 
@@ -518,6 +519,7 @@ def _resample_weights(m, nx):
 # ---------------------------------------------------------------------------
 # the creep-force law
 # ---------------------------------------------------------------------------
+@configured
 class Fastsim(TangentialMethod):
     """Kalker's FASTSIM on the Hertzian ellipse.
 
@@ -592,24 +594,25 @@ class Fastsim(TangentialMethod):
         "J. Piotrowski, H. Chollet, Wheel-rail contact models for vehicle system dynamics "
         "including multi-point contact, Vehicle System Dynamics 43 (2005) 455-483.",
     )
-    options = {"nx": 20, "ny": 20, "bound": "parabolic", "flexibility": "three",
-               "scheme": "midpoint", "fields": None}
+    nx: int = option(20, lo=1, hi=2000, doc="elements per strip (along the rolling direction)")
+    ny: int = option(20, lo=1, hi=2000, doc="strips across the ellipse (Hertzian patches)")
+    bound: str = option("parabolic", choices=_BOUNDS, doc="traction bound along the strips")
+    flexibility: str = option("three", choices=_FLEXIBILITIES,
+                              doc="three flexibilities L1, L2, L3 or Kalker's weighted one")
+    scheme: str = option("midpoint", choices=_SCHEMES,
+                         doc="second-order mid-point march, or CONTACT's first-order one")
+    fields: bool | None = option(None, choices=(None, True, False),
+                                 doc="return traction fields (None: for single cases only)")
 
-    def solve(self, contact, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
-              flexibility="three", scheme="midpoint", fields=None):
-        nx = integer("nx", nx)
-        ny = integer("ny", ny)
-        _check_choice("bound", bound, _BOUNDS)
-        _check_choice("flexibility", flexibility, _FLEXIBILITIES)
-        _check_choice("scheme", scheme, _SCHEMES)
+    def solve(self, contact, xi, eta, phi, mu):
+        nx, ny, bound, flexibility = self.nx, self.ny, self.bound, self.flexibility
+        scheme, fields = self.scheme, self.fields
         first_order = scheme == "euler"
-        if fields not in (None, True, False):
-            raise InputError(f"fields must be True, False or None, got {fields!r}")
         single = np.shape(contact.a) == ()
         want_fields = single if fields is None else bool(fields)
 
         a, b, Fn = (np.atleast_1d(np.asarray(v, dtype=float))
-                    for v in (contact.a, contact.b, contact.load))
+                    for v in (contact.a, contact.b, contact.Fn))
         xi, eta, phi, mu = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (xi, eta, phi, mu))
         n = a.shape[0]
         G = float(contact.G)
@@ -672,12 +675,11 @@ class Fastsim(TangentialMethod):
         if single and f is not None and not np.any(f.adhesion):
             status = Status.FULL_SLIP
         out = (lambda v: float(v[0])) if single else (lambda v: np.asarray(v))
-        return CreepForces(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
+        return CreepForcesResult(Fx=out(Fx), Fy=out(Fy), Mz=out(Mz), Fn=out(Fn), mu=out(mu),
                            method=self.name, status=status, iterations=None, fields=f, info=info)
 
-    def solve_patch(self, patch, xi, eta, phi, mu, nx=20, ny=20, bound="parabolic",
-                    flexibility="three", scheme="midpoint", fields=None):
-        """FASTSIM on one :class:`~wheelrail.contact.patch.ContactPatch`.
+    def solve_patch(self, patch, xi, eta, phi, mu):
+        """FASTSIM on one :class:`~wheelrail.patch.ContactPatch`.
 
         A Hertzian patch is solved as its ellipse (:meth:`solve`, options as
         there). A non-elliptic patch is solved strip by strip
@@ -685,18 +687,16 @@ class Fastsim(TangentialMethod):
         the traction bound (``bound`` and ``ny`` do not apply; ``nx`` cells per
         strip, resampled from the patch), and one set of flexibilities
         L1, L2, L3 from the patch's equivalent ellipse (Kik & Piotrowski's
-        choice of one flexibility per patch; seed 003 §3.2). ``Mz`` is about
+        choice of one flexibility per patch; Piotrowski & Chollet (2005) §3.2). ``Mz`` is about
         the patch's centre of pressure; ``fields`` are returned for single
         patches unless ``fields=False``.
         """
         if patch.is_hertzian:
             f = np.asarray
             return self.solve(patch.hertz, f(float(xi)), f(float(eta)), f(float(phi)),
-                              f(float(mu)), nx=nx, ny=ny, bound=bound, flexibility=flexibility,
-                              scheme=scheme, fields=fields)
-        nx = integer("nx", nx)
-        _check_choice("flexibility", flexibility, _FLEXIBILITIES)
-        # a virtual-penetration patch may prescribe its own flexibilities (seed 003 §3):
+                              f(float(mu)))
+        nx, flexibility, scheme, fields = self.nx, self.flexibility, self.scheme, self.fields
+        # a virtual-penetration patch may prescribe its own flexibilities (Piotrowski & Chollet (2005) §3):
         # one weighted flexibility per patch (Kik-Piotrowski), per-strip virtual ellipses
         # (Linder, STRIPES), a parabolic traction bound along the strips (Linder)
         pinfo = patch.info
@@ -765,7 +765,7 @@ class Fastsim(TangentialMethod):
             info["adhesion_fraction"] = r.fields.adhesion_fraction
             if not np.any(r.fields.adhesion):
                 status = Status.FULL_SLIP
-        return CreepForces(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
+        return CreepForcesResult(Fx=r.Fx, Fy=r.Fy, Mz=float(Mz), Fn=r.Fn, mu=float(mu),
                            method=self.name, status=status, fields=r.fields, info=info)
 
     def _patch_forces(self, patch, sp, i0, i1, w, pinfo, L1, L2, L3, xi, eta, phi, mu, scheme,
@@ -819,6 +819,6 @@ class Fastsim(TangentialMethod):
             info["adhesion_fraction"] = f.adhesion_fraction
             if not np.any(f.adhesion):
                 status = Status.FULL_SLIP
-        return CreepForces(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
+        return CreepForcesResult(Fx=float(Fx), Fy=float(Fy), Mz=float(Mz - xc * Fy + yc * Fx),
                            Fn=float(Fn), mu=mu, method=self.name, status=status,
                            fields=f, info=info)

@@ -1,7 +1,7 @@
 """Kalker's linear theory of rolling contact (creep coefficients C11 … C33).
 
 In the limit of vanishing creepage the whole contact ellipse adheres and the
-creep forces are linear in the creepages (Kalker 1967; review seed 002,
+creep forces are linear in the creepages (Kalker 1967; Bosso et al. (2013), ch. 2,
 eq. 2.11). With Kalker's sign convention (:mod:`wheelrail.conventions`:
 forces on the wheel, creepage of the wheel relative to the rail) and
 c = √(ab)::
@@ -79,7 +79,7 @@ References
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer, 1990, Table E.3 and §1.7.
 .. [3] K.L. Johnson, *Contact Mechanics*, CUP 1985, §8.4 and Table 8.1.
-.. [4] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), eq. (2.11).
 """
 
 from __future__ import annotations
@@ -92,7 +92,8 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from .._validation import in_range, positive, scalar_or_array
-from ..results import CreepForces, Status
+from ..options import configured
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 
 __all__ = [
@@ -101,7 +102,7 @@ __all__ = [
     "kalker_asymptotes",
     "linear_forces",
     "linear_stiffness",
-    "KalkerLinear",
+    "Linear",
     "NU_NODES",
 ]
 
@@ -356,7 +357,7 @@ def linear_forces(a, b, G, nu, xi, eta, phi):
     Notes
     -----
     Fx = −G c² C11 ξ, Fy = −G c² (C22 η + c C23 φ), Mz = G c³ (C23 η − c C33 φ),
-    c = √(ab) (Kalker 1967; seed 002 eq. 2.11 with the sign convention of
+    c = √(ab) (Kalker 1967; Bosso et al. (2013), ch. 2 eq. 2.11 with the sign convention of
     :mod:`wheelrail.conventions`). Valid only for creepages small enough that
     the forces are well below μ Fn: the forces grow without bound.
     """
@@ -368,10 +369,11 @@ def linear_forces(a, b, G, nu, xi, eta, phi):
     return Fx, Fy, Mz
 
 
-class KalkerLinear(TangentialMethod):
+@configured
+class Linear(TangentialMethod):
     """Kalker's linear theory: creep forces proportional to the creepages.
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
@@ -391,7 +393,7 @@ class KalkerLinear(TangentialMethod):
     ----------
     .. [1] J.J. Kalker, PhD thesis, Delft 1967; *Three-dimensional elastic
        bodies in rolling contact*, Kluwer 1990, Table E.3.
-    .. [2] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+    .. [2] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), eq. (2.11).
     """
 
     name = "linear"
@@ -401,14 +403,14 @@ class KalkerLinear(TangentialMethod):
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990 "
         "(Table E.3: creep coefficients).",
     )
-    options: dict = {}
+    aliases = ("kalker-linear",)
 
-    def solve(self, contact, xi, eta, phi, mu, **options):
+    def solve(self, contact, xi, eta, phi, mu):
         """Linear creep forces for a (batch of) Hertzian contact(s); see the class docstring."""
         Fx, Fy, Mz = linear_forces(contact.a, contact.b, contact.G, contact.nu, xi, eta, phi)
-        Fn = np.asarray(contact.load, dtype=float)
+        Fn = np.asarray(contact.Fn, dtype=float)
         util = np.hypot(Fx, Fy) / (np.asarray(mu, dtype=float) * Fn)
         s = scalar_or_array
-        return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu, float)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu, float)),
                            method=self.name, status=Status.CONVERGED, iterations=None,
                            fields=None, info={"utilisation": s(util)})

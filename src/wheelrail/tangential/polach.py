@@ -62,7 +62,7 @@ it holds on dense parameter scans and in the property tests.
 
 Verification
 ------------
-The papers themselves could not be read (the review seed 002 only names the
+The papers themselves could not be read (the Bosso et al. (2013), ch. 2 only names the
 method, refs. [4, 24, 5] there, and states that the friction of [5] varies
 with velocity); no formula above is confirmed against Polach's printed text.
 What was checked, against independent public implementations (secondary
@@ -130,12 +130,15 @@ References
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numba import njit
 
 from .._validation import positive, scalar_or_array
 from ..errors import InputError
-from ..results import CreepForces, Status
+from ..options import configured, option
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -272,6 +275,20 @@ def _polach_loop(G, a, b, C11, C22, C23, sx, sy, phi, mu0, Q, speed, kA, kS, law
         Fy[i] = -(f_over_s * y + fys)
 
 
+def _speed(name, v):
+    """None, a positive number or an array of positive numbers (one per batch case) [m/s]."""
+    if v is None:
+        return None
+    if isinstance(v, bool):
+        raise InputError(f"{name} must be finite and > 0, got {v!r}")
+    arr = positive(name, v)
+    if arr.ndim == 0:
+        return float(arr)
+    arr = arr.copy()
+    arr.setflags(write=False)
+    return arr
+
+
 def _check_extended(kA, kS, speed, A, B, conditions):
     """Resolve and validate the options of the extended method; returns kA, kS, speed, A, B."""
     if conditions is not None:
@@ -307,10 +324,11 @@ def _check_extended(kA, kS, speed, A, B, conditions):
     return float(kA), float(kS), speed, A, B
 
 
+@configured
 class Polach(TangentialMethod):
     """Polach's creep-force law (1999), optionally extended as in Polach (2005).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
@@ -347,14 +365,28 @@ class Polach(TangentialMethod):
         "Wear 258 (2005) 992-1000.",
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
     )
-    options = {"kA": None, "kS": None, "speed": None, "A": None, "B": None, "conditions": None}
+    kA: float | None = option(None, kind="float", lo=0.0, hi=1.0, lo_open=True, allow_none=True,
+                              doc="reduction of Kalker's stiffness in adhesion (default 1)")
+    kS: float | None = option(None, kind="float", lo=0.0, hi=1.0, lo_open=True, allow_none=True,
+                              doc="reduction in slip, <= kA (default 1)")
+    speed: Any = option(None, kind="any", unit="m/s", check=_speed, allow_none=True,
+                        doc="rolling speed V (a number or one per batch case)")
+    A: float | None = option(None, kind="float", lo=0.0, hi=1.0, lo_open=True, allow_none=True,
+                             doc="mu_inf/mu0 of the slip-velocity dependent friction")
+    B: float | None = option(None, kind="float", unit="s/m", lo=0.0, allow_none=True,
+                             doc="rate B of the slip-velocity dependent friction")
+    conditions: str | None = option(None, choices=(None, *POLACH_2005_PARAMETERS),
+                                    doc="take kA, kS, A, B from Polach (2005), Table 1")
 
-    def solve(self, contact, xi, eta, phi, mu, kA=None, kS=None, speed=None, A=None, B=None,
-              conditions=None):
-        kA, kS, speed, A, B = _check_extended(kA, kS, speed, A, B, conditions)
+    def _check(self):
+        _check_extended(self.kA, self.kS, self.speed, self.A, self.B, self.conditions)
+
+    def solve(self, contact, xi, eta, phi, mu):
+        kA, kS, speed, A, B = _check_extended(self.kA, self.kS, self.speed, self.A, self.B,
+                                              self.conditions)
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
-        Fn = np.asarray(contact.load, dtype=float)
+        Fn = np.asarray(contact.Fn, dtype=float)
         if speed is not None:
             try:
                 ok = np.broadcast_shapes(np.shape(speed), a.shape) == a.shape
@@ -368,6 +400,6 @@ class Polach(TangentialMethod):
             contact.G, a, b, np.asarray(C11), np.asarray(C22), np.asarray(C23),
             xi, eta, phi, mu, Fn, kA=kA, kS=kS, speed=speed, A=A, B=B)
         s = scalar_or_array
-        return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
                            method=self.name, status=Status.CONVERGED,
                            info={"mu_slip": s(mu_slip)})

@@ -34,7 +34,7 @@ References
    transmitting tangential forces, J. Appl. Mech. 31 (1964) 338–340.
 .. [3] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, linear theory (creep coefficients C11 … C33).
-.. [4] Review of wheel–rail contact models, seed paper 002, eq. (2.11).
+.. [4] N. Bosso, M. Spiryagin, A. Gugliotta, A. Somà, *Mechatronic Modeling of Real-Time Wheel-Rail Contact*, Springer 2013, ch. 2 (review of wheel–rail contact models), eq. (2.11).
 """
 
 from __future__ import annotations
@@ -42,8 +42,8 @@ from __future__ import annotations
 import numpy as np
 
 from .._validation import scalar_or_array
-from ..errors import InputError
-from ..results import CreepForces, Status
+from ..options import configured, option
+from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
 
@@ -129,10 +129,11 @@ def shen_hedrick_elkins_forces(G, a, b, C11, C22, C23, C33, xi, eta, phi, mu, Fn
     return ratio * fx, ratio * fy, mz, ratio
 
 
+@configured
 class ShenHedrickElkins(TangentialMethod):
     """Shen–Hedrick–Elkins (1983) creep-force law (Kalker linear + Johnson–Vermeulen cubic).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
@@ -160,20 +161,20 @@ class ShenHedrickElkins(TangentialMethod):
         "tangential forces, J. Appl. Mech. 31 (1964) 338-340.",
         "J.J. Kalker, Three-dimensional elastic bodies in rolling contact, Kluwer, 1990.",
     )
-    options = {"spin_moment": "scaled"}
+    aliases = ("she", "shen_hedrick_elkins")
+    spin_moment: str = option("scaled", choices=_SPIN_MOMENT_CHOICES,
+                              doc="spin moment scaled by the force saturation, or linear")
 
-    def solve(self, contact, xi, eta, phi, mu, spin_moment="scaled"):
-        if spin_moment not in _SPIN_MOMENT_CHOICES:
-            raise InputError(f"spin_moment must be one of {_SPIN_MOMENT_CHOICES}, "
-                             f"got {spin_moment!r}")
+    def solve(self, contact, xi, eta, phi, mu):
+        spin_moment = self.spin_moment
         a = np.asarray(contact.a, dtype=float)
         b = np.asarray(contact.b, dtype=float)
-        Fn = np.asarray(contact.load, dtype=float)
+        Fn = np.asarray(contact.Fn, dtype=float)
         C11, C22, C23, C33 = kalker_coefficients(a / b, contact.nu)
         Fx, Fy, Mz, ratio = shen_hedrick_elkins_forces(
             contact.G, a, b, np.asarray(C11), np.asarray(C22), np.asarray(C23),
             np.asarray(C33), xi, eta, phi, mu, Fn, spin_moment)
         s = scalar_or_array
-        return CreepForces(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
+        return CreepForcesResult(Fx=s(Fx), Fy=s(Fy), Mz=s(Mz), Fn=s(Fn), mu=s(np.asarray(mu)),
                            method=self.name, status=Status.CONVERGED,
                            info={"saturation": s(ratio)})

@@ -1,9 +1,9 @@
 """Table-interpolating creep-force law built from Kalker's exact theory ("book of tables").
 
 Vehicle-dynamics codes do not call an exact contact solver at every time step:
-they interpolate a table of exact results computed once. This module builds
-such a table with the package's own exact solver
-(:mod:`wheelrail.tangential.exact`) and interpolates it, vectorised.
+they interpolate a table of exact results computed once (with the package's
+own exact solver, :mod:`wheelrail.tangential.exact`, by
+:mod:`wheelrail.sweeps.tables`). This law interpolates it, vectorised.
 
 Similarity (what the table is a function of)
 --------------------------------------------
@@ -62,9 +62,10 @@ those points are computed by that method (documented fallback).
 
 Building the table
 ------------------
-``python -m wheelrail.tangential.table --build --workers 2`` recomputes the
-shipped file ``_data/creep_table_v1.npz`` with :func:`wheelrail.sweep`
-(resumable: the Zarr work store is kept until the file is written).
+``wheelrail build-table --workers 2`` (:func:`wheelrail.sweeps.tables.build_table`)
+recomputes the shipped file ``_data/creep_table_v1.npz`` with
+:func:`wheelrail.sweep` (resumable: the Zarr work store is kept until the file
+is written). This module only reads and interpolates tables.
 
 References
 ----------
@@ -84,36 +85,23 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import InputError
-from ..results import CreepForces, Status
-from ._base import TangentialMethod
+from ..options import configured, option
+from ..results import CreepForcesResult, Status
+from ._base import TangentialMethod, get
+from .linear import kalker_coefficients
 
-__all__ = ["Table", "TableData", "load_table", "table_nodes", "build_table", "DEFAULT_TABLE",
-           "GRID"]
+__all__ = ["Table", "TableData", "load_table", "table_coordinates", "DEFAULT_TABLE",
+           "TABLE_VERSION", "AXES"]
 
 #: The shipped table.
 DEFAULT_TABLE = Path(__file__).with_name("_data") / "creep_table_v1.npz"
 TABLE_VERSION = 1
 
-#: Node grid of the table (version 1). r = ρ̂/(1+ρ̂) (r = 1 analytic), θ, s = φ̂/(1+|φ̂|),
-#: ln(a/b), ν.
-GRID = {
-    "r": np.concatenate([np.linspace(0.0, 0.6, 16), np.linspace(0.64, 0.96, 9), [1.0]]),
-    "theta": np.linspace(0.0, 0.5 * np.pi, 11),
-    "s": np.linspace(-0.8, 0.8, 21),
-    "log_ab": np.log(np.geomspace(0.2, 5.0, 7)),
-    "nu": np.array([0.25, 0.30]),
-}
-_AXES = ("r", "theta", "s", "log_ab", "nu")
+#: The table's axes: r = ρ̂/(1 + |φ̂| + ρ̂) (r = 1 analytic), θ, s = φ̂/(1 + |φ̂|), ln(a/b), ν.
+AXES = ("r", "theta", "s", "log_ab", "nu")
 _K_TOL = 1e-3  # |K| below which the bodies count as quasi-identical
 
-#: Parameters of the physical contacts on which the nodes are computed (any
-#: values give the same dimensionless result, by similarity).
-BUILD_CONTACT = {"E": 2.1e11, "load": 1.0e4, "mu": 0.3, "c": 5.0e-3}
-
-
 def _coefficients(ab, nu):
-    from .linear import kalker_coefficients
-
     C11, C22, C23, _ = kalker_coefficients(ab, nu)
     return C11, C22, C23
 
@@ -128,115 +116,22 @@ def _spin_length(c, b, C11, C23):
     return np.hypot(c * C23, b * C11)
 
 
-def table_nodes(grid=None) -> dict:
-    """Physical inputs of the table's computed nodes (all but the analytic r = 1 plane).
-
-    Returns
-    -------
-    dict
-        ``shape`` (the node grid without r = 1) and columns ``xi, eta`` [-],
-        ``phi`` [1/m], ``a, b`` [m], ``nu`` [-] in C order of
-        (r, θ, s, a/b, ν); the contact has ``E``, ``load``, ``mu`` of
-        :data:`BUILD_CONTACT`.
-    """
-    g = dict(GRID if grid is None else grid)
-    r = g["r"][g["r"] < 1.0]
-    R, T, S, L, N = np.meshgrid(r, g["theta"], g["s"], g["log_ab"], g["nu"], indexing="ij")
-    shape = R.shape
-    R, T, S, L, N = (v.reshape(-1) for v in (R, T, S, L, N))
-    ab = np.exp(L)
-    C11, C22, C23 = _coefficients(ab, N)
-    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "load", "mu"))
-    G = E / (2.0 * (1.0 + N))
-    b = c / np.sqrt(ab)
-    spin_len = _spin_length(c, b, C11, C23)
-    phi_hat = S / (1.0 - np.abs(S))
-    rho = (1.0 + np.abs(phi_hat)) * R / (1.0 - R)
-    unit = 3.0 * mu * load / G
-    eta_hat = rho * np.sin(T) - phi_hat * c * C23 / spin_len  # θ: direction of (ξ̂, η̂ + φ̂_y)
-    return {"shape": shape, "xi": rho * np.cos(T) * unit / (c**2 * C11),
-            "eta": eta_hat * unit / (c**2 * C22),
-            "phi": phi_hat * unit / (c**2 * spin_len),
-            "a": c * np.sqrt(ab), "b": c / np.sqrt(ab), "nu": N}
-
-
-def _full_slip_plane(grid):
-    """fx, fy, mz at r = 1: F = −μFn along the physical creepage direction, Mz = 0."""
-    T, S, L, N = np.meshgrid(grid["theta"], grid["s"], grid["log_ab"], grid["nu"], indexing="ij")
-    C11, C22, _ = _coefficients(np.exp(L), N)
-    alpha = np.arctan2(np.sin(T) / C22, np.cos(T) / C11)
-    return np.stack([-np.cos(alpha), -np.sin(alpha), np.zeros_like(alpha)], axis=-1)
-
-
-def build_table(out=DEFAULT_TABLE, *, elements=40, workers=2, work=None, executor=None,
-                progress=True, grid=None) -> Path:
-    """Compute the table with the exact solver (a resumable :func:`wheelrail.sweep`) and save it.
-
-    Parameters
-    ----------
-    out : path
-        The ``.npz`` file to write.
-    elements : int
-        Elements across the contact of the exact solver.
-    workers : int
-        Local workers of the sweep.
-    work : path, optional
-        Zarr work store (default ``<out>.zarr``); an interrupted build resumes
-        from it; it is deleted when ``out`` is written.
-    executor : str, optional
-        Executor of the sweep (default: serial for 1 worker, Dask otherwise).
-    grid : dict, optional
-        Another node grid (tests use small ones); default :data:`GRID`.
-
-    Returns
-    -------
-    Path
-        ``out``.
-    """
-    import shutil
-
-    from .. import __version__
-    from ..sweeps import STATUS_CODES, SweepSpec, sweep
-
-    grid = {k: np.asarray(v, float) for k, v in (GRID if grid is None else grid).items()}
-    out = Path(out)
-    work = Path(work) if work is not None else out.with_name(out.name + ".zarr")
-    nodes = table_nodes(grid)
-    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "load", "mu"))
-    spec = SweepSpec.from_points({k: nodes[k] for k in ("xi", "eta", "phi", "a", "b", "nu")},
-                                 method="exact", options={"elements": int(elements)}, load=load,
-                                 mu=mu, E=E, chunk=200)
-    ds = sweep(spec, work, workers=workers, executor=executor, resume=work.exists(),
-               progress=progress)
-    status = ds["status"].values
-    failed = (status == STATUS_CODES["pending"]) | (status == STATUS_CODES["failed"])
-    if np.any(failed):
-        bad = int(np.argmax(failed))
-        raise RuntimeError(f"exact solver failed at table node {bad}: {ds['message'].values[bad]}")
-    cn = np.sqrt(nodes["a"] * nodes["b"])
-    vals = np.stack([ds["Fx"].values / (mu * load), ds["Fy"].values / (mu * load),
-                     ds["Mz"].values / (mu * load * cn)], axis=-1).reshape(*nodes["shape"], 3)
-    vals = np.concatenate([vals, _full_slip_plane(grid)[None]], axis=0)
-    meta = {"version": TABLE_VERSION, "wheelrail_version": __version__,
-            "method": "exact", "elements": int(elements), "build_contact": BUILD_CONTACT,
-            "not_converged_nodes": int((status == STATUS_CODES["not_converged"]).sum()),
-            "created": ds.attrs.get("created", ""), "axes": list(_AXES),
-            "quantities": ["Fx/(mu Fn)", "Fy/(mu Fn)", "Mz/(mu Fn c)"]}
-    tmp = out.with_name(out.name + ".tmp.npz")
-    np.savez_compressed(tmp, values=vals.astype(np.float32), meta=json.dumps(meta),
-                        **{k: grid[k] for k in _AXES})
-    tmp.replace(out)
-    ds.close()
-    shutil.rmtree(work, ignore_errors=True)
-    return out
-
-
 class TableData:
     """A loaded table: node axes, values and metadata (see :func:`load_table`)."""
 
     def __init__(self, axes: dict, values: np.ndarray, meta: dict):
         from scipy.interpolate import RegularGridInterpolator
 
+        # Symmetry planes hold the exact solver's round-off (up to ~1e-7 mu Fn), not zero: Fx
+        # is odd in xi (zero where xi_hat = 0: theta = pi/2 or r = 0), (Fy, Mz) odd in
+        # (eta, phi) (zero where theta = 0 and s = 0). Left in, the interpolant is not odd and
+        # jumps at xi = 0 (the reflection sx flips the round-off); set to the exact zero.
+        values = np.array(values, copy=True)
+        fx, fyz = values[..., 0], values[..., 1:]
+        fx[:, np.isclose(axes["theta"], 0.5 * np.pi, rtol=0.0, atol=1e-12)] = 0.0
+        fx[axes["r"] == 0.0] = 0.0
+        t0, s0 = np.flatnonzero(axes["theta"] == 0.0), np.flatnonzero(axes["s"] == 0.0)
+        fyz[:, t0[:, None], s0[None, :]] = 0.0
         self.axes = axes
         self.values = values
         self.meta = meta
@@ -250,7 +145,7 @@ class TableData:
         v = values.astype(float)
         local = np.stack([v[..., 0] * ca + v[..., 1] * sa, -v[..., 0] * sa + v[..., 1] * ca,
                           v[..., 2]], axis=-1)
-        self._interp = RegularGridInterpolator(tuple(axes[k] for k in _AXES), local,
+        self._interp = RegularGridInterpolator(tuple(axes[k] for k in AXES), local,
                                                method="linear", bounds_error=False,
                                                fill_value=None)
 
@@ -281,9 +176,9 @@ def load_table(path=None) -> TableData:
     path = DEFAULT_TABLE if path is None else Path(path)
     if not path.exists():
         raise InputError(f"creep table {str(path)!r} not found; build it with "
-                         "'python -m wheelrail.tangential.table --build'")
+                         "'wheelrail build-table'")
     with np.load(path, allow_pickle=False) as f:
-        axes = {k: np.asarray(f[k], float) for k in _AXES}
+        axes = {k: np.asarray(f[k], float) for k in AXES}
         values = np.asarray(f["values"])
         meta = json.loads(str(f["meta"]))
     if meta.get("version") != TABLE_VERSION:
@@ -336,10 +231,22 @@ def table_coordinates(a, b, G, nu, xi, eta, phi, mu, Fn):
     return coords, sx, sy, ph, alpha
 
 
+def _table_path(name, v):
+    """A table file path (str or path-like) as ``str``; refused if it is not a file."""
+    if v is None:
+        return None
+    if not isinstance(v, (str, Path)):
+        raise InputError(f"{name} must be the path of a table file, got {v!r}")
+    if not Path(v).is_file():
+        raise InputError(f"{name}: creep table {str(v)!r} not found")
+    return str(v)
+
+
+@configured
 class Table(TangentialMethod):
     """Creep forces interpolated in a table of exact-theory results (see the module docstring).
 
-    On a :class:`~wheelrail.contact.patch.ContactPatch` (``wr.solve``) this law
+    On a :class:`~wheelrail.patch.ContactPatch` (``wr.solve``) this law
     uses the patch's equivalent ellipse (:meth:`ContactPatch.ellipse`: the Hertz
     ellipse of a Hertzian patch, otherwise the ellipse of equal area and
     length/width ratio).
@@ -365,16 +272,18 @@ class Table(TangentialMethod):
         "on Contact Mechanics and Wear of Wheel/Rail Systems, Budapest, 1996, 11-20 "
         "(tabulated exact theory; table here built with wheelrail's exact solver).",
     )
-    options = {"outside": "raise", "table": None}
+    outside: str = option("raise", choices=("raise", "exact", "fastsim"),
+                          doc="points outside the table: refuse, or compute with that method")
+    table: str | None = option(None, kind="any", allow_none=True, check=_table_path,
+                               doc="path of another table file (.npz)")
 
-    def solve(self, contact, xi, eta, phi, mu, *, outside="raise", table=None):
+    def solve(self, contact, xi, eta, phi, mu):
         """Creep forces by interpolation; see the class docstring."""
-        if outside not in ("raise", "exact", "fastsim"):
-            raise InputError(f"outside must be 'raise', 'exact' or 'fastsim', got {outside!r}")
-        data = load_table(table)
+        outside = self.outside
+        data = load_table(self.table)
         shape = np.shape(contact.a)
         a, b, Fn = (np.asarray(getattr(contact, k), float).reshape(-1)
-                    for k in ("a", "b", "load"))
+                    for k in ("a", "b", "Fn"))
         xs, es, ps, ms = (np.asarray(v, float).reshape(-1) for v in (xi, eta, phi, mu))
         pair = contact.materials
         nu = float(pair.nu)
@@ -415,18 +324,16 @@ class Table(TangentialMethod):
         Fx = sx * f[:, 0] * ms * Fn
         Fy = sy * f[:, 1] * ms * Fn
         Mz = sy * f[:, 2] * ms * Fn * c
-        # symmetry: Fx is odd in xi, (Fy, Mz) odd in (eta, phi); the table's nodes on those
-        # axes hold the exact solver's round-off (~1e-9 mu Fn), set to the exact zero here
+        # symmetry: Fx is odd in xi, (Fy, Mz) odd in (eta, phi); the nodes on those planes are
+        # zero (TableData), so this only removes the rotation's last-bit residue (~1e-33)
         Fx = np.where(xs == 0.0, 0.0, Fx)
         lateral0 = (es == 0.0) & (ps == 0.0)
         Fy = np.where(lateral0, 0.0, Fy)
         Mz = np.where(lateral0, 0.0, Mz)
         if np.any(out_mask):
-            from ..api import get_method
-
             idx = np.flatnonzero(out_mask)
             sub = contact if not shape else contact[idx]
-            r = get_method(outside).solve(sub, *(v[idx] if shape else v[0]
+            r = get(outside).solve(sub, *(v[idx] if shape else v[0]
                                                  for v in (xs, es, ps, ms)))
             for arr, v in ((Fx, r.Fx), (Fy, r.Fy), (Mz, r.Mz)):
                 arr[idx] = np.asarray(v, float).reshape(-1)
@@ -434,33 +341,7 @@ class Table(TangentialMethod):
         def shaped(v):
             return v.reshape(shape) if shape else float(v[0])
 
-        return CreepForces(Fx=shaped(Fx), Fy=shaped(Fy), Mz=shaped(Mz),
+        return CreepForcesResult(Fx=shaped(Fx), Fy=shaped(Fy), Mz=shaped(Mz),
                            Fn=shaped(Fn), mu=shaped(ms), method=self.name, status=Status.CONVERGED,
                            info={"outside": out_mask.reshape(shape) if shape else bool(out_mask[0]),
                                  "table_version": data.meta.get("version")})
-
-
-def _main(argv=None) -> int:
-    import argparse
-
-    p = argparse.ArgumentParser(prog="python -m wheelrail.tangential.table",
-                                description="Build the creep-force table with the exact solver.")
-    p.add_argument("--build", action="store_true", help="compute and write the table")
-    p.add_argument("--out", default=str(DEFAULT_TABLE), help="output .npz (default: shipped file)")
-    p.add_argument("--elements", type=int, default=40, help="exact-solver elements (default 40)")
-    p.add_argument("--workers", type=int, default=2, help="local workers (default 2)")
-    p.add_argument("--executor", default=None, help="serial, processes or dask")
-    p.add_argument("--work", default=None, help="Zarr work store (default: <out>.zarr); an "
-                   "interrupted build resumes from it")
-    args = p.parse_args(argv)
-    if not args.build:
-        p.print_help()
-        return 2
-    path = build_table(args.out, elements=args.elements, workers=args.workers,
-                       executor=args.executor, work=args.work)
-    print(f"wrote {path}")
-    return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    raise SystemExit(_main())

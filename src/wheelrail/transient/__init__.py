@@ -2,13 +2,13 @@
 
 Public: :func:`transient_rolling` and its frozen result :class:`TransientResult`;
 :class:`TravelFunction` (constant, step, sine or tabulated loads along the
-travel); the kernels of one step :func:`step_kernels`; measures of the seed's
+travel); the kernels of one step :func:`step_kernels`; measures of Baeza et al.'s
 findings in :mod:`wheelrail.transient.measures`.
 
 References
 ----------
 L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail
-contact instationary process on contact parameters (seed paper 001), §2.
+contact instationary process on contact parameters (Baeza et al.), §2.
 """
 
 from .loads import TravelFunction

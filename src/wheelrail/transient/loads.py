@@ -1,21 +1,21 @@
 """Load and creepage histories over the travel: constant, step, sine, or a table of points.
 
 A :class:`TravelFunction` is a frozen, callable description ``f(x)`` of a
-quantity along the travel ``x`` [m] of the contact (a force [N], an approach
+quantity along the travel ``x`` [m] of the contact (a force [N], a penetration
 [m] or a creepage [-] / [1/m]); :func:`transient_rolling` accepts it wherever
 it accepts a function. It is what the ``[transient]`` table of a case file
 describes (:func:`wheelrail.casefile.load_transient_case`).
 
 * ``constant``: ``value``;
 * ``step``: ``before`` for ``x < at``, ``after`` from ``at`` on;
-* ``sine``: ``mean + amplitude·sin(2π x / wavelength + phase)`` (seed 001
+* ``sine``: ``mean + amplitude·sin(2π x / wavelength + phase)`` (Baeza et al.
   eqs. 3.2, 3.3);
 * ``table``: piecewise linear through the points ``(x, value)``, constant
   beyond the first and last point.
 
 References
 ----------
-L. Baeza et al., seed paper 001, §3 (eqs. 3.2–3.3: sinusoidal forces).
+L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail contact instationary process on contact parameters, §3 (eqs. 3.2–3.3: sinusoidal forces).
 """
 
 from __future__ import annotations

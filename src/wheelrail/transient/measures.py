@@ -1,16 +1,16 @@
-"""Measures of a transient run used to state the seed's findings (pure functions).
+"""Measures of a transient run used to state Baeza et al.'s findings (pure functions).
 
 * :func:`leading_edge_slip` — slip at the leading edge of the contact with
-  adhesion behind it (seed 001 §3.2, Fig. 10: impossible in steady rolling
+  adhesion behind it (Baeza et al. §3.2, Fig. 10: impossible in steady rolling
   with pure longitudinal creepage);
 * :func:`same_sign_fraction` — fraction of the travel where ξ and F1 have the
-  same sign (seed §3.3, Fig. 11: impossible in steady rolling);
+  same sign (Baeza et al. §3.3, Fig. 11: impossible in steady rolling);
 * :func:`reverse_traction` — elements whose longitudinal traction opposes the
-  total force (seed §3.3, Fig. 12, "reverse slip").
+  total force (Baeza et al. §3.3, Fig. 12, "reverse slip").
 
 References
 ----------
-L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, seed paper 001, §3.2–3.3.
+L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail contact instationary process on contact parameters, §3.2–3.3.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Figures of a transient rolling run, after seed 001 Figs. 7–12 (matplotlib, Agg; a leaf).
+"""Figures of a transient rolling run, after Baeza et al. Figs. 7–12 (matplotlib, Agg; a leaf).
 
 * :func:`plot_creepage` — longitudinal creepage (and optionally Fx) over the
   travel (Figs. 8, 9, 11);
@@ -53,7 +53,7 @@ def plot_centreline(result, *, xs=None, path=None, title=None):
 
     ``xs`` : travels [m] to draw (nearest stored steps); default about six
     evenly spread frames. Curves are drawn at their position along the rail
-    (grid x plus travel), as in the seed's Fig. 7.
+    (grid x plus travel), as in Baeza et al.'s Fig. 7.
     """
     fig, ax = new_figure()
     g = result.grid

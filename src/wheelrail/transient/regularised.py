@@ -1,4 +1,4 @@
-"""Regularised Coulomb law for one transient step (seed 001 eqs. 2.21–2.22), dense Newton.
+"""Regularised Coulomb law for one transient step (Baeza et al. eqs. 2.21–2.22), dense Newton.
 
 The traction is a smooth function of the slip (dimensionless, slip velocity / V)::
 
@@ -20,7 +20,7 @@ the transient runs (≲ 1000 contact elements).
 
 References
 ----------
-Seed 001 eqs. (2.19), (2.21), (2.22) and Fig. 6.
+Baeza et al. eqs. (2.19), (2.21), (2.22) and Fig. 6.
 """
 
 from __future__ import annotations

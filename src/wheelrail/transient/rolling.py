@@ -6,28 +6,31 @@ particles cross the grid from the leading edge (largest x) backwards, so the
 particle at ``x`` at time t was at ``x + h`` one step earlier. With the
 displacement difference ``u = u(wheel) − u(rail)`` of
 :mod:`wheelrail.halfspace.influence` the slip of the wheel relative to the
-rail, divided by V, is (seed 001 eqs. 2.8–2.10)::
+rail, divided by V, is (Baeza et al. eqs. 2.8–2.10)::
 
     s(x) = w(x) + (u(x, t) − u(x + h, t − Δt)) / h,   w = (ξ − φ y, η + φ x),
 
 and with the influence kernel ``C`` (eq. 2.13)::
 
-    s = w + (C p + C_tn pn − C_h p_o) / h,          (seed eq. 2.19)
+    s = w + (C p + C_tn pn − C_h p_o) / h,          (Baeza et al., eq. 2.19)
 
 where ``C_h`` is the influence kernel evaluated at the offsets shifted by
 ``h`` (exactly, from Love's rectangle formulae: no interpolation of the old
 displacement) and ``p_o`` the tractions (tangential and normal) of the
 previous step. Each step is one frictional problem ``s = b + (C/h) p`` with
 the Coulomb bound ``μ pn``, solved by the stepping core shared with steady
-rolling (:func:`wheelrail.halfspace.tangential.newton_step`). With ``h = dx``
+rolling (:func:`wheelrail.tangential.exact.newton_step`). With ``h = dx``
 and ``p_o = p`` this is exactly Kalker's discretised steady rolling, so a run
-held at constant loads ends on :func:`~wheelrail.halfspace.solve_rolling`.
+held at constant loads ends on :func:`~wheelrail.tangential.exact.solve_rolling`. The spin's
+rigid slip φx is evaluated dx/6 upstream of each element centre, as in that solver
+(Vollebregt's CONTACT, FACPHI = 1/6); at the centre a run held at constant spin ended
+O(dx) off the steady solution (Fy 5 % at 12 elements).
 
 For ``h < dx`` the slip at the element centres alone (``scheme="centre"``,
-the seed's eq. 2.10 as written) ends on a different steady problem, kernel
+Baeza et al.'s eq. 2.10 as written) ends on a different steady problem, kernel
 ``(C − C_h)/h``, which tends to the centred derivative ``−∂C/∂x`` whose
 self-coefficient vanishes: ill-conditioned and off Kalker's solution (−1.9 %
-in ξ for seed §3.1 at 30 elements). The default ``scheme="averaged"``
+in ξ for Baeza et al. §3.1 at 30 elements). The default ``scheme="averaged"``
 averages the slip relation over the points ``x_I + k h`` inside the element
 length upstream of the centre (:func:`step_weights`); the carried
 displacements then telescope, and held steady the run ends on Kalker's
@@ -37,7 +40,7 @@ Normal force varying along the travel: the normal problem is solved at every
 step on the same grid (Polonsky–Keer, warm started); elements leaving the
 contact get zero traction (bound ``μ pn = 0``), elements entering start
 without traction but with the displacement carried from the previous step,
-which keeps the tractions physical (seed Fig. 1).
+which keeps the tractions physical (Baeza et al., Fig. 1).
 
 Prescribed tangential force F1(x): the longitudinal creepage ξ is the unknown
 of each step, found by a safeguarded secant iteration on ``Fx(ξ) = F1`` (Fx
@@ -46,7 +49,7 @@ decreases monotonically with ξ).
 References
 ----------
 .. [1] L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the
-   wheel–rail contact instationary process on contact parameters (seed 001),
+   wheel–rail contact instationary process on contact parameters (Baeza et al.),
    eqs. (2.5)–(2.13), (2.19)–(2.20), §3.1.
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, §5.2 (transient discretisation, steady state as its limit).
@@ -62,17 +65,26 @@ import numpy as np
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError
 from ..halfspace.influence import influence_kernel, kernel_offsets, rectangle_influence
-from ..halfspace.tangential import _BlockConvolution, newton_step
+from ..halfspace.rolling import _BlockConvolution
 from ..materials import as_material_pair
 from ..normal.bem import hertz_grid, solve_normal
+from ..tangential.exact import newton_step
+from ..tangential.exact._kernels import _SPIN_SHIFT
 from .regularised import dense_block, regularised_step
+from .strips import (
+    DenseOperator,
+    hertz_pressure,
+    preconditioner_kernel,
+    strip_grid,
+    strip_step_operators,
+)
 
 __all__ = ["TransientResult", "transient_rolling"]
 
-_SCALARS = ("xi", "eta", "phi", "Fn", "Fx", "Fy", "p_max", "approach",
+_SCALARS = ("xi", "eta", "phi", "Fn", "Fx", "Fy", "p_max", "penetration",
             "n_contact", "n_adhesion", "n_slip")
 _UNITS = {"x": "m", "xi": "1", "eta": "1", "phi": "1/m", "Fn": "N", "Fx": "N", "Fy": "N",
-          "p_max": "Pa", "approach": "m", "n_contact": "1", "n_adhesion": "1", "n_slip": "1"}
+          "p_max": "Pa", "penetration": "m", "n_contact": "1", "n_adhesion": "1", "n_slip": "1"}
 
 
 @dataclass(frozen=True)
@@ -86,7 +98,7 @@ class TransientResult:
         unloaded start, tangential tractions zero).
     history : dict of ndarray, shape (n,)
         ``xi, eta [-], phi [1/m]`` creepages, ``Fn, Fx, Fy`` [N] forces on the
-        wheel, ``p_max`` [Pa], ``approach`` [m], ``n_contact, n_adhesion,
+        wheel, ``p_max`` [Pa], ``penetration`` [m], ``n_contact, n_adhesion,
         n_slip`` element counts.
     grid : Grid
         The grid fixed to the contact.
@@ -181,7 +193,7 @@ def shifted_influence_kernel(grid, materials, shift) -> np.ndarray:
     ``K[:, :, kx, ky]`` is the displacement difference [m/Pa] at
     ``((kx − nx + 1) dx + shift, (ky − ny + 1) dy)`` from an element carrying a
     unit traction: the displacement of the previous step seen by the particle
-    now at element I (seed 001 eq. 2.10, ``u_o``).
+    now at element I (Baeza et al. eq. 2.10, ``u_o``).
     """
     pair = as_material_pair(materials)
     ox, oy = kernel_offsets(grid)
@@ -222,7 +234,7 @@ def step_kernels(grid, materials, step, scheme="averaged"):
 
         s_I = w_I + Σ_J (now(I − J) p_J − old(I − J) p_old,J) / h
 
-    ``scheme="centre"``: the seed's eq. (2.10) at the element centres,
+    ``scheme="centre"``: Baeza et al.'s eq. (2.10) at the element centres,
     ``now = C`` and ``old = C`` at offsets shifted by ``h``
     (:func:`shifted_influence_kernel`). ``scheme="averaged"``: the slip
     averaged over the points of :func:`step_weights`; every kernel is
@@ -252,10 +264,10 @@ def step_kernels(grid, materials, step, scheme="averaged"):
     return now, old
 
 
-def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=None,
-                      tangential_force=None, friction="exact", epsilon=None, elements=30,
+def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
+                      Fx=None, friction="exact", epsilon=None, elements=30,
                       margin=1.25, tol=1e-8, maxiter=100, force_tol=1e-7, frames=100,
-                      progress=False, scheme="averaged", approach=None,
+                      progress=False, scheme="averaged", penetration=None,
                       discretisation="uniform", strips=None) -> TransientResult:
     """Transient (instationary) rolling of a Hertzian contact by time stepping.
 
@@ -263,7 +275,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     ----------
     contact : HertzContact
         Defines the surfaces (curvatures A, B), the materials and, unless
-        ``normal_force`` is given, the normal load.
+        ``Fn`` is given, the normal load.
     travel : float
         Rolling distance [m], > 0.
     step : float
@@ -271,18 +283,18 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         contact length 2a.
     mu : float
         Friction coefficient [-], > 0.
-    normal_force : float or callable, optional
+    Fn : float or callable, optional
         F3(x) [N] (> 0), a constant or a function of travel x [m]; default the
         contact's load. A non-constant function solves the normal problem at
         every step.
     creepage : sequence of 3 (float or callable), optional
         (ξ [-], η [-], φ [1/m]) as constants or functions of travel [m].
-        With ``tangential_force`` the first entry must be None (ξ is unknown).
-    tangential_force : float or callable, optional
+        With ``Fx`` the first entry must be None (ξ is unknown).
+    Fx : float or callable, optional
         F1(x) [N] on the wheel (Kalker's convention: positive creepage gives a
         negative force); ξ becomes the unknown of each step.
     friction : {"exact", "regularised"}
-        ``"exact"``: Coulomb's law with the adhesion/slip split (seed eq. 2.20),
+        ``"exact"``: Coulomb's law with the adhesion/slip split (Baeza et al., eq. 2.20),
         active-set Newton; ``"regularised"``: the smooth law of eq. (2.21)
         solved by Newton–Raphson (eq. 2.22), dense over the contact elements
         (:mod:`wheelrail.transient.regularised`); its ``n_slip`` counts
@@ -308,11 +320,11 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         Collocation of the slip (:func:`step_kernels`): ``"averaged"``
         (default) averages the slip over the element's upstream points so that
         a run held at constant loads ends on Kalker's steady discretisation
-        for any step; ``"centre"`` is the seed's eq. (2.10) at the element
+        for any step; ``"centre"`` is Baeza et al.'s eq. (2.10) at the element
         centres (accurate only for ``step = dx``).
-    approach : float or callable, optional
-        Prescribed approach δ(x) [m] (> 0) instead of ``normal_force``
-        (normal control by approach): the normal problem is solved for the
+    penetration : float or callable, optional
+        Prescribed penetration δ(x) [m] (> 0) instead of ``Fn``
+        (normal control by penetration): the normal problem is solved for the
         penetration at every step.
     discretisation : {"uniform", "strips", "material"}
         ``"uniform"``: the grid of :func:`~wheelrail.normal.bem.hertz_grid`
@@ -321,7 +333,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         elements): each particle keeps its element, the carried displacement
         is ``C p_old`` without shift, the rigid slip is taken about the moving
         contact centre, and the normal problem is solved every step for the
-        moved gap; held steady it oscillates with period ``dx/h`` steps. ``"strips"``: Paul–Hashemi (seed Fig. 2,
+        moved gap; held steady it oscillates with period ``dx/h`` steps. ``"strips"``: Paul–Hashemi (Baeza et al., Fig. 2,
         :mod:`wheelrail.transient.strips`): ``strips`` strips along x over the
         Hertz ellipse with ``elements`` elements each, Hertz pressure, dense
         operators; constant normal force and exact friction only.
@@ -335,16 +347,16 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     Raises
     ------
     InputError
-        A step not in (0, 2a), a load or approach function that is not
+        A step not in (0, 2a), a load or penetration function that is not
         positive at some step (checked before the run, naming the travel and
         value), ``|F1| ≥ μ F3`` (the wheel would slide), an unknown friction
-        law or scheme, both ``normal_force`` and ``approach``.
+        law or scheme, both ``Fn`` and ``penetration``.
     ConvergenceError
         A step whose frictional problem or force iteration fails.
 
     References
     ----------
-    Seed 001 eqs. (2.8)–(2.13), (2.19)–(2.20); Kalker (1990) §5.2.
+    Baeza et al. eqs. (2.8)–(2.13), (2.19)–(2.20); Kalker (1990) §5.2.
     """
     if friction == "regularized":
         friction = "regularised"
@@ -370,29 +382,29 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                          f"2a = {2 * a!r} m")
     if h > travel:
         raise InputError(f"step = {h!r} m is longer than travel = {travel!r} m")
-    if normal_force is not None and approach is not None:
-        raise InputError("give normal_force= or approach= (normal control), not both")
-    if approach is not None:
-        F3 = _as_function("approach", approach)
-        normal_name, normal_unit = "approach", "m"
-        F3_const = not callable(approach)
+    if Fn is not None and penetration is not None:
+        raise InputError("give Fn= or penetration= (normal control), not both")
+    if penetration is not None:
+        F3 = _as_function("penetration", penetration)
+        normal_name, normal_unit = "penetration", "m"
+        F3_const = not callable(penetration)
     else:
-        F3 = _as_function("normal_force", float(contact.load) if normal_force is None
-                          else normal_force)
-        normal_name, normal_unit = "normal_force", "N"
-        F3_const = not callable(normal_force)
-    if tangential_force is not None:
-        F1 = _as_function("tangential_force", tangential_force)
+        F3 = _as_function("Fn", float(contact.Fn) if Fn is None
+                          else Fn)
+        normal_name, normal_unit = "Fn", "N"
+        F3_const = not callable(Fn)
+    if Fx is not None:
+        F1 = _as_function("Fx", Fx)
         if creepage is None:
             creepage = (None, 0.0, 0.0)
         if len(creepage) != 3 or creepage[0] is not None:
-            raise InputError("with tangential_force, creepage must be (None, eta, phi): "
+            raise InputError("with Fx, creepage must be (None, eta, phi): "
                              f"xi is the unknown; got {creepage!r}")
         cr = (None,) + tuple(_as_function(n, c) for n, c in zip(("eta", "phi"), creepage[1:]))
     else:
         F1 = None
         if creepage is None or len(creepage) != 3 or any(c is None for c in creepage):
-            raise InputError(f"give creepage=(xi, eta, phi) or tangential_force=, got "
+            raise InputError(f"give creepage=(xi, eta, phi) or Fx=, got "
                              f"creepage={creepage!r}")
         cr = tuple(_as_function(n, c) for n, c in zip(("xi", "eta", "phi"), creepage))
 
@@ -400,7 +412,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
     xs = np.arange(n) * h
     # every load function is checked at every step before the run: a load that turns
     # negative (or not finite) is named with its travel instead of failing mid-run
-    for name, fun in ((normal_name, F3), ("tangential_force", F1)) + tuple(
+    for name, fun in ((normal_name, F3), ("Fx", F1)) + tuple(
             zip(("xi", "eta", "phi"), cr)):
         if fun is None:
             continue
@@ -411,26 +423,24 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                              f"(the load function goes non-positive along the travel)")
         if name == normal_name:
             normal_vals = vals
-        if name == "tangential_force" and approach is None:
+        if name == "Fx" and penetration is None:
             bad = np.nonzero(~(np.abs(vals) < mu * normal_vals))[0]
             if bad.size:
                 k = int(bad[0])
-                raise InputError(f"tangential_force(x = {xs[k]!r} m) = {vals[k]!r} N must be "
-                                 f"smaller in magnitude than mu*normal_force = "
+                raise InputError(f"Fx(x = {xs[k]!r} m) = {vals[k]!r} N must be "
+                                 f"smaller in magnitude than mu*Fn = "
                                  f"{mu * normal_vals[k]!r} N (full sliding)")
 
     if scheme not in ("averaged", "centre"):
         raise InputError(f"scheme must be 'averaged' or 'centre', got {scheme!r}")
     if discretisation == "strips":
-        if not F3_const or approach is not None:
+        if not F3_const or penetration is not None:
             raise InputError("discretisation='strips' (Paul–Hashemi) needs a constant "
-                             "normal_force (the strips follow the Hertz ellipse)")
+                             "Fn (the strips follow the Hertz ellipse)")
         if friction != "exact":
             raise InputError("discretisation='strips' supports friction='exact' only")
         if scheme != "averaged":
             raise InputError("discretisation='strips' uses scheme='averaged'")
-        from .strips import (DenseOperator, hertz_pressure, preconditioner_kernel,
-                             strip_grid, strip_step_operators)
 
         strips = integer("strips", elements if strips is None else strips, 2)
         grid = strip_grid(contact, elements, strips)
@@ -483,12 +493,12 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             return _HertzNormal
         if material:
             gap_c = A_ * (X - centre) ** 2 + B_ * Y ** 2
-            if approach is not None:
+            if penetration is not None:
                 return solve_normal(grid, gap_c, pair, penetration=F, initial=initial)
-            return solve_normal(grid, gap_c, pair, load=F, initial=initial)
-        if approach is not None:
+            return solve_normal(grid, gap_c, pair, Fn=F, initial=initial)
+        if penetration is not None:
             return solve_normal(grid, gap, pair, penetration=F, initial=initial)
-        return solve_normal(grid, gap, pair, load=F, initial=initial)
+        return solve_normal(grid, gap, pair, Fn=F, initial=initial)
 
     nsol = normal(0.0, None)
     pn = np.array(nsol.pressure)
@@ -518,7 +528,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
         hist["Fx"][k] = float((p[0] * dA).sum())
         hist["Fy"][k] = float((p[1] * dA).sum())
         hist["p_max"][k] = float(pn.max())
-        hist["approach"][k] = float(nsol.penetration)
+        hist["penetration"][k] = float(nsol.penetration)
         hist["n_contact"][k] = int(contact_.sum())
         hist["n_slip"][k] = int(slip.sum())
         hist["n_adhesion"][k] = int(contact_.sum() - slip.sum())
@@ -559,7 +569,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             g = mu * pn_new
             eta, phi = _evaluate("eta", cr[1], x), _evaluate("phi", cr[2], x)
             control = (_evaluate("xi", cr[0], x) if F1 is None
-                       else _evaluate("tangential_force", F1, x))
+                       else _evaluate("Fx", F1, x))
             key = (eta, phi, control)
             if (fixed is not None and not material and fixed[0] == key and np.array_equal(fixed[1], p)
                     and np.array_equal(pn, pn_new)):
@@ -577,7 +587,9 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
             if conv_n is not None:
                 base = base + conv_n(pn_new[None]) / h
             base[0] -= phi * Y
-            base[1] += eta + phi * (X - centre)
+            # the spin's rigid slip phi x is collocated _SPIN_SHIFT dx upstream of the element
+            # centre, as in the steady solver: held steady the run ends on its solution
+            base[1] += eta + phi * (X - centre + _SPIN_SHIFT * grid.dx)
 
             def solve(xi, p0):
                 nonlocal total_newton, total_krylov, total_solves
@@ -612,7 +624,7 @@ def transient_rolling(contact, *, travel, step, mu, normal_force=None, creepage=
                 target = control
                 Fn_k = float((pn_new * dA).sum())
                 if not abs(target) < mu * Fn_k:
-                    raise InputError(f"tangential_force({x!r} m) = {target!r} N must be smaller "
+                    raise InputError(f"Fx({x!r} m) = {target!r} N must be smaller "
                                      f"in magnitude than mu*Fn = {mu * Fn_k!r} N (full sliding)")
                 xi, p_new, s_new, slope = _xi_for_force(solve, target, xi_prev, slope, p, dA,
                                                         force_tol * mu * Fn_k, k, x)

@@ -3,7 +3,7 @@
 The Hertzian contact ellipse is cut into ``strips`` strips of equal width
 ``dy = 2b/strips`` along the rolling direction; strip ``j`` (centre ``y_j``)
 covers its chord ``|x| ≤ c_j = a √(1 − (y_j/b)²)`` with the same number
-``elements`` of elements of length ``dx_j = 2 c_j / elements`` (seed 001,
+``elements`` of elements of length ``dx_j = 2 c_j / elements`` (Baeza et al.,
 Fig. 2; Paul & Hashemi 1981). Every strip then has the same discretisation
 error along x, which suits longitudinal creepage.
 
@@ -12,14 +12,14 @@ matrices (no FFT): Love's rectangle formulae with each source element's own
 half-length. The time step uses the element-averaged slip of
 :func:`wheelrail.transient.rolling.step_weights` with each target strip's own
 ``dx_j / h``. The pressure is Hertz's at the element centres, scaled so that
-the discrete total equals the normal force (the seed uses the Hertzian normal
+the discrete total equals the normal force (Baeza et al. use the Hertzian normal
 contact; a constant normal force only).
 
 References
 ----------
 .. [1] B. Paul, J. Hashemi, Contact pressures in closely conforming elastic
    bodies, J. Appl. Mech. 48 (1981) 543–548.
-.. [2] L. Baeza et al., seed paper 001, §1 and Fig. 2.
+.. [2] L. Baeza, F.J. Fuenmayor, J. Carballeira, A. Roda, Influence of the wheel–rail contact instationary process on contact parameters, §1 and Fig. 2.
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 
 :func:`run` executes the registered checks (:data:`CHECKS`) — closed forms
 (Hertz, Carter, Cattaneo–Mindlin, Boussinesq/Cerruti, cone-on-circle
-tangency), Kalker's published creep coefficients, seed-paper tables, the
+tangency), Kalker's published creep coefficients, published tables and figures, the
 published output of the CONTACT program (Manchester benchmark A-2.2, the
 FASTSIM example of its user guide) and convergence studies with fitted
 orders — and returns a frozen :class:`ValidationReport` of
@@ -34,6 +34,8 @@ import sys
 import time
 import warnings
 
+from .. import __version__
+from ..errors import InputError
 from ._core import CHECKS, Check, CheckResult, ValidationReport, run_check, skipped_row
 from ._report import markdown, write_html, write_json, write_markdown, write_report
 
@@ -60,7 +62,6 @@ def _load():
 def _environment():
     import numpy as np
 
-    from .. import __version__
 
     return {"wheelrail": __version__, "python": sys.version.split()[0], "numpy": np.__version__,
             "platform": platform.platform(), "cpus": os.cpu_count(),
@@ -97,7 +98,6 @@ def run(quick: bool = True, progress: bool = True, only=None, skip_heavy: bool =
     InputError
         An unknown check name in ``only``.
     """
-    from ..errors import InputError
 
     checks = load_checks()
     if only is not None:
@@ -114,7 +114,7 @@ def run(quick: bool = True, progress: bool = True, only=None, skip_heavy: bool =
     rows, errors = [], {}
     bar = None
     if progress:
-        from rich.progress import (BarColumn, Progress, TextColumn, TimeElapsedColumn)
+        from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
 
         bar = Progress(TextColumn("[bold]validate[/bold] {task.description:<32}"), BarColumn(),
                        TextColumn("{task.completed}/{task.total}"), TimeElapsedColumn(),

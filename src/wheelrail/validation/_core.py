@@ -7,6 +7,8 @@ import time
 from dataclasses import dataclass, field, replace
 from typing import Callable
 
+from ..citations import BIBLIOGRAPHY, bibtex, citation_keys
+
 __all__ = ["CheckResult", "ValidationReport", "Check", "CHECKS", "register", "rel_row", "abs_row",
            "band_row", "max_row", "skipped_row"]
 
@@ -149,7 +151,6 @@ class ValidationReport:
 
     def citation_keys(self) -> list[str]:
         """Citation keys of the rows' references and of the validated methods."""
-        from ..citations import BIBLIOGRAPHY, citation_keys
 
         keys: list[str] = []
         for r in self.rows:
@@ -163,7 +164,6 @@ class ValidationReport:
 
     def bibtex(self) -> str:
         """BibTeX of :meth:`citation_keys`."""
-        from ..citations import bibtex
 
         return "\n\n".join(bibtex(k) for k in self.citation_keys()) + "\n"
 

@@ -7,6 +7,8 @@ import json
 import math
 from pathlib import Path
 
+from ..citations import BIBLIOGRAPHY
+
 __all__ = ["write_report", "write_html", "write_json", "write_markdown", "markdown"]
 
 
@@ -75,7 +77,6 @@ def _md_cell(text) -> str:
 
 def markdown(report) -> str:
     """The report as a Markdown page (GFM tables, no raw HTML)."""
-    from ..citations import BIBLIOGRAPHY
 
     out = ["# Validation report", ""]
     for line in _header_lines(report):

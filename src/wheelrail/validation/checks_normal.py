@@ -4,6 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
+import wheelrail as wr
+from wheelrail.halfspace import Grid, InfluenceOperator, point_influence, subsurface_stresses
+from wheelrail.hertzian import hertz_coefficients
+from wheelrail.normal._base import GapProblem
+from wheelrail.normal.bem import hertz_grid, solve_normal
+from wheelrail.normal.caf import caf_table, jump_gap, profile_jump_gaps
+
 from ._core import abs_row, band_row, max_row, register, rel_row
 from ._figures import convergence_figure
 
@@ -11,7 +18,6 @@ STEEL_E, STEEL_NU = 2.1e11, 0.28
 
 
 def _wr():
-    import wheelrail as wr
 
     return wr
 
@@ -94,7 +100,7 @@ def hertz_vs_closed_form(quick):
     return rows
 
 
-# seed 003 (Piotrowski & Chollet 2005), Table 2: theta [deg], n/m, m, r
+# Piotrowski & Chollet (2005), Table 2: theta [deg], n/m, m, r
 _TABLE2 = np.array([
     [5, 0.0212, 11.238, 0.2969], [10, 0.0470, 6.612, 0.4280], [30, 0.1806, 2.731, 0.7263],
     [60, 0.4826, 1.486, 0.9376], [90, 1.0, 1.0, 1.0], [120, 2.0720, 0.7171, 0.9376],
@@ -104,13 +110,11 @@ _TABLE2 = np.array([
 
 @register("hertz-table2", ["hertz"], "Hertz coefficients vs Piotrowski & Chollet Table 2")
 def hertz_vs_table2(quick):
-    from wheelrail.normal.hertz import hertz_coefficients
-
     theta, nm, m_ref, r_ref = _TABLE2.T
     m, n, r = hertz_coefficients(theta)
     kw = dict(source="PiotrowskiChollet2005",
               tolerance_source="tests/reference/test_hertz.py (4-digit table: rel 1e-3)")
-    ref = "Piotrowski & Chollet (2005) Table 2 (seed 003)"
+    ref = "Piotrowski & Chollet (2005) Table 2"
     return [max_row("hertz", ref, "coefficient m, theta 5-175 deg", m, m_ref, 1e-3, **kw),
             max_row("hertz", ref, "ratio n/m, theta 5-175 deg", n / m, nm, 1e-3, **kw),
             max_row("hertz", ref, "coefficient r, theta 5-175 deg", r, r_ref, 1e-3, **kw)]
@@ -132,7 +136,6 @@ def _semi_axes_from_pressure(sol):
 @register("bem-hertz", ["bem"], "BEM normal solver vs Hertz")
 def bem_vs_hertz(quick):
     wr = _wr()
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     mat = wr.Material(STEEL_E, STEEL_NU)
     rows = []
@@ -142,7 +145,7 @@ def bem_vs_hertz(quick):
     for aspect in ((1.0, 2.0) if quick else (1.0, 0.5, 2.0)):
         hc = wr.hertz_from_semiaxes(aspect * 4e-3, 4e-3, 10e3, mat)
         grid, h0 = hertz_grid(hc, elements=60)
-        sol = solve_normal(grid, h0, mat, load=10e3)
+        sol = solve_normal(grid, h0, mat, Fn=10e3)
         a, b = _semi_axes_from_pressure(sol)
         case = f"a/b = {aspect:g}, 60 elements"
         rows += [rel_row("bem", ref, f"p_max, {case}", sol.p_max, hc.p0, 0.01, **kw),
@@ -162,7 +165,6 @@ def bem_vs_hertz(quick):
 @register("bem-convergence", ["bem"], "BEM normal solver: observed order towards Hertz")
 def bem_convergence(quick):
     wr = _wr()
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     mat = wr.Material(STEEL_E, STEEL_NU)
     hc = wr.hertz_from_semiaxes(5e-3, 5e-3, 10e3, mat)
@@ -170,7 +172,7 @@ def bem_convergence(quick):
     h, e_d, e_p = [], [], []
     for n in ns:
         grid, h0 = hertz_grid(hc, elements=n)
-        s = solve_normal(grid, h0, mat, load=10e3)
+        s = solve_normal(grid, h0, mat, Fn=10e3)
         h.append(grid.dx)
         e_d.append(abs(s.penetration / hc.penetration - 1))
         e_p.append(abs(s.p_max / hc.p0 - 1))
@@ -196,8 +198,6 @@ def _hertz_contact(ab, load=1e5):
 
 
 def _gap(c, **kw):
-    from wheelrail.normal._base import GapProblem
-
     wr = _wr()
     A, B = float(c.A), float(c.B)
     L = 4 * max(float(c.a), float(c.b))
@@ -213,13 +213,13 @@ def nonhertz_vs_hertz(quick):
     rows = []
     ref = "Hertz closed form on the same quadratic gap (Johnson 1985 §4.2)"
     tol_src = ("tests/reference/test_nonhertz_hertzian_gap.py (Hertz-consistent methods, "
-               "seed 003 §3: rel 0.02)")
+               "Piotrowski & Chollet (2005) §3: rel 0.02)")
     for name, variant in (("kik-piotrowski", {}), ("stripes", {}),
                           ("multi-hertz", {"variant": "sauvage"})):
         area, pmax, carea, cp0 = [], [], [], []
         for ab in ratios:
             c = _hertz_contact(ab)
-            r = wr.solve(_gap(c, load=float(c.load)), creepage=(0.0, 0.0, 0.0), mu=0.3,
+            r = wr.solve(_gap(c, Fn=float(c.Fn)), creepage=(0.0, 0.0, 0.0), mu=0.3,
                          normal=name, **variant)
             p = r.patches
             area.append(sum(q.area for q in p))
@@ -237,15 +237,15 @@ def nonhertz_vs_hertz(quick):
     ar, pr = [], []
     for ab in ratios:
         c = _hertz_contact(ab)
-        r = wr.solve(_gap(c, load=float(c.load)), creepage=(0.0, 0.0, 0.0), mu=0.3,
+        r = wr.solve(_gap(c, Fn=float(c.Fn)), creepage=(0.0, 0.0, 0.0), mu=0.3,
                      normal="linder")
         ar.append(sum(q.area for q in r.patches) / float(c.area))
         pr.append(max(q.p_max for q in r.patches) / float(c.p0))
     kw = dict(source="Linder1997,PiotrowskiChollet2005", reference_method="hertz",
               tolerance_source=("band of the delta0 = 0.55 delta methods, "
                                 "tests/reference/test_nonhertz_hertzian_gap.py::"
-                                "test_original_factor_is_biased; seed 003 §3.1"))
-    ref = "Hertz closed form; bias of the constant penetration factor 0.55 (seed 003 §3.1)"
+                                "test_original_factor_is_biased; Piotrowski & Chollet (2005) §3.1"))
+    ref = "Hertz closed form; bias of the constant penetration factor 0.55 (Piotrowski & Chollet (2005) §3.1)"
     rows += [band_row("linder", ref, f"area / Hertz area, worst of a/b in {ratios}",
                       max(ar, key=lambda v: abs(v - 1.125)), 1.1, 1.05, 1.2, **kw),
              band_row("linder", ref, f"p_max / Hertz p0, worst of a/b in {ratios}",
@@ -290,7 +290,6 @@ def caf_jump_gaps(quick):
     generalisation) against the rigid gaps measured on the profiles by the
     contact search (S1002/60E1, tread and flange-root jumps, both sides)."""
     wr = _wr()
-    from wheelrail.normal.caf import caf_table, jump_gap, profile_jump_gaps
 
     ws = wr.Wheelset(wheel=wr.profiles.load("S1002"), nominal_radius=0.46, flange_back=1.360)
     tr = wr.Track(rail=wr.profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
@@ -324,7 +323,6 @@ def caf_jump_gaps(quick):
           "Half-space influence coefficients vs Boussinesq/Cerruti and Love")
 def influence_vs_closed_forms(quick):
     wr = _wr()
-    from wheelrail.halfspace import Grid, InfluenceOperator, point_influence
 
     steel = wr.Material(STEEL_E, STEEL_NU)
     E, nu = steel.E, steel.nu
@@ -359,14 +357,12 @@ def influence_vs_closed_forms(quick):
           "Subsurface stresses under a Hertz contact vs Johnson's closed forms")
 def subsurface_vs_hertz(quick):
     wr = _wr()
-    from wheelrail.halfspace import subsurface_stresses
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     nu = 0.3
     mat = wr.Material(2.1e11, nu)
     hc = wr.hertz(10e3, A=1.0, B=1.0, material=mat)
     grid, h0 = hertz_grid(hc, elements=40)
-    sol = solve_normal(grid, h0, mat, load=10e3)
+    sol = solve_normal(grid, h0, mat, Fn=10e3)
     a, p0 = hc.a, hc.p0
     zr = np.linspace(0.1, 2.0, 20)
     st = subsurface_stresses(grid, None, None, sol.pressure, mat, zr * a,

@@ -4,19 +4,23 @@ from __future__ import annotations
 
 import numpy as np
 
+import wheelrail as wr
+from wheelrail.fe import RollingCase, indent, solve
+from wheelrail.normal.bem import hertz_grid, solve_normal
+from wheelrail.tangential.exact import solve_rolling, solve_shift
+
 from ._core import abs_row, band_row, register, rel_row
 from ._figures import convergence_figure
 
 
 def _wr():
-    import wheelrail as wr
 
     return wr
 
 
 # --------------------------------------------------------------------------- transient
 def _table1():
-    """Seed 001 §3.1, Table 1: R 0.5 m, wheel profile −0.409 m, rail crown 0.3 m, 10 kN."""
+    """Baeza et al. §3.1, Table 1: R 0.5 m, wheel profile −0.409 m, rail crown 0.3 m, 10 kN."""
     wr = _wr()
     return wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.STEEL)
 
@@ -27,8 +31,6 @@ def transient_steady(quick):
     wr = _wr()
     from scipy.optimize import brentq
 
-    from wheelrail.halfspace.tangential import solve_rolling, solve_shift
-    from wheelrail.normal.bem import hertz_grid, solve_normal
 
     MU = 0.4
     hc = _table1()
@@ -37,16 +39,16 @@ def transient_steady(quick):
     # constant creepage: after 20 semi-axes the tractions are the steady ones (V dt = dx)
     n = 12
     grid, gap = hertz_grid(hc, elements=n)
-    pn = solve_normal(grid, gap, wr.STEEL, load=float(hc.load)).pressure
+    pn = solve_normal(grid, gap, wr.STEEL, Fn=float(hc.Fn)).pressure
     st = solve_rolling(grid, pn, wr.STEEL, (-5e-4, 0.0, 0.0), mu=MU, tol=1e-10)
     res = wr.transient_rolling(hc, travel=20 * float(hc.a), step=grid.dx, mu=MU,
                                creepage=(-5e-4, 0.0, 0.0), elements=n)
     err = np.abs(res.px[-1] - st.px).max() / np.abs(st.px).max()
-    ref = "steady rolling, exact theory on the same grid (Kalker 1990 §5.2; seed 001 eq. 2.19)"
+    ref = "steady rolling, exact theory on the same grid (Kalker 1990 §5.2; Baeza et al. eq. 2.19)"
     tsrc = "tests/reference/test_transient_steady.py"
     rows += [abs_row("transient", ref, "max traction difference / max abs(px) after 20 a, 12 el.",
                      err, 0.0, 1e-4, tolerance_source=tsrc, **kw),
-             rel_row("transient", ref, "Fx after 20 a (xi = -5e-4, seed 001 Table 1 case)",
+             rel_row("transient", ref, "Fx after 20 a (xi = -5e-4, Baeza et al. Table 1 case)",
                      res.Fx[-1], st.Fx, 1e-5, tolerance_source=tsrc, **kw)]
     # first step from rest = Cattaneo shift problem (the element-centre scheme, eq. 2.10 as
     # written; the default element-averaged scheme spreads the first shift over the element)
@@ -54,23 +56,23 @@ def transient_steady(quick):
     r1 = wr.transient_rolling(hc, travel=2 * h, step=h, mu=MU, creepage=(xi, eta, 0.0),
                               elements=n2, scheme="centre")
     g2, gap2 = hertz_grid(hc, elements=n2)
-    pn2 = solve_normal(g2, gap2, wr.STEEL, load=10e3).pressure
+    pn2 = solve_normal(g2, gap2, wr.STEEL, Fn=10e3).pressure
     sh = solve_shift(g2, pn2, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
-    rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (seed 001 §3.1)",
+    rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (Baeza et al. §3.1)",
                         "Fy after the first step from rest, 10 el., scheme='centre'", r1.Fy[1], sh.Fy, 1e-6,
                         tolerance_source=tsrc, **kw))
     # Cattaneo to Carter: final creepage for a prescribed force
     n3 = 10
     g3, gap3 = hertz_grid(hc, elements=n3)
-    pn3 = solve_normal(g3, gap3, wr.STEEL, load=10e3).pressure
+    pn3 = solve_normal(g3, gap3, wr.STEEL, Fn=10e3).pressure
 
     def fx(x):
         return solve_rolling(g3, pn3, wr.STEEL, (x, 0.0, 0.0), mu=MU, tol=1e-10).Fx - 2000.0
 
     xi_steady = brentq(fx, -3e-3, -1e-5, xtol=1e-12)
     r3 = wr.transient_rolling(hc, travel=16 * float(hc.a), step=g3.dx, mu=MU,
-                              tangential_force=2000.0, elements=n3)
-    rows.append(rel_row("transient", "steady exact theory at the same force (seed 001 §3.1, "
+                              Fx=2000.0, elements=n3)
+    rows.append(rel_row("transient", "steady exact theory at the same force (Baeza et al. §3.1, "
                         "'Cattaneo to Carter')", "final xi for Fx = 2 kN, 10 el.", r3.xi[-1],
                         xi_steady, 0.01, tolerance_source=tsrc, **kw))
     return rows
@@ -89,7 +91,7 @@ def transient_regularised(quick):
         r = wr.transient_rolling(hc, friction="regularised", epsilon=e, **kw)
         err.append(abs(r.Fx[-1] - exact.Fx[-1]) / abs(exact.Fx[-1]))
     q = np.polyfit(np.log(eps), np.log(err), 1)[0]
-    ref = "exact-Coulomb transient solution (seed 001 eqs. 2.21-2.22)"
+    ref = "exact-Coulomb transient solution (Baeza et al. eqs. 2.21-2.22)"
     src = dict(source="Baeza", tolerance_source="tests/reference/test_transient_regularised.py")
     return [band_row("transient", ref, "observed order of the Fx error in epsilon", q, 1.0, 0.6,
                      1.3, figure=convergence_figure(eps, err, "Fx", q, xlabel="epsilon [m/s]"),
@@ -101,7 +103,6 @@ def transient_regularised(quick):
 # --------------------------------------------------------------------------- FE
 def _fe_errors(h):
     wr = _wr()
-    from wheelrail.fe import RollingCase, indent
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
@@ -116,7 +117,7 @@ def _fe_errors(h):
 def fe_indentation(quick):
     h = 1.5e-3 if quick else 1.0e-3
     r, hz = _fe_errors(h)
-    ref = "Hertz closed form (Johnson 1985 eqs. 3.64-3.66); seed 000 Table 3 compares the same"
+    ref = "Hertz closed form (Johnson 1985 eqs. 3.64-3.66); Toumi, Chollet & Yin (2016) Table 3 compares the same"
     kw = dict(source="Hertz1882,Toumi2016", reference_method="hertz",
               tolerance_source="tests/reference/test_fe_hertz.py (1.5 mm mesh: p_max 12 %, "
                                "a 10 %, b 15 %)")
@@ -141,7 +142,6 @@ def fe_indentation(quick):
           full_only=True)
 def fe_rolling(quick):
     wr = _wr()
-    from wheelrail.fe import RollingCase, solve
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
@@ -151,7 +151,7 @@ def fe_rolling(quick):
     g = r.model.geometry
     hz = wr.hertz(7500.0, g["A"], g["B"], wr.Material(2.1e11, 0.28))
     ref = wr.creep_forces(hz, (7e-4, 0.0, 0.0), 0.2, method="exact", elements=20).Fx
-    return [rel_row("fe", "Kalker's exact theory (20 elements) on the Hertz patch; seed 000 "
+    return [rel_row("fe", "Kalker's exact theory (20 elements) on the Hertz patch; Toumi, Chollet & Yin (2016) "
                     "§4.1.3 compares with CONTACT", "Fx, xi = 7e-4, mu = 0.2, 2 mm mesh",
                     r.Fx, ref, 0.10, source="Kalker1990,Toumi2016",
                     tolerance_source="tests/reference/test_fe_rolling.py (rel 0.10)",
@@ -174,7 +174,7 @@ def _cone_case(inclination):
 
 def cone_tangency(ws, tr, y, lam=LAM):
     """Closed-form rigid contact of a cone (slope ``lam``) on circular rail heads of
-    radius 0.3 m (seed 002 eqs. 2.1–2.3).
+    radius 0.3 m (Bosso et al. (2013), ch. 2 eqs. 2.1–2.3).
 
     The contact point is where the rolled generatrix is tangent to the circle; both
     tangency conditions are linear in the axle height, so the roll angle follows from
@@ -217,7 +217,7 @@ def geometry_cone(quick):
     rows = []
     kw = dict(source="Bosso2013",
               tolerance_source="tests/reference/test_geometry_cone.py")
-    ref = "closed-form tangency of a 1:20 cone on R 300 mm rail heads (seed 002 eqs. 2.1-2.3)"
+    ref = "closed-form tangency of a 1:20 cone on R 300 mm rail heads (Bosso et al. (2013), ch. 2 eqs. 2.1-2.3)"
     ys = (-0.005, 0.0, 0.0047) if quick else (-0.005, -0.0013, 0.0, 0.002, 0.0047)
     d_roll, d_dr, d_s, d_g = [], [], [], []
     for inc in (0.0, 1 / 40):

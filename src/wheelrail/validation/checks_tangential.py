@@ -4,7 +4,24 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._core import abs_row, band_row, max_row, register, rel_row
+import wheelrail
+import wheelrail as wr
+from wheelrail.contact.manchester import manchester_a22
+from wheelrail.halfspace import Grid
+from wheelrail.reference import (
+    carter_force_per_length,
+    carter_saturation_creepage,
+    carter_traction,
+    cattaneo_shift,
+    cattaneo_stick_radius,
+)
+from wheelrail.tangential import table as T
+from wheelrail.tangential.exact import solve_rolling, solve_shift
+from wheelrail.tangential.fastsim import flexibilities
+from wheelrail.tangential.linear import kalker_coefficients
+from wheelrail.tangential.polach import polach_forces
+
+from ._core import abs_row, band_row, max_row, register, rel_row, skipped_row
 from ._figures import convergence_figure, new_figure, to_base64
 
 # Kalker (1990) Table E.3 (= Kalker 1967; Johnson 1985 Table 8.1), (a/b, nu) -> C11, C22, C23,
@@ -24,7 +41,6 @@ KALKER_REF = "Kalker (1990) Table E.3 creep coefficients"
 
 
 def _wr():
-    import wheelrail as wr
 
     return wr
 
@@ -39,7 +55,6 @@ def _default_contact():
 @register("carter-closed-form", ["carter"], "Carter's 2D theory vs Johnson's closed form")
 def carter_checks(quick):
     wr = _wr()
-    from wheelrail.tangential.carter import carter_force_per_length
 
     G, nu, mu, R = 8.0e10, 0.28, 0.3, 0.46
     mat = wr.Material.from_shear(G, nu)
@@ -115,8 +130,6 @@ def exact_vs_table(quick):
 
 
 def _carter_strip(nx, A=1e-3, P0=5e8, ny=21):
-    from wheelrail.halfspace import Grid
-
     grid = Grid.from_bounds(-A, A, -20 * A, 20 * A, nx, ny)
     p = P0 * np.sqrt(np.clip(1 - (grid.X / A) ** 2, 0, None))
     return grid, p
@@ -125,9 +138,6 @@ def _carter_strip(nx, A=1e-3, P0=5e8, ny=21):
 @register("exact-carter", ["exact"], "Exact theory in the 2D limit vs Carter (1926)")
 def exact_vs_carter(quick):
     wr = _wr()
-    from wheelrail.halfspace import solve_rolling
-    from wheelrail.reference import (carter_force_per_length, carter_saturation_creepage,
-                                     carter_traction)
 
     A, P0, MU = 1e-3, 5e8, 0.3
     mat = wr.Material(2.1e11, 0.25)
@@ -167,8 +177,6 @@ def exact_vs_carter(quick):
 @register("exact-cattaneo", ["exact"], "Exact theory, shift problem vs Cattaneo-Mindlin")
 def exact_vs_cattaneo(quick):
     wr = _wr()
-    from wheelrail.halfspace import Grid, solve_shift
-    from wheelrail.reference import cattaneo_shift, cattaneo_stick_radius
 
     A, P, MU = 1e-3, 1e3, 0.3
     rows = []
@@ -252,7 +260,6 @@ def exact_spin(quick):
 def _manchester_paths():
     from pathlib import Path
 
-    import wheelrail
 
     root = Path(wheelrail.__file__).resolve().parents[2]
     data = root / "tests" / "reference" / "data" / "contact_mbench_a22.csv"
@@ -267,7 +274,6 @@ def manchester(quick):
     import csv
 
     wr = _wr()
-    from ._core import skipped_row
 
     data, shared = _manchester_paths()
     ref = "CONTACT rev. 2707, Manchester benchmark A-2.2 (tests/reference/data/contact_mbench_a22.csv)"
@@ -275,7 +281,6 @@ def manchester(quick):
         return [skipped_row("exact", ref, "Fn, Fx, Fs, p_max per wheel",
                             f"reference data not found ({data} and {shared})",
                             source="VollebregtCONTACT")]
-    from wheelrail.contact.manchester import manchester_a22
 
     cases = manchester_a22(shared / "benchmarks" / "manchester_a22_inputs.csv",
                            shared / "profiles" / "MBench_S1002_v3.prw",
@@ -333,10 +338,9 @@ def manchester(quick):
 @register("fastsim-linear-limit", ["fastsim"], "FASTSIM at small creepage vs Kalker's linear theory")
 def fastsim_linear(quick):
     wr = _wr()
-    from wheelrail.tangential.linear import kalker_coefficients
 
     mat = wr.Material.from_shear(82e9, 0.28)
-    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=mat)
+    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3, material=mat)
     G, cc = c.G, c.c
     C11, C22, C23, _ = (float(v) for v in kalker_coefficients(c.a / c.b, c.nu))
     opts = dict(method="fastsim", nx=50, ny=50, fields=False)
@@ -360,13 +364,13 @@ def fastsim_linear(quick):
 def fastsim_published(quick):
     wr = _wr()
     mat = wr.Material.from_shear(82e9, 0.28)
-    c = wr.hertz_from_semiaxes(a=8e-3, b=4e-3, load=82e3, material=mat)
+    c = wr.hertz_from_semiaxes(a=8e-3, b=4e-3, Fn=82e3, material=mat)
     n = 200
     r = wr.creep_forces(c, (0.0, -0.000625, 0.625), 0.3, method="fastsim", nx=n, ny=n,
                         bound="elliptic", fields=False)
     return [rel_row("fastsim", "CONTACT user guide, FASTSIM example (elliptic bound, 200x200): "
                     "Fy/(mu Fn) = -0.596", "Fy/(mu Fn), a = 8, b = 4 mm, eta = -6.25e-4, "
-                    "phi = 0.625 1/m", r.Fy / (0.3 * c.load), -0.596, 3e-3,
+                    "phi = 0.625 1/m", r.Fy / (0.3 * c.Fn), -0.596, 3e-3,
                     source="VollebregtCONTACT",
                     tolerance_source="tests/reference/test_fastsim.py::test_published_case "
                                      "(3e-3: the guide's figure is two digits, -0.60; the "
@@ -377,10 +381,8 @@ def _fastsim_reference_fx(c, xi, mu):
     """Continuum simplified theory for pure xi, parabolic bound, integrated strip by strip."""
     from scipy import integrate
 
-    from wheelrail.tangential.fastsim import flexibilities
-    from wheelrail.tangential.linear import kalker_coefficients
 
-    a, b, Fn = c.a, c.b, c.load
+    a, b, Fn = c.a, c.b, c.Fn
     C11, C22, C23, _ = kalker_coefficients(a / b, c.nu)
     L1 = float(flexibilities(a, b, c.G, C11, C22, C23)[0])
     p0 = 2.0 * Fn / (np.pi * a * b)
@@ -402,7 +404,7 @@ def _fastsim_reference_fx(c, xi, mu):
 def fastsim_convergence(quick):
     wr = _wr()
     mat = wr.Material.from_shear(82e9, 0.28)
-    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, load=80e3, material=mat)
+    c = wr.hertz_from_semiaxes(a=6e-3, b=4e-3, Fn=80e3, material=mat)
     xi, mu = 1e-3, 0.3
     ref = _fastsim_reference_fx(c, xi, mu)
     ns = np.array([10, 20, 40, 80] if quick else [10, 20, 40, 80, 160])
@@ -458,14 +460,14 @@ def creep_curves(quick):
     n = 40
     ex = np.array([wr.creep_forces(c, (x, 0, 0), mu, method="exact", elements=n).Fx for x in xi])
     fig, ax = new_figure(4.6, 3.2)
-    ax.plot(-xi * 1e3, ex / (mu * c.load), "k-o", label=f"exact ({n} el.)")
+    ax.plot(-xi * 1e3, ex / (mu * c.Fn), "k-o", label=f"exact ({n} el.)")
     rows = []
     srcs = {"fastsim": "Kalker1982", "shen-hedrick-elkins": "ShenHedrickElkins1983",
             "polach": "Polach1999", "fastrip": "Sichani2016"}
     for name in ("fastsim", "shen-hedrick-elkins", "polach"):
         cr = np.column_stack([xi, 0 * xi, 0 * xi])
         fx = np.asarray(wr.creep_forces(c, cr, mu, method=name).Fx, float)
-        ax.plot(-xi * 1e3, fx / (mu * c.load), "-", label=name)
+        ax.plot(-xi * 1e3, fx / (mu * c.Fn), "-", label=name)
         # Polach's 1999 law is a model 5.01 % below the exact theory at xi = -2e-3 (a
         # limitation of the law, stated in the document), the other two within 5 %
         tol = 0.051 if name == "polach" else 0.05
@@ -526,7 +528,6 @@ def closed_laws_slope(quick):
     # Polach (1999) closed form at eps = 1: F = Q mu (1/pi + 1/2)
     Q, mu = 1e5, 0.3
     xi1 = Q * mu / (0.25 * np.pi * G * c.a * c.b * c11)
-    from wheelrail.tangential.polach import polach_forces
 
     Fx = polach_forces(G, c.a, c.b, c11, c22, c23, np.asarray(xi1), np.asarray(0.0),
                        np.asarray(0.0), mu, Q)[0]
@@ -541,8 +542,6 @@ def closed_laws_slope(quick):
 @register("table-law", ["table"], "Tabulated creep-force law vs Kalker's table and the exact theory")
 def table_checks(quick):
     wr = _wr()
-    from wheelrail.tangential import table as T
-    from wheelrail.tangential.linear import kalker_coefficients
 
     m = wr.Material(2.1e11, 0.25)
     c = wr.hertz_from_semiaxes(5e-3, 5e-3, 1e4, m)

@@ -5,8 +5,10 @@ Formats
 * *Regular* (``.ban``/``.whl``): ``Key=Value`` header lines (``ColumnDef=X,Y,...``
   names the columns, default ``X,Y``), then the data rows (numbers separated
   by blanks, tabs or commas).
-* *Old style*: a first line containing ``MINIPROF``, free header lines up to
-  the first empty line, then the data rows (columns X, Y, ...).
+* *Old style*: a first line containing ``MINIPROF``, free header lines, then
+  the data rows (columns X, Y, ...). The header ends at the first empty line
+  or, in files written without one, at the first line that is a row of at
+  least two numbers.
 
 A double quote ``"``, ``!`` or ``%`` starts a comment that runs to the end of
 the line (MiniProf uses ``"`` to switch off keys and points). Column ``X`` is
@@ -33,8 +35,16 @@ import numpy as np
 
 from ...errors import ProfileError
 from ..core import Profile
-from ._common import (POINT_DIST_MIN, append_row, check_row_count, chord_deviation_is_z_down,
-                      kind_from_extension, make_profile, read_lines, resolve_kind)
+from ._common import (
+    POINT_DIST_MIN,
+    append_row,
+    check_row_count,
+    chord_deviation_is_z_down,
+    kind_from_extension,
+    make_profile,
+    read_lines,
+    resolve_kind,
+)
 
 __all__ = ["read_miniprof", "looks_like_miniprof"]
 
@@ -75,6 +85,18 @@ def _is_switched_off_point(line: str) -> bool:
     return True
 
 
+def _is_number_row(s: str) -> bool:
+    """True when ``s`` (comments stripped) is a row of at least two numbers."""
+    toks = s.replace(",", " ").replace(";", " ").split()
+    if len(toks) < 2:
+        return False
+    try:
+        [float(t) for t in toks]
+    except ValueError:
+        return False
+    return True
+
+
 def parse_miniprof(lines: list[str], name: str):
     """Return (keys dict, data (n, ncol), x column, y column)."""
     old = any("MINIPROF" in ln.upper() for ln in lines[:3])
@@ -88,7 +110,10 @@ def parse_miniprof(lines: list[str], name: str):
         if old and not in_data:
             if not raw.strip():
                 in_data = True
-            continue
+                continue
+            if not _is_number_row(s):
+                continue
+            in_data = True      # no empty line after the header: the data start here
         if not s:
             continue
         if "=" in s:

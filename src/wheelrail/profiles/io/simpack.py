@@ -34,10 +34,17 @@ import warnings
 
 import numpy as np
 
+from ..._atomic import atomic_open
 from ...errors import ProfileError
 from ..core import MIN_POINTS, Profile, ProfileWarning
-from ._common import (POINT_DIST_MIN, kind_from_extension, make_profile, number, read_lines,
-                      resolve_kind)
+from ._common import (
+    POINT_DIST_MIN,
+    kind_from_extension,
+    make_profile,
+    number,
+    read_lines,
+    resolve_kind,
+)
 
 __all__ = ["read_simpack", "write_simpack", "looks_like_simpack"]
 
@@ -270,7 +277,6 @@ def write_simpack(profile: Profile, path, *, comment: str | None = None) -> None
            "  point.begin"]
     out += [f"    {y * 1e3:+.9e}  {-z * 1e3:+.9e}" for y, z in zip(profile.y, profile.z)]
     out += ["  point.end", "spline.end", ""]
-    from ..._atomic import atomic_open
 
     with atomic_open(path, "w", encoding="utf-8", newline="\n") as fh:
         fh.write("\n".join(out))

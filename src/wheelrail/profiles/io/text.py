@@ -27,10 +27,18 @@ import warnings
 
 import numpy as np
 
+from ..._atomic import atomic_open
 from ...errors import ProfileError
 from ..core import Profile, ProfileWarning
-from ._common import (POINT_DIST_MIN, append_row, check_row_count, kind_from_extension,
-                      make_profile, read_lines, resolve_kind)
+from ._common import (
+    POINT_DIST_MIN,
+    append_row,
+    check_row_count,
+    kind_from_extension,
+    make_profile,
+    read_lines,
+    resolve_kind,
+)
 
 __all__ = ["read_text", "write_text"]
 
@@ -157,7 +165,6 @@ def write_text(profile: Profile, path, *, units: str = "mm", delimiter: str = ",
         out.append(f"# name: {name}")
     out.append(delimiter.join((f"y [{units}]", f"z [{units}]")))
     out += [delimiter.join((f"{y * f:.9e}", f"{z * f:.9e}")) for y, z in zip(profile.y, profile.z)]
-    from ..._atomic import atomic_open
 
     with atomic_open(path, "w", encoding="utf-8", newline="\n") as fh:
         fh.write("\n".join(out) + "\n")

@@ -1,11 +1,13 @@
-"""Coupled normal + tangential contact of two half-spaces on a grid (driver).
+"""Coupled normal + tangential contact of two half-spaces on a grid.
 
 :func:`solve_gap` chains the boundary-element normal solver
 (:func:`wheelrail.normal.bem.solve_normal`) and the tangential grid solvers of
-:mod:`wheelrail.halfspace.tangential` (steady rolling, shift): Johnson's
+:mod:`wheelrail.tangential.exact` (steady rolling, shift): Johnson's
 process for quasi-identical bodies, Panagiotopoulos' alternation for
-dissimilar ones (``K != 0``). It is a driver, one layer above the kernels of
-:mod:`wheelrail.halfspace`, which never import a method.
+dissimilar ones (``K != 0``). The exact theory of a contact of dissimilar
+materials needs it (:class:`~wheelrail.tangential.Exact`), which is why it
+lives in the exact theory's package; :mod:`wheelrail.contact.window` chooses
+the window of an arbitrary gap around it.
 
 References
 ----------
@@ -18,135 +20,27 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
-from .._validation import positive
-from ..errors import ConvergenceError, InputError
-from ..halfspace.fft import InfluenceOperator
-from ..halfspace.grid import Grid
-from ..halfspace.tangential import _BlockConvolution, solve_rolling, solve_shift
-from ..materials import as_material_pair
-from ..normal.bem import solve_normal
+from ..._validation import positive
+from ...errors import ConvergenceError, InputError
+from ...halfspace.fft import InfluenceOperator
+from ...halfspace.rolling import _BlockConvolution
+from ...materials import as_material_pair
+from ...normal.bem import solve_normal
+from ...results import GapResult
+from .steady import solve_rolling, solve_shift
 
-__all__ = ["GapSolution", "solve_gap"]
+__all__ = ["solve_gap"]
 
 
 # --------------------------------------------------------------------------
 # normal + tangential (Johnson's process / Panagiotopoulos' process)
 # --------------------------------------------------------------------------
-@dataclass(frozen=True)
-class GapSolution:
-    """Normal and tangential solution of one contact on a grid (frozen).
-
-    Attributes
-    ----------
-    normal : NormalSolution
-        The (last) normal solution (:func:`wheelrail.normal.bem.solve_normal`).
-    tangential : TangentialSolution or None
-        ``None`` when no tangential problem was asked for.
-    outer_iterations : int
-        Normal–tangential alternations (1 for quasi-identical bodies,
-        Johnson's process; more with ``K ≠ 0``, Panagiotopoulos' process).
-    outer_change : float
-        Last relative change of the tractions between alternations.
-    """
-
-    normal: object
-    tangential: object
-    outer_iterations: int
-    outer_change: float
-
-    # convenient views (grid, pressure, contact, Fn from the normal solution; tractions,
-    # slip, adhesion, tangential displacements and forces from the tangential one) ---------
-    @property
-    def grid(self) -> Grid:
-        return self.normal.grid
-
-    @property
-    def pressure(self) -> np.ndarray:
-        return self.normal.pressure
-
-    @property
-    def contact(self) -> np.ndarray:
-        return self.normal.contact
-
-    @property
-    def Fn(self) -> float:
-        return self.normal.Fn
-
-    def _t(self, name, default=0.0):
-        return default if self.tangential is None else getattr(self.tangential, name)
-
-    @property
-    def px(self):
-        return self._t("px", np.zeros(self.grid.shape))
-
-    @property
-    def py(self):
-        return self._t("py", np.zeros(self.grid.shape))
-
-    @property
-    def sx(self):
-        return self._t("sx", np.zeros(self.grid.shape))
-
-    @property
-    def sy(self):
-        return self._t("sy", np.zeros(self.grid.shape))
-
-    @property
-    def adhesion(self):
-        return self._t("adhesion", self.contact.copy())
-
-    @property
-    def ux(self):
-        """Tangential displacement difference along x [m]."""
-        return self._t("ux", np.zeros(self.grid.shape))
-
-    @property
-    def uy(self):
-        """Tangential displacement difference along y [m]."""
-        return self._t("uy", np.zeros(self.grid.shape))
-
-    @property
-    def un(self):
-        """Gap-opening normal displacement difference [m] (of the last normal solve)."""
-        return self.normal.displacement
-
-    @property
-    def Fx(self) -> float:
-        return float(self._t("Fx"))
-
-    @property
-    def Fy(self) -> float:
-        return float(self._t("Fy"))
-
-    @property
-    def Mz(self) -> float:
-        return float(self._t("Mz"))
-
-    def as_arrays(self) -> dict:
-        """Plain arrays on the grid, indexed ``[i_x, i_y]``, for plotting and export.
-
-        Keys: ``x``, ``y`` (element centres, m), ``px``, ``py``, ``p`` (Pa),
-        ``adhesion``, ``inside`` (bool), ``dA`` (element areas, m²), ``sx``, ``sy``
-        (slip, m/m).
-        """
-        if self.tangential is not None:
-            return self.tangential.as_arrays()
-        g = self.grid
-        return {"x": g.X, "y": g.Y, "px": np.asarray(self.px), "py": np.asarray(self.py),
-                "p": np.asarray(self.pressure), "adhesion": np.asarray(self.adhesion, bool),
-                "inside": np.asarray(self.contact, bool),
-                "dA": np.full(g.shape, g.element_area), "sx": np.asarray(self.sx),
-                "sy": np.asarray(self.sy)}
-
-
-def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=None, mu=None,
+def solve_gap(grid, gap, materials, *, Fn=None, penetration=None, creepage=None, mu=None,
               shift=None, force=None, tol=1e-6, maxiter=100, normal_tol=1e-8,
               normal_maxiter=2000, outer_tol=1e-5, outer_maxiter=30, on_fail="raise",
-              solver="newton") -> GapSolution:
+              solver="newton") -> GapResult:
     """Normal and tangential contact of two half-spaces from the undeformed gap.
 
     The normal problem (:func:`wheelrail.normal.bem.solve_normal`) is solved
@@ -154,7 +48,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     problem at that pressure. For quasi-identical materials (``K = 0``) the
     two problems are uncoupled and this is Johnson's process. For ``K ≠ 0`` the
     tangential tractions change the normal displacements and vice versa; the
-    problems are alternated (Panagiotopoulos' process, seed 002 §2.3: normal
+    problems are alternated (Panagiotopoulos' process, Bosso et al. (2013), ch. 2 §2.3: normal
     with the current tangential tractions, tangential with the new pressure)
     until the tractions change by less than ``outer_tol`` (relative).
 
@@ -164,7 +58,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     gap : ndarray, shape (nx, ny)
         Undeformed separation h0 [m].
     materials : Material or MaterialPair
-    load, penetration : float
+    Fn, penetration : float
         Exactly one: normal force [N] or approach [m].
     creepage : sequence of 3 floats, optional
         (ξ, η, φ) for steady rolling.
@@ -182,7 +76,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
 
     Returns
     -------
-    GapSolution
+    GapResult
 
     References
     ----------
@@ -190,15 +84,15 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
        unilateral contact- and friction-boundary value problem, Ing.-Arch. 44
        (1975) 421–432.
     .. [2] Kalker (1990) §5.3 (KOMBI: alternation of NORM and TANG).
-    .. [3] Seed paper 002, §2.3, steps 1–4.
+    .. [3] Bosso et al. (2013), ch. 2, §2.3, steps 1–4.
     """
     pair = as_material_pair(materials)
     h0 = grid.check_field("gap", gap)
     tangential = creepage is not None or shift is not None or force is not None
     if not tangential:
-        normal = solve_normal(grid, h0, pair, load=load, penetration=penetration, tol=normal_tol,
+        normal = solve_normal(grid, h0, pair, Fn=Fn, penetration=penetration, tol=normal_tol,
                               maxiter=normal_maxiter, on_fail=on_fail)
-        return GapSolution(normal, None, 1, 0.0)
+        return GapResult(normal, None, 1, 0.0)
     if mu is None:
         raise InputError("mu is required for a tangential problem (creepage=, shift= or force=)")
     if creepage is not None and (shift is not None or force is not None):
@@ -214,7 +108,7 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
     outer = 0
     for outer in range(1, (outer_maxiter if coupled else 1) + 1):
         h = h0 if not coupled else h0 + conv_nt(pt)[0]
-        normal = solve_normal(grid, h, pair, load=load, penetration=penetration, tol=normal_tol,
+        normal = solve_normal(grid, h, pair, Fn=Fn, penetration=penetration, tol=normal_tol,
                               maxiter=normal_maxiter, on_fail=on_fail, operator=op)
         init = None if tang is None else np.stack((tang.px, tang.py))
         if creepage is not None:
@@ -232,4 +126,4 @@ def solve_gap(grid, gap, materials, *, load=None, penetration=None, creepage=Non
         raise ConvergenceError(f"Panagiotopoulos' normal–tangential alternation did not converge "
                                f"in {outer} iterations (relative change {change:.2e} > "
                                f"outer_tol={outer_tol:.1e})")
-    return GapSolution(normal, tang, outer, 0.0 if not coupled else change)
+    return GapResult(normal, tang, outer, 0.0 if not coupled else change)

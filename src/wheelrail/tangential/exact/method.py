@@ -4,9 +4,9 @@ For each Hertzian contact the window around the ellipse is discretised
 (:func:`wheelrail.normal.bem.hertz_grid`), the normal problem is solved with
 the boundary-element solver (so the pressure is that of the discretised
 half-space, not the analytic Hertz one) and then the steady-rolling problem
-with Coulomb friction (:mod:`wheelrail.halfspace.tangential`). For
+with Coulomb friction (:mod:`wheelrail.tangential.exact`). For
 dissimilar materials (``K ≠ 0``) the two problems are alternated
-(Panagiotopoulos' process, :func:`wheelrail.contact.solve_gap`).
+(Panagiotopoulos' process, :func:`wheelrail.tangential.exact.solve_gap`).
 
 This is the reference method of the library; accuracy is controlled by
 ``elements`` (elements across the contact in each direction): the creep
@@ -16,7 +16,7 @@ References
 ----------
 .. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, ch. 2 and 5.
-.. [2] Seed paper 002 (review), §2.2–2.3; seed paper 001 (Baeza et al.),
+.. [2] Bosso et al. (2013), ch. 2, §2.2–2.3; Baeza et al.,
    §2.2–2.4.
 """
 
@@ -26,11 +26,14 @@ from collections import OrderedDict
 
 import numpy as np
 
-from .._validation import integer, scalar_or_array
-from ..errors import InputError
-from ..materials import as_material_pair
-from ..results import CreepForces, Status
-from ._base import TangentialMethod
+from ..._validation import scalar_or_array
+from ...materials import as_material_pair
+from ...normal.bem import hertz_grid, solve_normal
+from ...options import configured, option
+from ...results import CreepForcesResult, GapResult, Status
+from .._base import TangentialMethod
+from .coupled import solve_gap
+from .steady import solve_rolling
 
 __all__ = ["Exact", "exact_single"]
 
@@ -51,13 +54,12 @@ def _normal_solution(grid, gap, pair, load, on_fail, initial=None):
     pressure: about 30 % fewer iterations than the default start, the same
     solution to the solver's tolerance).
     """
-    from ..normal.bem import solve_normal
 
     key = (grid, hash(gap.tobytes()), pair.G, pair.nu, pair.K, float(load), on_fail)
     try:
         normal = _NORMAL_CACHE.pop(key)
     except KeyError:
-        normal = solve_normal(grid, gap, pair, load=float(load), on_fail=on_fail,
+        normal = solve_normal(grid, gap, pair, Fn=float(load), on_fail=on_fail,
                               initial=initial)
     _NORMAL_CACHE[key] = normal
     while len(_NORMAL_CACHE) > _NORMAL_CACHE_SIZE:
@@ -67,7 +69,7 @@ def _normal_solution(grid, gap, pair, load, on_fail, initial=None):
 
 def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6, maxiter=100,
                  on_fail="raise"):
-    """Solve one Hertzian contact with the exact theory; returns a :class:`GapSolution`.
+    """Solve one Hertzian contact with the exact theory; returns a :class:`GapResult`.
 
     Parameters
     ----------
@@ -87,9 +89,6 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     the normal and tangential problems are alternated by
     :func:`wheelrail.contact.solve_gap`.
     """
-    from ..normal.bem import hertz_grid
-    from ..contact import GapSolution, solve_gap
-    from ..halfspace.tangential import solve_rolling
 
     # at least one row of elements outside the Hertz ellipse, also on coarse grids where the
     # discrete contact area reaches the ellipse's edge elements
@@ -98,17 +97,18 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     pair = as_material_pair(contact.materials)
     creepage = (float(xi), float(eta), float(phi))
     if pair.K != 0.0:
-        return solve_gap(grid, gap, pair, load=float(contact.load), creepage=creepage,
+        return solve_gap(grid, gap, pair, Fn=float(contact.Fn), creepage=creepage,
                          mu=float(mu), tol=tol, maxiter=maxiter, on_fail=on_fail)
     a, b = float(contact.a), float(contact.b)
     hertz = float(contact.p0) * np.sqrt(np.clip(1.0 - (grid.X / a) ** 2 - (grid.Y / b) ** 2,
                                                 0.0, None))
-    normal = _normal_solution(grid, gap, pair, contact.load, on_fail, initial=hertz)
+    normal = _normal_solution(grid, gap, pair, contact.Fn, on_fail, initial=hertz)
     tang = solve_rolling(grid, normal.pressure, pair, creepage, float(mu), tol=tol,
                          maxiter=maxiter, on_fail=on_fail)
-    return GapSolution(normal, tang, 1, 0.0)
+    return GapResult(normal, tang, 1, 0.0)
 
 
+@configured
 class Exact(TangentialMethod):
     """Kalker's exact (half-space, boundary-element) theory of steady rolling.
 
@@ -132,7 +132,7 @@ class Exact(TangentialMethod):
 
     Notes
     -----
-    ``fields`` is the :class:`~wheelrail.contact.GapSolution`
+    ``fields`` is the :class:`~wheelrail.results.GapResult`
     (grid, pressure, px, py, slip sx, sy, adhesion mask, displacements) for a
     single case, a tuple of them for a batch. ``info`` holds ``area``,
     ``p_max``, ``adhesion_area`` [m², Pa, m²], ``normal_iterations``,
@@ -149,16 +149,22 @@ class Exact(TangentialMethod):
         "J. Zhao, E.A.H. Vollebregt, C.W. Oosterlee, A fast nonlinear conjugate gradient based "
         "method for 3D frictional contact problems, J. Comput. Phys. 288 (2015) 86-100.",
     )
-    options = {"elements": 40, "margin": 1.1, "tol": 1e-6, "maxiter": 100,
-               "on_fail": "raise", "progress": None}
+    aliases = ("kalker",)
+    elements: int = option(40, lo=4, doc="elements across the Hertz contact in each direction")
+    margin: float = option(1.1, lo=1.0, hi=10.0, lo_open=True,
+                           doc="half-width of the grid window in semi-axes")
+    tol: float = option(1e-6, lo=0.0, hi=1.0, lo_open=True, hi_open=True,
+                        doc="tangential solver tolerance (slip residual / rigid slip)")
+    maxiter: int = option(100, lo=1, doc="Newton iterations of the tangential solver")
+    on_fail: str = option("raise", choices=("raise", "status"),
+                          doc="not converged: raise ConvergenceError, or return with a status")
+    progress: bool | None = option(None, choices=(None, True, False),
+                                   doc="progress bar for batches (None: above 20 cases)")
 
-    def solve(self, contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6,
-              maxiter=100, on_fail="raise", progress=None):
+    def solve(self, contact, xi, eta, phi, mu):
         """Creep forces of a (batch of) Hertzian contact(s); see the class docstring."""
-        elements = integer("elements", elements, 4)
-        maxiter = integer("maxiter", maxiter, 1)
-        if on_fail not in ("raise", "status"):
-            raise InputError(f"on_fail must be 'raise' or 'status', got {on_fail!r}")
+        elements, margin, tol, maxiter = self.elements, self.margin, self.tol, self.maxiter
+        on_fail, progress = self.on_fail, self.progress
         shape = np.shape(contact.a)
         n = int(np.prod(shape)) if shape else 1
         xs, es, ps, ms = (np.broadcast_to(np.asarray(v, float), shape).reshape(-1)
@@ -186,21 +192,17 @@ class Exact(TangentialMethod):
                 bar.stop()
         return _to_creep_forces(sols, shape, ms, self.name)
 
-    def solve_patch(self, patch, xi, eta, phi, mu, elements=40, margin=1.1, tol=1e-6,
-                    maxiter=100, on_fail="raise", progress=None):
+    def solve_patch(self, patch, xi, eta, phi, mu):
         """Exact theory on one patch: the patch's own pressure field if it has one
         (boundary elements; ``elements``/``margin`` then do not apply), else the
         boundary-element solution of its ellipse (as :meth:`solve`)."""
-        return _solve_patches_exact(self, (patch,), ((xi, eta, phi),), float(mu), tol, maxiter,
-                                    on_fail, elements, margin)[0]
+        return _solve_patches_exact(self, (patch,), ((xi, eta, phi),), float(mu))[0]
 
-    def solve_patches(self, patches, creepages, mu, previous=None, elements=40, margin=1.1,
-                      tol=1e-6, maxiter=100, on_fail="raise", progress=None):
+    def solve_patches(self, patches, creepages, mu, previous=None):
         """Patches on one boundary-element grid are solved together (their interaction
         included), with the creepages of the patch with the largest normal force, at its
         reference point (the rigid slip varies over the grid through the spin)."""
-        return _solve_patches_exact(self, patches, creepages, float(mu), tol, maxiter, on_fail,
-                                    elements, margin, previous)
+        return _solve_patches_exact(self, patches, creepages, float(mu), previous)
 
 
 def _to_creep_forces(sols, shape, mu, name):
@@ -226,7 +228,7 @@ def _to_creep_forces(sols, shape, mu, name):
         "converged": (np.array([s.tangential.converged for s in sols]).reshape(shape)
                       if shape else bool(sols[0].tangential.converged)),
     }
-    return CreepForces(
+    return CreepForcesResult(
         Fx=arr(lambda s: s.Fx), Fy=arr(lambda s: s.Fy), Mz=arr(lambda s: s.Mz),
         Fn=arr(lambda s: s.Fn), mu=scalar_or_array(mu.reshape(shape)) if shape else float(mu[0]),
         method=name, status=status, iterations=iarr(lambda s: s.tangential.iterations),
@@ -246,9 +248,9 @@ def _patch_forces(sol, mask, grid, origin, centre):
     return Fx, Fy, Mz, adh
 
 
-def _solve_patches_exact(method, patches, creepages, mu, tol, maxiter, on_fail, elements,
-                         margin, previous=None):
-    from ..halfspace.tangential import solve_rolling
+def _solve_patches_exact(method, patches, creepages, mu, previous=None):
+    tol, maxiter, on_fail = method.tol, method.maxiter, method.on_fail
+    elements, margin = method.elements, method.margin
 
     out = [None] * len(patches)
     shared = {}
@@ -285,7 +287,7 @@ def _solve_patches_exact(method, patches, creepages, mu, tol, maxiter, on_fail, 
             full_slip = adh == 0.0
             status = (Status.NOT_CONVERGED if not sol.converged
                       else Status.FULL_SLIP if full_slip else Status.CONVERGED)
-            out[i] = CreepForces(Fx=Fx, Fy=Fy, Mz=Mz, Fn=p.Fn, mu=float(mu), method=method.name,
+            out[i] = CreepForcesResult(Fx=Fx, Fy=Fy, Mz=Mz, Fn=p.Fn, mu=float(mu), method=method.name,
                                  status=status, iterations=sol.iterations, fields=sol,
                                  info={"area": p.area, "p_max": p.p_max, "adhesion_area": adh,
                                        "tangential_iterations": sol.iterations,

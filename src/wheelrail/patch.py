@@ -13,7 +13,7 @@ families (de Pater's normal and tangential sub-problems):
 * an **equivalent ellipse** (semi-axes ``a``, ``b``, :meth:`ContactPatch.ellipse`)
   for the closed-form creep laws (Carter, linear, Shen–Hedrick–Elkins,
   Polach), which know nothing but an ellipse. A Hertzian patch carries its
-  exact :class:`~wheelrail.normal.hertz.HertzContact`; for a non-elliptic
+  exact :class:`~wheelrail.hertzian.HertzContact`; for a non-elliptic
   patch the ellipse has the patch's area and its length/width ratio;
 * optionally a **pressure field on a half-space grid** (``grid``,
   ``pressure``, ``mask``) from the boundary-element solver, which the exact
@@ -31,7 +31,7 @@ References
 ----------
 .. [1] J. Piotrowski, H. Chollet, Wheel–rail contact models for vehicle system
    dynamics including multi-point contact, VSD 43 (2005), §3 (strips, virtual
-   penetration) (seed 003).
+   penetration).
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990 (elliptic patches, exact theory on a grid).
 """
@@ -44,9 +44,10 @@ from typing import Any
 
 import numpy as np
 
-from .._validation import integer
-from ..errors import InputError
-from ..materials import MaterialPair, as_material_pair
+from ._validation import integer
+from .errors import InputError
+from .hertzian import hertz_from_semiaxes
+from .materials import MaterialPair, as_material_pair
 
 __all__ = ["ContactPatch", "ContactFrame", "DEFAULT_STRIPS", "DEFAULT_CELLS"]
 
@@ -214,7 +215,7 @@ class ContactPatch:
         t = -1.0 + (np.arange(strips) + 0.5) * (2.0 / strips)
         half = np.sqrt(1.0 - t * t)
         p = float(contact.p0) * half[:, None] * _sample_profile("elliptic", cells)[None, :]
-        p0, load = float(contact.p0), float(contact.load)
+        p0, load = float(contact.p0), float(contact.Fn)
         if (all(math.isfinite(v) and v > 0 for v in (a, b, p0, load))
                 and isinstance(contact.materials, MaterialPair)):
             # what __post_init__ would check holds: float arrays (strips,), p finite >= 0
@@ -224,7 +225,7 @@ class ContactPatch:
                                 penetration=float(contact.penetration), A=float(contact.A),
                                 B=float(contact.B), hertz=contact, frame=frame, method=method)
         return cls(y=b * t, dy=np.full(strips, 2.0 * b / strips), x_lead=a * half,
-                   x_trail=-a * half, strip_pressure=p, Fn=float(contact.load),
+                   x_trail=-a * half, strip_pressure=p, Fn=float(contact.Fn),
                    materials=contact.materials, a=a, b=b,
                    penetration=float(contact.penetration), A=float(contact.A),
                    B=float(contact.B), hertz=contact, frame=frame, method=method)
@@ -335,7 +336,7 @@ class ContactPatch:
         return self.x_lead[:, None] - frac[None, :] * (self.x_lead - self.x_trail)[:, None]
 
     def ellipse(self):
-        """The equivalent :class:`~wheelrail.normal.hertz.HertzContact` (a, b, Fn).
+        """The equivalent :class:`~wheelrail.hertzian.HertzContact` (a, b, Fn).
 
         The Hertz ellipse itself for a Hertzian patch; otherwise the ellipse
         with the patch's semi-axes ``a``, ``b`` (same area, same
@@ -343,7 +344,6 @@ class ContactPatch:
         """
         if self.hertz is not None:
             return self.hertz
-        from ..normal.hertz import hertz_from_semiaxes
 
         return hertz_from_semiaxes(self.a, self.b, self.Fn, self.materials)
 

@@ -1,0 +1,249 @@
+"""The stepping core of the exact tangential theory: one Newton (or Gauss–Seidel) solve
+of the slip equations on a grid with given rigid slip, used by steady rolling,
+shift, transient rolling and prescribed-force loops.
+
+See :mod:`wheelrail.tangential.exact` for the equations, the variables and the
+preconditioner.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ...halfspace.rolling import _BlockConvolution
+from . import _kernels as K
+from .krylov import _gmres
+
+
+# --------------------------------------------------------------------------
+# driver
+# --------------------------------------------------------------------------
+def _sweep_order(contact):
+    """Element indices in contact, leading edge (largest x index) first."""
+    ii, jj = np.nonzero(contact)
+    order = np.lexsort((jj, -ii))
+    return ii[order].astype(np.int64), jj[order].astype(np.int64)
+
+
+def _initial_traction(p0, g, contact):
+    """Starting tractions (2, nx, ny) and their magnitude before projection.
+
+    ``p0`` (zeros if None), zero outside the contact, scaled back onto the
+    friction disc ``|p| ≤ g`` where it lies outside.
+    """
+    p = np.zeros((2,) + g.shape) if p0 is None else np.array(p0, dtype=float)
+    p[:, ~contact] = 0.0
+    norm = np.hypot(p[0], p[1])
+    return np.where(norm > g, p * (g / np.where(norm > 0, norm, 1.0)), p), norm
+
+
+def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
+    """Solve ``s = b + M p``, Coulomb with bound ``g`` (nx, ny); returns p, s, sweeps, res."""
+    contact = g > 0.0
+    order_i, order_j = _sweep_order(contact)
+    gmax = float(g.max())
+    mxx, mxy, myx, myy = (np.ascontiguousarray(kernel[a, c]) for a, c in
+                          ((0, 0), (0, 1), (1, 0), (1, 1)))
+    p, _ = _initial_traction(p0, g, contact)
+    px, py = np.ascontiguousarray(p[0]), np.ascontiguousarray(p[1])
+    ii, jj = np.nonzero(contact)
+    i0, i1, j0, j1 = int(ii.min()), int(ii.max()) + 1, int(jj.min()), int(jj.max()) + 1
+    tol_abs = tol * gmax
+    skip = skip_fraction * tol_abs
+    res = np.inf
+    sweeps = 0
+    for sweeps in range(1, maxiter + 1):
+        s = b + conv(np.stack((px, py)))
+        sx, sy = np.ascontiguousarray(s[0]), np.ascontiguousarray(s[1])
+        dp = K._gs_sweep(mxx, mxy, myx, myy, order_i, order_j, g, px, py, sx, sy,
+                       i0, i1, j0, j1, skip)
+        res = dp / gmax
+        if dp <= tol_abs:
+            break
+    p = np.stack((px, py))
+    s = b + conv(p)
+    return p, s, sweeps, res
+
+
+def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
+            gmres_maxiter=400, krylov_conv=None, precondition=None, forcing=None):
+    """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
+
+    Unknowns are the tractions of the adhesion elements (H) and the traction
+    angles θ of the slip elements (S, ``p = g (cos θ, sin θ)``; Zhao, Vollebregt
+    & Oosterlee 2014). Equations: ``s_I = 0`` on H, ``t_I · s_I = 0`` on S with
+    ``t`` the unit vector normal to ``p``. Each Newton system is solved by
+    GMRES with FFT matrix–vector products, right-preconditioned by
+    :func:`_precondition`. After each step elements with ``|p| > g`` move to S
+    and slip elements whose slip points along their traction move to H.
+
+    ``precondition`` (private, for experiments such as
+    ``benchmarks/bench_exact_preconditioner.py``): a factory
+    ``(kind, pos, pinv, matvec, n) -> callable`` called once per Newton step
+    with the element states (0 out of contact, 1 adhesion, 2 slip), the
+    positions of their unknowns, the line preconditioner, the Krylov product
+    and the number of unknowns; the callable replaces ``pinv`` as the right
+    preconditioner. Default: the line preconditioner.
+
+    Returns ``p, s, newton_iterations, residual, gmres_iterations``; the
+    residual is the largest equation residual divided by the slip scale
+    ``max |b|`` (dimensionless).
+    """
+    contact = g > 0.0
+    shape = g.shape
+    order_i, order_j = _sweep_order(contact)
+    nx, ny = shape
+    cx, cy = nx - 1, ny - 1
+    d0 = np.ascontiguousarray(kernel[:, :, cx, cy])
+    if upwind and nx > 1:
+        dup = np.ascontiguousarray(kernel[:, :, cx - 1, cy])
+    else:
+        dup = np.zeros((2, 2))
+    p, norm = _initial_traction(p0, g, contact)
+    slip = contact & (norm >= g * (1 - 1e-12)) & (norm > 0)
+    s_scale = float(np.max(np.hypot(b[0], b[1])[contact]))
+    if s_scale == 0.0:
+        return np.zeros((2,) + shape), b.copy(), 0, 0.0, 0
+    if s_scale < 1e-100 or s_scale > 1e100:
+        # the problem is positively homogeneous in (b, g, p): solve it rescaled; a bound
+        # that would overflow (rigid slip ~1e-308) is capped: the patch then sticks fully
+        with np.errstate(over="ignore"):
+            g_scaled = np.minimum(g / s_scale, 1e300)
+        p, s, it, res, kry = _newton(kernel, conv, b / s_scale, g_scaled,
+                                     None if p0 is None else np.asarray(p0) / s_scale, tol,
+                                     maxiter, upwind, gmres_rtol, gmres_maxiter, krylov_conv,
+                                     precondition, forcing)
+        return p * s_scale, s * s_scale, it, res, kry
+    total_krylov = 0
+    res = np.inf
+    it = 0
+    # list index of each contact element's upstream neighbour (i + 1, j), −1 if none
+    index = np.full(shape, -1, dtype=np.int64)
+    index[order_i, order_j] = np.arange(order_i.shape[0])
+    up_e = np.full(order_i.shape[0], -1, dtype=np.int64)
+    inside = order_i + 1 < nx
+    up_e[inside] = index[order_i[inside] + 1, order_j[inside]]
+    g_e = np.ascontiguousarray(g[order_i, order_j])
+    vx = np.zeros(order_i.shape[0])
+    vy = np.zeros(order_i.shape[0])
+    v = np.zeros((2,) + shape)      # Krylov work field: only contact elements are written
+    kconv = conv if krylov_conv is None else krylov_conv
+    n_e = order_i.shape[0]
+    slip_e = np.ascontiguousarray(slip[order_i, order_j])
+    kind_e = np.empty(n_e, dtype=np.int64)
+    pos_e = np.empty(n_e, dtype=np.int64)
+    ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e = (np.empty(n_e) for _ in range(7))
+    F_work = np.empty(2 * n_e)
+    p = np.ascontiguousarray(p)
+    for it in range(1, maxiter + 1):
+        s = b + conv(p)
+        # --- active-set update
+        changed = K._active_set(p, s, g_e, order_i, order_j, slip_e)
+        if changed:
+            # the Krylov product suffices: a step whose active set changed is never the last
+            s = b + kconv(p)
+        # --- residual, unknowns in upwind order, element data of the Krylov loop
+        n_unknowns, big = K._newton_system(p, s, g_e, order_i, order_j, slip_e, kind_e, pos_e,
+                                         ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e, F_work)
+        F = F_work[:n_unknowns]
+        res = big / s_scale if n_unknowns else 0.0
+        if res <= tol and not changed:
+            return p, s, it - 1, res, total_krylov
+
+        def matvec(z):
+            K._scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
+            mv = kconv(v)
+            out = np.empty(n_unknowns)
+            K._gather(mv, z, order_i, order_j, kind_e, pos_e, tx_e, ty_e, diag_e, out)
+            return out
+
+        def pinv(r):
+            z = np.empty(n_unknowns)
+            K._precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy)
+            return z
+
+        if precondition is None:
+            prec = pinv
+        else:
+            kind = np.zeros(shape, dtype=np.int64)
+            pos = np.zeros(shape, dtype=np.int64)
+            kind[order_i, order_j] = kind_e
+            pos[order_i, order_j] = pos_e
+            prec = precondition(kind, pos, pinv, matvec, n_unknowns)
+        rtol = gmres_rtol
+        if forcing is not None:
+            # adaptive forcing: loose while the active set moves, then just tight enough
+            # to reach tol in one more step (floor: the single-precision products)
+            loose, factor, floor = forcing
+            rtol = loose if (changed or it == 1) else min(gmres_rtol,
+                                                          max(factor * tol / res, floor))
+        y, count = _gmres(lambda w: matvec(prec(w)), -F, rtol, gmres_maxiter)
+        total_krylov += count
+        dz = prec(y)
+        # --- update
+        K._newton_update(p, dz, g_e, order_i, order_j, kind_e, pos_e, ex_e, ey_e)
+    s = b + conv(p)
+    return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov
+
+
+def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100, upwind=True,
+                krylov_conv=None):
+    """One frictional step on a grid: the shared core of steady and transient rolling.
+
+    Solves the discrete Coulomb problem ``s = b + K p`` with the traction bound
+    ``g`` by the active-set semismooth Newton–GMRES method of the module
+    docstring. Steady rolling (:func:`solve_rolling`) calls it once with the
+    rolling kernel ``M``; the transient stepper
+    (:func:`wheelrail.transient.transient_rolling`) calls it once per time step
+    with ``K = C / (V Δt)`` and the displacement carried from the previous step
+    in ``b`` (Baeza et al., eq. 2.19).
+
+    Parameters
+    ----------
+    kernel : ndarray, shape (2, 2, 2nx−1, 2ny−1)
+        Slip per unit traction [1/Pa] (offset layout of
+        :func:`~wheelrail.halfspace.influence.influence_kernel`).
+    b : ndarray, shape (2, nx, ny)
+        Slip at zero traction (rigid slip plus carried displacement) [-].
+    g : ndarray, shape (nx, ny)
+        Traction bound μ·pn [Pa]; zero outside the contact.
+    conv : callable, optional
+        ``p (2, nx, ny) -> K p (2, nx, ny)``; built from ``kernel`` if omitted.
+    initial : ndarray, shape (2, nx, ny), optional
+        Starting tractions [Pa] (e.g. the previous time step).
+    tol : float
+        Residual of the slip equations relative to ``max |b|``.
+    maxiter : int
+        Largest number of Newton iterations.
+    upwind : bool
+        Precondition with the upstream neighbour (rolling kernels) or the
+        element itself only.
+    krylov_conv : callable, optional
+        A cheaper approximation of ``conv`` (e.g. the single-precision
+        product of the FFT convolution) used for the GMRES products only; the
+        residual and the returned slip always use ``conv``, so the converged
+        solution meets ``tol`` either way. Default: ``conv``.
+
+    Returns
+    -------
+    p : ndarray, shape (2, nx, ny)
+        Tractions on the wheel [Pa].
+    s : ndarray, shape (2, nx, ny)
+        Slip ``b + K p`` [-].
+    iterations : int
+        Newton iterations.
+    residual : float
+        Final scaled residual (``<= tol`` when converged).
+    krylov : int
+        GMRES iterations in total.
+
+    References
+    ----------
+    Zhao, Vollebregt & Oosterlee (2015); Baeza et al. eqs. (2.19)–(2.20).
+    """
+    if conv is None:
+        conv = _BlockConvolution(kernel)
+    return _newton(kernel, conv, b, g, initial, tol, maxiter, upwind=upwind,
+                   krylov_conv=krylov_conv)
+
+

@@ -1,0 +1,48 @@
+"""One name per physical quantity (``wheelrail.conventions.NAMES``): no public entry
+function or method takes a retired synonym (``load``, ``normal_force``, ``approach``, ...)."""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+
+import wheelrail as wr
+from wheelrail.conventions import RETIRED_NAMES
+
+ENTRY_POINTS = ["solve", "creep_forces", "hertz", "hertz_from_semiaxes", "hertz_from_radii",
+                "hertz_from_penetration", "transient_rolling", "solve_creepages", "solve_normal",
+                "solve_gap", "solve_gap_auto", "wheelset_sweep", "contact_table", "contact_points",
+                "elastic_contact", "WheelRailPosition", "GapProblem", "HertzContact",
+                "ContactPatch", "Motion"]
+
+
+def _names(obj):
+    if dataclasses.is_dataclass(obj):
+        return [f.name for f in dataclasses.fields(obj)]
+    return list(inspect.signature(obj).parameters)
+
+
+def test_public_entry_points_use_the_convention_names():
+    bad = {name: [p for p in _names(getattr(wr, name)) if p in RETIRED_NAMES]
+           for name in ENTRY_POINTS}
+    assert {k: v for k, v in bad.items() if v} == {}
+
+
+def test_methods_options_use_the_convention_names():
+    classes = [*wr.normal_methods().values(), *wr.tangential_methods().values()]
+    bad = {c.name: [k for k in c.option_declarations() if k in RETIRED_NAMES] for c in classes}
+    assert {k: v for k, v in bad.items() if v} == {}
+
+
+def test_results_use_the_convention_names():
+    c = wr.hertz(Fn=1e4, A=1.0, B=2.0, material=wr.STEEL)
+    assert c.Fn == 1e4 and not hasattr(c, "load")
+    r = wr.creep_forces(c, (1e-4, 0.0, 0.0), 0.3, method="linear")
+    assert r.Fn == 1e4
+
+
+def test_the_checker_sees_a_retired_name():
+    def f(contact, load):  # a planted signature
+        return contact, load
+
+    assert [p for p in _names(f) if p in RETIRED_NAMES] == ["load"]
