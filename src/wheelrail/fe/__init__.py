@@ -72,10 +72,10 @@ from .rolling import (
                    RollingResult,
                    plastic_fields,
                    saturation_creepage,
-                   solve,
                    stable_time_step,
                    steady_window,
 )
+from .run import solve
 from .static import IndentResult, indent
 
 __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",

@@ -17,7 +17,7 @@ import numpy as np
 from .._validation import as_float_array
 from ..errors import InputError
 from .model import contact_geometry
-from .rolling import solve
+from .run import solve
 
 __all__ = ["creep_curve"]
 
