@@ -156,7 +156,7 @@ def solve_explicit(case, progress, output_every, io):
         fcon[ns:] = c["fm"].reshape(-1, 3)
         if with_beta:
             model.internal_force(v, fd_beta, elastic=True)
-            fd_beta *= beta
+            fd_beta[...] *= beta
         return c, e_int, float(c["fs"][:, 2].sum())
 
     pass_rows = []
@@ -228,8 +228,6 @@ def solve_explicit(case, progress, output_every, io):
 
         maybe_write = restart_writer(io, model, dt, n2)
         xs_prev, xm_prev = c["xs"], c["xm"]
-        dw_old = 0.0
-        vc_old = np.zeros((cidx.size, 3))
         # ---- step 2: rolling (energies counted from here)
         for k in range(k0, n2):
             c, e_int, fcw = forces(u, v, w, psi, s, xs_prev, xm_prev, ft, mu, beta > 0)
