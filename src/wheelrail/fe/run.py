@@ -1,6 +1,6 @@
 """Rolling of a wheel over a rail (the entry :func:`solve`): the explicit or implicit
-integrator chosen by the case (:mod:`.explicit`, :mod:`.implicit`; the shared parts are
-in :mod:`.rolling`)."""
+integrator chosen by the case (:mod:`wheelrail.fe.explicit`, :mod:`wheelrail.fe.implicit`;
+the shared parts are in :mod:`wheelrail.fe.rolling`)."""
 
 from __future__ import annotations
 
