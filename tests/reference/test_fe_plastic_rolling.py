@@ -6,7 +6,7 @@ Cylinder (R = 0.46 m) on the 60E1 crown, 7.5 kN (Hertz p0 = 518 MPa), μ = 0.2,
 p0 / 3 and the R900A hardening law. (The seed case at its Table-3 load has p0 / Y = 2.3,
 but this mesh resolves the patch by 1.5 elements per semi-axis and the thin plastic layer
 even less: at p0 / Y = 2.3 the changes are 1-3 %, against 7-17 % at p0 / Y = 3; the seed
-case on its own meshes is in docs/fe.md.) Expected in kind (their §4.2): lower peak
+case on its own meshes is in docs/fe_plastic.md.) Expected in kind (their §4.2): lower peak
 pressure and peak shear traction than the elastic run (measured −7 %, −17 %), a lower
 creep force (−12 %), plastic strain in a layer under the surface, a larger stick zone, the vertical
 load carried. The implicit integrators (quasi-static and HHT-α) with the same material: against

@@ -20,8 +20,8 @@ unscaled, 137 kHz with mass scaling 400 on the 2 mm mesh): the normal force then
 swings by ±30 % and Fx has a 17-23 % standard deviation from step to step. A dashpot
 on the relative normal velocity of each closed pair damps that mode (its force is
 proportional to the rate of change of the penetration, which vanishes in steady
-rolling except where nodes enter and leave the patch); docs/fe.md measures that the
-steady forces do not change with it, and do not change with the mass scaling.
+rolling except where nodes enter and leave the patch); docs/fe_plastic.md measures that
+the steady forces do not change with it, and do not change with the mass scaling.
 
 Each step (one force evaluation) runs: the element forces (two parallel regions),
 the contact (parallel over slaves for large surfaces), the node update

@@ -135,7 +135,7 @@ class TabulatedHardening:
 #: Considère's necking condition dσ/dε = σ at an assumed uniform elongation of 8 %
 #: (true strain 0.08): Q = 490 MPa, b = 36.7 (saturation 979 MPa, initial slope 18 GPa).
 #: The uniform elongation is an assumption (EN 13674-1 prescribes only A >= 10 % at
-#: fracture); see docs/fe.md.
+#: fracture); see docs/fe_plastic.md.
 R900A_HARDENING = Voce(saturation=490.24e6, rate=36.733)
 
 
