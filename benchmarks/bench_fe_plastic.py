@@ -308,9 +308,38 @@ def cmd_passes(a):
 
 
 # ----------------------------------------------------------------------------- speed
+def machine_speedup(repeats=20):
+    """Speed-up of a trivially parallel numba loop on 2 threads (the machine's available
+    parallelism while the benchmark runs: 2.0 on an idle 2-core machine)."""
+    import numba
+
+    @numba.njit(parallel=True)
+    def work(n):
+        s = np.zeros(64)
+        for c in numba.prange(64):
+            acc = 0.0
+            for i in range(n):
+                acc += np.sin(i * 1e-3 + c)
+            s[c] = acc
+        return s.sum()
+
+    work(10)
+    best = {}
+    for threads in (1, 2, 1, 2):
+        numba.set_num_threads(threads)
+        for _ in range(repeats):
+            t = time.perf_counter()
+            work(20000)
+            best[threads] = min(best.get(threads, np.inf), time.perf_counter() - t)
+    numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    return best[1] / best[2]
+
+
 def cmd_speed(a):
     import numba
 
+    print(f"control: a trivially parallel numba loop runs {machine_speedup():.2f}x faster on 2 "
+          f"threads than on 1 now ({load()})", flush=True)
     rows = []
     for plastic in (False, True):
         case = seed(a.mesh, plastic=plastic, travel=a.travel, mass_scaling=400.0)
