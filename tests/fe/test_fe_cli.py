@@ -110,3 +110,60 @@ def test_fe_seed000_case_file_cone_on_arc(tmp_path):
     g = contact_geometry(case)
     assert mode == "indent" and abs(g["y_c"]) < 1e-6
     assert g["hertz"].a / g["hertz"].b == pytest.approx(1.334, abs=0.002)
+
+
+PLASTIC = ROLL + """yield_stress = 1.725e8
+hardening_saturation = 4.9e8
+hardening_rate = 36.7
+"""
+
+
+def test_fe_plastic_roll_writes_fields_and_restarts_with_the_plastic_state(tmp_path):
+    """An elasto-plastic [fe] case: fields.nc and the plastic-strain section are written, and
+    a run continued from its restart file (which carries the plastic state) ends with the
+    same forces and plastic strains."""
+    import xarray as xr
+
+    from wheelrail.cli.fe import case_from_toml
+    from wheelrail.fe import J2Plastic, Voce
+
+    f = tmp_path / "plastic.toml"
+    f.write_text(PLASTIC)
+    case, _ = case_from_toml(f)
+    assert case.material == J2Plastic(2.1e11, 0.28, 1.725e8, hardening=Voce(4.9e8, 36.7))
+    out = tmp_path / "out"
+    assert main(["fe", str(f), "--out", str(out), "--restart-every", "400"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["equivalent_plastic_strain_max"] > 0
+    assert summary["steady"]["Fx_scatter"] < 0.1
+    assert (out / "plastic_strain_section.png").read_bytes()[:4] == b"\x89PNG"
+    fields = xr.open_dataset(out / "fields.nc")
+    assert float(fields.rail_equivalent_plastic_strain.max()) == pytest.approx(
+        summary["equivalent_plastic_strain_max"])
+    assert "equivalent_plastic_strain" in __import__("meshio").read(out / "mesh.vtu").cell_data
+    from wheelrail.fe import solve
+
+    full = solve(case, progress=False, restart_file=tmp_path / "r_{step}.npz", restart_every=400)
+    assert full.Fx == summary["Fx"]
+    mid = sorted(tmp_path.glob("r_*.npz"), key=lambda p: int(p.stem[2:]))[0]
+    out2 = tmp_path / "out2"
+    assert main(["fe", str(f), "--out", str(out2), "--no-figures", "--restart", str(mid)]) == 0
+    s2 = json.loads((out2 / "summary.json").read_text())
+    assert s2["restarted_at_step"] == int(mid.stem[2:]) > 0
+    assert s2["Fx"] == summary["Fx"]
+    fields2 = xr.open_dataset(out2 / "fields.nc")
+    np.testing.assert_array_equal(fields2.rail_equivalent_plastic_strain.values,
+                                  fields.rail_equivalent_plastic_strain.values)
+
+
+def test_fe_seed000_table3_case_file_and_bad_material(tmp_path, capsys):
+    from wheelrail.cli.fe import case_from_toml
+    from wheelrail.fe import seed000_load
+
+    f = tmp_path / "seed.toml"
+    f.write_text('[fe]\nseed000 = "table3"\nmaterial = "r900a"\nmesh_size = 2e-3\n')
+    case, _ = case_from_toml(f)
+    assert case.load == pytest.approx(seed000_load()) and case.material.yield_stress == 489e6
+    f.write_text('[fe]\nseed000 = "printed"\nmaterial = "steel"\n')
+    assert main(["fe", str(f)]) == 2
+    assert "material must be 'r900a'" in capsys.readouterr().err

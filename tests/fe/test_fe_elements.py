@@ -10,6 +10,7 @@ import pytest
 import scipy.sparse as sp
 
 from wheelrail.fe import _kernels as K
+from wheelrail.fe import _solid as S
 from wheelrail.fe.elements import Hex8
 from wheelrail.fe.materials import LinearElastic
 from wheelrail.fe.mesh import Body, _hex_connectivity, check_quality
@@ -32,7 +33,7 @@ def _stiffness(nodes, conn, elem):
     ed = elem.precompute(nodes, conn, MAT)
     m = conn.shape[0] * 576
     r, c, v = np.empty(m, np.int64), np.empty(m, np.int64), np.empty(m)
-    K.stiffness_triplets(conn, ed.dNdx, ed.wdet, MAT.lam, MAT.mu, ed.gamma, ed.khg, r, c, v)
+    K.stiffness_triplets(conn, ed.dNdx, ed.wdet, MAT.lam, MAT.shear_modulus, ed.gamma, ed.khg, r, c, v)
     n = 3 * nodes.shape[0]
     return sp.coo_matrix((v, (r, c)), shape=(n, n)).tocsr(), ed
 
@@ -52,12 +53,13 @@ def test_patch_test_linear_field_exact(integration):
     assert np.max(np.abs(u - exact.ravel())) < 1e-12 * np.abs(exact).max() * 1e3
     # constant stress: the von Mises stress of every element equals the closed form
     eps = 0.5 * (G + G.T)
-    sig = MAT.lam * np.trace(eps) * np.eye(3) + 2 * MAT.mu * eps
+    sig = MAT.lam * np.trace(eps) * np.eye(3) + 2 * MAT.shear_modulus * eps
     dev = sig - np.trace(sig) / 3 * np.eye(3)
     vm_exact = np.sqrt(1.5 * np.sum(dev * dev))
-    vm = np.empty(conn.shape[0])
-    K.element_von_mises(u.reshape(-1, 3), conn, ed.dNdx, MAT.lam, MAT.mu, vm)
-    np.testing.assert_allclose(vm, vm_exact, rtol=1e-9)
+    sig_e = np.empty((conn.shape[0], 6))
+    S.element_stress(u.reshape(-1, 3), conn, ed.dNdx, ed.wdet, MAT.lam, MAT.shear_modulus, False,
+                     np.zeros((0, 1, 14)), sig_e)
+    np.testing.assert_allclose(S.von_mises(sig_e), vm_exact, rtol=1e-9)
 
 
 @pytest.mark.parametrize("integration", ["full", "reduced"])
@@ -98,9 +100,12 @@ def test_internal_force_equals_stiffness_times_u_and_energy(integration):
     Kg, ed = _stiffness(nodes, conn, Hex8(integration))
     u = np.random.default_rng(1).normal(size=nodes.shape) * 1e-6
     f = np.zeros_like(u)
-    e = K.internal_force(u, conn, ed.dNdx, ed.wdet, MAT.lam, MAT.mu, ed.gamma, ed.khg, f)
+    en = np.zeros((conn.shape[0], 2))
+    S.element_forces(u, conn, S.element_chunks(conn, nodes.shape[0]), ed.dNdx, ed.wdet, ed.gamma,
+                     ed.khg, MAT.lam, MAT.shear_modulus, False, np.zeros(6), np.zeros(0),
+                     np.zeros(0), np.zeros((0, 1, 14)), np.zeros((0, 1, 14)), f, en)
     np.testing.assert_allclose(f.ravel(), Kg @ u.ravel(), rtol=1e-9, atol=1e-9 * np.abs(f).max())
-    assert e == pytest.approx(0.5 * u.ravel() @ (Kg @ u.ravel()), rel=1e-10)
+    assert en[:, 0].sum() == pytest.approx(0.5 * u.ravel() @ (Kg @ u.ravel()), rel=1e-10)
 
 
 def test_reduced_hourglass_matches_full_on_a_cube():

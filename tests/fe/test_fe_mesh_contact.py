@@ -92,7 +92,8 @@ def _contact(xs, dxs, ft_old, mu, kn=1e15, area=1e-6, g0=1e-9):
                rt=np.zeros((ns, 2)), normal=np.zeros((ns, 3)), slip=np.zeros(ns),
                energy=np.zeros(ns))
     K.node_to_surface(xs, dxs, np.full(ns, area), np.full(ns, kn), np.full(ns, kn), mu, ft_old,
-                      xm, nm, np.zeros_like(xm), x, y, 0.0, 1e-3, g0, out["energy"], out["fs"],
+                      xm, nm, np.zeros_like(xm), x, y, 0.0, 1e-3, g0, np.zeros(ns), 1.0,
+                      out["energy"], out["fs"],
                       out["fm"], out["gap"], out["pn"], out["ft"], out["status"], out["cell"],
                       out["rt"], out["normal"], out["slip"])
     return out

@@ -54,7 +54,7 @@ def test_seed000_cone_on_inclined_arc_is_the_rotated_hertz_problem():
     it to about a percent (measured: p_max, a, b within 0.3 %)."""
     from wheelrail.fe import seed000_case
 
-    r = indent(seed000_case(mesh_size=2e-3, depth=4, half_width=4, half_length=4))
+    r = indent(seed000_case(load="printed", mesh_size=2e-3, depth=4, half_width=4, half_length=4))
     g = r.model.geometry
     d = np.arctan(0.1)
     assert g["y_c"] == pytest.approx(0.0, abs=1e-6) and g["delta"] == pytest.approx(d, rel=1e-4)

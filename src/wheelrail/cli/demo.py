@@ -267,6 +267,8 @@ def step_wheelrail(ctx: DemoContext):
             f"{bem.force_track['right'][1]:.0f} N (BEM+exact); sweep of {ys.size} shifts")
 
 
+from .fe import demo_step as step_fe_plastic  # noqa: E402  (the FE step lives with `wheelrail fe`)
+
 #: The demo, in order. Append a Step to add a part.
 STEPS = [
     Step("case", "built-in case file", step_case),
@@ -277,6 +279,7 @@ STEPS = [
     Step("exact", "Kalker's exact theory (boundary elements)", step_exact),
     Step("geometry", "S1002/60E1 1:40 contact table", step_geometry),
     Step("wheelrail", "S1002/60E1 wheelset: patches and forces", step_wheelrail),
+    Step("fe-plastic", "FE rolling, elastic and elasto-plastic (small mesh)", step_fe_plastic),
 ]
 
 

@@ -7,10 +7,21 @@ The case file holds one ``[fe]`` table; every key is a
   profile file path (relative to the case file), or for the wheel
   ``"cylinder"`` / ``"cone"`` (a straight tread 80 mm wide, taper ``wheel_taper``,
   default 1/10), for the rail ``"arc"`` (a head arc of ``rail_head_radius`` [m],
-  default 0.3; seed 000's Hertzian case is ``wheel = "cone"``, ``rail = "arc"``,
+  default 0.3; the Hertzian case of Toumi et al. (2016) is ``wheel = "cone"``, ``rail = "arc"``,
   ``inclination = 0.0996686525`` = arctan(1/10));
 * ``E``, ``nu`` — the material (default steel 210 GPa, 0.28);
+* elasto-plastic bodies (:class:`wheelrail.fe.J2Plastic`): ``material = "r900a"`` (the R900A
+  steel of Toumi, Chollet & Yin 2016: yield 489 MPa, Voce hardening), or ``yield_stress``
+  [Pa] with optional ``hardening`` (a modulus [Pa], or ``[[plastic strains], [yield
+  stresses]]``), ``hardening_saturation`` [Pa] and ``hardening_rate`` (Voce),
+  ``kinematic`` [Pa] and ``kinematic_recovery`` (Prager / Armstrong–Frederick); any of them
+  also overrides the R900A values;
+* ``seed000 = "table3"`` or ``"printed"`` — start from the case of Toumi et al. (2016)
+  (:func:`wheelrail.fe.seed000_case`; ``wheel``/``rail`` not needed, other keys override);
 * ``mode`` — ``"roll"`` (default) or ``"indent"``.
+
+A plastic run also writes fields.nc (equivalent plastic strain, stresses, von Mises per
+element) and, with ``passes > 1``, passes.nc; restart files carry the plastic state.
 
 Example::
 
@@ -32,15 +43,16 @@ from ._output import esc
 HELP = "finite-element rolling contact (or static indentation) of an [fe] case file"
 
 #: Measured cost per element and step [s] of the whole explicit loop, used for the time
-#: estimate (one core, load ≈ 2.5 on the 2-core machine; benchmarks/bench_fe.py).
-COST_PER_ELEMENT_STEP = {"full": 3.5e-7, "reduced": 1.3e-7}
+#: estimate (one core on the shared 2-core machine; benchmarks/bench_fe_plastic.py speed).
+COST_PER_ELEMENT_STEP = {"full": 3.5e-7, "reduced": 1.6e-7}
 
 
 def add_arguments(p) -> None:
     p.add_argument("case", metavar="CASE.toml", help="case file with an [fe] table")
     p.add_argument("--out", metavar="DIR", default="fe_out",
                    help="output directory (default fe_out): summary.json, history.csv, "
-                        "patch.nc, mesh.vtu, patch.png, history.png, restart.npz")
+                        "patch.nc, mesh.vtu, patch.png, history.png, restart.npz; plastic: "
+                        "fields.nc, plastic_strain_section.png (passes.nc, passes.png)")
     p.add_argument("--mode", choices=("roll", "indent"), default=None,
                    help="override the case's mode")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
@@ -101,36 +113,91 @@ def case_from_toml(path):
     mode = t.pop("mode", "roll")
     if mode not in ("roll", "indent"):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
+    seed = t.pop("seed000", None)
     taper = float(t.pop("wheel_taper", 0.1))
     head = float(t.pop("rail_head_radius", 0.3))
-    for key in ("wheel", "rail"):
-        if key not in t:
-            raise CaseFileError(f"{path}: [fe] needs '{key}'")
-    t["wheel"] = _profile(t["wheel"], "wheel", path.parent, taper)
-    t["rail"] = _profile(t["rail"], "rail", path.parent, head)
-    E, nu = t.pop("E", 2.1e11), t.pop("nu", 0.28)
-    t["material"] = wr.Material(E=E, nu=nu)
+    if seed is None:
+        for key in ("wheel", "rail"):
+            if key not in t:
+                raise CaseFileError(f"{path}: [fe] needs '{key}'")
+    for key, kind, param in (("wheel", "wheel", taper), ("rail", "rail", head)):
+        if key in t:
+            t[key] = _profile(t[key], kind, path.parent, param)
+    material = _material(t, path)
+    if material is not None:
+        t["material"] = material
     for key in ("creepage", "rayleigh"):
         if key in t:
             t[key] = tuple(t[key])
     try:
+        if seed is not None:
+            from ..fe import seed000_case
+
+            return seed000_case(load=seed, **t), mode
         return RollingCase(**t), mode
     except TypeError as exc:
         raise CaseFileError(f"{path}: [fe] {exc}") from exc
 
 
+_PLASTIC_KEYS = ("yield_stress", "hardening", "hardening_saturation", "hardening_rate",
+                 "kinematic", "kinematic_recovery")
+
+
+def _material(t, path):
+    """The material of an [fe] table (popping its keys); None keeps the case default."""
+    import wheelrail as wr
+    from ..errors import CaseFileError
+    from ..fe import J2Plastic, Voce, r900a
+
+    name = t.pop("material", None)
+    E, nu = t.pop("E", None), t.pop("nu", None)
+    plastic = {k: t.pop(k) for k in _PLASTIC_KEYS if k in t}
+    if name is not None and str(name).lower() != "r900a":
+        raise CaseFileError(f"{path}: [fe] material must be 'r900a' (or give E, nu, "
+                            f"yield_stress ...), got {name!r}")
+    if name is None and not plastic:
+        if E is None and nu is None and "seed000" not in t:
+            return wr.Material(E=2.1e11, nu=0.28)
+        if E is None and nu is None:
+            return None
+        return wr.Material(E=2.1e11 if E is None else E, nu=0.28 if nu is None else nu)
+    base = r900a() if name is not None else None
+    args = dict(E=E if E is not None else (base.E if base else 2.1e11),
+                nu=nu if nu is not None else (base.nu if base else 0.28),
+                yield_stress=plastic.get("yield_stress", base.yield_stress if base else None),
+                hardening=base.hardening if base else 0.0)
+    if args["yield_stress"] is None:
+        raise CaseFileError(f"{path}: [fe] plastic keys need yield_stress (or material = "
+                            f"'r900a')")
+    if "hardening_saturation" in plastic or "hardening_rate" in plastic:
+        args["hardening"] = Voce(plastic.get("hardening_saturation", 0.0),
+                                 plastic.get("hardening_rate", 0.0))
+    if "hardening" in plastic:
+        h = plastic["hardening"]
+        args["hardening"] = tuple(h) if isinstance(h, list) else h
+    for k in ("kinematic", "kinematic_recovery"):
+        if k in plastic:
+            args[k] = plastic[k]
+    return J2Plastic(**args)
+
+
 def estimate(case, model) -> tuple[int, float]:
-    """Steps and estimated wall time [s] of an explicit run."""
+    """Steps and estimated time [s] of an explicit run (one core; plastic × 2.3)."""
     import numpy as np
 
-    from ..fe.rolling import _speed_profile, stable_time_step
+    from ..fe.explicit import relaxation_steps, time_step
+    from ..fe.rolling import speed_profile
 
-    dt = case.courant * stable_time_step(model)
-    _, t_end = _speed_profile(case, model.geometry["travel"])
-    depth = model.wheel.axes[2][-1]
-    omega1 = np.pi * model.material.wave_speed / (2 * depth) / np.sqrt(case.mass_scaling)
-    steps = int(np.ceil(t_end / dt)) + int(np.ceil(12 * 2 * np.pi / omega1 / dt))
-    return steps, steps * model.n_elements * COST_PER_ELEMENT_STEP[case.element]
+    dt, _ = time_step(case, model)
+    _, t_end = speed_profile(case, model.geometry["travel"])
+    n1, _ = relaxation_steps(case, model, dt)
+    steps = case.passes * (int(np.ceil(t_end / dt)) + n1)
+    factor = PLASTIC_COST_FACTOR if model.plastic else 1.0
+    return steps, steps * model.n_elements * COST_PER_ELEMENT_STEP[case.element] * factor
+
+
+#: Plastic / elastic cost of the element kernel (reduced hex8, benchmarks/bench_fe_plastic.py).
+PLASTIC_COST_FACTOR = 2.3
 
 
 def run(args, console) -> int:
@@ -164,15 +231,27 @@ def run(args, console) -> int:
     else:
         r = solve(case, progress=True, restart=args.restart, restart_file=out / "restart.npz",
                   restart_every=args.restart_every)
-        summary.update(Fx=r.Fx, Fy=r.Fy, p_max=r.p_max, a=r.a, b=r.b,
+        summary.update(Fx=r.Fx, Fy=r.Fy, Fy_contact=r.Fy_contact, p_max=r.p_max, a=r.a, b=r.b,
+                       tau_max=float(r.patch.shear.max()),
                        **{k: float(v) for k, v in r.info.items()})
+        summary["steady"] = {k: (list(v) if isinstance(v, tuple) else v)
+                             for k, v in r.steady.items()}
+        if r.fields is not None:
+            r.fields.to_netcdf(out / "fields.nc")
+            summary["equivalent_plastic_strain_max"] = float(
+                r.fields.rail_equivalent_plastic_strain.max())
+            summary["von_mises_max"] = float(r.fields.rail_von_mises.max())
+        if r.passes is not None:
+            r.passes.to_netcdf(out / "passes.nc")
         if args.restart:
             console.print(f"continued from {esc(args.restart)} (step {r.info['restarted_at_step']})")
         r.dataset.to_dataframe().to_csv(out / "history.csv")
         patch, u, mu = r.patch, r.u, case.mu
         model = r.model
     patch.to_netcdf(out / "patch.nc")
-    write_vtu(out / "mesh.vtu", model, u)
+    write_vtu(out / "mesh.vtu", model, u, state=r.state)
+    if mode == "indent" and r.fields is not None:
+        r.fields.to_netcdf(out / "fields.nc")
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     if not args.no_figures:
         from ..fe.plots import plot_history, plot_patch
@@ -180,6 +259,16 @@ def run(args, console) -> int:
         plot_patch(patch, mu, path=out / "patch.png")
         if mode == "roll":
             plot_history(r.dataset, path=out / "history.png")
+        if r.fields is not None:
+            from ..fe.plots import plot_section
+
+            plot_section(r.fields, "rail_equivalent_plastic_strain", y=model.geometry["y_c"],
+                         path=out / "plastic_strain_section.png",
+                         depth_max=3 * model.geometry["a"])
+        if mode == "roll" and r.passes is not None:
+            from ..fe.plots import plot_passes
+
+            plot_passes(r.passes, path=out / "passes.png")
     for k in ("Fx", "Fy", "p_max", "a", "b"):
         if k in summary:
             scale, unit = {"p_max": (1e-6, "MPa"), "a": (1e3, "mm"), "b": (1e3, "mm")}.get(
@@ -187,3 +276,37 @@ def run(args, console) -> int:
             console.print(f"  {k:6s} = {summary[k] * scale:10.4g} {unit}")
     console.print(f"written to {esc(out)}/")
     return 0
+
+
+def demo_step(ctx):
+    """Demo step: elasto-plastic rolling on a small mesh (R900A-type hardening, yield at
+    p0/3: cylinder on the 60E1 crown, 7.5 kN, ξ = 0.7 ‰), elastic run beside it."""
+    import numpy as np
+
+    import wheelrail as wr
+    from ..fe import R900A_HARDENING, J2Plastic, RollingCase, solve
+    from ..fe.plots import plot_patch_comparison, plot_section
+
+    flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
+    kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
+              creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3, element="reduced", mass_scaling=400,
+              depth=4, half_width=3, half_length=3, travel=0.008)
+    el = solve(RollingCase(**kw), progress=False)
+    mat = J2Plastic(2.1e11, 0.28, 517.6e6 / 3.0, hardening=R900A_HARDENING)
+    pl = solve(RollingCase(material=mat, **kw), progress=False)
+    plot_patch_comparison(el.patch, pl.patch, 0.2,
+                          path=ctx.file("fe_patch_elastic_plastic.png",
+                                        "FE rolling patch, elastic vs elasto-plastic"))
+    plot_section(pl.fields, "rail_equivalent_plastic_strain", y=0.0, depth_max=0.01,
+                 path=ctx.file("fe_plastic_strain.png",
+                               "FE equivalent plastic strain, rail section"))
+    pl.fields.to_netcdf(ctx.file("fe_plastic_fields.nc", "FE plastic fields (NetCDF)"))
+    ctx.results["fe_plastic"] = {
+        "elastic": {"Fx": el.Fx, "p_max": el.p_max, "Fx_scatter": el.steady["Fx_scatter"]},
+        "plastic": {"Fx": pl.Fx, "p_max": pl.p_max, "Fx_scatter": pl.steady["Fx_scatter"],
+                    "equivalent_plastic_strain_max":
+                        float(pl.fields.rail_equivalent_plastic_strain.max())},
+        "n_elements": pl.model.n_elements, "yield_stress": mat.yield_stress}
+    return (f"{pl.model.n_elements} elements: Fx {el.Fx:.0f} -> {pl.Fx:.0f} N, p_max "
+            f"{el.p_max / 1e6:.0f} -> {pl.p_max / 1e6:.0f} MPa, max plastic strain "
+            f"{float(pl.fields.rail_equivalent_plastic_strain.max()):.2%}")

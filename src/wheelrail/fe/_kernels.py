@@ -1,15 +1,17 @@
-"""Array-in/array-out numba kernels of the FE engine (private).
+"""Array-in/array-out numba kernels of the FE engine (private): element geometry, the elastic
+stiffness triplets and the node-to-surface contact (the internal forces and the J2 plasticity
+are in :mod:`wheelrail.fe._solid`).
 
 Element kernels work on precomputed shape-function gradients (small-strain
 kinematics in each body's own frame, so the gradients of the reference
 configuration are used throughout); the material enters through the Lamé
-constants (linear elasticity; a plastic material will add a state array).
+constants λ and G (the shear modulus; ``mu`` is reserved for the friction coefficient).
 """
 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
 # hex8 natural coordinates of the nodes
 XI = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
@@ -61,81 +63,8 @@ def hourglass_vectors(x: np.ndarray, dNdx0: np.ndarray) -> np.ndarray:
     return 0.125 * (HG[None] - np.einsum("ekj,eaj->eka", hx, dNdx0))
 
 
-@njit(cache=True, inline="always")
-def _strain_stress(dNdx, e, g, ue, lam, mu):
-    """Engineering strains (exx, eyy, ezz, gxy, gyz, gxz) and stresses (sxx, …, sxz) [Pa]
-    at integration point g of element e from its nodal displacements ue (8, 3), linear
-    elasticity σ = λ tr ε I + 2μ ε (shared by the force and the stress kernels)."""
-    exx = eyy = ezz = gxy = gyz = gxz = 0.0
-    for a in range(8):
-        bx = dNdx[e, g, a, 0]
-        by = dNdx[e, g, a, 1]
-        bz = dNdx[e, g, a, 2]
-        exx += bx * ue[a, 0]
-        eyy += by * ue[a, 1]
-        ezz += bz * ue[a, 2]
-        gxy += by * ue[a, 0] + bx * ue[a, 1]
-        gyz += bz * ue[a, 1] + by * ue[a, 2]
-        gxz += bz * ue[a, 0] + bx * ue[a, 2]
-    tr = lam * (exx + eyy + ezz)
-    return (exx, eyy, ezz, gxy, gyz, gxz,
-            tr + 2 * mu * exx, tr + 2 * mu * eyy, tr + 2 * mu * ezz,
-            mu * gxy, mu * gyz, mu * gxz)
-
-
 @njit(cache=True)
-def internal_force(u, conn, dNdx, wdet, lam, mu, gamma, khg, f):
-    """f += ∫ Bᵀσ dV (+ hourglass forces), σ = λ tr ε I + 2μ ε; returns the strain energy.
-
-    u, f : (nn, 3); conn : (ne, 8); dNdx : (ne, ng, 8, 3); wdet : (ne, ng);
-    gamma : (ne, 4, 8) or (0, 4, 8); khg : (ne,) hourglass stiffness [N/m].
-    """
-    ne = conn.shape[0]
-    ng = dNdx.shape[1]
-    has_hg = gamma.shape[0] == ne
-    ue = np.empty((8, 3))
-    energy = 0.0
-    for e in range(ne):
-        for a in range(8):
-            n = conn[e, a]
-            ue[a, 0] = u[n, 0]
-            ue[a, 1] = u[n, 1]
-            ue[a, 2] = u[n, 2]
-        for g in range(ng):
-            (exx, eyy, ezz, gxy, gyz, gxz,
-             sxx, syy, szz, sxy, syz, sxz) = _strain_stress(dNdx, e, g, ue, lam, mu)
-            w = wdet[e, g]
-            energy += 0.5 * w * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz
-                                 + sxz * gxz)
-            for a in range(8):
-                bx = dNdx[e, g, a, 0]
-                by = dNdx[e, g, a, 1]
-                bz = dNdx[e, g, a, 2]
-                n = conn[e, a]
-                f[n, 0] += w * (bx * sxx + by * sxy + bz * sxz)
-                f[n, 1] += w * (bx * sxy + by * syy + bz * syz)
-                f[n, 2] += w * (bx * sxz + by * syz + bz * szz)
-        if has_hg:
-            k = khg[e]
-            for m in range(4):
-                q0 = q1 = q2 = 0.0
-                for a in range(8):
-                    gm = gamma[e, m, a]
-                    q0 += gm * ue[a, 0]
-                    q1 += gm * ue[a, 1]
-                    q2 += gm * ue[a, 2]
-                energy += 0.5 * k * (q0 * q0 + q1 * q1 + q2 * q2)
-                for a in range(8):
-                    gm = k * gamma[e, m, a]
-                    n = conn[e, a]
-                    f[n, 0] += gm * q0
-                    f[n, 1] += gm * q1
-                    f[n, 2] += gm * q2
-    return energy
-
-
-@njit(cache=True)
-def stiffness_triplets(conn, dNdx, wdet, lam, mu, gamma, khg, rows, cols, vals):
+def stiffness_triplets(conn, dNdx, wdet, lam, G, gamma, khg, rows, cols, vals):
     """Element stiffness matrices as COO triplets (576 per element), dof = 3·node + i."""
     ne = conn.shape[0]
     ng = dNdx.shape[1]
@@ -154,14 +83,14 @@ def stiffness_triplets(conn, dNdx, wdet, lam, mu, gamma, khg, rows, cols, vals):
                     by = dNdx[e, g, b, 1]
                     bz = dNdx[e, g, b, 2]
                     dot = ax * bx + ay * by + az * bz
-                    # K_ab,ij = λ a_i b_j + μ a_j b_i + μ δ_ij (a·b)
+                    # K_ab,ij = λ a_i b_j + G a_j b_i + G δ_ij (a·b)
                     ka = (ax, ay, az)
                     kb = (bx, by, bz)
                     for i in range(3):
                         for j in range(3):
-                            v = lam * ka[i] * kb[j] + mu * ka[j] * kb[i]
+                            v = lam * ka[i] * kb[j] + G * ka[j] * kb[i]
                             if i == j:
-                                v += mu * dot
+                                v += G * dot
                             ke[3 * a + i, 3 * b + j] += w * v
         if has_hg:
             k = khg[e]
@@ -184,26 +113,6 @@ def stiffness_triplets(conn, dNdx, wdet, lam, mu, gamma, khg, rows, cols, vals):
 
 
 @njit(cache=True)
-def element_von_mises(u, conn, dNdx, lam, mu, out):
-    """Von Mises stress [Pa] at the element centre (mean over integration points)."""
-    ne = conn.shape[0]
-    ng = dNdx.shape[1]
-    ue = np.empty((8, 3))
-    for e in range(ne):
-        for a in range(8):
-            n = conn[e, a]
-            ue[a, 0] = u[n, 0]
-            ue[a, 1] = u[n, 1]
-            ue[a, 2] = u[n, 2]
-        acc = 0.0
-        for g in range(ng):
-            sxx, syy, szz, sxy, syz, sxz = _strain_stress(dNdx, e, g, ue, lam, mu)[6:]
-            acc += np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
-                           + 3.0 * (sxy ** 2 + syz ** 2 + sxz ** 2))
-        out[e] = acc / ng
-
-
-@njit(cache=True)
 def _bilinear(c, r, t, out):
     for d in range(3):
         out[d] = ((1 - r) * (1 - t) * c[0, d] + r * (1 - t) * c[1, d] + r * t * c[2, d]
@@ -223,8 +132,178 @@ def _bilinear_tangents(c, r, t):
 
 
 @njit(cache=True)
+def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift, reach, g0,
+           cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num,
+           c, q, dq):
+    """Contact of slave ``s`` (see :func:`node_to_surface`)."""
+    nx = x_ref.shape[0]
+    ny = y_ref.shape[0]
+    status[s] = 0
+    energy[s] = 0.0
+    pn[s] = 0.0
+    gap[s] = 1.0
+    slip_rate_num[s] = 0.0
+    for d in range(3):
+        fs[s, d] = 0.0
+        ft_new[s, d] = 0.0
+    X = xs[s, 0] + shift
+    Y = xs[s, 1]
+    if X < x_ref[0] or X > x_ref[nx - 1] or Y < y_ref[0] or Y > y_ref[ny - 1]:
+        return
+    i = np.searchsorted(x_ref, X) - 1
+    j = np.searchsorted(y_ref, Y) - 1
+    i = min(max(i, 0), nx - 2)
+    j = min(max(j, 0), ny - 2)
+    if xs[s, 2] - xm[i, j, 2] > reach:
+        return
+    r = 0.5
+    t = 0.5
+    found = False
+    for hop in range(4):
+        c[0] = xm[i, j]
+        c[1] = xm[i + 1, j]
+        c[2] = xm[i + 1, j + 1]
+        c[3] = xm[i, j + 1]
+        r = 0.5
+        t = 0.5
+        for it in range(6):
+            _bilinear(c, r, t, q)
+            # tangents
+            tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
+            d0 = xs[s, 0] - q[0]
+            d1 = xs[s, 1] - q[1]
+            d2 = xs[s, 2] - q[2]
+            a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
+            a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
+            a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
+            b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
+            b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
+            det = a11 * a22 - a12 * a12
+            drr = (a22 * b1 - a12 * b2) / det
+            dtt = (a11 * b2 - a12 * b1) / det
+            r += drr
+            t += dtt
+            if abs(drr) < 1e-12 and abs(dtt) < 1e-12:
+                break
+        tol = 1e-6
+        moved = False
+        if hop == 3:      # oscillating between two cells: on their common edge
+            found = True
+            break
+        if r < -tol and i > 0:
+            i -= 1
+            moved = True
+        elif r > 1 + tol and i < nx - 2:
+            i += 1
+            moved = True
+        if t < -tol and j > 0:
+            j -= 1
+            moved = True
+        elif t > 1 + tol and j < ny - 2:
+            j += 1
+            moved = True
+        if not moved:
+            found = True
+            break
+    if not found:
+        return
+    r = min(max(r, 0.0), 1.0)
+    t = min(max(t, 0.0), 1.0)
+    _bilinear(c, r, t, q)
+    tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
+    # continuous normal: bilinear interpolation of the nodal normals nm
+    n0 = ((1 - r) * (1 - t) * nm[i, j, 0] + r * (1 - t) * nm[i + 1, j, 0]
+          + r * t * nm[i + 1, j + 1, 0] + (1 - r) * t * nm[i, j + 1, 0])
+    n1 = ((1 - r) * (1 - t) * nm[i, j, 1] + r * (1 - t) * nm[i + 1, j, 1]
+          + r * t * nm[i + 1, j + 1, 1] + (1 - r) * t * nm[i, j + 1, 1])
+    n2 = ((1 - r) * (1 - t) * nm[i, j, 2] + r * (1 - t) * nm[i + 1, j, 2]
+          + r * t * nm[i + 1, j + 1, 2] + (1 - r) * t * nm[i, j + 1, 2])
+    nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+    n0 /= nn
+    n1 /= nn
+    n2 /= nn
+    g = (xs[s, 0] - q[0]) * n0 + (xs[s, 1] - q[1]) * n1 + (xs[s, 2] - q[2]) * n2
+    gap[s] = g
+    cell[s, 0] = i
+    cell[s, 1] = j
+    rt[s, 0] = r
+    rt[s, 1] = t
+    normal[s, 0] = n0
+    normal[s, 1] = n1
+    normal[s, 2] = n2
+    if g >= 0.0:
+        return
+    A = area[s]
+    # C1-regularized penalty: quadratic for overlaps below g0, linear beyond
+    dlt = -g
+    if dlt < g0:
+        fn = kn[s] * A * dlt * dlt / (2 * g0)
+        energy[s] = kn[s] * A * dlt ** 3 / (6 * g0)
+    else:
+        fn = kn[s] * A * (dlt - 0.5 * g0)
+        energy[s] = kn[s] * A * (0.5 * dlt * dlt - 0.5 * g0 * dlt + g0 * g0 / 6)
+    # relative increment of the slave w.r.t. the master point
+    wts = ((1 - r) * (1 - t), r * (1 - t), r * t, (1 - r) * t)
+    ii = (i, i + 1, i + 1, i)
+    jj = (j, j, j + 1, j + 1)
+    for d in range(3):
+        dq[d] = 0.0
+    for m in range(4):
+        for d in range(3):
+            dq[d] += wts[m] * dxm[ii[m], jj[m], d]
+    s0 = dxs[s, 0] - dq[0]
+    s1 = dxs[s, 1] - dq[1]
+    s2 = dxs[s, 2] - dq[2]
+    sn = s0 * n0 + s1 * n1 + s2 * n2
+    if cdamp[s] > 0.0:
+        fn -= cdamp[s] * sn * inv_dt
+        if fn < 0.0:
+            fn = 0.0
+    pn[s] = fn
+    s0 -= sn * n0
+    s1 -= sn * n1
+    s2 -= sn * n2
+    # previous tangential force, rotated into the current tangent plane
+    f0 = ft_old[s, 0]
+    f1 = ft_old[s, 1]
+    f2 = ft_old[s, 2]
+    fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    fnp = f0 * n0 + f1 * n1 + f2 * n2
+    f0 -= fnp * n0
+    f1 -= fnp * n1
+    f2 -= fnp * n2
+    fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    if fm2 > 0.0:
+        f0 *= fmag / fm2
+        f1 *= fmag / fm2
+        f2 *= fmag / fm2
+    k = kt[s] * A
+    f0 -= k * s0
+    f1 -= k * s1
+    f2 -= k * s2
+    ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    bound = mu * fn
+    if ftr > bound:
+        sc = bound / ftr
+        slip_rate_num[s] = (ftr - bound) / k
+        f0 *= sc
+        f1 *= sc
+        f2 *= sc
+        status[s] = 2
+    else:
+        status[s] = 1
+    ft_new[s, 0] = f0
+    ft_new[s, 1] = f1
+    ft_new[s, 2] = f2
+    fs[s, 0] = fn * n0 + f0
+    fs[s, 1] = fn * n1 + f1
+    fs[s, 2] = fn * n2 + f2
+
+
+@njit(cache=True, parallel=True)
 def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
-                    reach, g0, energy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num):
+                    reach, g0, cdamp, inv_dt, energy, fs, fm, gap, pn, ft_new, status, cell, rt,
+                    normal, slip_rate_num):
     """Penalty node-to-surface contact with Coulomb friction (return mapping).
 
     Slave nodes (wheel surface) against a structured master surface (rail,
@@ -237,6 +316,7 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
     area, kn, kt : (ns,)
         Tributary areas [m²] and normal / tangential penalties [Pa/m].
     mu : float
+        Coulomb friction coefficient [-].
     ft_old : (ns, 3)
         Tangential forces of the last converged step [N] (global frame).
     xm, dxm : (nx, ny, 3)
@@ -253,6 +333,12 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
         Regularization overlap [m]: the normal force is kn A δ²/(2 g0) for an
         overlap δ < g0 and kn A (δ − g0/2) beyond (continuous tangent, so that
         Newton converges).
+    cdamp : (ns,)
+        Normal contact damping [N s/m]: a dashpot −c v_n on the relative normal velocity
+        v_n = (normal increment) · inv_dt of a closed pair (the normal force stays >= 0);
+        zeros for none.
+    inv_dt : float
+        1 / time step [1/s] (for the dashpot).
     energy : (ns,)
         Output: penalty energy of each slave [J].
 
@@ -260,170 +346,32 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
     the master nodes, gap (ns,), pn (ns,) normal force, ft_new (ns, 3), status
     (ns,) 0 open / 1 stick / 2 slip, cell (ns, 2), rt (ns, 2), normal (ns, 3),
     slip_rate_num (ns,) the slip increment length [m] (trial excess / kt A).
+
+    Parallel over the slaves (chunks); the master forces are scattered afterwards in
+    slave order, so the result does not depend on the number of threads.
     """
     ns = xs.shape[0]
-    nx = x_ref.shape[0]
-    ny = y_ref.shape[0]
-    c = np.empty((4, 3))
-    q = np.empty(3)
-    dq = np.empty(3)
+    nch = min(64, max(1, ns // 64))
+    for ch in prange(nch):
+        c = np.empty((4, 3))
+        q = np.empty(3)
+        dq = np.empty(3)
+        for s in range(ns * ch // nch, ns * (ch + 1) // nch):
+            _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
+                   reach, g0, cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt,
+                   normal, slip_rate_num, c, q, dq)
     for s in range(ns):
-        status[s] = 0
-        energy[s] = 0.0
-        pn[s] = 0.0
-        gap[s] = 1.0
-        slip_rate_num[s] = 0.0
-        for d in range(3):
-            fs[s, d] = 0.0
-            ft_new[s, d] = 0.0
-        X = xs[s, 0] + shift
-        Y = xs[s, 1]
-        if X < x_ref[0] or X > x_ref[nx - 1] or Y < y_ref[0] or Y > y_ref[ny - 1]:
-            continue
-        i = np.searchsorted(x_ref, X) - 1
-        j = np.searchsorted(y_ref, Y) - 1
-        i = min(max(i, 0), nx - 2)
-        j = min(max(j, 0), ny - 2)
-        if xs[s, 2] - xm[i, j, 2] > reach:
-            continue
-        r = 0.5
-        t = 0.5
-        found = False
-        for hop in range(4):
-            c[0] = xm[i, j]
-            c[1] = xm[i + 1, j]
-            c[2] = xm[i + 1, j + 1]
-            c[3] = xm[i, j + 1]
-            r = 0.5
-            t = 0.5
-            for it in range(6):
-                _bilinear(c, r, t, q)
-                # tangents
-                tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
-                d0 = xs[s, 0] - q[0]
-                d1 = xs[s, 1] - q[1]
-                d2 = xs[s, 2] - q[2]
-                a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
-                a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
-                a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
-                b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
-                b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
-                det = a11 * a22 - a12 * a12
-                drr = (a22 * b1 - a12 * b2) / det
-                dtt = (a11 * b2 - a12 * b1) / det
-                r += drr
-                t += dtt
-                if abs(drr) < 1e-12 and abs(dtt) < 1e-12:
-                    break
-            tol = 1e-6
-            moved = False
-            if hop == 3:      # oscillating between two cells: on their common edge
-                found = True
-                break
-            if r < -tol and i > 0:
-                i -= 1
-                moved = True
-            elif r > 1 + tol and i < nx - 2:
-                i += 1
-                moved = True
-            if t < -tol and j > 0:
-                j -= 1
-                moved = True
-            elif t > 1 + tol and j < ny - 2:
-                j += 1
-                moved = True
-            if not moved:
-                found = True
-                break
-        if not found:
-            continue
-        r = min(max(r, 0.0), 1.0)
-        t = min(max(t, 0.0), 1.0)
-        _bilinear(c, r, t, q)
-        tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
-        # continuous normal: bilinear interpolation of the nodal normals nm
-        n0 = ((1 - r) * (1 - t) * nm[i, j, 0] + r * (1 - t) * nm[i + 1, j, 0]
-              + r * t * nm[i + 1, j + 1, 0] + (1 - r) * t * nm[i, j + 1, 0])
-        n1 = ((1 - r) * (1 - t) * nm[i, j, 1] + r * (1 - t) * nm[i + 1, j, 1]
-              + r * t * nm[i + 1, j + 1, 1] + (1 - r) * t * nm[i, j + 1, 1])
-        n2 = ((1 - r) * (1 - t) * nm[i, j, 2] + r * (1 - t) * nm[i + 1, j, 2]
-              + r * t * nm[i + 1, j + 1, 2] + (1 - r) * t * nm[i, j + 1, 2])
-        nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
-        n0 /= nn
-        n1 /= nn
-        n2 /= nn
-        g = (xs[s, 0] - q[0]) * n0 + (xs[s, 1] - q[1]) * n1 + (xs[s, 2] - q[2]) * n2
-        gap[s] = g
-        cell[s, 0] = i
-        cell[s, 1] = j
-        rt[s, 0] = r
-        rt[s, 1] = t
-        normal[s, 0] = n0
-        normal[s, 1] = n1
-        normal[s, 2] = n2
-        if g >= 0.0:
-            continue
-        A = area[s]
-        # C1-regularized penalty: quadratic for overlaps below g0, linear beyond
-        dlt = -g
-        if dlt < g0:
-            fn = kn[s] * A * dlt * dlt / (2 * g0)
-            energy[s] = kn[s] * A * dlt ** 3 / (6 * g0)
-        else:
-            fn = kn[s] * A * (dlt - 0.5 * g0)
-            energy[s] = kn[s] * A * (0.5 * dlt * dlt - 0.5 * g0 * dlt + g0 * g0 / 6)
-        pn[s] = fn
-        # relative increment of the slave w.r.t. the master point
-        wts = ((1 - r) * (1 - t), r * (1 - t), r * t, (1 - r) * t)
-        ii = (i, i + 1, i + 1, i)
-        jj = (j, j, j + 1, j + 1)
-        for d in range(3):
-            dq[d] = 0.0
-        for m in range(4):
+        if status[s] > 0:
+            i = cell[s, 0]
+            j = cell[s, 1]
+            r = rt[s, 0]
+            t = rt[s, 1]
+            w0 = (1 - r) * (1 - t)
+            w1 = r * (1 - t)
+            w2 = r * t
+            w3 = (1 - r) * t
             for d in range(3):
-                dq[d] += wts[m] * dxm[ii[m], jj[m], d]
-        s0 = dxs[s, 0] - dq[0]
-        s1 = dxs[s, 1] - dq[1]
-        s2 = dxs[s, 2] - dq[2]
-        sn = s0 * n0 + s1 * n1 + s2 * n2
-        s0 -= sn * n0
-        s1 -= sn * n1
-        s2 -= sn * n2
-        # previous tangential force, rotated into the current tangent plane
-        f0 = ft_old[s, 0]
-        f1 = ft_old[s, 1]
-        f2 = ft_old[s, 2]
-        fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-        fnp = f0 * n0 + f1 * n1 + f2 * n2
-        f0 -= fnp * n0
-        f1 -= fnp * n1
-        f2 -= fnp * n2
-        fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-        if fm2 > 0.0:
-            f0 *= fmag / fm2
-            f1 *= fmag / fm2
-            f2 *= fmag / fm2
-        k = kt[s] * A
-        f0 -= k * s0
-        f1 -= k * s1
-        f2 -= k * s2
-        ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-        bound = mu * fn
-        if ftr > bound:
-            sc = bound / ftr
-            slip_rate_num[s] = (ftr - bound) / k
-            f0 *= sc
-            f1 *= sc
-            f2 *= sc
-            status[s] = 2
-        else:
-            status[s] = 1
-        ft_new[s, 0] = f0
-        ft_new[s, 1] = f1
-        ft_new[s, 2] = f2
-        fs[s, 0] = fn * n0 + f0
-        fs[s, 1] = fn * n1 + f1
-        fs[s, 2] = fn * n2 + f2
-        for m in range(4):
-            for d in range(3):
-                fm[ii[m], jj[m], d] -= wts[m] * fs[s, d]
+                fm[i, j, d] -= w0 * fs[s, d]
+                fm[i + 1, j, d] -= w1 * fs[s, d]
+                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
+                fm[i, j + 1, d] -= w3 * fs[s, d]

@@ -223,7 +223,8 @@ class ReusedFactorSolver(DirectSolver):
 
 
 def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *,
-           dyn=None, static_scale=1.0, diag=None, tol=3e-3, max_iter=40, solver=None):
+           dyn=None, static_scale=1.0, diag=None, tol=3e-3, max_iter=40, solver=None,
+           state=None, tangent=None):
     """Solve one (quasi-)static or implicit-dynamic step.
 
     Parameters
@@ -241,6 +242,13 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
     solver : DirectSolver or ReusedFactorSolver, optional
         The linear solver (counts and times its work); default: a fresh
         :class:`DirectSolver`.
+    state : PlasticState, optional
+        Plastic materials: the residual's internal forces come from the return map from
+        ``state.committed``; on return ``state.trial`` belongs to the solution (the caller
+        commits it).
+    tangent : callable, optional
+        ``tangent(q)`` -> the free-dof stiffness at the iterate q (the consistent
+        elasto-plastic tangent); replaces the constant ``Kff``.
 
     tol : float
         Convergence: the largest residual force below ``tol * load`` with an unchanged
@@ -262,7 +270,7 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
     def residual(q):
         uu = q[:-1].reshape(-1, 3)
         c = model.contact(uu, q[-1], psi, s, xs_prev, xm_prev, ft_old, mu)
-        f_int, _ = model.internal_force(uu)
+        f_int, _ = model.internal_force(uu, state=state)
         fc, fcw = model.generalized_contact_force(c, psi)
         r = static_scale * np.concatenate([(f_int - fc).ravel(), [load - fcw]])
         if dyn is not None:
@@ -271,7 +279,8 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
             + load * float(q[-1])
         return r[free], c
 
-    energy_search = dyn is None and mu == 0.0   # frictionless statics: minimize the potential
+    # frictionless elastic statics: minimize the potential
+    energy_search = dyn is None and mu == 0.0 and state is None
     rf, c = residual(q)
     norm = np.linalg.norm(rf)
     prev_active = None
@@ -282,7 +291,8 @@ def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *
         if same and np.max(np.abs(rf)) < tol * scale:
             return q[:-1].reshape(-1, 3).copy(), float(q[-1]), c, it
         Kc = contact_tangent(model, c, psi, mu, n_dof)
-        J = static_scale * (Kff + Kc[free][:, free])
+        Ks = tangent(q) if tangent is not None else Kff
+        J = static_scale * (Ks + Kc[free][:, free])
         if diag is not None:
             import scipy.sparse as sp
 

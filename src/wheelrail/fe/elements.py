@@ -47,20 +47,39 @@ class ElementData:
     length: np.ndarray
 
     @property
+    def n_points(self) -> int:
+        """Integration points per element."""
+        return int(self.dNdx.shape[1])
+
+    @property
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.dNdx, self.wdet, self.gamma, self.khg, self.volume,
                                       self.length))
 
+    def __getitem__(self, sl: slice) -> "ElementData":
+        """The data of a contiguous range of elements (views, no copy)."""
+        return ElementData(self.dNdx[sl], self.wdet[sl],
+                           self.gamma[sl] if self.gamma.shape[0] else self.gamma,
+                           self.khg[sl] if self.khg.shape[0] else self.khg,
+                           self.volume[sl], self.length[sl])
+
+    @staticmethod
+    def concatenate(parts) -> "ElementData":
+        """One ElementData of several (same element type), elements in the given order."""
+        cat = [np.concatenate([getattr(p, name) for p in parts])
+               for name in ("dNdx", "wdet", "gamma", "khg", "volume", "length")]
+        return ElementData(*cat)
+
 
 @lru_cache(maxsize=16)
-def _hourglass_unit_stiffness(lam: float, mu: float) -> float:
+def _hourglass_unit_stiffness(lam: float, G: float) -> float:
     """Hourglass stiffness of a unit cube matching the fully integrated energy (per component)."""
     x = 0.5 * (K.XI + 1.0)[None]
     dN, w = K.shape_gradients(x, _FULL_POINTS, np.ones(8))
     n = 8 * 576
     rows, cols, vals = np.empty(n, np.int64), np.empty(n, np.int64), np.empty(n)
     conn = np.arange(8)[None]
-    K.stiffness_triplets(conn, dN, w, lam, mu, np.zeros((0, 4, 8)), np.zeros(0), rows, cols, vals)
+    K.stiffness_triplets(conn, dN, w, lam, G, np.zeros((0, 4, 8)), np.zeros(0), rows, cols, vals)
     Ke = np.zeros((24, 24))
     np.add.at(Ke, (rows[:576], cols[:576]), vals[:576])
     dN0, _ = K.shape_gradients(x, np.zeros((1, 3)), np.array([8.0]))
@@ -114,6 +133,6 @@ class Hex8:
         dN0 = b[:, None]
         w0 = volume[:, None].copy()
         gamma = K.hourglass_vectors(x, b)
-        k1 = _hourglass_unit_stiffness(material.lam, material.mu)
+        k1 = _hourglass_unit_stiffness(material.lam, material.shear_modulus)
         khg = self.hourglass * k1 * np.cbrt(volume)
         return ElementData(dN0, w0, gamma, khg, volume, length)

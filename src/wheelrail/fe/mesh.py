@@ -24,7 +24,7 @@ References
 ----------
 .. [1] M. Toumi, H. Chollet, H. Yin, "Finite element analysis of the frictional
    wheel-rail rolling contact using explicit and implicit methods", Wear 366-367
-   (2016) 157-166, §2 and Fig. 1 (seed paper 000).
+   (2016) 157-166, §2 and Fig. 1.
 """
 
 from __future__ import annotations

@@ -17,13 +17,13 @@ small strains under arbitrary rigid rotation (a co-rotational frame per body);
 the fictitious (centrifugal, Coriolis) body forces of the turning frame are
 neglected (ρ Ω² R ≈ 3 MN/m³ at 50 km/h, i.e. < 0.1 MPa over the kept rim).
 
-The rail's foot plane and the wheel's inner rim (the cut faces of seed 000's
+The rail's foot plane and the wheel's inner rim (the cut faces of Toumi et al.'s (2016)
 Fig. 1) are clamped in their body frames.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -31,11 +31,49 @@ from ..errors import InputError
 from ..materials import Material
 from ..normal.hertz import hertz
 from . import _kernels as K
-from .elements import Hex8
+from . import _solid as S
+from ._solid import element_chunks
+from .elements import ElementData, Hex8
 from .materials import as_fe_material
 from .mesh import depth_axis, graded_axis, rail_body, wheel_body
 
-__all__ = ["Model", "build_model", "contact_geometry"]
+__all__ = ["Model", "PlasticState", "build_model", "contact_geometry"]
+
+_NO_STATE = np.zeros((0, 1, 14))
+_NO_HARDENING = (np.zeros(6), np.zeros(0), np.zeros(0))
+
+
+class PlasticState:
+    """The plastic state of both bodies (mutable; one per run).
+
+    ``committed`` and ``trial`` have shape (n_elements, n_points, 14), wheel elements
+    first: plastic strain (6, engineering shear), equivalent plastic strain, back stress
+    (6) [Pa] and plastic work density [J/m³] per integration point
+    (:mod:`wheelrail.fe._solid`). The kernels read ``committed`` and write ``trial``;
+    :meth:`commit` accepts the trial state (swapping the buffers).
+    """
+
+    def __init__(self, committed, n_wheel_elements, trial=None):
+        self.committed = np.ascontiguousarray(committed, dtype=float)
+        self.trial = self.committed.copy() if trial is None else trial
+        self.n_wheel = int(n_wheel_elements)
+        self.energies = (0.0, 0.0)
+
+    def commit(self):
+        """Accept the trial state of the last kernel call."""
+        self.committed, self.trial = self.trial, self.committed
+
+    def copy(self):
+        return PlasticState(self.committed.copy(), self.n_wheel)
+
+    def body(self, k):
+        """Committed state of the wheel (k = 0) or the rail (k = 1) (a view)."""
+        return self.committed[:self.n_wheel] if k == 0 else self.committed[self.n_wheel:]
+
+    def equivalent_plastic_strain(self):
+        """Mean equivalent plastic strain per element [-]: (wheel (ne_w,), rail (ne_r,))."""
+        p = self.committed[:, :, S.P_INDEX].mean(axis=1)
+        return [p[:self.n_wheel], p[self.n_wheel:]]
 
 
 def contact_geometry(case):
@@ -108,9 +146,9 @@ class Model:
     rail: object
     material: object
     element: object
-    edata_w: object
-    edata_r: object
+    edata: object               # ElementData of all elements (wheel first, then rail)
     conn: np.ndarray
+    chunks: np.ndarray          # element chunks of the parallel force kernel (_solid.element_chunks)
     mass: np.ndarray            # (n_nodes,) lumped, unscaled [kg]
     fixed: np.ndarray           # (n_fixed,) node numbers
     slave: np.ndarray           # wheel surface nodes (flattened)
@@ -121,6 +159,7 @@ class Model:
     z_axle: float
     g0: float
     x_rail_span: tuple
+    scratch: dict = field(default_factory=dict, repr=False)
 
     @property
     def n_nodes(self) -> int:
@@ -134,49 +173,137 @@ class Model:
     def nw(self) -> int:
         return self.wheel.n_nodes
 
+    @property
+    def edata_w(self):
+        """Element data of the wheel (views into :attr:`edata`)."""
+        return self.edata[:self.wheel.n_elements]
+
+    @property
+    def edata_r(self):
+        """Element data of the rail (views into :attr:`edata`)."""
+        return self.edata[self.wheel.n_elements:]
+
     def reference(self) -> np.ndarray:
         return np.concatenate([self.wheel.nodes, self.rail.nodes])
 
     # -------------------------------------------------------------- kernels
-    def internal_force(self, u, f=None):
-        """Internal forces (n_nodes, 3) in the body frames and the strain energy [J]."""
+    @property
+    def plastic(self) -> bool:
+        """True if the material carries a plastic state (:class:`wheelrail.fe.J2Plastic`)."""
+        return bool(self.material.plastic)
+
+    def _bodies(self):
+        return ((self.wheel, self.edata_w, slice(0, self.nw), 0),
+                (self.rail, self.edata_r, slice(self.nw, None), 1))
+
+    def new_state(self):
+        """A zero plastic state of both bodies (:class:`PlasticState`), None if elastic."""
+        if not self.plastic:
+            return None
+        return PlasticState(np.zeros((self.n_elements, self.edata.n_points, S.NSTATE)),
+                            self.wheel.n_elements)
+
+    def internal_force(self, u, f=None, state=None, *, elastic=False):
+        """Internal forces (n_nodes, 3) in the body frames and the internal energy [J].
+
+        Parameters
+        ----------
+        u : ndarray, shape (n_nodes, 3)
+            Displacements in the body frames [m].
+        f : ndarray, optional
+            Output array (overwritten).
+        state : PlasticState, optional
+            Required for a plastic material: the return map starts from
+            ``state.committed`` and writes ``state.trial`` (the state that belongs to
+            ``u``; commit it with ``state.commit()`` when the step is accepted).
+        elastic : bool
+            The linear elastic response (K u) whatever the material (stiffness-proportional
+            damping).
+
+        Returns
+        -------
+        f, energy : the forces and the elastic strain energy plus the plastic work [J]
+        (``state.energies`` holds the two parts).
+        """
         if f is None:
             f = np.zeros_like(u)
-        lam, mu = self.material.lam, self.material.mu
-        nw = self.nw
-        e1 = K.internal_force(u[:nw], self.wheel.elements, self.edata_w.dNdx, self.edata_w.wdet,
-                              lam, mu, self.edata_w.gamma, self.edata_w.khg, f[:nw])
-        e2 = K.internal_force(u[nw:], self.rail.elements, self.edata_r.dNdx, self.edata_r.wdet,
-                              lam, mu, self.edata_r.gamma, self.edata_r.khg, f[nw:])
-        return f, e1 + e2
+        plastic = self.plastic and not elastic
+        if plastic and state is None:
+            raise InputError("a plastic material needs its state (model.new_state())")
+        lam, G = self.material.lam, self.material.shear_modulus
+        hp, tp, ts = self._hardening
+        ed = self.edata
+        buf = self._scratch("energy", (self.n_elements, 2))
+        st_in = state.committed if plastic else _NO_STATE
+        st_out = state.trial if plastic else _NO_STATE
+        S.element_forces(u, self.conn, self.chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam, G,
+                         plastic, hp, tp, ts, st_in, st_out, f, buf)
+        e_el = float(buf[:, 0].sum())
+        e_pl = float(buf[:, 1].sum())
+        if plastic:
+            state.energies = (e_el, e_pl)
+        return f, e_el + e_pl
 
-    def stiffness(self):
-        """Sparse stiffness (CSR) of size 3 n_nodes + 1 (the last row/column, w, is empty)."""
+    def _scratch(self, name, shape):
+        buf = self.scratch.get(name)
+        if buf is None or buf.shape != shape:
+            buf = self.scratch[name] = np.zeros(shape)
+        return buf
+
+    @property
+    def _hardening(self):
+        if self.plastic:
+            return self.material.kernel_parameters()
+        return _NO_HARDENING
+
+    def stiffness(self, u=None, state=None):
+        """Sparse stiffness (CSR) of size 3 n_nodes + 1 (the last row/column, w, is empty).
+
+        Elastic K, or, for a plastic material with ``u`` and ``state``, the consistent
+        elasto-plastic tangent of the return map from ``state.committed`` at ``u``.
+        """
         import scipy.sparse as sp
 
+        plastic = self.plastic and state is not None and u is not None
         n = 3 * self.n_nodes + 1
+        lam, G = self.material.lam, self.material.shear_modulus
+        hp, tp, ts = self._hardening
         mats = []
-        lam, mu = self.material.lam, self.material.mu
-        for body, ed, off in ((self.wheel, self.edata_w, 0), (self.rail, self.edata_r, self.nw)):
+        for body, ed, sl, k in self._bodies():
             ne = body.n_elements
+            off = 0 if k == 0 else self.nw
             rows = np.empty(ne * 576, np.int64)
             cols = np.empty(ne * 576, np.int64)
             vals = np.empty(ne * 576)
-            K.stiffness_triplets(body.elements + off, ed.dNdx, ed.wdet, lam, mu, ed.gamma,
-                                 ed.khg, rows, cols, vals)
+            if plastic:
+                S.tangent_triplets(u[sl], body.elements, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam,
+                                   G, True, hp, tp, ts, state.body(k), rows, cols, vals)
+                rows += 3 * off
+                cols += 3 * off
+            else:
+                K.stiffness_triplets(body.elements + off, ed.dNdx, ed.wdet, lam, G, ed.gamma,
+                                     ed.khg, rows, cols, vals)
             mats.append(sp.coo_matrix((vals, (rows, cols)), shape=(n, n)).tocsr())
         return (mats[0] + mats[1]).tocsr()
 
-    def von_mises(self, u):
-        """Von Mises stress at the element centres [Pa]: (wheel (ne_w,), rail (ne_r,))."""
+    def stress(self, u, state=None):
+        """Element stresses [Pa], Voigt (xx, yy, zz, xy, yz, xz), mean over the integration
+        points: (wheel (ne_w, 6), rail (ne_r, 6)), body frames. For a plastic material
+        σ = C : (ε − ε_p) with the plastic strain of ``state.committed`` (the state that
+        belongs to ``u``)."""
+        plastic = self.plastic and state is not None
+        lam, G = self.material.lam, self.material.shear_modulus
         out = []
-        for body, ed, sl in ((self.wheel, self.edata_w, slice(0, self.nw)),
-                             (self.rail, self.edata_r, slice(self.nw, None))):
-            vm = np.empty(body.n_elements)
-            K.element_von_mises(u[sl], body.elements, ed.dNdx, self.material.lam,
-                                self.material.mu, vm)
-            out.append(vm)
+        for body, ed, sl, k in self._bodies():
+            sig = np.empty((body.n_elements, 6))
+            S.element_stress(u[sl], body.elements, ed.dNdx, ed.wdet, lam, G, plastic,
+                             state.body(k) if plastic else _NO_STATE, sig)
+            out.append(sig)
         return out
+
+    def von_mises(self, u, state=None):
+        """Von Mises stress at the element centres [Pa]: (wheel (ne_w,), rail (ne_r,))."""
+        return [S.von_mises(sig) for sig in self.stress(u, state)]
 
     # -------------------------------------------------------------- kinematics
     @staticmethod
@@ -201,8 +328,11 @@ class Model:
         """Lateral rail drift η s [m] after a rail travel s [m] (lateral creepage η)."""
         return self.case.creepage[1] * s
 
-    def contact(self, u, w, psi, s, xs_prev, xm_prev, ft_old, mu):
-        """Evaluate contact; returns a dict of per-slave results and the generalized forces."""
+    def contact(self, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, damping=None, dt=1.0):
+        """Evaluate contact; returns a dict of per-slave results and the generalized forces.
+
+        ``damping`` (ns,) [N s/m]: normal contact dashpots (explicit runs), ``dt`` the step.
+        """
         xs = self.slave_positions(u, w, psi)
         xm = self.master_positions(u, s)
         ns = xs.shape[0]
@@ -217,7 +347,9 @@ class Model:
         K.node_to_surface(xs, xs - xs_prev, self.slave_area, self.kn, self.kn, mu, ft_old,
                           xm, nodal_normals(xm), xm - xm_prev, self.rail.axes[0],
                           self.rail.axes[1] - self.lateral_shift(s), s,
-                          5.0 * h, self.g0, out["energy"], out["fs"], out["fm"], out["gap"], out["pn"], out["ft"],
+                          5.0 * h, self.g0,
+                          self.scratch.setdefault("no_damping", np.zeros(ns)) if damping is None
+                          else damping, 1.0 / dt, out["energy"], out["fs"], out["fm"], out["gap"], out["pn"], out["ft"],
                           out["status"], out["cell"], out["rt"], out["normal"], out["slip"])
         out["xs"] = xs
         out["xm"] = xm
@@ -297,12 +429,14 @@ def build_model(case, *, rolling: bool = True) -> Model:
         raise InputError(f"travel {travel!r} m needs more than half the wheel circumference")
     wheel = wheel_body(geo["radius_of_y"], th_axis, y_axis, d_axis)
 
-    ed_w = elem.precompute(wheel.nodes, wheel.elements, mat)
-    ed_r = elem.precompute(rail.nodes, rail.elements, mat)
+
+    edata = ElementData.concatenate([elem.precompute(wheel.nodes, wheel.elements, mat),
+                                     elem.precompute(rail.nodes, rail.elements, mat)])
     nw = wheel.n_nodes
     conn = np.concatenate([wheel.elements, rail.elements + nw])
+    chunks = element_chunks(conn, nw + rail.n_nodes)
     mass = np.zeros(nw + rail.n_nodes)
-    vol = np.concatenate([ed_w.volume, ed_r.volume])
+    vol = edata.volume
     np.add.at(mass, conn.ravel(), np.repeat(mat.density * vol / 8.0, 8))
     fixed = np.concatenate([wheel.fixed, rail.fixed + nw])
     slave = wheel.surface_nodes.ravel()
@@ -312,7 +446,7 @@ def build_model(case, *, rolling: bool = True) -> Model:
     geo = dict(geo, a=a, b=b, travel=travel)
     p_ref = float(geo["hertz"].p0) if geo["hertz"] is not None else 1e-3 * mat.E
     g0 = 0.05 * p_ref / float(np.median(kn))
-    return Model(case, wheel, rail, mat, elem, ed_w, ed_r, conn, mass, fixed, slave, area,
+    return Model(case, wheel, rail, mat, elem, edata, conn, chunks, mass, fixed, slave, area,
                  master, kn, geo, geo["z_axle"], g0, (x_lo, x_hi))
 
 

@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._solid import von_mises
+
 __all__ = ["write_vtu"]
 
 
-def write_vtu(path, model, u, *, psi: float = 0.0, s: float = 0.0, w: float = 0.0) -> None:
+def write_vtu(path, model, u, *, psi: float = 0.0, s: float = 0.0, w: float = 0.0,
+              state=None) -> None:
     """Write both bodies as one unstructured hexahedral grid (``.vtu``).
 
     Parameters
@@ -19,9 +22,13 @@ def write_vtu(path, model, u, *, psi: float = 0.0, s: float = 0.0, w: float = 0.
     psi, s, w : float
         Wheel rolling angle [rad], rail shift [m] and axle displacement [m] used to place the
         bodies in the global frame.
+    state : PlasticState, optional
+        The plastic state (plastic materials): adds the equivalent plastic strain and uses
+        the plastic strain in the stresses.
 
     Point data: ``displacement`` [m] (body frames); cell data: ``von_mises`` [Pa],
-    ``body`` (0 wheel, 1 rail).
+    ``stress`` [Pa] (6 Voigt components xx, yy, zz, xy, yz, xz, body frames), ``body`` (0
+    wheel, 1 rail) and, with a state, ``equivalent_plastic_strain`` [-].
     """
     import meshio
 
@@ -29,10 +36,13 @@ def write_vtu(path, model, u, *, psi: float = 0.0, s: float = 0.0, w: float = 0.
     Q = model.rotation(psi)
     xw = (model.wheel.nodes + u[:nw]) @ Q.T + np.array([0.0, 0.0, model.z_axle + w])
     xr = model.rail.nodes + u[nw:] - np.array([s, 0.0, 0.0])
-    vm_w, vm_r = model.von_mises(u)
+
+    sig = np.concatenate(model.stress(u, state))
+    nw_e = model.wheel.n_elements
+    cells = {"von_mises": [von_mises(sig)], "stress": [sig],
+             "body": [np.concatenate([np.zeros(nw_e, int), np.ones(model.rail.n_elements, int)])]}
+    if state is not None:
+        cells["equivalent_plastic_strain"] = [np.concatenate(state.equivalent_plastic_strain())]
     mesh = meshio.Mesh(np.concatenate([xw, xr]), [("hexahedron", model.conn)],
-                       point_data={"displacement": u},
-                       cell_data={"von_mises": [np.concatenate([vm_w, vm_r])],
-                                  "body": [np.concatenate([np.zeros(vm_w.size, int),
-                                                           np.ones(vm_r.size, int)])]})
+                       point_data={"displacement": u}, cell_data=cells)
     mesh.write(str(path))

@@ -1,10 +1,11 @@
-"""Figures of FE results in the manner of seed 000 Figs. 4-7 (matplotlib; a leaf module)."""
+"""Figures of FE results in the manner of Toumi, Chollet & Yin (2016), Figs. 2-12 (matplotlib; a leaf module)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_patch", "plot_history"]
+__all__ = ["plot_patch", "plot_history", "plot_patch_comparison", "plot_creep_curves", "plot_passes",
+           "plot_section"]
 
 
 def plot_patch(patch, mu: float, reference=None, path=None):
@@ -81,7 +82,7 @@ def plot_patch(patch, mu: float, reference=None, path=None):
 
 
 def plot_history(dataset, path=None):
-    """Forces and energies over the travel (seed 000 Fig. 7)."""
+    """Forces and energies over the travel (Toumi, Chollet & Yin 2016, Fig. 7)."""
     import matplotlib
 
     if path is not None:
@@ -104,4 +105,150 @@ def plot_history(dataset, path=None):
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=120)
+    return fig
+
+
+def _figure(path):
+    import matplotlib
+
+    if path is not None:
+        matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    return plt
+
+
+def plot_patch_comparison(elastic, plastic, mu: float, path=None):
+    """Pressure and |q|/(μp) of an elastic and an elasto-plastic patch side by side (in the
+    manner of Toumi, Chollet & Yin 2016, Figs. 5, 6, 10, 11).
+
+    Parameters
+    ----------
+    elastic, plastic : xarray.Dataset
+        ``RollingResult.patch`` of the two runs.
+    mu : float
+        Friction coefficient [-].
+    path : str or Path, optional
+        Save the figure there.
+    """
+    plt = _figure(path)
+    fig, ax = plt.subplots(2, 3, figsize=(15, 8.5))
+    pmax = max(float(elastic.pressure.max()), float(plastic.pressure.max())) / 1e6
+    for row, (name, patch) in enumerate((("elastic", elastic), ("elasto-plastic", plastic))):
+        x = patch.x.values * 1e3
+        y = patch.y.values * 1e3
+        p = patch.pressure.values
+        on = p > 0
+        i0, i1 = np.flatnonzero(on.any(1))[[0, -1]]
+        j0, j1 = np.flatnonzero(on.any(0))[[0, -1]]
+        sl = (slice(max(i0 - 2, 0), i1 + 3), slice(max(j0 - 2, 0), j1 + 3))
+        X, Y = np.meshgrid(x[sl[0]], y[sl[1]], indexing="ij")
+        cs = ax[row, 0].contourf(X, Y, p[sl] / 1e6, np.linspace(0, pmax, 21), cmap="viridis")
+        fig.colorbar(cs, ax=ax[row, 0], label="pressure [MPa]")
+        ax[row, 0].set_title(f"{name}: pressure, max {p.max() / 1e6:.0f} MPa")
+        q = patch.shear.values
+        ratio = np.where(p > 0, q / np.maximum(mu * p, 1e-300), np.nan)
+        cs = ax[row, 1].contourf(X, Y, ratio[sl], np.linspace(0, 1, 11), cmap="magma")
+        fig.colorbar(cs, ax=ax[row, 1], label="|q| / (μ p)")
+        st = patch.status.values[sl]
+        ax[row, 1].plot(X[st == 1], Y[st == 1], "c.", ms=3, label="stick")
+        ax[row, 1].legend(loc="upper right", fontsize=8)
+        ax[row, 1].set_title(f"{name}: traction bound, max |q| {q.max() / 1e6:.0f} MPa, "
+                             f"stick {patch.attrs['adhesion_fraction']:.0%}")
+        qx, qy = patch.shear_x.values[sl], patch.shear_y.values[sl]
+        ax[row, 2].quiver(X, Y, qx, qy)
+        ax[row, 2].set_title(f"{name}: shear traction vectors")
+        for a in ax[row]:
+            a.set_xlabel("x [mm] (rolling)")
+            a.set_ylabel("y [mm]")
+            a.set_aspect("equal")
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def plot_creep_curves(curves: dict, path=None, reference=None):
+    """Creep curves (Toumi et al. 2016, Figs. 8 and 12): force over the creepage shifted by
+    each curve's offset.
+
+    Parameters
+    ----------
+    curves : dict of str to xarray.Dataset
+        Label to :func:`wheelrail.fe.creep_curve` result.
+    reference : (array, array), optional
+        Creepages and forces of a reference curve (e.g. the exact half-space theory).
+    """
+    plt = _figure(path)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    comp = None
+    for label, ds in curves.items():
+        f = ds.attrs["force"]
+        comp = ds.attrs["component"]
+        ax.errorbar(ds.shifted_creepage.values * 1e3, ds[f].values / 1e3,
+                    yerr=ds[f"{f}_std"].values / 1e3, marker="o", capsize=3,
+                    label=f"{label} (slope {ds.attrs['slope'] / 1e6:.2f} MN, offset "
+                          f"{ds.attrs['offset'] * 1e3:+.3f} ‰)")
+    if reference is not None:
+        ax.plot(np.asarray(reference[0]) * 1e3, np.asarray(reference[1]) / 1e3, "k--",
+                label="exact half-space theory")
+    ax.axhline(0, color="0.7", lw=0.8)
+    ax.axvline(0, color="0.7", lw=0.8)
+    ax.set_xlabel(f"{'ξ' if comp == 'xi' else 'η'} − offset [‰]")
+    ax.set_ylabel(f"{'Fx' if comp == 'xi' else 'Fy (contact plane)'} [kN]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def plot_passes(passes, path=None):
+    """Depth profiles of the residual stress and the equivalent plastic strain after each
+    pass (``RollingResult.passes``)."""
+    plt = _figure(path)
+    fig, ax = plt.subplots(1, 3, figsize=(15, 4.5))
+    d = passes.depth.values * 1e3
+    for k in range(passes.sizes["pass"]):
+        sel = passes.isel(**{"pass": k})
+        lab = f"pass {int(passes['pass'][k])}"
+        ax[0].plot(sel.equivalent_plastic_strain.values, d, "o-", ms=3, label=lab)
+        ax[1].plot(sel.residual_stress.sel(component="xx").values / 1e6, d, "o-", ms=3, label=lab)
+        ax[2].plot(sel.residual_stress.sel(component="xz").values / 1e6, d, "o-", ms=3, label=lab)
+    for a, t in zip(ax, ("equivalent plastic strain [-]", "residual σ_xx [MPa]",
+                         "residual τ_xz [MPa]")):
+        a.set_xlabel(t)
+        a.set_ylabel("depth [mm]")
+        a.invert_yaxis()
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def plot_section(fields, quantity="rail_von_mises", y=0.0, path=None, depth_max=None):
+    """A longitudinal section (x, depth) of an element field of the rail (Toumi et al. 2016,
+    Figs. 2 and 9): ``rail_von_mises`` [Pa], ``rail_equivalent_plastic_strain`` or a stress
+    component ``rail_stress:xx``."""
+    plt = _figure(path)
+    name, _, comp = quantity.partition(":")
+    da = fields[name].sel(y=y, method="nearest")
+    if comp:
+        da = da.sel(component=comp)
+    if depth_max is not None:
+        da = da.sel(depth=slice(0, depth_max))
+    scale, unit = (1e-6, "MPa") if da.attrs.get("units") == "Pa" else (1.0, "-")
+    fig, ax = plt.subplots(figsize=(11, 3.5))
+    X, D = np.meshgrid(da.x.values * 1e3, da.depth.values * 1e3, indexing="ij")
+    cs = ax.pcolormesh(X, D, da.values * scale, shading="nearest", cmap="jet")
+    fig.colorbar(cs, ax=ax, label=f"{quantity} [{unit}]")
+    ax.invert_yaxis()
+    ax.set_xlabel("x [mm] (rail)")
+    ax.set_ylabel("depth [mm]")
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=110)
     return fig

@@ -1,7 +1,7 @@
 """Restart files of a rolling run (NumPy ``.npz``; a leaf module).
 
 A restart file holds the complete state of an integrator at the end of a time
-step of the rolling step (seed 000's step 2): displacements and velocities in
+step of the rolling step (the second loading step of Toumi et al. 2016): displacements and velocities in
 the body frames, the axle dof and its velocity, the rigid motions (rolling angle
 ψ [rad], rail travel s [m], time t [s]), the contact history (tangential forces
 and the previous contact positions that define the next slip increment), the
@@ -25,7 +25,7 @@ from ..errors import InputError
 
 __all__ = ["write_restart", "read_restart", "fingerprint"]
 
-_VERSION = 1
+_VERSION = 2
 
 
 def fingerprint(model, dt: float) -> dict:
@@ -36,7 +36,10 @@ def fingerprint(model, dt: float) -> dict:
             "load": case.load, "xi": case.creepage[0], "eta": case.creepage[1], "mu": case.mu,
             "speed": case.speed, "travel": float(model.geometry["travel"]),
             "element": case.element, "mass_scaling": case.mass_scaling,
-            "rayleigh_alpha": case.rayleigh[0], "rayleigh_beta": case.rayleigh[1]}
+            "rayleigh_alpha": case.rayleigh[0], "rayleigh_beta": case.rayleigh[1],
+            "contact_damping": case.contact_damping, "passes": case.passes,
+            "axle_damping": case.axle_damping,
+            "material": repr(model.material)}
 
 
 def write_restart(path, model, dt: float, state: dict) -> None:

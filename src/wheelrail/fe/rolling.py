@@ -1,4 +1,4 @@
-"""Rolling: seed 000's two steps with the explicit or the implicit quasi-static integrator.
+"""Rolling: the two loading steps of Toumi, Chollet & Yin (2016) with an explicit or implicit integrator.
 
 Step 1 establishes the normal contact under the load; step 2 rolls: the rail
 is pulled back with speed V(t) rising by a smooth step over the first
@@ -7,62 +7,60 @@ is pulled back with speed V(t) rising by a smooth step over the first
     dψ/dt = V(t) (1 − ξ) / r_c,
 
 so that the rigid longitudinal creepage (v_wheel − v_rail)/V is ξ
-(Toumi et al. 2016, eq. 1, in Kalker's sign convention).
+(Toumi et al. 2016, eq. 1, in Kalker's sign convention). The lateral creepage η is
+imposed by a lateral rail drift −η V(t) (:meth:`wheelrail.fe.model.Model.lateral_shift`).
 
-Explicit (``"explicit"``): central differences, lumped mass (times
-``mass_scaling``), step = ``courant`` × the smallest of the element Courant
-limits L_e/c and the contact springs' limit 2√(m/k_c); Rayleigh damping
-C = αM + βK. Step 1 is dynamic relaxation (load held, mass-proportional
-damping tuned to the lowest thickness mode, until the contact force settles).
+Integrators (:mod:`.explicit`, :mod:`.implicit`):
 
-Implicit quasi-static (``"implicit-qs"``): step 1 the static Newton solve of
-:func:`wheelrail.fe.indent`'s kind, step 2 a sequence of static Newton solves
-with the friction history carried from step to step (backward-Euler
-incremental slip); time step ``time_step`` (default: the contact moves half an
-element per step); optional viscous term β_R K Δu/Δt (Rayleigh β only).
+* ``"explicit"`` — central differences, lumped mass × ``mass_scaling``, contact dashpots
+  (``contact_damping``), the step 1 by dynamic relaxation; parallel kernels;
+* ``"implicit-qs"`` — a static Newton solve per time step (backward-Euler slip);
+* ``"implicit-hht"`` — HHT-α (Hilber, Hughes & Taylor 1977), Newton per step.
 
-The lateral creepage η is imposed by a lateral rail drift −η V(t)
-(:meth:`wheelrail.fe.model.Model.lateral_shift`).
+Elastic or elasto-plastic (:class:`wheelrail.fe.J2Plastic`): the plastic state of every
+integration point is carried through both steps, written to restart files, and
+reported (:attr:`RollingResult.equivalent_plastic_strain`,
+:attr:`RollingResult.residual_stress`). ``passes > 1`` rolls the same wheel segment
+over the same rail section again (repeated passes: shakedown or ratcheting).
 
-Implicit dynamic (``"implicit-hht"``): the HHT-α method (α = ``hht_alpha`` in
-[−1/3, 0], β = (1 − α)²/4, γ = ½ − α) with lumped mass, Newton iterations on the
-equilibrium at t_{n+1+α} (internal and contact forces weighted (1 + α) at the new
-and −α at the old step; contact evaluated at the new positions), same default
-step as quasi-static; Rayleigh damping C = α_R M + β_R K enters the same way
-((1 + α) C v_{n+1} − α C v_n), its work is reported as ``damping``.
-
-Implicit Newton systems reuse one sparse LU factorisation as a GMRES
-preconditioner across iterations and steps (``linear_solver="reuse"``), see
-:class:`wheelrail.fe._newton.ReusedFactorSolver`. Every integrator can write
-restart files and continue from them (:mod:`wheelrail.fe.restart`).
+Steady state
+------------
+Every result reports its steady window (travel from the end of the speed ramp plus
+four semi-axes, at most the last quarter, to the end) and the mean and scatter
+(standard deviation) of the forces over it, from every time step (explicit) or every
+step (implicit): :attr:`RollingResult.steady`.
 
 References
 ----------
-.. [1] Toumi et al., Wear 366-367 (2016) 157-166 (seed 000), §2-3, eq. (1).
-.. [3] H.M. Hilber, T.J.R. Hughes, R.L. Taylor, "Improved numerical dissipation for
+.. [1] M. Toumi, H. Chollet, H. Yin, "Finite element analysis of the frictional
+   wheel-rail rolling contact using explicit and implicit methods", Wear 366-367
+   (2016) 157-166, §2-3, eq. (1).
+.. [2] H.M. Hilber, T.J.R. Hughes, R.L. Taylor, "Improved numerical dissipation for
    time integration algorithms in structural dynamics", Earthquake Eng. Struct.
-   Dyn. 5 (1977) 283-292, eqs. (9)-(11).
-.. [2] T. Belytschko, W.K. Liu, B. Moran, *Nonlinear Finite Elements for
+   Dyn. 5 (1977) 283-292.
+.. [3] T. Belytschko, W.K. Liu, B. Moran, *Nonlinear Finite Elements for
    Continua and Structures*, Wiley 2000, §6.2 (central differences, stable step,
    energy balance).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError
 from ..tangential.linear import kalker_coefficients
-from ._newton import DirectSolver, ReusedFactorSolver, newton
+from ._solid import von_mises
 from .materials import as_fe_material
-from .model import build_model, contact_geometry
-from .patch import patch_from_contact
-from .restart import read_restart, write_restart
-from .static import free_dofs, static_equilibrium
+from .model import contact_geometry
+from .restart import write_restart
 
-__all__ = ["RollingResult", "solve", "stable_time_step", "saturation_creepage"]
+__all__ = ["RollingResult", "stable_time_step", "saturation_creepage",
+           "steady_window", "plastic_fields"]
+
+#: History columns of a rolling run (rows of the output dataset).
+COLUMNS = ("time", "travel", "Fx", "Fy", "Fz", "Fn", "kinetic", "internal", "contact",
+           "friction", "damping", "external", "contact_work", "plastic_work")
 
 
 @dataclass(frozen=True, eq=False)
@@ -72,25 +70,42 @@ class RollingResult:
     Attributes
     ----------
     dataset : xarray.Dataset
-        Histories over ``travel`` [m]: Fx, Fy, Fz [N] (contact force on the
-        wheel, global axes: x rolling, y the profiles' lateral axis, z up), Fn [N]
+        Histories over ``travel`` [m] (the last pass): Fx, Fy, Fz [N] (contact force on
+        the wheel, global axes: x rolling, y the profiles' lateral axis, z up), Fn [N]
         (sum of the normal nodal forces), Fy_contact and Fn_contact [N] (the force on
         the wheel along the lateral tangent and the normal of the undeformed contact
-        plane, tilted by the contact angle δ), kinetic, internal, contact (penalty),
-        friction (dissipated), damping (dissipated), external (load work) energies
-        [J] and energy_error [J]. Explicit: energies of step 2 (rolling), counted from
-        its start (``internal`` is the change of the strain energy);
-        ``contact_work`` is the work of the contact forces on the elastic motion, and
-        energy_error = kinetic + internal + damping − external − contact_work (the
-        balance of the elastic bodies; trapezoidal rule).
+        plane, tilted by the contact angle δ), kinetic, internal (elastic strain energy
+        plus plastic work), contact (penalty), friction (dissipated), damping
+        (dissipated), external (load work), contact_work and plastic_work energies [J]
+        and energy_error = kinetic + internal + damping − external − contact_work [J],
+        counted from the start of the rolling step.
     patch : xarray.Dataset
         Contact nodes at the end (see :func:`wheelrail.fe.patch.patch_from_contact`).
     Fx, Fy : float
-        Steady-state longitudinal and lateral (global y) force on the wheel [N] (mean
-        over the last quarter of the travel); :attr:`Fy_contact` is the lateral force
-        in the tilted contact plane.
+        Steady longitudinal and lateral (global y) force on the wheel [N]: the means over
+        the steady window (:attr:`steady`); :attr:`Fy_contact` is the lateral force in
+        the tilted contact plane.
     p_max, a, b : float
         Peak pressure [Pa] and equivalent semi-axes [m] of the final patch.
+    model : Model
+    u : ndarray, shape (n_nodes, 3)
+        Final displacements in the body frames [m].
+    info : dict
+        Time step, steps, solver counters.
+    steady : dict
+        ``window`` (start, end) of travel [m], ``n`` samples, and for Fx, Fy, Fz, Fn,
+        Fy_contact, Fn_contact: ``<name>`` the mean [N], ``<name>_std`` the standard
+        deviation [N] and ``<name>_scatter`` = std / |mean| [-].
+    state : PlasticState or None
+        The final plastic state (plastic materials).
+    fields : xarray.Dataset or None
+        Element fields at the end (plastic materials): equivalent plastic strain,
+        stress (the residual stress away from the contact) and von Mises stress of the
+        rail over (x, y, depth) and of the wheel over (wheel_x, wheel_y, wheel_depth)
+        (see :func:`plastic_fields`).
+    passes : xarray.Dataset or None
+        Per pass (``passes > 1``): steady forces and the depth profiles of the residual
+        stress and equivalent plastic strain under the middle of the rolled section.
     """
 
     dataset: object
@@ -103,16 +118,41 @@ class RollingResult:
     model: object
     u: np.ndarray
     info: dict
+    steady: dict = field(default_factory=dict)
+    state: object = None
+    fields: object = None
+    passes: object = None
 
     @property
     def Fy_contact(self) -> float:
         """Steady lateral force in the contact plane [N] (the creep force to compare with a
         half-space solution when the contact is inclined; equals ``Fy`` at δ = 0)."""
-        return _steady(self.dataset, "Fy_contact")
+        return self.steady["Fy_contact"]
+
+    @property
+    def equivalent_plastic_strain(self):
+        """Equivalent plastic strain per element [-]: an xarray.Dataset with ``rail`` (x, y,
+        depth) and ``wheel`` (wheel_x, wheel_y, wheel_depth); None for an elastic run."""
+        if self.fields is None:
+            return None
+        return self.fields[["rail_equivalent_plastic_strain", "wheel_equivalent_plastic_strain"]
+                           ].rename(rail_equivalent_plastic_strain="rail",
+                                    wheel_equivalent_plastic_strain="wheel")
+
+    @property
+    def residual_stress(self):
+        """Stress per element at the end [Pa] (Voigt components xx, yy, zz, xy, yz, xz, body
+        frames): an xarray.Dataset with ``rail`` and ``wheel``; residual where the contact
+        has passed (rail x < final contact − 3 a). None for an elastic run."""
+        if self.fields is None:
+            return None
+        return self.fields[["rail_stress", "wheel_stress"]].rename(rail_stress="rail",
+                                                                   wheel_stress="wheel")
 
     def __repr__(self):
         return (f"RollingResult(Fx={self.Fx:.1f} N, Fy={self.Fy:.1f} N, p_max="
-                f"{self.p_max / 1e6:.1f} MPa, a={self.a * 1e3:.3f} mm, b={self.b * 1e3:.3f} mm)")
+                f"{self.p_max / 1e6:.1f} MPa, a={self.a * 1e3:.3f} mm, b={self.b * 1e3:.3f} mm, "
+                f"Fx scatter {self.steady.get('Fx_scatter', float('nan')):.1%})")
 
 
 def _smoothstep(tau):
@@ -120,15 +160,22 @@ def _smoothstep(tau):
     return tau ** 3 * (10 - 15 * tau + 6 * tau ** 2)
 
 
+def contact_damping_factor(zeta: float) -> float:
+    """Reduction of the stable central-difference step of an oscillator with damping ratio
+    ζ (velocity at the half step): √(1 + ζ²) − ζ (Belytschko et al. 2000, eq. 6.2.40)."""
+    return float(np.sqrt(1.0 + zeta * zeta) - zeta)
+
+
 def stable_time_step(model) -> float:
     """Largest stable central-difference step [s] (before the safety factor), mass scaling included.
 
     The smaller of the element limit L_e / c (L_e = volume / largest face area, c the
-    dilatational wave speed of the scaled density) and the limit 2 √(m / k) of a surface
-    node on the contact spring k = k_n A, halved for the master node in series.
+    dilatational wave speed of the scaled density) and the limit √(m / k) of a surface
+    node on the contact spring k = k_n A (halved for the master node in series), the latter
+    reduced by :func:`contact_damping_factor` of the contact dashpots.
     """
     c = model.material.wave_speed / np.sqrt(model.case.mass_scaling)
-    L = min(model.edata_w.length.min(), model.edata_r.length.min())
+    L = float(model.edata.length.min())
     dt_el = L / c
     ms = model.mass[model.slave] * model.case.mass_scaling
     kc = model.kn * model.slave_area
@@ -136,11 +183,22 @@ def stable_time_step(model) -> float:
     y = model.wheel.nodes[model.slave, 1]
     band = np.abs(y - model.geometry["y_c"]) <= 1.5 * model.geometry["b"] + 2 * model.case.mesh_size
     dt_c = float(np.sqrt(ms[band] / kc[band]).min())      # slave and master springs in series
+    if model.case.integrator == "explicit":
+        dt_c *= contact_damping_factor(model.case.contact_damping)
     return float(min(dt_el, dt_c))
 
 
-def _speed_profile(case, travel):
-    """Rail displacement s(t) by integrating the smooth-step speed (distance-based ramp)."""
+def contact_dashpots(model, zeta: float) -> np.ndarray:
+    """Normal contact dashpots c = 2 ζ √(k m/2) [N s/m] per slave: ζ of critical damping of
+    the slave's (scaled) mass on its linear penalty spring k = k_n A, the master mass in
+    series taken equal."""
+    ms = model.mass[model.slave] * model.case.mass_scaling
+    kc = model.kn * model.slave_area
+    return 2.0 * zeta * np.sqrt(kc * 0.5 * ms)
+
+
+def speed_profile(case, travel):
+    """Rail speed V(t) [m/s] (smooth step over the ramp distance) and the end time [s]."""
     V = case.speed
     d_ramp = case.ramp * travel
     # time to cover the ramp with V(t) = V S(t / t_r): ∫ = V t_r / 2 for the quintic step
@@ -153,50 +211,45 @@ def _speed_profile(case, travel):
     return speed, t_end
 
 
-def _forces_row(c):
-    fs = c["fs"]
-    return fs[:, 0].sum(), fs[:, 1].sum(), fs[:, 2].sum(), c["pn"].sum()
+_speed_profile = speed_profile      # older name (benchmarks, CLI)
 
 
-def solve(case, *, progress: bool = True, output_every: int | None = None,
-          restart=None, restart_file=None, restart_every: int | None = None) -> RollingResult:
-    """Roll the wheel over the rail: seed 000's two loading steps.
+def steady_window(case, model) -> tuple[float, float]:
+    """Travel interval [m] over which the rolling forces are steady (averaged).
 
-    Parameters
-    ----------
-    case : RollingCase
-    progress : bool
-        Show a rich progress bar.
-    output_every : int, optional
-        Explicit: record the histories every this many steps (default: about 400 rows).
-    restart : str or Path, optional
-        Continue from this restart file (written by a run of the same case).
-    restart_file : str or Path, optional
-        Write the state of the rolling step to this ``.npz`` file every
-        ``restart_every`` steps (and at the end), see :mod:`wheelrail.fe.restart`;
-        ``{step}`` in the name is replaced by the step number (one file per write),
-        otherwise the file is overwritten with the latest state.
-    restart_every : int, optional
-        Steps between restart writes (default: a tenth of the rolling steps).
-
-    Returns
-    -------
-    RollingResult
-
-    Warns
-    -----
-    UserWarning
-        The creepage is past the saturation estimate (:func:`saturation_creepage`): the
-        patch slides entirely and the force is μ F_n whatever the creepage; or an implicit
-        ``time_step`` above h/(2V) (spurious slip, seed 000 §3).
+    From the end of the speed ramp plus four Hertz semi-axes a (the creep force builds up
+    over about 2a of rolling after the speed is reached; plastic wakes need a few more),
+    but at most the last quarter of the travel, to the end of the travel.
     """
-    _warn_saturation(case)
-    io = {"restart": restart, "file": restart_file, "every": restart_every}
-    if case.integrator == "explicit":
-        return _solve_explicit(case, progress, output_every, io)
-    if case.integrator == "implicit-qs":
-        return _solve_implicit_qs(case, progress, io)
-    return _solve_implicit_hht(case, progress, io)
+    travel = float(model.geometry["travel"])
+    a = float(model.geometry["a"])
+    start = min(case.ramp * travel + 4.0 * a, 0.75 * travel)
+    return float(start), travel
+
+
+def steady_statistics(travel, forces: dict, window) -> dict:
+    """Means, standard deviations and scatter (std/|mean|) of force samples in ``window``."""
+    travel = np.asarray(travel)
+    sel = (travel >= window[0] - 1e-15) & (travel <= window[1] + 1e-15)
+    if not sel.any():
+        sel = np.zeros(travel.size, bool)
+        sel[-1] = True
+    out = {"window": (float(window[0]), float(window[1])), "n": int(sel.sum())}
+    for name, v in forces.items():
+        x = np.asarray(v)[sel]
+        m = float(np.mean(x))
+        sd = float(np.std(x))
+        out[name] = m
+        out[f"{name}_std"] = sd
+        out[f"{name}_scatter"] = sd / abs(m) if m != 0 else float("inf")
+    return out
+
+
+def contact_plane_forces(model, Fy, Fz):
+    """Forces along the lateral tangent and the normal of the undeformed contact plane."""
+    t, nv = model.geometry["lateral"], model.geometry["normal"]
+    Fy, Fz = np.asarray(Fy), np.asarray(Fz)
+    return Fy * t[1] + Fz * t[2], Fy * nv[1] + Fz * nv[2]
 
 
 def saturation_creepage(case) -> float | None:
@@ -227,7 +280,7 @@ def saturation_creepage(case) -> float | None:
     if n == 0:
         return None
     stiff = float(np.hypot(c11 * xi / n, c22 * eta / n))
-    return float(3.0 * case.mu * geo["normal_load"] / (mat.mu * hz.a * hz.b * stiff))
+    return float(3.0 * case.mu * geo["normal_load"] / (mat.shear_modulus * hz.a * hz.b * stiff))
 
 
 def _warn_saturation(case):
@@ -246,7 +299,7 @@ def _warn_saturation(case):
                       UserWarning, stacklevel=3)
 
 
-def _progress(progress, total, label):
+def progress_bar(progress, total, label):
     if not progress:
         return None
     from rich.progress import (
@@ -264,16 +317,15 @@ def _progress(progress, total, label):
     return p
 
 
-def _dataset(rows, case, model, extra):
+def history_dataset(rows, case, model, extra):
+    """The output histories (rows of :data:`COLUMNS`) as an xarray.Dataset over travel."""
     import xarray as xr
 
-    rows = np.array(rows)
-    names = ["time", "travel", "Fx", "Fy", "Fz", "Fn", "kinetic", "internal", "contact",
-             "friction", "damping", "external", "contact_work"]
-    data = {n: ("travel", rows[:, k]) for k, n in enumerate(names) if n != "travel"}
+    rows = np.asarray(rows, dtype=float).reshape(-1, len(COLUMNS))
+    data = {n: ("travel", rows[:, k]) for k, n in enumerate(COLUMNS) if n != "travel"}
     ds = xr.Dataset(data, coords={"travel": rows[:, 1]})
     units = {"time": "s", "Fx": "N", "Fy": "N", "Fz": "N", "Fn": "N"}
-    for n in names[6:]:
+    for n in COLUMNS[6:]:
         units[n] = "J"
     for n, un in units.items():
         ds[n].attrs["units"] = un
@@ -281,24 +333,23 @@ def _dataset(rows, case, model, extra):
     ds["energy_error"] = ds.kinetic + ds.internal + ds.damping - ds.external - ds.contact_work
     ds["energy_error"].attrs["units"] = "J"
     # forces in the (undeformed) contact plane: differ from Fy, Fz on an inclined contact
-    t, nv = model.geometry["lateral"], model.geometry["normal"]
-    ds["Fy_contact"] = ds.Fy * t[1] + ds.Fz * t[2]
-    ds["Fn_contact"] = ds.Fy * nv[1] + ds.Fz * nv[2]
+    fy_c, fn_c = contact_plane_forces(model, ds.Fy.values, ds.Fz.values)
+    ds["Fy_contact"] = ("travel", fy_c)
+    ds["Fn_contact"] = ("travel", fn_c)
     for name in ("Fy_contact", "Fn_contact"):
         ds[name].attrs["units"] = "N"
-    ds.attrs.update({"integrator": case.integrator, "creepage_xi": case.xi, "mu": case.mu,
-                     "load": case.load, "speed": case.speed, "n_elements": model.n_elements,
-                     "mesh_size": case.mesh_size, **extra})
+    attrs = {"integrator": case.integrator, "creepage_xi": case.xi,
+             "creepage_eta": case.creepage[1], "mu": case.mu, "load": case.load,
+             "speed": case.speed, "n_elements": model.n_elements, "mesh_size": case.mesh_size,
+             "material": type(model.material).__name__}
+    for k, v in extra.items():
+        if isinstance(v, (int, float, str, np.integer, np.floating)):
+            attrs[k] = v
+    ds.attrs.update(attrs)
     return ds
 
 
-def _steady(ds, name):
-    v = ds[name].values
-    n = max(1, len(v) // 4)
-    return float(np.mean(v[-n:]))
-
-
-def _restart_writer(io, model, dt, n_steps):
+def restart_writer(io, model, dt, n_steps):
     """A callable ``maybe_write(k_done, state_fn)`` writing every ``every`` steps and at the end."""
 
     path = io["file"]
@@ -315,354 +366,51 @@ def _restart_writer(io, model, dt, n_steps):
     return maybe_write
 
 
-def _contact_state(c):
+def contact_state(c):
     return {k: v for k, v in c.items() if isinstance(v, np.ndarray)}
 
 
-def _solve_explicit(case, progress, output_every, io):
-    model = build_model(case, rolling=True)
-    travel = model.geometry["travel"]
-    dt_stable = stable_time_step(model)
-    if case.time_step is not None:
-        if case.time_step > dt_stable:
-            raise InputError(f"time_step {case.time_step!r} s exceeds the stable explicit step "
-                             f"{dt_stable:.3g} s (Courant limit of the {case.mesh_size:g} m mesh)")
-        dt = case.time_step
-    else:
-        dt = case.courant * dt_stable
-    m = model.mass * case.mass_scaling
-    n = model.n_nodes
-    fixed = model.fixed
-    inv_m = np.where(m > 0, 1.0 / np.where(m > 0, m, 1.0), 0.0)
-    inv_m[fixed] = 0.0
-    M_w = float(m[:model.nw].sum())
-    alpha, beta = case.rayleigh
-    load, mu = case.load, case.mu
+def plastic_fields(model, u, state):
+    """Element fields of a plastic run (an xarray.Dataset; None if elastic).
+
+    ``rail_equivalent_plastic_strain`` (x, y, depth) [-], ``rail_stress`` (x, y, depth,
+    component) [Pa], ``rail_von_mises`` [Pa], and the same for the wheel over
+    (wheel_x, wheel_y, wheel_depth): element centres, x the rail's reference abscissa
+    (the contact started at x = 0 and moved to x = travel), wheel_x = R θ the arc length
+    of the wheel's material angle, y lateral, depth below the running surface [m].
+    Stresses in the body frames (Voigt xx, yy, zz, xy, yz, xz).
+    """
+    import xarray as xr
+
+
+    if state is None:
+        return None
+    sig_w, sig_r = model.stress(u, state)
+    p_w, p_r = state.equivalent_plastic_strain()
+    data, coords = {}, {"component": ["xx", "yy", "zz", "xy", "yz", "xz"]}
     R = model.geometry["r_c"]
-
-    depth = model.wheel.axes[2][-1]
-    omega1 = np.pi * model.material.wave_speed / (2 * depth) / np.sqrt(case.mass_scaling)
-    a_dr = 2.0 * omega1
-    n1 = int(np.ceil(12 * 2 * np.pi / omega1 / dt))
-    speed, t_end = _speed_profile(case, travel)
-    n2 = int(np.ceil(t_end / dt))
-    every = output_every or max(1, n2 // 400)
-    f = np.zeros((n, 3))
-
-    def accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, mu_now, damp_a):
-        f[:] = 0.0
-        _, e_int = model.internal_force(u, f)
-        c = model.contact(u, w, psi, s, xs_prev, xm_prev, ft, mu_now)
-        fc, fcw = model.generalized_contact_force(c, psi)
-        fd = (damp_a * m)[:, None] * v
-        if beta > 0:
-            fb = np.zeros((n, 3))
-            model.internal_force(v, fb)
-            fd += beta * fb
-        acc = (fc - f - fd) * inv_m[:, None]
-        aw = (fcw - load - damp_a * M_w * vw) / M_w
-        return acc, aw, c, e_int, fc, fcw, fd
-
-    if io["restart"] is not None:
-        st = read_restart(io["restart"], model, dt)
-        u, v, acc, fc, fd = st["u"], st["v"], st["acc"], st["fc"], st["fd"]
-        w, vw, aw, fcw, psi, s, t = (st[k] for k in ("w", "vw", "aw", "fcw", "psi", "s", "t"))
-        e_int, e_int0, relax_error, k0 = st["e_int"], st["e_int0"], st["relax_error"], st["k"]
-        c, E, rows = st["c"], st["E"], st["rows"].tolist()
-        ft = c["ft"]
-        bar = _progress(progress, n2 - k0, f"FE explicit ({model.n_elements} el.), restart")
-    else:
-        u = np.zeros((n, 3))
-        v = np.zeros((n, 3))
-        hz = model.geometry["hertz"]
-        w = -float(hz.penetration) if hz is not None else 0.0
-        vw = 0.0
-        psi = s = 0.0
-        ft = np.zeros((model.slave.size, 3))
-        xs_prev = model.slave_positions(u, w, psi)
-        xm_prev = model.master_positions(u, s)
-        bar = _progress(progress, n1 + n2, f"FE explicit ({model.n_elements} el.)")
-        rows = []
-        E = dict(kinetic=0.0, internal=0.0, contact=0.0, friction=0.0, damping=0.0,
-                 external=0.0, contact_work=0.0)
-
-        # ---- step 1: dynamic relaxation to the static contact (mass-proportional damping)
-        t = 0.0
-        acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, 0.0,
-                                               a_dr)
-        for k in range(n1):
-            v += dt * acc
-            vw += dt * aw
-            u += dt * v
-            w += dt * vw
-            xs_prev, xm_prev = c["xs"], c["xm"]
-            acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft,
-                                                   0.0, a_dr)
-            if bar is not None and k % 200 == 0:
-                bar.update(bar.task_ids[0], completed=k)
-        relax_error = abs(fcw - load) / load
-        v[:] = 0.0
-        vw = 0.0
-        ft = c["ft"].copy()
-        e_int0 = e_int
-        fd = np.zeros_like(fd)
-        k0 = 0
-
-    def state(k_done):
-        return dict(u=u, v=v, acc=acc, fc=fc, fd=fd, w=w, vw=vw, aw=aw, fcw=fcw, psi=psi, s=s,
-                    t=t, e_int=e_int, e_int0=e_int0, relax_error=relax_error, k=k_done,
-                    c=_contact_state(c), E=E, rows=np.array(rows, float).reshape(-1, 13))
-
-    maybe_write = _restart_writer(io, model, dt, n2)
-
-    # ---- step 2: rolling (energies counted from here)
-    for k in range(k0, n2):
-        t_half = t + 0.5 * dt
-        V = speed(t_half)
-        v += dt * acc
-        vw += dt * aw
-        du = dt * v
-        u += du
-        dw = dt * vw
-        w += dw
-        s += V * dt
-        psi += V * (1.0 - case.xi) / R * dt
-        t += dt
-        xs_prev, xm_prev = c["xs"], c["xm"]
-        E["damping"] += 0.5 * float(np.sum(fd * du))
-        E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
-        E["external"] += -load * dw
-        acc, aw, c, e_int, fc, fcw, fd = accel(u, v, w, vw, psi, s, xs_prev, xm_prev, ft, mu,
-                                               alpha)
-        # trapezoidal rule: the other half with the forces at the end of the step
-        E["damping"] += 0.5 * float(np.sum(fd * du))
-        E["contact_work"] += 0.5 * (float(np.sum(fc * du)) + fcw * dw)
-        E["friction"] += float(np.sum(np.linalg.norm(c["ft"], axis=1) * c["slip"]))
-        ft = c["ft"]
-        if k % every == 0 or k == n2 - 1:
-            # kinetic energy at the full step: v_n = v_{n-1/2} + dt/2 a_n
-            vn = v + 0.5 * dt * acc
-            vwn = vw + 0.5 * dt * aw
-            E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
-            E["internal"] = e_int - e_int0
-            E["contact"] = float(c["energy"].sum())
-            rows.append([t, s, *_forces_row(c), E["kinetic"], E["internal"], E["contact"],
-                         E["friction"], E["damping"], E["external"], E["contact_work"]])
-            if bar is not None:
-                bar.update(bar.task_ids[0], completed=(k - k0) if io["restart"] else n1 + k)
-        maybe_write(k + 1, lambda: state(k + 1))
-    if bar is not None:
-        bar.stop()
-    ds = _dataset(rows, case, model, {"time_step": dt, "steps": n1 + n2,
-                                      "relaxation_steps": n1, "relaxation_load_error": relax_error})
-    patch = patch_from_contact(model, c, psi, dt)
-    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
-                         patch.attrs["a"], patch.attrs["b"], model, u,
-                         {"time_step": dt, "steps": n1 + n2, "stable_time_step": dt_stable,
-                          "restarted_at_step": int(k0)})
+    for body, sig, p, pre, scale in ((model.rail, sig_r, p_r, "", 1.0),
+                                     (model.wheel, sig_w, p_w, "wheel_", R)):
+        ax = [0.5 * (a[1:] + a[:-1]) for a in body.axes]
+        shape = tuple(len(a) for a in ax)
+        dims = (f"{pre}x", f"{pre}y", f"{pre}depth")
+        coords[dims[0]] = (dims[0], ax[0] * scale, {"units": "m"})
+        coords[dims[1]] = (dims[1], ax[1], {"units": "m"})
+        coords[dims[2]] = (dims[2], ax[2], {"units": "m"})
+        name = body.name
+        data[f"{name}_equivalent_plastic_strain"] = (dims, p.reshape(shape), {"units": "1"})
+        data[f"{name}_stress"] = (dims + ("component",), sig.reshape(shape + (6,)),
+                                  {"units": "Pa"})
+        data[f"{name}_von_mises"] = (dims, von_mises(sig).reshape(shape), {"units": "Pa"})
+    return xr.Dataset(data, coords=coords)
 
 
-def _implicit_start(case, io):
-    """Model, stiffness, the loaded static state and the time grid of an implicit run."""
-
-    model = build_model(case, rolling=True)
-    travel = model.geometry["travel"]
-    K = model.stiffness()
-    free = free_dofs(model)
-    Kff = K[free][:, free].tocsr()
-    speed, t_end = _speed_profile(case, travel)
-    dt_max = 0.5 * case.mesh_size / case.speed
-    dt = case.time_step if case.time_step is not None else dt_max
-    if dt > dt_max * (1 + 1e-9):
-        import warnings
-
-        warnings.warn(f"time_step {dt!r} s moves the contact by "
-                      f"{dt * case.speed / case.mesh_size:.2g} elements per step; the implicit "
-                      f"friction history needs time_step <= h/(2V) = {dt_max:.3g} s, or the "
-                      f"patch slips spuriously (seed 000 §3)",
-                      UserWarning, stacklevel=4)
-    nsteps = int(np.ceil(t_end / dt))
-    if io["restart"] is None:
-        u, w, c, _ = static_equilibrium(model, K)
-    else:
-        u = w = c = None
-    solver = ReusedFactorSolver() if case.linear_solver == "reuse" else DirectSolver()
-    return model, K, free, Kff, u, w, c, speed, dt, nsteps, model.geometry["r_c"], solver
-
-
-def _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, u, solver, k0, extra=None):
-    info = {"time_step": dt, "steps": nsteps, "newton_iterations": iters,
-            "restarted_at_step": int(k0)}
-    info.update(factorizations=solver.factorizations, krylov_iterations=solver.krylov_iterations,
-                linear_solves=solver.solves, linear_solve_seconds=solver.seconds)
-    ds = _dataset(rows, case, model, {**info, **(extra or {})})
-    patch = patch_from_contact(model, c, psi, dt)
-    return RollingResult(ds, patch, _steady(ds, "Fx"), _steady(ds, "Fy"), patch.attrs["p_max"],
-                         patch.attrs["a"], patch.attrs["b"], model, u, info)
-
-
-def _solve_implicit_qs(case, progress, io):
-    model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver = _implicit_start(case, io)
-    beta_r = case.rayleigh[1]
-    # viscous (Kelvin-Voigt) term β K (q − q_n)/Δt, backward Euler: tangent K (1 + β/Δt)
-    Kff_eff = Kff * (1.0 + beta_r / dt) if beta_r > 0 else Kff
-    if io["restart"] is not None:
-        st = read_restart(io["restart"], model, dt)
-        u, w, psi, s, t, k0, iters = (st[k] for k in ("u", "w", "psi", "s", "t", "k", "iters"))
-        c, E, rows = st["c"], st["E"], st["rows"].tolist()
-        ft, e_int0 = c["ft"], st["e_int0"]
-    else:
-        ft, psi, s, t, rows, E, iters, k0, e_int0 = _fresh_implicit_state(model, u)
-    fc, fcw = model.generalized_contact_force(c, psi)
-    bar = _progress(progress, nsteps - k0, f"FE implicit-qs ({model.n_elements} el.)")
-
-    def state(k_done):
-        return dict(u=u, w=w, psi=psi, s=s, t=t, k=k_done, iters=iters, e_int0=e_int0,
-                    c=_contact_state(c), E=E, rows=np.array(rows, float).reshape(-1, 13))
-
-    maybe_write = _restart_writer(io, model, dt, nsteps)
-    for k in range(k0, nsteps):
-        V = speed(t + 0.5 * dt)
-        s += V * dt
-        psi += V * (1.0 - case.xi) / R * dt
-        t += dt
-        q_n = np.concatenate([u.ravel(), [w]])
-        dyn = None
-        if beta_r > 0:
-            dyn = _rayleigh_force(K, beta_r / dt, q_n)
-        u, w, c, it = newton(model, Kff_eff, free, u, w, psi, s, c["xs"], c["xm"], ft, case.mu,
-                             case.load, dyn=dyn, solver=solver)
-        iters += it
-        ft = c["ft"]
-        dq = np.concatenate([u.ravel(), [w]]) - q_n
-        fc_new, fcw_new = model.generalized_contact_force(c, psi)
-        E["contact_work"] += 0.5 * (float(np.sum((fc + fc_new).ravel() * dq[:-1]))
-                                    + (fcw + fcw_new) * dq[-1])
-        fc, fcw = fc_new, fcw_new
-        if beta_r > 0:
-            E["damping"] += (beta_r / dt) * float(dq @ (K @ dq))
-        E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-        E["external"] += -case.load * dq[-1]
-        _, e_int = model.internal_force(u)
-        rows.append([t, s, *_forces_row(c), 0.0, e_int - e_int0, float(c["energy"].sum()),
-                     E["friction"], E["damping"], E["external"], E["contact_work"]])
-        if bar is not None:
-            bar.update(bar.task_ids[0], completed=k + 1 - k0)
-        if maybe_write(k + 1, lambda: state(k + 1)):
-            solver.lu = None          # a restart starts from a fresh factorisation: same numbers
-    if bar is not None:
-        bar.stop()
-    return _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, u, solver, k0)
-
-
-def _solve_implicit_hht(case, progress, io):
-    model, K, free, Kff, u, w, c, speed, dt, nsteps, R, solver = _implicit_start(case, io)
-    al = case.hht_alpha
-    beta, gamma = (1 - al) ** 2 / 4, 0.5 - al
-    alpha_r, beta_r = case.rayleigh
-    m = model.mass * case.mass_scaling
-    M_w = float(m[:model.nw].sum())
-    mvec = np.concatenate([np.repeat(m, 3), [M_w]])
-    # tangent: (1+α)[K (1 + γ β_R/(β Δt)) + K_c] + M (1 + (1+α) γ α_R Δt) / (β Δt²)
-    cv = gamma / (beta * dt)
-    diag = mvec[free] / (beta * dt * dt) + (1.0 + al) * cv * alpha_r * mvec[free]
-    Kff_eff = Kff * (1.0 + cv * beta_r) if beta_r > 0 else Kff
-    fixed = np.setdiff1d(np.arange(3 * model.n_nodes + 1), free)
-
-    def damping_force(vv):
-        out = alpha_r * mvec * vv
-        if beta_r > 0:
-            out = out + beta_r * (K @ vv)
-        return out
-
-    def static_residual(q, c):
-        f_int, _ = model.internal_force(q[:-1].reshape(-1, 3))
-        fc, fcw = model.generalized_contact_force(c, psi)
-        return np.concatenate([(f_int - fc).ravel(), [case.load - fcw]])
-
-    if io["restart"] is not None:
-        st = read_restart(io["restart"], model, dt)
-        q, v, a = st["q"], st["v"], st["a"]
-        psi, s, t, k0, iters, e_int0 = (st[k] for k in ("psi", "s", "t", "k", "iters", "e_int0"))
-        c, E, rows = st["c"], st["E"], st["rows"].tolist()
-        ft = c["ft"]
-    else:
-        q = np.concatenate([u.ravel(), [w]])
-        v = np.zeros_like(q)
-        a = np.zeros_like(q)
-        ft, psi, s, t, rows, E, iters, k0, e_int0 = _fresh_implicit_state(model, u)
-    r_old = static_residual(q, c)
-    fc, fcw = model.generalized_contact_force(c, psi)
-    fdamp = damping_force(v)
-    bar = _progress(progress, nsteps - k0, f"FE implicit-hht ({model.n_elements} el.)")
-
-    def state(k_done):
-        return dict(q=q, v=v, a=a, psi=psi, s=s, t=t, k=k_done, iters=iters, e_int0=e_int0,
-                    c=_contact_state(c), E=E, rows=np.array(rows, float).reshape(-1, 13))
-
-    maybe_write = _restart_writer(io, model, dt, nsteps)
-    for k in range(k0, nsteps):
-        V = speed(t + 0.5 * dt)
-        s += V * dt
-        psi += V * (1.0 - case.xi) / R * dt
-        t += dt
-        q_n, v_n, a_n = q.copy(), v.copy(), a.copy()
-
-        def acc(qq):
-            return (qq - q_n - dt * v_n) / (beta * dt * dt) - (0.5 / beta - 1.0) * a_n
-
-        def dyn(qq, r_old=r_old, fd_old=fdamp):
-            r = mvec * acc(qq) - al * r_old
-            if alpha_r > 0 or beta_r > 0:
-                vv = v_n + dt * ((1 - gamma) * a_n + gamma * acc(qq))
-                r = r + (1.0 + al) * damping_force(vv) - al * fd_old
-            return r
-
-        u1, w1, c, it = newton(model, Kff_eff, free, q[:-1].reshape(-1, 3), q[-1], psi, s,
-                               c["xs"], c["xm"], ft, case.mu, case.load, dyn=dyn,
-                               static_scale=1.0 + al, diag=diag, solver=solver)
-        iters += it
-        q = np.concatenate([u1.ravel(), [w1]])
-        a = acc(q)
-        a[fixed] = 0.0
-        v = v_n + dt * ((1 - gamma) * a_n + gamma * a)
-        dq = q - q_n
-        r_old = static_residual(q, c)
-        fc_new, fcw_new = model.generalized_contact_force(c, psi)
-        E["contact_work"] += 0.5 * (float(np.sum((fc + fc_new).ravel() * dq[:-1]))
-                                    + (fcw + fcw_new) * dq[-1])
-        fc, fcw = fc_new, fcw_new
-        fd_new = damping_force(v)
-        E["damping"] += 0.5 * float((fdamp + fd_new) @ dq)
-        fdamp = fd_new
-        ft = c["ft"]
-        E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-        E["external"] += -case.load * dq[-1]
-        _, e_int = model.internal_force(u1)
-        rows.append([t, s, *_forces_row(c), 0.5 * float(np.sum(mvec * v * v)), e_int - e_int0,
-                     float(c["energy"].sum()), E["friction"], E["damping"], E["external"],
-                     E["contact_work"]])
-        if bar is not None:
-            bar.update(bar.task_ids[0], completed=k + 1 - k0)
-        if maybe_write(k + 1, lambda: state(k + 1)):
-            solver.lu = None          # a restart starts from a fresh factorisation: same numbers
-    if bar is not None:
-        bar.stop()
-    return _implicit_result(case, model, rows, c, psi, dt, nsteps, iters, q[:-1].reshape(-1, 3),
-                            solver, k0, {"hht_alpha": al})
-
-
-def _rayleigh_force(K, factor, q_n):
-    """Stiffness-proportional damping force ``factor · K (q − q_n)`` of one step."""
-    def dyn(qq):
-        return factor * (K @ (qq - q_n))
-    return dyn
-
-
-def _fresh_implicit_state(model, u):
-    """Start of an implicit run without a restart file: tangential contact history,
-    rolling angle, travel, time, output rows, energy accounts, iteration and step
-    counters, and the internal energy of the initial displacement ``u``."""
-    _, e_int0 = model.internal_force(u)
-    E = dict(friction=0.0, external=0.0, damping=0.0, contact_work=0.0)
-    return np.zeros((model.slave.size, 3)), 0.0, 0.0, 0.0, [], E, 0, 0, e_int0
+def depth_profiles(fields, x_range, y=0.0):
+    """Rail depth profiles of the fields, averaged over x in ``x_range`` at the element row
+    nearest to ``y``: an xarray.Dataset over depth (stress components, von Mises and the
+    equivalent plastic strain)."""
+    sub = fields.sel(y=y, method="nearest")
+    sub = sub.sel(x=slice(*x_range))
+    out = sub[["rail_stress", "rail_von_mises", "rail_equivalent_plastic_strain"]].mean("x")
+    return out.rename(rail_stress="residual_stress", rail_von_mises="von_mises",
+                      rail_equivalent_plastic_strain="equivalent_plastic_strain")

@@ -1,0 +1,348 @@
+"""The explicit (central-difference) rolling integrator.
+
+Lumped mass × ``mass_scaling``; step = ``courant`` × the smaller of the element
+Courant limit and the contact-spring limit (with its dashpot); Rayleigh damping
+C = α M + β K; normal contact dashpots at ``contact_damping`` of critical on the
+penalty springs. Step 1 (load) by dynamic relaxation: the wheel touches the rail, the load rises
+smoothly, mass-proportional damping tuned to the lowest thickness mode and a critical
+axle dashpot, friction off. Step 2 rolls.
+
+Why contact dashpots
+--------------------
+The axle (the wheel's rigid vertical motion) has a dashpot too (``axle_damping`` of
+critical on the Hertz stiffness): with mass scaling, the wheel's bounce on the contact is
+slow (periods comparable to the travel) and, undamped, biases the mean normal force
+over a finite window (+1.5 % with mass scaling 400 on the 2 mm mesh).
+
+The penalty springs of the contact layer carry the stiffest mode of the model (its
+frequency sets the stable step). Undamped, it rings at that frequency (2.75 MHz
+unscaled, 137 kHz with mass scaling 400 on the 2 mm mesh): the normal force then
+swings by ±30 % and Fx has a 17-23 % standard deviation from step to step. A dashpot
+on the relative normal velocity of each closed pair damps that mode (its force is
+proportional to the rate of change of the penetration, which vanishes in steady
+rolling except where nodes enter and leave the patch); docs/fe_plastic.md measures that
+the steady forces do not change with it, and do not change with the mass scaling.
+
+Each step (one force evaluation) runs: the element forces (two parallel regions),
+the contact (parallel over slaves for large surfaces), the node update
+(:func:`wheelrail.fe._explicit.advance`, one parallel region). The plastic state is
+committed after every force evaluation (the explicit step is always accepted).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+from ._explicit import NCHUNK, advance, chunk_sum
+from .model import build_model
+from .patch import patch_from_contact
+from .restart import read_restart
+from .rolling import (
+    COLUMNS,
+    RollingResult,
+    _smoothstep,
+    contact_dashpots,
+    contact_plane_forces,
+    contact_state,
+    depth_profiles,
+    history_dataset,
+    plastic_fields,
+    progress_bar,
+    restart_writer,
+    speed_profile,
+    stable_time_step,
+    steady_statistics,
+    steady_window,
+)
+
+__all__ = ["solve_explicit", "time_step"]
+
+
+def time_step(case, model) -> tuple[float, float]:
+    """(step, stable step) [s] of an explicit run; an InputError if ``case.time_step`` is
+    above the stable step."""
+    dt_stable = stable_time_step(model)
+    if case.time_step is not None:
+        if case.time_step > dt_stable:
+            raise InputError(f"time_step {case.time_step!r} s exceeds the stable explicit step "
+                             f"{dt_stable:.3g} s (Courant limit of the {case.mesh_size:g} m mesh)")
+        return case.time_step, dt_stable
+    return case.courant * dt_stable, dt_stable
+
+
+def axle_dashpot(model, zeta: float, M_w: float) -> float:
+    """Vertical dashpot on the axle [N s/m]: ζ of critical damping of the (scaled) wheel mass
+    on the Hertz contact stiffness dF/dδ = 3 F / (2 δ) (Johnson 1985, eq. 4.23 differentiated).
+    It acts on the axle's rigid vertical velocity only, which vanishes in steady rolling."""
+    hz = model.geometry["hertz"]
+    if hz is None or zeta == 0:
+        return 0.0
+    k = 1.5 * model.geometry["normal_load"] / float(hz.penetration)
+    return float(2.0 * zeta * np.sqrt(k * M_w))
+
+
+def relaxation_steps(case, model, dt) -> tuple[int, float]:
+    """Steps of the dynamic relaxation and its mass-proportional damping coefficient [1/s].
+
+    Damping: twice the angular frequency ω1 of the lowest thickness mode of the kept
+    bodies. Length: 12 periods of that mode; the load rises smoothly over the first 40 %
+    (a quasi-static load path for plastic bodies). During the relaxation the axle's inertia
+    is reduced so that its bounce on the Hertz stiffness is not slower than ω1 (only the
+    path to the static state changes), with a critical dashpot (:func:`relaxation_axle`).
+    """
+    depth = model.wheel.axes[2][-1]
+    omega1 = np.pi * model.material.wave_speed / (2 * depth) / np.sqrt(case.mass_scaling)
+    return int(np.ceil(12 * 2 * np.pi / omega1 / dt)), 2.0 * omega1
+
+
+def relaxation_axle(model, M_w, omega1):
+    """(mass [kg], dashpot [N s/m]) of the axle dof during the dynamic relaxation."""
+    hz = model.geometry["hertz"]
+    if hz is None:
+        return M_w, omega1 * M_w
+    k = 1.5 * model.geometry["normal_load"] / float(hz.penetration)
+    M = min(M_w, k / omega1 ** 2)
+    return M, 2.0 * np.sqrt(k * M)
+
+
+#: Fraction of the dynamic relaxation over which the load rises (smooth step).
+RELAXATION_RAMP = 0.4
+
+
+def solve_explicit(case, progress, output_every, io):
+    model = build_model(case, rolling=True)
+    travel = model.geometry["travel"]
+    dt, dt_stable = time_step(case, model)
+    m = model.mass * case.mass_scaling
+    n = model.n_nodes
+    inv_m = np.where(m > 0, 1.0 / np.where(m > 0, m, 1.0), 0.0)
+    inv_m[model.fixed] = 0.0
+    M_w = float(m[:model.nw].sum())
+    alpha, beta = case.rayleigh
+    load, mu = case.load, case.mu
+    R = model.geometry["r_c"]
+    n1, a_dr = relaxation_steps(case, model, dt)
+    speed, t_end = speed_profile(case, travel)
+    n2 = int(np.ceil(t_end / dt))
+    every = output_every or max(1, n2 // 400)
+    window = steady_window(case, model)
+    passes = case.passes
+
+    # contact nodes: slaves (wheel surface) then masters (rail surface), rows of fcon
+    ns = model.slave.size
+    master_nodes = model.master.ravel()
+    cidx = np.concatenate([model.slave, master_nodes])
+    cmap = -np.ones(n, np.int64)
+    cmap[cidx] = np.arange(cidx.size)
+    fcon = np.zeros((cidx.size, 3))
+    cdamp = contact_dashpots(model, case.contact_damping)
+    c_axle = axle_dashpot(model, case.axle_damping, M_w)
+    M_dr, c_axle_dr = relaxation_axle(model, M_w, 0.5 * a_dr)
+    m_alpha_dr = a_dr * m
+    m_alpha_roll = alpha * m
+    f_int = np.zeros((n, 3))
+    fd_beta = np.zeros((n, 3))
+    acc = np.zeros((n, 3))
+    partial = np.zeros((NCHUNK, 2))
+    state = model.new_state()
+
+    def forces(u, v, w, psi, s, xs_prev, xm_prev, ft, mu_now, with_beta):
+        _, e_int = model.internal_force(u, f_int, state)
+        if state is not None:
+            state.commit()
+        c = model.contact(u, w, psi, s, xs_prev, xm_prev, ft, mu_now, cdamp, dt)
+        fcon[:ns] = c["fs"] @ model.rotation(psi)         # Q^T f per row (wheel frame)
+        fcon[ns:] = c["fm"].reshape(-1, 3)
+        if with_beta:
+            model.internal_force(v, fd_beta, elastic=True)
+            fd_beta[...] *= beta
+        return c, e_int, float(c["fs"][:, 2].sum())
+
+    pass_rows = []
+    if io["restart"] is not None:
+        st = read_restart(io["restart"], model, dt)
+        u, v, w, vw, psi, s, t = (st[k] for k in ("u", "v", "w", "vw", "psi", "s", "t"))
+        e_int0, relax_error, k0, p0 = st["e_int0"], st["relax_error"], st["k"], st["pass"]
+        c, E, rows = st["c"], st["E"], st["rows"].tolist()
+        hist = st["hist"]
+        pass_rows = list(st["pass_rows"]) if "pass_rows" in st else []
+        if state is not None:
+            state.committed[:] = st["plastic"]
+        ft = c["ft"]
+        fresh = False
+        label = f"FE explicit ({model.n_elements} el.), restart"
+    else:
+        u = np.zeros((n, 3))
+        v = np.zeros((n, 3))
+        w = 0.0                           # touching: the load rises during the relaxation
+        vw = 0.0
+        k0, p0 = 0, 0
+        fresh = True
+        label = f"FE explicit ({model.n_elements} el.)"
+    total = passes * (n1 + n2)
+    bar = progress_bar(progress, total, label)
+    done = p0 * (n1 + n2) + (n1 + k0 if not fresh else 0)
+
+    for p in range(p0, passes):
+        if fresh:
+            # ---- step 1: dynamic relaxation to the static contact (friction off)
+            psi = s = t = 0.0
+            w = 0.0                       # back at the start, touching; the load rises again
+            v[:] = 0.0
+            vw = 0.0
+            ft = np.zeros((ns, 3))
+            xs_prev = model.slave_positions(u, w, psi)
+            xm_prev = model.master_positions(u, s)
+            n_ramp = max(1, int(RELAXATION_RAMP * n1))
+            for k in range(n1):
+                c, e_int, fcw = forces(u, v, w, psi, s, xs_prev, xm_prev, ft, 0.0, False)
+                xs_prev, xm_prev = c["xs"], c["xm"]
+                advance(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon, dt,
+                        partial)
+                load_k = load * float(_smoothstep((k + 1) / n_ramp))
+                aw = (fcw - load_k - c_axle_dr * vw) / M_dr
+                vw += dt * aw
+                w += dt * vw
+                if bar is not None and k % 200 == 0:
+                    bar.update(bar.task_ids[0], completed=done + k)
+            done += n1
+            relax_error = abs(fcw - load) / load
+            v[:] = 0.0
+            vw = 0.0
+            ft = c["ft"].copy()
+            e_int0 = e_int
+            k0 = 0
+            rows = []
+            hist = np.zeros((n2, 5))
+            E = dict(kinetic=0.0, internal=0.0, contact=0.0, friction=0.0, damping=0.0,
+                     external=0.0, contact_work=0.0, plastic_work=0.0)
+        fresh = True
+
+        def snapshot(k_done):
+            return dict(u=u, v=v, w=w, vw=vw, psi=psi, s=s, t=t, e_int0=e_int0,
+                        relax_error=relax_error, k=k_done, c=contact_state(c), E=E,
+                        rows=np.array(rows, float).reshape(-1, len(COLUMNS)), hist=hist,
+                        **{"pass": p}, pass_rows=np.array(pass_rows, float),
+                        **({"plastic": state.committed} if state is not None else {}))
+
+        maybe_write = restart_writer(io, model, dt, n2)
+        xs_prev, xm_prev = c["xs"], c["xm"]
+        # ---- step 2: rolling (energies counted from here)
+        for k in range(k0, n2):
+            c, e_int, fcw = forces(u, v, w, psi, s, xs_prev, xm_prev, ft, mu, beta > 0)
+            xs_prev, xm_prev = c["xs"], c["xm"]
+            ft = c["ft"]
+            # second halves of the trapezoidal work over the last interval (v = v_{k-1/2})
+            vc_old = v[cidx]
+            E["contact_work"] += 0.5 * dt * (float(np.sum(fcon * vc_old)) + fcw * vw)
+            if beta > 0:
+                E["damping"] += 0.5 * dt * float(np.sum(fd_beta * v))
+            E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
+            fs = c["fs"]
+            Fx, Fy, Fz, Fn = fs[:, 0].sum(), fs[:, 1].sum(), fs[:, 2].sum(), c["pn"].sum()
+            hist[k] = (s, Fx, Fy, Fz, Fn)
+            advance(u, v, acc, f_int, fd_beta, beta > 0, m_alpha_roll, inv_m, cmap, fcon, dt,
+                    partial)
+            aw = (fcw - load - (alpha * M_w + c_axle) * vw) / M_w
+            vw_new = vw + dt * aw
+            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw + chunk_sum(partial, 0))
+            if k % every == 0 or k == n2 - 1:
+                vn = v - 0.5 * dt * acc                 # v_k
+                vwn = vw + 0.5 * dt * aw
+                E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
+                E["internal"] = e_int - e_int0
+                E["contact"] = float(c["energy"].sum())
+                if state is not None:
+                    E["plastic_work"] = state.energies[1]
+                rows.append([t, s, Fx, Fy, Fz, Fn, E["kinetic"], E["internal"], E["contact"],
+                             E["friction"], E["damping"], E["external"], E["contact_work"],
+                             E["plastic_work"]])
+                if bar is not None:
+                    bar.update(bar.task_ids[0], completed=done + k)
+            # first halves over the next interval (v = v_{k+1/2})
+            E["contact_work"] += 0.5 * dt * (float(np.sum(fcon * v[cidx])) + fcw * vw_new)
+            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw_new
+                                        + chunk_sum(partial, 1))
+            if beta > 0:
+                E["damping"] += 0.5 * dt * float(np.sum(fd_beta * v))
+            dw = dt * vw_new
+            vw = vw_new
+            w += dw
+            E["external"] += -load * dw
+            t_half = t + 0.5 * dt
+            V = speed(t_half)
+            s += V * dt
+            psi += V * (1.0 - case.xi) / R * dt
+            t += dt
+            maybe_write(k + 1, lambda: snapshot(k + 1))
+        done += n2
+        if passes > 1:
+            pass_rows.append(_pass_summary(model, case, u, state, hist, window))
+    if bar is not None:
+        bar.stop()
+    steady = _steady(model, hist, window)
+    extra = {"time_step": dt, "steps": passes * (n1 + n2), "relaxation_steps": n1,
+             "relaxation_load_error": relax_error, "passes": passes,
+             "contact_damping": case.contact_damping}
+    ds = history_dataset(rows, case, model, extra)
+    patch = patch_from_contact(model, c, psi, dt)
+    fields = plastic_fields(model, u, state)
+    info = {"time_step": dt, "steps": passes * (n1 + n2), "stable_time_step": dt_stable,
+            "restarted_at_step": int(st["k"]) if io["restart"] is not None else 0,
+            "relaxation_steps": n1, "rolling_steps": n2}
+    return RollingResult(ds, patch, steady["Fx"], steady["Fy"], patch.attrs["p_max"],
+                         patch.attrs["a"], patch.attrs["b"], model, u, info, steady, state,
+                         fields, _passes_dataset(pass_rows, model, state))
+
+
+def _steady(model, hist, window):
+    fy_c, fn_c = contact_plane_forces(model, hist[:, 2], hist[:, 3])
+    return steady_statistics(hist[:, 0], {"Fx": hist[:, 1], "Fy": hist[:, 2], "Fz": hist[:, 3],
+                                          "Fn": hist[:, 4], "Fy_contact": fy_c,
+                                          "Fn_contact": fn_c}, window)
+
+
+def _pass_summary(model, case, u, state, hist, window):
+    """One row per pass: steady Fx, Fy, Fn and (plastic) the depth profiles of the residual
+    stress (6 components), von Mises and equivalent plastic strain at the section middle."""
+    st = _steady(model, hist, window)
+    row = [st["Fx"], st["Fy"], st["Fn"], st["Fx_scatter"]]
+    if state is not None:
+        prof = _section_profiles(model, u, state)
+        row += list(prof["residual_stress"].values.ravel()) + list(prof["von_mises"].values)
+        row += list(prof["equivalent_plastic_strain"].values)
+    return row
+
+
+def _section_profiles(model, u, state):
+    fields = plastic_fields(model, u, state)
+    travel = model.geometry["travel"]
+    a = model.geometry["a"]
+    x0 = 0.25 * travel
+    x1 = max(x0 + model.case.mesh_size, 0.75 * travel - 3 * a)
+    return depth_profiles(fields, (x0, x1), y=model.geometry["y_c"])
+
+
+def _passes_dataset(pass_rows, model, state):
+    if not pass_rows:
+        return None
+    import xarray as xr
+
+    rows = np.array(pass_rows, float)
+    npass = rows.shape[0]
+    data = {"Fx": ("pass", rows[:, 0], {"units": "N"}), "Fy": ("pass", rows[:, 1], {"units": "N"}),
+            "Fn": ("pass", rows[:, 2], {"units": "N"}), "Fx_scatter": ("pass", rows[:, 3])}
+    coords = {"pass": np.arange(1, npass + 1)}
+    if state is not None:
+        depth = 0.5 * (model.rail.axes[2][1:] + model.rail.axes[2][:-1])
+        nd = depth.size
+        sig = rows[:, 4:4 + 6 * nd].reshape(npass, nd, 6)
+        vm = rows[:, 4 + 6 * nd:4 + 7 * nd]
+        pe = rows[:, 4 + 7 * nd:4 + 8 * nd]
+        coords.update(depth=("depth", depth, {"units": "m"}),
+                      component=["xx", "yy", "zz", "xy", "yz", "xz"])
+        data.update(residual_stress=(("pass", "depth", "component"), sig, {"units": "Pa"}),
+                    von_mises=(("pass", "depth"), vm, {"units": "Pa"}),
+                    equivalent_plastic_strain=(("pass", "depth"), pe))
+    return xr.Dataset(data, coords=coords)
