@@ -200,6 +200,29 @@ def estimate(case, model) -> tuple[int, float]:
 PLASTIC_COST_FACTOR = 2.3
 
 
+def _check_size(case, mode) -> None:
+    """Refuse, before anything is allocated, a mesh past the memory limit or an explicit run
+    past the time limit (lower bound: the element Courant step h / c of the scaled density)."""
+    import numpy as np
+
+    from .. import _resources
+    from ..fe.materials import as_fe_material
+    from ..fe.model import mesh_size_estimate
+    from ..fe.rolling import speed_profile
+
+    size = mesh_size_estimate(case, rolling=(mode == "roll"))
+    n = size["n_elements"]
+    seconds = 0.0
+    if mode == "roll" and case.integrator == "explicit":
+        c = as_fe_material(case.material, case.density).wave_speed / np.sqrt(case.mass_scaling)
+        dt = case.time_step or case.courant * case.mesh_size / c
+        _, t_end = speed_profile(case, size["travel"])
+        steps = case.passes * float(np.ceil(t_end / dt))
+        seconds = steps * n * COST_PER_ELEMENT_STEP[case.element]
+    _resources.check(f"FE mesh of {n:.3g} elements ({case.mesh_size:g} m)", seconds,
+                     size["memory"], "elements counted from the mesh parameters; time at least")
+
+
 def run(args, console) -> int:
     import json
     from pathlib import Path
@@ -209,13 +232,19 @@ def run(args, console) -> int:
     case, mode = case_from_toml(args.case)
     mode = args.mode or mode
     out = Path(args.out)
+    _check_size(case, mode)
     model = build_model(case, rolling=(mode == "roll"))
     console.print(f"[bold]FE {mode}[/]: {model.n_elements} hex8 elements ({case.element}), "
                   f"{model.n_nodes} nodes, mesh {case.mesh_size * 1e3:g} mm, "
                   f"integrator {case.integrator if mode == 'roll' else 'static'}")
     if mode == "roll" and case.integrator == "explicit":
+        from .. import _resources
+        from ..fe.model import mesh_size_estimate
+
         steps, seconds = estimate(case, model)
         console.print(f"estimate: {steps} explicit steps, about {seconds / 60:.1f} min on one core")
+        _resources.check(f"FE run of {model.n_elements} elements x {steps} steps", seconds,
+                         mesh_size_estimate(case)["memory"], "measured cost per element and step")
     if args.estimate_only:
         return 0
     out.mkdir(parents=True, exist_ok=True)

@@ -9,6 +9,7 @@ import numpy as np
 from .._validation import as_float_array, in_range, integer, non_negative, positive
 from ..errors import InputError
 from ..materials import STEEL, Material
+from ..plausibility import check_rolling_radius
 from ..profiles import Profile
 from .materials import J2Plastic, LinearElastic, r900a
 
@@ -146,6 +147,7 @@ class RollingCase:
                                  f"{type(getattr(self, name)).__name__}")
         s = object.__setattr__
         s(self, "radius", float(positive("radius", self.radius)))
+        check_rolling_radius(self.radius, "radius")
         s(self, "load", float(positive("load", self.load)))
         c = as_float_array("creepage", self.creepage)
         if c.shape != (3,):

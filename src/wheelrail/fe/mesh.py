@@ -35,7 +35,7 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["Body", "graded_axis", "depth_axis", "rail_body", "wheel_body", "check_quality",
+__all__ = ["Body", "graded_axis", "axis_size", "depth_axis", "rail_body", "wheel_body", "check_quality",
            "MeshQualityError"]
 
 
@@ -158,6 +158,32 @@ def graded_axis(lo: float, hi: float, fine_lo: float, fine_hi: float, h: float,
     left = fine_lo - grow(fine_lo - lo)[::-1]
     right = fine_hi + grow(hi - fine_hi)
     return np.concatenate((left, core, right))
+
+
+def axis_size(lo: float, hi: float, fine_lo: float, fine_hi: float, h: float,
+              ratio: float = 1.3, h_max: float | None = None) -> int:
+    """Number of nodes :func:`graded_axis` gives for these arguments (±1), counted without
+    building the axis (geometric series outside the band)."""
+    if not (hi > lo) or h <= 0:
+        raise InputError(f"graded axis needs hi > lo and h > 0, got lo={lo}, hi={hi}, h={h}")
+    fine_lo, fine_hi = max(lo, fine_lo), min(hi, fine_hi)
+    n = 1 + (max(1, int(round((fine_hi - fine_lo) / h))) if fine_hi > fine_lo else 0)
+
+    def grown(length):
+        if length <= 0:
+            return 0
+        if ratio <= 1.0:
+            return int(np.ceil(length / (h_max or h)))
+        # h (r + r^2 + ... + r^k) >= length, capped at h_max
+        k = int(np.ceil(np.log1p(length * (ratio - 1.0) / (h * ratio)) / np.log(ratio)))
+        if h_max:
+            k_cap = max(0, int(np.floor(np.log(h_max / h) / np.log(ratio))))
+            if k > k_cap:
+                s_cap = h * ratio * (ratio ** k_cap - 1.0) / (ratio - 1.0)
+                k = k_cap + int(np.ceil(max(0.0, length - s_cap) / h_max))
+        return k
+
+    return n + grown(fine_lo - lo) + grown(hi - fine_hi)
 
 
 def depth_axis(depth: float, h: float, fine: float, ratio: float = 1.3,
