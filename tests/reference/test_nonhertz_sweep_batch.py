@@ -28,7 +28,7 @@ def test_batch_equals_per_position(s1002, normal):
     kw = dict(yaw=0.002, vertical_load=70e3, motion=m, mu=0.3, normal=normal, progress=False)
     a = wr.wheelset_sweep(ws, tr, y, **kw)
     b = wr.wheelset_sweep(ws, tr, y, batch=False, **kw)
-    assert (a.status.values == b.status.values).all() and (a.status == "ok").all()
+    assert (a.status.values == b.status.values).all() and (a.status != "error").all()
     assert (a.n_patches.values == b.n_patches.values).all()
     assert a.n_patches.max() >= 2
     for k in ("Fn", "Fx", "Fs", "Mz", "area", "p_max", "xi", "eta", "phi"):

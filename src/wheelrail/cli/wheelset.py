@@ -205,11 +205,14 @@ def run(args, console) -> int:
     ds, files = sweep(case, out, plots=plots, csv=both or args.csv, netcdf=both or args.netcdf,
                       progress=not args.quiet)
     status = np.asarray(ds["status"].values)
-    failed = int(np.sum(status != "ok"))
+    failed = int(np.sum(status == "error"))
+    flagged = int(np.sum((status != "ok") & (status != "error")))
     if not args.quiet:
         console.print(f"[bold]wheelset sweep[/bold]: {status.size} lateral shifts "
                       f"{case.y[0] * 1e3:g} … {case.y[-1] * 1e3:g} mm, {case.normal.name} + "
                       f"{case.tangential.name}, μ = {case.mu:g}; {status.size - failed} solved"
+                      + (f", [yellow]{flagged} flagged[/yellow] (flange climb or derailed)"
+                         if flagged else "")
                       + (f", [yellow]{failed} failed[/yellow] (status/message in the files)"
                          if failed else ""))
         for y, msg in zip(ds["y"].values[status != "ok"][:5], ds["message"].values[status != "ok"]):

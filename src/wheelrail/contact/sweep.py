@@ -14,6 +14,7 @@ from .. import normal as normal_family
 from .. import tangential as tangential_family
 from .._validation import as_float_array
 from ..errors import InputError, WheelrailError
+from ..geometry.contact_table import contact_table
 from ..materials import STEEL
 from ..normal.hertz import Hertz
 from ..options import split_options
@@ -93,7 +94,9 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
         Per patch: the variables of :data:`PATCH_VARIABLES` (NaN where no
         patch); per wheel: ``Fx_track``, ``Fy_track``, ``Fz_track`` [N],
         ``n_patches``; per position: ``yaw``, ``roll`` [rad], ``status``
-        ("ok" or "error") and ``message``.
+        ("ok", "error", or "flange_climb" / "derailed" where the contact table
+        flags the rigid pose: the forces are computed, the row is not ordinary
+        contact) and ``message``.
     """
 
     y = np.atleast_1d(as_float_array("y", y))
@@ -128,6 +131,7 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
             pp, ft, npc, status, message = hertz_sweep(
                 wheelset, track, y, np.asarray(yaw, float), roll, loads, z, motion, mu,
                 timpl, material, tolerance, vertical, npat)
+        status, message = _flag_rows(wheelset, track, y, yaw, status, message, tolerance)
         return _dataset(y, yaw, roll, pp, ft, npc, status, message, nimpl.name, timpl.name, mu,
                         motion)
     per_patch = {k: np.full((n, 2, npat), np.nan) for k in PATCH_VARIABLES}
@@ -179,8 +183,37 @@ def wheelset_sweep(wheelset, track, y, yaw=0.0, roll=None, *, vertical_load=None
     finally:
         if bar is not None:
             bar.stop()
+    status, message = _flag_rows(wheelset, track, y, yaw, status, message, tolerance)
     return _dataset(y, yaw, roll, per_patch, ftrack, npatches, status, message, nimpl.name,
                     timpl.name, mu, motion)
+
+
+def _flag_rows(wheelset, track, y, yaw, status, message, tolerance):
+    """Rows solved "ok" whose rigid pose the contact table flags (flange climbing beyond the
+    flange's steepest point, or riding on the flange tip) take that status and reason, so a
+    force sweep does not report them as ordinary contact. Returns new (status, message)."""
+    status = np.array(status, dtype=object)
+    message = np.array(message, dtype=object)
+    ok = np.flatnonzero(status == "ok")
+    yaw = np.broadcast_to(np.asarray(yaw, dtype=float), y.shape)
+    for psi in np.unique(yaw[ok]):
+        rows = ok[yaw[ok] == psi]
+        ys, inv = np.unique(y[rows], return_inverse=True)
+        if ys.size == 0:
+            continue
+        try:
+            t = contact_table(wheelset, track, ys, yaw=float(psi), tolerance=tolerance,
+                              refine_jumps=0)
+        except WheelrailError:
+            continue                     # no table: the rows keep their own status
+        names = t.status.attrs.get("flag_meanings", "").split()
+        code = np.asarray(t.status.values)[inv]
+        reason = np.asarray(t.status_reason.values)[inv]
+        for r, c, why in zip(rows, code, reason):
+            if c in (1, 2):
+                status[r] = names[c] if c < len(names) else ("flange_climb", "derailed")[c - 1]
+                message[r] = str(why)
+    return status, message
 
 
 def _dataset(y, yaw, roll, per_patch, ftrack, npatches, status, message, normal, tangential, mu,
