@@ -1,9 +1,9 @@
 """BibTeX references of the implemented methods: :func:`citation`.
 
 A small database of the papers the methods implement (taken from the
-``References`` sections of their docstrings and the seed papers' reference
-lists) and a map from every method name to its entries. DOIs are given only
-where they were confirmed (printed in a seed paper); the others are left out
+``References`` sections of their docstrings and the reference lists of the
+papers they implement) and a map from every method name to its entries. DOIs are given only
+where they were confirmed (printed in one of those papers); the others are left out
 rather than guessed.
 
 Examples
@@ -180,8 +180,7 @@ BIBLIOGRAPHY: dict[str, tuple[str, dict[str, str]]] = {
         "title": "Influence of the wheel-rail contact instationary process on contact "
                  "parameters",
         "howpublished": "Universidad Polit{\\'e}cnica de Valencia",
-        "note": "Seed paper 001 of wheelrail: transient rolling, eqs. (2.5)--(2.22); "
-                "year and venue not confirmed"}),
+        "note": "Transient rolling, eqs. (2.5)--(2.22); year and venue not confirmed"}),
     "Toumi2016": ("article", {
         "author": "Toumi, Moncef and Chollet, Hugues and Yin, Honor{\\'e}",
         "title": "Finite element analysis of the frictional wheel-rail rolling contact using "
@@ -193,7 +192,7 @@ BIBLIOGRAPHY: dict[str, tuple[str, dict[str, str]]] = {
                   "Som{\\`a}, Aurelio",
         "title": "Mechatronic Modeling of Real-Time Wheel-Rail Contact",
         "publisher": "Springer", "address": "Berlin, Heidelberg", "year": "2013",
-        "note": "Chapter 2, Review of wheel-rail contact models (seed paper 002)"}),
+        "note": "Chapter 2, Review of wheel-rail contact models"}),
 }
 
 #: method name -> keys of :data:`BIBLIOGRAPHY` (the papers it implements, first the main one).
@@ -316,6 +315,7 @@ def citation(*items) -> str:
     References
     ----------
     The entries are those of the methods' docstrings (``References`` sections
-    and ``references`` attributes) and of the seed papers' reference lists.
+    and ``references`` attributes) and of the reference lists of the papers they
+    implement.
     """
     return "\n\n".join(bibtex(k) for k in citation_keys(*items)) + "\n"
