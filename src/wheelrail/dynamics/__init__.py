@@ -20,7 +20,8 @@ from .contact import FastContact, GenericContact, configured_methods, contact_mo
 from .layout import Curve, Irregularity, TrackLayout
 from .linear import LinearBogie, LinearWheelset, eigenvalues_over_speed, linearise
 from .model import BogieModel, RailSupport, Suspension, WheelsetModel
-from .quasistatic import CurvingResult, FlangeClimbResult, flange_climb, nadal, steady_curving
+from .quasistatic import (CurvingResult, FlangeClimbResult, cant_deficiency, flange_climb, nadal,
+                          steady_curving)
 from .reference import cone_track, klingel_wavelength
 from .simulate import Adaptive, FixedStep, SimulationResult, System, simulate
 from .stability import CriticalSpeedResult, critical_speed
@@ -29,5 +30,5 @@ __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", 
            "TrackLayout", "simulate", "FixedStep", "Adaptive", "SimulationResult", "System",
            "FastContact", "GenericContact", "contact_model", "configured_methods",
            "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
-           "steady_curving", "CurvingResult", "nadal", "LinearWheelset", "LinearBogie",
+           "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",
            "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength"]

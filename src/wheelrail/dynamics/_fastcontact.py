@@ -84,7 +84,8 @@ _KC = 8                # candidate minima kept per wheel
 MP = {name: i for i, name in enumerate((
     "normal", "tangential", "E_star", "G", "nu", "K", "eps", "shape_correction", "strips",
     "cells", "line_step", "line_half_width", "group_angle", "tolerance", "nx", "ny",
-    "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop"))}
+    "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop",
+    "connected"))}
 
 
 # --------------------------------------------------------------------------- small helpers
@@ -188,6 +189,78 @@ def _refine(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, 
 
 
 # --------------------------------------------------------------------------- the wheel
+@njit(cache=True)
+def _depths(d, kk, cd, nc, shared):
+    """Depth [m] of each minimum of the vertical gap for the multi-Hertz normal problem.
+
+    ``shared`` false: each minimum k has the depth −d_k, as :func:`wheelrail.solve`
+    (``connected="separate"``). ``shared`` true (``connected="shared"``): minima
+    whose interpenetration regions are separate (the gap rises above zero between
+    them) keep −d_k; minima joined by penetrating saddles (one connected region,
+    e.g. flange root and flange at the two-point transition, or the two tread
+    points of S1002 on 60E1 near the centre) get their depth below their lower
+    neighbouring saddle, b_k, plus a share of the depth −H of the region's highest
+    saddle in proportion to b_k, so the common part of the region is counted
+    once. The depths are then continuous where a minimum merges with its
+    neighbour (b_k → 0: its patch vanishes with zero load; with "separate" it
+    carries −d_k to the last instant and drops it, a jump that leaves a steady
+    state at the two-point transition without an equilibrium) and where a region
+    splits (H → 0: every minimum gets −d_k).
+
+    Parameters
+    ----------
+    d : ndarray
+        Vertical gap on the search grid [m].
+    kk : ndarray of int
+        Grid index of each minimum, increasing.
+    cd : ndarray
+        Refined gap of each minimum [m].
+    nc : int
+        Number of minima.
+    shared : bool
+    """
+    dep = np.empty(nc)
+    for q in range(nc):
+        dep[q] = -cd[q]
+    if nc < 2 or not shared:
+        return dep
+    hump = np.empty(nc - 1)
+    for q in range(nc - 1):
+        lo_, hi_ = kk[q], kk[q + 1]
+        if hi_ < lo_:
+            lo_, hi_ = hi_, lo_
+        hmax = d[lo_]
+        for j in range(lo_ + 1, hi_ + 1):
+            if d[j] > hmax:
+                hmax = d[j]
+        hump[q] = hmax
+    q0 = 0
+    while q0 < nc:
+        q1 = q0
+        while q1 < nc - 1 and hump[q1] < 0.0:
+            q1 += 1
+        if q1 > q0:
+            H = hump[q0]
+            for q in range(q0 + 1, q1):
+                if hump[q] > H:
+                    H = hump[q]
+            sb = 0.0
+            b = np.empty(q1 - q0 + 1)
+            for q in range(q0, q1 + 1):
+                Hq = math.inf
+                if q > q0:
+                    Hq = hump[q - 1]
+                if q < q1 and hump[q] < Hq:
+                    Hq = hump[q]
+                b[q - q0] = max(Hq - cd[q], 0.0)
+                sb += b[q - q0]
+            if sb > 0.0:
+                for q in range(q0, q1 + 1):
+                    dep[q] = b[q - q0] - H * b[q - q0] / sb
+        q0 = q1 + 1
+    return dep
+
+
 @njit(cache=True)
 def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
                   offset, z_top, angle,
@@ -308,23 +381,34 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
     cs[qg], cd[qg] = _refine(sg[i_lo + g], h, lo, hi, 18, wu, winv, wc, ru, rinv, rc, r0,
                              e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
     dmin = cd[qg]
+    kk = np.empty(nc, np.int64)           # grid index of each kept minimum
     m_ok = 0
     for q in range(nc):
         if q == qg:
             cs[m_ok], cd[m_ok] = cs[qg], cd[qg]
+            kk[m_ok] = cand[q]
             qg = m_ok
             m_ok += 1
             continue
-        if d[cand[q]] - 1e-4 >= 0.0:
+        # skip a minimum that cannot penetrate: the grid value minus the largest drop a
+        # convex gap can have within the neighbouring cells (on a steep flank the gap's
+        # curvature is (k_w + k_r)/cos³γ, and a grid value lies far above the minimum)
+        k = cand[q]
+        drop = 1e-4
+        if 0 < k < n - 1:
+            drop = max(drop, 1.5 * max(d[k - 1] - d[k], d[k + 1] - d[k]))
+        if d[k] - drop >= 0.0:
             continue
         s_r, d_r = _refine(sg[i_lo + cand[q]], h, lo, hi, 18, wu, winv, wc, ru, rinv, rc, r0,
                            e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
         cs[m_ok] = s_r
         cd[m_ok] = d_r
+        kk[m_ok] = cand[q]
         if d_r < dmin:
             dmin = d_r
         m_ok += 1
     nc = m_ok
+    dep = _depths(d, kk, cd, nc, mp[22] > 0)
     out_w[15] = dmin
     out_w[18] = nc
     if dmin >= 0.0 or dmin >= _BIG:
@@ -382,7 +466,7 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
     fallbacks = 0
     if normal == 0:
         for q in range(nc):
-            pen = -cd[q] * math.cos(PG[q])
+            pen = dep[q] * math.cos(PG[q])
             if not pen > 0.0 or npt >= cap:
                 continue
             A = PA[q]

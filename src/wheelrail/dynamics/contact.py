@@ -114,13 +114,24 @@ class FastContact:
     tolerance : float
         Largest undeformed separation of a candidate point [m] (as
         :class:`~wheelrail.contact.wheelrail.WheelRailPosition`).
+    connected : {"separate", "shared"}
+        Hertz patches of minima of the gap that lie in one connected
+        interpenetration region: each with its full depth, as
+        :func:`wheelrail.solve` (``"separate"``), or with the region's common
+        depth counted once and shared in proportion to each minimum's depth below
+        its saddle (``"shared"``: the normal forces are continuous where a minimum
+        appears or vanishes inside the region, e.g. at the two-point transition
+        between flange root and flange; the default of
+        :func:`~wheelrail.dynamics.steady_curving`).
     """
 
     kind = "compiled"
 
     def __init__(self, wheelset, track, material, normal, tangential, *, search_step=5e-4,
-                 line_step=1e-4, line_half_width=6e-3, tolerance=5e-4):
+                 line_step=1e-4, line_half_width=6e-3, tolerance=5e-4, connected="separate"):
         why = _fast_support(normal, tangential)
+        if connected not in ("separate", "shared"):
+            raise InputError(f"connected must be 'separate' or 'shared', got {connected!r}")
         if why:
             raise InputError(f"contact='fast' does not support {why}; use contact='generic'")
         self.wheelset, self.track = wheelset, track
@@ -166,6 +177,8 @@ class FastContact:
         mp[MP["weighted"]] = 1.0 if fs.flexibility == "weighted" else 0.0
         mp[MP["first_order"]] = 1.0 if fs.scheme == "euler" else 0.0
         mp[MP["search_step"]] = float(search_step)
+        mp[MP["connected"]] = 1.0 if connected == "shared" else 0.0
+        self.connected = connected
         self.table_raise = isinstance(tangential, Table) and tangential.outside == "raise"
         lam, la, lb, lp, ld = _hertz_table()
         kx, c11, c22, c23 = _kalker_table(float(pair.nu))
@@ -339,7 +352,9 @@ def contact_model(wheelset, track, material, normal="kik-piotrowski", tangential
     method_options : dict or None
         Options of the two methods (:func:`configured_methods`).
     **options
-        Options of :class:`FastContact` (``search_step``, ``line_step``, ...).
+        Options of :class:`FastContact` (``search_step``, ``line_step``, ...); the
+        generic path takes ``tolerance`` only (``connected`` concerns the compiled
+        multi-Hertz search and is not passed on).
     """
     nimpl, timpl = configured_methods(normal, tangential, method_options)
     if contact not in ("auto", "fast", "generic"):

@@ -44,7 +44,7 @@ from .layout import Curve, TrackLayout
 from .model import GRAVITY, Suspension, WheelsetModel
 from .simulate import System
 
-__all__ = ["steady_curving", "flange_climb", "nadal", "CurvingResult", "FlangeClimbResult"]
+__all__ = ["steady_curving", "flange_climb", "nadal", "cant_deficiency", "CurvingResult", "FlangeClimbResult"]
 
 _P = {n: i for i, n in enumerate(PATCH_FIELDS)}
 #: Contact angle [rad] from which a patch counts as on the flange flank (tread below).
@@ -170,18 +170,50 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
         Start values by state name (e.g. ``{"ws0.y": -0.005}``); default: the
         wheelsets shifted towards the outer rail by 2 r0 l0/(0.2 R).
     contact, contact_options
-        As :func:`~wheelrail.dynamics.simulate`.
+        As :func:`~wheelrail.dynamics.simulate`, except that the compiled contact's
+        ``connected`` defaults to ``"shared"`` and its ``search_step`` to 0.1 mm
+        (:class:`~wheelrail.dynamics.FastContact`): with ``"separate"``, or with the
+        0.5 mm grid that misses the flange's shallow gap minimum on the steep flank,
+        a patch at the two-point transition between flange root and flange
+        vanishes while carrying load, and in bands of cant deficiency the
+        equilibrium equations then have no root (Manchester vehicle 1, R = 300 m,
+        100 mm cant: at 9, 11–15 and 20 m/s).
     **options
         Options of the two methods, each to the one that declares it.
 
     Returns
     -------
     CurvingResult
+        ``info["continuation"]``: the shares of curvature and cant solved on the
+        way (``(1.0,)`` when Newton converged directly).
+
+    Raises
+    ------
+    ConvergenceError
+        Naming the radius, speed, cant and cant deficiency, when neither Newton at
+        the given values nor the continuation reaches an equilibrium.
+
+    Notes
+    -----
+    The unknowns are the positions of all bodies (lateral, vertical, roll and
+    yaw of wheelsets and frame, the frame's pitch, the free wheelsets' spin); the
+    equations are their accelerations. A damped Newton iteration (finite-difference
+    Jacobian, step limited and halved while the residual in Newton units grows)
+    starts from the static state shifted towards the outer rail. If it fails,
+    natural continuation from the tangent track: the curvature s/R and the cant
+    s·cant are raised with s from 0.125 to 1 (so the cant deficiency grows as s),
+    each step from the secant predictor, the step doubled after a success and
+    halved after a failure down to 1/512.
     """
     section = getattr(track, "track", track)
-    layout = TrackLayout(section, curves=(Curve(radius, start=-1e7, length=math.inf,
-                                                 cant=cant, direction=direction),))
-    system = System(model, layout, speed, normal, tangential, mu=mu, contact=contact,
+
+    def layout(share):
+        return TrackLayout(section, curves=(Curve(radius / share, start=-1e7, length=math.inf,
+                                                  cant=cant * share, direction=direction),))
+
+    if contact != "generic":
+        contact_options = {"connected": "shared", "search_step": 1e-4, **(contact_options or {})}
+    system = System(model, layout(1.0), speed, normal, tangential, mu=mu, contact=contact,
                     contact_options=contact_options, method_options=options)
     asm = system.asm
     sgn = 1.0 if direction == "right" else -1.0
@@ -191,7 +223,49 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
         given[f"ws{i}.y"] = -sgn * min(r0 * l0 / (0.2 * radius), 0.006)
     if initial:
         given.update(initial)
-    x = system.initial_state(given)
+    try:
+        x = system.initial_state(given)
+    except ConvergenceError:
+        # the static state on the tangent track as the start (the cant's lateral
+        # gravity component can push the static wheelset over the flange)
+        system.layout = layout(1e-9)
+        try:
+            x = system.initial_state(given)
+        except ConvergenceError as err:
+            raise ConvergenceError(
+                f"steady_curving: no static start state for radius = {radius!r} m, "
+                f"speed = {speed!r} m/s, cant = {cant!r} m: {err}") from None
+        system.layout = layout(1.0)
+    cols, rows, steps, scales = _curving_unknowns(asm)
+    if asm.relax:
+        raise InputError("steady_curving: creep relaxation does not change the steady state; "
+                         "use a model without it")
+
+    def residual(v):
+        xx = x.copy()
+        xx[cols] = v
+        return system.rhs(0.0, xx)[rows]
+
+    try:
+        v = _newton(residual, x[cols], scales, steps, maxiter=60)
+        path = (1.0,)
+    except ConvergenceError:
+        v, path = _continuation(system, layout, residual, x, cols, scales, steps, radius,
+                                speed, cant, l0)
+    x[cols] = v
+    system.layout = layout(1.0)
+    system.rhs(0.0, x)
+    return CurvingResult(x, tuple(asm.names), x[[9 * i for i in range(asm.n_ws)]],
+                         x[[9 * i + 3 for i in range(asm.n_ws)]], system.OW.copy(),
+                         system.OP.copy(), float(radius), float(speed), float(cant),
+                         {"normal": system.contact.normal.name,
+                          "tangential": system.contact.tangential.name, "mu": mu,
+                          "direction": direction, "continuation": path})
+
+
+def _curving_unknowns(asm):
+    """Unknowns of the steady curving equilibrium (state indices, finite-difference steps,
+    largest Newton steps) and the equations (rows of the state derivative)."""
     cols, rows, steps, scales = asm.quasi_static(spin=True)
     cols, rows = list(cols), list(rows)
     steps, scales = list(steps), list(scales)
@@ -208,25 +282,71 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
             rows.append(r)
             steps.append(1e-7)
             scales.append(2e-3)
-    if asm.relax:
-        raise InputError("steady_curving: creep relaxation does not change the steady state; "
-                         "use a model without it")
-    steps, scales = np.array(steps), np.array(scales)
+    return cols, rows, np.array(steps), np.array(scales)
 
-    def residual(v):
-        xx = x.copy()
-        xx[cols] = v
-        return system.rhs(0.0, xx)[rows]
 
-    v = _newton(residual, x[cols], scales, steps, maxiter=200)
-    x[cols] = v
-    system.rhs(0.0, x)
-    return CurvingResult(x, tuple(asm.names), x[[9 * i for i in range(asm.n_ws)]],
-                         x[[9 * i + 3 for i in range(asm.n_ws)]], system.OW.copy(),
-                         system.OP.copy(), float(radius), float(speed), float(cant),
-                         {"normal": system.contact.normal.name,
-                          "tangential": system.contact.tangential.name, "mu": mu,
-                          "direction": direction})
+def cant_deficiency(radius, speed, cant, contact_distance=1.5):
+    """Cant deficiency V² G/(g R) − cant [m] (G: distance of the rails' contact points).
+
+    Parameters
+    ----------
+    radius, speed, cant : float
+        Curve radius [m], speed [m/s], cant [m].
+    contact_distance : float
+        Lateral distance G of the two rails' contact points [m] (1.5 m for standard gauge).
+
+    Returns
+    -------
+    float
+        The cant that would balance the unbalanced lateral acceleration, less the
+        cant present [m] (EN 13803).
+
+    Examples
+    --------
+    >>> round(cant_deficiency(300.0, 15.0, 0.1), 4)
+    0.0147
+    """
+    return speed * speed * contact_distance / (GRAVITY * radius) - cant
+
+
+def _continuation(system, layout, residual, x, cols, scales, steps, radius, speed, cant, l0,
+                  first=0.125, smallest=1.0 / 512.0, maxiter=40):
+    """Equilibrium by natural continuation in the share s of the curvature and the cant
+    (curvature s/R, cant s·cant, so the cant deficiency grows as s from the tangent
+    track): Newton at each share from the secant predictor of the last two, the share's
+    step doubled after a success and halved after a failure."""
+    base = x.copy()
+    done_s, done_v = [0.0], [base[cols].copy()]
+    s_now, ds = 0.0, first
+    while s_now < 1.0:
+        s_try = min(s_now + ds, 1.0)
+        if len(done_s) > 1:
+            w = (s_try - done_s[-1]) / (done_s[-1] - done_s[-2])
+            guess = done_v[-1] + w * (done_v[-1] - done_v[-2])
+        else:
+            guess = done_v[-1]
+        system.layout = layout(s_try)
+        try:
+            v = _newton(residual, guess, scales, steps, maxiter=maxiter)
+        except ConvergenceError:
+            ds *= 0.5
+            if ds < smallest:
+                system.layout = layout(1.0)
+                deficiency = cant_deficiency(radius, speed, cant, 2.0 * l0)
+                raise ConvergenceError(
+                    f"steady_curving: no equilibrium found for radius = {radius!r} m, "
+                    f"speed = {speed!r} m/s, cant = {cant!r} m (cant deficiency "
+                    f"{deficiency * 1e3:.0f} mm): Newton failed at these values, and the "
+                    f"continuation from the tangent track stalled at {s_now:.3f} of the "
+                    f"curvature and cant (radius {radius / max(s_now, 1e-300):.4g} m); the "
+                    "vehicle may climb the rail or the contact jump between flange root "
+                    "and flange may have no equilibrium") from None
+            continue
+        done_s.append(s_try)
+        done_v.append(v)
+        s_now = s_try
+        ds = min(2.0 * ds, 0.5)
+    return done_v[-1], tuple(done_s[1:])
 
 
 @dataclass(frozen=True, eq=False)
