@@ -129,6 +129,10 @@ class CurvingResult:
         Contact outputs (n_wheelsets, 2, ...) as in
         :class:`~wheelrail.dynamics.simulate.SimulationResult`.
     radius, speed, cant : float
+
+    The per-wheel ``vertical_load`` (Q), ``lateral_force`` (Y), ``Y_over_Q`` and
+    ``wear_number`` (Tγ) and :meth:`flange_contact` follow the conventions of
+    :func:`~wheelrail.dynamics.results.to_dataset`.
     """
 
     state: np.ndarray
@@ -147,6 +151,66 @@ class CurvingResult:
         k = 0 if side == "left" else 1
         rows = self.patches[wheelset, k]
         return rows[rows[:, _P["Fn"]] > 0, _P["contact_angle"]]
+
+    @property
+    def vertical_load(self) -> np.ndarray:
+        """Q, the vertical force on each wheel [N], shape (n_wheelsets, 2) (left, right)."""
+        return self.wheels[..., _W["Fz"]].copy()
+
+    @property
+    def lateral_force(self) -> np.ndarray:
+        """Y, the lateral force of each wheel on its rail [N], positive towards the field
+        side (EN 14363), shape (n_wheelsets, 2)."""
+        return -np.array([-1.0, 1.0]) * self.wheels[..., _W["Fy"]]
+
+    @property
+    def Y_over_Q(self) -> np.ndarray:
+        """Derailment quotient Y/Q of each wheel, shape (n_wheelsets, 2)."""
+        Q = self.vertical_load
+        return np.where(Q > 0, self.lateral_force / np.where(Q > 0, Q, 1.0), np.nan)
+
+    @property
+    def patch_wear_number(self) -> np.ndarray:
+        """Tγ = −(Fx ξ + Fy η + Mz φ) of each patch [N] (Pearce & Sherratt 1991), shape
+        (n_wheelsets, 2, KMAX)."""
+        P = self.patches
+        return -(P[..., _P["Fx"]] * P[..., _P["xi"]] + P[..., _P["Fs"]] * P[..., _P["eta"]]
+                 + P[..., _P["Mz"]] * P[..., _P["phi"]])
+
+    @property
+    def wear_number(self) -> np.ndarray:
+        """Tγ summed over each wheel's patches [N], shape (n_wheelsets, 2)."""
+        return self.patch_wear_number.sum(axis=-1)
+
+    def flange_contact(self, wheelset=0) -> dict | None:
+        """The flange patch of a wheelset: the loaded patch with the largest contact
+        angle at or above 0.8 rad (46°) on either wheel, or None.
+
+        Returns
+        -------
+        dict or None
+            ``side``; the patch's ``contact_angle`` [rad], ``Fn`` [N] and
+            ``wear_number`` (Tγ) [N]; the wheel's ``Y_over_Q``, ``Y`` and ``Q`` [N],
+            its ``wear_number`` [N] and ``n_patches``.
+        """
+        best = None
+        for k, side in enumerate(("left", "right")):
+            rows = self.patches[wheelset, k]
+            for j in range(rows.shape[0]):
+                g = rows[j, _P["contact_angle"]]
+                if rows[j, _P["Fn"]] > 0 and g >= _FLANK and (best is None or g > best[2]):
+                    best = (k, j, g)
+        if best is None:
+            return None
+        k, j, g = best
+        return {"side": ("left", "right")[k], "contact_angle": float(g),
+                "Fn": float(self.patches[wheelset, k, j, _P["Fn"]]),
+                "wear_number": float(self.patch_wear_number[wheelset, k, j]),
+                "Y_over_Q": float(self.Y_over_Q[wheelset, k]),
+                "Y": float(self.lateral_force[wheelset, k]),
+                "Q": float(self.vertical_load[wheelset, k]),
+                "wheel_wear_number": float(self.wear_number[wheelset, k]),
+                "n_patches": int(self.wheels[wheelset, k, _W["patches"]])}
 
 
 def steady_curving(model, track, radius, speed, normal="hertz", tangential="fastsim", *,
