@@ -286,7 +286,7 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
         if relax:
             for side in range(2):
                 xb = ox + 10 * i + 5 * side
-                a = max(amean[i, side], P[_G_FLOOR])
+                a = P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR])
                 for k in range(5):
                     dx[xb + k] = (Qt[i, side, k] - x[xb + k]) * V / a
     if frame:
@@ -374,7 +374,7 @@ def rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
         # the relaxation states move towards the steady creep forces
         for i in range(nw):
             for side in range(2):
-                a = max(amean[i, side], P[_G_FLOOR])
+                a = P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR])
                 for k in range(5):
                     j = ox + 10 * i + 5 * side + k
                     dx[j] = (Qt[i, side, k] - x[j]) * V / a

@@ -368,7 +368,7 @@ class Assembly:
         State names (``ws0.y``, ``frame.yaw``, ``rail0.right.lateral.head``, ...).
     """
 
-    def __init__(self, model, relax: bool = False):
+    def __init__(self, model, relax=False):
         self.model = model
         nw = model.n_wheelsets
         frame = isinstance(model, BogieModel)
@@ -377,7 +377,8 @@ class Assembly:
         P[GP["n_ws"]] = nw
         P[GP["has_frame"]] = 1.0 if frame else 0.0
         P[GP["rails"]] = 1.0 if rails else 0.0
-        P[GP["relax"]] = 1.0 if relax else 0.0
+        # relaxation length in semi-axes a (True: 1)
+        P[GP["relax"]] = (1.0 if relax is True else float(relax)) if relax else 0.0
         P[GP["spin_free"]] = 1.0 if model.spin == "free" else 0.0
         P[GP["g"]] = GRAVITY
         P[GP["r0"]] = model.wheelset.nominal_radius

@@ -138,8 +138,9 @@ class System:
         Friction coefficient.
     deceleration : float
         dV/dt = −deceleration [m/s²] (a speed ramp), the speed floored at ``min_speed``.
-    creep_relaxation : bool
-        First-order relaxation of the creep forces (time constant a/V).
+    creep_relaxation : bool or float
+        First-order relaxation of the creep forces (time constant a/V, or
+        ``creep_relaxation`` · a/V for a number).
     contact : {"auto", "fast", "generic"}
     start : float
         Position of the model (frame centre) along the track at t = 0 [m].
@@ -168,7 +169,12 @@ class System:
         self.aV = -float(deceleration)
         self.start = float(start)
         self.min_speed = float(min_speed)
-        self.asm = Assembly(model, relax=bool(creep_relaxation))
+        if not (isinstance(creep_relaxation, (bool, np.bool_)) or (
+                isinstance(creep_relaxation, (int, float, np.floating))
+                and math.isfinite(creep_relaxation) and creep_relaxation >= 0)):
+            raise InputError(f"creep_relaxation must be True, False or a relaxation length "
+                             f"in semi-axes a (a number > 0), got {creep_relaxation!r}")
+        self.asm = Assembly(model, relax=creep_relaxation)
         self.contact = contact_model(model.wheelset, self.layout.track, model.material, normal,
                                      tangential, contact=contact, method_options=method_options,
                                      **(contact_options or {}))
@@ -220,7 +226,7 @@ class System:
             Qr = x[ox:ox + 10 * nw].reshape(nw, 2, 5).copy()
             derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
                        Qn, Qr, am, dx)
-            a = np.maximum(am, self.asm.P[GP["relax_floor"]])
+            a = self.asm.P[GP["relax"]] * np.maximum(am, self.asm.P[GP["relax_floor"]])
             rel = (Qt - Qr) * V / a[..., None]
             dx[ox:ox + 10 * nw] = rel.reshape(-1)
         else:
@@ -600,9 +606,13 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
         Position along the track at t = 0 [m].
     deceleration : float
         Constant deceleration [m/s²] (speed ramp; negative: acceleration).
-    creep_relaxation : bool
-        First-order relaxation of the creep forces with the time constant a/V
-        (a the patches' load-weighted semi-axis).
+    creep_relaxation : bool or float
+        First-order relaxation of the creep forces with the time constant L/V,
+        L = a (``True``) or L = ``creep_relaxation`` · a (a number), a the
+        patches' load-weighted semi-axis along the rolling direction. Against
+        Kalker's transient rolling (:func:`wheelrail.transient_rolling`) the
+        lag of length a rises too fast; the step response and the phase lag of
+        the lateral force are those of L ≈ 1.45 a (docs/dynamics.md).
     contact : {"auto", "fast", "generic"}
         Compiled contact where it supports the methods, or the library's path.
     contact_options : dict or None
@@ -676,7 +686,7 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
             "contact_evaluations": system.n_eval - n0,
             "rejected_steps" if isinstance(integ, FixedStep) else "restarts": int(rej),
             "real_time_factor": float(T[-1] - T[0]) / cpu if cpu > 0 else math.inf,
-            "creep_relaxation": bool(creep_relaxation)}
+            "creep_relaxation": float(creep_relaxation)}
     speed_t = np.maximum(system.speed + system.aV * T, system.min_speed)
     pos = system.start + system.speed * T + 0.5 * system.aV * T * T
     return SimulationResult(T, X, OW, OP, tuple(system.asm.names), speed_t, pos, events, info,
