@@ -14,6 +14,8 @@ V = 30 m/s, yaw 1 mrad, lateral shifts −6 … +7 mm (tread and flange contact)
    wheelset with the fixed-step RK4 scheme at a 1 ms step (4 contact
    evaluations of both wheels per step), released 3 mm off centre on tangent
    track; goal ≥ 1.
+3. **Steady curving** of the Manchester vehicle 1 bogie in a 300 m curve with
+   100 mm cant at 10–25 m/s: CPU time per equilibrium.
 
 CPU time (``time.process_time``) on one core; set ``NUMBA_NUM_THREADS=1``.
 The load of the machine (``os.getloadavg``) is printed with the numbers.
@@ -118,6 +120,20 @@ def main(argv=None):
         print(f"{info['normal']:>16} {info['tangential']:>12} {info['real_time_factor']:8.2f} "
               f"{info['contact_evaluations']:8d} "
               f"{info['cpu_time'] / info['contact_evaluations'] * 1e3:8.4f}")
+    print("\nsteady curving, Manchester vehicle 1 bogie (Iwnicki 1998), R = 300 m, 100 mm cant, "
+          "Hertz + FASTSIM (CPU per equilibrium, first one with warm-up):")
+    prim = D.Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, half_spacing=1.0)
+    sec = D.Suspension(kx=0.16e6, ky=0.16e6, kz=0.43e6, half_spacing=1.0)
+    bogie = D.BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
+                         (1722.0, 1476.0, 3067.0), 1.28, sec,
+                         axle_load=(8000.0 + 2615.0 / 2 + 1813.0) * 9.81, spin="fixed")
+    print(f"{'V m/s':>6} {'yaw lead mrad':>14} {'flange Fn kN':>13} {'CPU s':>7}")
+    for speed in (10.0, 15.0, 20.0, 25.0):
+        t0 = time.process_time()
+        r = D.steady_curving(bogie, tr, 300.0, speed, "hertz", "fastsim", cant=0.1)
+        fl = r.flange_contact(0)
+        print(f"{speed:6.1f} {r.yaw[0] * 1e3:14.3f} {fl['Fn'] / 1e3 if fl else 0.0:13.2f} "
+              f"{time.process_time() - t0:7.2f}")
     print(f"\nload average {os.getloadavg()[0]:.2f}")
 
 

@@ -4,7 +4,8 @@
   circular curve at constant speed: all accelerations zero (lateral, vertical,
   roll, yaw, spin of every body, rail deflections), solved by a damped Newton
   iteration on the full nonlinear model (the contact of every wheel by the
-  configured methods). A free wheelset (no suspension) on the tread settles
+  configured methods), with natural continuation in curvature and cant from
+  the tangent track where Newton fails. A free wheelset (no suspension) on the tread settles
   where it rolls without longitudinal creep, Δr(y) = 2 r0 l0/R (for constant
   conicity λ: y = r0 l0/(λR); Wickens 2003, §2.4).
 * :func:`flange_climb` — Pascal's quasi-static wheelset (Piotrowski & Chollet
@@ -523,7 +524,6 @@ def flange_climb(model, track, yaw=0.01, normal="kik-piotrowski", tangential="fa
     section = getattr(track, "track", track)
     system = System(free, section, speed, normal, tangential, mu=mu, contact=contact,
                     contact_options=contact_options, method_options=options)
-    asm = system.asm
     m, Ix = free.mass, free.inertia[0]
     r0 = free.wheelset.nominal_radius
     if y is None:
