@@ -102,3 +102,28 @@ def test_no_equilibrium_is_a_convergence_error_naming_the_case(manchester):
 def test_cant_deficiency_closed_form():
     """EN 13803: cant deficiency V² G/(g R) − cant."""
     assert cant_deficiency(300.0, 15.0, 0.1) == pytest.approx(225 * 1.5 / (9.81 * 300) - 0.1)
+
+
+def test_shared_depths_are_continuous_where_a_minimum_merges_or_a_region_splits():
+    """``connected="shared"``: two gap minima (depths d1 < d2 < 0) joined by a saddle H.
+    Separate regions (H ≥ 0): each its own depth −d. One region (H < 0): the basins
+    b_k = H − d_k plus the common −H shared as b_k/Σb, so the total is −d1 − d2 + H
+    (the common part once) and the shallow minimum's depth → 0 as its basin → 0."""
+    from wheelrail.dynamics._fastcontact import _depths
+
+    def depths(d1, hump, d2, shared=True):
+        d = np.array([1.0, d1, hump, d2, 1.0])
+        return _depths(d, np.array([1, 3]), np.array([d1, d2]), 2, shared)
+
+    np.testing.assert_allclose(depths(-9e-5, 1e-6, -6e-5), [9e-5, 6e-5])
+    np.testing.assert_allclose(depths(-9e-5, -1e-12, -6e-5), [9e-5, 6e-5], atol=1e-11)
+    dep = depths(-9e-5, -5e-5, -6e-5)
+    np.testing.assert_allclose(dep, [4e-5 + 5e-5 * 4 / 5, 1e-5 + 5e-5 * 1 / 5])
+    assert dep.sum() == pytest.approx(9e-5 + 6e-5 - 5e-5)
+    np.testing.assert_allclose(depths(-9e-5, -6e-5 + 1e-12, -6e-5)[1], 0.0, atol=1e-11)
+    np.testing.assert_allclose(depths(-9e-5, -5e-5, -6e-5, shared=False), [9e-5, 6e-5])
+    with pytest.raises(wr.errors.InputError, match="connected"):
+        wr.dynamics.FastContact(wr.Wheelset(wr.profiles.load("S1002")),
+                                wr.Track(wr.profiles.load("60E1")), wr.STEEL,
+                                wr.normal.get("hertz"), wr.tangential.get("fastsim"),
+                                connected="merged")
