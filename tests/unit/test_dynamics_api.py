@@ -105,3 +105,20 @@ def test_cli_dynamics_bad_case_names_table_and_key(tmp_path, edit, match):
     with pytest.raises(wr.WheelrailError, match=match):
         read_dynamics_case(case)
     assert main(["dynamics", str(case), "--out", str(tmp_path / "o"), "--no-progress"]) != 0
+
+
+@pytest.mark.parametrize("value, ok", [("true", True), ("1.45", True), ("-1.0", False),
+                                       ('"yes"', False)])
+def test_cli_dynamics_creep_relaxation_length(tmp_path, value, ok):
+    # A number is the relaxation length in semi-axes a (1.45 a matches Kalker's transient
+    # step response, docs/dynamics.md); a negative number or a string is refused by name.
+    text = EXAMPLE.read_text().replace('integrator = "rk4"',
+                                       f'integrator = "rk4"\ncreep_relaxation = {value}')
+    case = tmp_path / "c.toml"
+    case.write_text(text)
+    if ok:
+        assert read_dynamics_case(case)["simulate"]["creep_relaxation"] == \
+            (True if value == "true" else 1.45)
+    else:
+        with pytest.raises(wr.WheelrailError, match=r"creep_relaxation.*relaxation length"):
+            read_dynamics_case(case)

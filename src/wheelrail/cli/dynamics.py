@@ -16,6 +16,7 @@ Reads a case file with a ``[model]``, an optional ``[track]``, ``[method]``,
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 
 HELP = "wheelset / bogie dynamics of a [model] case file: NetCDF + figures"
@@ -239,8 +240,10 @@ def read_dynamics_case(path_or_str):
             r.fail("simulation", "initial", f"must be a table of state values, got {init!r}")
         sim["initial"] = {k: r.number("simulation.initial", init, k) for k in init}
     cr = s.get("creep_relaxation", False)
-    if not isinstance(cr, bool):
-        r.fail("simulation", "creep_relaxation", f"must be true or false, got {cr!r}")
+    if not isinstance(cr, bool) and not (
+            isinstance(cr, (int, float)) and math.isfinite(cr) and cr > 0):
+        r.fail("simulation", "creep_relaxation",
+               f"must be true, false or a relaxation length in semi-axes a (> 0), got {cr!r}")
     sim["creep_relaxation"] = cr
     return {"model": model, "layout": layout, "normal": normal, "tangential": tangential,
             "mu": mu, "simulate": sim, "source": source}
