@@ -88,6 +88,7 @@ from ..errors import InputError
 from ..options import configured, option
 from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod, get
+from ._table_kernel import evaluate
 from .linear import kalker_coefficients
 
 __all__ = ["Table", "TableData", "load_table", "table_coordinates", "full_slip",
@@ -280,8 +281,6 @@ class TableData:
         ``out`` holds Fx, Fy [N], Mz [N m]; ``flags`` bit 1: |φ̂| outside, 2: a/b outside,
         4: ν outside the table (forces of the clipped coordinates there).
         """
-        from ._table_kernel import evaluate
-
         m = a.shape[0]
         out = np.empty((m, 3))
         flags = np.empty(m, np.int8)
