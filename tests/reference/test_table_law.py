@@ -19,7 +19,7 @@ from wheelrail.tangential.linear import kalker_coefficients
 STEEL = wr.Material(2.1e11, 0.28)
 #: max |dF| / (mu Fn) of the shipped table against the extrapolated exact theory that the test
 #: below may see (the benchmark's measured maximum over 60 points, rounded up)
-TABLE_MAX_ERROR = 0.05
+TABLE_MAX_ERROR = 0.06
 
 
 def _exact(c, creep, mu, elements=16):
@@ -122,17 +122,18 @@ def _physical(ab, nu, load, mu, rho, th, ph):
 
 def test_shipped_table_against_extrapolated_exact_off_the_nodes():
     """Error on random points not in the table against the exact solver extrapolated in the
-    grid from 16/24/36 elements with the order 1 the table's build observed (first order).
+    grid from 24/36 elements with the order the table's build observed (p = 1.10, first order).
     Tolerances: the benchmark's measured maxima (benchmarks/bench_contact_table_law.py, 60
     points against 24/36/54 elements) with a margin for the coarser reference here."""
     errs = []
+    order = T.load_table().meta["extrapolation"]["order_pooled"]["p"]
+    k = 1.0 / (1.5**order - 1.0)
     for p in zip(*_random_points(6, seed=7)):
         c, creep, cc = _physical(*p)
         mu, load = p[3], p[2]
         t = wr.creep_forces(c, creep, mu, method="table")
         f = [_exact(c, creep, mu, elements=n) for n in (24, 36)]
-        ref = [g.Fx + (g.Fx - f[0].Fx) * 2.0 for g in f[1:]][0], \
-              [g.Fy + (g.Fy - f[0].Fy) * 2.0 for g in f[1:]][0]
+        ref = f[1].Fx + (f[1].Fx - f[0].Fx) * k, f[1].Fy + (f[1].Fy - f[0].Fy) * k
         errs.append([abs(t.Fx - ref[0]) / (mu * load), abs(t.Fy - ref[1]) / (mu * load)])
     errs = np.array(errs)
     assert errs.max() < TABLE_MAX_ERROR, errs.max(0)

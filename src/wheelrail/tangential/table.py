@@ -23,11 +23,12 @@ as functions of five dimensionless inputs:
   φ̂_y = G c³ C23 φ/(3μFn) (linear theory: Fy ∝ η̂ + φ̂_y);
 * spin: φ̂ = G c² ℓ φ/(3μFn) with ℓ = √((c C23)² + (b C11)²) (b C11 measures the
   longitudinal slip −φy across the half-width b, which saturates Fx of patches wide in y);
-  axis s = φ̂/(1 + |φ̂|), |s| ≤ 0.8 (|φ̂| ≤ 4);
+  axis s = φ̂/(1 + |φ̂|) ∈ [−1, 1]: *every* spin is inside, s = ±1 being full
+  sliding under the rigid slip of infinite spin (:func:`full_slip`);
 * ρ̂ = |(ξ̂, η̂ + φ̂_y)| and its direction θ ∈ [0, π/2]; axis r = ρ̂/(1 + |φ̂| + ρ̂)
   ∈ [0, 1], r = 1 being the full-slip limit (F = −μFn along the creepage, Mz = 0),
   so *every* creepage magnitude is inside;
-* a/b ∈ [0.2, 5] (log axis) and ν ∈ [0.25, 0.30].
+* a/b ∈ [0.05, 20] (log axis; flange contacts give such patches) and ν ∈ [0.25, 0.30].
 
 The symmetries of the problem, F(−ξ, η, φ) = (−Fx, Fy, Mz) and
 F(ξ, −η, −φ) = (Fx, −Fy, −Mz), reduce the creepage directions to the quadrant
@@ -35,37 +36,38 @@ F(ξ, −η, −φ) = (Fx, −Fy, −Mz), reduce the creepage directions to the 
 in the creepages and its mirror symmetry in y, and are checked against the
 exact solver in ``tests/reference/test_table_law.py``.
 
-Interpolation is multilinear in (r, θ, s, ln a/b, ν), for the tangential force in the
-frame of the full-slip direction (components along and across it), so that
-|F| = μFn is kept in full slip and |F| ≤ μFn everywhere.
+Interpolation is a tensor product of Catmull–Rom cubics in (r, θ, s, ln a/b)
+and linear in ν (a compiled kernel, :mod:`wheelrail.tangential._table_kernel`),
+for the tangential force in the frame of the full-slip direction (components
+along and across it), so that |F| = μFn is kept in full slip; |F| ≤ μFn is
+enforced (the cubic may overshoot the bound by a little). Ghost nodes beyond
+the axes' ends are quadratic extrapolations, except at r = 0 where the
+reversed creepage gives them exactly (F is odd in (ξ, η, φ) together).
 
 Accuracy
 --------
-Measured on 400 random points *not* in the table, uniform in (ρ̂², θ, φ̂, ln a/b, ν)
-over the domain with loads 2–20 kN and μ 0.1–0.5 (``benchmarks/bench_sweeps.py
---only table``; docs/sweeps.md):
+See ``benchmarks/bench_contact_table_law.py`` and docs/sweeps.md: random points
+over the whole domain (a/b 0.05–20, |φ̂| up to 19) against the exact theory
+extrapolated in the grid (24/36/54 elements). The shipped table (version 2) is
+a coarse grid (11 × 5 × 11 × 9 × 2 nodes) built from 16- and 24-element
+solutions extrapolated with the observed order: on 60 random points max
+|ΔF_t| = 5.6 % of μFn, rms 0.87 %, max |ΔMz| = 1.6 % of μFn c (load 13.6); the goal
+of 1 % needs a finer grid (docs/sweeps.md).
 
-* against the exact solver at its default 40 elements, the grid the shipped
-  table was built with (so this is the interpolation error): max |ΔF_t| = 2.14 %
-  of μFn, rms 0.39 %, max |ΔFx| = 0.84 %, max |ΔMz| = 1.9 % of μFn c. (A first
-  table built with 24 elements was 2.02 % from the 24-element solver but 5.4 %
-  from the 40-element one: the exact solver's own discretisation error in
-  spin-dominated contacts with a/b > 3.)
+Speed: one call of :meth:`Table.solve` takes about 0.08 ms (the exact solver
+with 40 elements: 17–27 ms), see the benchmark.
 
-Speed: 9.4·10⁵ evaluations/s in a batch of 10⁵ (FASTSIM 20×20: 6.5·10⁵/s; the
-exact solver with 40 elements: 47/s), i.e. about 2·10⁴ times the exact solver.
-
-Outside the domain (|φ̂| > 4, a/b outside [0.2, 5], ν outside [0.25, 0.30],
-or dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
+Outside the domain (a/b outside [0.05, 20], ν outside [0.25, 0.30], or
+dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
 naming the value, unless ``outside="exact"`` or ``outside="fastsim"``: then
 those points are computed by that method (documented fallback).
 
 Building the table
 ------------------
 ``wheelrail build-table --workers 2`` (:func:`wheelrail.sweeps.tables.build_table`)
-recomputes the shipped file ``_data/creep_table_v1.npz`` with
-:func:`wheelrail.sweep` (resumable: the Zarr work store is kept until the file
-is written). This module only reads and interpolates tables.
+recomputes the shipped file ``_data/creep_table_v2.npz`` with resumable
+:func:`wheelrail.sweep` runs (Zarr work stores, kept until the file is
+written). This module only reads and interpolates tables.
 
 References
 ----------
@@ -79,6 +81,7 @@ References
 from __future__ import annotations
 
 import json
+import math
 from functools import lru_cache
 from pathlib import Path
 
@@ -86,6 +89,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import configured, option
+from ..plausibility import check_friction
 from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod, get
 from ._table_kernel import evaluate
@@ -383,8 +387,8 @@ class Table(TangentialMethod):
     Other Parameters
     ----------------
     outside : {"raise", "exact", "fastsim"}, default "raise"
-        Points outside the table's domain (|φ̂| > 4, a/b ∉ [0.2, 5],
-        ν ∉ [0.25, 0.30], K ≠ 0): raise :class:`~wheelrail.errors.InputError`
+        Points outside the table's domain (a/b ∉ [0.05, 20],
+        ν ∉ [0.25, 0.30], K ≠ 0; any spin is inside): raise :class:`~wheelrail.errors.InputError`
         naming the value, or compute them with that method.
     table : str or None, default None
         Path of another table file (built by :func:`build_table`).
@@ -405,6 +409,23 @@ class Table(TangentialMethod):
                           doc="points outside the table: refuse, or compute with that method")
     table: str | None = option(None, kind="any", allow_none=True, check=_table_path,
                                doc="path of another table file (.npz)")
+
+    def forces(self, contact, creepage, mu):
+        """:meth:`TangentialMethod.forces`, with a short path for one contact.
+
+        One contact with a tuple of three finite floats and a float μ > 0 skips the
+        batch broadcasting (the same checks: contact type, friction plausibility,
+        finite forces); anything else takes the general path.
+        """
+        if (isinstance(creepage, tuple) and len(creepage) == 3 and isinstance(mu, float)
+                and all(isinstance(v, float) and math.isfinite(v) for v in creepage)
+                and math.isfinite(mu) and mu > 0.0 and hasattr(contact, "materials")
+                and np.ndim(contact.a) == 0):
+            check_friction(mu)
+            r = self.solve(contact, *creepage, mu)
+            if math.isfinite(r.Fx) and math.isfinite(r.Fy) and math.isfinite(r.Mz):
+                return r
+        return super().forces(contact, creepage, mu)
 
     def solve(self, contact, xi, eta, phi, mu):
         """Creep forces by interpolation; see the class docstring."""
