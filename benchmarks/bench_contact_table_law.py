@@ -31,7 +31,8 @@ from wheelrail.tangential.table import Table, load_table
 
 
 def load():
-    return "load average %.1f / %.1f / %.1f" % os.getloadavg()
+    one, five, fifteen = os.getloadavg()
+    return f"load average {one:.1f} / {five:.1f} / {fifteen:.1f}"
 
 
 def points(n, seed=2026):

@@ -10,10 +10,9 @@ virtual interpenetration, see docs/nonhertzian.md).
 """
 
 import pytest
+from test_wheelrail_contact import _contact_reference
 
 import wheelrail as wr
-
-from test_wheelrail_contact import _contact_reference
 
 
 @pytest.fixture

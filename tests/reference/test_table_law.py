@@ -12,8 +12,8 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.errors import InputError
-from wheelrail.tangential import table as T
 from wheelrail.sweeps.tables import build_table, observed_order, table_nodes
+from wheelrail.tangential import table as T
 from wheelrail.tangential.linear import kalker_coefficients
 
 STEEL = wr.Material(2.1e11, 0.28)
@@ -129,7 +129,7 @@ def test_shipped_table_against_extrapolated_exact_off_the_nodes():
     order = T.load_table().meta["extrapolation"]["order_pooled"]["p"]
     k = 1.0 / (1.5**order - 1.0)
     for p in zip(*_random_points(6, seed=7)):
-        c, creep, cc = _physical(*p)
+        c, creep, _ = _physical(*p)
         mu, load = p[3], p[2]
         t = wr.creep_forces(c, creep, mu, method="table")
         f = [_exact(c, creep, mu, elements=n) for n in (24, 36)]

@@ -63,8 +63,14 @@ from .evaluators import STATUS_CODES
 from .run import sweep
 from .spec import SweepSpec
 
-__all__ = ["build_table", "table_nodes", "assemble_table", "GRID", "BUILD_CONTACT",
-           "ELEMENTS"]
+__all__ = [
+    "BUILD_CONTACT",
+    "ELEMENTS",
+    "GRID",
+    "assemble_table",
+    "build_table",
+    "table_nodes",
+]
 
 #: Node grid of the table (version 2). r = ρ̂/(1 + |φ̂| + ρ̂) (r = 1 analytic), θ,
 #: s = φ̂/(1 + |φ̂|) (s = ±1 analytic), ln(a/b) for a/b in [0.05, 20], ν.
@@ -153,7 +159,7 @@ def _analytic_values(grid):
 
 def _stage_sweep(nodes, elements, work, workers, executor, progress):
     """One resolution over ``nodes`` (resumable Zarr store ``work``); values (n, 3)."""
-    c, E, load, mu = (BUILD_CONTACT[k] for k in ("c", "E", "Fn", "mu"))
+    E, load, mu = (BUILD_CONTACT[k] for k in ("E", "Fn", "mu"))
     spec = SweepSpec.from_points({k: nodes[k] for k in ("xi", "eta", "phi", "a", "b", "nu")},
                                  method="exact", options={"elements": int(elements)}, Fn=load,
                                  mu=mu, E=E, chunk=200)

@@ -95,8 +95,16 @@ from ._base import TangentialMethod, get
 from ._table_kernel import evaluate
 from .linear import kalker_coefficients
 
-__all__ = ["Table", "TableData", "load_table", "table_coordinates", "full_slip",
-           "DEFAULT_TABLE", "TABLE_VERSION", "AXES"]
+__all__ = [
+    "AXES",
+    "DEFAULT_TABLE",
+    "TABLE_VERSION",
+    "Table",
+    "TableData",
+    "full_slip",
+    "load_table",
+    "table_coordinates",
+]
 
 #: The shipped table.
 DEFAULT_TABLE = Path(__file__).with_name("_data") / "creep_table_v2.npz"
