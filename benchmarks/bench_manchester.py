@@ -8,6 +8,8 @@ forces converted to Kalker's convention: on the wheel, creepage of the wheel
 relative to the rail). Prints a table per method and the time per wheel.
 
     python benchmarks/bench_manchester.py [--shared ../shared] [--cases 1,11,14] [--out FILE.md]
+    python benchmarks/bench_manchester.py --methods kik-piotrowski+fastsim \
+        --options fastsim_flexibility=three
 
 ``--out`` also writes the printed tables (Markdown) to a file: the project's
 copy is docs/validation/manchester_a22.md.
@@ -91,7 +93,14 @@ def main(argv=None):
     ap.add_argument("--out", default="", help="also write the Markdown report to this file")
     ap.add_argument("--methods", default="bem+exact,hertz+fastsim",
                     help="comma-separated normal+tangential pairs")
+    ap.add_argument("--options", default="",
+                    help="extra method options key=value[,key=value] for the non-BEM pairs, "
+                         "e.g. fastsim_flexibility=three (Kik-Piotrowski patches)")
     args = ap.parse_args(argv)
+    extra = {}
+    for kv in filter(None, args.options.split(",")):
+        k, v = kv.split("=", 1)
+        extra[k.strip()] = v.strip()
     shared = Path(args.shared) / "data"
     cases = manchester_a22(shared / "benchmarks" / "manchester_a22_inputs.csv",
                            shared / "profiles" / "MBench_S1002_v3.prw",
@@ -105,7 +114,7 @@ def main(argv=None):
              tangential="exact", element_size=2e-4)
     pairs = [m.split("+") for m in args.methods.split(",")]
     for normal, tangential in pairs:
-        opts = {"element_size": 2e-4} if normal == "bem" else {}
+        opts = {"element_size": 2e-4} if normal == "bem" else dict(extra)
         rows, times = run(cases, normal, tangential, **opts)
         say(f"\n## {normal} + {tangential} {opts or ''}: {len(cases)} cases, "
             f"{times.mean() / 2 * 1e3:.1f} ms per wheel (mean), "

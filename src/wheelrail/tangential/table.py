@@ -23,11 +23,12 @@ as functions of five dimensionless inputs:
   φ̂_y = G c³ C23 φ/(3μFn) (linear theory: Fy ∝ η̂ + φ̂_y);
 * spin: φ̂ = G c² ℓ φ/(3μFn) with ℓ = √((c C23)² + (b C11)²) (b C11 measures the
   longitudinal slip −φy across the half-width b, which saturates Fx of patches wide in y);
-  axis s = φ̂/(1 + |φ̂|), |s| ≤ 0.8 (|φ̂| ≤ 4);
+  axis s = φ̂/(1 + |φ̂|) ∈ [−1, 1]: *every* spin is inside, s = ±1 being full
+  sliding under the rigid slip of infinite spin (:func:`full_slip`);
 * ρ̂ = |(ξ̂, η̂ + φ̂_y)| and its direction θ ∈ [0, π/2]; axis r = ρ̂/(1 + |φ̂| + ρ̂)
   ∈ [0, 1], r = 1 being the full-slip limit (F = −μFn along the creepage, Mz = 0),
   so *every* creepage magnitude is inside;
-* a/b ∈ [0.2, 5] (log axis) and ν ∈ [0.25, 0.30].
+* a/b ∈ [0.05, 20] (log axis; flange contacts give such patches) and ν ∈ [0.25, 0.30].
 
 The symmetries of the problem, F(−ξ, η, φ) = (−Fx, Fy, Mz) and
 F(ξ, −η, −φ) = (Fx, −Fy, −Mz), reduce the creepage directions to the quadrant
@@ -35,37 +36,38 @@ F(ξ, −η, −φ) = (Fx, −Fy, −Mz), reduce the creepage directions to the 
 in the creepages and its mirror symmetry in y, and are checked against the
 exact solver in ``tests/reference/test_table_law.py``.
 
-Interpolation is multilinear in (r, θ, s, ln a/b, ν), for the tangential force in the
-frame of the full-slip direction (components along and across it), so that
-|F| = μFn is kept in full slip and |F| ≤ μFn everywhere.
+Interpolation is a tensor product of Catmull–Rom cubics in (r, θ, s, ln a/b)
+and linear in ν (a compiled kernel, :mod:`wheelrail.tangential._table_kernel`),
+for the tangential force in the frame of the full-slip direction (components
+along and across it), so that |F| = μFn is kept in full slip; |F| ≤ μFn is
+enforced (the cubic may overshoot the bound by a little). Ghost nodes beyond
+the axes' ends are quadratic extrapolations, except at r = 0 where the
+reversed creepage gives them exactly (F is odd in (ξ, η, φ) together).
 
 Accuracy
 --------
-Measured on 400 random points *not* in the table, uniform in (ρ̂², θ, φ̂, ln a/b, ν)
-over the domain with loads 2–20 kN and μ 0.1–0.5 (``benchmarks/bench_sweeps.py
---only table``; docs/sweeps.md):
+See ``benchmarks/bench_contact_table_law.py`` and docs/sweeps.md: random points
+over the whole domain (a/b 0.05–20, |φ̂| up to 19) against the exact theory
+extrapolated in the grid (24/36/54 elements). The shipped table (version 2) is
+a coarse grid (11 × 5 × 11 × 9 × 2 nodes) built from 16- and 24-element
+solutions extrapolated with the observed order: on 60 random points max
+|ΔF_t| = 5.6 % of μFn, rms 0.87 %, max |ΔMz| = 1.6 % of μFn c (load 13.6); the goal
+of 1 % needs a finer grid (docs/sweeps.md).
 
-* against the exact solver at its default 40 elements, the grid the shipped
-  table was built with (so this is the interpolation error): max |ΔF_t| = 2.14 %
-  of μFn, rms 0.39 %, max |ΔFx| = 0.84 %, max |ΔMz| = 1.9 % of μFn c. (A first
-  table built with 24 elements was 2.02 % from the 24-element solver but 5.4 %
-  from the 40-element one: the exact solver's own discretisation error in
-  spin-dominated contacts with a/b > 3.)
+Speed: one call of :meth:`Table.solve` takes about 0.08 ms (the exact solver
+with 40 elements: 17–27 ms), see the benchmark.
 
-Speed: 9.4·10⁵ evaluations/s in a batch of 10⁵ (FASTSIM 20×20: 6.5·10⁵/s; the
-exact solver with 40 elements: 47/s), i.e. about 2·10⁴ times the exact solver.
-
-Outside the domain (|φ̂| > 4, a/b outside [0.2, 5], ν outside [0.25, 0.30],
-or dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
+Outside the domain (a/b outside [0.05, 20], ν outside [0.25, 0.30], or
+dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
 naming the value, unless ``outside="exact"`` or ``outside="fastsim"``: then
 those points are computed by that method (documented fallback).
 
 Building the table
 ------------------
 ``wheelrail build-table --workers 2`` (:func:`wheelrail.sweeps.tables.build_table`)
-recomputes the shipped file ``_data/creep_table_v1.npz`` with
-:func:`wheelrail.sweep` (resumable: the Zarr work store is kept until the file
-is written). This module only reads and interpolates tables.
+recomputes the shipped file ``_data/creep_table_v2.npz`` with resumable
+:func:`wheelrail.sweep` runs (Zarr work stores, kept until the file is
+written). This module only reads and interpolates tables.
 
 References
 ----------
@@ -79,6 +81,7 @@ References
 from __future__ import annotations
 
 import json
+import math
 from functools import lru_cache
 from pathlib import Path
 
@@ -86,16 +89,26 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import configured, option
+from ..plausibility import check_friction
 from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod, get
+from ._table_kernel import evaluate
 from .linear import kalker_coefficients
 
-__all__ = ["Table", "TableData", "load_table", "table_coordinates", "DEFAULT_TABLE",
-           "TABLE_VERSION", "AXES"]
+__all__ = [
+    "AXES",
+    "DEFAULT_TABLE",
+    "TABLE_VERSION",
+    "Table",
+    "TableData",
+    "full_slip",
+    "load_table",
+    "table_coordinates",
+]
 
 #: The shipped table.
-DEFAULT_TABLE = Path(__file__).with_name("_data") / "creep_table_v1.npz"
-TABLE_VERSION = 1
+DEFAULT_TABLE = Path(__file__).with_name("_data") / "creep_table_v2.npz"
+TABLE_VERSION = 2
 
 #: The table's axes: r = ρ̂/(1 + |φ̂| + ρ̂) (r = 1 analytic), θ, s = φ̂/(1 + |φ̂|), ln(a/b), ν.
 AXES = ("r", "theta", "s", "log_ab", "nu")
@@ -116,8 +129,88 @@ def _spin_length(c, b, C11, C23):
     return np.hypot(c * C23, b * C11)
 
 
+def full_slip(a, b, xi, eta, phi, n_radial=96, n_angle=192):
+    """Creep forces in full sliding on a Hertz ellipse (the table's analytic planes).
+
+    Every element slides against its rigid slip w = (ξ − φy, η + φx) (the elastic
+    part of the slip is negligible when the creepages are large):
+    τ = −μ p w/|w| with Hertz's pressure p = p₀√(1 − x²/a² − y²/b²).
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (n,)
+        Semi-axes [m].
+    xi, eta, phi : ndarray, shape (n,)
+        Creepages [-, -, 1/m] (only their direction matters).
+    n_radial, n_angle : int
+        Gauss–Legendre points in ρ = sin u, u ∈ [0, π/2], and midpoints in the angle.
+
+    Returns
+    -------
+    fx, fy, mz : ndarray, shape (n,)
+        Fx/(μFn), Fy/(μFn), Mz/(μFn c), c = √(ab).
+
+    References
+    ----------
+    .. [1] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
+       Kluwer 1990, §1.3 (full sliding: traction opposite to the rigid slip).
+    """
+    a, b, xi, eta, phi = np.broadcast_arrays(*(np.asarray(v, float).reshape(-1)
+                                               for v in (a, b, xi, eta, phi)))
+    u, wu = np.polynomial.legendre.leggauss(n_radial)
+    u = 0.25 * np.pi * (u + 1.0)
+    wu = 0.25 * np.pi * wu
+    rho = np.sin(u)
+    w_r = wu * np.cos(u) ** 2 * rho  # sqrt(1 - rho^2) rho d rho = cos u sin u cos u du
+    t = (np.arange(n_angle) + 0.5) * (2.0 * np.pi / n_angle)
+    X = (rho[:, None] * np.cos(t)[None, :]).reshape(-1)
+    Y = (rho[:, None] * np.sin(t)[None, :]).reshape(-1)
+    W = (w_r[:, None] * np.full(n_angle, 2.0 * np.pi / n_angle)[None, :]).reshape(-1)
+    W = W * 3.0 / (2.0 * np.pi)  # p dA / Fn on the unit disc
+    out = np.empty((a.size, 3))
+    for i0 in range(0, a.size, 256):
+        sl = slice(i0, i0 + 256)
+        x = a[sl, None] * X[None, :]
+        y = b[sl, None] * Y[None, :]
+        wx = xi[sl, None] - phi[sl, None] * y
+        wy = eta[sl, None] + phi[sl, None] * x
+        norm = np.hypot(wx, wy)
+        norm = np.where(norm > 0.0, norm, np.inf)
+        tx, ty = -wx / norm, -wy / norm
+        c = np.sqrt(a[sl] * b[sl])
+        out[sl, 0] = tx @ W
+        out[sl, 1] = ty @ W
+        out[sl, 2] = ((x * ty - y * tx) @ W) / c
+    return out[:, 0], out[:, 1], out[:, 2]
+
+
+#: Axes interpolated with Catmull–Rom cubics (the others linearly): r, θ, s, ln a/b; ν linear.
+CUBIC = (True, True, True, True, False)
+
+
+def _ghosts(v, axis):
+    """Pad ``v`` by one node at each end of ``axis``: quadratic (or linear) extrapolation."""
+    v = np.moveaxis(v, axis, 0)
+    if v.shape[0] >= 3:
+        lo = 3.0 * v[0] - 3.0 * v[1] + v[2]
+        hi = 3.0 * v[-1] - 3.0 * v[-2] + v[-3]
+    else:
+        lo = 2.0 * v[0] - v[1]
+        hi = 2.0 * v[-1] - v[-2]
+    return np.moveaxis(np.concatenate([lo[None], v, hi[None]]), 0, axis)
+
+
 class TableData:
-    """A loaded table: node axes, values and metadata (see :func:`load_table`)."""
+    """A loaded table: node axes, values and metadata (see :func:`load_table`).
+
+    ``kernel`` holds the arrays of the compiled evaluation
+    (:func:`wheelrail.tangential._table_kernel.point_forces`): the values in
+    the frame of the full-slip direction padded with ghost nodes, the axes'
+    first node, spacing and count, the cubic flags and a (ln a/b, ν) lookup of
+    Kalker's C11, C22, C23. ``_interp`` is the multilinear interpolant of the
+    same frame values on the nodes (``_interp.values``: shape (n_r, n_θ, n_s,
+    n_ab, n_ν, 3)).
+    """
 
     def __init__(self, axes: dict, values: np.ndarray, meta: dict):
         from scipy.interpolate import RegularGridInterpolator
@@ -126,7 +219,7 @@ class TableData:
         # is odd in xi (zero where xi_hat = 0: theta = pi/2 or r = 0), (Fy, Mz) odd in
         # (eta, phi) (zero where theta = 0 and s = 0). Left in, the interpolant is not odd and
         # jumps at xi = 0 (the reflection sx flips the round-off); set to the exact zero.
-        values = np.array(values, copy=True)
+        values = np.array(values, dtype=float, copy=True)
         fx, fyz = values[..., 0], values[..., 1:]
         fx[:, np.isclose(axes["theta"], 0.5 * np.pi, rtol=0.0, atol=1e-12)] = 0.0
         fx[axes["r"] == 0.0] = 0.0
@@ -142,24 +235,72 @@ class TableData:
         C11, C22, _ = _coefficients(np.exp(L), N)
         alpha = np.arctan2(np.sin(T) / C22, np.cos(T) / C11)[None, :, None]  # (1, θ, 1, ab, ν)
         ca, sa = np.cos(alpha), np.sin(alpha)
-        v = values.astype(float)
+        v = values
         local = np.stack([v[..., 0] * ca + v[..., 1] * sa, -v[..., 0] * sa + v[..., 1] * ca,
                           v[..., 2]], axis=-1)
         self._interp = RegularGridInterpolator(tuple(axes[k] for k in AXES), local,
                                                method="linear", bounds_error=False,
                                                fill_value=None)
+        self.kernel = self._kernel_arrays(axes, local)
+
+    @staticmethod
+    def _kernel_arrays(axes, local):
+        x0, dx, n = [], [], []
+        for k in AXES:
+            ax = np.asarray(axes[k], float)
+            step = np.diff(ax)
+            if ax.size < 2 or not np.allclose(step, step[0], rtol=1e-9, atol=1e-12):
+                raise InputError(f"creep table axis {k!r} must be uniform with >= 2 nodes")
+            x0.append(ax[0])
+            dx.append(step[0])
+            n.append(ax.size)
+        padded = _ghosts(local, 0)
+        r_ax, s_ax = np.asarray(axes["r"], float), np.asarray(axes["s"], float)
+        if r_ax[0] == 0.0 and r_ax.size > 1 and np.allclose(s_ax, -s_ax[::-1], atol=1e-12):
+            # r = -dr is the reversed creepage at the same theta: F(-c) = -F(c) for the
+            # creepages (xi, eta, phi) reversed together, i.e. minus the node at r = dr with
+            # the spin reversed (s -> -s), in the same local frame; exact, and it gives the
+            # cubic the secant slope at r = 0 (Kalker's C11, C22 up to the curvature in dr)
+            padded[0] = -local[1][:, ::-1]
+        for d in range(1, 5):
+            padded = _ghosts(padded, d)
+        ab_lo, ab_hi = axes["log_ab"][0], axes["log_ab"][-1]
+        nu_lo, nu_hi = axes["nu"][0], axes["nu"][-1]
+        lab = np.linspace(ab_lo, ab_hi, 801)
+        nus = np.linspace(nu_lo, nu_hi, 6) if nu_hi > nu_lo else np.array([nu_lo, nu_lo + 1e-9])
+        Lg, Ng = np.meshgrid(lab, nus, indexing="ij")
+        coef = np.stack(_coefficients(np.exp(Lg), Ng), axis=-1)
+        c_x0 = np.array([lab[0], nus[0]])
+        c_dx = np.array([lab[1] - lab[0], nus[1] - nus[0]])
+        c_n = np.array([lab.size, nus.size], np.int64)
+        return (np.ascontiguousarray(padded), np.array(x0), np.array(dx),
+                np.array(n, np.int64), np.array(CUBIC, np.bool_), c_x0, c_dx, c_n,
+                np.ascontiguousarray(coef))
 
     @property
     def domain(self) -> dict:
-        """Ranges of the inputs: ``phi_hat`` (|φ̂| max), ``aspect`` (a/b), ``nu``."""
+        """Ranges of the inputs: ``phi_hat`` (|φ̂| max, ``inf`` when s = ±1 is tabulated),
+        ``aspect`` (a/b), ``nu``."""
         smax = float(np.max(np.abs(self.axes["s"])))
-        return {"phi_hat": smax / (1.0 - smax),
+        return {"phi_hat": np.inf if smax >= 1.0 else smax / (1.0 - smax),
                 "aspect": (float(np.exp(self.axes["log_ab"][0])),
                            float(np.exp(self.axes["log_ab"][-1]))),
                 "nu": (float(self.axes["nu"][0]), float(self.axes["nu"][-1]))}
 
+    def forces(self, a, b, G, nu, xi, eta, phi, mu, Fn):
+        """Creep forces (compiled; arrays of shape (m,)): ``(out (m, 3), flags (m,))``.
+
+        ``out`` holds Fx, Fy [N], Mz [N m]; ``flags`` bit 1: |φ̂| outside, 2: a/b outside,
+        4: ν outside the table (forces of the clipped coordinates there).
+        """
+        m = a.shape[0]
+        out = np.empty((m, 3))
+        flags = np.empty(m, np.int8)
+        evaluate(a, b, G, nu, xi, eta, phi, mu, Fn, *self.kernel, out, flags)
+        return out, flags
+
     def __call__(self, points: np.ndarray, alpha: np.ndarray) -> np.ndarray:
-        """Interpolated (fx, fy, mz), shape (n, 3).
+        """Multilinear (fx, fy, mz) at table coordinates, shape (n, 3) (nodes' reference).
 
         ``points`` (n, 5) are table coordinates, ``alpha`` (n,) the direction [rad] of the
         scaled creepage (ξ̂/C11, (η̂ + φ̂)/C22) of each point (see :func:`table_coordinates`).
@@ -254,8 +395,8 @@ class Table(TangentialMethod):
     Other Parameters
     ----------------
     outside : {"raise", "exact", "fastsim"}, default "raise"
-        Points outside the table's domain (|φ̂| > 4, a/b ∉ [0.2, 5],
-        ν ∉ [0.25, 0.30], K ≠ 0): raise :class:`~wheelrail.errors.InputError`
+        Points outside the table's domain (a/b ∉ [0.05, 20],
+        ν ∉ [0.25, 0.30], K ≠ 0; any spin is inside): raise :class:`~wheelrail.errors.InputError`
         naming the value, or compute them with that method.
     table : str or None, default None
         Path of another table file (built by :func:`build_table`).
@@ -277,71 +418,86 @@ class Table(TangentialMethod):
     table: str | None = option(None, kind="any", allow_none=True, check=_table_path,
                                doc="path of another table file (.npz)")
 
+    def forces(self, contact, creepage, mu):
+        """:meth:`TangentialMethod.forces`, with a short path for one contact.
+
+        One contact with a tuple of three finite floats and a float μ > 0 skips the
+        batch broadcasting (the same checks: contact type, friction plausibility,
+        finite forces); anything else takes the general path.
+        """
+        if (isinstance(creepage, tuple) and len(creepage) == 3 and isinstance(mu, float)
+                and all(isinstance(v, float) and math.isfinite(v) for v in creepage)
+                and math.isfinite(mu) and mu > 0.0 and hasattr(contact, "materials")
+                and np.ndim(contact.a) == 0):
+            check_friction(mu)
+            r = self.solve(contact, *creepage, mu)
+            if math.isfinite(r.Fx) and math.isfinite(r.Fy) and math.isfinite(r.Mz):
+                return r
+        return super().forces(contact, creepage, mu)
+
     def solve(self, contact, xi, eta, phi, mu):
         """Creep forces by interpolation; see the class docstring."""
         outside = self.outside
         data = load_table(self.table)
         shape = np.shape(contact.a)
-        a, b, Fn = (np.asarray(getattr(contact, k), float).reshape(-1)
-                    for k in ("a", "b", "Fn"))
-        xs, es, ps, ms = (np.asarray(v, float).reshape(-1) for v in (xi, eta, phi, mu))
+        a, b, Fn, xs, es, ps, ms = np.broadcast_arrays(
+            *(np.asarray(v, float).reshape(-1) for v in
+              (contact.a, contact.b, contact.Fn, xi, eta, phi, mu)))
+        a, b, Fn, xs, es, ps, ms = (np.ascontiguousarray(v) for v in (a, b, Fn, xs, es, ps, ms))
         pair = contact.materials
         nu = float(pair.nu)
-        coords, sx, sy, ph, alpha = table_coordinates(a, b, pair.G, nu, xs, es, ps, ms, Fn)
-        dom = data.domain
-        ab = a / b
-        reasons = []
+        m = a.shape[0]
+        out, flags = data.forces(a, b, np.full(m, float(pair.G)), np.full(m, nu), xs, es, ps,
+                                 ms, Fn)
         K = float(getattr(pair, "K", 0.0))
         bad_K = abs(K) > _K_TOL
-        checks = [
-            (np.abs(ph) > dom["phi_hat"] * (1 + 1e-12), "scaled spin phi_hat", np.abs(ph),
-             f"|phi_hat| <= {dom['phi_hat']:g}"),
-            ((ab < dom["aspect"][0] * (1 - 1e-12)) | (ab > dom["aspect"][1] * (1 + 1e-12)),
-             "a/b", ab, f"{dom['aspect'][0]:g} <= a/b <= {dom['aspect'][1]:g}"),
-            (np.full(ab.shape, (nu < dom["nu"][0] - 1e-12) or (nu > dom["nu"][1] + 1e-12)),
-             "Poisson's ratio nu", np.full(ab.shape, nu),
-             f"{dom['nu'][0]:g} <= nu <= {dom['nu'][1]:g}"),
-            (np.full(ab.shape, bad_K), "difference parameter K", np.full(ab.shape, K),
-             f"|K| <= {_K_TOL:g} (quasi-identical materials)"),
-        ]
-        out_mask = np.zeros(ab.shape, bool)
-        for mask, what, values, allowed in checks:
-            if np.any(mask):
-                i = int(np.argmax(mask))
-                reasons.append(f"{what} = {values[i]:.6g} at point {i} (table domain: {allowed})")
-                out_mask |= mask
-        if reasons and outside == "raise":
-            raise InputError("outside the creep table's domain: " + "; ".join(reasons)
-                             + ". Use outside='exact' or 'fastsim' to compute such points "
-                               "with that method.")
-        f = data(coords, alpha)
-        # |F_t| <= mu Fn holds at every node; the convex combination keeps it up to the
-        # float32 rounding of the stored values, which is removed here
-        ft = np.hypot(f[:, 0], f[:, 1])
-        over = ft > 1.0
-        f[over, :2] /= ft[over, None]
-        c = np.sqrt(a * b)
-        Fx = sx * f[:, 0] * ms * Fn
-        Fy = sy * f[:, 1] * ms * Fn
-        Mz = sy * f[:, 2] * ms * Fn * c
-        # symmetry: Fx is odd in xi, (Fy, Mz) odd in (eta, phi); the nodes on those planes are
-        # zero (TableData), so this only removes the rotation's last-bit residue (~1e-33)
-        Fx = np.where(xs == 0.0, 0.0, Fx)
-        lateral0 = (es == 0.0) & (ps == 0.0)
-        Fy = np.where(lateral0, 0.0, Fy)
-        Mz = np.where(lateral0, 0.0, Mz)
-        if np.any(out_mask):
+        out_mask = flags != 0
+        if bad_K or out_mask.any():
+            out_mask = out_mask | bad_K
+            reasons = self._reasons(data, a / b, nu, K, bad_K, flags, a, b, pair, xs, es, ps,
+                                    ms, Fn)
+            if outside == "raise":
+                raise InputError("outside the creep table's domain: " + "; ".join(reasons)
+                                 + ". Use outside='exact' or 'fastsim' to compute such points "
+                                   "with that method.")
             idx = np.flatnonzero(out_mask)
             sub = contact if not shape else contact[idx]
             r = get(outside).solve(sub, *(v[idx] if shape else v[0]
-                                                 for v in (xs, es, ps, ms)))
-            for arr, v in ((Fx, r.Fx), (Fy, r.Fy), (Mz, r.Mz)):
-                arr[idx] = np.asarray(v, float).reshape(-1)
+                                          for v in (xs, es, ps, ms)))
+            for k, v in enumerate((r.Fx, r.Fy, r.Mz)):
+                out[idx, k] = np.asarray(v, float).reshape(-1)
+        if not shape:
+            return CreepForcesResult(Fx=float(out[0, 0]), Fy=float(out[0, 1]),
+                                     Mz=float(out[0, 2]), Fn=float(Fn[0]), mu=float(ms[0]),
+                                     method=self.name, status=Status.CONVERGED,
+                                     info={"outside": bool(out_mask[0]),
+                                           "table_version": data.meta.get("version")})
+        return CreepForcesResult(Fx=out[:, 0].reshape(shape), Fy=out[:, 1].reshape(shape),
+                                 Mz=out[:, 2].reshape(shape), Fn=Fn.reshape(shape),
+                                 mu=ms.reshape(shape), method=self.name,
+                                 status=Status.CONVERGED,
+                                 info={"outside": out_mask.reshape(shape),
+                                       "table_version": data.meta.get("version")})
 
-        def shaped(v):
-            return v.reshape(shape) if shape else float(v[0])
-
-        return CreepForcesResult(Fx=shaped(Fx), Fy=shaped(Fy), Mz=shaped(Mz),
-                           Fn=shaped(Fn), mu=shaped(ms), method=self.name, status=Status.CONVERGED,
-                           info={"outside": out_mask.reshape(shape) if shape else bool(out_mask[0]),
-                                 "table_version": data.meta.get("version")})
+    @staticmethod
+    def _reasons(data, ab, nu, K, bad_K, flags, a, b, pair, xs, es, ps, ms, Fn):
+        """Messages naming the first value outside the table for each kind of violation."""
+        dom = data.domain
+        reasons = []
+        if np.any(flags & 1):
+            i = int(np.argmax(flags & 1))
+            *_, ph, _ = table_coordinates(a[i:i + 1], b[i:i + 1], pair.G, nu, xs[i:i + 1],
+                                          es[i:i + 1], ps[i:i + 1], ms[i:i + 1], Fn[i:i + 1])
+            reasons.append(f"scaled spin phi_hat = {abs(ph[0]):.6g} at point {i} "
+                           f"(table domain: |phi_hat| <= {dom['phi_hat']:g})")
+        if np.any(flags & 2):
+            i = int(np.argmax(flags & 2))
+            reasons.append(f"a/b = {ab[i]:.6g} at point {i} (table domain: "
+                           f"{dom['aspect'][0]:g} <= a/b <= {dom['aspect'][1]:g})")
+        if np.any(flags & 4):
+            reasons.append(f"Poisson's ratio nu = {nu:.6g} at point 0 (table domain: "
+                           f"{dom['nu'][0]:g} <= nu <= {dom['nu'][1]:g})")
+        if bad_K:
+            reasons.append(f"difference parameter K = {K:.6g} at point 0 (table domain: "
+                           f"|K| <= {_K_TOL:g} (quasi-identical materials))")
+        return reasons
