@@ -163,23 +163,27 @@ def test_flange_climb_y_over_q_at_lift_is_nadal(s1002_60e1, normal):
     assert r.tread_load[r.lift] == 0.0 and r.tread_load[0] > 0.0
 
 
-@pytest.mark.parametrize("normal, rtol", [("hertz", 1e-4), ("kik-piotrowski", 0.01)])
-def test_compiled_contact_matches_wr_solve(s1002_60e1, normal, rtol):
+@pytest.mark.parametrize("normal, tangential, rtol", [
+    ("hertz", "fastsim", 1e-4), ("kik-piotrowski", "fastsim", 0.01), ("hertz", wr.tangential.Table(outside="fastsim"), 1e-4)])
+def test_compiled_contact_matches_wr_solve(s1002_60e1, normal, tangential, rtol):
     """The compiled per-wheel contact of the dynamics (contact search, normal
     problem, FASTSIM) gives the same wheel forces as ``wheelrail.solve`` with the
     same methods at the same pose: S1002 on 60E1 1:40, 10 kN per wheel, yaw 2 mrad,
     lateral shifts 0 … 6.8 mm (Manchester benchmark-like positions, Shackleton &
     Iwnicki 2008), 0.1 % longitudinal creep. Hertz: the same ellipses (1e-4);
-    Kik–Piotrowski: the compiled strips, within 1 % of Fn (forces) and of μ Fn."""
+    Kik–Piotrowski: the compiled strips, within 1 % of Fn (forces) and of μ Fn.
+    The table law: the compiled path evaluates the library's table kernel (1e-4);
+    both fall back to FASTSIM where a Hertz patch is outside the table (a/b > 20)."""
 
     ws, tr = s1002_60e1
     mu, V = 0.3, 20.0
     r0 = ws.nominal_radius
-    fc = FastContact(ws, tr, wr.STEEL, wr.normal.get(normal), wr.tangential.get("fastsim"))
+    fc = FastContact(ws, tr, wr.STEEL, wr.normal.get(normal), (wr.tangential.get(tangential) if isinstance(tangential, str)
+                                                  else tangential))
     for y, yaw in ((0.0, 0.0), (-0.003, -0.002), (0.004, 0.002), (0.0068, 0.002)):
         motion = wr.Motion(speed=V, omega=1.001 * V / r0)
         pos = wr.WheelRailPosition(ws, tr, y, yaw=yaw, vertical_load=10e3)
-        ref = wr.solve(pos, motion=motion, mu=mu, normal=normal, tangential="fastsim",
+        ref = wr.solve(pos, motion=motion, mu=mu, normal=normal, tangential=tangential,
                        vertical="normal")
         roll = ref.pose["roll"]
         zt, _ = touching_heights(ws, tr, np.array([y]), np.array([roll]), np.array([yaw]))

@@ -267,7 +267,7 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
                   y, zc, roll, yaw, V, Om, vy, vz, yaw_rate, roll_rate, mu,
                   mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, c33,
                   fs_t, fs_half, fs_peak, fs_cells, fs_factor, rs_i0, rs_i1, rs_w,
-                  ax_r, ax_t, ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo, tab_ab_hi,
+                  tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0, tk_cdx, tk_cn, tk_coef,
                   out_p, out_w):
     """Contact patches and forces of one wheel at a pose (see the module docstring).
 
@@ -493,9 +493,8 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
                 Fx, Fs, Mz = linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33)
                 done = True
             elif tangential == 1:
-                done, Fx, Fs, Mz = table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, kx, c11,
-                                                c22, c23, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
-                                                tab_phi_max, tab_ab_lo, tab_ab_hi)
+                done, Fx, Fs, Mz = table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0,
+                                                tk_cdx, tk_cn, tk_coef)
                 if not done:
                     fallbacks += 1
             if not done:
@@ -530,9 +529,9 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
                                      sg, pg, p1g, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
                                      offset, z_top, angle, y, zc_t, roll, yaw, st, ct, sp, cp, R,
                                      ph0, V, Om, vy, vz, yaw_rate, roll_rate, mu, mp, hz_lam,
-                                     hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, ax_r,
-                                     ax_t, ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo,
-                                     tab_ab_hi, P)
+                                     hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, tk_values,
+                                     tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0, tk_cdx, tk_cn,
+                                     tk_coef, P)
     # ------------------------------------------------ forces on the wheelset
     order = np.argsort(-P[:npt, 0])
     Fx_t = 0.0
@@ -585,8 +584,8 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
 def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, PU, dz, dmin, sg, pg, p1g,
                 wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, offset, z_top, angle, y, zc_t, roll,
                 yaw, st, ct, sp, cp, R, ph0, V, Om, vy, vz, yaw_rate, roll_rate, mu, mp,
-                hz_lam, hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, ax_r, ax_t,
-                ax_s, ax_l, ax_n, tab, tab_phi_max, tab_ab_lo, tab_ab_hi, P):
+                hz_lam, hz_la, hz_lb, hz_ld, kx, c11, c22, c23, c33, rs_i0, rs_i1, rs_w, tk_values, tk_x0,
+                tk_dx, tk_n, tk_cubic, tk_cx0, tk_cdx, tk_cn, tk_coef, P):
     """Kik–Piotrowski patches of one wheel and their creep forces (rows of ``P``)."""
     E_star = mp[2]
     G = mp[3]
@@ -727,9 +726,8 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
                 Fx, Fs, Mz = linear_forces(a, b, G, xi, eta_cr, phi, kx, c11, c22, c23, c33)
                 done = True
             elif tangential == 1:
-                done, Fx, Fs, Mz = table_forces(a, b, N, xi, eta_cr, phi, mu, G, nu, K, kx, c11,
-                                                c22, c23, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
-                                                tab_phi_max, tab_ab_lo, tab_ab_hi)
+                done, Fx, Fs, Mz = table_forces(a, b, N, xi, eta_cr, phi, mu, G, nu, K, tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0,
+                                                tk_cdx, tk_cn, tk_coef)
                 if not done:
                     fallbacks += 1
             if not done:

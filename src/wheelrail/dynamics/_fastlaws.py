@@ -25,6 +25,7 @@ import numpy as np
 from numba import njit
 
 from ..tangential._fastsim_kernel import fastsim_hertz_batch
+from ..tangential._table_kernel import point_forces
 
 __all__ = ["creepage", "table_forces", "fastsim_ellipse", "kp_strips", "march_strips",
            "linear_forces"]
@@ -68,89 +69,25 @@ def creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dx, dy, dz, g):
 
 # --------------------------------------------------------------------------- table law
 @njit(cache=True)
-def _axis_pos(ax, v):
-    """Index and weight of v on an increasing axis (linear extrapolation beyond the ends)."""
-    n = ax.shape[0]
-    i = np.searchsorted(ax, v) - 1
-    if i < 0:
-        i = 0
-    if i > n - 2:
-        i = n - 2
-    return i, (v - ax[i]) / (ax[i + 1] - ax[i])
-
-
-@njit(cache=True)
-def table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, kx, c11, c22, c23, ax_r, ax_t, ax_s,
-                 ax_l, ax_n, local, phi_max, ab_lo, ab_hi):
+def table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, values, x0, dx, n, cubic, c_x0, c_dx,
+                 c_n, coef):
     """Creep forces of one elliptic contact by the table law (``Table.solve`` for one point).
 
-    ``local`` holds the table values in the frame of the full-slip direction at
-    the nodes (:class:`~wheelrail.tangential.table.TableData`). Returns
-    ``(ok, Fx, Fy, Mz)``; ``ok`` is False outside the table's domain (the caller
-    then uses its fallback).
+    The arrays are the table's compiled form (``TableData.kernel``), evaluated by
+    the library's own kernel :func:`wheelrail.tangential._table_kernel.point_forces`
+    (cubic in the creepage, spin and ln a/b axes), so the compiled path and
+    ``wr.creep_forces(..., method="table")`` give the same forces. Returns
+    ``(ok, Fx, Fy, Mz)`` [N, N, N m], forces on the wheel (Kalker's sign
+    convention); ``ok`` is False outside the table's domain (a/b outside
+    0.05–20, ν outside the table, or a conformal contact with K ≠ 0), where the
+    caller uses its fallback.
     """
-    ab = a / b
-    if not (ab >= ab_lo * (1 - 1e-12) and ab <= ab_hi * (1 + 1e-12)):
+    if abs(K) > 1e-3:
         return False, 0.0, 0.0, 0.0
-    if nu < ax_n[0] - 1e-12 or nu > ax_n[ax_n.shape[0] - 1] + 1e-12 or abs(K) > 1e-3:
+    flags, Fx, Fy, Mz = point_forces(a, b, G, nu, xi, eta, phi, mu, Fn, values, x0, dx, n,
+                                     cubic, c_x0, c_dx, c_n, coef)
+    if flags != 0:
         return False, 0.0, 0.0, 0.0
-    C11, C22, C23 = _kalker(ab, kx, c11, c22, c23)
-    c2 = a * b
-    c = math.sqrt(c2)
-    unit = G / (3.0 * mu * Fn)
-    spin_len = math.hypot(c * C23, b * C11)
-    xh = unit * c2 * C11 * xi
-    ph = unit * c2 * spin_len * phi
-    eh = unit * c2 * C22 * eta + unit * c2 * c * C23 * phi
-    sx = -1.0 if xh < 0 else 1.0
-    sy = -1.0 if eh < 0 else 1.0
-    xh = abs(xh)
-    eh = abs(eh)
-    ph = ph * sy
-    if abs(ph) > phi_max * (1 + 1e-12):
-        return False, 0.0, 0.0, 0.0
-    rho = math.hypot(xh, eh)
-    theta = math.atan2(eh, xh)
-    coord = (rho / (1.0 + abs(ph) + rho), theta, ph / (1.0 + abs(ph)), math.log(ab), nu)
-    i0, w0 = _axis_pos(ax_r, coord[0])
-    i1, w1 = _axis_pos(ax_t, coord[1])
-    i2, w2 = _axis_pos(ax_s, coord[2])
-    i3, w3 = _axis_pos(ax_l, coord[3])
-    i4, w4 = _axis_pos(ax_n, coord[4])
-    f0 = 0.0
-    f1 = 0.0
-    f2 = 0.0
-    for k0 in range(2):
-        c0 = w0 if k0 else 1.0 - w0
-        for k1 in range(2):
-            c1 = c0 * (w1 if k1 else 1.0 - w1)
-            for k2 in range(2):
-                cc2 = c1 * (w2 if k2 else 1.0 - w2)
-                for k3 in range(2):
-                    c3 = cc2 * (w3 if k3 else 1.0 - w3)
-                    for k4 in range(2):
-                        cw = c3 * (w4 if k4 else 1.0 - w4)
-                        if cw == 0.0:
-                            continue
-                        f0 += cw * local[i0 + k0, i1 + k1, i2 + k2, i3 + k3, i4 + k4, 0]
-                        f1 += cw * local[i0 + k0, i1 + k1, i2 + k2, i3 + k3, i4 + k4, 1]
-                        f2 += cw * local[i0 + k0, i1 + k1, i2 + k2, i3 + k3, i4 + k4, 2]
-    alpha = math.atan2(math.sin(theta) / C22, math.cos(theta) / C11)
-    ca, sa = math.cos(alpha), math.sin(alpha)
-    fx = f0 * ca - f1 * sa
-    fy = f0 * sa + f1 * ca
-    ft = math.hypot(fx, fy)
-    if ft > 1.0:
-        fx /= ft
-        fy /= ft
-    Fx = sx * fx * mu * Fn
-    Fy = sy * fy * mu * Fn
-    Mz = sy * f2 * mu * Fn * c
-    if xi == 0.0:
-        Fx = 0.0
-    if eta == 0.0 and phi == 0.0:
-        Fy = 0.0
-        Mz = 0.0
     return True, Fx, Fy, Mz
 
 

@@ -350,14 +350,14 @@ def rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
             geo = geo_l if side == 0 else geo_r
             sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, off, zt, ang = geo
             (mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld, kx, c11, c22, c23, c33, fs_t, fs_half, fs_peak,
-             fs_cells, fs_factor, rs_i0, rs_i1, rs_w, ax_r, ax_t, ax_s, ax_l, ax_n, tab,
-             tab_phi_max, tab_ab_lo, tab_ab_hi) = meth
+             fs_cells, fs_factor, rs_i0, rs_i1, rs_w, tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0,
+             tk_cdx, tk_cn, tk_coef) = meth
             total += wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape,
                                    sig, off, zt, ang, w[0], w[1], w[2], w[3], w[4], w[5], w[6],
                                    w[7], w[8], w[9], mu, mp, hz_lam, hz_la, hz_lb, hz_lp, hz_ld,
                                    kx, c11, c22, c23, c33, fs_t, fs_half, fs_peak, fs_cells,
-                                   fs_factor, rs_i0, rs_i1, rs_w, ax_r, ax_t, ax_s, ax_l, ax_n,
-                                   tab, tab_phi_max, tab_ab_lo, tab_ab_hi, OP[i, side],
+                                   fs_factor, rs_i0, rs_i1, rs_w, tk_values, tk_x0, tk_dx, tk_n, tk_cubic,
+                                   tk_cx0, tk_cdx, tk_cn, tk_coef, OP[i, side],
                                    OW[i, side])
     Qn = np.empty((nw, 2, 5))
     Qt = np.empty((nw, 2, 5))

@@ -190,21 +190,14 @@ class FastContact:
         discrete = (4.0 / (fs.nx * fs.ny)) * np.sum(strip_peak * half) * np.sum(s_cells)
         continuous = np.pi / 2.0 if fs.bound == "parabolic" else 2.0 * np.pi / 3.0
         i0, i1, w = _resample_weights(int(mp[MP["cells"]]), fs.nx)
-        if isinstance(tangential, Table):
-            data = load_table(tangential.table)
-            axes = tuple(np.ascontiguousarray(data.axes[k], float) for k in
-                         ("r", "theta", "s", "log_ab", "nu"))
-            tab = np.ascontiguousarray(data._interp.values, dtype=float)
-            dom = data.domain
-            tdom = (float(dom["phi_hat"]), float(dom["aspect"][0]), float(dom["aspect"][1]))
-        else:
-            axes = tuple(np.array([0.0, 1.0]) for _ in range(5))
-            tab = np.zeros((2, 2, 2, 2, 2, 3))
-            tdom = (0.0, 1.0, 1.0)
+        # the table's compiled form (the library's own kernel evaluates it); with another
+        # law the default table's arrays only fill the slots of the compiled signature
+        data = load_table(tangential.table if isinstance(tangential, Table) else None)
+        kernel = tuple(np.ascontiguousarray(k) for k in data.kernel)
         c_ = np.ascontiguousarray
         self.method = (mp, c_(lam), c_(la), c_(lb), c_(lp), c_(ld), c_(kx), c_(c11), c_(c22),
                        c_(c23), c_(c33), c_(t), c_(half), c_(strip_peak), c_(s_cells),
-                       float(continuous / discrete), c_(i0), c_(i1), c_(w), *axes, tab, *tdom)
+                       float(continuous / discrete), c_(i0), c_(i1), c_(w), *kernel)
         self.ln_max = _LN_MAX
 
     def wheel(self, side, y, zc, roll, yaw, V, omega, vy, vz, yaw_rate, roll_rate, mu,
