@@ -72,7 +72,7 @@ import numpy as np
 from .._validation import as_float_array, integer, positive
 from ..errors import ConvergenceError, InputError
 from ..halfspace.influence import influence_kernel, kernel_offsets, rectangle_influence
-from ..halfspace.rolling import _BlockConvolution
+from ._fft import FastBlockConvolution as _BlockConvolution
 from ..materials import as_material_pair
 from ..normal.bem import hertz_grid, solve_normal
 from ..tangential.exact import newton_step
