@@ -899,12 +899,15 @@ def _steady_limit(M, rigid, pn, g, xi0, p0, target, dA, ftol, tol, maxiter, slop
     def solve(xi, pinit):
         b = b0.copy()
         b[0] += xi
-        pp, ss, its, res, kry = newton_step(Mt, b, g, conv=conv_M, initial=pinit, tol=tol,
-                                            maxiter=maxiter, upwind=upwind,
-                                            krylov_conv=conv_M.single, forcing=_FORCING)
-        if not res <= tol:
-            raise ConvergenceError("steady limit")
-        return pp, ss
+        # from the given tractions, else from rest (the semismooth Newton iteration of the
+        # second-order kernel can cycle from a warm start that converges from rest)
+        for start in ((pinit, None) if pinit is not None else (None,)):
+            pp, ss, its, res, kry = newton_step(Mt, b, g, conv=conv_M, initial=start, tol=tol,
+                                                maxiter=maxiter, upwind=upwind,
+                                                krylov_conv=conv_M.single, forcing=_FORCING)
+            if res <= tol:
+                return pp, ss
+        raise ConvergenceError("steady limit")
 
     try:
         if target is None:
