@@ -133,3 +133,24 @@ def test_rows_are_classified_by_reference_kind(quick):
     assert "## Consistency checks (not validation" in md
     data = json.loads(paths["json"].read_text(encoding="utf-8"))
     assert data["reference_kinds"] == counts
+
+
+#: Checks whose rows still have a tolerance more than LOOSE_MARGIN times the measured error
+#: without saying why (issue 22, item 1: to be re-derived from a refinement fit or the
+#: reference's uncertainty). The list may only shrink.
+LOOSE_WITHOUT_REASON = {
+    "nonhertz-hertzian-gap", "subsurface-hertz-axis", "exact-kalker-coefficients",
+    "exact-cattaneo", "exact-manchester-contact", "fe-indentation-hertz",
+}
+
+
+def test_loose_tolerances_say_why(quick):
+    """A validation row whose tolerance exceeds 5x its measured error says why in its
+    tolerance source ("why: ..."), except the checks listed above (known, reported debt)."""
+    from wheelrail.validation._core import LOOSE_MARGIN
+
+    report, _ = quick
+    loose = {r.check for r in report.rows
+             if r.is_validation and r.status == "passed" and r.margin > LOOSE_MARGIN
+             and "why:" not in r.tolerance_source}
+    assert loose <= LOOSE_WITHOUT_REASON, sorted(loose - LOOSE_WITHOUT_REASON)

@@ -23,6 +23,10 @@ VALIDATION_KINDS = REFERENCE_KINDS[:3]
 CLOSED_FORM_METHODS = ("hertz", "carter")
 
 
+#: A tolerance more than this many times the measured error must say why (issue 22).
+LOOSE_MARGIN = 5.0
+
+
 @dataclass(frozen=True)
 class CheckResult:
     """One row of the validation report: a method against an independent reference.
@@ -102,6 +106,16 @@ class CheckResult:
     reference_method: str = ""
     kind: str = "reference"
     reference_kind: str = ""
+
+    @property
+    def margin(self) -> float:
+        """``tolerance / error`` of a scalar tolerance (inf for a zero error, nan for bands and
+        skipped rows). Above :data:`LOOSE_MARGIN` the ``tolerance_source`` must say why
+        (``"why: ..."``)."""
+        if isinstance(self.tolerance, tuple) or not math.isfinite(self.error) \
+                or not math.isfinite(self.tolerance):
+            return math.nan
+        return math.inf if self.error == 0 else self.tolerance / abs(self.error)
 
     @property
     def is_validation(self) -> bool:

@@ -398,8 +398,8 @@ def fastsim_published(quick):
                     "eta = -6.25e-4, phi = 0.625 1/m", r.Fy / (0.3 * c.Fn), -0.596, 2e-3,
                     source="VollebregtCONTACT",
                     tolerance_source="tests/reference/test_fastsim.py::test_published_case "
-                                     "(2e-3: CONTACT's own discretisation variants spread "
-                                     "-0.5948 ... -0.5976)")]
+                                     "(2e-3); why: CONTACT's own discretisation variants "
+                                     "spread -0.5948 ... -0.5976, the reference's uncertainty")]
 
 
 def _fastsim_reference_fx(c, xi, mu):
