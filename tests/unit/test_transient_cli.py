@@ -61,6 +61,7 @@ def test_case_file_runs_like_the_python_call():
     ("Fx = 1500.0\nxi = -1e-4", r"\[transient\] xi: with Fx"),
     ("", "give Fx"),
     ("Fx = 1.0\nmargin = 0.5", r"\[transient\] margin: must be > 1, got 0.5"),
+    ("Fx = 1.0\nscheme = 'upwind3'", r"\[transient\] scheme: must be one of .*'upwind2'"),
 ])
 def test_bad_case_names_table_key_and_value(extra, match):
     with pytest.raises(wr.CaseFileError, match=match):
@@ -85,3 +86,8 @@ def test_cli_writes_netcdf_and_figures(tmp_path, capsys):
     bad.write_text(CASE.format(extra="Fn = -5.0\nFx = 1.0"))
     assert main(["transient", str(bad), "--out", str(out)]) == 2
     assert "Fn(x = 0.0 m) = -5.0 N must be > 0" in capsys.readouterr().err
+
+
+def test_case_file_chooses_the_second_order_scheme():
+    case = load_transient_case(CASE.format(extra="Fx = 1500.0\nscheme = 'upwind2'"))
+    assert case.settings["scheme"] == "upwind2"

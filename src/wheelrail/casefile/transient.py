@@ -8,6 +8,7 @@ from typing import Mapping
 from ..cases.transient import TransientCase
 from ..errors import CaseFileError, InputError
 from ..transient.loads import KINDS, TravelFunction
+from ..transient.rolling import SCHEMES
 from ._reader import Reader, read_contact, read_friction, read_materials, read_toml
 
 __all__ = ["load_transient_case"]
@@ -46,7 +47,7 @@ def load_transient_case(path_or_str) -> TransientCase:
         step = 5e-5              # V·Δt [m]
         elements = 30            # elements across 2a
         friction = "exact"       # or "regularised" (then epsilon = ... [-])
-        scheme = "interpolated"  # or "averaged", "centre"
+        scheme = "interpolated"  # or "upwind2" (second order in dx), "averaged", "centre"
         discretisation = "uniform"   # "strips" (Paul–Hashemi; strips = 30) or "material"
         frames = 60              # traction fields stored
         Fn = 10000.0             # normal force [N] (default: [contact] Fn), or penetration = δ [m]
@@ -102,8 +103,8 @@ def load_transient_case(path_or_str) -> TransientCase:
             r.fail("transient", "strips", f"must be an integer >= 2, got {v!r}")
         s["strips"] = v
     s["scheme"] = r.string("transient", t, "scheme", "interpolated")
-    if s["scheme"] not in ("interpolated", "averaged", "centre"):
-        r.fail("transient", "scheme", "must be 'interpolated', 'averaged' or 'centre', "
+    if s["scheme"] not in SCHEMES:
+        r.fail("transient", "scheme", f"must be one of {', '.join(map(repr, SCHEMES))}, "
                f"got {s['scheme']!r}")
     if "Fn" in t and "penetration" in t:
         r.fail("transient", "penetration", "give Fn or penetration, not both")
