@@ -20,7 +20,25 @@ import os
 import subprocess
 import sys
 
-CHILD = r"""
+#: The rolling case of tests/fe/test_fe_cli.py (reduced hex8, mass scaling 400, 6 mm).
+FE_CASE = """
+[fe]
+wheel = "cylinder"
+rail = "60E1"
+radius = 0.46
+load = 7500.0
+mu = 0.2
+creepage = [7e-4, 0.0, 0.0]
+mesh_size = {mesh_size}
+element = "reduced"
+mass_scaling = 400.0
+depth = 3.0
+half_width = 3.0
+half_length = 3.0
+travel = 0.006
+"""
+
+CHILD = "FE_CASE = " + repr(FE_CASE) + r"""
 import json, resource, sys, time
 import numpy as np
 import wheelrail as wr
@@ -65,6 +83,26 @@ with _resources.limit(None), _resources.time_limit_set(None):
         seconds, memory, size = est.seconds, est.memory, f"{g.nx}x{g.ny} cells"
         t, c = time.perf_counter(), time.process_time()
         wr.solve_normal(g, h, hc.materials, Fn=7500.0)
+    elif kind == "fe":
+        from wheelrail.cli.fe import _steps_before_build, case_from_toml, estimate, seconds_estimate
+        from wheelrail.fe import build_model, solve
+        from wheelrail.fe.model import mesh_size_estimate
+        import os, tempfile
+        fd, path = tempfile.mkstemp(suffix=".toml")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(FE_CASE.format(mesh_size=n * 1e-4))
+        case, _ = case_from_toml(path)
+        os.remove(path)
+        pre = mesh_size_estimate(case)
+        plastic = getattr(case.material, "yield_stress", None) is not None
+        pre_seconds = seconds_estimate(case, pre["n_elements"], _steps_before_build(case, pre),
+                                       plastic)
+        t, c = time.perf_counter(), time.process_time()
+        model = build_model(case)
+        steps, seconds = estimate(case, model)
+        r = solve(case, progress=False)
+        memory = pre["memory"] + 250e6  # the model, and the interpreter with numpy and numba
+        size = f"{model.n_elements} el x {steps} steps"
     else:
         m = max(1.1, 1.0 + 3.0 / n)
         g, _ = wr.hertz_grid(hc, n, margin=m)
@@ -73,33 +111,57 @@ with _resources.limit(None), _resources.time_limit_set(None):
         t, c = time.perf_counter(), time.process_time()
         wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=n)
     wall, cpu = time.perf_counter() - t, time.process_time() - c
-print(json.dumps({"size": size, "wall": wall, "cpu": cpu, "est_seconds": seconds,
+extra = {"pre_seconds": pre_seconds} if kind == "fe" else {}
+print(json.dumps({**extra, "size": size, "wall": wall, "cpu": cpu, "est_seconds": seconds,
                   "est_memory": memory,
                   "rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024}))
 """
 
 CASES = (("sweep", (2000, 8000, 32000)), ("transient", (20, 30, 45)),
-         ("bem_normal", (100, 200, 300)), ("exact", (30, 50, 80)))
+         ("bem_normal", (100, 200, 300)), ("exact", (30, 50, 80)),
+         ("fe", (20, 15, 10)))  # fe: mesh size in 0.1 mm
 
 
-def main():
+def _child(kind, n, transient_case):
+    out = subprocess.run([sys.executable, "-c", CHILD, kind, str(n), transient_case],
+                         capture_output=True, text=True, cwd=os.getcwd())
+    if out.returncode:
+        return out.stderr.strip().splitlines()[-1]
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main(argv=None):
+    import argparse
+
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--only", nargs="*", default=None, help="job kinds to run (default all)")
+    ap.add_argument("--cold", action="store_true",
+                    help="no warm-up run (the first size then includes compiling the kernels "
+                         "if they are not cached)")
+    args = ap.parse_args(argv)
     here = os.path.dirname(os.path.abspath(__file__))
     transient_case = os.path.join(here, "..", "docs", "examples", "transient_cattaneo_carter.toml")
     print(f"load average before: {os.getloadavg()} ({os.cpu_count()} cores)")
     print(f"{'job':10s} {'size':>22s} {'wall':>8s} {'cpu':>8s} {'estimate':>9s} {'e/wall':>6s} "
           f"{'e/cpu':>6s} {'peak RSS':>9s} {'estimate':>9s}")
     for kind, sizes in CASES:
+        if args.only and kind not in args.only:
+            continue
+        if not args.cold:
+            _child(kind, sizes[0], transient_case)  # compiles (and caches) the kernels
         for n in sizes:
-            out = subprocess.run([sys.executable, "-c", CHILD, kind, str(n), transient_case],
-                                 capture_output=True, text=True, cwd=os.getcwd())
-            if out.returncode:
-                print(f"{kind:10s} {n:>22d} failed: {out.stderr.strip().splitlines()[-1]}")
+            r = _child(kind, n, transient_case)
+            if isinstance(r, str):
+                print(f"{kind:10s} {n:>22d} failed: {r}")
                 continue
-            r = json.loads(out.stdout.strip().splitlines()[-1])
             print(f"{kind:10s} {r['size']:>22s} {r['wall']:7.2f}s {r['cpu']:7.2f}s "
                   f"{r['est_seconds']:8.2f}s {r['est_seconds'] / r['wall']:6.2f} "
                   f"{r['est_seconds'] / max(r['cpu'], 1e-9):6.2f} "
                   f"{r['rss'] / 1e6:7.0f}MB {r['est_memory'] / 1e6:7.0f}MB")
+            if "pre_seconds" in r:
+                print(f"{'':10s} {'before the mesh is built':>22s} {'':8s} {'':8s} "
+                      f"{r['pre_seconds']:8.2f}s {r['pre_seconds'] / r['wall']:6.2f} "
+                      f"{r['pre_seconds'] / max(r['cpu'], 1e-9):6.2f}")
     print(f"load average after: {os.getloadavg()}")
 
 
