@@ -194,3 +194,29 @@ def test_intact_rail_csv_has_no_gap_warning(tmp_path, recwarn):
     np.savetxt(f, np.c_[r.y * 1e3, r.z * 1e3], delimiter=",")
     wr.profiles.read(f, kind="rail", units="mm")
     assert not [w for w in recwarn if "no rail profile points" in str(w.message)]
+
+
+def test_coarse_exact_grid_warns_naming_the_option(tmp_path, capsys):
+    """The exact theory's grid is checked as the BEM's (elements across the patch): a
+    5-element grid warns naming the option 'elements' and its value; from a case file too."""
+    from wheelrail.errors import ResolutionWarning
+
+    hc = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.STEEL)
+    with pytest.warns(ResolutionWarning, match=r"elements = 5 .*only \d element\(s\) across"
+                                               r".*option 'elements' of 'exact', now 5"):
+        wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=5)
+    method = '[method]\ntangential = "exact"\n[method.exact]\nelements = 5'
+    code, _, err = run_cli(["solve", _case(tmp_path, method=method), "-q"], capsys)
+    assert code == 0, err
+    assert any("option 'elements' of 'exact'" in ln for ln in _warnings(err))
+
+
+def test_fine_exact_grid_does_not_warn():
+    import warnings
+
+    from wheelrail.errors import ResolutionWarning
+
+    hc = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.STEEL)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=12)
