@@ -220,3 +220,39 @@ def test_fine_exact_grid_does_not_warn():
     with warnings.catch_warnings():
         warnings.simplefilter("error", ResolutionWarning)
         wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=12)
+
+
+def test_polach_speed_in_kmh_refused_through_the_option(tmp_path, capsys):
+    """Polach's speed is declared with the typical/plausible ranges (one mechanism):
+    1e6 m/s is refused with the km/h hint, also from a case file."""
+    from wheelrail.errors import OptionError
+    from wheelrail.tangential.polach import Polach
+
+    with pytest.raises(OptionError, match=r"speed = 1e\+06 m/s is not plausible .*mm/s given "
+                                          r"as m/s\? 1e\+06 mm/s = 1000 m/s"):
+        Polach(speed=1e6, A=0.4, B=0.6)
+    method = '[method]\ntangential = "polach"\n[method.polach]\nspeed = 1e6\nA = 0.4\nB = 0.6'
+    code, _, err = run_cli(["solve", _case(tmp_path, method=method)], capsys)
+    assert_clean_failure(code, err, "case.toml", "speed = 1e+06 m/s", "mm/s given as m/s")
+
+
+def test_polach_speed_arrays_and_kmh_warn():
+    """300 m/s (300 km/h given?) warns; in an array the largest value is named."""
+    from wheelrail.plausibility import PlausibilityWarning
+    from wheelrail.tangential.polach import Polach
+
+    with pytest.warns(PlausibilityWarning, match=r"speed = 300 m/s .*300 km/h = 83.33 m/s"):
+        Polach(speed=300.0)
+    with pytest.warns(PlausibilityWarning, match=r"speed = 250 m/s"):
+        Polach(speed=np.array([20.0, 250.0, 30.0]))
+    assert Polach(speed=np.array([20.0, 40.0])).speed.shape == (2,)  # usual: quiet
+
+
+def test_polach_rate_declared():
+    from wheelrail.plausibility import PlausibilityWarning
+    from wheelrail.tangential.polach import Polach
+
+    decl = Polach.option_declarations()
+    assert decl["speed"].plausible == (None, 1000.0) and decl["B"].typical == (0.01, 5.0)
+    with pytest.warns(PlausibilityWarning, match=r"B = 600 s/m .*s/km given as s/m"):
+        Polach(speed=30.0, A=0.4, B=600.0)
