@@ -179,7 +179,8 @@ class Option:
         if v > hi and v > 0 and self.unit in units:
             # the unit that brings the value into the usual range, else nearest to it
             def distance(f):
-                return max(0.0, math.log10(v * f / hi), math.log10(lo / (v * f)))
+                return max(0.0, math.log10(v * f / hi),
+                           math.log10(lo / (v * f)) if lo > 0 else 0.0)
 
             other, f = min(units[self.unit], key=lambda u: distance(u[1]))
             if distance(f) < math.log10(v / hi):

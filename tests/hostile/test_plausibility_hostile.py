@@ -253,6 +253,6 @@ def test_polach_rate_declared():
     from wheelrail.tangential.polach import Polach
 
     decl = Polach.option_declarations()
-    assert decl["speed"].plausible == (None, 1000.0) and decl["B"].typical == (0.01, 5.0)
+    assert decl["speed"].plausible == (None, 1000.0) and decl["B"].typical == (0.0, 5.0)
     with pytest.warns(PlausibilityWarning, match=r"B = 600 s/m .*s/km given as s/m"):
         Polach(speed=30.0, A=0.4, B=600.0)

@@ -376,7 +376,7 @@ class Polach(TangentialMethod):
     A: float | None = option(None, kind="float", lo=0.0, hi=1.0, lo_open=True, allow_none=True,
                              doc="mu_inf/mu0 of the slip-velocity dependent friction")
     B: float | None = option(None, kind="float", unit="s/m", lo=0.0, allow_none=True,
-                             typical=(0.01, 5.0),
+                             typical=(0.0, 5.0),
                              doc="rate B of the slip-velocity dependent friction")
     conditions: str | None = option(None, choices=(None, *POLACH_2005_PARAMETERS),
                                     doc="take kA, kS, A, B from Polach (2005), Table 1")
