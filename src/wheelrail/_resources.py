@@ -41,6 +41,7 @@ environment variable ``WHEELRAIL_TIME_LIMIT`` (``"90s"``, ``"30min"``,
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import time
 from dataclasses import dataclass
@@ -118,12 +119,12 @@ def _duration(s: float) -> str:
     return f"{s / 86400:.3g} days"
 
 
-def parse_duration(text) -> float | None:
-    """'90s' → 90, '30min' → 1800, '3h' → 10800, '3600' → 3600 s; 'off'/'none' → None."""
+def _parse(text, factors: dict, what: str, examples: str) -> float | None:
+    """A positive number with an optional unit suffix (``factors``: suffix -> multiplier);
+    'off', 'none', 'inf', 'unlimited' → None. ``what`` and ``examples`` for the message."""
     s = str(text).strip().lower().replace(" ", "")
     if s in ("off", "none", "inf", "unlimited"):
         return None
-    factors = {"d": 86400.0, "h": 3600.0, "min": 60.0, "m": 60.0, "s": 1.0}
     for suffix in sorted(factors, key=len, reverse=True):
         if s.endswith(suffix):
             num, f = s[:-len(suffix)], factors[suffix]
@@ -133,11 +134,16 @@ def parse_duration(text) -> float | None:
     try:
         val = float(num) * f
     except ValueError:
-        raise InputError(f"time limit must be a duration like 90s, 30min, 3h or 'off', "
-                         f"got {text!r}") from None
-    if not val > 0 or val != val or val == float("inf"):
-        raise InputError(f"time limit must be a positive duration or 'off', got {text!r}")
+        raise InputError(f"{what} must be {examples} or 'off', got {text!r}") from None
+    if not val > 0 or not math.isfinite(val):
+        raise InputError(f"{what} must be positive or 'off', got {text!r}")
     return val
+
+
+def parse_duration(text) -> float | None:
+    """'90s' → 90, '30min' → 1800, '3h' → 10800, '3600' → 3600 s; 'off'/'none' → None."""
+    return _parse(text, {"d": 86400.0, "h": 3600.0, "min": 60.0, "m": 60.0, "s": 1.0},
+                  "time limit", "a duration like 90s, 30min, 3h")
 
 
 def time_limit() -> float | None:
@@ -259,25 +265,9 @@ def load_note(seconds: float) -> str:
 
 def parse_size(text) -> float | None:
     """'8GB' → 8e9, '500MB' → 5e8, '2e9' → 2e9 bytes; 'off'/'none' → None (no limit)."""
-    s = str(text).strip().lower().replace(" ", "")
-    if s in ("off", "none", "inf", "unlimited"):
-        return None
-    factors = {"tb": 1e12, "gb": 1e9, "mb": 1e6, "kb": 1e3, "gib": 2**30, "mib": 2**20,
-               "g": 1e9, "m": 1e6, "k": 1e3, "b": 1.0}
-    for suffix in sorted(factors, key=len, reverse=True):
-        if s.endswith(suffix):
-            num, f = s[:-len(suffix)], factors[suffix]
-            break
-    else:
-        num, f = s, 1.0
-    try:
-        val = float(num) * f
-    except ValueError:
-        raise InputError(f"memory limit must be a size like 8GB, 500MB or 'off', got {text!r}"
-                         ) from None
-    if not val > 0 or val != val or val == float("inf"):
-        raise InputError(f"memory limit must be a positive size or 'off', got {text!r}")
-    return val
+    return _parse(text, {"tb": 1e12, "gb": 1e9, "mb": 1e6, "kb": 1e3, "gib": 2**30,
+                         "mib": 2**20, "g": 1e9, "m": 1e6, "k": 1e3, "b": 1.0},
+                  "memory limit", "a size like 8GB, 500MB")
 
 
 def _physical_memory() -> float:

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from _helpers import assert_clean_failure, run_cli
+from _helpers import assert_clean_failure, run_cli, wheelset_case
 
 import wheelrail as wr
 
@@ -120,20 +120,6 @@ def test_tiny_friction_warns(tmp_path, capsys):
     assert any("mu = 1e-09" in ln for ln in _warnings(err))
 
 
-WHEELSET = """
-[wheelset]
-profile = "S1002"
-[track]
-profile = "60E1"
-[motion]
-speed = {speed}
-{extra}
-[position]
-y = 0.002
-vertical_load = 10e3
-[friction]
-mu = 0.3
-"""
 
 
 @pytest.mark.parametrize("speed,extra,names", [
@@ -142,7 +128,7 @@ mu = 0.3
 ])
 def test_absurd_motion_refused(speed, extra, names, tmp_path, capsys):
     p = tmp_path / "ws.toml"
-    p.write_text(WHEELSET.format(speed=speed, extra=extra))
+    p.write_text(wheelset_case(speed=speed, motion=extra))
     code, _, err = run_cli(["wheelset", p, "--out", tmp_path / "o", "--no-plots"], capsys)
     assert_clean_failure(code, err, "ws.toml", *names)
 

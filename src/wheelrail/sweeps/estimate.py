@@ -29,7 +29,7 @@ import sys
 import time
 from dataclasses import dataclass
 
-from .._resources import check, suspended
+from .._resources import _human, check, suspended
 from .evaluators import MESSAGE_LENGTH, get_evaluator
 
 __all__ = ["SweepEstimate", "estimate_sweep", "check_sweep"]
@@ -63,14 +63,7 @@ class SweepEstimate:
 
     def describe(self) -> str:
         return (f"{self.per_point * 1e3:.3g} ms per point measured on {self.workers} "
-                f"worker(s); store up to {_size(self.disk)} on disk")
-
-
-def _size(n: float) -> str:
-    for unit, f in (("TB", 1e12), ("GB", 1e9), ("MB", 1e6), ("kB", 1e3)):
-        if n >= f:
-            return f"{n / f:.3g} {unit}"
-    return f"{n:.0f} B"
+                f"worker(s); store up to {_human(self.disk)} on disk")
 
 
 def _probe_block(spec, k: int) -> tuple:
