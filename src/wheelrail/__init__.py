@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import importlib
 
-from . import conventions
+from . import _numba_cache, conventions
 from ._version import __version__
 from .errors import (
     CaseFileError,
@@ -29,6 +29,8 @@ from .errors import (
 )
 from .materials import STEEL, Material, MaterialPair
 from .results import CreepForcesResult, Status
+
+_numba_cache.install()  # kernels' numba cache follows every kernel source (see the module)
 
 # name -> (module, attribute); resolved on first access
 _LAZY = {

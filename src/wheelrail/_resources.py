@@ -10,15 +10,24 @@ expected to take more than a few seconds. With :func:`estimating` (the
 command-line option ``--estimate-only``) the first estimate ends the job:
 :class:`EstimateOnly` carries it, nothing is allocated or written.
 
-Estimates (``benchmarks/bench_resources.py`` measures them; 2-core machine,
-numpy/scipy FFT, peak resident memory including ~110 MB for the interpreter)
+Estimates (``benchmarks/bench_estimates.py`` and ``bench_resources.py`` measure them;
+CPU time of one solve in a fresh process on one core of the shared 2-core machine,
+numba kernels cached; peak resident memory including the interpreter)
 
-============  =============================  ======================================
-solver        memory                          time (fit, ±50 % with the machine load)
-============  =============================  ======================================
-bem_normal    150 MB + 740 B per grid cell    9.7 s · (cells / 2.5e5)^1.2
-exact         150 MB + 2.3 kB per grid cell   8.4 s · (cells / 3.1e4)^0.85
-============  =============================  ======================================
+============  =============================  ==========================================
+solver        memory                          time (fit of CPU time, within ±30 %)
+============  =============================  ==========================================
+bem_normal    150 MB + 780 B per grid cell    1.92 s · (cells / 2.5e5)^1.1
+                                              (5.6e3–1e6 cells: 0.035–9.9 s)
+exact         190 MB + 2.3 kB per grid cell   0.5 s + 3.8 µs per cell
+                                              + 0.31 s · (cells / 3.1e4)^1.5
+                                              (529–436 921 cells: 0.45–18.5 s)
+============  =============================  ==========================================
+
+On a loaded machine the wall time is longer than the CPU time (about 3 × at a load
+average of 10 on 2 cores); the estimates are of the time on an unloaded core, and the
+message adds the time expected at the current load (:func:`load_factor`). The limits
+apply to the unloaded estimate.
 
 The memory limit is, in this order: :func:`memory_limit` inside a :func:`limit`
 block (the command-line option ``wheelrail --memory-limit``); the environment
@@ -32,6 +41,7 @@ environment variable ``WHEELRAIL_TIME_LIMIT`` (``"90s"``, ``"30min"``,
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import time
 from dataclasses import dataclass
@@ -40,12 +50,15 @@ from .errors import InputError
 
 __all__ = ["Estimate", "EstimateOnly", "ResourceLimitError", "estimate", "guard", "check",
            "limit", "memory_limit", "time_limit", "time_limit_set", "parse_size",
-           "parse_duration", "estimating", "suspended", "reporting", "DEFAULT_TIME_LIMIT"]
+           "parse_duration", "estimating", "load_factor", "load_note", "suspended", "reporting", "DEFAULT_TIME_LIMIT"]
 
-#: kind -> (fixed bytes, bytes per cell, reference seconds, reference cells, time exponent)
+#: kind -> (fixed bytes, bytes per cell, fixed seconds, seconds per cell, seconds at the
+#: reference cells, reference cells, time exponent): memory = fixed + per cell × cells,
+#: time = fixed + per cell × cells + reference seconds × (cells / reference cells) **
+#: exponent (see the module docstring)
 MODELS = {
-    "bem_normal": (150e6, 740.0, 9.7, 2.5e5, 1.2),
-    "exact": (150e6, 2300.0, 8.4, 3.1e4, 0.85),
+    "bem_normal": (150e6, 780.0, 0.0, 0.0, 1.92, 2.5e5, 1.1),
+    "exact": (190e6, 2300.0, 0.5, 3.8e-6, 0.31, 3.1e4, 1.5),
 }
 #: Solves expected to take longer than this [s] show a spinner on the command line.
 PROGRESS_AFTER = 3.0
@@ -106,12 +119,12 @@ def _duration(s: float) -> str:
     return f"{s / 86400:.3g} days"
 
 
-def parse_duration(text) -> float | None:
-    """'90s' → 90, '30min' → 1800, '3h' → 10800, '3600' → 3600 s; 'off'/'none' → None."""
+def _parse(text, factors: dict, what: str, examples: str) -> float | None:
+    """A positive number with an optional unit suffix (``factors``: suffix -> multiplier);
+    'off', 'none', 'inf', 'unlimited' → None. ``what`` and ``examples`` for the message."""
     s = str(text).strip().lower().replace(" ", "")
     if s in ("off", "none", "inf", "unlimited"):
         return None
-    factors = {"d": 86400.0, "h": 3600.0, "min": 60.0, "m": 60.0, "s": 1.0}
     for suffix in sorted(factors, key=len, reverse=True):
         if s.endswith(suffix):
             num, f = s[:-len(suffix)], factors[suffix]
@@ -121,11 +134,16 @@ def parse_duration(text) -> float | None:
     try:
         val = float(num) * f
     except ValueError:
-        raise InputError(f"time limit must be a duration like 90s, 30min, 3h or 'off', "
-                         f"got {text!r}") from None
-    if not val > 0 or val != val or val == float("inf"):
-        raise InputError(f"time limit must be a positive duration or 'off', got {text!r}")
+        raise InputError(f"{what} must be {examples} or 'off', got {text!r}") from None
+    if not val > 0 or not math.isfinite(val):
+        raise InputError(f"{what} must be positive or 'off', got {text!r}")
     return val
+
+
+def parse_duration(text) -> float | None:
+    """'90s' → 90, '30min' → 1800, '3h' → 10800, '3600' → 3600 s; 'off'/'none' → None."""
+    return _parse(text, {"d": 86400.0, "h": 3600.0, "min": 60.0, "m": 60.0, "s": 1.0},
+                  "time limit", "a duration like 90s, 30min, 3h")
 
 
 def time_limit() -> float | None:
@@ -200,7 +218,7 @@ def check(what: str, seconds: float, memory: float, detail: str = "") -> str:
         With the estimate, the limit and how to override it.
     """
     text = (f"{what}: about {_duration(seconds)} and {_human(memory)}"
-            + (f" ({detail})" if detail else ""))
+            + (f" ({detail})" if detail else "") + load_note(seconds))
     if _state["estimate_only"]:
         raise EstimateOnly(text)
     lim = memory_limit()
@@ -220,27 +238,36 @@ def check(what: str, seconds: float, memory: float, detail: str = "") -> str:
     return text
 
 
+def load_factor() -> float:
+    """Expected wall time / CPU time at the machine's current load: √((load + 1) / cores),
+    at least 1 (measured 2.0–3.0 at a load average of 7–11 on 2 cores with
+    ``benchmarks/bench_estimates.py``; 1 on an idle machine)."""
+    try:
+        load = os.getloadavg()[0]
+    except (OSError, AttributeError):  # pragma: no cover - no load average
+        return 1.0
+    return max(1.0, ((load + 1.0) / (os.cpu_count() or 1)) ** 0.5)
+
+
+def load_note(seconds: float) -> str:
+    """"; about … at the current load …" when the machine is busy (the estimates are of
+    the time on an unloaded core), else ""."""
+    f = load_factor()
+    if f < 1.3 or seconds * f < 1.0:
+        return ""
+    try:
+        load = os.getloadavg()[0]
+    except (OSError, AttributeError):  # pragma: no cover
+        return ""
+    return (f"; about {_duration(seconds * f)} at the current load ({load:.1f} on "
+            f"{os.cpu_count()} cores)")
+
+
 def parse_size(text) -> float | None:
     """'8GB' → 8e9, '500MB' → 5e8, '2e9' → 2e9 bytes; 'off'/'none' → None (no limit)."""
-    s = str(text).strip().lower().replace(" ", "")
-    if s in ("off", "none", "inf", "unlimited"):
-        return None
-    factors = {"tb": 1e12, "gb": 1e9, "mb": 1e6, "kb": 1e3, "gib": 2**30, "mib": 2**20,
-               "g": 1e9, "m": 1e6, "k": 1e3, "b": 1.0}
-    for suffix in sorted(factors, key=len, reverse=True):
-        if s.endswith(suffix):
-            num, f = s[:-len(suffix)], factors[suffix]
-            break
-    else:
-        num, f = s, 1.0
-    try:
-        val = float(num) * f
-    except ValueError:
-        raise InputError(f"memory limit must be a size like 8GB, 500MB or 'off', got {text!r}"
-                         ) from None
-    if not val > 0 or val != val or val == float("inf"):
-        raise InputError(f"memory limit must be a positive size or 'off', got {text!r}")
-    return val
+    return _parse(text, {"tb": 1e12, "gb": 1e9, "mb": 1e6, "kb": 1e3, "gib": 2**30,
+                         "mib": 2**20, "g": 1e9, "m": 1e6, "k": 1e3, "b": 1.0},
+                  "memory limit", "a size like 8GB, 500MB")
 
 
 def _physical_memory() -> float:
@@ -273,9 +300,10 @@ def limit(size):
 
 def estimate(kind: str, cells: int) -> Estimate:
     """Memory and time estimate of a solve of ``kind`` ("bem_normal", "exact") on ``cells``."""
-    fixed, per_cell, t_ref, c_ref, expo = MODELS[kind]
+    fixed, per_cell, t_fixed, t_cell, t_ref, c_ref, expo = MODELS[kind]
     cells = int(cells)
-    return Estimate(kind, cells, fixed + per_cell * cells, t_ref * (cells / c_ref) ** expo)
+    return Estimate(kind, cells, fixed + per_cell * cells,
+                    t_fixed + t_cell * cells + t_ref * (cells / c_ref) ** expo)
 
 
 def guard(kind: str, cells: int, what: str) -> Estimate:
@@ -295,7 +323,7 @@ def guard(kind: str, cells: int, what: str) -> Estimate:
         With the estimate, the limit and how to override it.
     """
     est = estimate(kind, cells)
-    text = f"{what}: {est.describe()}"
+    text = f"{what}: {est.describe()}{load_note(est.seconds)}"
     if _state["estimate_only"]:
         raise EstimateOnly(text)
     lim = memory_limit()

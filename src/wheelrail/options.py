@@ -155,34 +155,61 @@ class Option:
         if self.check is not None:
             out = self.check(name, value)
             value = value if out is None else out
-        if (self.typical or self.plausible) and isinstance(value, numbers.Real) \
-                and not isinstance(value, bool):
-            self._plausibility(name, float(value))
+        if (self.typical or self.plausible) and value is not None \
+                and not isinstance(value, (bool, str)):
+            try:  # a number, or an array of them (e.g. one speed per batch case)
+                arr = np.asarray(value, dtype=float)
+            except (TypeError, ValueError):
+                arr = None
+            if arr is not None and arr.size and np.isfinite(arr).all():
+                self._plausibility(name, float(arr.min()), float(arr.max()))
         return value
 
-    def _plausibility(self, name: str, v: float) -> None:
-        """Warn outside :attr:`typical`, refuse outside :attr:`plausible` (with a unit hint)."""
+    def _hint(self, v: float) -> str:
+        """The likely unit mistake of a value ``v`` outside :attr:`typical`, or ""."""
+        lo, hi = self.typical or (None, None)
+        if lo is None or hi is None:
+            return ""
+        if self.unit == "m":
+            if v > hi and lo <= v * 1e-3 <= hi:
+                return f" (mm given as m? {v:g} mm = {v * 1e-3:g} m)"
+            if v < lo and lo <= v * 1e3 <= hi:
+                return f" (µm given as mm, or m as mm? {v * 1e3:g} would be usual)"
+        units = {"m/s": (("km/h", 1 / 3.6), ("mm/s", 1e-3)), "s/m": (("s/km", 1e-3),)}
+        if v > hi and v > 0 and self.unit in units:
+            # the unit that brings the value into the usual range, else nearest to it
+            def distance(f):
+                return max(0.0, math.log10(v * f / hi),
+                           math.log10(lo / (v * f)) if lo > 0 else 0.0)
+
+            other, f = min(units[self.unit], key=lambda u: distance(u[1]))
+            if distance(f) < math.log10(v / hi):
+                return f" ({other} given as {self.unit}? {v:g} {other} = {v * f:.4g} {self.unit})"
+        return ""
+
+    def _plausibility(self, name: str, vmin: float, vmax: float | None = None) -> None:
+        """Warn outside :attr:`typical`, refuse outside :attr:`plausible` (with a unit hint);
+        ``vmin``, ``vmax`` the smallest and largest of the given value(s)."""
         if not plausibility.enabled():
             return
+        vmax = vmin if vmax is None else vmax
         unit = f" {self.unit}" if self.unit else ""
-        hint = ""
         lo, hi = self.typical or (None, None)
-        if self.unit == "m" and lo is not None:
-            if v > hi and lo <= v * 1e-3 <= hi:
-                hint = f" (mm given as m? {v:g} mm = {v * 1e-3:g} m)"
-            elif v < lo and lo <= v * 1e3 <= hi:
-                hint = f" (µm given as mm, or m as mm? {v * 1e3:g} would be usual)"
         if self.plausible is not None:
             plo, phi = self.plausible
-            if (plo is not None and v < plo) or (phi is not None and v > phi):
+            bad = vmin if plo is not None and vmin < plo else \
+                vmax if phi is not None and vmax > phi else None
+            if bad is not None:
                 bounds = (f"at most {phi:g}" if plo is None else f"at least {plo:g}"
                           if phi is None else f"{plo:g} … {phi:g}")
-                plausibility._refuse(f"{name} = {v:g}{unit} is not plausible for a wheel–rail "
-                                     f"contact (accepted: {bounds}{unit}){hint}")
-        if self.typical is not None and ((lo is not None and v < lo)
-                                         or (hi is not None and v > hi)):
-            plausibility._warn(f"{name} = {v:g}{unit} is outside the usual range "
-                               f"{lo:g} … {hi:g}{unit}{hint}")
+                plausibility._refuse(f"{name} = {bad:g}{unit} is not plausible for a wheel–rail "
+                                     f"contact (accepted: {bounds}{unit}){self._hint(bad)}")
+        if self.typical is not None:
+            bad = vmin if lo is not None and vmin < lo else \
+                vmax if hi is not None and vmax > hi else None
+            if bad is not None:
+                plausibility._warn(f"{name} = {bad:g}{unit} is outside the usual range "
+                                   f"{lo:g} … {hi:g}{unit}{self._hint(bad)}")
 
     def _bounds(self, name, v):
         lo, hi = self.lo, self.hi

@@ -7,6 +7,27 @@ from pathlib import Path
 
 from wheelrail.cli.main import main
 
+#: A point contact (7.5 kN, wheel 0.46 m on a 0.30 m rail head, ξ = −1e-3, μ = 0.3).
+POINT_CASE = """[contact]
+Fn = 7500.0
+wheel_rolling_radius = 0.46
+rail_profile_radius = 0.30
+[creepage]
+xi = -0.001
+[friction]
+mu = 0.3
+"""
+#: The point contact solved with a small FASTSIM grid.
+SOLVE_CASE = POINT_CASE + "[method.fastsim]\nnx = 8\nny = 8\n"
+
+
+def wheelset_case(speed="20.0", y="0.002", motion="", position="") -> str:
+    """A wheelset case (S1002 on 60E1, 10 kN, μ = 0.3); ``motion``, ``position``: extra
+    lines of those tables."""
+    return (f'[wheelset]\nprofile = "S1002"\n[track]\nprofile = "60E1"\n[motion]\n'
+            f"speed = {speed}\n{motion}\n[position]\ny = {y}\n{position}\n"
+            f"vertical_load = 10e3\n[friction]\nmu = 0.3\n")
+
 
 def run_cli(argv, capsys):
     """Run ``wheelrail argv`` in-process; returns (exit code, stdout, stderr lines)."""

@@ -11,7 +11,8 @@ from __future__ import annotations
 import json
 
 import pytest
-from _helpers import assert_clean_failure, assert_clean_warnings, assert_no_debris, run_cli
+from _helpers import (SOLVE_CASE, assert_clean_failure, assert_clean_warnings, assert_no_debris,
+                      run_cli)
 
 GEO = ["geometry", "--no-plots", "--points", "5"]
 
@@ -90,19 +91,7 @@ def test_geometry_strict_flags_derailed_rows(tmp_path, capsys):
     assert code == 1 and "--strict" in out
 
 
-SOLVE_GOOD = """
-[contact]
-Fn = 7500.0
-wheel_rolling_radius = 0.46
-rail_profile_radius = 0.30
-[creepage]
-xi = -0.001
-[friction]
-mu = 0.3
-[method.fastsim]
-nx = 8
-ny = 8
-"""
+SOLVE_GOOD = SOLVE_CASE
 
 
 @pytest.fixture

@@ -12,30 +12,16 @@ import csv
 from types import SimpleNamespace
 
 import numpy as np
-from _helpers import run_cli
+from _helpers import run_cli, wheelset_case
 from rich.console import Console
 
 from wheelrail.cli import compare
 
-CASE = """
-[wheelset]
-profile = "S1002"
-[track]
-profile = "60E1"
-[motion]
-speed = 20.0
-[position]
-y = 0.005
-{yaw}
-vertical_load = 10e3
-[friction]
-mu = 0.3
-"""
 
 
 def test_sweep_over_y_keeps_the_case_yaw(tmp_path, capsys):
     p = tmp_path / "c.toml"
-    p.write_text(CASE.format(yaw="yaw = 0.004"))
+    p.write_text(wheelset_case(y="0.005", position="yaw = 0.004"))
     code, out, err = run_cli(["compare", p, "--sweep", "--y", "5", "5", "1", "--methods", "hertz",
                               "--out", tmp_path / "o", "--no-plots", "--side", "right"], capsys)
     assert code == 0, err

@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 import pytest
-from _helpers import assert_clean_failure, run_cli
+from _helpers import POINT_CASE, assert_clean_failure, run_cli
 
 from wheelrail import _resources
 
@@ -32,20 +32,7 @@ xi = {{start = -0.003, stop = 0.003, num = {num}}}
 
 TRANSIENT = Path(__file__).parents[2] / "docs" / "examples" / "transient_cattaneo_carter.toml"
 
-BEM = """
-[contact]
-Fn = 7500.0
-wheel_rolling_radius = 0.46
-rail_profile_radius = 0.30
-[creepage]
-xi = -0.001
-[friction]
-mu = 0.3
-[method]
-normal = "bem"
-[method.bem]
-element_size = {size}
-"""
+BEM = POINT_CASE + '[method]\nnormal = "bem"\n[method.bem]\nelement_size = {size}\n'
 
 
 def _sweep(tmp_path, method="fastsim", num=5, extra=""):

@@ -24,21 +24,9 @@ import threading
 import time
 
 import pytest
-from _helpers import assert_clean_failure, assert_no_debris, run_cli
+from _helpers import SOLVE_CASE, assert_clean_failure, assert_no_debris, run_cli, wheelset_case
 
-CASE = """
-[contact]
-Fn = 7500.0
-wheel_rolling_radius = 0.46
-rail_profile_radius = 0.30
-[creepage]
-xi = -0.001
-[friction]
-mu = 0.3
-[method.fastsim]
-nx = 8
-ny = 8
-"""
+CASE = SOLVE_CASE
 
 SWEEP = """
 [sweep]
@@ -52,19 +40,7 @@ eta = [0.0, 0.001]
 chunk = 2
 """
 
-WHEELSET = """
-[wheelset]
-profile = "S1002"
-[track]
-profile = "60E1"
-[motion]
-speed = 20.0
-[position]
-y = 0.002
-vertical_load = 10e3
-[friction]
-mu = 0.3
-"""
+WHEELSET = wheelset_case()
 
 MARKUP = "c[/bold]"  # a directory "c[" with a file "bold].toml" in it
 

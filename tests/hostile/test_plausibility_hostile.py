@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from _helpers import assert_clean_failure, run_cli
+from _helpers import assert_clean_failure, run_cli, wheelset_case
 
 import wheelrail as wr
 
@@ -120,20 +120,6 @@ def test_tiny_friction_warns(tmp_path, capsys):
     assert any("mu = 1e-09" in ln for ln in _warnings(err))
 
 
-WHEELSET = """
-[wheelset]
-profile = "S1002"
-[track]
-profile = "60E1"
-[motion]
-speed = {speed}
-{extra}
-[position]
-y = 0.002
-vertical_load = 10e3
-[friction]
-mu = 0.3
-"""
 
 
 @pytest.mark.parametrize("speed,extra,names", [
@@ -142,7 +128,7 @@ mu = 0.3
 ])
 def test_absurd_motion_refused(speed, extra, names, tmp_path, capsys):
     p = tmp_path / "ws.toml"
-    p.write_text(WHEELSET.format(speed=speed, extra=extra))
+    p.write_text(wheelset_case(speed=speed, motion=extra))
     code, _, err = run_cli(["wheelset", p, "--out", tmp_path / "o", "--no-plots"], capsys)
     assert_clean_failure(code, err, "ws.toml", *names)
 
@@ -194,3 +180,65 @@ def test_intact_rail_csv_has_no_gap_warning(tmp_path, recwarn):
     np.savetxt(f, np.c_[r.y * 1e3, r.z * 1e3], delimiter=",")
     wr.profiles.read(f, kind="rail", units="mm")
     assert not [w for w in recwarn if "no rail profile points" in str(w.message)]
+
+
+def test_coarse_exact_grid_warns_naming_the_option(tmp_path, capsys):
+    """The exact theory's grid is checked as the BEM's (elements across the patch): a
+    5-element grid warns naming the option 'elements' and its value; from a case file too."""
+    from wheelrail.errors import ResolutionWarning
+
+    hc = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.STEEL)
+    with pytest.warns(ResolutionWarning, match=r"elements = 5 .*only \d element\(s\) across"
+                                               r".*option 'elements' of 'exact', now 5"):
+        wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=5)
+    method = '[method]\ntangential = "exact"\n[method.exact]\nelements = 5'
+    code, _, err = run_cli(["solve", _case(tmp_path, method=method), "-q"], capsys)
+    assert code == 0, err
+    assert any("option 'elements' of 'exact'" in ln for ln in _warnings(err))
+
+
+def test_fine_exact_grid_does_not_warn():
+    import warnings
+
+    from wheelrail.errors import ResolutionWarning
+
+    hc = wr.hertz(7500.0, 0.5 / 0.46, 0.5 / 0.30, wr.STEEL)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", ResolutionWarning)
+        wr.creep_forces(hc, (-1e-3, 0.0, 0.0), 0.3, method="exact", elements=12)
+
+
+def test_polach_speed_in_kmh_refused_through_the_option(tmp_path, capsys):
+    """Polach's speed is declared with the typical/plausible ranges (one mechanism):
+    1e6 m/s is refused with the km/h hint, also from a case file."""
+    from wheelrail.errors import OptionError
+    from wheelrail.tangential.polach import Polach
+
+    with pytest.raises(OptionError, match=r"speed = 1e\+06 m/s is not plausible .*mm/s given "
+                                          r"as m/s\? 1e\+06 mm/s = 1000 m/s"):
+        Polach(speed=1e6, A=0.4, B=0.6)
+    method = '[method]\ntangential = "polach"\n[method.polach]\nspeed = 1e6\nA = 0.4\nB = 0.6'
+    code, _, err = run_cli(["solve", _case(tmp_path, method=method)], capsys)
+    assert_clean_failure(code, err, "case.toml", "speed = 1e+06 m/s", "mm/s given as m/s")
+
+
+def test_polach_speed_arrays_and_kmh_warn():
+    """300 m/s (300 km/h given?) warns; in an array the largest value is named."""
+    from wheelrail.plausibility import PlausibilityWarning
+    from wheelrail.tangential.polach import Polach
+
+    with pytest.warns(PlausibilityWarning, match=r"speed = 300 m/s .*300 km/h = 83.33 m/s"):
+        Polach(speed=300.0)
+    with pytest.warns(PlausibilityWarning, match=r"speed = 250 m/s"):
+        Polach(speed=np.array([20.0, 250.0, 30.0]))
+    assert Polach(speed=np.array([20.0, 40.0])).speed.shape == (2,)  # usual: quiet
+
+
+def test_polach_rate_declared():
+    from wheelrail.plausibility import PlausibilityWarning
+    from wheelrail.tangential.polach import Polach
+
+    decl = Polach.option_declarations()
+    assert decl["speed"].plausible == (None, 1000.0) and decl["B"].typical == (0.0, 5.0)
+    with pytest.warns(PlausibilityWarning, match=r"B = 600 s/m .*s/km given as s/m"):
+        Polach(speed=30.0, A=0.4, B=600.0)

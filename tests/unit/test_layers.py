@@ -41,7 +41,7 @@ import wheelrail
 ROOT = pathlib.Path(wheelrail.__file__).parent
 
 BASE = {"errors", "conventions", "_validation", "materials", "plausibility", "_toml", "_atomic",
-        "_resources", "_version"}
+        "_resources", "_version", "_numba_cache"}
 CORE = {"options", "results", "patch", "hertzian"}
 METHODS = {"profiles", "geometry", "normal", "tangential", "reference"}
 DRIVERS = {"contact", "transient", "fe", "sweeps", "dynamics"}

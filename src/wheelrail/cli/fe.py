@@ -42,9 +42,43 @@ from ._output import esc
 
 HELP = "finite-element rolling contact (or static indentation) of an [fe] case file"
 
-#: Measured cost per element and step [s] of the whole explicit loop, used for the time
-#: estimate (one core on the shared 2-core machine; benchmarks/bench_fe_plastic.py speed).
-COST_PER_ELEMENT_STEP = {"full": 3.5e-7, "reduced": 1.6e-7}
+#: Time model of an explicit run (``benchmarks/bench_estimates.py``; CPU time on one core
+#: of the 2-core machine, reduced and full hex8, cached kernels): per step a fixed cost
+#: (contact, kinematics, bookkeeping) plus a cost per element, and the model's build. Fitted
+#: on the rolling case of tests/fe/test_fe_cli.py at mesh 2, 1.5, 1 and 0.7 mm (952–16 632
+#: elements, 1 802–4 307 steps): 1.6, 2.2, 2.9 and 5.3 ms per step.
+STEP_COST = 1.4e-3
+COST_PER_ELEMENT_STEP = {"full": 4.5e-7, "reduced": 2.3e-7}
+#: Plastic / elastic cost of the per-element part of a step (J2 return mapping at the
+#: integration points; measured 1.3 on the reduced hex8 at 8 370 elements).
+PLASTIC_COST_FACTOR = 1.3
+#: Build of the model: fixed and per element [s].
+BUILD_COST = (0.3, 6e-5)
+#: First run only: numba compiles the FE kernels (measured 35 s; cached afterwards).
+COMPILE_SECONDS = 35.0
+
+
+def seconds_estimate(case, n_elements: int, steps: float, plastic: bool) -> float:
+    """Estimated time [s] of an explicit run of ``steps`` steps on ``n_elements`` elements:
+    model build, steps × (:data:`STEP_COST` + elements × :data:`COST_PER_ELEMENT_STEP`)
+    and, when the FE kernels are not cached yet, their compilation."""
+    per_element = COST_PER_ELEMENT_STEP[case.element] * (PLASTIC_COST_FACTOR if plastic else 1.0)
+    seconds = BUILD_COST[0] + BUILD_COST[1] * n_elements + steps * (STEP_COST + n_elements
+                                                                    * per_element)
+    return seconds + (COMPILE_SECONDS if not _kernels_cached() else 0.0)
+
+
+def _kernels_cached() -> bool:
+    """Whether the explicit FE loop has a valid numba cache (else the run compiles it)."""
+    try:
+        from .._numba_cache import is_cached
+        from ..fe import _explicit
+
+        dispatchers = [v for v in vars(_explicit).values() if hasattr(v, "_cache")
+                       and hasattr(v, "py_func")]
+        return all(is_cached(d) for d in dispatchers)
+    except Exception:  # pragma: no cover - numba internals moved: assume cached
+        return True
 
 
 def add_arguments(p) -> None:
@@ -182,7 +216,8 @@ def _material(t, path):
 
 
 def estimate(case, model) -> tuple[int, float]:
-    """Steps and estimated time [s] of an explicit run (one core; plastic × 2.3)."""
+    """Steps and estimated time [s] of an explicit run of a built model
+    (:func:`seconds_estimate`)."""
     import numpy as np
 
     from ..fe.explicit import relaxation_steps, time_step
@@ -192,35 +227,50 @@ def estimate(case, model) -> tuple[int, float]:
     _, t_end = speed_profile(case, model.geometry["travel"])
     n1, _ = relaxation_steps(case, model, dt)
     steps = case.passes * (int(np.ceil(t_end / dt)) + n1)
-    factor = PLASTIC_COST_FACTOR if model.plastic else 1.0
-    return steps, steps * model.n_elements * COST_PER_ELEMENT_STEP[case.element] * factor
+    return steps, seconds_estimate(case, model.n_elements, steps, model.plastic)
 
 
-#: Plastic / elastic cost of the element kernel (reduced hex8, benchmarks/bench_fe_plastic.py).
-PLASTIC_COST_FACTOR = 2.3
+def _steps_before_build(case, size) -> float:
+    """Explicit steps of a run, before the mesh is built: the stable step is the smaller of
+    the element limit h / c and the contact-spring limit √(m / k) of a surface node
+    (m = ρ h³ / 2 scaled, k = penalty E h; damping factor of the contact dashpots), within
+    20 % of the built model's (:func:`wheelrail.fe.rolling.stable_time_step`); plus the
+    dynamic relaxation (12 periods of the kept bodies' thickness mode)."""
+    import numpy as np
+
+    from ..fe.materials import as_fe_material
+    from ..fe.rolling import contact_damping_factor, speed_profile
+
+    mat = as_fe_material(case.material, case.density)
+    h = case.mesh_size
+    c = mat.wave_speed / np.sqrt(case.mass_scaling)
+    dt_c = np.sqrt(mat.density * case.mass_scaling * h * h / (2.0 * case.penalty * mat.E))
+    dt = case.time_step or case.courant * min(h / c, dt_c * contact_damping_factor(
+        case.contact_damping))
+    _, t_end = speed_profile(case, size["travel"])
+    omega1 = np.pi * c / (2.0 * size["depth"])
+    return case.passes * float(np.ceil(t_end / dt) + np.ceil(12 * 2 * np.pi / omega1 / dt))
 
 
 def _check_size(case, mode) -> None:
     """Refuse, before anything is allocated, a mesh past the memory limit or an explicit run
-    past the time limit (lower bound: the element Courant step h / c of the scaled density)."""
-    import numpy as np
-
+    past the time limit (:func:`seconds_estimate` with the steps of
+    :func:`_steps_before_build`)."""
     from .. import _resources
-    from ..fe.materials import as_fe_material
     from ..fe.model import mesh_size_estimate
-    from ..fe.rolling import speed_profile
 
     size = mesh_size_estimate(case, rolling=(mode == "roll"))
     n = size["n_elements"]
     seconds = 0.0
     if mode == "roll" and case.integrator == "explicit":
-        c = as_fe_material(case.material, case.density).wave_speed / np.sqrt(case.mass_scaling)
-        dt = case.time_step or case.courant * case.mesh_size / c
-        _, t_end = speed_profile(case, size["travel"])
-        steps = case.passes * float(np.ceil(t_end / dt))
-        seconds = steps * n * COST_PER_ELEMENT_STEP[case.element]
+        plastic = getattr(case.material, "yield_stress", None) is not None
+        steps = _steps_before_build(case, size)
+        seconds = seconds_estimate(case, n, steps, plastic)
+        detail = f"about {steps:.3g} explicit steps; measured cost per element and step"
+    else:
+        detail = "elements counted from the mesh parameters"
     _resources.check(f"FE mesh of {n:.3g} elements ({case.mesh_size:g} m)", seconds,
-                     size["memory"], "elements counted from the mesh parameters; time at least")
+                     size["memory"], detail)
 
 
 def run(args, console) -> int:
@@ -242,7 +292,9 @@ def run(args, console) -> int:
         from ..fe.model import mesh_size_estimate
 
         steps, seconds = estimate(case, model)
-        console.print(f"estimate: {steps} explicit steps, about {seconds / 60:.1f} min on one core")
+        console.print(f"estimate: {steps} explicit steps, about {_resources._duration(seconds)} "
+                      f"on one core" + ("" if _kernels_cached() else
+                                        " (including compiling the FE kernels, once)"))
         _resources.check(f"FE run of {model.n_elements} elements x {steps} steps", seconds,
                          mesh_size_estimate(case)["memory"], "measured cost per element and step")
     if args.estimate_only:

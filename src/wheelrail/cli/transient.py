@@ -26,11 +26,12 @@ def add_arguments(p) -> None:
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
-#: CPU time per time step and grid cell [s] (benchmarks/bench_estimates.py: 30–60 elements
-#: across 2a, 1.5e3–5.6e3 cells, 17–85 ms per step on the 2-core machine at load ≈ 7).
-STEP_COST = 15e-6
+#: CPU time per time step and grid cell [s] (benchmarks/bench_estimates.py: a fit of
+#: STARTUP + steps × cells × STEP_COST to 120 steps at 20–80 elements across 2a, 676–10 201
+#: cells, 1.7–11.4 s CPU on one core of the 2-core machine, within ±15 %).
+STEP_COST = 8.3e-6
 #: Start-up (kernels from the numba cache, influence coefficients) [s].
-STARTUP = 1.5
+STARTUP = 0.8
 
 
 def estimate(hc, settings) -> tuple[float, float, int]:

@@ -173,6 +173,21 @@ class RailSupport:
         return w, w + force / k1
 
 
+def _check_support(model, owner, least, what):
+    """Rail support, axle load (default and lower bound ``least`` [N], ``what`` it is for the
+    message), spin and material of a wheelset or bogie model (set on the frozen ``model``)."""
+    if model.rail is not None and not isinstance(model.rail, RailSupport):
+        raise InputError(f"rail must be a wheelrail.dynamics.RailSupport or None, got "
+                         f"{type(model.rail).__name__}")
+    load = least if model.axle_load is None else _number(owner, "axle_load", model.axle_load,
+                                                         open_lo=True)
+    if load < least * (1 - 1e-12):
+        raise InputError(f"axle_load = {load!r} N is less than {what} {least!r} N")
+    object.__setattr__(model, "axle_load", float(load))
+    _check_spin(model.spin)
+    object.__setattr__(model, "material", as_material_pair(model.material))
+
+
 def _check_spin(spin):
     if spin not in ("free", "fixed"):
         raise InputError(f"spin must be 'free' (Ω a degree of freedom) or 'fixed' (Ω = V/r0), "
@@ -227,18 +242,7 @@ class WheelsetModel:
         if not isinstance(self.primary, Suspension):
             raise InputError(f"primary must be a wheelrail.dynamics.Suspension, got "
                              f"{type(self.primary).__name__}")
-        if self.rail is not None and not isinstance(self.rail, RailSupport):
-            raise InputError(f"rail must be a wheelrail.dynamics.RailSupport or None, got "
-                             f"{type(self.rail).__name__}")
-        weight = self.mass * GRAVITY
-        load = weight if self.axle_load is None else _number("WheelsetModel", "axle_load",
-                                                              self.axle_load, open_lo=True)
-        if load < weight * (1 - 1e-12):
-            raise InputError(f"axle_load = {load!r} N is less than the wheelset's weight "
-                             f"{weight!r} N")
-        object.__setattr__(self, "axle_load", float(load))
-        _check_spin(self.spin)
-        object.__setattr__(self, "material", as_material_pair(self.material))
+        _check_support(self, "WheelsetModel", self.mass * GRAVITY, "the wheelset's weight")
 
     @property
     def n_wheelsets(self) -> int:
@@ -310,18 +314,8 @@ class BogieModel:
             if not isinstance(getattr(self, name), Suspension):
                 raise InputError(f"{name} must be a wheelrail.dynamics.Suspension, got "
                                  f"{type(getattr(self, name)).__name__}")
-        if self.rail is not None and not isinstance(self.rail, RailSupport):
-            raise InputError(f"rail must be a wheelrail.dynamics.RailSupport or None, got "
-                             f"{type(self.rail).__name__}")
-        least = (self.mass + 0.5 * self.frame_mass) * GRAVITY
-        load = least if self.axle_load is None else _number("BogieModel", "axle_load",
-                                                             self.axle_load, open_lo=True)
-        if load < least * (1 - 1e-12):
-            raise InputError(f"axle_load = {load!r} N is less than the wheelset's weight plus "
-                             f"half the frame's, {least!r} N")
-        object.__setattr__(self, "axle_load", float(load))
-        _check_spin(self.spin)
-        object.__setattr__(self, "material", as_material_pair(self.material))
+        _check_support(self, "BogieModel", (self.mass + 0.5 * self.frame_mass) * GRAVITY,
+                       "the wheelset's weight plus half the frame's,")
 
     @property
     def n_wheelsets(self) -> int:

@@ -477,7 +477,8 @@ def mesh_size_estimate(case, *, rolling: bool = True) -> dict:
     -------
     dict
         ``n_elements``, ``n_nodes``, ``memory`` [bytes] (:data:`BYTES_PER_ELEMENT`),
-        ``shape`` (nodes per axis x, y, depth, theta) and the rolled ``travel`` [m].
+        ``shape`` (nodes per axis x, y, depth, theta), the rolled ``travel`` [m] and the
+        ``depth`` of the kept bodies [m].
     """
     geo, spec = _mesh_spec(case, rolling)
     nx, ny, nd, nt = (axis_size(*spec[k]) for k in ("x", "y", "d", "theta"))
@@ -485,7 +486,7 @@ def mesh_size_estimate(case, *, rolling: bool = True) -> dict:
     kind = "plastic" if getattr(case.material, "yield_stress", None) is not None else "elastic"
     return {"n_elements": int(n_el), "n_nodes": int((nx + nt) * ny * nd),
             "memory": float(n_el * BYTES_PER_ELEMENT[kind]), "shape": (nx, ny, nd, nt),
-            "travel": float(geo["travel"])}
+            "travel": float(geo["travel"]), "depth": float(spec["d"][1])}
 
 
 def default_travel(case, a: float) -> float:

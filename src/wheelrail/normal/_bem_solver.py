@@ -398,7 +398,8 @@ MIN_ACROSS = 8
 AREA_TOLERANCE = 0.25
 
 
-def check_resolution(grid, contact, what: str, hertz_area: float | None = None) -> None:
+def check_resolution(grid, contact, what: str, hertz_area: float | None = None,
+                     advice: str | None = None, stacklevel: int = 4) -> None:
     """Warn (:class:`~wheelrail.errors.ResolutionWarning`) for a grid too coarse for ``contact``.
 
     Parameters
@@ -411,6 +412,11 @@ def check_resolution(grid, contact, what: str, hertz_area: float | None = None) 
     hertz_area : float, optional
         Area of the Hertz solution of the same gap [m²]: a BEM area off by more
         than :data:`AREA_TOLERANCE` is reported.
+    advice : str, optional
+        What to change, for the messages (default: the BEM's ``element_size`` /
+        ``grid_elements``; the exact theory names its ``elements``).
+    stacklevel : int
+        Of the warnings (the user's call).
     """
     from ..errors import ResolutionWarning
 
@@ -420,18 +426,20 @@ def check_resolution(grid, contact, what: str, hertz_area: float | None = None) 
     across = [int(c.sum(axis=k).max()) for k in (0, 1)]
     n = min(across)
     if n < MIN_ACROSS:
+        fix = advice or (f"use a smaller element_size (about "
+                         f"{min(grid.dx, grid.dy) * n / (2 * MIN_ACROSS):.2g} m) or more "
+                         f"grid_elements")
         warnings.warn(f"{what}: only {n} element(s) across the contact patch (fewer than "
-                      f"{MIN_ACROSS}): the area and pressure are not converged; use a smaller "
-                      f"element_size (about {min(grid.dx, grid.dy) * n / (2 * MIN_ACROSS):.2g} m) "
-                      f"or more grid_elements", ResolutionWarning, stacklevel=4)
+                      f"{MIN_ACROSS}): the area and pressure are not converged; {fix}",
+                      ResolutionWarning, stacklevel=stacklevel)
     if hertz_area is not None and hertz_area > 0:
         area = float(c.sum()) * grid.element_area
         if abs(area / hertz_area - 1.0) > AREA_TOLERANCE:
             warnings.warn(f"{what}: contact area {area * 1e6:.4g} mm² is "
                           f"{(area / hertz_area - 1.0) * 100:+.0f} % from the Hertz area "
                           f"{hertz_area * 1e6:.4g} mm² of the same gap: the grid is too coarse "
-                          f"(use a smaller element_size or more grid_elements)",
-                          ResolutionWarning, stacklevel=4)
+                          f"({advice or 'use a smaller element_size or more grid_elements'})",
+                          ResolutionWarning, stacklevel=stacklevel)
 
 
 def _elements_for(length, elements, element_size):

@@ -138,6 +138,7 @@ from numba import njit
 from .._validation import positive, scalar_or_array
 from ..errors import InputError
 from ..options import configured, option
+from ..plausibility import LIMITS
 from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
 from .linear import kalker_coefficients
@@ -370,10 +371,12 @@ class Polach(TangentialMethod):
     kS: float | None = option(None, kind="float", lo=0.0, hi=1.0, lo_open=True, allow_none=True,
                               doc="reduction in slip, <= kA (default 1)")
     speed: Any = option(None, kind="any", unit="m/s", check=_speed, allow_none=True,
+                        typical=LIMITS["speed_warn"], plausible=(None, LIMITS["speed_refuse"]),
                         doc="rolling speed V (a number or one per batch case)")
     A: float | None = option(None, kind="float", lo=0.0, hi=1.0, lo_open=True, allow_none=True,
                              doc="mu_inf/mu0 of the slip-velocity dependent friction")
     B: float | None = option(None, kind="float", unit="s/m", lo=0.0, allow_none=True,
+                             typical=(0.0, 5.0),
                              doc="rate B of the slip-velocity dependent friction")
     conditions: str | None = option(None, choices=(None, *POLACH_2005_PARAMETERS),
                                     doc="take kA, kS, A, B from Polach (2005), Table 1")

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..._validation import scalar_or_array
 from ...materials import as_material_pair
+from ...normal._bem_solver import MIN_ACROSS, check_resolution
 from ...normal.bem import hertz_grid, solve_normal
 from ...options import configured, option
 from ...results import CreepForcesResult, GapResult, Status
@@ -96,16 +97,41 @@ def exact_single(contact, xi, eta, phi, mu, *, elements=40, margin=1.1, tol=1e-6
     grid, gap = hertz_grid(contact, elements=elements, margin=margin)
     pair = as_material_pair(contact.materials)
     creepage = (float(xi), float(eta), float(phi))
-    if pair.K != 0.0:
-        return solve_gap(grid, gap, pair, Fn=float(contact.Fn), creepage=creepage,
-                         mu=float(mu), tol=tol, maxiter=maxiter, on_fail=on_fail)
     a, b = float(contact.a), float(contact.b)
+    if pair.K != 0.0:
+        res = solve_gap(grid, gap, pair, Fn=float(contact.Fn), creepage=creepage,
+                        mu=float(mu), tol=tol, maxiter=maxiter, on_fail=on_fail)
+        _check_grid(grid, res.normal, elements, a, b)
+        return res
     hertz = float(contact.p0) * np.sqrt(np.clip(1.0 - (grid.X / a) ** 2 - (grid.Y / b) ** 2,
                                                 0.0, None))
     normal = _normal_solution(grid, gap, pair, contact.Fn, on_fail, initial=hertz)
+    _check_grid(grid, normal, elements, a, b)
     tang = solve_rolling(grid, normal.pressure, pair, creepage, float(mu), tol=tol,
                          maxiter=maxiter, on_fail=on_fail)
     return GapResult(normal, tang, 1, 0.0)
+
+
+def _check_grid(grid, normal, elements, a, b):
+    """Resolution of the exact theory's grid: elements across the contact and the area
+    against Hertz (:func:`wheelrail.normal._bem_solver.check_resolution`), naming the
+    ``elements`` option."""
+    check_resolution(grid, normal.contact, f"exact theory with elements = {elements} "
+                     f"({grid.nx}x{grid.ny} grid)", hertz_area=np.pi * a * b,
+                     advice=f"use more elements (option 'elements' of 'exact', now {elements}; "
+                            f"at least {MIN_ACROSS}, default 40)", stacklevel=_outside() + 1)
+
+
+def _outside() -> int:
+    """Stack level (from the caller) of the first frame outside the package: the user's call."""
+    import os
+    import sys
+
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    frame, level = sys._getframe(1), 1
+    while frame is not None and frame.f_code.co_filename.startswith(root + os.sep):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 @configured
