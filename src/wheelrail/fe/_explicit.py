@@ -1,14 +1,21 @@
-"""Node-level kernel of the explicit central-difference step (private, numba, parallel).
+"""Node-level kernels of the explicit central-difference step (private, numba).
 
 One parallel region per step for everything done node by node: the acceleration from
 the internal, contact and damping forces, the half-step velocity and the new
-displacement, and the partial sums of the damping work. Partial sums are taken over a
-fixed number of node chunks (independent of the number of threads) and added in chunk
-order, so that the results do not depend on the thread count.
+displacement, and the partial sums of the damping and contact work. Partial sums are
+taken over a fixed number of node chunks (independent of the number of threads) and
+added in chunk order, so that the results do not depend on the thread count.
+
+The contact bookkeeping of a step (positions of the contact surfaces, their increments
+and nodal normals, the contact forces rotated into the body frames, the force and energy
+sums) runs in small serial kernels (:func:`slave_kinematics`, :func:`master_kinematics`,
+:func:`contact_to_nodes`): a few thousand nodes at most, where a parallel region would
+cost more than it saves, and where NumPy temporaries cost more than the arithmetic.
 """
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit, prange
 
 #: Node chunks of the partial sums (fixed: results independent of the threads).
@@ -72,3 +79,194 @@ def chunk_sum(partial, col):
     for x in partial[:, col]:
         total += float(x)
     return total
+
+
+#: Columns of the partial sums of :func:`advance_rolling`.
+ADV_COLUMNS = ("ma_vo_vo", "ma_vo_vn", "fcon_vo", "fcon_vn", "fbeta_vo", "fbeta_vn")
+
+
+@njit(cache=True, parallel=True)
+def advance_rolling(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, fcon, dt,
+                    partial, totals):
+    """:func:`advance` plus the work sums of the contact and β-damping forces.
+
+    Same update as :func:`advance`; ``partial`` (NCHUNK, 6) receives per node chunk, in the
+    order of :data:`ADV_COLUMNS`: Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old,
+    Σ f_con·v_new (contact nodes), Σ f_β·v_old, Σ f_β·v_new (zero unless ``has_beta``);
+    ``totals`` (6,) their sums in chunk order (independent of the number of threads).
+    """
+    n = u.shape[0]
+    for ch in prange(NCHUNK):
+        pa = 0.0
+        pb = 0.0
+        pc = 0.0
+        pd = 0.0
+        pe = 0.0
+        pf = 0.0
+        for i in range(n * ch // NCHUNK, n * (ch + 1) // NCHUNK):
+            im = inv_m[i]
+            ma = m_alpha[i]
+            k = cmap[i]
+            for d in range(3):
+                vo = v[i, d]
+                fx = -f_int[i, d] - ma * vo
+                if has_beta:
+                    fx -= fd_beta[i, d]
+                if k >= 0:
+                    fx += fcon[k, d]
+                a = fx * im
+                acc[i, d] = a
+                vn = vo + dt * a
+                v[i, d] = vn
+                u[i, d] += dt * vn
+                pa += ma * vo * vo
+                pb += ma * vo * vn
+                if k >= 0:
+                    pc += fcon[k, d] * vo
+                    pd += fcon[k, d] * vn
+                if has_beta:
+                    pe += fd_beta[i, d] * vo
+                    pf += fd_beta[i, d] * vn
+        partial[ch, 0] = pa
+        partial[ch, 1] = pb
+        partial[ch, 2] = pc
+        partial[ch, 3] = pd
+        partial[ch, 4] = pe
+        partial[ch, 5] = pf
+    for j in range(6):
+        totals[j] = 0.0
+    for ch in range(NCHUNK):
+        for j in range(6):
+            totals[j] += partial[ch, j]
+
+
+@njit(cache=True)
+def slave_kinematics(ref, u, nodes, cpsi, spsi, z, xs, xs_prev, dxs):
+    """Global positions of the wheel surface nodes and their increments over the step.
+
+    x = Q(ψ) (X + u) + (0, 0, z) with Q the rotation by ψ about the axle (y) axis.
+
+    Parameters
+    ----------
+    ref : (ns, 3)
+        Reference positions of the slave nodes in the wheel frame [m].
+    u : (n, 3)
+        Displacements of all nodes (body frames) [m].
+    nodes : (ns,) int
+        Node numbers of the slaves in ``u``.
+    cpsi, spsi : float
+        cos ψ, sin ψ of the wheel rotation.
+    z : float
+        Axle height [m].
+    xs, dxs : (ns, 3)
+        Output: positions and ``xs − xs_prev`` [m].
+    """
+    for s in range(ref.shape[0]):
+        n = nodes[s]
+        X0 = ref[s, 0] + u[n, 0]
+        X1 = ref[s, 1] + u[n, 1]
+        X2 = ref[s, 2] + u[n, 2]
+        x0 = cpsi * X0 + spsi * X2
+        x2 = -spsi * X0 + cpsi * X2 + z
+        xs[s, 0] = x0
+        xs[s, 1] = X1
+        xs[s, 2] = x2
+        dxs[s, 0] = x0 - xs_prev[s, 0]
+        dxs[s, 1] = X1 - xs_prev[s, 1]
+        dxs[s, 2] = x2 - xs_prev[s, 2]
+
+
+@njit(cache=True)
+def master_kinematics(ref, u, nodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm):
+    """Global positions, increments and unit nodal normals of the rail surface grid.
+
+    x = X + u − (shift_x, shift_y, 0). The normals are those of
+    :func:`wheelrail.fe.model.nodal_normals` (the cross product of the differences along both
+    grid axes: central inside, one-sided at the edges). ``fm`` is zeroed (the contact kernel
+    accumulates into it).
+
+    Parameters
+    ----------
+    ref : (nx, ny, 3)
+        Reference positions of the master nodes in the rail frame [m].
+    u : (n, 3)
+        Displacements of all nodes [m].
+    nodes : (nx, ny) int
+        Node numbers of the master grid in ``u``.
+    shift_x, shift_y : float
+        Rail travel and lateral drift [m].
+    xm, dxm, nm, fm : (nx, ny, 3)
+        Output: positions, ``xm − xm_prev``, unit normals, zeros.
+    """
+    nx, ny = nodes.shape
+    for i in range(nx):
+        for j in range(ny):
+            n = nodes[i, j]
+            for d in range(3):
+                x = ref[i, j, d] + u[n, d]
+                if d == 0:
+                    x -= shift_x
+                elif d == 1:
+                    x -= shift_y
+                xm[i, j, d] = x
+                dxm[i, j, d] = x - xm_prev[i, j, d]
+                fm[i, j, d] = 0.0
+    tx = np.empty(3)
+    ty = np.empty(3)
+    for i in range(nx):
+        i0 = max(i - 1, 0)
+        i1 = min(i + 1, nx - 1)
+        hx = 0.5 if (i > 0 and i < nx - 1) else 1.0
+        for j in range(ny):
+            j0 = max(j - 1, 0)
+            j1 = min(j + 1, ny - 1)
+            hy = 0.5 if (j > 0 and j < ny - 1) else 1.0
+            for d in range(3):
+                tx[d] = (xm[i1, j, d] - xm[i0, j, d]) * hx
+                ty[d] = (xm[i, j1, d] - xm[i, j0, d]) * hy
+            n0 = tx[1] * ty[2] - tx[2] * ty[1]
+            n1 = tx[2] * ty[0] - tx[0] * ty[2]
+            n2 = tx[0] * ty[1] - tx[1] * ty[0]
+            nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+            nm[i, j, 0] = n0 / nn
+            nm[i, j, 1] = n1 / nn
+            nm[i, j, 2] = n2 / nn
+
+
+@njit(cache=True)
+def contact_to_nodes(fs, fm, pn, ft, slip, energy, cpsi, spsi, fcon, sums):
+    """Contact forces into the rows of ``fcon`` and the sums of the step.
+
+    ``fcon`` (ns + nx·ny, 3): the slave forces rotated into the wheel frame (Qᵀ f), then the
+    master forces (rail frame = global). ``sums`` (6,): Fx, Fy, Fz (sums of the slave forces,
+    global frame) [N], Σ p_n [N], the friction dissipation Σ |f_t| · slip [J] and the penalty
+    energy Σ energy [J], each summed in slave order.
+    """
+    ns = fs.shape[0]
+    sx = sy = sz = sn = sf = se = 0.0
+    for s in range(ns):
+        f0 = fs[s, 0]
+        f1 = fs[s, 1]
+        f2 = fs[s, 2]
+        fcon[s, 0] = cpsi * f0 - spsi * f2
+        fcon[s, 1] = f1
+        fcon[s, 2] = spsi * f0 + cpsi * f2
+        sx += f0
+        sy += f1
+        sz += f2
+        sn += pn[s]
+        sf += np.sqrt(ft[s, 0] ** 2 + ft[s, 1] ** 2 + ft[s, 2] ** 2) * slip[s]
+        se += energy[s]
+    nx, ny = fm.shape[0], fm.shape[1]
+    k = ns
+    for i in range(nx):
+        for j in range(ny):
+            for d in range(3):
+                fcon[k, d] = fm[i, j, d]
+            k += 1
+    sums[0] = sx
+    sums[1] = sy
+    sums[2] = sz
+    sums[3] = sn
+    sums[4] = sf
+    sums[5] = se
