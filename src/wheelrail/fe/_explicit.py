@@ -18,6 +18,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ._kernels import _slave
+from ._solid import _element
+
 #: Node chunks of the partial sums (fixed: results independent of the threads).
 NCHUNK = 128
 
@@ -94,6 +97,7 @@ def advance_rolling(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, f
     order of :data:`ADV_COLUMNS`: Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old,
     Σ f_con·v_new (contact nodes), Σ f_β·v_old, Σ f_β·v_new (zero unless ``has_beta``);
     ``totals`` (6,) their sums in chunk order (independent of the number of threads).
+    ``f_int`` is left zero (:func:`explicit_forces` accumulates into it).
     """
     n = u.shape[0]
     for ch in prange(NCHUNK):
@@ -110,6 +114,7 @@ def advance_rolling(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, f
             for d in range(3):
                 vo = v[i, d]
                 fx = -f_int[i, d] - ma * vo
+                f_int[i, d] = 0.0
                 if has_beta:
                     fx -= fd_beta[i, d]
                 if k >= 0:
@@ -270,3 +275,129 @@ def contact_to_nodes(fs, fm, pn, ft, slip, energy, cpsi, spsi, fcon, sums):
     sums[3] = sn
     sums[4] = sf
     sums[5] = se
+
+
+def interleaved_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarray:
+    """Task table (T, 2) of the first parallel phase of :func:`explicit_forces`: rows
+    (0, k) for the k-th even element chunk and (1, j) for the j-th contact chunk, in an
+    order where every contiguous share of the table holds the same proportion of both (the
+    static schedule of a numba ``prange`` gives each thread a contiguous share)."""
+    key = np.concatenate([(np.arange(n_element_chunks) + 0.5) / max(n_element_chunks, 1),
+                          (np.arange(n_contact_chunks) + 0.5) / max(n_contact_chunks, 1)])
+    kind = np.concatenate([np.zeros(n_element_chunks, np.int64),
+                           np.ones(n_contact_chunks, np.int64)])
+    idx = np.concatenate([np.arange(n_element_chunks), np.arange(n_contact_chunks)])
+    order = np.argsort(key, kind="stable")
+    return np.ascontiguousarray(np.stack([kind[order], idx[order]], axis=1).astype(np.int64))
+
+
+@njit(cache=True, parallel=True)
+def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+                    st_in, st_out, f, energy, echunk, tasks,
+                    ref_s, snodes, cpsi, spsi, z, xs, xs_prev, dxs,
+                    ref_m, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm,
+                    area, kn, mu, ft_old, x_ref, y_ref, reach, g0, cdamp, inv_dt,
+                    cenergy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip,
+                    fcon, sums):
+    """Element forces and contact of one explicit step in two parallel regions.
+
+    The element part is :func:`wheelrail.fe._solid.element_forces` (same chunks, same
+    per-element arithmetic and scatter order) except that ``f`` must hold zeros on entry
+    (:func:`advance_rolling` leaves it so); the contact part is
+    :func:`master_kinematics` (serial, first), :func:`slave_kinematics` with
+    :func:`wheelrail.fe._kernels.node_to_surface` per slave chunk, run in the same
+    parallel region as the even element chunks (``tasks``, :func:`interleaved_tasks`),
+    then the master forces scattered in slave order and :func:`contact_to_nodes`
+    (serial). Nothing depends on the number of threads.
+
+    ``energy`` (ne, 2) as in ``element_forces``; ``echunk`` (nc, 2) its sums per chunk and
+    ``sums`` (8,): Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
+    :func:`contact_to_nodes`), then the elastic strain energy and the plastic work [J]
+    (sums over the chunks in chunk order). Other arguments as the kernels named.
+    """
+    ne = conn.shape[0]
+    ng = dNdx.shape[1]
+    has_hg = gamma.shape[0] == ne
+    bbar = plastic and ng > 1
+    nc = bounds.shape[0] - 1
+    ns = xs.shape[0]
+    n_even = (nc + 1) // 2
+    ncc = tasks.shape[0] - n_even
+    master_kinematics(ref_m, u, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm)
+    for t in prange(tasks.shape[0]):
+        ue = np.empty((8, 3))
+        eps = np.empty(6)
+        sig = np.empty(6)
+        D = np.empty((6, 6))
+        bb = np.empty((8, 3))
+        c = np.empty((4, 3))
+        q = np.empty(3)
+        dq = np.empty(3)
+        if tasks[t, 0] == 0:
+            ch = 2 * tasks[t, 1]
+            a0 = 0.0
+            a1 = 0.0
+            for e in range(bounds[ch], bounds[ch + 1]):
+                _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
+                         hp, tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
+                a0 += energy[e, 0]
+                a1 += energy[e, 1]
+            echunk[ch, 0] = a0
+            echunk[ch, 1] = a1
+        else:
+            j = tasks[t, 1]
+            for s in range(ns * j // ncc, ns * (j + 1) // ncc):
+                n = snodes[s]
+                X0 = ref_s[s, 0] + u[n, 0]
+                X1 = ref_s[s, 1] + u[n, 1]
+                X2 = ref_s[s, 2] + u[n, 2]
+                x0 = cpsi * X0 + spsi * X2
+                x2 = -spsi * X0 + cpsi * X2 + z
+                xs[s, 0] = x0
+                xs[s, 1] = X1
+                xs[s, 2] = x2
+                dxs[s, 0] = x0 - xs_prev[s, 0]
+                dxs[s, 1] = X1 - xs_prev[s, 1]
+                dxs[s, 2] = x2 - xs_prev[s, 2]
+                _slave(s, xs, dxs, area, kn, kn, mu, ft_old, xm, nm, dxm, x_ref, y_ref,
+                       shift_x, reach, g0, cdamp, inv_dt, cenergy, fs, gap, pn, ft_new, status,
+                       cell, rt, normal, slip, c, q, dq)
+    for cc in prange(nc // 2):
+        ch = 2 * cc + 1
+        ue = np.empty((8, 3))
+        eps = np.empty(6)
+        sig = np.empty(6)
+        D = np.empty((6, 6))
+        bb = np.empty((8, 3))
+        a0 = 0.0
+        a1 = 0.0
+        for e in range(bounds[ch], bounds[ch + 1]):
+            _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp,
+                     tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
+            a0 += energy[e, 0]
+            a1 += energy[e, 1]
+        echunk[ch, 0] = a0
+        echunk[ch, 1] = a1
+    for s in range(ns):
+        if status[s] > 0:
+            i = cell[s, 0]
+            j = cell[s, 1]
+            r = rt[s, 0]
+            t = rt[s, 1]
+            w0 = (1 - r) * (1 - t)
+            w1 = r * (1 - t)
+            w2 = r * t
+            w3 = (1 - r) * t
+            for d in range(3):
+                fm[i, j, d] -= w0 * fs[s, d]
+                fm[i + 1, j, d] -= w1 * fs[s, d]
+                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
+                fm[i, j + 1, d] -= w3 * fs[s, d]
+    contact_to_nodes(fs, fm, pn, ft_new, slip, cenergy, cpsi, spsi, fcon, sums)
+    e0 = 0.0
+    e1 = 0.0
+    for ch in range(nc):
+        e0 += echunk[ch, 0]
+        e1 += echunk[ch, 1]
+    sums[6] = e0
+    sums[7] = e1

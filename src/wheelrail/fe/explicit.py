@@ -34,15 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from . import _kernels as K
-from ._explicit import (
-    NCHUNK,
-    advance,
-    advance_rolling,
-    contact_to_nodes,
-    master_kinematics,
-    slave_kinematics,
-)
+from ._explicit import NCHUNK, advance_rolling, explicit_forces, interleaved_tasks
 from .model import build_model
 from .patch import patch_from_contact
 from .restart import read_restart
@@ -138,7 +130,6 @@ def solve_explicit(case, progress, output_every, io):
     passes = case.passes
 
     # contact nodes: slaves (wheel surface) then masters (rail surface), rows of fcon
-    ns = model.slave.size
     master_nodes = model.master.ravel()
     cidx = np.concatenate([model.slave, master_nodes])
     cmap = -np.ones(n, np.int64)
@@ -159,10 +150,11 @@ def solve_explicit(case, progress, output_every, io):
     fast = _ContactLoop(model, cdamp, dt, fcon)
 
     def forces(u, v, w, psi, s, mu_now, with_beta):
-        _, e_int = model.internal_force(u, f_int, state)
+        c = fast.step(u, w, psi, s, mu_now, f_int, state)
+        e_int = float(fast.sums[6] + fast.sums[7])
         if state is not None:
+            state.energies = (float(fast.sums[6]), float(fast.sums[7]))
             state.commit()
-        c = fast.step(u, w, psi, s, mu_now)
         if with_beta:
             model.internal_force(v, fd_beta, elastic=True)
             fd_beta[...] *= beta
@@ -204,8 +196,8 @@ def solve_explicit(case, progress, output_every, io):
             n_ramp = max(1, int(RELAXATION_RAMP * n1))
             for k in range(n1):
                 c, e_int, fcw = forces(u, v, w, psi, s, 0.0, False)
-                advance(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon, dt,
-                        partial)
+                advance_rolling(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon,
+                                dt, partial, totals)
                 load_k = load * float(_smoothstep((k + 1) / n_ramp))
                 aw = (fcw - load_k - c_axle_dr * vw) / M_dr
                 vw += dt * aw
@@ -297,14 +289,17 @@ def solve_explicit(case, progress, output_every, io):
 
 
 class _ContactLoop:
-    """The contact of an explicit run in preallocated buffers: per step, the surface
-    kinematics, :func:`wheelrail.fe._kernels.node_to_surface` and the forces into ``fcon``
-    (rows: slaves in the wheel frame, then the master grid), all in numba kernels.
+    """Element forces and contact of an explicit step in preallocated buffers.
 
-    Gives the same per-slave results as :meth:`wheelrail.fe.model.Model.contact` (positions,
-    increments and normals as there; sums in slave order). Positions and tangential forces
-    are double-buffered (the step reads the last ones); :attr:`sums` holds Fx, Fy, Fz, Σ p_n,
-    the friction dissipation and the penalty energy of the last step.
+    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_forces`): the element
+    forces (into ``f``, which must hold zeros: the node update leaves it so), the surface
+    kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, and the contact
+    forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid). The
+    per-slave results are those of :meth:`wheelrail.fe.model.Model.contact` (same positions,
+    increments, normals and contact law). Positions and tangential forces are
+    double-buffered (the step reads the last ones); :attr:`sums` holds Fx, Fy, Fz, Σ p_n,
+    the friction dissipation, the penalty energy, the elastic strain energy and the plastic
+    work of the last step.
     """
 
     def __init__(self, model, cdamp, dt, fcon):
@@ -332,7 +327,12 @@ class _ContactLoop:
             "cell": np.zeros((ns, 2), np.int64), "rt": np.zeros((ns, 2)),
             "normal": np.zeros((ns, 3)), "slip": np.zeros(ns), "energy": np.zeros(ns),
         }
-        self.sums = np.zeros(6)
+        self.sums = np.zeros(8)
+        nc = model.chunks.size - 1
+        self.echunk = np.zeros((nc, 2))
+        self.energy = np.zeros((model.n_elements, 2))
+        self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
+        self.mat = (model.material.lam, model.material.shear_modulus) + tuple(model._hardening)
 
     def start(self, u, w, psi, s):
         """The positions of the first step's 'previous' state; zero tangential forces."""
@@ -350,28 +350,34 @@ class _ContactLoop:
             if k in c:
                 buf[...] = c[k]
 
-    def step(self, u, w, psi, s, mu):
+    def step(self, u, w, psi, s, mu, f, state):
         m, o = self.model, self.out
         cpsi, spsi = np.cos(psi), np.sin(psi)
         lat = m.lateral_shift(s)
         xs_old, xs = self.xs
         xm_old, xm = self.xm
         ft_old, ft = self.ft
-        slave_kinematics(self.ref_s, u, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old,
-                         self.dxs)
-        master_kinematics(self.ref_m, u, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
-                          o["fm"])
         np.subtract(self.y_ref0, lat, out=self.y_ref)
-        K.node_to_surface(xs, self.dxs, m.slave_area, m.kn, m.kn, mu, ft_old, xm, self.nm,
-                          self.dxm, self.x_ref, self.y_ref, s, self.reach, m.g0, self.cdamp,
-                          self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"], o["pn"], ft,
-                          o["status"], o["cell"], o["rt"], o["normal"], o["slip"])
-        contact_to_nodes(o["fs"], o["fm"], o["pn"], ft, o["slip"], o["energy"], cpsi, spsi,
-                         self.fcon, self.sums)
+        ed = m.edata
+        lam, G, hp, tp, ts = self.mat
+        plastic = state is not None
+        st_in = state.committed if plastic else _NO_STATE
+        st_out = state.trial if plastic else _NO_STATE
+        explicit_forces(u, m.conn, m.chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam, G, plastic,
+                        hp, tp, ts, st_in, st_out, f, self.energy, self.echunk, self.tasks,
+                        self.ref_s, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old, self.dxs,
+                        self.ref_m, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
+                        m.slave_area, m.kn, mu, ft_old, self.x_ref, self.y_ref, self.reach, m.g0,
+                        self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
+                        o["pn"], ft, o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
+                        self.fcon, self.sums)
         self.xs.reverse()
         self.xm.reverse()
         self.ft.reverse()
         return dict(o, xs=xs, xm=xm, ft=ft)
+
+
+_NO_STATE = np.zeros((0, 1, 14))
 
 
 def _steady(model, hist, window):
