@@ -7,6 +7,7 @@ machine load, and saves NetCDF / VTU / PNG files under --out):
   python benchmarks/bench_fe_plastic.py mass-scaling                  # scaled vs unscaled, small case
   python benchmarks/bench_fe_plastic.py table3 --mesh 2e-3            # Table 3 and the plasticity reductions
   python benchmarks/bench_fe_plastic.py creep --mesh 2e-3 --component xi   # creep curves, elastic/plastic
+  python benchmarks/bench_fe_plastic.py figures --mesh 2e-3          # Figs. 9-11 (surface, patch)
   python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3    # implicit Δt sensitivity (§3)
   python benchmarks/bench_fe_plastic.py passes --mesh 2e-3 --passes 4 # repeated passes
   python benchmarks/bench_fe_plastic.py speed                         # ns/element/step, 1 and 2 threads
@@ -254,6 +255,38 @@ def compare_creep(a, curves):
     plot_creep_curves(curves, path=out / f"creep_{a.component}_{a.mesh * 1e3:g}mm.png")
 
 
+# ----------------------------------------------------------------------------- figures 9-11
+def cmd_figures(a):
+    """Figures in the manner of Toumi et al. (2016) Figs. 9-11 from one elastic and one
+    elasto-plastic run of the seed case (ξ = −0.7 ‰); Fig. 12 is the ``creep`` part's."""
+    from wheelrail.fe.plots import plot_patch_comparison, plot_surface
+
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    warnings.simplefilter("ignore")
+    runs = {}
+    for plastic in (False, True):
+        r, cpu, wall = timed(seed(a.mesh, plastic=plastic, **a.extra), progress=False)
+        runs[plastic] = r
+        print(f"{'plastic' if plastic else 'elastic'}: {describe(r, cpu, wall)}", flush=True)
+    el, pl = runs[False], runs[True]
+    tag = f"{a.mesh * 1e3:g}mm"
+    sy = pl.model.material.yield_stress
+    plot_surface(pl.fields, "rail_von_mises", y_section=pl.model.geometry["y_c"],
+                 depth_max=4 * pl.a, yield_stress=sy, path=out / f"fig9_von_mises_{tag}.png")
+    plot_surface(pl.fields, "rail_equivalent_plastic_strain", y_section=pl.model.geometry["y_c"],
+                 depth_max=4 * pl.a, path=out / f"fig9_plastic_strain_{tag}.png")
+    plot_patch_comparison(el.patch, pl.patch, el.model.case.mu,
+                          path=out / f"fig10_11_patch_{tag}.png")
+    vm = pl.fields.rail_von_mises
+    print(f"  von Mises max (rail, end of the run) {float(vm.max()) / 1e6:.0f} MPa (yield "
+          f"{sy / 1e6:.0f} MPa); max eps_p {float(pl.fields.rail_equivalent_plastic_strain.max()):.5f}"
+          f"; p_max {el.p_max / 1e6:.0f} -> {pl.p_max / 1e6:.0f} MPa; max |q| "
+          f"{float(el.patch.shear.max()) / 1e6:.0f} -> {float(pl.patch.shear.max()) / 1e6:.0f} MPa;"
+          f" stick {el.patch.attrs['adhesion_fraction']:.0%} -> "
+          f"{pl.patch.attrs['adhesion_fraction']:.0%}; figures in {out}/", flush=True)
+
+
 # ----------------------------------------------------------------------------- §3 time increment
 def cmd_creep_compare(a):
     """Compare creep curves written by earlier ``creep --material elastic|plastic`` runs."""
@@ -415,7 +448,7 @@ def cmd_speed(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("part", choices=["steady", "mass-scaling", "table3", "creep", "creep-compare",
+    ap.add_argument("part", choices=["steady", "mass-scaling", "table3", "creep", "creep-compare", "figures",
                                      "time-increment",
                                      "passes", "speed"])
     ap.add_argument("--mesh", type=float, default=2e-3)
