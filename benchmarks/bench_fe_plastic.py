@@ -7,6 +7,7 @@ machine load, and saves NetCDF / VTU / PNG files under --out):
   python benchmarks/bench_fe_plastic.py mass-scaling                  # scaled vs unscaled, small case
   python benchmarks/bench_fe_plastic.py table3 --mesh 2e-3            # Table 3 and the plasticity reductions
   python benchmarks/bench_fe_plastic.py creep --mesh 2e-3 --component xi   # creep curves, elastic/plastic
+  python benchmarks/bench_fe_plastic.py figures --mesh 2e-3          # Figs. 9-11 (surface, patch)
   python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3    # implicit Δt sensitivity (§3)
   python benchmarks/bench_fe_plastic.py passes --mesh 2e-3 --passes 4 # repeated passes
   python benchmarks/bench_fe_plastic.py speed                         # ns/element/step, 1 and 2 threads
@@ -184,14 +185,26 @@ def cmd_creep(a):
     warnings.simplefilter("ignore")
     values = np.array(a.creepages) * 1e-3
     curves = {}
-    for plastic in (False, True):
+    for plastic in {"both": (False, True), "elastic": (False,), "plastic": (True,)}[a.material]:
         name = "plastic" if plastic else "elastic"
         case = seed(a.mesh, plastic=plastic, **a.extra)
         if a.component == "eta":
             case = case.replace(creepage=(0.0, 0.0, 0.0))
         t = time.process_time()
-        ds = creep_curve(case, values, component=a.component, progress=True,
-                         path=out / f"creep_{a.component}_{name}_{a.mesh * 1e3:g}mm.nc")
+        stem = f"creep_{a.component}_{name}_{a.mesh * 1e3:g}mm"
+        if a.per_point:                 # one file per point, a line of progress after each
+            parts = []
+            for v in values:
+                parts.append(creep_curve(case, [v], component=a.component, progress=False,
+                                         path=out / f"{stem}_{v * 1e3:+.3f}.nc"))
+                d = parts[-1]
+                print(f"  {time.strftime('%H:%M:%S')} {name} {a.component} {v * 1e3:+.3f} permille: "
+                      f"{d.attrs['force']} {float(d[d.attrs['force']][0]):.1f} N, CPU "
+                      f"{float(d.cpu_seconds[0]):.0f} s, {load()}", flush=True)
+            ds = _merge_points(parts)
+        else:
+            ds = creep_curve(case, values, component=a.component, progress=True,
+                             path=out / f"{stem}.nc")
         curves[name] = ds
         f = ds.attrs["force"]
         print(f"creep curve {a.component}, {name}, mesh {a.mesh * 1e3:g} mm, "
@@ -205,7 +218,33 @@ def cmd_creep(a):
                   f"exact {exf:9.1f} N, CPU {cpu:.0f} s")
         print(f"    offset {ds.attrs['offset'] * 1e3:+.4f} permille, initial slope "
               f"{ds.attrs['slope']:.4g} N ({ds.attrs['fit_points']} points)", flush=True)
+    if len(curves) == 2:
+        compare_creep(a, curves)
+
+
+def _merge_points(parts):
+    from wheelrail.fe.curves import merge_creep_curves
+
+    return merge_creep_curves(parts)
+
+
+def compare_creep(a, curves):
+    """Elastic against plastic (slope, saturation), each against the exact theory at its
+    creepage shifted through the origin (creepage − offset), and the figure."""
+    out = Path(a.out)
     e, p = curves["elastic"], curves["plastic"]
+    case = seed(a.mesh, **a.extra)
+    for name, ds in curves.items():
+        f = ds.attrs["force"]
+        c0 = ds.attrs["offset"]
+        print(f"  {name}: offset {c0 * 1e3:+.4f} permille, slope {ds.attrs['slope']:.4g} N")
+        for c, F in zip(ds.creepage.values, ds[f].values):
+            cs = c - c0
+            ex = exact_reference(case.replace(creepage=(cs, 0, 0) if a.component == "xi"
+                                              else (0, cs, 0)))
+            exf = ex[0] if a.component == "xi" else ex[1]
+            print(f"    {a.component} {c * 1e3:+.3f} permille (shifted {cs * 1e3:+.4f}): {f} "
+                  f"{F:9.1f} N, exact at the shifted creepage {exf:9.1f} N ({F / exf - 1:+.2%})")
     f = e.attrs["force"]
     sat = np.abs(e.creepage.values) == np.abs(e.creepage.values).max()
     print(f"  plasticity: initial slope {p.attrs['slope'] / e.attrs['slope'] - 1:+.1%} (seed: "
@@ -216,7 +255,52 @@ def cmd_creep(a):
     plot_creep_curves(curves, path=out / f"creep_{a.component}_{a.mesh * 1e3:g}mm.png")
 
 
+# ----------------------------------------------------------------------------- figures 9-11
+def cmd_figures(a):
+    """Figures in the manner of Toumi et al. (2016) Figs. 9-11 from one elastic and one
+    elasto-plastic run of the seed case (ξ = −0.7 ‰); Fig. 12 is the ``creep`` part's."""
+    from wheelrail.fe.plots import plot_patch_comparison, plot_surface
+
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    warnings.simplefilter("ignore")
+    runs = {}
+    for plastic in (False, True):
+        r, cpu, wall = timed(seed(a.mesh, plastic=plastic, **a.extra), progress=False)
+        runs[plastic] = r
+        print(f"{'plastic' if plastic else 'elastic'}: {describe(r, cpu, wall)}", flush=True)
+    el, pl = runs[False], runs[True]
+    tag = f"{a.mesh * 1e3:g}mm"
+    sy = pl.model.material.yield_stress
+    plot_surface(pl.fields, "rail_von_mises", y_section=pl.model.geometry["y_c"],
+                 depth_max=4 * pl.a, yield_stress=sy, path=out / f"fig9_von_mises_{tag}.png")
+    plot_surface(pl.fields, "rail_equivalent_plastic_strain", y_section=pl.model.geometry["y_c"],
+                 depth_max=4 * pl.a, path=out / f"fig9_plastic_strain_{tag}.png")
+    plot_patch_comparison(el.patch, pl.patch, el.model.case.mu,
+                          path=out / f"fig10_11_patch_{tag}.png")
+    vm = pl.fields.rail_von_mises
+    print(f"  von Mises max (rail, end of the run) {float(vm.max()) / 1e6:.0f} MPa (yield "
+          f"{sy / 1e6:.0f} MPa); max eps_p {float(pl.fields.rail_equivalent_plastic_strain.max()):.5f}"
+          f"; p_max {el.p_max / 1e6:.0f} -> {pl.p_max / 1e6:.0f} MPa; max |q| "
+          f"{float(el.patch.shear.max()) / 1e6:.0f} -> {float(pl.patch.shear.max()) / 1e6:.0f} MPa;"
+          f" stick {el.patch.attrs['adhesion_fraction']:.0%} -> "
+          f"{pl.patch.attrs['adhesion_fraction']:.0%}; figures in {out}/", flush=True)
+
+
 # ----------------------------------------------------------------------------- §3 time increment
+def cmd_creep_compare(a):
+    """Compare creep curves written by earlier ``creep --material elastic|plastic`` runs."""
+    import xarray as xr
+
+    out = Path(a.out)
+    curves = {}
+    for name in ("elastic", "plastic"):      # one file per curve, or per point (--per-point)
+        files = sorted(out.glob(f"creep_{a.component}_{name}_{a.mesh * 1e3:g}mm*.nc"))
+        curves[name] = _merge_points([xr.load_dataset(f) for f in files])
+    warnings.simplefilter("ignore")
+    compare_creep(a, curves)
+
+
 def cmd_time_increment(a):
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -364,7 +448,8 @@ def cmd_speed(a):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
-    ap.add_argument("part", choices=["steady", "mass-scaling", "table3", "creep", "time-increment",
+    ap.add_argument("part", choices=["steady", "mass-scaling", "table3", "creep", "creep-compare", "figures",
+                                     "time-increment",
                                      "passes", "speed"])
     ap.add_argument("--mesh", type=float, default=2e-3)
     ap.add_argument("--out", default="fe_plastic_out")
@@ -373,6 +458,10 @@ def main():
     ap.add_argument("--creepages", type=float, nargs="+",
                     default=[-3.0, -1.5, -0.7, -0.35, 0.0, 0.35, 0.7, 1.5, 3.0],
                     help="creepages in permille")
+    ap.add_argument("--material", choices=["both", "elastic", "plastic"], default="both",
+                    help="creep: run only one material (compare later with creep-compare)")
+    ap.add_argument("--per-point", action="store_true",
+                    help="creep: one NetCDF file per point (creep-compare merges them)")
     ap.add_argument("--dts", type=float, nargs="+", default=[2e-5, 1e-4, 3.7e-4],
                     help="implicit time steps [s] (the smallest first: the reference)")
     ap.add_argument("--travel", type=float, default=0.02)

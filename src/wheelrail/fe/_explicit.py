@@ -1,15 +1,25 @@
-"""Node-level kernel of the explicit central-difference step (private, numba, parallel).
+"""Node-level kernels of the explicit central-difference step (private, numba).
 
 One parallel region per step for everything done node by node: the acceleration from
 the internal, contact and damping forces, the half-step velocity and the new
-displacement, and the partial sums of the damping work. Partial sums are taken over a
-fixed number of node chunks (independent of the number of threads) and added in chunk
-order, so that the results do not depend on the thread count.
+displacement, and the partial sums of the damping and contact work. Partial sums are
+taken over a fixed number of node chunks (independent of the number of threads) and
+added in chunk order, so that the results do not depend on the thread count.
+
+The contact bookkeeping of a step (positions of the contact surfaces, their increments
+and nodal normals, the contact forces rotated into the body frames, the force and energy
+sums) runs in small serial kernels (:func:`slave_kinematics`, :func:`master_kinematics`,
+:func:`contact_to_nodes`): a few thousand nodes at most, where a parallel region would
+cost more than it saves, and where NumPy temporaries cost more than the arithmetic.
 """
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit, prange
+
+from ._kernels import _slave
+from ._solid import _element
 
 #: Node chunks of the partial sums (fixed: results independent of the threads).
 NCHUNK = 128
@@ -72,3 +82,322 @@ def chunk_sum(partial, col):
     for x in partial[:, col]:
         total += float(x)
     return total
+
+
+#: Columns of the partial sums of :func:`advance_rolling`.
+ADV_COLUMNS = ("ma_vo_vo", "ma_vo_vn", "fcon_vo", "fcon_vn", "fbeta_vo", "fbeta_vn")
+
+
+@njit(cache=True, parallel=True)
+def advance_rolling(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, fcon, dt,
+                    partial, totals):
+    """:func:`advance` plus the work sums of the contact and β-damping forces.
+
+    Same update as :func:`advance`; ``partial`` (NCHUNK, 6) receives per node chunk, in the
+    order of :data:`ADV_COLUMNS`: Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old,
+    Σ f_con·v_new (contact nodes), Σ f_β·v_old, Σ f_β·v_new (zero unless ``has_beta``);
+    ``totals`` (6,) their sums in chunk order (independent of the number of threads).
+    ``f_int`` is left zero (:func:`explicit_forces` accumulates into it).
+    """
+    n = u.shape[0]
+    for ch in prange(NCHUNK):
+        pa = 0.0
+        pb = 0.0
+        pc = 0.0
+        pd = 0.0
+        pe = 0.0
+        pf = 0.0
+        for i in range(n * ch // NCHUNK, n * (ch + 1) // NCHUNK):
+            im = inv_m[i]
+            ma = m_alpha[i]
+            k = cmap[i]
+            for d in range(3):
+                vo = v[i, d]
+                fx = -f_int[i, d] - ma * vo
+                f_int[i, d] = 0.0
+                if has_beta:
+                    fx -= fd_beta[i, d]
+                if k >= 0:
+                    fx += fcon[k, d]
+                a = fx * im
+                acc[i, d] = a
+                vn = vo + dt * a
+                v[i, d] = vn
+                u[i, d] += dt * vn
+                pa += ma * vo * vo
+                pb += ma * vo * vn
+                if k >= 0:
+                    pc += fcon[k, d] * vo
+                    pd += fcon[k, d] * vn
+                if has_beta:
+                    pe += fd_beta[i, d] * vo
+                    pf += fd_beta[i, d] * vn
+        partial[ch, 0] = pa
+        partial[ch, 1] = pb
+        partial[ch, 2] = pc
+        partial[ch, 3] = pd
+        partial[ch, 4] = pe
+        partial[ch, 5] = pf
+    for j in range(6):
+        totals[j] = 0.0
+    for ch in range(NCHUNK):
+        for j in range(6):
+            totals[j] += partial[ch, j]
+
+
+@njit(cache=True)
+def slave_kinematics(ref, u, nodes, cpsi, spsi, z, xs, xs_prev, dxs):
+    """Global positions of the wheel surface nodes and their increments over the step.
+
+    x = Q(ψ) (X + u) + (0, 0, z) with Q the rotation by ψ about the axle (y) axis.
+
+    Parameters
+    ----------
+    ref : (ns, 3)
+        Reference positions of the slave nodes in the wheel frame [m].
+    u : (n, 3)
+        Displacements of all nodes (body frames) [m].
+    nodes : (ns,) int
+        Node numbers of the slaves in ``u``.
+    cpsi, spsi : float
+        cos ψ, sin ψ of the wheel rotation.
+    z : float
+        Axle height [m].
+    xs, dxs : (ns, 3)
+        Output: positions and ``xs − xs_prev`` [m].
+    """
+    for s in range(ref.shape[0]):
+        n = nodes[s]
+        X0 = ref[s, 0] + u[n, 0]
+        X1 = ref[s, 1] + u[n, 1]
+        X2 = ref[s, 2] + u[n, 2]
+        x0 = cpsi * X0 + spsi * X2
+        x2 = -spsi * X0 + cpsi * X2 + z
+        xs[s, 0] = x0
+        xs[s, 1] = X1
+        xs[s, 2] = x2
+        dxs[s, 0] = x0 - xs_prev[s, 0]
+        dxs[s, 1] = X1 - xs_prev[s, 1]
+        dxs[s, 2] = x2 - xs_prev[s, 2]
+
+
+@njit(cache=True)
+def master_kinematics(ref, u, nodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm):
+    """Global positions, increments and unit nodal normals of the rail surface grid.
+
+    x = X + u − (shift_x, shift_y, 0). The normals are those of
+    :func:`wheelrail.fe.model.nodal_normals` (the cross product of the differences along both
+    grid axes: central inside, one-sided at the edges). ``fm`` is zeroed (the contact kernel
+    accumulates into it).
+
+    Parameters
+    ----------
+    ref : (nx, ny, 3)
+        Reference positions of the master nodes in the rail frame [m].
+    u : (n, 3)
+        Displacements of all nodes [m].
+    nodes : (nx, ny) int
+        Node numbers of the master grid in ``u``.
+    shift_x, shift_y : float
+        Rail travel and lateral drift [m].
+    xm, dxm, nm, fm : (nx, ny, 3)
+        Output: positions, ``xm − xm_prev``, unit normals, zeros.
+    """
+    nx, ny = nodes.shape
+    for i in range(nx):
+        for j in range(ny):
+            n = nodes[i, j]
+            for d in range(3):
+                x = ref[i, j, d] + u[n, d]
+                if d == 0:
+                    x -= shift_x
+                elif d == 1:
+                    x -= shift_y
+                xm[i, j, d] = x
+                dxm[i, j, d] = x - xm_prev[i, j, d]
+                fm[i, j, d] = 0.0
+    tx = np.empty(3)
+    ty = np.empty(3)
+    for i in range(nx):
+        i0 = max(i - 1, 0)
+        i1 = min(i + 1, nx - 1)
+        hx = 0.5 if (i > 0 and i < nx - 1) else 1.0
+        for j in range(ny):
+            j0 = max(j - 1, 0)
+            j1 = min(j + 1, ny - 1)
+            hy = 0.5 if (j > 0 and j < ny - 1) else 1.0
+            for d in range(3):
+                tx[d] = (xm[i1, j, d] - xm[i0, j, d]) * hx
+                ty[d] = (xm[i, j1, d] - xm[i, j0, d]) * hy
+            n0 = tx[1] * ty[2] - tx[2] * ty[1]
+            n1 = tx[2] * ty[0] - tx[0] * ty[2]
+            n2 = tx[0] * ty[1] - tx[1] * ty[0]
+            nn = np.sqrt(n0 * n0 + n1 * n1 + n2 * n2)
+            nm[i, j, 0] = n0 / nn
+            nm[i, j, 1] = n1 / nn
+            nm[i, j, 2] = n2 / nn
+
+
+@njit(cache=True)
+def contact_to_nodes(fs, fm, pn, ft, slip, energy, cpsi, spsi, fcon, sums):
+    """Contact forces into the rows of ``fcon`` and the sums of the step.
+
+    ``fcon`` (ns + nx·ny, 3): the slave forces rotated into the wheel frame (Qᵀ f), then the
+    master forces (rail frame = global). ``sums`` (6,): Fx, Fy, Fz (sums of the slave forces,
+    global frame) [N], Σ p_n [N], the friction dissipation Σ |f_t| · slip [J] and the penalty
+    energy Σ energy [J], each summed in slave order.
+    """
+    ns = fs.shape[0]
+    sx = sy = sz = sn = sf = se = 0.0
+    for s in range(ns):
+        f0 = fs[s, 0]
+        f1 = fs[s, 1]
+        f2 = fs[s, 2]
+        fcon[s, 0] = cpsi * f0 - spsi * f2
+        fcon[s, 1] = f1
+        fcon[s, 2] = spsi * f0 + cpsi * f2
+        sx += f0
+        sy += f1
+        sz += f2
+        sn += pn[s]
+        sf += np.sqrt(ft[s, 0] ** 2 + ft[s, 1] ** 2 + ft[s, 2] ** 2) * slip[s]
+        se += energy[s]
+    nx, ny = fm.shape[0], fm.shape[1]
+    k = ns
+    for i in range(nx):
+        for j in range(ny):
+            for d in range(3):
+                fcon[k, d] = fm[i, j, d]
+            k += 1
+    sums[0] = sx
+    sums[1] = sy
+    sums[2] = sz
+    sums[3] = sn
+    sums[4] = sf
+    sums[5] = se
+
+
+def interleaved_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarray:
+    """Task table (T, 2) of the first parallel phase of :func:`explicit_forces`: rows
+    (0, k) for the k-th even element chunk and (1, j) for the j-th contact chunk, in an
+    order where every contiguous share of the table holds the same proportion of both (the
+    static schedule of a numba ``prange`` gives each thread a contiguous share)."""
+    key = np.concatenate([(np.arange(n_element_chunks) + 0.5) / max(n_element_chunks, 1),
+                          (np.arange(n_contact_chunks) + 0.5) / max(n_contact_chunks, 1)])
+    kind = np.concatenate([np.zeros(n_element_chunks, np.int64),
+                           np.ones(n_contact_chunks, np.int64)])
+    idx = np.concatenate([np.arange(n_element_chunks), np.arange(n_contact_chunks)])
+    order = np.argsort(key, kind="stable")
+    return np.ascontiguousarray(np.stack([kind[order], idx[order]], axis=1).astype(np.int64))
+
+
+@njit(cache=True, parallel=True)
+def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+                    st_in, st_out, f, energy, echunk, tasks,
+                    ref_s, snodes, cpsi, spsi, z, xs, xs_prev, dxs,
+                    ref_m, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm,
+                    area, kn, mu, ft_old, x_ref, y_ref, reach, g0, cdamp, inv_dt,
+                    cenergy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip,
+                    fcon, sums):
+    """Element forces and contact of one explicit step in two parallel regions.
+
+    The element part is :func:`wheelrail.fe._solid.element_forces` (same chunks, same
+    per-element arithmetic and scatter order) except that ``f`` must hold zeros on entry
+    (:func:`advance_rolling` leaves it so); the contact part is
+    :func:`master_kinematics` (serial, first), :func:`slave_kinematics` with
+    :func:`wheelrail.fe._kernels.node_to_surface` per slave chunk, run in the same
+    parallel region as the even element chunks (``tasks``, :func:`interleaved_tasks`),
+    then the master forces scattered in slave order and :func:`contact_to_nodes`
+    (serial). Nothing depends on the number of threads.
+
+    ``energy`` (ne, 2) as in ``element_forces``; ``echunk`` (nc, 2) its sums per chunk and
+    ``sums`` (8,): Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
+    :func:`contact_to_nodes`), then the elastic strain energy and the plastic work [J]
+    (sums over the chunks in chunk order). Other arguments as the kernels named.
+    """
+    ne = conn.shape[0]
+    ng = dNdx.shape[1]
+    has_hg = gamma.shape[0] == ne
+    bbar = plastic and ng > 1
+    nc = bounds.shape[0] - 1
+    ns = xs.shape[0]
+    n_even = (nc + 1) // 2
+    ncc = tasks.shape[0] - n_even
+    master_kinematics(ref_m, u, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm)
+    for t in prange(tasks.shape[0]):
+        ue = np.empty((8, 3))
+        eps = np.empty(6)
+        sig = np.empty(6)
+        D = np.empty((6, 6))
+        bb = np.empty((8, 3))
+        c = np.empty((4, 3))
+        q = np.empty(3)
+        dq = np.empty(3)
+        if tasks[t, 0] == 0:
+            ch = 2 * tasks[t, 1]
+            a0 = 0.0
+            a1 = 0.0
+            for e in range(bounds[ch], bounds[ch + 1]):
+                _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
+                         hp, tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
+                a0 += energy[e, 0]
+                a1 += energy[e, 1]
+            echunk[ch, 0] = a0
+            echunk[ch, 1] = a1
+        else:
+            j = tasks[t, 1]
+            for s in range(ns * j // ncc, ns * (j + 1) // ncc):
+                n = snodes[s]
+                X0 = ref_s[s, 0] + u[n, 0]
+                X1 = ref_s[s, 1] + u[n, 1]
+                X2 = ref_s[s, 2] + u[n, 2]
+                x0 = cpsi * X0 + spsi * X2
+                x2 = -spsi * X0 + cpsi * X2 + z
+                xs[s, 0] = x0
+                xs[s, 1] = X1
+                xs[s, 2] = x2
+                dxs[s, 0] = x0 - xs_prev[s, 0]
+                dxs[s, 1] = X1 - xs_prev[s, 1]
+                dxs[s, 2] = x2 - xs_prev[s, 2]
+                _slave(s, xs, dxs, area, kn, kn, mu, ft_old, xm, nm, dxm, x_ref, y_ref,
+                       shift_x, reach, g0, cdamp, inv_dt, cenergy, fs, gap, pn, ft_new, status,
+                       cell, rt, normal, slip, c, q, dq)
+    for cc in prange(nc // 2):
+        ch = 2 * cc + 1
+        ue = np.empty((8, 3))
+        eps = np.empty(6)
+        sig = np.empty(6)
+        D = np.empty((6, 6))
+        bb = np.empty((8, 3))
+        a0 = 0.0
+        a1 = 0.0
+        for e in range(bounds[ch], bounds[ch + 1]):
+            _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp,
+                     tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
+            a0 += energy[e, 0]
+            a1 += energy[e, 1]
+        echunk[ch, 0] = a0
+        echunk[ch, 1] = a1
+    for s in range(ns):
+        if status[s] > 0:
+            i = cell[s, 0]
+            j = cell[s, 1]
+            r = rt[s, 0]
+            t = rt[s, 1]
+            w0 = (1 - r) * (1 - t)
+            w1 = r * (1 - t)
+            w2 = r * t
+            w3 = (1 - r) * t
+            for d in range(3):
+                fm[i, j, d] -= w0 * fs[s, d]
+                fm[i + 1, j, d] -= w1 * fs[s, d]
+                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
+                fm[i, j + 1, d] -= w3 * fs[s, d]
+    contact_to_nodes(fs, fm, pn, ft_new, slip, cenergy, cpsi, spsi, fcon, sums)
+    e0 = 0.0
+    e1 = 0.0
+    for ch in range(nc):
+        e0 += echunk[ch, 0]
+        e1 += echunk[ch, 1]
+    sums[6] = e0
+    sums[7] = e1

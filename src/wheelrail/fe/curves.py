@@ -19,7 +19,7 @@ from ..errors import InputError
 from .model import contact_geometry
 from .run import solve
 
-__all__ = ["creep_curve"]
+__all__ = ["creep_curve", "merge_creep_curves"]
 
 _COMPONENTS = {"xi": 0, "eta": 1}
 
@@ -110,18 +110,63 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
         ds[f"{n}_std"] = ("creepage", np.array(v), {"units": "N"})
         ds[f"{n}_scatter"] = ("creepage", np.abs(np.array(v) / np.array(rows[n])))
     ds["cpu_seconds"] = ("creepage", np.array(cpu), {"units": "s"})
-    F = ds[force].values
-    normal_load = contact_geometry(case)["normal_load"]
-    lin = np.abs(F) <= linear_fraction * case.mu * normal_load
+    ds.attrs.update({"component": component, "force": force, "load": case.load,
+                     "normal_load": float(contact_geometry(case)["normal_load"]),
+                     "mu": case.mu, "mesh_size": case.mesh_size, "integrator": case.integrator,
+                     "material": repr(case.material), "linear_fraction": float(linear_fraction)})
+    ds = _fit(ds)
+    if path is not None:
+        ds.to_netcdf(path)
+    return ds
+
+
+def _fit(ds):
+    """Offset and initial slope of a creep curve from its points in the linear range."""
+    c = ds.creepage.values
+    F = ds[ds.attrs["force"]].values
+    lin = np.abs(F) <= ds.attrs["linear_fraction"] * ds.attrs["mu"] * ds.attrs["normal_load"]
     offset = slope = float("nan")
     if lin.sum() >= 2 and np.ptp(c[lin]) > 0:
         slope, intercept = np.polyfit(c[lin], F[lin], 1)
         offset = -intercept / slope
     ds = ds.assign_coords(shifted_creepage=("creepage", c - offset))
-    ds.attrs.update({"component": component, "force": force, "offset": float(offset),
-                     "slope": float(slope), "fit_points": int(lin.sum()), "load": case.load,
-                     "mu": case.mu, "mesh_size": case.mesh_size, "integrator": case.integrator,
-                     "material": repr(case.material)})
-    if path is not None:
-        ds.to_netcdf(path)
+    ds.attrs.update({"offset": float(offset), "slope": float(slope),
+                     "fit_points": int(lin.sum())})
     return ds
+
+
+def merge_creep_curves(curves):
+    """One creep curve from several :func:`creep_curve` results of the same case.
+
+    Lets the points of a curve run as separate processes (one file each) and be joined
+    afterwards; the offset and the initial slope are fitted again over all points.
+
+    Parameters
+    ----------
+    curves : sequence of xarray.Dataset
+        Results of :func:`creep_curve` for the same case and component (the attributes of
+        the first are kept); a creepage present twice keeps its first occurrence.
+
+    Returns
+    -------
+    xarray.Dataset
+        As :func:`creep_curve`, over the sorted union of the creepages.
+    """
+    import xarray as xr
+
+    curves = list(curves)
+    if not curves:
+        raise InputError("merge_creep_curves needs at least one creep curve")
+    first = curves[0].attrs
+    for ds in curves[1:]:
+        for key in ("component", "load", "mu", "mesh_size", "material"):
+            if ds.attrs.get(key) != first.get(key):
+                raise InputError(f"creep curves differ in {key!r}: {ds.attrs.get(key)!r} "
+                                 f"against {first.get(key)!r}")
+    ds = xr.concat([d.drop_vars("shifted_creepage") for d in curves], dim="creepage",
+                   combine_attrs="override")
+    _, keep = np.unique(ds.creepage.values, return_index=True)
+    ds = ds.isel(creepage=np.sort(keep)).sortby("creepage")
+    ds.attrs = dict(first)
+    ds.attrs.setdefault("linear_fraction", 0.5)
+    return _fit(ds)

@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
-from ._explicit import NCHUNK, advance, chunk_sum
+from ._explicit import NCHUNK, advance_rolling, explicit_forces, interleaved_tasks
 from .model import build_model
 from .patch import patch_from_contact
 from .restart import read_restart
@@ -130,7 +130,6 @@ def solve_explicit(case, progress, output_every, io):
     passes = case.passes
 
     # contact nodes: slaves (wheel surface) then masters (rail surface), rows of fcon
-    ns = model.slave.size
     master_nodes = model.master.ravel()
     cidx = np.concatenate([model.slave, master_nodes])
     cmap = -np.ones(n, np.int64)
@@ -144,20 +143,22 @@ def solve_explicit(case, progress, output_every, io):
     f_int = np.zeros((n, 3))
     fd_beta = np.zeros((n, 3))
     acc = np.zeros((n, 3))
-    partial = np.zeros((NCHUNK, 2))
+    partial = np.zeros((NCHUNK, 6))
+    totals = np.zeros(6)
     state = model.new_state()
 
-    def forces(u, v, w, psi, s, xs_prev, xm_prev, ft, mu_now, with_beta):
-        _, e_int = model.internal_force(u, f_int, state)
+    fast = _ContactLoop(model, cdamp, dt, fcon)
+
+    def forces(u, v, w, psi, s, mu_now, with_beta):
+        c = fast.step(u, w, psi, s, mu_now, f_int, state)
+        e_int = float(fast.sums[6] + fast.sums[7])
         if state is not None:
+            state.energies = (float(fast.sums[6]), float(fast.sums[7]))
             state.commit()
-        c = model.contact(u, w, psi, s, xs_prev, xm_prev, ft, mu_now, cdamp, dt)
-        fcon[:ns] = c["fs"] @ model.rotation(psi)         # Q^T f per row (wheel frame)
-        fcon[ns:] = c["fm"].reshape(-1, 3)
         if with_beta:
             model.internal_force(v, fd_beta, elastic=True)
             fd_beta[...] *= beta
-        return c, e_int, float(c["fs"][:, 2].sum())
+        return c, e_int, fast.sums[2]
 
     pass_rows = []
     if io["restart"] is not None:
@@ -169,7 +170,7 @@ def solve_explicit(case, progress, output_every, io):
         pass_rows = list(st["pass_rows"]) if "pass_rows" in st else []
         if state is not None:
             state.committed[:] = st["plastic"]
-        ft = c["ft"]
+        fast.restore(c)
         fresh = False
         label = f"FE explicit ({model.n_elements} el.), restart"
     else:
@@ -191,15 +192,12 @@ def solve_explicit(case, progress, output_every, io):
             w = 0.0                       # back at the start, touching; the load rises again
             v[:] = 0.0
             vw = 0.0
-            ft = np.zeros((ns, 3))
-            xs_prev = model.slave_positions(u, w, psi)
-            xm_prev = model.master_positions(u, s)
+            fast.start(u, w, psi, s)
             n_ramp = max(1, int(RELAXATION_RAMP * n1))
             for k in range(n1):
-                c, e_int, fcw = forces(u, v, w, psi, s, xs_prev, xm_prev, ft, 0.0, False)
-                xs_prev, xm_prev = c["xs"], c["xm"]
-                advance(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon, dt,
-                        partial)
+                c, e_int, fcw = forces(u, v, w, psi, s, 0.0, False)
+                advance_rolling(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon,
+                                dt, partial, totals)
                 load_k = load * float(_smoothstep((k + 1) / n_ramp))
                 aw = (fcw - load_k - c_axle_dr * vw) / M_dr
                 vw += dt * aw
@@ -210,7 +208,6 @@ def solve_explicit(case, progress, output_every, io):
             relax_error = abs(fcw - load) / load
             v[:] = 0.0
             vw = 0.0
-            ft = c["ft"].copy()
             e_int0 = e_int
             k0 = 0
             rows = []
@@ -227,32 +224,28 @@ def solve_explicit(case, progress, output_every, io):
                         **({"plastic": state.committed} if state is not None else {}))
 
         maybe_write = restart_writer(io, model, dt, n2)
-        xs_prev, xm_prev = c["xs"], c["xm"]
         # ---- step 2: rolling (energies counted from here)
+        sums = fast.sums
         for k in range(k0, n2):
-            c, e_int, fcw = forces(u, v, w, psi, s, xs_prev, xm_prev, ft, mu, beta > 0)
-            xs_prev, xm_prev = c["xs"], c["xm"]
-            ft = c["ft"]
-            # second halves of the trapezoidal work over the last interval (v = v_{k-1/2})
-            vc_old = v[cidx]
-            E["contact_work"] += 0.5 * dt * (float(np.sum(fcon * vc_old)) + fcw * vw)
-            if beta > 0:
-                E["damping"] += 0.5 * dt * float(np.sum(fd_beta * v))
-            E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-            fs = c["fs"]
-            Fx, Fy, Fz, Fn = fs[:, 0].sum(), fs[:, 1].sum(), fs[:, 2].sum(), c["pn"].sum()
+            c, e_int, fcw = forces(u, v, w, psi, s, mu, beta > 0)
+            E["friction"] += sums[4]
+            Fx, Fy, Fz, Fn = sums[0], sums[1], sums[2], sums[3]
             hist[k] = (s, Fx, Fy, Fz, Fn)
-            advance(u, v, acc, f_int, fd_beta, beta > 0, m_alpha_roll, inv_m, cmap, fcon, dt,
-                    partial)
+            advance_rolling(u, v, acc, f_int, fd_beta, beta > 0, m_alpha_roll, inv_m, cmap,
+                            fcon, dt, partial, totals)
+            # second halves of the trapezoidal work over the last interval (v = v_{k-1/2})
+            E["contact_work"] += 0.5 * dt * (totals[2] + fcw * vw)
+            if beta > 0:
+                E["damping"] += 0.5 * dt * totals[4]
             aw = (fcw - load - (alpha * M_w + c_axle) * vw) / M_w
             vw_new = vw + dt * aw
-            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw + chunk_sum(partial, 0))
+            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw + totals[0])
             if k % every == 0 or k == n2 - 1:
                 vn = v - 0.5 * dt * acc                 # v_k
                 vwn = vw + 0.5 * dt * aw
                 E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
                 E["internal"] = e_int - e_int0
-                E["contact"] = float(c["energy"].sum())
+                E["contact"] = float(sums[5])
                 if state is not None:
                     E["plastic_work"] = state.energies[1]
                 rows.append([t, s, Fx, Fy, Fz, Fn, E["kinetic"], E["internal"], E["contact"],
@@ -261,11 +254,10 @@ def solve_explicit(case, progress, output_every, io):
                 if bar is not None:
                     bar.update(bar.task_ids[0], completed=done + k)
             # first halves over the next interval (v = v_{k+1/2})
-            E["contact_work"] += 0.5 * dt * (float(np.sum(fcon * v[cidx])) + fcw * vw_new)
-            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw_new
-                                        + chunk_sum(partial, 1))
+            E["contact_work"] += 0.5 * dt * (totals[3] + fcw * vw_new)
+            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw_new + totals[1])
             if beta > 0:
-                E["damping"] += 0.5 * dt * float(np.sum(fd_beta * v))
+                E["damping"] += 0.5 * dt * totals[5]
             dw = dt * vw_new
             vw = vw_new
             w += dw
@@ -294,6 +286,98 @@ def solve_explicit(case, progress, output_every, io):
     return RollingResult(ds, patch, steady["Fx"], steady["Fy"], patch.attrs["p_max"],
                          patch.attrs["a"], patch.attrs["b"], model, u, info, steady, state,
                          fields, _passes_dataset(pass_rows, model, state))
+
+
+class _ContactLoop:
+    """Element forces and contact of an explicit step in preallocated buffers.
+
+    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_forces`): the element
+    forces (into ``f``, which must hold zeros: the node update leaves it so), the surface
+    kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, and the contact
+    forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid). The
+    per-slave results are those of :meth:`wheelrail.fe.model.Model.contact` (same positions,
+    increments, normals and contact law). Positions and tangential forces are
+    double-buffered (the step reads the last ones); :attr:`sums` holds Fx, Fy, Fz, Σ p_n,
+    the friction dissipation, the penalty energy, the elastic strain energy and the plastic
+    work of the last step.
+    """
+
+    def __init__(self, model, cdamp, dt, fcon):
+        self.model = model
+        ns = model.slave.size
+        nx, ny = model.master.shape
+        self.slave = np.ascontiguousarray(model.slave, np.int64)
+        self.master = np.ascontiguousarray(model.master, np.int64)
+        self.ref_s = np.ascontiguousarray(model.wheel.nodes[self.slave], float)
+        self.ref_m = np.ascontiguousarray(model.rail.nodes[self.master - model.nw], float)
+        self.x_ref = np.ascontiguousarray(model.rail.axes[0], float)
+        self.y_ref0 = np.ascontiguousarray(model.rail.axes[1], float)
+        self.y_ref = self.y_ref0.copy()
+        self.cdamp, self.inv_dt, self.fcon = cdamp, 1.0 / dt, fcon
+        self.reach = 5.0 * model.case.mesh_size
+        self.xs = [np.zeros((ns, 3)), np.zeros((ns, 3))]       # [previous, current]
+        self.xm = [np.zeros((nx, ny, 3)), np.zeros((nx, ny, 3))]
+        self.ft = [np.zeros((ns, 3)), np.zeros((ns, 3))]
+        self.dxs = np.zeros((ns, 3))
+        self.dxm = np.zeros((nx, ny, 3))
+        self.nm = np.zeros((nx, ny, 3))
+        self.out = {
+            "fs": np.zeros((ns, 3)), "fm": np.zeros((nx, ny, 3)), "gap": np.ones(ns),
+            "pn": np.zeros(ns), "status": np.zeros(ns, np.int64),
+            "cell": np.zeros((ns, 2), np.int64), "rt": np.zeros((ns, 2)),
+            "normal": np.zeros((ns, 3)), "slip": np.zeros(ns), "energy": np.zeros(ns),
+        }
+        self.sums = np.zeros(8)
+        nc = model.chunks.size - 1
+        self.echunk = np.zeros((nc, 2))
+        self.energy = np.zeros((model.n_elements, 2))
+        self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
+        self.mat = (model.material.lam, model.material.shear_modulus) + tuple(model._hardening)
+
+    def start(self, u, w, psi, s):
+        """The positions of the first step's 'previous' state; zero tangential forces."""
+        m = self.model
+        self.xs[0][...] = m.slave_positions(u, w, psi)
+        self.xm[0][...] = m.master_positions(u, s)
+        self.ft[0][...] = 0.0
+
+    def restore(self, c):
+        """The previous state from a contact dict (a restart file)."""
+        self.xs[0][...] = c["xs"]
+        self.xm[0][...] = c["xm"]
+        self.ft[0][...] = c["ft"]
+        for k, buf in self.out.items():
+            if k in c:
+                buf[...] = c[k]
+
+    def step(self, u, w, psi, s, mu, f, state):
+        m, o = self.model, self.out
+        cpsi, spsi = np.cos(psi), np.sin(psi)
+        lat = m.lateral_shift(s)
+        xs_old, xs = self.xs
+        xm_old, xm = self.xm
+        ft_old, ft = self.ft
+        np.subtract(self.y_ref0, lat, out=self.y_ref)
+        ed = m.edata
+        lam, G, hp, tp, ts = self.mat
+        plastic = state is not None
+        st_in = state.committed if plastic else _NO_STATE
+        st_out = state.trial if plastic else _NO_STATE
+        explicit_forces(u, m.conn, m.chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam, G, plastic,
+                        hp, tp, ts, st_in, st_out, f, self.energy, self.echunk, self.tasks,
+                        self.ref_s, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old, self.dxs,
+                        self.ref_m, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
+                        m.slave_area, m.kn, mu, ft_old, self.x_ref, self.y_ref, self.reach, m.g0,
+                        self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
+                        o["pn"], ft, o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
+                        self.fcon, self.sums)
+        self.xs.reverse()
+        self.xm.reverse()
+        self.ft.reverse()
+        return dict(o, xs=xs, xm=xm, ft=ft)
+
+
+_NO_STATE = np.zeros((0, 1, 14))
 
 
 def _steady(model, hist, window):

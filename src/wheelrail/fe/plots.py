@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["plot_patch", "plot_history", "plot_patch_comparison", "plot_creep_curves", "plot_passes",
-           "plot_section"]
+           "plot_section", "plot_surface"]
 
 
 def plot_patch(patch, mu: float, reference=None, path=None):
@@ -248,6 +248,67 @@ def plot_section(fields, quantity="rail_von_mises", y=0.0, path=None, depth_max=
     ax.invert_yaxis()
     ax.set_xlabel("x [mm] (rail)")
     ax.set_ylabel("depth [mm]")
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=110)
+    return fig
+
+
+def plot_surface(fields, quantity="rail_von_mises", y_section=None, path=None, depth_max=None,
+                 yield_stress=None):
+    """The rail's running surface seen from above and a longitudinal section below it
+    (Toumi, Chollet & Yin 2016, Fig. 9: von Mises stress at the rail surface during rolling,
+    the loaded patch ahead and the residual field behind).
+
+    Parameters
+    ----------
+    fields : xarray.Dataset
+        ``RollingResult.fields`` of a plastic run (element centres; the contact is at
+        x = travel at the end of the run).
+    quantity : str
+        ``rail_von_mises`` [Pa], ``rail_equivalent_plastic_strain`` or ``rail_stress:xx``
+        (a component).
+    y_section : float, optional
+        Lateral position of the section [m] (default: the y of the field's maximum).
+    depth_max : float, optional
+        Deepest layer drawn in the section [m].
+    yield_stress : float, optional
+        Drawn as a contour line on stress maps [Pa].
+    """
+    plt = _figure(path)
+    name, _, comp = quantity.partition(":")
+    da = fields[name]
+    if comp:
+        da = da.sel(component=comp)
+    scale, unit = (1e-6, "MPa") if da.attrs.get("units") == "Pa" else (1.0, "-")
+    top = da.isel(depth=0)
+    if y_section is None:
+        k = np.unravel_index(int(np.nanargmax(np.abs(da.values))), da.shape)
+        y_section = float(da.y[k[1]])
+    sec = da.sel(y=y_section, method="nearest")
+    if depth_max is not None:
+        sec = sec.sel(depth=slice(0, depth_max))
+    vmax = float(np.nanmax(np.abs(da.values))) * scale
+    vmin = -vmax if float(np.nanmin(da.values)) < 0 else 0.0
+    fig, ax = plt.subplots(2, 1, figsize=(11, 6.5))
+    X, Y = np.meshgrid(top.x.values * 1e3, top.y.values * 1e3, indexing="ij")
+    cs = ax[0].pcolormesh(X, Y, top.values * scale, shading="nearest", cmap="jet", vmin=vmin,
+                          vmax=vmax)
+    fig.colorbar(cs, ax=ax[0], label=f"{quantity} [{unit}]")
+    if yield_stress is not None and unit == "MPa":
+        ax[0].contour(X, Y, top.values, [yield_stress], colors="w", linewidths=0.8)
+    ax[0].axhline(y_section * 1e3, color="w", ls="--", lw=0.7)
+    ax[0].set_title(f"top element layer (depth {float(top.depth) * 1e3:.2f} mm)")
+    ax[0].set_xlabel("x [mm] (rail; rolling towards +x)")
+    ax[0].set_ylabel("y [mm]")
+    X, D = np.meshgrid(sec.x.values * 1e3, sec.depth.values * 1e3, indexing="ij")
+    cs = ax[1].pcolormesh(X, D, sec.values * scale, shading="nearest", cmap="jet", vmin=vmin,
+                          vmax=vmax)
+    fig.colorbar(cs, ax=ax[1], label=f"{quantity} [{unit}]")
+    ax[1].invert_yaxis()
+    ax[1].set_title(f"section at y = {y_section * 1e3:.1f} mm")
+    ax[1].set_xlabel("x [mm] (rail)")
+    ax[1].set_ylabel("depth [mm]")
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=110)

@@ -156,7 +156,10 @@ class RollingResult:
 
 
 def _smoothstep(tau):
-    tau = np.clip(tau, 0.0, 1.0)
+    if isinstance(tau, (float, int)):       # scalar fast path (called every explicit step)
+        tau = min(max(float(tau), 0.0), 1.0)
+    else:
+        tau = np.clip(tau, 0.0, 1.0)
     return tau ** 3 * (10 - 15 * tau + 6 * tau ** 2)
 
 
