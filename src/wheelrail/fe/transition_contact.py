@@ -186,6 +186,20 @@ def node_to_segment(xs, dxs, area, kn, kt, mu, ft_old, xm, dxm, nmn, quads, b_or
             best_t = 0.0
             for m in range(b_start[b], b_start[b + 1]):
                 q = b_items[m]
+                # cheap rejection: slave farther than reach from the quad's bounding box
+                far = False
+                for d in range(3):
+                    lo = xm[quads[q, 0], d]
+                    hi = lo
+                    for a in range(1, 4):
+                        vv = xm[quads[q, a], d]
+                        lo = min(lo, vv)
+                        hi = max(hi, vv)
+                    if xs[s, d] < lo - reach or xs[s, d] > hi + reach:
+                        far = True
+                        break
+                if far:
+                    continue
                 for a in range(4):
                     for d in range(3):
                         c[a, d] = xm[quads[q, a], d]

@@ -228,7 +228,7 @@ def _wrap(prof_y, prof_z, angle):
 
 def rail_section(rail, h: float, bands_y, *, inclination: float = 1 / 40, ratio: float = 1.3,
                  h_max: float = 8e-3, fine_depth: float | None = None,
-                 layer_depth: float = 8e-3, head_depth: float = 0.040):
+                 layer_depth: float = 8e-3, head_depth: float = 0.040, spread: float = 0.8):
     """Cross-section of a rail head from its profile, gauge face included.
 
     Parameters
@@ -247,6 +247,9 @@ def rail_section(rail, h: float, bands_y, *, inclination: float = 1 / 40, ratio:
         Depth of the uniform layers [m] (default 3 h); graded below to ``layer_depth``.
     head_depth : float
         Depth of the head's flat underside below the top [m] (the web block is tied to it).
+    spread : float
+        Lateral spreading of the core rows towards uniform (:func:`section_rows`); high for
+        a rail, whose near-vertical gauge and field faces stack their nodes at one ``y``.
 
     Returns
     -------
@@ -260,7 +263,8 @@ def rail_section(rail, h: float, bands_y, *, inclination: float = 1 / 40, ratio:
     depths = spacing_axis(0.0, layer_depth, [(0.0, fine)], h, ratio, h_max)
     top = float(np.max(z))
     n_core = max(2, int(np.ceil((head_depth - layer_depth) / h_max)))
-    rows = section_rows(curve, s_nodes, depths, [(None, None, top - head_depth, n_core)])
+    rows = section_rows(curve, s_nodes, depths, [(None, None, top - head_depth, n_core)],
+                        spread)
     section_quality(rows, "rail head")
     return rows, curve, s_nodes
 
