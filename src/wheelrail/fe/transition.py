@@ -66,9 +66,9 @@ class TransitionResult:
     Attributes
     ----------
     patches : xarray.Dataset
-        Per-patch histories, dims (``time``, ``patch``); patch 1 is the one nearest the
-        flange side of the wheel profile... ordered by the surface index across the wheel
-        profile (flange first). Variables: :data:`PATCH_FIELDS` plus ``travel``.
+        Per-patch histories, dims (``time``, ``patch``), patches ordered by their position
+        across the wheel profile (flange side first; the numbering of a patch can change
+        when another appears). Variables: :data:`PATCH_FIELDS` plus ``travel``.
     history : xarray.Dataset
         Axle and suspension histories over ``time``.
     model : TransitionModel
@@ -391,17 +391,18 @@ def _onset(ds, min_force=100.0):
 
 
 def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> TransitionCase:
-    """The transition case of the two-point contact paper: S1002 on 54E1 at 1:40, 80 km/h,
-    μ = 0.6, a half-wheelset with a sprung mass on a track with discrete sleepers.
+    """The one- to two-point contact transition case: S1002 on 54E1 at 1:40, 80 km/h,
+    μ = 0.6, a half-wheelset with a sprung mass on a track with discrete sleepers (the set-up
+    of explicit FE studies of the transition, with 1 mm elements in a 150 mm solution zone).
 
     Parameters
     ----------
     angle_of_attack : float
-        [rad]; the paper runs 0.015, 0.020 and 0.025.
+        Angle of attack [rad] (0.015, 0.020 and 0.025 are the studied values).
     size : {"reduced", "full"}
         ``"reduced"``: 2 sleepers, 2 mm elements, 0.1 m of travel from 1 mm of flange
-        clearance (minutes on 2 cores); ``"full"``: the paper's 1 mm elements in a 150 mm
-        solution zone, 0.67 m travel and a longer track (hours; not yet run).
+        clearance (minutes on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution
+        zone, 0.67 m travel and a longer track (hours; not yet run).
     **changes
         Any :class:`TransitionCase` field.
     """

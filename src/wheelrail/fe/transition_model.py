@@ -4,7 +4,8 @@ A half-wheelset (wheel rim meshed from its profile with the flange, plate tied t
 hub clamped to a rigid half-axle) rolls at a constant forward speed along its own heading,
 which is yawed by the angle of attack α against the rail: the axle's lateral motion is held
 at its inner end, so the wheel approaches the gauge corner at V sin α and the flange comes
-into contact (Yang's boundary condition of the transition model, after Zhao & Li 2011).
+into contact (the boundary condition of explicit FE studies of the one- to two-point
+contact transition; track and vehicle after Zhao & Li 2011).
 The rail (head meshed from its profile with the gauge face, web and foot tied to it) lies
 on solid sleepers through railpads; the sleepers on ballast (:mod:`.transition_track`).
 

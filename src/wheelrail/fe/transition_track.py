@@ -3,14 +3,14 @@
 :class:`TrackStructure` — a rail on discrete solid sleepers: railpads as
 spring–dampers between the rail foot and the sleeper top, the ballast as vertical
 spring–dampers under the sleeper, the sleeper's bottom held laterally and
-longitudinally (Zhao, Li & Liu 2012; Yang, Li et al.'s two-point model).
+longitudinally (Zhao, Li & Liu 2012).
 :class:`Suspension` — the sprung mass (car body and bogie lumped, per wheel) on the
 primary suspension, the half-axle's mass and inertia, the driving torque.
 
 Default values
 --------------
-The transition paper takes its track and suspension parameters from Zhao, Li & Liu
-(2012), which could not be consulted for this implementation. The defaults are the
+Explicit FE studies of the two-point contact transition take their track and suspension
+parameters from Zhao, Li & Liu (2012), which could not be consulted for this implementation. The defaults are the
 values this research group publishes for the same Dutch ballasted track with 54E1 rail
 and concrete sleepers in Li, Zhao, Esveld, Dollevoet & Molodova (2008, Table 1) and
 Zhao & Li (2011, Table 1), as remembered and **not verified against the papers**:
@@ -80,8 +80,7 @@ class TrackStructure:
     sleeper_E, sleeper_nu, sleeper_density : float
         Concrete sleeper material [Pa], [-], [kg/m³].
     sleeper_elements : tuple of int
-        Elements of a sleeper along (x, y, z): 12 elements by default, as in the
-        transition paper.
+        Elements of a sleeper along (x, y, z): 12 solid elements by default.
     """
 
     sleeper_spacing: float = 0.6
