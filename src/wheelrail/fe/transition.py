@@ -31,13 +31,22 @@ import time
 import numpy as np
 
 from ..errors import InputError
+from ..materials import Material
+from ..normal.hertz import hertz
 from ..profiles import load as load_profile
 from . import _kernels as K
 from . import _solid as S
 from ._explicit import NCHUNK, advance
-from .transition_contact import node_to_segment, nodal_normals_quads, patch_summary, patches, \
-    scatter_master
-from .transition_model import TransitionCase, build_transition_model
+from .transition_contact import (
+    build_buckets,
+    nodal_normals_quads,
+    node_to_segment,
+    patch_summary,
+    patches,
+    scatter_master,
+)
+from .transition_mesh import extrude_section, rail_section, spacing_axis, sweep_section, wheel_section
+from .transition_model import TransitionCase, build_transition_model, rigid_pose
 from .transition_track import GRAVITY, Suspension, TrackStructure
 
 __all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate", "pose_contact",
@@ -157,9 +166,6 @@ def _static_approach(case, pose, load, model):
     """Normal approach [m] of the static tread contact: Hertz (Johnson 1985, §4.2) from
     the rolling radius and the profile curvatures at the start contact point, plus the
     penalty layer's overlap at the mean pressure; 0.1 mm if the contact is not Hertzian."""
-    from ..materials import Material
-    from ..normal.hertz import hertz
-
     mat = case.material
     kw = float(case.wheel.curvature(pose["yw_tread"]))
     kr = float(case.rail.curvature(pose["rail_y_tread"]))
@@ -435,11 +441,6 @@ def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
         :func:`~wheelrail.fe.transition_contact.patch_summary` of every patch, ordered
         from the flange side of the wheel profile.
     """
-    from .transition_contact import build_buckets
-    from .transition_mesh import (extrude_section, rail_section, spacing_axis,
-                                  sweep_section, wheel_section)
-    from .transition_model import rigid_pose
-
     h = case.mesh_size
     pose = rigid_pose(case, y_off)
     rr, _, _ = rail_section(case.rail, h, [(-0.04, 0.04)], inclination=case.inclination,
