@@ -45,11 +45,18 @@ from .transition_contact import (
     patches,
     scatter_master,
 )
-from .transition_mesh import extrude_section, rail_section, spacing_axis, sweep_section, wheel_section
+from .transition_mesh import (
+    extrude_section,
+    rail_section,
+    spacing_axis,
+    sweep_section,
+    wheel_section,
+)
 from .transition_model import TransitionCase, build_transition_model, rigid_pose
 from .transition_track import GRAVITY, Suspension, TrackStructure
 
-__all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate", "pose_contact",
+__all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate",
+           "pose_contact",
            "NS_PER_ELEMENT_STEP"]
 
 #: Measured cost of one step per element on the shared 2-core machine (ns), used by the
@@ -140,8 +147,10 @@ def _static_track(model, load, point, EI=2.1e11 * 2.346e-5):
     Kb = np.zeros((2 * x.size, 2 * x.size))
     for e in range(ne):
         L = x[e + 1] - x[e]
-        k = EI / L ** 3 * np.array([[12, 6 * L, -12, 6 * L], [6 * L, 4 * L * L, -6 * L, 2 * L * L],
-                                    [-12, -6 * L, 12, -6 * L], [6 * L, 2 * L * L, -6 * L, 4 * L * L]])
+        k = EI / L ** 3 * np.array([[12, 6 * L, -12, 6 * L],
+                                    [6 * L, 4 * L * L, -6 * L, 2 * L * L],
+                                    [-12, -6 * L, 12, -6 * L],
+                                    [6 * L, 2 * L * L, -6 * L, 4 * L * L]])
         Kb[2 * e:2 * e + 4, 2 * e:2 * e + 4] += k
     k_sup = 1.0 / (1.0 / track.pad_stiffness + 1.0 / track.ballast_stiffness)
     sup = [int(np.argmin(np.abs(x - xs))) for xs in model.pose["sleepers"]]

@@ -440,13 +440,14 @@ def build_transition_model(case: TransitionCase) -> TransitionModel:
             "yw_tread": yw_tread, "yw_flange": yw_flange, "rail_y_tread": start["y"],
             "rail_y_flange": flange["y"], "flange_angle_rigid": flange["contact_angle"],
             "tread_angle_rigid": start["contact_angle"], "sleepers": xs_sl, "x_band": x_band}
-    meta = {"sleeper_offset": sl_off, "added_mass": added, "x_axis": x_axis, "theta": th, "rim_shape": rim.shape, "band_i": band_i,
+    meta = {"sleeper_offset": sl_off, "added_mass": added, "x_axis": x_axis, "theta": th,
+            "rim_shape": rim.shape, "band_i": band_i,
             "quality": {b.name: b.meta["quality"] for b in blocks},
             "blocks": {b.name: (int(o), b.n_nodes, b.n_elements) for b, o in zip(blocks, offs)},
             "rail_rows": rail_rows, "wheel_rows": wheel_rows, "rail_curve": rail_curve,
             "wheel_curve": wheel_curve}
-    return TransitionModel(case, nodes, n_wheel, groups, mass, rim.fixed[:0] if False else
-                           offs[1] + plate.fixed, held, tie_s, tie_m, tie_w, springs,
+    return TransitionModel(case, nodes, n_wheel, groups, mass, offs[1] + plate.fixed, held,
+                           tie_s, tie_m, tie_w, springs,
                            slave.ravel(), slave_area, master, quads, buckets, kn, g0, pose, meta)
 
 

@@ -10,9 +10,9 @@ primary suspension, the half-axle's mass and inertia, the driving torque.
 Default values
 --------------
 Explicit FE studies of the two-point contact transition take their track and suspension
-parameters from Zhao, Li & Liu (2012), which could not be consulted for this implementation. The defaults are the
-values this research group publishes for the same Dutch ballasted track with 54E1 rail
-and concrete sleepers in Li, Zhao, Esveld, Dollevoet & Molodova (2008, Table 1) and
+parameters from Zhao, Li & Liu (2012), which could not be consulted for this implementation.
+The defaults are the values this research group publishes for the same Dutch ballasted
+track with 54E1 rail and concrete sleepers in Li, Zhao, Esveld, Dollevoet & Molodova (2008, Table 1) and
 Zhao & Li (2011, Table 1), as remembered and **not verified against the papers**:
 railpad 1300 MN/m and 45 kN s/m, ballast 45 MN/m and 32 kN s/m per rail seat, sleeper
 spacing 0.6 m, primary suspension 1.15 MN/m and 2.5 kN s/m. The sprung mass per wheel
