@@ -59,9 +59,10 @@ __all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_tim
            "pose_contact",
            "NS_PER_ELEMENT_STEP"]
 
-#: Measured cost of one step per element on the shared 2-core machine (ns), used by the
+#: Measured CPU cost of one step per element (ns; 412 ns at load 15 on the shared 2-core
+#: machine, 54 k elements), used by the
 #: estimate before a run (see docs/fe_transition.md).
-NS_PER_ELEMENT_STEP = 250.0
+NS_PER_ELEMENT_STEP = 400.0
 
 PATCH_FIELDS = ("Fn", "Fx", "Fy", "Fz", "F_long", "F_lat", "contact_angle", "x", "y", "z",
                 "area", "p_max", "q_max", "adhesion", "theta", "n_nodes")
