@@ -77,10 +77,14 @@ from .rolling import (
 )
 from .run import solve
 from .static import IndentResult, indent
+from .transition import TransitionResult, pose_contact, run_transition, seed004_case
+from .transition_model import TransitionCase, build_transition_model
+from .transition_track import Suspension, TrackStructure
 
 __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
            "solve", "indent", "RollingResult", "IndentResult",
            "Hex8", "LinearElastic", "J2Plastic", "Voce", "TabulatedHardening",
            "R900A_HARDENING", "r900a", "plastic_fields", "steady_window", "build_model", "write_vtu", "check_quality",
            "MeshQualityError", "stable_time_step", "saturation_creepage", "read_restart",
-           "write_restart"]
+           "write_restart", "seed004_case", "run_transition", "TransitionCase", "TransitionResult",
+           "TrackStructure", "Suspension", "build_transition_model", "pose_contact"]

@@ -1,0 +1,495 @@
+"""Explicit time loop of the one- to two-point contact transition, and ``seed004_case``.
+
+Reuses the engine's parts without changing them: the element-force kernel
+(:func:`wheelrail.fe._solid.element_forces`), the central-difference node update
+(:func:`wheelrail.fe._explicit.advance`; all external forces are passed as its "contact"
+forces with every node mapped) and the stiffness triplets for the static track solve.
+New here: the general contact (:mod:`.transition_contact`), ties, spring–dampers, the
+axle's vertical and rolling dofs, and per-patch outputs.
+
+Step
+----
+1. Static track: the rail, sleepers, pads and ballast under the static wheel load at the
+   start contact point (one sparse solve), so that the slow track modes do not start from
+   rest; the wheel is placed on the deflected rail and the sprung mass on its static
+   suspension deflection.
+2. Explicit rolling over ``travel`` at the speed V along the wheel's heading (yawed by α):
+   the element forces, the contact, the springs, the axle (vertical: M ẅ = F_z − load
+   terms; rolling: J ψ̈ = T − M_contact), the node update, the ties. An axle dashpot
+   (critical on the Hertz stiffness) damps the start transient over ``settle``.
+   Outputs every ``output_interval``: the patches (:func:`.transition_contact.patch_summary`).
+
+References
+----------
+.. [1] X. Zhao, Z. Li, Wear 271 (2011) 444-452 (explicit transient wheel-track FE model).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from ..errors import InputError
+from ..materials import Material
+from ..normal.hertz import hertz
+from ..profiles import load as load_profile
+from . import _kernels as K
+from . import _solid as S
+from ._explicit import NCHUNK, advance
+from .transition_contact import (
+    build_buckets,
+    nodal_normals_quads,
+    node_to_segment,
+    patch_summary,
+    patches,
+    scatter_master,
+)
+from .transition_mesh import (
+    extrude_section,
+    rail_section,
+    spacing_axis,
+    sweep_section,
+    wheel_section,
+)
+from .transition_model import TransitionCase, build_transition_model, rigid_pose
+from .transition_track import GRAVITY, Suspension, TrackStructure
+
+__all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate",
+           "pose_contact",
+           "NS_PER_ELEMENT_STEP"]
+
+#: Measured CPU cost of one step per element (ns; 412 ns at load 15 on the shared 2-core
+#: machine, 54 k elements), used by the
+#: estimate before a run (see docs/fe_transition.md).
+NS_PER_ELEMENT_STEP = 400.0
+
+PATCH_FIELDS = ("Fn", "Fx", "Fy", "Fz", "F_long", "F_lat", "contact_angle", "x", "y", "z",
+                "area", "p_max", "q_max", "adhesion", "theta", "n_nodes")
+MAX_PATCHES = 3
+
+
+def _rot(alpha, psi):
+    ca, sa = np.cos(alpha), np.sin(alpha)
+    cp, sp = np.cos(psi), np.sin(psi)
+    Rz = np.array([[ca, -sa, 0.0], [sa, ca, 0.0], [0.0, 0.0, 1.0]])
+    Ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
+    return Rz @ Ry
+
+
+class TransitionResult:
+    """Output of :func:`run_transition`.
+
+    Attributes
+    ----------
+    patches : xarray.Dataset
+        Per-patch histories, dims (``time``, ``patch``), patches ordered by their position
+        across the wheel profile (flange side first; the numbering of a patch can change
+        when another appears). Variables: :data:`PATCH_FIELDS` plus ``travel``.
+    history : xarray.Dataset
+        Axle and suspension histories over ``time``.
+    model : TransitionModel
+    u : ndarray (n, 3)
+        Final displacements (wheel nodes in the wheel frame).
+    info : dict
+        Step, number of steps, CPU time, ns per element per step, onset of two-point contact.
+    """
+
+    def __init__(self, patches, history, model, u, info):
+        self.patches = patches
+        self.history = history
+        self.model = model
+        self.u = u
+        self.info = info
+
+
+def stable_step(model) -> float:
+    """Largest stable central-difference step [s]: elements (L/c per material), contact
+    springs of the slaves (series with the master), and the track springs."""
+    dt = np.inf
+    for conn, _, ed, mat in model.groups:
+        # the lumped mass may be scaled: the element's own density from its nodes' masses
+        dt = min(dt, float(ed.length.min()) / mat.wave_speed
+                 * (1.0 if mat is not model.case.material else
+                    np.sqrt(max(1.0, (model.case.min_element_fraction * model.case.mesh_size
+                                      / ed.length.min()) ** 2))))
+    ms = model.mass[model.slave]
+    kc = model.kn * model.slave_area
+    dt = min(dt, float(np.sqrt(0.5 * ms / kc).min()) * 2.0 * 0.9)
+    dt = min(dt, model.springs.stable_step(model.mass))
+    return dt
+
+
+def transition_time_estimate(model, dt=None) -> dict:
+    """Steps and an estimated wall time [s] before a run (from :data:`NS_PER_ELEMENT_STEP`)."""
+    c = model.case
+    dt = dt or c.courant * stable_step(model)
+    steps = int(np.ceil(c.travel / c.speed / dt))
+    return {"time_step": dt, "steps": steps, "elements": model.n_elements,
+            "estimate_s": steps * model.n_elements * NS_PER_ELEMENT_STEP * 1e-9}
+
+
+def _static_track(model, load, point, EI=2.1e11 * 2.346e-5):
+    """Initial static track displacements under ``load`` [N] at x = ``point[0]``.
+
+    A 3-D static solve of the track is expensive (minutes with a direct solver; the
+    hourglass-stabilised mesh on springs defeats plain AMG-CG), so the initial state is the
+    Euler–Bernoulli beam on discrete spring supports (pad and ballast in series) under the
+    load: the rail nodes get the beam's vertical deflection w(x), the sleepers sink by their
+    reaction over the ballast stiffness. The local contact and section deformation is left
+    to the explicit run (it settles within the ``settle`` distance). ``EI`` is the 54E1
+    rail's bending stiffness about the horizontal axis (I = 2346 cm⁴, EN 13674-1).
+    """
+    n = model.n_nodes
+    nw = model.n_wheel
+    track = model.case.track
+    x = model.meta["x_axis"]
+    ne = x.size - 1
+    Kb = np.zeros((2 * x.size, 2 * x.size))
+    for e in range(ne):
+        L = x[e + 1] - x[e]
+        k = EI / L ** 3 * np.array([[12, 6 * L, -12, 6 * L],
+                                    [6 * L, 4 * L * L, -6 * L, 2 * L * L],
+                                    [-12, -6 * L, 12, -6 * L],
+                                    [6 * L, 2 * L * L, -6 * L, 4 * L * L]])
+        Kb[2 * e:2 * e + 4, 2 * e:2 * e + 4] += k
+    k_sup = 1.0 / (1.0 / track.pad_stiffness + 1.0 / track.ballast_stiffness)
+    sup = [int(np.argmin(np.abs(x - xs))) for xs in model.pose["sleepers"]]
+    for i in sup:
+        Kb[2 * i, 2 * i] += k_sup
+    f = np.zeros(2 * x.size)
+    f[2 * int(np.argmin(np.abs(x - point[0])))] = -load
+    wb = np.linalg.solve(Kb, f)[0::2]
+    u = np.zeros((n, 3))
+    rail = np.arange(nw, n)
+    rail = rail[~np.isin(rail, np.arange(model.meta["sleeper_offset"], n))]
+    u[rail, 2] = np.interp(model.nodes[rail, 0], x, wb)
+    nsl = (n - model.meta["sleeper_offset"]) // len(sup)
+    for s_, i in enumerate(sup):
+        reaction = k_sup * wb[i]
+        a = model.meta["sleeper_offset"] + s_ * nsl
+        u[a:a + nsl, 2] = reaction / track.ballast_stiffness
+    return u
+
+
+def _static_approach(case, pose, load, model):
+    """Normal approach [m] of the static tread contact: Hertz (Johnson 1985, §4.2) from
+    the rolling radius and the profile curvatures at the start contact point, plus the
+    penalty layer's overlap at the mean pressure; 0.1 mm if the contact is not Hertzian."""
+    mat = case.material
+    kw = float(case.wheel.curvature(pose["yw_tread"]))
+    kr = float(case.rail.curvature(pose["rail_y_tread"]))
+    A = 0.5 / pose["r0"]
+    B = 0.5 * (kw - kr)
+    fn = load / np.cos(pose["tread_angle_rigid"])
+    if not B > 1e-9:
+        return 1e-4
+    hz = hertz(fn, A, B, Material(mat.E, mat.nu))
+    p_mean = fn / (np.pi * float(hz.a) * float(hz.b))
+    return float(hz.penetration) * np.cos(pose["tread_angle_rigid"]) + \
+        p_mean / float(np.median(model.kn))
+
+
+def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
+                   estimate_only: bool = False, field_every: int = 0):
+    """Roll the half-wheelset of ``case`` into two-point contact (explicit FE).
+
+    Parameters
+    ----------
+    case : TransitionCase
+    progress : bool
+        Print the estimate and progress lines.
+    model : TransitionModel, optional
+        A model already built for ``case``.
+    estimate_only : bool
+        Return :func:`transition_time_estimate` without running.
+    field_every : int
+        If > 0, store the rail surface nodes' velocities every ``field_every`` outputs
+        (for the wave-speed analysis) in ``info["fields"]``.
+
+    Returns
+    -------
+    TransitionResult
+    """
+    import xarray as xr
+
+    m = model if model is not None else build_transition_model(case)
+    dt = case.courant * stable_step(m)
+    est = transition_time_estimate(m, dt)
+    if progress or estimate_only:
+        msg = (f"transition FE: {m.n_elements} elements, {est['steps']} steps of "
+               f"{dt * 1e9:.1f} ns, estimated {est['estimate_s'] / 60:.1f} min")
+        if estimate_only:
+            return est
+        print(msg, flush=True)
+    n = m.n_nodes
+    nw = m.n_wheel
+    susp = case.suspension
+    alpha = case.angle_of_attack
+    V = case.speed
+    pose = m.pose
+    M_wheel = float(m.mass[:nw].sum())
+    load = susp.wheel_load(M_wheel)
+    M_axle = susp.axle_mass + M_wheel
+    # rolling inertia: FE wheel about the axle + half-axle
+    rho2 = m.nodes[:nw, 0] ** 2 + m.nodes[:nw, 2] ** 2
+    J = float(np.sum(m.mass[:nw] * rho2)) + susp.axle_inertia
+    r0 = pose["r0"]
+    torque = case.traction * load * r0 + susp.torque
+    # ---- static track and initial pose
+    u = _static_track(m, load, (0.0, pose["rail_y_tread"]))
+    k_master = m.master
+    sag = float(np.min(u[k_master, 2]))
+    # start at 60 % of the Hertz approach: a coarse mesh cannot resolve the narrow flange-root
+    # patch and is stiffer at the same overlap; the axle dashpot absorbs the rest
+    delta = 0.6 * _static_approach(case, pose, load, m)
+    c0 = np.array([0.0, pose["y0"], case.radius + pose["z0"] + sag - delta])
+    v = np.zeros((n, 3))
+    acc = np.zeros((n, 3))
+    f_int = np.zeros((n, 3))
+    f_tmp = np.zeros((n, 3))
+    fext = np.zeros((n, 3))
+    energy = np.zeros((m.n_elements, 2))
+    e_buf = [np.zeros((g[0].shape[0], 2)) for g in m.groups]
+    partial = np.zeros((NCHUNK, 2))
+    cmap = np.arange(n, dtype=np.int64)
+    inv_m = 1.0 / m.mass
+    mass_eff = m.mass.copy()
+    np.add.at(mass_eff, m.tie_master.ravel(), (m.tie_weight * m.mass[m.tie_slave, None]).ravel())
+    inv_m = 1.0 / mass_eff
+    inv_m[m.fixed] = 0.0
+    inv_m[m.tie_slave] = 0.0
+    m_alpha = np.zeros(n)
+    no_beta = np.zeros((1, 3))
+    # contact arrays
+    ns = m.slave.size
+    ft = np.zeros((ns, 3))
+    out = {k: np.zeros(sh) for k, sh in (("fs", (ns, 3)), ("gap", ns), ("pn", ns),
+                                          ("ft", (ns, 3)), ("rt", (ns, 2)),
+                                          ("normal", (ns, 3)), ("slip", ns))}
+    status = np.zeros(ns, np.int64)
+    seg = np.zeros(ns, np.int64)
+    fm = np.zeros((m.master.size, 3))
+    ms = m.mass[m.slave]
+    cdamp = 2.0 * case.contact_damping * np.sqrt(m.kn * m.slave_area * 0.5 * ms)
+    reach = 4 * case.mesh_size
+    b = m.buckets
+    # axle and suspension states
+    w = 0.0
+    vw = 0.0
+    zs = -(susp.sprung_mass * GRAVITY) / susp.stiffness   # suspension deflection, static
+    vs = 0.0
+    omega = V / r0
+    psi = 0.0
+    s = 0.0
+    t = 0.0
+    # Hertz-type axle dashpot over the settle distance: critical on k ≈ 1.5 Q / δ, δ ≈ 0.1 mm
+    c_axle0 = 2.0 * np.sqrt(1.5 * load / 1e-4 * M_axle)
+    Xw = m.nodes[m.slave]
+    xm_ref = m.nodes[k_master]
+    xs_prev = c0 + (Xw + u[m.slave]) @ _rot(alpha, psi).T
+    xm_prev = xm_ref + u[k_master]
+    heading = np.array([np.cos(alpha), np.sin(alpha), 0.0])
+    e_axle = _rot(alpha, 0.0) @ np.array([0.0, 1.0, 0.0])
+    n_steps = est["steps"]
+    every = max(1, int(round(case.output_interval / dt)))
+    rows, hist, fields = [], [], []
+    rim_shape = m.meta["rim_shape"]
+    band_i = m.meta["band_i"]
+    t_cpu = time.process_time()
+    t_wall = time.perf_counter()
+    surf_rail = k_master
+    for k in range(n_steps):
+        R = _rot(alpha, psi)
+        c = c0 + s * heading + np.array([0.0, 0.0, w])
+        # ---- element forces (both materials)
+        f_int[:] = 0.0
+        for g, (conn, chunks, ed, mat) in enumerate(m.groups):
+            S.element_forces(u, conn, chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, mat.lam,
+                             mat.shear_modulus, False, np.zeros(6), np.zeros(0), np.zeros(0),
+                             np.zeros((0, 1, 14)), np.zeros((0, 1, 14)), f_tmp, e_buf[g])
+            f_int += f_tmp
+        # ---- contact
+        xs = c + (Xw + u[m.slave]) @ R.T
+        xm = xm_ref + u[k_master]
+        nmn = nodal_normals_quads(xm, m.quads)
+        node_to_segment(xs, xs - xs_prev, m.slave_area, m.kn, m.kn, case.mu, ft, xm,
+                        xm - xm_prev, nmn, m.quads, b.origin, b.cell, b.dims, b.start, b.items,
+                        reach, m.g0, cdamp, 1.0 / dt, out["fs"], out["gap"], out["pn"],
+                        out["ft"], status, seg, out["rt"], out["normal"], out["slip"])
+        fm[:] = 0.0
+        scatter_master(out["fs"], status, seg, out["rt"], m.quads, fm)
+        ft[:] = out["ft"]
+        xs_prev = xs
+        xm_prev = xm
+        fext[:] = 0.0
+        fext[m.slave] = out["fs"] @ R            # into the wheel frame
+        fext[k_master] += fm
+        m.springs.forces(u, v, fext)
+        # ties: the slaves' internal and external forces act on their masters
+        fs_t = fext[m.tie_slave] - f_int[m.tie_slave]
+        for col in range(2):
+            np.add.at(fext, m.tie_master[:, col], m.tie_weight[:, col, None] * fs_t)
+        advance(u, v, acc, f_int, no_beta, False, m_alpha, inv_m, cmap, fext, dt, partial)
+        u[m.tie_slave] = (m.tie_weight[:, :, None] * u[m.tie_master]).sum(axis=1)
+        v[m.tie_slave] = (m.tie_weight[:, :, None] * v[m.tie_master]).sum(axis=1)
+        u[m.held_xy, :2] = 0.0
+        v[m.held_xy, :2] = 0.0
+        # ---- axle: vertical (with the primary suspension) and rolling
+        Fc = out["fs"].sum(axis=0)
+        arm = xs - c
+        M_c = float(np.sum(np.cross(arm, out["fs"]) @ e_axle))
+        # primary suspension: zs its extension from free length (static: −M_s g / k)
+        f_sprung = -susp.stiffness * zs - susp.damping * (vs - vw)     # on the sprung mass
+        c_axle = c_axle0 * max(0.0, 1.0 - s / case.settle) if case.settle > 0 else 0.0
+        aw = (Fc[2] - f_sprung - M_axle * GRAVITY - c_axle * vw) / M_axle
+        a_s = (f_sprung - susp.sprung_mass * GRAVITY) / susp.sprung_mass
+        vw += dt * aw
+        vs += dt * a_s
+        w += dt * vw
+        zs += dt * (vs - vw)
+        omega += dt * (torque + M_c) / J
+        psi += dt * omega
+        s += dt * V
+        t += dt
+        if k % every == 0 or k == n_steps - 1:
+            grid = np.zeros((band_i.size, rim_shape[1]), np.int64)
+            grid[:] = status.reshape(band_i.size, rim_shape[1])
+            lab, npatch = patches(grid)
+            lab = lab.ravel()
+            row = []
+            for p in range(1, MAX_PATCHES + 1):
+                d = patch_summary(lab == p, xs, out["fs"], out["pn"], out["ft"], out["normal"],
+                                  m.slave_area, status, case.mu)
+                row.append([d[f] for f in PATCH_FIELDS])
+            rows.append(row)
+            creep = (omega * r0 - V) / V
+            hist.append([t, s, w, omega, creep, Fc[0], Fc[1], Fc[2], float(out["pn"].sum()),
+                         M_c, npatch, c[1]])
+            if field_every and (len(rows) - 1) % field_every == 0:
+                fields.append(v[surf_rail].copy())
+            if progress and len(rows) % 20 == 1:
+                print(f"  t = {t * 1e3:7.3f} ms  s = {s * 1e3:6.1f} mm  patches {npatch}  "
+                      f"Fz = {Fc[2] / 1e3:7.2f} kN", flush=True)
+    cpu = time.process_time() - t_cpu
+    wall = time.perf_counter() - t_wall
+    rows = np.array(rows, float)                 # (nt, patch, field)
+    hist = np.array(hist, float)
+    tt = hist[:, 0]
+    data = {f: (("time", "patch"), rows[:, :, i]) for i, f in enumerate(PATCH_FIELDS)}
+    ds = xr.Dataset(data, coords={"time": tt, "patch": np.arange(1, MAX_PATCHES + 1),
+                                  "travel": ("time", hist[:, 1])})
+    units = {"Fn": "N", "Fx": "N", "Fy": "N", "Fz": "N", "F_long": "N", "F_lat": "N",
+             "contact_angle": "rad", "x": "m", "y": "m", "z": "m", "area": "m2", "p_max": "Pa",
+             "q_max": "Pa", "theta": "rad"}
+    for k2, un in units.items():
+        ds[k2].attrs["units"] = un
+    hnames = ("w", "omega", "creepage", "Fx_total", "Fy_total", "Fz_total", "Fn_total",
+              "torque_contact", "n_patches", "axle_y")
+    hds = xr.Dataset({nm: ("time", hist[:, i + 2]) for i, nm in enumerate(hnames)},
+                     coords={"time": tt, "travel": ("time", hist[:, 1])})
+    info = {"time_step": dt, "steps": n_steps, "cpu_s": cpu, "wall_s": wall,
+            "ns_per_element_step": cpu / (n_steps * m.n_elements) * 1e9,
+            "wall_ns_per_element_step": wall / (n_steps * m.n_elements) * 1e9,
+            "elements": m.n_elements, "load": load, "torque": torque, "J": J,
+            "static_sag": sag, "fields": np.array(fields) if fields else None,
+            "onset_travel": _onset(ds)}
+    return TransitionResult(ds, hds, m, u, info)
+
+
+def _onset(ds, min_force=100.0):
+    """Travel [m] at which a second patch carrying > ``min_force`` first appears (NaN if
+    never)."""
+    fn = ds["Fn"].values
+    two = np.sum(fn > min_force, axis=1) >= 2
+    k = np.flatnonzero(two)
+    return float(ds["travel"].values[k[0]]) if k.size else float("nan")
+
+
+def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> TransitionCase:
+    """The one- to two-point contact transition case: S1002 on 54E1 at 1:40, 80 km/h,
+    μ = 0.6, a half-wheelset with a sprung mass on a track with discrete sleepers (the set-up
+    of explicit FE studies of the transition, with 1 mm elements in a 150 mm solution zone).
+
+    Parameters
+    ----------
+    angle_of_attack : float
+        Angle of attack [rad] (0.015, 0.020 and 0.025 are the studied values).
+    size : {"reduced", "full"}
+        ``"reduced"``: 2 sleepers, 2 mm elements, 0.1 m of travel from 1 mm of flange
+        clearance (minutes on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution
+        zone, 0.67 m travel and a longer track (hours; not yet run).
+    **changes
+        Any :class:`TransitionCase` field.
+    """
+    base = dict(wheel=load_profile("S1002"), rail=load_profile("54E1"), radius=0.46,
+                inclination=float(np.arctan(1 / 40)), angle_of_attack=float(angle_of_attack),
+                speed=80 / 3.6, mu=0.6)
+    if size == "reduced":
+        base.update(mesh_size=2.5e-3, travel=0.09, flange_clearance=1.0e-3, settle=0.02,
+                    track=TrackStructure(n_sleepers=2, overhang=0.25),
+                    suspension=Suspension())
+    elif size == "full":
+        base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25,
+                    section_h_max=6e-3, track=TrackStructure(n_sleepers=5), suspension=Suspension())
+    else:
+        raise InputError(f"size must be 'reduced' or 'full', got {size!r}")
+    base.update(changes)
+    return TransitionCase(**base)
+
+
+def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
+                 half_length: float = 0.02, yaw: float = 0.0):
+    """Rigid-pose contact of short wheel and rail pieces (no dynamics): the wheel profile's
+    origin at lateral offset ``y_off`` [m] in the inclined rail frame, lowered by ``overlap``
+    [m] below the rigid first touch without yaw, the wheel yawed by ``yaw`` [rad] about the
+    vertical through its axle centre; one evaluation of the contact search with μ = 0.
+
+    Returns
+    -------
+    list of dict
+        :func:`~wheelrail.fe.transition_contact.patch_summary` of every patch, ordered
+        from the flange side of the wheel profile.
+    """
+    h = case.mesh_size
+    pose = rigid_pose(case, y_off)
+    rr, _, _ = rail_section(case.rail, h, [(-0.04, 0.04)], inclination=case.inclination,
+                            ratio=case.grading, h_max=case.section_h_max)
+    wr_, _, _ = wheel_section(case.wheel, h, [(-0.08, 0.07)], ratio=case.grading,
+                              h_max=case.section_h_max)
+    x = spacing_axis(-half_length, half_length, [(-half_length, half_length)], h)
+    R = case.radius
+    th = x / R
+    rail = extrude_section(rr, x)
+    wheel = sweep_section(wr_, th, R)
+    q = rail.surface.reshape(-1, 4)
+    master, inv = np.unique(q, return_inverse=True)
+    quads = inv.reshape(-1, 4)
+    xm = rail.nodes[master]
+    b = build_buckets(xm, quads, cell=max(4 * h, 6e-3), margin=4 * h)
+    slave = wheel.surface_nodes.ravel()
+    c0 = np.array([0.0, y_off, R + pose["z_off"] - overlap])
+    xs = wheel.nodes[slave] @ _rot(yaw, 0.0).T + c0
+    p = wheel.nodes[wheel.surface]
+    qa = 0.5 * np.linalg.norm(np.cross(p[..., 2, :] - p[..., 0, :], p[..., 3, :] - p[..., 1, :]),
+                              axis=-1)
+    area_all = np.zeros(wheel.n_nodes)
+    for c in range(4):
+        np.add.at(area_all, wheel.surface[..., c].ravel(), 0.25 * qa.ravel())
+    area = area_all[slave]
+    ns = slave.size
+    kn = case.penalty * case.material.E / np.sqrt(area)
+    out = {k: np.zeros(sh) for k, sh in (("fs", (ns, 3)), ("gap", ns), ("pn", ns),
+                                          ("ft", (ns, 3)), ("rt", (ns, 2)),
+                                          ("normal", (ns, 3)), ("slip", ns))}
+    status = np.zeros(ns, np.int64)
+    seg = np.zeros(ns, np.int64)
+    node_to_segment(xs, np.zeros((ns, 3)), area, kn, kn, 0.0, np.zeros((ns, 3)), xm,
+                    np.zeros_like(xm), nodal_normals_quads(xm, quads), quads, b.origin, b.cell,
+                    b.dims, b.start, b.items, 4 * h, 1e-7, np.zeros(ns), 1.0, out["fs"],
+                    out["gap"], out["pn"], out["ft"], status, seg, out["rt"], out["normal"],
+                    out["slip"])
+    lab, npatch = patches(status.reshape(wheel.shape[0], wheel.shape[1]))
+    lab = lab.ravel()
+    return [patch_summary(lab == k, xs, out["fs"], out["pn"], out["ft"], out["normal"], area,
+                          status, 0.0) for k in range(1, npatch + 1)]

@@ -1,0 +1,121 @@
+"""The one- to two-point contact transition model: meshes with flange and gauge face, the
+general contact search, the track and suspension inputs (tiny meshes, seconds each)."""
+
+import numpy as np
+import pytest
+
+import wheelrail as wr
+from wheelrail.errors import InputError
+from wheelrail.fe.mesh import MeshQualityError
+from wheelrail.fe.transition import pose_contact, seed004_case
+from wheelrail.fe.transition_mesh import (
+    extrude_section,
+    rail_section,
+    spacing_axis,
+    sweep_section,
+    wheel_section,
+)
+from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose
+from wheelrail.fe.transition_track import Suspension, TrackStructure
+
+S1002 = wr.profiles.load("S1002")
+R54 = wr.profiles.load("54E1")
+
+
+def test_spacing_axis_two_bands():
+    x = spacing_axis(0.0, 0.1, [(0.01, 0.02), (0.07, 0.08)], 1e-3, 1.3, 8e-3)
+    d = np.diff(x)
+    assert x[0] == 0.0 and x[-1] == pytest.approx(0.1)
+    for a, b in ((0.01, 0.02), (0.07, 0.08)):
+        inside = (x[:-1] >= a) & (x[1:] <= b)
+        assert inside.sum() >= 8
+        np.testing.assert_allclose(d[inside], 1e-3, rtol=0.05)
+    assert d.max() <= 8e-3 * 1.05 and d.max() > 3e-3          # graded between the bands
+
+
+def test_sections_follow_the_profiles_with_flange_and_gauge_face():
+    rows, curve, _ = rail_section(R54, 3e-3, [(-0.03, -0.02)])
+    a = np.arctan(1 / 40)
+    # surface nodes lie on the inclined profile, gauge face (|slope| > 1) included
+    y0 = np.cos(a) * R54.y - np.sin(a) * R54.z
+    z0 = np.sin(a) * R54.y + np.cos(a) * R54.z
+    t = np.linspace(0, y0.size - 1, 40 * y0.size)             # densified polyline
+    y0 = np.interp(t, np.arange(y0.size), y0)
+    z0 = np.interp(t, np.arange(z0.size), z0)
+    d = np.min(np.hypot(rows[0, :, 0, None] - y0[None], rows[0, :, 1, None] - z0[None]), axis=1)
+    assert d.max() < 2e-5
+    assert np.degrees(curve.contact_angle(curve.s_of_point(*rows[0, 1]))) > 60
+    wrows, wcurve, _ = wheel_section(S1002, 3e-3, [(-0.04, -0.03)])
+    assert wrows[0, :, 1].min() == pytest.approx(S1002.z.min(), abs=1e-4)     # flange tip
+    # the first layer lies one layer depth inside along the normal
+    np.testing.assert_allclose(np.hypot(*(wrows[1] - wrows[0]).T), 3e-3, rtol=1e-6)
+
+
+def test_hex_quality_of_rail_and_full_wheel():
+    rows, _, _ = rail_section(R54, 3e-3, [(-0.03, -0.02)])
+    rail = extrude_section(rows, np.linspace(-0.02, 0.02, 9))
+    q = rail.meta["quality"]
+    assert q["min_jacobian_ratio"] > 0.05 and q["max_aspect"] < 60
+    wrows, _, _ = wheel_section(S1002, 3e-3, [(-0.04, -0.03)])
+    th = spacing_axis(-np.pi, np.pi, [(-0.05, 0.05)], 3e-3 / 0.46, 1.3, 0.04 / 0.46)[:-1]
+    wheel = sweep_section(wrows, th, 0.46, periodic=True)
+    assert wheel.meta["quality"]["min_jacobian_ratio"] > 0.05
+    # periodic: every node belongs to an element, the ring closes
+    assert np.unique(wheel.elements).size == wheel.n_nodes
+
+
+def test_too_deep_layers_fold_with_a_clear_error():
+    # the flange tip's radius of curvature is ~ 10 mm: 20 mm of offset layers fold
+    with pytest.raises(MeshQualityError, match="wheel rim|folds"):
+        wheel_section(S1002, 3e-3, [(-0.04, -0.03)], layer_depth=0.02, rim=0.04)
+
+
+def test_contact_search_finds_tread_and_flange_patches_at_a_yawed_pose():
+    case = seed004_case(0.02, mesh_size=2e-3)
+    yf = flange_contact_offset(case)
+    ps = pose_contact(case, yf - 5e-4, overlap=1e-4, yaw=0.025, half_length=0.04)
+    assert len(ps) == 2
+    flange, tread = ps
+    assert np.degrees(flange["contact_angle"]) > 60 > np.degrees(tread["contact_angle"])
+    assert flange["x"] > tread["x"] + 0.01           # the flange contact leads the axle
+
+
+def test_flange_contact_angle_against_the_rigid_contact_search():
+    """First flange contact of S1002 on 54E1 1:40: FE patch angle against wr.contact_points
+    (independent rigid search with the wheelset constraint) and the 65–75° of the flange."""
+    case = seed004_case(0.02, mesh_size=2e-3)
+    yf = flange_contact_offset(case)
+    (flange,) = pose_contact(case, yf + 3e-4, overlap=5e-5)
+    ws = wr.Wheelset(S1002, nominal_radius=0.46)
+    tr = wr.Track(R54, inclination=1 / 40)
+    ang = None
+    for y in np.arange(0.0060, 0.0070, 1e-4):
+        cp = wr.contact_points(ws, tr, y)
+        a = np.degrees(cp.right.contact_angle[cp.right.primary])
+        if a > 45:
+            ang = a
+            break
+    assert ang is not None and 65 < ang < 75
+    fe = np.degrees(flange["contact_angle"])
+    assert 65 < fe < 75
+    assert fe == pytest.approx(ang, abs=2.0)
+    assert fe == pytest.approx(np.degrees(rigid_pose(case, yf + 3e-4)["contact_angle"]), abs=2.0)
+
+
+def test_track_and_suspension_inputs_are_validated():
+    t = TrackStructure()
+    assert t.length == pytest.approx(2 * 0.6 + 2 * 0.3)
+    with pytest.raises(InputError, match="n_sleepers"):
+        TrackStructure(n_sleepers=1)
+    with pytest.raises(InputError, match="pad_stiffness"):
+        TrackStructure(pad_stiffness=-1.0)
+    with pytest.raises(InputError, match="pad_length"):
+        TrackStructure(pad_length=0.7)
+    s = Suspension()
+    assert s.wheel_load(200.0) == pytest.approx((8000 + 300 + 200) * 9.81)
+    with pytest.raises(InputError, match="torque"):
+        Suspension(torque=float("nan"))
+    with pytest.raises(InputError, match="traction"):
+        seed004_case(0.02, traction=0.7)
+    with pytest.raises(InputError, match="size"):
+        seed004_case(0.02, size="huge")
