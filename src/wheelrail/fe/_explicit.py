@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import _slave
+from ._kernels import _slave, scatter_to_grid
 from ._solid import _element
 
 #: Node chunks of the partial sums (fixed: results independent of the threads).
@@ -145,6 +145,24 @@ def advance_rolling(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, f
             totals[j] += partial[ch, j]
 
 
+@njit(cache=True, inline="always")
+def slave_position(s, n, ref, u, cpsi, spsi, z, xs_prev, xs, dxs):
+    """Current position of wheel slave ``s`` (mesh node ``n``): reference ``ref[s]`` plus
+    displacement ``u[n]`` [m], rotated by the wheel angle (cos, sin) about the axle and
+    lifted by the axle height ``z`` [m]; ``dxs[s]`` is the change since ``xs_prev[s]``."""
+    X0 = ref[s, 0] + u[n, 0]
+    X1 = ref[s, 1] + u[n, 1]
+    X2 = ref[s, 2] + u[n, 2]
+    x0 = cpsi * X0 + spsi * X2
+    x2 = -spsi * X0 + cpsi * X2 + z
+    xs[s, 0] = x0
+    xs[s, 1] = X1
+    xs[s, 2] = x2
+    dxs[s, 0] = x0 - xs_prev[s, 0]
+    dxs[s, 1] = X1 - xs_prev[s, 1]
+    dxs[s, 2] = x2 - xs_prev[s, 2]
+
+
 @njit(cache=True)
 def slave_kinematics(ref, u, nodes, cpsi, spsi, z, xs, xs_prev, dxs):
     """Global positions of the wheel surface nodes and their increments over the step.
@@ -167,18 +185,7 @@ def slave_kinematics(ref, u, nodes, cpsi, spsi, z, xs, xs_prev, dxs):
         Output: positions and ``xs − xs_prev`` [m].
     """
     for s in range(ref.shape[0]):
-        n = nodes[s]
-        X0 = ref[s, 0] + u[n, 0]
-        X1 = ref[s, 1] + u[n, 1]
-        X2 = ref[s, 2] + u[n, 2]
-        x0 = cpsi * X0 + spsi * X2
-        x2 = -spsi * X0 + cpsi * X2 + z
-        xs[s, 0] = x0
-        xs[s, 1] = X1
-        xs[s, 2] = x2
-        dxs[s, 0] = x0 - xs_prev[s, 0]
-        dxs[s, 1] = X1 - xs_prev[s, 1]
-        dxs[s, 2] = x2 - xs_prev[s, 2]
+        slave_position(s, nodes[s], ref, u, cpsi, spsi, z, xs_prev, xs, dxs)
 
 
 @njit(cache=True)
@@ -347,18 +354,7 @@ def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp
         else:
             j = tasks[t, 1]
             for s in range(ns * j // ncc, ns * (j + 1) // ncc):
-                n = snodes[s]
-                X0 = ref_s[s, 0] + u[n, 0]
-                X1 = ref_s[s, 1] + u[n, 1]
-                X2 = ref_s[s, 2] + u[n, 2]
-                x0 = cpsi * X0 + spsi * X2
-                x2 = -spsi * X0 + cpsi * X2 + z
-                xs[s, 0] = x0
-                xs[s, 1] = X1
-                xs[s, 2] = x2
-                dxs[s, 0] = x0 - xs_prev[s, 0]
-                dxs[s, 1] = X1 - xs_prev[s, 1]
-                dxs[s, 2] = x2 - xs_prev[s, 2]
+                slave_position(s, snodes[s], ref_s, u, cpsi, spsi, z, xs_prev, xs, dxs)
                 _slave(s, xs, dxs, area, kn, kn, mu, ft_old, xm, nm, dxm, x_ref, y_ref,
                        shift_x, reach, g0, cdamp, inv_dt, cenergy, fs, gap, pn, ft_new, status,
                        cell, rt, normal, slip, c, q, dq)
@@ -378,21 +374,7 @@ def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp
             a1 += energy[e, 1]
         echunk[ch, 0] = a0
         echunk[ch, 1] = a1
-    for s in range(ns):
-        if status[s] > 0:
-            i = cell[s, 0]
-            j = cell[s, 1]
-            r = rt[s, 0]
-            t = rt[s, 1]
-            w0 = (1 - r) * (1 - t)
-            w1 = r * (1 - t)
-            w2 = r * t
-            w3 = (1 - r) * t
-            for d in range(3):
-                fm[i, j, d] -= w0 * fs[s, d]
-                fm[i + 1, j, d] -= w1 * fs[s, d]
-                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
-                fm[i, j + 1, d] -= w3 * fs[s, d]
+    scatter_to_grid(status, cell, rt, fs, fm)
     contact_to_nodes(fs, fm, pn, ft_new, slip, cenergy, cpsi, spsi, fcon, sums)
     e0 = 0.0
     e1 = 0.0

@@ -131,6 +131,94 @@ def _bilinear_tangents(c, r, t):
     return tr0, tr1, tr2, tt0, tt1, tt2
 
 
+@njit(cache=True, inline="always")
+def scatter_to_grid(status, cell, rt, fs, fm):
+    """Subtract the slaves' contact forces ``fs`` (ns, 3) [N] from the master grid's
+    nodal forces ``fm`` (nx, ny, 3) with the bilinear weights of each active slave's
+    cell ``cell`` (ns, 2) and local coordinates ``rt`` (ns, 2) (action and reaction)."""
+    for s in range(fs.shape[0]):
+        if status[s] > 0:
+            i = cell[s, 0]
+            j = cell[s, 1]
+            r = rt[s, 0]
+            t = rt[s, 1]
+            w0 = (1 - r) * (1 - t)
+            w1 = r * (1 - t)
+            w2 = r * t
+            w3 = (1 - r) * t
+            for d in range(3):
+                fm[i, j, d] -= w0 * fs[s, d]
+                fm[i + 1, j, d] -= w1 * fs[s, d]
+                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
+                fm[i, j + 1, d] -= w3 * fs[s, d]
+
+
+@njit(cache=True, inline="always")
+def coulomb_update(s, fn, s0, s1, s2, n0, n1, n2, A, kt, mu, cdamp, inv_dt, ft_old, pn, ft_new,
+                   slip, status, fs):
+    """Penalty-Coulomb update of contact node ``s`` (shared by the contact searches).
+
+    ``fn`` [N] is the penalty normal force, ``(s0, s1, s2)`` [m] the relative
+    displacement increment of the slave against the master point over the step,
+    ``(n0, n1, n2)`` the unit contact normal and ``A`` [m²] the node's area. The
+    normal force is damped by ``cdamp[s]`` (kept ≥ 0); the previous tangential
+    force ``ft_old[s]`` is rotated into the current tangent plane, increased by
+    the stick stiffness ``kt[s]·A`` times the tangential increment and returned
+    to the Coulomb cone μ·fn (radial return). Writes ``pn[s]``, ``ft_new[s]``,
+    ``slip[s]`` (the slip increment [m]), ``status[s]`` (1 stick, 2 slip) and
+    ``fs[s]`` (total contact force on the slave, N).
+
+    References
+    ----------
+    Wriggers, P. (2006). *Computational Contact Mechanics*, 2nd ed., Springer,
+    §5.2 (penalty method, return map of the Coulomb law).
+    """
+    sn = s0 * n0 + s1 * n1 + s2 * n2
+    if cdamp[s] > 0.0:
+        fn -= cdamp[s] * sn * inv_dt
+        if fn < 0.0:
+            fn = 0.0
+    pn[s] = fn
+    s0 -= sn * n0
+    s1 -= sn * n1
+    s2 -= sn * n2
+    # previous tangential force, rotated into the current tangent plane
+    f0 = ft_old[s, 0]
+    f1 = ft_old[s, 1]
+    f2 = ft_old[s, 2]
+    fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    fnp = f0 * n0 + f1 * n1 + f2 * n2
+    f0 -= fnp * n0
+    f1 -= fnp * n1
+    f2 -= fnp * n2
+    fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    if fm2 > 0.0:
+        f0 *= fmag / fm2
+        f1 *= fmag / fm2
+        f2 *= fmag / fm2
+    k = kt[s] * A
+    f0 -= k * s0
+    f1 -= k * s1
+    f2 -= k * s2
+    ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
+    bound = mu * fn
+    if ftr > bound:
+        sc = bound / ftr
+        slip[s] = (ftr - bound) / k
+        f0 *= sc
+        f1 *= sc
+        f2 *= sc
+        status[s] = 2
+    else:
+        status[s] = 1
+    ft_new[s, 0] = f0
+    ft_new[s, 1] = f1
+    ft_new[s, 2] = f2
+    fs[s, 0] = fn * n0 + f0
+    fs[s, 1] = fn * n1 + f1
+    fs[s, 2] = fn * n2 + f2
+
+
 @njit(cache=True)
 def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift, reach, g0,
            cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num,
@@ -254,50 +342,8 @@ def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shif
     s0 = dxs[s, 0] - dq[0]
     s1 = dxs[s, 1] - dq[1]
     s2 = dxs[s, 2] - dq[2]
-    sn = s0 * n0 + s1 * n1 + s2 * n2
-    if cdamp[s] > 0.0:
-        fn -= cdamp[s] * sn * inv_dt
-        if fn < 0.0:
-            fn = 0.0
-    pn[s] = fn
-    s0 -= sn * n0
-    s1 -= sn * n1
-    s2 -= sn * n2
-    # previous tangential force, rotated into the current tangent plane
-    f0 = ft_old[s, 0]
-    f1 = ft_old[s, 1]
-    f2 = ft_old[s, 2]
-    fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-    fnp = f0 * n0 + f1 * n1 + f2 * n2
-    f0 -= fnp * n0
-    f1 -= fnp * n1
-    f2 -= fnp * n2
-    fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-    if fm2 > 0.0:
-        f0 *= fmag / fm2
-        f1 *= fmag / fm2
-        f2 *= fmag / fm2
-    k = kt[s] * A
-    f0 -= k * s0
-    f1 -= k * s1
-    f2 -= k * s2
-    ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-    bound = mu * fn
-    if ftr > bound:
-        sc = bound / ftr
-        slip_rate_num[s] = (ftr - bound) / k
-        f0 *= sc
-        f1 *= sc
-        f2 *= sc
-        status[s] = 2
-    else:
-        status[s] = 1
-    ft_new[s, 0] = f0
-    ft_new[s, 1] = f1
-    ft_new[s, 2] = f2
-    fs[s, 0] = fn * n0 + f0
-    fs[s, 1] = fn * n1 + f1
-    fs[s, 2] = fn * n2 + f2
+    coulomb_update(s, fn, s0, s1, s2, n0, n1, n2, A, kt, mu, cdamp, inv_dt, ft_old, pn,
+                   ft_new, slip_rate_num, status, fs)
 
 
 @njit(cache=True, parallel=True)
@@ -360,18 +406,4 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
             _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
                    reach, g0, cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt,
                    normal, slip_rate_num, c, q, dq)
-    for s in range(ns):
-        if status[s] > 0:
-            i = cell[s, 0]
-            j = cell[s, 1]
-            r = rt[s, 0]
-            t = rt[s, 1]
-            w0 = (1 - r) * (1 - t)
-            w1 = r * (1 - t)
-            w2 = r * t
-            w3 = (1 - r) * t
-            for d in range(3):
-                fm[i, j, d] -= w0 * fs[s, d]
-                fm[i + 1, j, d] -= w1 * fs[s, d]
-                fm[i + 1, j + 1, d] -= w2 * fs[s, d]
-                fm[i, j + 1, d] -= w3 * fs[s, d]
+    scatter_to_grid(status, cell, rt, fs, fm)

@@ -31,6 +31,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
+from ._kernels import coulomb_update
+
 __all__ = ["BucketGrid", "build_buckets", "nodal_normals_quads", "node_to_segment", "patches",
            "patch_summary"]
 
@@ -265,49 +267,8 @@ def node_to_segment(xs, dxs, area, kn, kt, mu, ft_old, xm, dxm, nmn, quads, b_or
             s0 = dxs[s, 0] - (w0 * dxm[i0, 0] + w1 * dxm[i1, 0] + w2 * dxm[i2, 0] + w3 * dxm[i3, 0])
             s1 = dxs[s, 1] - (w0 * dxm[i0, 1] + w1 * dxm[i1, 1] + w2 * dxm[i2, 1] + w3 * dxm[i3, 1])
             s2 = dxs[s, 2] - (w0 * dxm[i0, 2] + w1 * dxm[i1, 2] + w2 * dxm[i2, 2] + w3 * dxm[i3, 2])
-            sn = s0 * n0 + s1 * n1 + s2 * n2
-            if cdamp[s] > 0.0:
-                fn -= cdamp[s] * sn * inv_dt
-                if fn < 0.0:
-                    fn = 0.0
-            pn[s] = fn
-            s0 -= sn * n0
-            s1 -= sn * n1
-            s2 -= sn * n2
-            f0 = ft_old[s, 0]
-            f1 = ft_old[s, 1]
-            f2 = ft_old[s, 2]
-            fmag = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-            fnp = f0 * n0 + f1 * n1 + f2 * n2
-            f0 -= fnp * n0
-            f1 -= fnp * n1
-            f2 -= fnp * n2
-            fm2 = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-            if fm2 > 0.0:
-                f0 *= fmag / fm2
-                f1 *= fmag / fm2
-                f2 *= fmag / fm2
-            k = kt[s] * A
-            f0 -= k * s0
-            f1 -= k * s1
-            f2 -= k * s2
-            ftr = np.sqrt(f0 * f0 + f1 * f1 + f2 * f2)
-            bound = mu * fn
-            if ftr > bound:
-                sc = bound / ftr
-                slip[s] = (ftr - bound) / k
-                f0 *= sc
-                f1 *= sc
-                f2 *= sc
-                status[s] = 2
-            else:
-                status[s] = 1
-            ft_new[s, 0] = f0
-            ft_new[s, 1] = f1
-            ft_new[s, 2] = f2
-            fs[s, 0] = fn * n0 + f0
-            fs[s, 1] = fn * n1 + f1
-            fs[s, 2] = fn * n2 + f2
+            coulomb_update(s, fn, s0, s1, s2, n0, n1, n2, A, kt, mu, cdamp, inv_dt, ft_old, pn,
+                           ft_new, slip, status, fs)
 
 
 @njit(cache=True)
