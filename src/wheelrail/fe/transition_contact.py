@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import coulomb_update
+from ._kernels import _bilinear_tangents, coulomb_update
 
 __all__ = ["BucketGrid", "build_buckets", "nodal_normals_quads", "node_to_segment", "patches",
            "patch_summary"]
@@ -101,12 +101,7 @@ def _project(xs0, xs1, xs2, c, out):
               + (1 - r) * t * c[3, 1])
         q2 = ((1 - r) * (1 - t) * c[0, 2] + r * (1 - t) * c[1, 2] + r * t * c[2, 2]
               + (1 - r) * t * c[3, 2])
-        tr0 = (1 - t) * (c[1, 0] - c[0, 0]) + t * (c[2, 0] - c[3, 0])
-        tr1 = (1 - t) * (c[1, 1] - c[0, 1]) + t * (c[2, 1] - c[3, 1])
-        tr2 = (1 - t) * (c[1, 2] - c[0, 2]) + t * (c[2, 2] - c[3, 2])
-        tt0 = (1 - r) * (c[3, 0] - c[0, 0]) + r * (c[2, 0] - c[1, 0])
-        tt1 = (1 - r) * (c[3, 1] - c[0, 1]) + r * (c[2, 1] - c[1, 1])
-        tt2 = (1 - r) * (c[3, 2] - c[0, 2]) + r * (c[2, 2] - c[1, 2])
+        tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
         d0 = xs0 - q0
         d1 = xs1 - q1
         d2 = xs2 - q2
