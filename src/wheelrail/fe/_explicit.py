@@ -76,14 +76,6 @@ def advance(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, fcon, dt,
         partial[ch, 1] = pb
 
 
-def chunk_sum(partial, col):
-    """The sum of a column of partial sums in chunk order (deterministic)."""
-    total = 0.0
-    for x in partial[:, col]:
-        total += float(x)
-    return total
-
-
 #: Columns of the partial sums of :func:`advance_rolling`.
 ADV_COLUMNS = ("ma_vo_vo", "ma_vo_vn", "fcon_vo", "fcon_vn", "fbeta_vo", "fbeta_vn")
 
