@@ -135,13 +135,10 @@ def test_rows_are_classified_by_reference_kind(quick):
     assert data["reference_kinds"] == counts
 
 
-#: Checks whose rows still have a tolerance more than LOOSE_MARGIN times the measured error
-#: without saying why (issue 22, item 1: to be re-derived from a refinement fit or the
-#: reference's uncertainty). The list may only shrink.
-LOOSE_WITHOUT_REASON = {
-    "nonhertz-hertzian-gap", "subsurface-hertz-axis", "exact-kalker-coefficients",
-    "exact-cattaneo", "exact-manchester-contact", "fe-indentation-hertz",
-}
+#: Checks allowed a tolerance more than LOOSE_MARGIN times the measured error without a
+#: "why:" (issue 22, item 1). Empty since every such tolerance was re-derived from a
+#: refinement or the reference's uncertainty; it must stay empty.
+LOOSE_WITHOUT_REASON: set[str] = set()
 
 
 def test_loose_tolerances_say_why(quick):

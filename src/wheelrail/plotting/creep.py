@@ -17,6 +17,8 @@ _STYLE = {
     "fastsim": dict(color="tab:blue", lw=2.0),
     "shen-hedrick-elkins": dict(color="tab:orange"),
     "polach": dict(color="tab:green"),
+    "fastrip": dict(color="tab:cyan", ls=(0, (4, 2))),
+    "table": dict(color="tab:red", ls=":", lw=2.0),
     "exact": dict(color="black", ls="", marker="o", ms=3),
 }
 
