@@ -261,6 +261,48 @@ def _depths(d, kk, cd, nc, shared):
     return dep
 
 
+@njit(cache=True, inline="always")
+def _closed_law(tangential, a, b, Fn, xi, eta, phi, mu, G, nu, K, kx, c11, c22, c23, c33,
+                tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0, tk_cdx, tk_cn, tk_coef):
+    """Kalker's linear law (``tangential == 2``) or the table law (``1``) on one ellipse.
+
+    Returns (done, Fx, Fs, Mz); ``done`` False (another law, or a point outside the
+    table) leaves the patch to the caller's FASTSIM.
+    """
+    if tangential == 2:
+        Fx, Fs, Mz = linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33)
+        return True, Fx, Fs, Mz
+    if tangential == 1:
+        return table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, tk_values, tk_x0, tk_dx, tk_n,
+                            tk_cubic, tk_cx0, tk_cdx, tk_cn, tk_coef)
+    return False, 0.0, 0.0, 0.0
+
+
+@njit(cache=True, inline="always")
+def _write_row(row, Fn, Fx, Fs, Mz, angle, y, z, x, s, lateral, a, b, xi, eta, phi, p_max,
+               radius, penetration, fell_back):
+    """One contact point's row of the output array (columns as documented in wheel_contact)."""
+    row[0] = Fn
+    row[1] = Fx
+    row[2] = Fs
+    row[3] = Mz
+    row[4] = angle
+    row[5] = y
+    row[6] = z
+    row[7] = x
+    row[8] = s
+    row[9] = lateral
+    row[10] = a
+    row[11] = b
+    row[12] = xi
+    row[13] = eta
+    row[14] = phi
+    row[15] = p_max
+    row[16] = radius
+    row[17] = penetration
+    row[20] = 1.0 if fell_back else 0.0
+
+
 @njit(cache=True)
 def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
                   offset, z_top, angle,
@@ -488,41 +530,20 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
             dxa = PX[q] - sig * (e_tape + cs[q]) * ct * sp
             xi, eta, phi = creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dxa,
                                     PY[q] - y, PZ[q] - zc_t, PG[q])
-            done = False
-            if tangential == 2:
-                Fx, Fs, Mz = linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33)
-                done = True
-            elif tangential == 1:
-                done, Fx, Fs, Mz = table_forces(a, b, Fn, xi, eta, phi, mu, G, nu, K, tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0,
-                                                tk_cdx, tk_cn, tk_coef)
-                if not done:
-                    fallbacks += 1
+            done, Fx, Fs, Mz = _closed_law(tangential, a, b, Fn, xi, eta, phi, mu, G, nu, K, kx,
+                                           c11, c22, c23, c33, tk_values, tk_x0, tk_dx, tk_n,
+                                           tk_cubic, tk_cx0, tk_cdx, tk_cn, tk_coef)
+            if tangential == 1 and not done:
+                fallbacks += 1
             if not done:
                 Fx, Fs, Mz = fastsim_ellipse(a, b, Fn, mu, xi, eta, phi, G, mp[17] > 0, kx,
                                               c11, c22, c23, fs_t, fs_half, fs_peak, fs_cells,
                                               fs_factor, mp[16] > 0, mp[18] > 0)
-            row = P[npt]
-            row[0] = Fn
-            row[1] = Fx
-            row[2] = Fs
-            row[3] = Mz
-            row[4] = PG[q]
-            row[5] = PY[q]
-            row[6] = PZ[q]
-            row[7] = PX[q]
-            row[8] = cs[q]
             zr = _spline0(ru, rinv, rc, PU[q])
             ca, sa = math.cos(-angle), math.sin(-angle)
-            row[9] = ca * (PU[q] - offset) - sa * (zr + z_top)
-            row[10] = a
-            row[11] = b
-            row[12] = xi
-            row[13] = eta
-            row[14] = phi
-            row[15] = p0
-            row[16] = PR[q]
-            row[17] = pen
-            row[20] = 0.0 if done or tangential != 1 else 1.0
+            _write_row(P[npt], Fn, Fx, Fs, Mz, PG[q], PY[q], PZ[q], PX[q], cs[q],
+                       ca * (PU[q] - offset) - sa * (zr + z_top), a, b, xi, eta, phi, p0, PR[q],
+                       pen, not done and tangential == 1)
             npt += 1
     else:
         npt, fallbacks = _kp_patches(d, i_lo, h, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, PU, dz, dmin,
@@ -721,15 +742,11 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             dxa = PX[r] - sig * (e_tape + cs[r] + (u_p - PU[r])) * ct * sp
             xi, eta_cr, phi = creepage(sig, V, Om, vy, vz, yaw_rate, roll_rate, yaw, roll, dxa,
                                        Yp - y, z_p - zc_t, ang_m)
-            done = False
-            if tangential == 2:
-                Fx, Fs, Mz = linear_forces(a, b, G, xi, eta_cr, phi, kx, c11, c22, c23, c33)
-                done = True
-            elif tangential == 1:
-                done, Fx, Fs, Mz = table_forces(a, b, N, xi, eta_cr, phi, mu, G, nu, K, tk_values, tk_x0, tk_dx, tk_n, tk_cubic, tk_cx0,
-                                                tk_cdx, tk_cn, tk_coef)
-                if not done:
-                    fallbacks += 1
+            done, Fx, Fs, Mz = _closed_law(tangential, a, b, N, xi, eta_cr, phi, mu, G, nu, K, kx,
+                                           c11, c22, c23, c33, tk_values, tk_x0, tk_dx, tk_n,
+                                           tk_cubic, tk_cx0, tk_cdx, tk_cn, tk_coef)
+            if tangential == 1 and not done:
+                fallbacks += 1
             if not done:
                 C11, C22, C23 = _kalker(a / b, kx, c11, c22, c23)
                 L1 = 8.0 * a / (3.0 * G * C11)
@@ -748,27 +765,12 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             for i in range(i0, i1):
                 if peak[i] > pmax:
                     pmax = peak[i]
-            row = P[npt]
-            row[0] = N
-            row[1] = Fx
-            row[2] = Fs
-            row[3] = Mz
-            row[4] = ang_m
-            row[5] = Yp
-            row[6] = z_p
-            row[7] = PX[r]
-            row[8] = cs[r] + (u_p - PU[r])
             ca, sa = math.cos(-angle), math.sin(-angle)
-            row[9] = ca * (u_p - offset) - sa * (_spline0(ru, rinv, rc, u_p) + z_top)
-            row[10] = a
-            row[11] = b
-            row[12] = xi
-            row[13] = eta_cr
-            row[14] = phi
-            row[15] = pmax
-            row[16] = rad
-            row[17] = d0 / eps - (cd[r] - dmin) * math.cos(gam) if r >= 0 else 0.0
-            row[20] = 0.0 if done or tangential != 1 else 1.0
+            _write_row(P[npt], N, Fx, Fs, Mz, ang_m, Yp, z_p, PX[r], cs[r] + (u_p - PU[r]),
+                       ca * (u_p - offset) - sa * (_spline0(ru, rinv, rc, u_p) + z_top), a, b,
+                       xi, eta_cr, phi, pmax, rad,
+                       d0 / eps - (cd[r] - dmin) * math.cos(gam) if r >= 0 else 0.0,
+                       not done and tangential == 1)
             npt += 1
     return npt, fallbacks
 
