@@ -122,3 +122,16 @@ def test_cli_dynamics_creep_relaxation_length(tmp_path, value, ok):
     else:
         with pytest.raises(wr.WheelrailError, match=r"creep_relaxation.*relaxation length"):
             read_dynamics_case(case)
+
+
+def test_kik_piotrowski_three_flexibilities_not_silently_compiled():
+    """The compiled path marches Kik–Piotrowski strips with one weighted flexibility:
+    ``fastsim_flexibility="three"`` is refused there by name, and ``contact="auto"``
+    takes the generic path, which honours it (never the option silently ignored)."""
+    ws, tr = wr.Wheelset(wr.profiles.load("S1002")), wr.Track(wr.profiles.load("60E1"))
+    kp3 = wr.normal.KikPiotrowski(fastsim_flexibility="three")
+    with pytest.raises(wr.errors.InputError, match="fastsim_flexibility='three'"):
+        D.FastContact(ws, tr, wr.STEEL, kp3, wr.tangential.Fastsim())
+    assert isinstance(D.contact_model(ws, tr, wr.STEEL, kp3, "fastsim"), D.GenericContact)
+    assert isinstance(D.contact_model(ws, tr, wr.STEEL, "kik-piotrowski", "fastsim"),
+                      D.FastContact)

@@ -84,6 +84,9 @@ def _fast_support(nimpl, timpl) -> str:
         return f"tangential method {timpl.name!r} (compiled: 'fastsim', 'table', 'linear')"
     if isinstance(timpl, Table) and timpl.outside == "exact":
         return "the table law with outside='exact' (the exact solver is not compiled)"
+    if isinstance(nimpl, KikPiotrowski) and nimpl.fastsim_flexibility != "weighted":
+        return (f"Kik-Piotrowski with fastsim_flexibility={nimpl.fastsim_flexibility!r} "
+                "(compiled: 'weighted')")
     return ""
 
 
@@ -96,7 +99,9 @@ class FastContact:
     material : Material or MaterialPair
     normal : Hertz or KikPiotrowski
         Configured normal method. Kik–Piotrowski's options ``penetration_factor``,
-        ``shape_correction``, ``strips`` and ``cells`` are honoured.
+        ``shape_correction``, ``strips`` and ``cells`` are honoured;
+        ``fastsim_flexibility="three"`` is not compiled (refused here; ``contact="auto"``
+        takes the generic path for it).
     tangential : Fastsim, Table or Linear
         Configured law. FASTSIM's ``nx``, ``ny``, ``bound``, ``flexibility`` and
         ``scheme`` are honoured (Kik–Piotrowski patches use one weighted flexibility
