@@ -69,6 +69,17 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
             gmres_maxiter=400, krylov_conv=None, precondition=None, forcing=None):
     """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
 
+    :func:`_newton_force` with no force equation; returns its first five values.
+    """
+    return _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind, gmres_rtol,
+                         gmres_maxiter, krylov_conv, precondition, forcing)[:5]
+
+
+def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
+                  gmres_maxiter=400, krylov_conv=None, precondition=None, forcing=None,
+                  force=None):
+    """Active-set semismooth Newton for ``s = b + M p`` with Coulomb bound ``g``.
+
     Unknowns are the tractions of the adhesion elements (H) and the traction
     angles θ of the slip elements (S, ``p = g (cos θ, sin θ)``; Zhao, Vollebregt
     & Oosterlee 2014). Equations: ``s_I = 0`` on H, ``t_I · s_I = 0`` on S with
@@ -85,9 +96,21 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     and the number of unknowns; the callable replaces ``pinv`` as the right
     preconditioner. Default: the line preconditioner.
 
-    Returns ``p, s, newton_iterations, residual, gmres_iterations``; the
+    ``force`` (optional) ``(weights, target, xi0, force_tol)``: the longitudinal rigid
+    slip ξ (added to ``b[0]``, started from ``xi0``) is one more unknown, and one more
+    equation asks ``Σ weights·p_x = target`` (the total force Fx, ``weights`` the element
+    areas) within ``force_tol``. The Newton system is bordered by the column
+    ``∂F/∂ξ`` (1 for the x equation of an adhesion element, ``t_x`` for a slip element)
+    and the row ``∂Fx/∂(δp, δθ)``; the right preconditioner is the block elimination
+    of the bordered system with the line preconditioner ``P`` (one extra ``P`` per
+    Newton step for ``P ∂F/∂ξ``). The force equation is scaled by
+    ``tol·max |b| / force_tol``, so that a residual ``≤ tol`` means both the slip
+    equations and ``|Fx − target| ≤ force_tol``.
+
+    Returns ``p, s, newton_iterations, residual, gmres_iterations, xi``; the
     residual is the largest equation residual divided by the slip scale
-    ``max |b|`` (dimensionless).
+    ``max |b + ξ e_x|`` at the start (dimensionless); ``xi`` is ``None`` without
+    ``force``.
     """
     contact = g > 0.0
     shape = g.shape
@@ -101,19 +124,30 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         dup = np.zeros((2, 2))
     p, norm = _initial_traction(p0, g, contact)
     slip = contact & (norm >= g * (1 - 1e-12)) & (norm > 0)
+    xi = None
+    if force is not None:
+        weights, target, xi, force_tol = force
+        xi = float(xi)
+        b0 = b
+        b = b0.copy()
+        b[0] += xi
     s_scale = float(np.max(np.hypot(b[0], b[1])[contact]))
     if s_scale == 0.0:
-        return np.zeros((2,) + shape), b.copy(), 0, 0.0, 0
+        if force is not None:  # no slip scale to measure the residual by: not solved here
+            return p, b.copy(), 0, np.inf, 0, xi
+        return np.zeros((2,) + shape), b.copy(), 0, 0.0, 0, None
     if s_scale < 1e-100 or s_scale > 1e100:
         # the problem is positively homogeneous in (b, g, p): solve it rescaled; a bound
         # that would overflow (rigid slip ~1e-308) is capped: the patch then sticks fully
         with np.errstate(over="ignore"):
             g_scaled = np.minimum(g / s_scale, 1e300)
-        p, s, it, res, kry = _newton(kernel, conv, b / s_scale, g_scaled,
-                                     None if p0 is None else np.asarray(p0) / s_scale, tol,
-                                     maxiter, upwind, gmres_rtol, gmres_maxiter, krylov_conv,
-                                     precondition, forcing)
-        return p * s_scale, s * s_scale, it, res, kry
+        scaled = None if force is None else (weights, target / s_scale, xi / s_scale,
+                                             force_tol / s_scale)
+        p, s, it, res, kry, xs = _newton_force(
+            kernel, conv, (b if force is None else b0) / s_scale, g_scaled,
+            None if p0 is None else np.asarray(p0) / s_scale, tol, maxiter, upwind, gmres_rtol,
+            gmres_maxiter, krylov_conv, precondition, forcing, scaled)
+        return p * s_scale, s * s_scale, it, res, kry, (None if xs is None else xs * s_scale)
     total_krylov = 0
     res = np.inf
     it = 0
@@ -133,7 +167,13 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
     kind_e = np.empty(n_e, dtype=np.int64)
     pos_e = np.empty(n_e, dtype=np.int64)
     ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e = (np.empty(n_e) for _ in range(7))
-    F_work = np.empty(2 * n_e)
+    F_work = np.empty(2 * n_e + 1)
+    if force is not None:
+        # the force equation, scaled so that |Fx − target| = force_tol weighs as a slip
+        # residual tol·s_scale
+        w_e = np.ascontiguousarray(np.broadcast_to(weights, shape)[order_i, order_j],
+                                   dtype=float)
+        f_scale = tol * s_scale / force_tol
     p = np.ascontiguousarray(p)
     for it in range(1, maxiter + 1):
         s = b + conv(p)
@@ -145,10 +185,13 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
         # --- residual, unknowns in upwind order, element data of the Krylov loop
         n_unknowns, big = K._newton_system(p, s, g_e, order_i, order_j, slip_e, kind_e, pos_e,
                                          ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e, F_work)
-        F = F_work[:n_unknowns]
-        res = big / s_scale if n_unknowns else 0.0
+        if force is not None:
+            F_work[n_unknowns] = f_scale * (float(w_e @ p[0, order_i, order_j]) - target)
+            big = max(big, abs(F_work[n_unknowns]))
+        F = F_work[:n_unknowns + (force is not None)]
+        res = big / s_scale if F.size else 0.0
         if res <= tol and not changed:
-            return p, s, it - 1, res, total_krylov
+            return p, s, it - 1, res, total_krylov, xi
 
         def matvec(z):
             K._scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
@@ -170,6 +213,11 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
             kind[order_i, order_j] = kind_e
             pos[order_i, order_j] = pos_e
             prec = precondition(kind, pos, pinv, matvec, n_unknowns)
+        if force is None:
+            op, prec_all = matvec, prec
+        else:
+            op, prec_all = _bordered(matvec, prec, n_unknowns, kind_e, pos_e, tx_e, gtx_e,
+                                     f_scale * w_e)
         rtol = gmres_rtol
         if forcing is not None:
             # adaptive forcing: loose while the active set moves, then just tight enough
@@ -177,13 +225,58 @@ def _newton(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=0.1,
             loose, factor, floor = forcing
             rtol = loose if (changed or it == 1) else min(gmres_rtol,
                                                           max(factor * tol / res, floor))
-        y, count = _gmres(lambda w: matvec(prec(w)), -F, rtol, gmres_maxiter)
+        y, count = _gmres(lambda w: op(prec_all(w)), -F, rtol, gmres_maxiter)
         total_krylov += count
-        dz = prec(y)
+        dz = prec_all(y)
         # --- update
         K._newton_update(p, dz, g_e, order_i, order_j, kind_e, pos_e, ex_e, ey_e)
+        if force is not None:
+            xi += float(dz[n_unknowns])
+            b = b0.copy()
+            b[0] += xi
     s = b + conv(p)
-    return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov
+    return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov, xi
+
+
+def _bordered(matvec, prec, n, kind_e, pos_e, tx_e, gtx_e, c_e):
+    """Product and right preconditioner of the Newton system bordered by the ξ unknown.
+
+    The system ``[[J, e], [cᵀ, 0]]`` with ``e = ∂F/∂ξ`` (1 on the x equation of an
+    adhesion element, ``t_x`` on a slip element's equation) and ``cᵀ z`` the scaled
+    force change (``c_e`` per element times δp_x, or times ``g t_x`` δθ on slip).
+    The preconditioner is the block elimination with ``P ≈ J⁻¹``: ``w = P e``,
+    ``ζ = (cᵀ P r − r_c) / (cᵀ w)``, ``z = P r − w ζ`` (exact when ``P = J⁻¹``).
+    Returns ``(op, prec)`` on vectors of length ``n + 1``.
+    """
+    adh = kind_e == 1
+    sl = ~adh
+    e = np.zeros(n)
+    c = np.zeros(n)
+    e[pos_e[adh]] = 1.0
+    e[pos_e[sl]] = tx_e[sl]
+    c[pos_e[adh]] = c_e[adh]
+    c[pos_e[sl]] = c_e[sl] * gtx_e[sl]
+    w = prec(e)
+    schur = float(c @ w)
+    if schur == 0.0:
+        schur = 1.0  # no coupling of the force to ξ on this active set: ζ from r_c alone
+
+    def op(z):
+        out = np.empty(n + 1)
+        out[:n] = matvec(z[:n])
+        out[:n] += z[n] * e
+        out[n] = c @ z[:n]
+        return out
+
+    def prec_all(r):
+        out = np.empty(n + 1)
+        zr = prec(r[:n])
+        zeta = (float(c @ zr) - r[n]) / schur
+        out[:n] = zr - w * zeta
+        out[n] = zeta
+        return out
+
+    return op, prec_all
 
 
 def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100, upwind=True,
@@ -247,3 +340,57 @@ def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100,
                    krylov_conv=krylov_conv, forcing=forcing)
 
 
+
+
+def newton_force_step(kernel, b, g, *, weights, Fx, xi, force_tol, conv=None, initial=None,
+                      tol=1e-6, maxiter=100, upwind=True, krylov_conv=None, forcing=None):
+    """One frictional step with the total force Fx prescribed and ξ unknown.
+
+    As :func:`newton_step` for ``s = b + ξ e_x + K p``, with the longitudinal rigid
+    slip ξ one more unknown of the same Newton iteration and one more equation,
+    ``Σ weights·p_x = Fx`` (the force-controlled transient step: one solve instead of
+    an outer secant iteration on ξ around :func:`newton_step`).
+
+    Parameters
+    ----------
+    kernel, b, g, conv, initial, tol, maxiter, upwind, krylov_conv, forcing
+        As :func:`newton_step`; ``b`` (2, nx, ny) is the slip at zero traction and
+        ξ = 0 [-].
+    weights : float or ndarray, shape (nx, ny)
+        Element areas [m²] (``Fx = Σ weights·p_x``).
+    Fx : float
+        Prescribed total force on the wheel [N].
+    xi : float
+        Starting creepage ξ [-] (e.g. the previous time step's).
+    force_tol : float
+        Tolerance of ``|Σ weights·p_x − Fx|`` [N].
+
+    Returns
+    -------
+    p : ndarray, shape (2, nx, ny)
+        Tractions on the wheel [Pa].
+    s : ndarray, shape (2, nx, ny)
+        Slip ``b + ξ e_x + K p`` [-].
+    xi : float
+        The creepage ξ [-].
+    iterations : int
+        Newton iterations.
+    residual : float
+        Final scaled residual (``<= tol`` when converged: the slip equations to
+        ``tol`` and the force to ``force_tol``); ``inf`` when ``b + ξ e_x`` vanishes
+        on the contact (no slip scale: the caller must start elsewhere).
+    krylov : int
+        GMRES iterations in total.
+
+    References
+    ----------
+    Zhao, Vollebregt & Oosterlee (2015); Baeza et al. eqs. (2.19)–(2.20), §3.1
+    (prescribed F1).
+    """
+    if conv is None:
+        conv = _BlockConvolution(kernel)
+    p, s, its, res, kry, xi = _newton_force(kernel, conv, b, g, initial, tol, maxiter,
+                                            upwind=upwind, krylov_conv=krylov_conv,
+                                            forcing=forcing,
+                                            force=(weights, float(Fx), xi, float(force_tol)))
+    return p, s, xi, its, res, kry
