@@ -303,3 +303,44 @@ def _gather(mv, z, ei, ej, kind_e, pos_e, tx_e, ty_e, diag_e, out):
             out[q] = tx_e[k] * mv[0, i, j] + ty_e[k] * mv[1, i, j] + diag_e[k] * z[q]
 
 
+
+
+@njit(cache=True)
+def _prec_scatter(elem, geo, d0, dup, r, z, vx, vy, v, c, w, schur):
+    """Right preconditioner and traction field of one Krylov product (in place).
+
+    ``z = P r`` by :func:`_precondition` (``elem`` rows: i, j, kind, position,
+    upstream neighbour; ``geo`` rows: t_x, t_y, g, diag, g t_x, g t_y), then
+    ``v`` = the traction field of ``z`` as :func:`_scatter`. With the ξ border
+    (``r`` one longer than the Newton unknowns, ``c`` and ``w = P e`` of length
+    n): the block elimination ``ζ = (c·P r − r_n) / schur``, ``z = P r − w ζ``,
+    ``z_n = ζ`` first.
+    """
+    _precondition(elem[4], elem[2], elem[3], geo[0], geo[1], geo[2], geo[3], d0, dup, r, z,
+                  vx, vy)
+    n = c.shape[0]
+    if r.shape[0] > n:
+        acc = 0.0
+        for q in range(n):
+            acc += c[q] * z[q]
+        zeta = (acc - r[n]) / schur
+        for q in range(n):
+            z[q] -= w[q] * zeta
+        z[n] = zeta
+    _scatter(z, elem[0], elem[1], elem[2], elem[3], geo[4], geo[5], v)
+
+
+@njit(cache=True)
+def _gather_bordered(mv, z, elem, geo, out, e, c):
+    """Newton-system product from ``mv = K v`` as :func:`_gather` (in place), plus the ξ
+    border when ``out`` is one longer than the unknowns: ``out += z_n e``,
+    ``out_n = c·z``."""
+    _gather(mv, z, elem[0], elem[1], elem[2], elem[3], geo[0], geo[1], geo[3], out)
+    n = c.shape[0]
+    if out.shape[0] > n:
+        zeta = z[n]
+        acc = 0.0
+        for q in range(n):
+            out[q] += zeta * e[q]
+            acc += c[q] * z[q]
+        out[n] = acc

@@ -151,22 +151,27 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
     total_krylov = 0
     res = np.inf
     it = 0
-    # list index of each contact element's upstream neighbour (i + 1, j), −1 if none
+    n_e = order_i.shape[0]
+    # per element, in upwind order: (i, j, kind, position of its unknowns, list index of
+    # its upstream neighbour (i + 1, j) or −1) and (t_x, t_y, g, diag, g t_x, g t_y)
+    elem = np.empty((5, n_e), dtype=np.int64)
+    elem[0], elem[1] = order_i, order_j
     index = np.full(shape, -1, dtype=np.int64)
-    index[order_i, order_j] = np.arange(order_i.shape[0])
-    up_e = np.full(order_i.shape[0], -1, dtype=np.int64)
+    index[order_i, order_j] = np.arange(n_e)
+    up_e = elem[4]
+    up_e[:] = -1
     inside = order_i + 1 < nx
     up_e[inside] = index[order_i[inside] + 1, order_j[inside]]
-    g_e = np.ascontiguousarray(g[order_i, order_j])
-    vx = np.zeros(order_i.shape[0])
-    vy = np.zeros(order_i.shape[0])
+    kind_e, pos_e = elem[2], elem[3]
+    geo = np.empty((6, n_e))
+    tx_e, ty_e, g_e, diag_e, gtx_e, gty_e = geo
+    g_e[:] = g[order_i, order_j]
+    ex_e, ey_e = np.empty(n_e), np.empty(n_e)
+    vx = np.zeros(n_e)
+    vy = np.zeros(n_e)
     v = np.zeros((2,) + shape)      # Krylov work field: only contact elements are written
     kconv = conv if krylov_conv is None else krylov_conv
-    n_e = order_i.shape[0]
     slip_e = np.ascontiguousarray(slip[order_i, order_j])
-    kind_e = np.empty(n_e, dtype=np.int64)
-    pos_e = np.empty(n_e, dtype=np.int64)
-    ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e = (np.empty(n_e) for _ in range(7))
     F_work = np.empty(2 * n_e + 1)
     if force is not None:
         # the force equation, scaled so that |Fx − target| = force_tol weighs as a slip
@@ -188,46 +193,45 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
         if force is not None:
             F_work[n_unknowns] = f_scale * (float(w_e @ p[0, order_i, order_j]) - target)
             big = max(big, abs(F_work[n_unknowns]))
-        F = F_work[:n_unknowns + (force is not None)]
-        res = big / s_scale if F.size else 0.0
+        n_all = n_unknowns + (force is not None)
+        F = F_work[:n_all]
+        res = big / s_scale if n_all else 0.0
         if res <= tol and not changed:
             return p, s, it - 1, res, total_krylov, xi
 
-        def matvec(z):
-            K._scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
-            mv = kconv(v)
-            out = np.empty(n_unknowns)
-            K._gather(mv, z, order_i, order_j, kind_e, pos_e, tx_e, ty_e, diag_e, out)
-            return out
-
-        def pinv(r):
-            z = np.empty(n_unknowns)
-            K._precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy)
-            return z
+        if force is None:
+            e = c = w = np.zeros(n_unknowns)
+            schur = 1.0
+        else:
+            e, c, w, schur = _border(elem, geo, d0, dup, vx, vy, n_unknowns, f_scale * w_e)
+        z_work = np.empty(n_all)
 
         if precondition is None:
-            prec = pinv
-        else:
-            kind = np.zeros(shape, dtype=np.int64)
-            pos = np.zeros(shape, dtype=np.int64)
-            kind[order_i, order_j] = kind_e
-            pos[order_i, order_j] = pos_e
-            prec = precondition(kind, pos, pinv, matvec, n_unknowns)
-        if force is None:
-            op, prec_all = matvec, prec
-        else:
-            op, prec_all = _bordered(matvec, prec, n_unknowns, kind_e, pos_e, tx_e, gtx_e,
-                                     f_scale * w_e)
+            def op(r):
+                """The Newton-system product of the preconditioned vector ``P r``."""
+                K._prec_scatter(elem, geo, d0, dup, r, z_work, vx, vy, v, c, w, schur)
+                out = np.empty(n_all)
+                K._gather_bordered(kconv(v), z_work, elem, geo, out, e, c)
+                return out
+
+            def prec(r):
+                z = np.empty(n_all)
+                K._prec_scatter(elem, geo, d0, dup, r, z, vx, vy, v, c, w, schur)
+                return z
+        else:  # an experimental preconditioner (no ξ border)
+            op, prec = _custom_preconditioner(precondition, shape, elem, geo, d0, dup, vx, vy,
+                                              v, kconv, n_unknowns)
         rtol = gmres_rtol
         if forcing is not None:
             # adaptive forcing: loose while the active set moves, then just tight enough
-            # to reach tol in one more step (floor: the single-precision products)
+            # to reach tol in one more step (floor: the single-precision products); with
+            # ξ unknown the first step starts from the extrapolated state, tight at once
             loose, factor, floor = forcing
-            rtol = loose if (changed or it == 1) else min(gmres_rtol,
-                                                          max(factor * tol / res, floor))
-        y, count = _gmres(lambda w: op(prec_all(w)), -F, rtol, gmres_maxiter)
+            rtol = loose if (changed or (it == 1 and force is None)) else min(
+                gmres_rtol, max(factor * tol / res, floor))
+        y, count = _gmres(op, -F, rtol, gmres_maxiter)
         total_krylov += count
-        dz = prec_all(y)
+        dz = prec(y)
         # --- update
         K._newton_update(p, dz, g_e, order_i, order_j, kind_e, pos_e, ex_e, ey_e)
         if force is not None:
@@ -238,16 +242,18 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
     return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov, xi
 
 
-def _bordered(matvec, prec, n, kind_e, pos_e, tx_e, gtx_e, c_e):
-    """Product and right preconditioner of the Newton system bordered by the ξ unknown.
+def _border(elem, geo, d0, dup, vx, vy, n, c_e):
+    """The ξ border of the Newton system and its block elimination (private).
 
     The system ``[[J, e], [cᵀ, 0]]`` with ``e = ∂F/∂ξ`` (1 on the x equation of an
     adhesion element, ``t_x`` on a slip element's equation) and ``cᵀ z`` the scaled
     force change (``c_e`` per element times δp_x, or times ``g t_x`` δθ on slip).
-    The preconditioner is the block elimination with ``P ≈ J⁻¹``: ``w = P e``,
-    ``ζ = (cᵀ P r − r_c) / (cᵀ w)``, ``z = P r − w ζ`` (exact when ``P = J⁻¹``).
-    Returns ``(op, prec)`` on vectors of length ``n + 1``.
+    The preconditioner is the block elimination with the line preconditioner
+    ``P ≈ J⁻¹``: ``w = P e``, ``ζ = (cᵀ P r − r_c) / (cᵀ w)``, ``z = P r − w ζ``
+    (exact when ``P = J⁻¹``). Returns ``(e, c, w, cᵀ w)``.
     """
+    kind_e, pos_e = elem[2], elem[3]
+    tx_e, gtx_e = geo[0], geo[4]
     adh = kind_e == 1
     sl = ~adh
     e = np.zeros(n)
@@ -256,27 +262,38 @@ def _bordered(matvec, prec, n, kind_e, pos_e, tx_e, gtx_e, c_e):
     e[pos_e[sl]] = tx_e[sl]
     c[pos_e[adh]] = c_e[adh]
     c[pos_e[sl]] = c_e[sl] * gtx_e[sl]
-    w = prec(e)
+    w = np.empty(n)
+    K._precondition(elem[4], kind_e, pos_e, tx_e, geo[1], geo[2], geo[3], d0, dup, e, w,
+                    vx, vy)
     schur = float(c @ w)
     if schur == 0.0:
-        schur = 1.0  # no coupling of the force to ξ on this active set: ζ from r_c alone
+        schur = 1.0  # the force does not depend on ξ through P: ζ from r_c alone
+    return e, c, w, schur
 
-    def op(z):
-        out = np.empty(n + 1)
-        out[:n] = matvec(z[:n])
-        out[:n] += z[n] * e
-        out[n] = c @ z[:n]
+
+def _custom_preconditioner(precondition, shape, elem, geo, d0, dup, vx, vy, v, kconv, n):
+    """``(op, prec)`` with an experimental preconditioner factory (see :func:`_newton`)."""
+    order_i, order_j, kind_e, pos_e, up_e = elem
+    tx_e, ty_e, g_e, diag_e, gtx_e, gty_e = geo
+
+    def matvec(z):
+        K._scatter(z, order_i, order_j, kind_e, pos_e, gtx_e, gty_e, v)
+        mv = kconv(v)
+        out = np.empty(n)
+        K._gather(mv, z, order_i, order_j, kind_e, pos_e, tx_e, ty_e, diag_e, out)
         return out
 
-    def prec_all(r):
-        out = np.empty(n + 1)
-        zr = prec(r[:n])
-        zeta = (float(c @ zr) - r[n]) / schur
-        out[:n] = zr - w * zeta
-        out[n] = zeta
-        return out
+    def pinv(r):
+        z = np.empty(n)
+        K._precondition(up_e, kind_e, pos_e, tx_e, ty_e, g_e, diag_e, d0, dup, r, z, vx, vy)
+        return z
 
-    return op, prec_all
+    kind = np.zeros(shape, dtype=np.int64)
+    pos = np.zeros(shape, dtype=np.int64)
+    kind[order_i, order_j] = kind_e
+    pos[order_i, order_j] = pos_e
+    prec = precondition(kind, pos, pinv, matvec, n)
+    return (lambda r: matvec(prec(r))), prec
 
 
 def newton_step(kernel, b, g, *, conv=None, initial=None, tol=1e-6, maxiter=100, upwind=True,
