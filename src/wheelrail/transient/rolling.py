@@ -510,11 +510,13 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
     # every load function is checked at every step before the run: a load that turns
     # negative (or not finite) is named with its travel instead of failing mid-run
     steady_from = np.ones(n, dtype=bool)  # loads equal from step k to the end
+    load_at = {}  # the values of each load function at every step (evaluated once)
     for name, fun in ((normal_name, F3), ("Fx", F1)) + tuple(
             zip(("xi", "eta", "phi"), cr)):
         if fun is None:
             continue
         vals = np.array([_evaluate(name, fun, float(x)) for x in xs])
+        load_at[name] = vals
         same = np.append(vals[1:] == vals[:-1], True)
         steady_from &= np.flip(np.logical_and.accumulate(np.flip(same)))
         if name == normal_name and not np.all(vals > 0):
@@ -641,14 +643,17 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
             store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
             state_store[j] = last_state[0]
 
-    def repeat(k, p, pn):
-        """Record step k as a repeat of step k − 1 (the steady fixed point: same values)."""
+    def repeat(k, p, pn, stop=None):
+        """Record step k (to ``stop`` − 1) as a repeat of step k − 1 (the steady fixed
+        point: same values)."""
+        stop = k + 1 if stop is None else stop
         for v in hist.values():
-            v[k] = v[k - 1]
-        j = keep_index.get(k)
-        if j is not None:
-            store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
-            state_store[j] = last_state[0]
+            v[k:stop] = v[k - 1]
+        for kk in (keep if stop > k + 1 else (k,)):
+            j = keep_index.get(kk)
+            if j is not None and k <= kk < stop:
+                store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
+                state_store[j] = last_state[0]
 
     record(0, 0.0, pn, p, np.zeros_like(p), nsol, 0.0 if F1 else _evaluate("xi", cr[0], 0.0),
            _evaluate("eta", cr[1], 0.0), _evaluate("phi", cr[2], 0.0))
@@ -716,9 +721,8 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 nsol = normal(x, pn)
             pn_new = np.array(nsol.pressure)
             g = mu * pn_new
-            eta, phi = _evaluate("eta", cr[1], x), _evaluate("phi", cr[2], x)
-            control = (_evaluate("xi", cr[0], x) if F1 is None
-                       else _evaluate("Fx", F1, x))
+            eta, phi = float(load_at["eta"][k]), float(load_at["phi"][k])
+            control = float(load_at["xi" if F1 is None else "Fx"][k])
             key = (eta, phi, control)
             if (fixed is not None and not material and fixed[0] == key and np.array_equal(fixed[1], p)
                     and np.array_equal(pn, pn_new)):
@@ -728,6 +732,13 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 if not repeating:
                     record(k, x, pn_new, p, fixed[3], nsol, xi, eta, phi)
                     repeating = True
+                elif steady_from[k] and F3_const:
+                    # the loads stay constant to the end: every later step repeats it too
+                    repeat(k, p, pn_new, n)
+                    skipped += n - k
+                    if bar is not None:
+                        bar.advance(task, n - k)
+                    break
                 else:
                     repeat(k, p, pn_new)
                 skipped += 1

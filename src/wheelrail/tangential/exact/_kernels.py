@@ -344,3 +344,41 @@ def _gather_bordered(mv, z, elem, geo, out, e, c):
             out[q] += zeta * e[q]
             acc += c[q] * z[q]
         out[n] = acc
+
+
+@njit(cache=True)
+def _border(elem, geo, c_e, d0, dup, vx, vy, e, c, w):
+    """The ξ border of the Newton system and ``P e`` (in place); returns ``cᵀ P e``.
+
+    ``e = ∂F/∂ξ``: 1 on the x equation of an adhesion element (0 on its y equation),
+    ``t_x`` on a slip element's equation; ``c``: the force change per unknown,
+    ``c_e`` (element weight) times δp_x on adhesion or times ``g t_x`` δθ on slip;
+    ``w = P e`` by :func:`_precondition`.
+    """
+    kind_e = elem[2]
+    pos_e = elem[3]
+    for k in range(kind_e.shape[0]):
+        q = pos_e[k]
+        if kind_e[k] == 1:
+            e[q] = 1.0
+            e[q + 1] = 0.0
+            c[q] = c_e[k]
+            c[q + 1] = 0.0
+        else:
+            e[q] = geo[0, k]
+            c[q] = c_e[k] * geo[4, k]
+    _precondition(elem[4], kind_e, pos_e, geo[0], geo[1], geo[2], geo[3], d0, dup, e, w,
+                  vx, vy)
+    acc = 0.0
+    for q in range(c.shape[0]):
+        acc += c[q] * w[q]
+    return acc
+
+
+@njit(cache=True)
+def _weighted_x_sum(p, ei, ej, w_e):
+    """``Σ_k w_e[k] p[0, ei[k], ej[k]]`` (the force Fx of the contact elements)."""
+    acc = 0.0
+    for k in range(ei.shape[0]):
+        acc += w_e[k] * p[0, ei[k], ej[k]]
+    return acc

@@ -176,9 +176,12 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
     if force is not None:
         # the force equation, scaled so that |Fx − target| = force_tol weighs as a slip
         # residual tol·s_scale
-        w_e = np.ascontiguousarray(np.broadcast_to(weights, shape)[order_i, order_j],
-                                   dtype=float)
+        if np.ndim(weights):
+            w_e = np.ascontiguousarray(np.asarray(weights, dtype=float)[order_i, order_j])
+        else:
+            w_e = np.full(n_e, float(weights))
         f_scale = tol * s_scale / force_tol
+        c_w = f_scale * w_e
     p = np.ascontiguousarray(p)
     for it in range(1, maxiter + 1):
         s = b + conv(p)
@@ -191,7 +194,7 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
         n_unknowns, big = K._newton_system(p, s, g_e, order_i, order_j, slip_e, kind_e, pos_e,
                                          ex_e, ey_e, tx_e, ty_e, gtx_e, gty_e, diag_e, F_work)
         if force is not None:
-            F_work[n_unknowns] = f_scale * (float(w_e @ p[0, order_i, order_j]) - target)
+            F_work[n_unknowns] = f_scale * (K._weighted_x_sum(p, order_i, order_j, w_e) - target)
             big = max(big, abs(F_work[n_unknowns]))
         n_all = n_unknowns + (force is not None)
         F = F_work[:n_all]
@@ -203,7 +206,13 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
             e = c = w = np.zeros(n_unknowns)
             schur = 1.0
         else:
-            e, c, w, schur = _border(elem, geo, d0, dup, vx, vy, n_unknowns, f_scale * w_e)
+            # the ξ border [[J, e], [cᵀ, 0]]: e = ∂F/∂ξ, cᵀ z the scaled force change; the
+            # preconditioner is the block elimination with P ≈ J⁻¹: w = P e,
+            # ζ = (cᵀ P r − r_c) / (cᵀ w), z = P r − w ζ (exact when P = J⁻¹)
+            e, c, w = np.empty(n_unknowns), np.empty(n_unknowns), np.empty(n_unknowns)
+            schur = K._border(elem, geo, c_w, d0, dup, vx, vy, e, c, w)
+            if schur == 0.0:
+                schur = 1.0  # the force does not depend on ξ through P: ζ from r_c alone
         z_work = np.empty(n_all)
 
         if precondition is None:
@@ -240,35 +249,6 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
             b[0] += xi
     s = b + conv(p)
     return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov, xi
-
-
-def _border(elem, geo, d0, dup, vx, vy, n, c_e):
-    """The ξ border of the Newton system and its block elimination (private).
-
-    The system ``[[J, e], [cᵀ, 0]]`` with ``e = ∂F/∂ξ`` (1 on the x equation of an
-    adhesion element, ``t_x`` on a slip element's equation) and ``cᵀ z`` the scaled
-    force change (``c_e`` per element times δp_x, or times ``g t_x`` δθ on slip).
-    The preconditioner is the block elimination with the line preconditioner
-    ``P ≈ J⁻¹``: ``w = P e``, ``ζ = (cᵀ P r − r_c) / (cᵀ w)``, ``z = P r − w ζ``
-    (exact when ``P = J⁻¹``). Returns ``(e, c, w, cᵀ w)``.
-    """
-    kind_e, pos_e = elem[2], elem[3]
-    tx_e, gtx_e = geo[0], geo[4]
-    adh = kind_e == 1
-    sl = ~adh
-    e = np.zeros(n)
-    c = np.zeros(n)
-    e[pos_e[adh]] = 1.0
-    e[pos_e[sl]] = tx_e[sl]
-    c[pos_e[adh]] = c_e[adh]
-    c[pos_e[sl]] = c_e[sl] * gtx_e[sl]
-    w = np.empty(n)
-    K._precondition(elem[4], kind_e, pos_e, tx_e, geo[1], geo[2], geo[3], d0, dup, e, w,
-                    vx, vy)
-    schur = float(c @ w)
-    if schur == 0.0:
-        schur = 1.0  # the force does not depend on ξ through P: ζ from r_c alone
-    return e, c, w, schur
 
 
 def _custom_preconditioner(precondition, shape, elem, geo, d0, dup, vx, vy, v, kconv, n):
