@@ -53,8 +53,8 @@ Prescribed tangential force F1(x): the longitudinal creepage ξ is one more
 unknown of each step's Newton iteration, with the equation ``Fx = F1``
 (:func:`~wheelrail.tangential.exact.newton_force_step`), started from the
 tractions and ξ extrapolated linearly from the two previous steps; where that
-iteration fails (the first step from rest) a safeguarded secant iteration on
-``Fx(ξ) = F1`` around the step (Fx decreases monotonically with ξ).
+iteration fails a safeguarded secant iteration on ``Fx(ξ) = F1`` around the
+step (Fx decreases monotonically with ξ).
 
 References
 ----------
@@ -850,14 +850,18 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                     raise InputError(f"Fx({x!r} m) = {target!r} N must be smaller "
                                      f"in magnitude than mu*Fn = {mu * Fn_k!r} N (full sliding)")
                 ftol = force_tol * mu * Fn_k
-                # ξ as one more unknown of the Newton iteration (one solve per step); the
-                # secant iteration on ξ around the step where that fails (the first step
-                # from rest, whose slip at the previous ξ vanishes)
+                # ξ as one more unknown of the Newton iteration (one solve per step),
+                # started from the state extrapolated from the two previous steps; the
+                # secant iteration on ξ around the step where that fails
                 p_guess, xi_guess = p, xi_prev
                 if prev is not None:
                     p_guess, xi_guess = 2.0 * p - prev[0], 2.0 * xi_prev - prev[1]
                 got = (solve_force(target, xi_guess, p_guess, ftol) if friction == "exact"
                        else None)
+                if got is None and friction == "exact" and xi_guess == 0.0:
+                    # from rest without creepage the slip vanishes and has no scale: start
+                    # from a small creepage of the sign that gives the force
+                    got = solve_force(target, -math.copysign(1e-6, target), p_guess, ftol)
                 if got is not None:
                     xi, p_new, s_new, its = got
                     # a step that met the tolerance at its starting point (the steady

@@ -109,8 +109,8 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
 
     Returns ``p, s, newton_iterations, residual, gmres_iterations, xi``; the
     residual is the largest equation residual divided by the slip scale
-    ``max |b + ξ e_x|`` at the start (dimensionless); ``xi`` is ``None`` without
-    ``force``.
+    ``max |b + ξ e_x|`` on the contact (at the current ξ; dimensionless); ``xi`` is
+    ``None`` without ``force``.
     """
     contact = g > 0.0
     shape = g.shape
@@ -247,6 +247,10 @@ def _newton_force(kernel, conv, b, g, p0, tol, maxiter, upwind=True, gmres_rtol=
             xi += float(dz[n_unknowns])
             b = b0.copy()
             b[0] += xi
+            # the slip scale of the current ξ (as a solve at that ξ would measure it)
+            s_scale = float(np.max(np.hypot(b[0], b[1])[contact])) or s_scale
+            f_scale = tol * s_scale / force_tol
+            c_w = f_scale * w_e
     s = b + conv(p)
     return p, s, it, max(res, np.nextafter(tol, np.inf)), total_krylov, xi
 
