@@ -382,3 +382,21 @@ def _weighted_x_sum(p, ei, ej, w_e):
     for k in range(ei.shape[0]):
         acc += w_e[k] * p[0, ei[k], ej[k]]
     return acc
+
+
+@njit(cache=True)
+def _project_start(p, g, norm):
+    """Starting tractions in place: zero where ``g`` is not positive (out of contact),
+    scaled back onto the friction disc ``|p| ≤ g`` where they lie outside; ``norm``
+    receives ``|p|`` before the projection."""
+    for i in range(g.shape[0]):
+        for j in range(g.shape[1]):
+            if not g[i, j] > 0.0:
+                p[0, i, j] = 0.0
+                p[1, i, j] = 0.0
+            n = math.hypot(p[0, i, j], p[1, i, j])
+            norm[i, j] = n
+            if n > g[i, j]:
+                f = g[i, j] / n
+                p[0, i, j] *= f
+                p[1, i, j] *= f

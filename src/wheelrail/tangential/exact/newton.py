@@ -20,9 +20,9 @@ from .krylov import _gmres
 # --------------------------------------------------------------------------
 def _sweep_order(contact):
     """Element indices in contact, leading edge (largest x index) first."""
-    ii, jj = np.nonzero(contact)
-    order = np.lexsort((jj, -ii))
-    return ii[order].astype(np.int64), jj[order].astype(np.int64)
+    # row-major order of the rows reversed: x index descending, y index ascending
+    ri, jj = np.nonzero(contact[::-1])
+    return (contact.shape[0] - 1 - ri).astype(np.int64), jj.astype(np.int64)
 
 
 def _initial_traction(p0, g, contact):
@@ -31,10 +31,12 @@ def _initial_traction(p0, g, contact):
     ``p0`` (zeros if None), zero outside the contact, scaled back onto the
     friction disc ``|p| ≤ g`` where it lies outside.
     """
-    p = np.zeros((2,) + g.shape) if p0 is None else np.array(p0, dtype=float)
-    p[:, ~contact] = 0.0
-    norm = np.hypot(p[0], p[1])
-    return np.where(norm > g, p * (g / np.where(norm > 0, norm, 1.0)), p), norm
+    if p0 is None:
+        return np.zeros((2,) + g.shape), np.zeros(g.shape)
+    p = np.array(p0, dtype=float)
+    norm = np.empty(g.shape)
+    K._project_start(p, g, norm)
+    return p, norm
 
 
 def _gauss_seidel(kernel, conv, b, g, p0, tol, maxiter, skip_fraction=1e-3):
