@@ -99,3 +99,11 @@ def hertz_patch16():
     grid, gap = hertz_grid(hc, elements=16, margin=1.1)
     normal = solve_normal(grid, gap, wr.STEEL, Fn=1e4)
     return grid, normal.pressure
+
+
+@pytest.fixture(scope="session")
+def baeza_31():
+    """``(hc, dx)`` of Baeza et al. §3.1 on the reduced transient grid (tests/_transient_31.py)."""
+    from _transient_31 import contact
+
+    return contact()

@@ -20,76 +20,46 @@ assertion; the "averaged" scheme departs by 8 % with dips of −8 % per step
 
 import numpy as np
 import pytest
+from _transient_31 import (
+    N,
+    history_difference,
+    integer_ratio_runs,
+    run,
+    slip_fraction_difference,
+    worst_increment_before_peak,
+)
 
 import wheelrail as wr
-from wheelrail.normal.bem import hertz_grid
-
-N = 16
 
 
 @pytest.fixture(scope="module")
-def case():
-    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.Material(2.1e11, 0.3))
-    grid, _ = hertz_grid(hc, elements=N)
-    return hc, grid.dx
-
-
-def _run(hc, step, scheme="interpolated"):
-    return wr.transient_rolling(hc, travel=3 * float(hc.a), step=step, mu=0.4, Fx=2000.0,
-                                elements=N, frames=2, scheme=scheme)
-
-
-@pytest.fixture(scope="module")
-def integer_ratios(case):
-    hc, dx = case
-    return {m: _run(hc, dx / m) for m in (1, 2, 3)}
-
-
-def _history_difference(r, runs, dx, ratio):
-    """Largest |ξ − ξ_ref| / |ξ_ref(end)| after two elements of travel (after the Cattaneo
-    start); ξ_ref interpolated linearly in h between the runs at the integer ratios
-    ⌊dx/h⌋ and ⌈dx/h⌉, each interpolated to the travels of ``r``."""
-    lo, hi = int(np.floor(ratio)), int(np.ceil(ratio))
-    sel = r.x >= 2 * dx
-    a, b = (np.interp(r.x[sel], runs[m].x, runs[m].xi) for m in (lo, hi))
-    w = (1 / ratio - 1 / hi) / (1 / lo - 1 / hi)  # weight of the coarser step
-    ref = w * a + (1 - w) * b
-    return float(np.max(np.abs(r.xi[sel] - ref)) / abs(runs[hi].xi[-1]))
-
-
-def _worst_increment_before_peak(r):
-    """Smallest step-to-step increase of |ξ| before its peak, relative to |ξ_end|
-    (step 1, the Cattaneo shift, excluded)."""
-    xi = np.abs(r.xi[2:])
-    k = int(np.argmax(xi))
-    return float(np.min(np.diff(xi[: k + 1])) / xi[-1])
+def integer_ratios(baeza_31):
+    hc, dx = baeza_31
+    return integer_ratio_runs(hc, dx, (1, 2, 3), "interpolated")
 
 
 @pytest.mark.parametrize("ratio", [1.84, 2.6])
-def test_non_integer_step_ratio_follows_the_integer_ones(case, integer_ratios, ratio):
-    hc, dx = case
-    r = _run(hc, dx / ratio)
+def test_non_integer_step_ratio_follows_the_integer_ones(baeza_31, integer_ratios, ratio):
+    hc, dx = baeza_31
+    r = run(hc, dx / ratio, "interpolated")
     # on the O(h) line between the integer ratios (measured 0.50 % at 1.84, 0.27 % at 2.6;
     # averaged scheme 8.1 %, 8.2 %)
-    assert _history_difference(r, integer_ratios, dx, ratio) < 0.015
+    assert history_difference(r, integer_ratios, dx, ratio) < 0.015
     # |ξ| rises monotonically to its peak (measured increments ≥ +1.1e-3·|ξ_end| at 1.84)
-    assert _worst_increment_before_peak(r) > 0
+    assert worst_increment_before_peak(r) > 0
     # the slipping fraction of the contact agrees with the nearest integer ratio's at the
     # same travel (measured 0.009 at 1.84, 0.005 at 2.6; averaged scheme 0.042, 0.023): no
     # false slip phase
-    ref = integer_ratios[int(round(ratio))]
-    f = r.n_slip / np.maximum(r.n_contact, 1)
-    f_ref = np.interp(r.x, ref.x, ref.n_slip / np.maximum(ref.n_contact, 1))
-    assert np.max(np.abs(f - f_ref)[r.x >= 2 * dx]) < 0.02
+    assert slip_fraction_difference(r, integer_ratios[int(round(ratio))], dx) < 0.02
 
 
-def test_averaged_scheme_shows_the_defect(case, integer_ratios):
+def test_averaged_scheme_shows_the_defect(baeza_31, integer_ratios):
     """The check above can fail: the element-averaged collocation at dx/h = 1.84 departs
     from the integer-ratio histories (measured 8.1 %) with a dip in |ξ| (−8 % per step)."""
-    hc, dx = case
-    r = _run(hc, dx / 1.84, scheme="averaged")
-    assert _history_difference(r, integer_ratios, dx, 1.84) > 0.03
-    assert _worst_increment_before_peak(r) < 0
+    hc, dx = baeza_31
+    r = run(hc, dx / 1.84, "averaged")
+    assert history_difference(r, integer_ratios, dx, 1.84) > 0.03
+    assert worst_increment_before_peak(r) < 0
 
 
 def test_interpolated_steady_limit_is_kalkers_rolling_kernel():
@@ -108,10 +78,10 @@ def test_interpolated_steady_limit_is_kalkers_rolling_kernel():
         assert np.allclose((now - old) / h, M, rtol=1e-8, atol=1e-10 * np.abs(M).max())
 
 
-def test_steady_jump_does_not_change_the_run(case):
+def test_steady_jump_does_not_change_the_run(baeza_31):
     """The switch to the steady fixed point (``settle``) leaves the history as stepping
     through the whole travel does (measured 2e-6 of ξ_end); without it no step is skipped."""
-    hc, dx = case
+    hc, dx = baeza_31
     kw = dict(travel=8 * float(hc.a), step=dx / 1.84, mu=0.4, Fx=2000.0, elements=N,
               frames=2)
     fast = wr.transient_rolling(hc, **kw)

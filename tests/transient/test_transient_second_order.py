@@ -15,31 +15,24 @@ fast.
 
 import numpy as np
 import pytest
+from _transient_31 import (
+    history_difference,
+    integer_ratio_runs,
+    run,
+    slip_fraction_difference,
+    worst_increment_before_peak,
+)
 
 import wheelrail as wr
 from wheelrail.halfspace.grid import Grid
 from wheelrail.halfspace.influence import influence_kernel
-from wheelrail.normal.bem import hertz_grid
 from wheelrail.transient.rolling import shifted_influence_kernel, step_kernels
 
-N = 16
 #: Grid limit of the final ξ of Baeza et al. §3.1: the range of the estimates from the
 #: steady fixed points of both kernels on 30 ... 240 elements (Richardson on Kalker's
 #: kernel −5.828e-4 / −5.841e-4, the second-order kernel −5.830 ... −5.840e-4;
 #: bench_transient_grid.py, docs/transient.md): −5.834e-4 ± 0.12 %.
 XI_LIMIT = -5.834e-4
-
-
-@pytest.fixture(scope="module")
-def case():
-    hc = wr.hertz_from_radii(10e3, 0.5, -0.409, 0.3, material=wr.Material(2.1e11, 0.3))
-    grid, _ = hertz_grid(hc, elements=N)
-    return hc, grid.dx
-
-
-def _run(hc, step, scheme="upwind2", travel=3.0):
-    return wr.transient_rolling(hc, travel=travel * float(hc.a), step=step, mu=0.4,
-                                Fx=2000.0, elements=N, frames=2, scheme=scheme)
 
 
 def test_steady_limit_is_the_second_order_upwind_kernel():
@@ -69,50 +62,29 @@ def test_steady_limit_is_the_second_order_upwind_kernel():
 
 
 @pytest.fixture(scope="module")
-def integer_ratios(case):
-    hc, dx = case
-    return {m: _run(hc, dx / m) for m in (1, 2, 3, 4)}
-
-
-def _history_difference(r, runs, dx, ratio):
-    """Largest |ξ − ξ_ref| / |ξ_ref(end)| after two elements of travel; ξ_ref interpolated
-    linearly in h between the runs at the integer ratios around dx/h (the time
-    discretisation error is O(h))."""
-    lo, hi = int(np.floor(ratio)), int(np.ceil(ratio))
-    sel = r.x >= 2 * dx
-    a, b = (np.interp(r.x[sel], runs[m].x, runs[m].xi) for m in (lo, hi))
-    w = (1 / ratio - 1 / hi) / (1 / lo - 1 / hi)
-    ref = w * a + (1 - w) * b
-    return float(np.max(np.abs(r.xi[sel] - ref)) / abs(runs[hi].xi[-1]))
-
-
-def _worst_increment_before_peak(r):
-    xi = np.abs(r.xi[2:])
-    k = int(np.argmax(xi))
-    return float(np.min(np.diff(xi[: k + 1])) / xi[-1])
+def integer_ratios(baeza_31):
+    hc, dx = baeza_31
+    return integer_ratio_runs(hc, dx, (1, 2, 3, 4), "upwind2")
 
 
 @pytest.mark.parametrize("ratio", [1.84, 2.6, 3.69])
-def test_non_integer_step_ratio(case, integer_ratios, ratio):
+def test_non_integer_step_ratio(baeza_31, integer_ratios, ratio):
     """No false slip phase at a non-integer dx/h: the history lies on the O(h) line between
     the integer ratios, |ξ| rises monotonically and the slipping fraction agrees with the
     nearest integer ratio's."""
-    hc, dx = case
-    r = _run(hc, dx / ratio)
-    assert _history_difference(r, integer_ratios, dx, ratio) < 0.015
-    assert _worst_increment_before_peak(r) > 0
-    ref = integer_ratios[int(round(ratio))]
-    f = r.n_slip / np.maximum(r.n_contact, 1)
-    f_ref = np.interp(r.x, ref.x, ref.n_slip / np.maximum(ref.n_contact, 1))
-    assert np.max(np.abs(f - f_ref)[r.x >= 2 * dx]) < 0.02
+    hc, dx = baeza_31
+    r = run(hc, dx / ratio, "upwind2")
+    assert history_difference(r, integer_ratios, dx, ratio) < 0.015
+    assert worst_increment_before_peak(r) > 0
+    assert slip_fraction_difference(r, integer_ratios[int(round(ratio))], dx) < 0.02
 
 
-def test_final_creepage_is_within_the_grid_limits_uncertainty(case):
+def test_final_creepage_is_within_the_grid_limits_uncertainty(baeza_31):
     """Run to the steady state on 16 elements (dx/h = 1.84): the second-order scheme ends
     0.31 % from the grid limit (measured), Kalker's first-order one 4.4 % (the check can
     fail). Tolerance: the measured 0.31 % plus the limit's 0.12 % uncertainty, rounded up."""
-    hc, dx = case
-    second = _run(hc, dx / 1.84, travel=40.0)
-    first = _run(hc, dx / 1.84, scheme="interpolated", travel=40.0)
+    hc, dx = baeza_31
+    second = run(hc, dx / 1.84, "upwind2", travel=40.0)
+    first = run(hc, dx / 1.84, "interpolated", travel=40.0)
     assert abs(second.xi[-1] / XI_LIMIT - 1) < 0.006
     assert abs(first.xi[-1] / XI_LIMIT - 1) > 0.03

@@ -49,9 +49,12 @@ contact get zero traction (bound ``μ pn = 0``), elements entering start
 without traction but with the displacement carried from the previous step,
 which keeps the tractions physical (Baeza et al., Fig. 1).
 
-Prescribed tangential force F1(x): the longitudinal creepage ξ is the unknown
-of each step, found by a safeguarded secant iteration on ``Fx(ξ) = F1`` (Fx
-decreases monotonically with ξ).
+Prescribed tangential force F1(x): the longitudinal creepage ξ is one more
+unknown of each step's Newton iteration, with the equation ``Fx = F1``
+(:func:`~wheelrail.tangential.exact.newton_force_step`), started from the
+tractions and ξ extrapolated linearly from the two previous steps; where that
+iteration fails a safeguarded secant iteration on ``Fx(ξ) = F1`` around the
+step (Fx decreases monotonically with ξ).
 
 References
 ----------
@@ -75,8 +78,9 @@ from ..halfspace.influence import influence_kernel, kernel_offsets, rectangle_in
 from ._fft import FastBlockConvolution as _BlockConvolution
 from ..materials import as_material_pair
 from ..normal.bem import hertz_grid, solve_normal
-from ..tangential.exact import newton_step
+from ..tangential.exact import newton_force_step, newton_step
 from ..tangential.exact._kernels import _SPIN_SHIFT
+from ._force import _FORCING, _steady_limit, _xi_for_force
 from .regularised import dense_block, regularised_step
 from .strips import (
     DenseOperator,
@@ -506,11 +510,13 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
     # every load function is checked at every step before the run: a load that turns
     # negative (or not finite) is named with its travel instead of failing mid-run
     steady_from = np.ones(n, dtype=bool)  # loads equal from step k to the end
+    load_at = {}  # the values of each load function at every step (evaluated once)
     for name, fun in ((normal_name, F3), ("Fx", F1)) + tuple(
             zip(("xi", "eta", "phi"), cr)):
         if fun is None:
             continue
         vals = np.array([_evaluate(name, fun, float(x)) for x in xs])
+        load_at[name] = vals
         same = np.append(vals[1:] == vals[:-1], True)
         steady_from &= np.flip(np.logical_and.accumulate(np.flip(same)))
         if name == normal_name and not np.all(vals > 0):
@@ -637,19 +643,23 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
             store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
             state_store[j] = last_state[0]
 
-    def repeat(k, p, pn):
-        """Record step k as a repeat of step k − 1 (the steady fixed point: same values)."""
+    def repeat(k, p, pn, stop=None):
+        """Record step k (to ``stop`` − 1) as a repeat of step k − 1 (the steady fixed
+        point: same values)."""
+        stop = k + 1 if stop is None else stop
         for v in hist.values():
-            v[k] = v[k - 1]
-        j = keep_index.get(k)
-        if j is not None:
-            store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
-            state_store[j] = last_state[0]
+            v[k:stop] = v[k - 1]
+        for kk in (keep if stop > k + 1 else (k,)):
+            j = keep_index.get(kk)
+            if j is not None and k <= kk < stop:
+                store["px"][j], store["py"][j], store["pn"][j] = p[0], p[1], pn
+                state_store[j] = last_state[0]
 
     record(0, 0.0, pn, p, np.zeros_like(p), nsol, 0.0 if F1 else _evaluate("xi", cr[0], 0.0),
            _evaluate("eta", cr[1], 0.0), _evaluate("phi", cr[2], 0.0))
 
     xi_prev, slope = 0.0, None
+    prev = None  # (p, xi) of the step before the last, for the predictor
     fixed = None  # (loads, tractions, xi, slip) of a step that reproduced its input
     repeating = False  # the last recorded step was a skipped repeat (same values as k − 1)
     skipped = 0
@@ -711,9 +721,8 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 nsol = normal(x, pn)
             pn_new = np.array(nsol.pressure)
             g = mu * pn_new
-            eta, phi = _evaluate("eta", cr[1], x), _evaluate("phi", cr[2], x)
-            control = (_evaluate("xi", cr[0], x) if F1 is None
-                       else _evaluate("Fx", F1, x))
+            eta, phi = float(load_at["eta"][k]), float(load_at["phi"][k])
+            control = float(load_at["xi" if F1 is None else "Fx"][k])
             key = (eta, phi, control)
             if (fixed is not None and not material and fixed[0] == key and np.array_equal(fixed[1], p)
                     and np.array_equal(pn, pn_new)):
@@ -723,13 +732,21 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 if not repeating:
                     record(k, x, pn_new, p, fixed[3], nsol, xi, eta, phi)
                     repeating = True
+                elif steady_from[k] and F3_const:
+                    # the loads stay constant to the end: every later step repeats it too
+                    repeat(k, p, pn_new, n)
+                    skipped += n - k
+                    if bar is not None:
+                        bar.advance(task, n - k)
+                    break
                 else:
                     repeat(k, p, pn_new)
                 skipped += 1
                 if bar is not None:
                     bar.advance(task)
                 continue
-            p_in = p
+            p_in, xi_in = p, xi_prev
+            extrapolate = False
             box = None
             ci, cj = np.nonzero(g > 0)
             if carry_u and friction == "exact" and ci.size:
@@ -797,6 +814,32 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                                            f"(residual {res:.2e} > tol={tol:.1e})")
                 return pp, ss
 
+            def solve_force(target, xi0, p0, ftol):
+                """``(xi, p, s)`` of one Newton iteration with ξ unknown, or None if it fails."""
+                nonlocal total_newton, total_krylov, total_solves
+                kw = dict(weights=dA, Fx=target, xi=xi0, force_tol=ftol, tol=tol,
+                          maxiter=maxiter, upwind=upwind, forcing=_FORCING)
+                if box is None:
+                    pp, ss, xi, its, res, kry = newton_force_step(
+                        K_now, base, g, conv=conv_now, initial=p0, krylov_conv=krylov_conv,
+                        **kw)
+                else:
+                    Kb, cb = box_operator(box)
+                    sl = (slice(None),) + box
+                    if np.ndim(dA):
+                        kw["weights"] = dA[box]
+                    pb, sb, xi, its, res, kry = newton_force_step(
+                        Kb, base[sl], g[box], conv=cb, initial=p0[sl], krylov_conv=cb.single,
+                        **kw)
+                    pp = np.zeros((2,) + nxy)
+                    ss = np.zeros((2,) + nxy)
+                    pp[sl] = pb
+                    ss[sl] = sb
+                total_newton += its
+                total_krylov += kry
+                total_solves += 1
+                return (xi, pp, ss, its) if res <= tol else None
+
             if F1 is None:
                 xi = control
                 p_new, s_new = solve(xi, p)
@@ -806,10 +849,32 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 if not abs(target) < mu * Fn_k:
                     raise InputError(f"Fx({x!r} m) = {target!r} N must be smaller "
                                      f"in magnitude than mu*Fn = {mu * Fn_k!r} N (full sliding)")
-                xi, p_new, s_new, slope = _xi_for_force(solve, target, xi_prev, slope, p, dA,
-                                                        force_tol * mu * Fn_k, k, x)
+                ftol = force_tol * mu * Fn_k
+                # ξ as one more unknown of the Newton iteration (one solve per step),
+                # started from the state extrapolated from the two previous steps; the
+                # secant iteration on ξ around the step where that fails
+                p_guess, xi_guess = p, xi_prev
+                if prev is not None:
+                    p_guess, xi_guess = 2.0 * p - prev[0], 2.0 * xi_prev - prev[1]
+                got = (solve_force(target, xi_guess, p_guess, ftol) if friction == "exact"
+                       else None)
+                if got is None and friction == "exact" and xi_guess == 0.0:
+                    # from rest without creepage the slip vanishes and has no scale: start
+                    # from a small creepage of the sign that gives the force
+                    got = solve_force(target, -math.copysign(1e-6, target), p_guess, ftol)
+                if got is not None:
+                    xi, p_new, s_new, its = got
+                    # a step that met the tolerance at its starting point (the steady
+                    # state, reproduced exactly from an unextrapolated start) predicts no
+                    # change for the next
+                    extrapolate = its > 0
+                else:
+                    xi, p_new, s_new, slope = _xi_for_force(solve, target, xi_prev, slope, p,
+                                                            dA, ftol, k, x)
                 xi_prev = xi
-            fixed = (key, p_in, xi, s_new) if np.array_equal(p_new, p_in) else None
+            # (with settle=0 every step is solved, as documented)
+            fixed = ((key, p_in, xi, s_new) if settle > 0 and np.array_equal(p_new, p_in)
+                     else None)
             if carry_u:
                 # the displacement difference C (p, pn) of this step: h (s − b) + C_tn pn
                 b_fin = base.copy()
@@ -828,11 +893,16 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                                        force_tol * mu * float((pn_new * dA).sum()), tol,
                                        maxiter, slope, k, x, upwind)
                     total_solves += 1
+                    import os
+                    if os.environ.get("TRDBG"):
+                        print("try", k, d, None if st is None else np.abs(st[1] - p_new).max() / gmax)
                     if st is not None and np.abs(st[1] - p_new).max() <= settle * gmax:
                         xi, p_new, s_new = st
                         xi_prev = xi
                         u_prev = None  # recomputed by the next step's convolution
+                        extrapolate = False
                 d_prev = d
+            prev = (p_in, xi_in) if extrapolate and not material else None
             p, pn = p_new, pn_new
             record(k, x, pn, p, s_new, nsol, xi, eta, phi)
             repeating = False
@@ -858,12 +928,6 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                            py=store["py"], pn=store["pn"], state=state_store, info=info)
 
 
-#: GMRES forcing of each step: relative tolerance while the active set changes, factor of
-#: ``tol / residual`` once it has settled, floor (steady rolling uses 0.3 as the factor;
-#: 0.6 saves 4 % of the products on Baeza et al. §3.1, 30 elements, same results to 1e-9).
-_FORCING = (0.2, 0.6, 1e-4)
-
-
 def _whole_and_fraction(step, dx):
     """``(n, f)`` with ``step = (n + f) dx``, ``0 ≤ f < 1`` (f = 0 within 1e-9)."""
     ratio = step / dx
@@ -883,82 +947,3 @@ def _steady_step_operator(grid, pair, step, scheme):
     M = (now - old) / step
     Mt = np.ascontiguousarray(M[:2, :2])
     return Mt, _BlockConvolution(Mt), (_BlockConvolution(M[:2, 2:3]) if pair.K else None)
-
-
-def _steady_limit(M, rigid, pn, g, xi0, p0, target, dA, ftol, tol, maxiter, slope, k, x,
-                  upwind=True):
-    """The steady fixed point ``(xi, p, s)`` of a step with rigid slip ``rigid`` (or None).
-
-    ``target``: the prescribed force F1 (ξ unknown, started from ``xi0``) or None
-    (ξ = ``xi0`` given). None when the steady Newton iteration does not converge
-    (the run then simply continues stepping).
-    """
-    Mt, conv_M, conv_Mn = M
-    b0 = rigid if conv_Mn is None else rigid + conv_Mn(pn[None])
-
-    def solve(xi, pinit):
-        b = b0.copy()
-        b[0] += xi
-        # from the given tractions, else from rest (the semismooth Newton iteration of the
-        # second-order kernel can cycle from a warm start that converges from rest)
-        for start in ((pinit, None) if pinit is not None else (None,)):
-            pp, ss, its, res, kry = newton_step(Mt, b, g, conv=conv_M, initial=start, tol=tol,
-                                                maxiter=maxiter, upwind=upwind,
-                                                krylov_conv=conv_M.single, forcing=_FORCING)
-            if res <= tol:
-                return pp, ss
-        raise ConvergenceError("steady limit")
-
-    try:
-        if target is None:
-            pp, ss = solve(xi0, p0)
-            return xi0, pp, ss
-        xi, pp, ss, _ = _xi_for_force(solve, target, xi0, slope, p0, dA, ftol, k, x)
-        return xi, pp, ss
-    except ConvergenceError:
-        return None
-
-
-def _xi_for_force(solve, target, xi0, slope, p0, dA, ftol, k, x, maxit=50):
-    """ξ with ``Fx(ξ) = target``: secant steps kept inside a bracket (Illinois)."""
-    def F(xi, p_init):
-        pp, ss = solve(xi, p_init)
-        return float((pp[0] * dA).sum()) - target, pp, ss
-
-    fa, pa, sa = F(xi0, p0)
-    if abs(fa) <= ftol:
-        return xi0, pa, sa, slope
-    xa = xi0
-    lo = hi = None  # brackets: (xi, f) with f > 0 (lo: xi too small) and f < 0
-    if fa > 0:
-        lo = (xa, fa)
-    else:
-        hi = (xa, fa)
-    s = slope if (slope is not None and slope < 0) else None
-    best = (xa, fa, pa, sa)
-    for _ in range(maxit):
-        if s is not None:
-            xn = best[0] - best[1] / s
-        else:
-            xn = best[0] + 1e-6 * math.copysign(1.0, best[1])
-        if lo is not None and hi is not None and not (lo[0] < xn < hi[0]):
-            xn = (lo[0] * hi[1] - hi[0] * lo[1]) / (hi[1] - lo[1])  # regula falsi
-            if not (lo[0] < xn < hi[0]):
-                xn = 0.5 * (lo[0] + hi[0])
-        fn, pn_, sn = F(xn, best[2])
-        if xn != best[0] and fn != best[1]:
-            s_new = (fn - best[1]) / (xn - best[0])
-            s = s_new if s_new < 0 else s
-        if abs(fn) <= ftol:
-            return xn, pn_, sn, s
-        if fn > 0:
-            lo = (xn, fn) if lo is None or xn > lo[0] else lo
-        else:
-            hi = (xn, fn) if hi is None or xn < hi[0] else hi
-        if lo is None or hi is None:
-            # still unbracketed: move further in the right direction
-            if s is None:
-                s = -1.0
-        best = (xn, fn, pn_, sn) if abs(fn) < abs(best[1]) or True else best
-    raise ConvergenceError(f"step {k} (x = {x!r} m): no creepage found giving "
-                           f"Fx = {target!r} N in {maxit} iterations")

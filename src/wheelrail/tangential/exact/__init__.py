@@ -7,7 +7,8 @@ it, one concern per module:
 :mod:`.method`         :class:`Exact`: Hertzian contacts and patches (any normal method)
 :mod:`.steady`         :func:`solve_rolling`, :func:`solve_shift` on a grid, given pressure
 :mod:`.newton`         :func:`newton_step`: the one stepping core (steady, shift,
-                       transient rolling, prescribed forces)
+                       transient rolling, prescribed forces); :func:`newton_force_step`
+                       the same with ξ unknown and the force Fx prescribed
 :mod:`.nested`         nested iteration (coarse grids start the fine solve)
 :mod:`.krylov`         restarted GMRES
 :mod:`._kernels`       numba kernels (active set, Newton system, line preconditioner)
@@ -238,7 +239,8 @@ from __future__ import annotations
 
 from .coupled import solve_gap
 from .method import Exact, exact_single
-from .newton import newton_step
+from .newton import newton_force_step, newton_step
 from .steady import solve_rolling, solve_shift
 
-__all__ = ["Exact", "exact_single", "solve_rolling", "solve_shift", "newton_step", "solve_gap"]
+__all__ = ["Exact", "exact_single", "solve_rolling", "solve_shift", "newton_step",
+           "newton_force_step", "solve_gap"]

@@ -303,3 +303,100 @@ def _gather(mv, z, ei, ej, kind_e, pos_e, tx_e, ty_e, diag_e, out):
             out[q] = tx_e[k] * mv[0, i, j] + ty_e[k] * mv[1, i, j] + diag_e[k] * z[q]
 
 
+
+
+@njit(cache=True)
+def _prec_scatter(elem, geo, d0, dup, r, z, vx, vy, v, c, w, schur):
+    """Right preconditioner and traction field of one Krylov product (in place).
+
+    ``z = P r`` by :func:`_precondition` (``elem`` rows: i, j, kind, position,
+    upstream neighbour; ``geo`` rows: t_x, t_y, g, diag, g t_x, g t_y), then
+    ``v`` = the traction field of ``z`` as :func:`_scatter`. With the ξ border
+    (``r`` one longer than the Newton unknowns, ``c`` and ``w = P e`` of length
+    n): the block elimination ``ζ = (c·P r − r_n) / schur``, ``z = P r − w ζ``,
+    ``z_n = ζ`` first.
+    """
+    _precondition(elem[4], elem[2], elem[3], geo[0], geo[1], geo[2], geo[3], d0, dup, r, z,
+                  vx, vy)
+    n = c.shape[0]
+    if r.shape[0] > n:
+        acc = 0.0
+        for q in range(n):
+            acc += c[q] * z[q]
+        zeta = (acc - r[n]) / schur
+        for q in range(n):
+            z[q] -= w[q] * zeta
+        z[n] = zeta
+    _scatter(z, elem[0], elem[1], elem[2], elem[3], geo[4], geo[5], v)
+
+
+@njit(cache=True)
+def _gather_bordered(mv, z, elem, geo, out, e, c):
+    """Newton-system product from ``mv = K v`` as :func:`_gather` (in place), plus the ξ
+    border when ``out`` is one longer than the unknowns: ``out += z_n e``,
+    ``out_n = c·z``."""
+    _gather(mv, z, elem[0], elem[1], elem[2], elem[3], geo[0], geo[1], geo[3], out)
+    n = c.shape[0]
+    if out.shape[0] > n:
+        zeta = z[n]
+        acc = 0.0
+        for q in range(n):
+            out[q] += zeta * e[q]
+            acc += c[q] * z[q]
+        out[n] = acc
+
+
+@njit(cache=True)
+def _border(elem, geo, c_e, d0, dup, vx, vy, e, c, w):
+    """The ξ border of the Newton system and ``P e`` (in place); returns ``cᵀ P e``.
+
+    ``e = ∂F/∂ξ``: 1 on the x equation of an adhesion element (0 on its y equation),
+    ``t_x`` on a slip element's equation; ``c``: the force change per unknown,
+    ``c_e`` (element weight) times δp_x on adhesion or times ``g t_x`` δθ on slip;
+    ``w = P e`` by :func:`_precondition`.
+    """
+    kind_e = elem[2]
+    pos_e = elem[3]
+    for k in range(kind_e.shape[0]):
+        q = pos_e[k]
+        if kind_e[k] == 1:
+            e[q] = 1.0
+            e[q + 1] = 0.0
+            c[q] = c_e[k]
+            c[q + 1] = 0.0
+        else:
+            e[q] = geo[0, k]
+            c[q] = c_e[k] * geo[4, k]
+    _precondition(elem[4], kind_e, pos_e, geo[0], geo[1], geo[2], geo[3], d0, dup, e, w,
+                  vx, vy)
+    acc = 0.0
+    for q in range(c.shape[0]):
+        acc += c[q] * w[q]
+    return acc
+
+
+@njit(cache=True)
+def _weighted_x_sum(p, ei, ej, w_e):
+    """``Σ_k w_e[k] p[0, ei[k], ej[k]]`` (the force Fx of the contact elements)."""
+    acc = 0.0
+    for k in range(ei.shape[0]):
+        acc += w_e[k] * p[0, ei[k], ej[k]]
+    return acc
+
+
+@njit(cache=True)
+def _project_start(p, g, norm):
+    """Starting tractions in place: zero where ``g`` is not positive (out of contact),
+    scaled back onto the friction disc ``|p| ≤ g`` where they lie outside; ``norm``
+    receives ``|p|`` before the projection."""
+    for i in range(g.shape[0]):
+        for j in range(g.shape[1]):
+            if not g[i, j] > 0.0:
+                p[0, i, j] = 0.0
+                p[1, i, j] = 0.0
+            n = math.hypot(p[0, i, j], p[1, i, j])
+            norm[i, j] = n
+            if n > g[i, j]:
+                f = g[i, j] / n
+                p[0, i, j] *= f
+                p[1, i, j] *= f

@@ -75,6 +75,25 @@ def _norm(w):
 
 
 @njit(cache=True)
+def _arnoldi(V, k, w, H, h, cs, sn, e):
+    """One Arnoldi step in place: orthogonalise ``w`` (:func:`_orthogonalise`), column k of
+    ``H``, ``V[k + 1] = w / h[k + 1]`` and the Givens rotation (:func:`_givens`).
+
+    One call instead of five (the same operations); returns ``h[k + 1]``.
+    """
+    _orthogonalise(V, k, w, h)
+    for i in range(k + 2):
+        H[i, k] = h[i]
+    hk = h[k + 1]
+    if hk > 0:
+        inv = 1.0 / hk
+        for q in range(w.shape[0]):
+            V[k + 1, q] = w[q] * inv
+    _givens(H, cs, sn, e, k)
+    return hk
+
+
+@njit(cache=True)
 def _gmres_update(V, H, e, k_used, x):
     """``x += V[:k]ᵀ y`` with ``H[:k, :k] y = e[:k]`` (back substitution; in place)."""
     y = np.empty(k_used)
@@ -120,15 +139,10 @@ def _gmres(matvec, rhs, rtol, maxiter, restart=60):
         np.multiply(r, 1.0 / beta, out=V[0])
         k_used = 0
         for k in range(m):
-            w = matvec(V[k])
-            _orthogonalise(V, k, w, h)
+            hk = _arnoldi(V, k, matvec(V[k]), H, h, cs, sn, e)
             total += 1
-            H[: k + 2, k] = h[: k + 2]
-            if h[k + 1] > 0:
-                np.multiply(w, 1.0 / h[k + 1], out=V[k + 1])
-            _givens(H, cs, sn, e, k)
             k_used = k + 1
-            if abs(e[k + 1]) <= rtol * beta0 or total >= maxiter or h[k + 1] == 0:
+            if abs(e[k + 1]) <= rtol * beta0 or total >= maxiter or hk == 0:
                 break
         if k_used:
             _gmres_update(V, H, e, k_used, x)
