@@ -187,8 +187,10 @@ def cmd_creep(a):
     values = np.array(a.creepages) * 1e-3
     curves = {}
     for plastic in {"both": (False, True), "elastic": (False,), "plastic": (True,)}[a.material]:
-        name = "plastic" if plastic else "elastic"
+        name = "elastic"
         case = seed(a.mesh, plastic=plastic, **a.extra)
+        if plastic:
+            name, case = with_hardening(case, a.hardening)
         if a.component == "eta":
             case = case.replace(creepage=(0.0, 0.0, 0.0))
         t = time.process_time()
@@ -221,6 +223,17 @@ def cmd_creep(a):
               f"{ds.attrs['slope']:.4g} N ({ds.attrs['fit_points']} points)", flush=True)
     if len(curves) == 2:
         compare_creep(a, curves)
+
+
+def with_hardening(case, hardening):
+    """The plastic case with another hardening law (``--hardening``) and its file name:
+    ``r900a`` the default Voce law (name "plastic"), ``perfect`` perfect plasticity at the
+    same yield stress 489 MPa (the softest isotropic law; name "perfect")."""
+    if hardening == "r900a":
+        return "plastic", case
+    from wheelrail.fe import r900a
+
+    return hardening, case.replace(material=r900a(hardening=0.0))
 
 
 def _merge_points(parts):
@@ -296,7 +309,8 @@ def cmd_creep_compare(a):
     out = Path(a.out)
     curves = {}
     for name in ("elastic", "plastic"):      # one file per curve, or per point (--per-point)
-        files = sorted(out.glob(f"creep_{a.component}_{name}_{a.mesh * 1e3:g}mm*.nc"))
+        stem = name if name == "elastic" or a.hardening == "r900a" else a.hardening
+        files = sorted(out.glob(f"creep_{a.component}_{stem}_{a.mesh * 1e3:g}mm*.nc"))
         curves[name] = _merge_points([xr.load_dataset(f) for f in files])
     warnings.simplefilter("ignore")
     compare_creep(a, curves)
@@ -543,6 +557,9 @@ def main():
                     help="creepages in permille")
     ap.add_argument("--material", choices=["both", "elastic", "plastic"], default="both",
                     help="creep: run only one material (compare later with creep-compare)")
+    ap.add_argument("--hardening", choices=["r900a", "perfect"], default="r900a",
+                    help="creep, creep-compare: the plastic material's hardening (r900a: the "
+                         "default Voce law; perfect: perfect plasticity at 489 MPa)")
     ap.add_argument("--per-point", action="store_true",
                     help="creep: one NetCDF file per point (creep-compare merges them)")
     ap.add_argument("--dts", type=float, nargs="+", default=[2e-5, 1e-4, 3.7e-4],
