@@ -328,26 +328,27 @@ def cmd_time_increment(a):
         r, cpu, wall = timed(case, progress=True)
         p = r.patch
         _, vm_r = r.model.von_mises(r.u, r.state)
+        amp, wl, wx, wz = rear_waves(r, profile=True)
         row = dict(dt=dt, Fx=r.Fx, p_max=r.p_max, tau=float(p.shear.max()), vm=float(vm_r.max()),
-                   a=r.a, b=r.b, waves=rear_waves(r))
+                   a=r.a, b=r.b, waves=amp, wavelength=wl)
         print(f"implicit HHT, dt = {dt:.3g} s ({k:g} x h/(2V)): " + describe(r, cpu, wall))
         print(f"    p_max {row['p_max'] / 1e6:.0f} MPa, tau_max {row['tau'] / 1e6:.0f} MPa, von Mises max "
               f"{row['vm'] / 1e6:.0f} MPa, a {row['a'] * 1e3:.2f} mm, b {row['b'] * 1e3:.2f} mm, "
-              f"rear-wave amplitude {row['waves'] * 1e6:.2f} um", flush=True)
+              f"rear-wave amplitude {row['waves'] * 1e6:.2f} um, wavelength {wl * 1e3:.1f} mm (2 V dt "
+              f"= {2 * V * dt * 1e3:.1f} mm)", flush=True)
         tag = f"hht_dt{dt:g}_{a.mesh * 1e3:g}mm{'_plastic' if a.extra.get('plastic') else ''}"
         r.dataset.to_netcdf(out / f"{tag}.nc")
-        if r.fields is None:
-            from wheelrail.fe.rolling import plastic_fields
-
-            fields = plastic_fields(r.model, r.u, r.model.new_state() or _elastic_state(r.model))
-        else:
-            fields = r.fields
         from wheelrail.fe.plots import plot_section
+        from wheelrail.fe.rolling import stress_fields
+
+        fields = r.fields if r.fields is not None else stress_fields(r.model, r.u)
 
         plot_section(fields, "rail_von_mises", y=r.model.geometry["y_c"],
                      depth_max=4 * r.model.geometry["a"],
                      path=out / f"{tag}_von_mises.png")
         (out / f"{tag}.json").write_text(json.dumps(dict(row, cpu=cpu, steps=r.info["steps"],
+                                                         travel=a.travel, profile_x=wx,
+                                                         profile_uz=wz, hht_alpha=r.model.case.hht_alpha,
                                                          fx_scatter=r.steady["Fx_scatter"],
                                                          n_steady=r.steady["n"])))
     time_increment_table(a)
@@ -372,22 +373,16 @@ def time_increment_table(a):
     for row in rows[1:]:
         print(f"    dt {row['dt']:.3g} s: " + ", ".join(
             f"{k} {row[k] / base[k] - 1:+.1%}" for k in ("p_max", "a", "b", "vm", "tau", "Fx"))
-              + f", rear waves {row['waves'] * 1e6:.2f} um")
+              + f", rear waves {row['waves'] * 1e6:.2f} um, wavelength "
+              f"{row.get('wavelength', np.nan) * 1e3:.1f} mm")
 
 
-def _elastic_state(model):
-    """A zero plastic state (to reuse the field tables for an elastic run)."""
-    from wheelrail.fe import _solid as S
-    from wheelrail.fe.model import PlasticState
-
-    return PlasticState(np.zeros((model.n_elements, model.edata.n_points, S.NSTATE)),
-                        model.wheel.n_elements)
-
-
-def rear_waves(r):
+def rear_waves(r, profile=False):
     """Amplitude [m] of the vertical rail-surface displacement oscillation behind the contact
     (std of u_z of the rail surface nodes from 1.5 a to 6 a behind the contact, after removing
-    a linear trend) — the waves of Toumi et al.'s Fig. 2(a)."""
+    a linear trend) — the waves of Toumi et al.'s Fig. 2(a). With ``profile``: also the
+    wavelength [m] (twice the mean distance between sign changes of the detrended u_z; nan
+    if fewer than two) and the profile (x, detrended u_z) [m]."""
     m = r.model
     g = m.geometry
     s = float(r.dataset.travel.values[-1])
@@ -396,9 +391,18 @@ def rear_waves(r):
     uz = r.u[nodes + m.nw, 2]
     sel = (x < s - 1.5 * g["a"]) & (x > s - 6 * g["a"])
     if sel.sum() < 4:
-        return float("nan")
+        return (float("nan"), float("nan"), [], []) if profile else float("nan")
     c = np.polyfit(x[sel], uz[sel], 1)
-    return float(np.std(uz[sel] - np.polyval(c, x[sel])))
+    d = uz[sel] - np.polyval(c, x[sel])
+    amp = float(np.std(d))
+    if not profile:
+        return amp
+    xs = x[sel]
+    k = np.flatnonzero(np.sign(d[1:]) != np.sign(d[:-1]))
+    # crossing abscissae by linear interpolation
+    xc = xs[k] - d[k] * (xs[k + 1] - xs[k]) / (d[k + 1] - d[k])
+    wl = float(2 * np.mean(np.diff(xc))) if xc.size >= 2 else float("nan")
+    return amp, wl, xs.tolist(), d.tolist()
 
 
 # ----------------------------------------------------------------------------- passes
