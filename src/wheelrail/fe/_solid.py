@@ -491,19 +491,46 @@ def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, energy, W
 
 
 @njit(cache=True, inline="always")
-def _hourglass_hx_scatter(e, ue, conn, dNdx, hx, khg, f, W, hf):
-    """The compact hourglass forces (:func:`_hourglass_hx`) added to f; returns the energy."""
+def _plastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, hp, tp, ts, st_in, st_out,
+                          f, energy, eps, sig, W, hf):
+    """The one-point J2 element with the compact hourglass data (:func:`_hourglass_hx`): the
+    strain from the displacement gradient, the return map, one scatter per node."""
     _gradient(e, ue, dNdx, W)
-    en = _hourglass_hx(e, ue, hx, khg, W, hf)
+    eps[0] = W[0, 0]
+    eps[1] = W[1, 1]
+    eps[2] = W[2, 2]
+    eps[3] = W[0, 1] + W[1, 0]
+    eps[4] = W[1, 2] + W[2, 1]
+    eps[5] = W[0, 2] + W[2, 0]
+    w = wdet[e, 0]
+    return_map(eps, st_in[e, 0], st_out[e, 0], lam, G, hp, tp, ts, sig, W, False)
+    pe = st_out[e, 0]
+    e_el = 0.5 * w * (sig[0] * (eps[0] - pe[0]) + sig[1] * (eps[1] - pe[1])
+                      + sig[2] * (eps[2] - pe[2]) + sig[3] * (eps[3] - pe[3])
+                      + sig[4] * (eps[4] - pe[4]) + sig[5] * (eps[5] - pe[5]))
+    e_pl = w * pe[WP_INDEX]
+    e_el += _hourglass_hx(e, ue, hx, khg, W, hf)
+    sxx, syy, szz = w * sig[0], w * sig[1], w * sig[2]
+    sxy, syz, sxz = w * sig[3], w * sig[4], w * sig[5]
+    p00 = sxx - W[3, 0]
+    p01 = sxy - W[3, 1]
+    p02 = sxz - W[3, 2]
+    p10 = sxy - W[4, 0]
+    p11 = syy - W[4, 1]
+    p12 = syz - W[4, 2]
+    p20 = sxz - W[5, 0]
+    p21 = syz - W[5, 1]
+    p22 = szz - W[5, 2]
     for a in range(8):
         bx = dNdx[e, 0, a, 0]
         by = dNdx[e, 0, a, 1]
         bz = dNdx[e, 0, a, 2]
         n = conn[e, a]
-        f[n, 0] += hf[a, 0] - (bx * W[3, 0] + by * W[3, 1] + bz * W[3, 2])
-        f[n, 1] += hf[a, 1] - (bx * W[4, 0] + by * W[4, 1] + bz * W[4, 2])
-        f[n, 2] += hf[a, 2] - (bx * W[5, 0] + by * W[5, 1] + bz * W[5, 2])
-    return en
+        f[n, 0] += bx * p00 + by * p01 + bz * p02 + hf[a, 0]
+        f[n, 1] += bx * p10 + by * p11 + bz * p12 + hf[a, 1]
+        f[n, 2] += bx * p20 + by * p21 + bz * p22 + hf[a, 2]
+    energy[e, 0] = e_el
+    energy[e, 1] = e_pl
 
 
 @njit(cache=True, parallel=True)
@@ -546,11 +573,15 @@ def _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, 
     ng = dNdx.shape[1]
     compact = has_hg and gamma.shape[2] == 3
     _gather(u, conn, e, ue)
-    if ng == 1 and not plastic:
-        if compact:
-            _elastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, f, energy, D, bb)
+    if compact:                       # one point, hourglass data h.x
+        if plastic:
+            _plastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, hp, tp, ts, st_in,
+                                  st_out, f, energy, eps, sig, D, bb)
         else:
-            _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy)
+            _elastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, f, energy, D, bb)
+        return
+    if ng == 1 and not plastic:
+        _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy)
         return
     theta_bar = 0.0
     if bbar:
@@ -583,9 +614,7 @@ def _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, 
             f[n, 0] += w * fx
             f[n, 1] += w * fy
             f[n, 2] += w * fz
-    if compact:
-        e_el += _hourglass_hx_scatter(e, ue, conn, dNdx, gamma, khg, f, D, bb)
-    elif has_hg:
+    if has_hg:
         e_el += _hourglass(e, ue, conn, gamma, khg, f)
     energy[e, 0] = e_el
     energy[e, 1] = e_pl
