@@ -11,6 +11,7 @@ machine load, and saves NetCDF / VTU / PNG files under --out):
   python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3    # implicit Δt sensitivity (§3)
   python benchmarks/bench_fe_plastic.py passes --mesh 2e-3 --passes 4 # repeated passes
   python benchmarks/bench_fe_plastic.py speed                         # ns/element/step, 1 and 2 threads
+  python benchmarks/bench_fe_plastic.py speed --baseline /tmp/base/src  # the same, alternating with another version
 
 Unless stated otherwise: explicit, one-point elements, mass scaling 100, kept bodies 4
 semi-axes deep and 3 wide, default travel (the ramp plus 8 semi-axes).
@@ -186,8 +187,10 @@ def cmd_creep(a):
     values = np.array(a.creepages) * 1e-3
     curves = {}
     for plastic in {"both": (False, True), "elastic": (False,), "plastic": (True,)}[a.material]:
-        name = "plastic" if plastic else "elastic"
+        name = "elastic"
         case = seed(a.mesh, plastic=plastic, **a.extra)
+        if plastic:
+            name, case = with_hardening(case, a.hardening)
         if a.component == "eta":
             case = case.replace(creepage=(0.0, 0.0, 0.0))
         t = time.process_time()
@@ -220,6 +223,17 @@ def cmd_creep(a):
               f"{ds.attrs['slope']:.4g} N ({ds.attrs['fit_points']} points)", flush=True)
     if len(curves) == 2:
         compare_creep(a, curves)
+
+
+def with_hardening(case, hardening):
+    """The plastic case with another hardening law (``--hardening``) and its file name:
+    ``r900a`` the default Voce law (name "plastic"), ``perfect`` perfect plasticity at the
+    same yield stress 489 MPa (the softest isotropic law; name "perfect")."""
+    if hardening == "r900a":
+        return "plastic", case
+    from wheelrail.fe import r900a
+
+    return hardening, case.replace(material=r900a(hardening=0.0))
 
 
 def _merge_points(parts):
@@ -295,7 +309,8 @@ def cmd_creep_compare(a):
     out = Path(a.out)
     curves = {}
     for name in ("elastic", "plastic"):      # one file per curve, or per point (--per-point)
-        files = sorted(out.glob(f"creep_{a.component}_{name}_{a.mesh * 1e3:g}mm*.nc"))
+        stem = name if name == "elastic" or a.hardening == "r900a" else a.hardening
+        files = sorted(out.glob(f"creep_{a.component}_{stem}_{a.mesh * 1e3:g}mm*.nc"))
         curves[name] = _merge_points([xr.load_dataset(f) for f in files])
     warnings.simplefilter("ignore")
     compare_creep(a, curves)
@@ -306,7 +321,6 @@ def cmd_time_increment(a):
     out.mkdir(parents=True, exist_ok=True)
     warnings.simplefilter("ignore")
     V = 50 / 3.6
-    rows = []
     for dt in a.dts:
         k = dt / (a.mesh / (2 * V))
         case = seed(a.mesh, integrator="implicit-hht", mass_scaling=1.0, time_step=dt,
@@ -314,47 +328,61 @@ def cmd_time_increment(a):
         r, cpu, wall = timed(case, progress=True)
         p = r.patch
         _, vm_r = r.model.von_mises(r.u, r.state)
+        amp, wl, wx, wz = rear_waves(r, profile=True)
         row = dict(dt=dt, Fx=r.Fx, p_max=r.p_max, tau=float(p.shear.max()), vm=float(vm_r.max()),
-                   a=r.a, b=r.b, waves=rear_waves(r))
-        rows.append(row)
+                   a=r.a, b=r.b, waves=amp, wavelength=wl)
         print(f"implicit HHT, dt = {dt:.3g} s ({k:g} x h/(2V)): " + describe(r, cpu, wall))
         print(f"    p_max {row['p_max'] / 1e6:.0f} MPa, tau_max {row['tau'] / 1e6:.0f} MPa, von Mises max "
               f"{row['vm'] / 1e6:.0f} MPa, a {row['a'] * 1e3:.2f} mm, b {row['b'] * 1e3:.2f} mm, "
-              f"rear-wave amplitude {row['waves'] * 1e6:.2f} um", flush=True)
-        r.dataset.to_netcdf(out / f"hht_dt{dt:g}_{a.mesh * 1e3:g}mm.nc")
-        if r.fields is None:
-            from wheelrail.fe.rolling import plastic_fields
-
-            fields = plastic_fields(r.model, r.u, r.model.new_state() or _elastic_state(r.model))
-        else:
-            fields = r.fields
+              f"rear-wave amplitude {row['waves'] * 1e6:.2f} um, wavelength {wl * 1e3:.1f} mm (2 V dt "
+              f"= {2 * V * dt * 1e3:.1f} mm)", flush=True)
+        tag = f"hht_dt{dt:g}_{a.mesh * 1e3:g}mm{'_plastic' if a.extra.get('plastic') else ''}"
+        r.dataset.to_netcdf(out / f"{tag}.nc")
         from wheelrail.fe.plots import plot_section
+        from wheelrail.fe.rolling import stress_fields
+
+        fields = r.fields if r.fields is not None else stress_fields(r.model, r.u)
 
         plot_section(fields, "rail_von_mises", y=r.model.geometry["y_c"],
                      depth_max=4 * r.model.geometry["a"],
-                     path=out / f"hht_dt{dt:g}_{a.mesh * 1e3:g}mm_von_mises.png")
+                     path=out / f"{tag}_von_mises.png")
+        (out / f"{tag}.json").write_text(json.dumps(dict(row, cpu=cpu, steps=r.info["steps"],
+                                                         travel=a.travel, profile_x=wx,
+                                                         profile_uz=wz, hht_alpha=r.model.case.hht_alpha,
+                                                         fx_scatter=r.steady["Fx_scatter"],
+                                                         n_steady=r.steady["n"])))
+    time_increment_table(a)
+
+
+def time_increment_table(a):
+    """The differences against the smallest step of every run saved in --out for this mesh
+    (runs may be split over several processes, one --dts value each)."""
+    plastic = "_plastic" if a.extra.get("plastic") else ""
+    rows = sorted((json.loads(f.read_text()) for f in
+                   Path(a.out).glob(f"hht_dt*_{a.mesh * 1e3:g}mm{plastic}.json")),
+                  key=lambda r: r["dt"])
+    if len(rows) < 2:
+        return
     base = rows[0]
-    print("  differences relative to the smallest step (seed Table 2: 3.7e-4 vs 2e-5 s: p_max -2.5 %, a "
-          "+10.3 %, b 0, von Mises +31.5 %, tau_max +8 %, Fx +27.2 %; 1e-4 vs 2e-5 s: 0.3, 0, 0, "
-          "3.7, 5, 7 %)")
+    print(f"  {a.mesh * 1e3:g} mm, {'elasto-plastic' if plastic else 'elastic'}: differences "
+          f"relative to the smallest step, {base['dt']:.3g} s (p_max {base['p_max'] / 1e6:.0f} MPa, "
+          f"von Mises max {base['vm'] / 1e6:.0f} MPa, Fx {base['Fx']:.0f} N, rear waves "
+          f"{base['waves'] * 1e6:.2f} um)")
+    print("  (Toumi et al. Table 2: 3.7e-4 vs 2e-5 s: p_max -2.5 %, a +10.3 %, b 0, von Mises "
+          "+31.5 %, tau_max +8 %, Fx +27.2 %; 1e-4 vs 2e-5 s: 0.3, 0, 0, 3.7, 5, 7 %)")
     for row in rows[1:]:
         print(f"    dt {row['dt']:.3g} s: " + ", ".join(
-            f"{k} {row[k] / base[k] - 1:+.1%}" for k in ("p_max", "a", "b", "vm", "tau", "Fx")))
+            f"{k} {row[k] / base[k] - 1:+.1%}" for k in ("p_max", "a", "b", "vm", "tau", "Fx"))
+              + f", rear waves {row['waves'] * 1e6:.2f} um, wavelength "
+              f"{row.get('wavelength', np.nan) * 1e3:.1f} mm")
 
 
-def _elastic_state(model):
-    """A zero plastic state (to reuse the field tables for an elastic run)."""
-    from wheelrail.fe import _solid as S
-    from wheelrail.fe.model import PlasticState
-
-    return PlasticState(np.zeros((model.n_elements, model.edata.n_points, S.NSTATE)),
-                        model.wheel.n_elements)
-
-
-def rear_waves(r):
+def rear_waves(r, profile=False):
     """Amplitude [m] of the vertical rail-surface displacement oscillation behind the contact
     (std of u_z of the rail surface nodes from 1.5 a to 6 a behind the contact, after removing
-    a linear trend) — the waves of Toumi et al.'s Fig. 2(a)."""
+    a linear trend) — the waves of Toumi et al.'s Fig. 2(a). With ``profile``: also the
+    wavelength [m] (twice the mean distance between sign changes of the detrended u_z; nan
+    if fewer than two) and the profile (x, detrended u_z) [m]."""
     m = r.model
     g = m.geometry
     s = float(r.dataset.travel.values[-1])
@@ -363,9 +391,18 @@ def rear_waves(r):
     uz = r.u[nodes + m.nw, 2]
     sel = (x < s - 1.5 * g["a"]) & (x > s - 6 * g["a"])
     if sel.sum() < 4:
-        return float("nan")
+        return (float("nan"), float("nan"), [], []) if profile else float("nan")
     c = np.polyfit(x[sel], uz[sel], 1)
-    return float(np.std(uz[sel] - np.polyval(c, x[sel])))
+    d = uz[sel] - np.polyval(c, x[sel])
+    amp = float(np.std(d))
+    if not profile:
+        return amp
+    xs = x[sel]
+    k = np.flatnonzero(np.sign(d[1:]) != np.sign(d[:-1]))
+    # crossing abscissae by linear interpolation
+    xc = xs[k] - d[k] * (xs[k + 1] - xs[k]) / (d[k + 1] - d[k])
+    wl = float(2 * np.mean(np.diff(xc))) if xc.size >= 2 else float("nan")
+    return amp, wl, xs.tolist(), d.tolist()
 
 
 # ----------------------------------------------------------------------------- passes
@@ -420,6 +457,8 @@ def machine_speedup(repeats=20):
 
 
 def cmd_speed(a):
+    if a.baseline:
+        return speed_against_baseline(a)
     import numba
 
     print(f"control: a trivially parallel numba loop runs {machine_speedup():.2f}x faster on 2 "
@@ -446,11 +485,73 @@ def cmd_speed(a):
               f"{w2:.1f} ns/element/step, speed-up {w1 / w2:.2f}")
 
 
+def cmd_speed_one(a):
+    """One timed run (a subprocess of ``speed --baseline``): prints one JSON line."""
+    import numba
+
+    numba.set_num_threads(a.threads)
+    case = seed(a.mesh, plastic=a.material == "plastic", travel=a.travel, mass_scaling=400.0)
+    solve(case.replace(travel=0.3 * a.travel), progress=False)              # compile, warm
+    r, cpu, wall = timed(case, progress=False)
+    print(json.dumps(dict(steps=r.info["steps"], elements=r.model.n_elements, cpu=cpu, wall=wall,
+                          Fx=r.steady["Fx"], load=os.getloadavg()[0])))
+
+
+def speed_against_baseline(a):
+    """The explicit step of this code and of another version (``--baseline``: its ``src``
+    directory, e.g. ``git archive main src | tar -x -C /tmp/base``), run alternately in
+    subprocesses (each compiles/warms, then one timed run), interleaved so that both see the
+    same machine load: ns/element/step wall and CPU, 1 and 2 threads, elastic and plastic."""
+    import subprocess
+    import sys
+
+    here = str(Path(wr.__file__).resolve().parents[1])
+    codes = {"baseline": str(Path(a.baseline).resolve()), "this": here}
+    rows = []
+    for rep in range(a.repeats):
+        print(f"repeat {rep + 1}: control loop {machine_speedup():.2f}x on 2 threads ({load()})",
+              flush=True)
+        for material in ("elastic", "plastic"):
+            for threads in (1, 2):
+                for code, path in codes.items():
+                    env = dict(os.environ, PYTHONPATH=path, NUMBA_NUM_THREADS="2")
+                    out = subprocess.run(
+                        [sys.executable, __file__, "speed-one", "--mesh", str(a.mesh), "--travel",
+                         str(a.travel), "--material", material, "--threads", str(threads)],
+                        env=env, capture_output=True, text=True, check=True).stdout
+                    row = json.loads(out.strip().splitlines()[-1])
+                    n = row["steps"] * row["elements"]
+                    row.update(code=code, material=material, threads=threads, rep=rep,
+                               wall_ns=row["wall"] / n * 1e9, cpu_ns=row["cpu"] / n * 1e9)
+                    rows.append(row)
+                    print(f"  {code:8s} {material}, {threads} thread(s): {row['elements']} elements"
+                          f" x {row['steps']} steps: wall {row['wall_ns']:.1f}, CPU "
+                          f"{row['cpu_ns']:.1f} ns/element/step, steady Fx {row['Fx']:.6f} N, "
+                          f"load {row['load']:.1f}", flush=True)
+    print(f"summary (ns/element/step, min-median-max over {a.repeats} repeats; speed-up = best "
+          f"1-thread wall / best 2-thread wall, and the range of the per-repeat ratios):")
+    for material in ("elastic", "plastic"):
+        for code in codes:
+            sel = {t: [r for r in rows if r["code"] == code and r["material"] == material
+                       and r["threads"] == t] for t in (1, 2)}
+            txt = []
+            for t in (1, 2):
+                w = np.array([r["wall_ns"] for r in sel[t]])
+                c = np.array([r["cpu_ns"] for r in sel[t]])
+                txt.append(f"{t} thread(s) wall {w.min():.0f}-{np.median(w):.0f}-{w.max():.0f}, "
+                           f"CPU {c.min():.0f}-{np.median(c):.0f}-{c.max():.0f}")
+            w1 = np.array([r["wall_ns"] for r in sel[1]])
+            w2 = np.array([r["wall_ns"] for r in sel[2]])
+            ratios = w1 / w2
+            print(f"  {material}, {code}: " + "; ".join(txt) + f"; speed-up {w1.min() / w2.min():.2f}"
+                  f" (per repeat {ratios.min():.2f}-{ratios.max():.2f})")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("part", choices=["steady", "mass-scaling", "table3", "creep", "creep-compare", "figures",
                                      "time-increment",
-                                     "passes", "speed"])
+                                     "passes", "speed", "speed-one"])
     ap.add_argument("--mesh", type=float, default=2e-3)
     ap.add_argument("--out", default="fe_plastic_out")
     ap.add_argument("--mass-scaling", type=float, nargs="+", default=[100.0])
@@ -460,6 +561,9 @@ def main():
                     help="creepages in permille")
     ap.add_argument("--material", choices=["both", "elastic", "plastic"], default="both",
                     help="creep: run only one material (compare later with creep-compare)")
+    ap.add_argument("--hardening", choices=["r900a", "perfect"], default="r900a",
+                    help="creep, creep-compare: the plastic material's hardening (r900a: the "
+                         "default Voce law; perfect: perfect plasticity at 489 MPa)")
     ap.add_argument("--per-point", action="store_true",
                     help="creep: one NetCDF file per point (creep-compare merges them)")
     ap.add_argument("--dts", type=float, nargs="+", default=[2e-5, 1e-4, 3.7e-4],
@@ -467,9 +571,14 @@ def main():
     ap.add_argument("--travel", type=float, default=0.02)
     ap.add_argument("--passes", type=int, default=4)
     ap.add_argument("--repeats", type=int, default=2)
+    ap.add_argument("--baseline", default=None,
+                    help="speed: the src directory of another version, timed alternately")
+    ap.add_argument("--threads", type=int, default=1, help="speed-one: numba threads")
     ap.add_argument("--extra", type=json.loads, default={},
                     help="JSON of more RollingCase fields, e.g. '{\"mass_scaling\": 400}'")
     a = ap.parse_args()
+    if a.part == "speed-one":
+        return cmd_speed_one(a)
     print(f"bench_fe_plastic {a.part}: {time.strftime('%Y-%m-%d %H:%M')}, {load()}, "
           f"{os.cpu_count()} cores", flush=True)
     globals()["cmd_" + a.part.replace("-", "_")](a)

@@ -136,7 +136,8 @@ def test_fe_plastic_roll_writes_fields_and_restarts_with_the_plastic_state(tmp_p
     summary = json.loads((out / "summary.json").read_text())
     assert summary["equivalent_plastic_strain_max"] > 0
     assert summary["steady"]["Fx_scatter"] < 0.1
-    assert (out / "plastic_strain_section.png").read_bytes()[:4] == b"\x89PNG"
+    for name in ("plastic_strain_section", "von_mises_surface", "plastic_strain_surface"):
+        assert (out / f"{name}.png").read_bytes()[:4] == b"\x89PNG"
     fields = xr.open_dataset(out / "fields.nc")
     assert float(fields.rail_equivalent_plastic_strain.max()) == pytest.approx(
         summary["equivalent_plastic_strain_max"])

@@ -135,3 +135,33 @@ def test_quality_check_rejects_inverted_element():
     from wheelrail.fe import MeshQualityError
     with pytest.raises(MeshQualityError, match="non-positive Jacobian"):
         check_quality(body)
+
+
+@pytest.mark.parametrize("plastic", [False, True])
+def test_compact_hourglass_data_gives_the_gamma_forces(plastic):
+    """The explicit step's compact hourglass data hx = h·x (4 × 3 per element) gives the forces
+    and energies of the Flanagan & Belytschko (1981) vectors γ = (h − (h·x) b)/8, their
+    eq. (56), to rounding, on distorted elements (elastic and yielding J2 points)."""
+    nodes, conn, _ = _block(n=3, distort=0.25, seed=5)
+    ed = Hex8("reduced").precompute(nodes, conn, MAT)
+    assert ed.hx.shape == (conn.shape[0], 4, 3)
+    assert np.abs(ed.hx).max() > 1e-2 * 1e-2 / 3       # distorted: γ ≠ h/8, hx enters
+    u = np.random.default_rng(2).normal(size=nodes.shape) * (3e-6 if plastic else 1e-6)
+    chunks = S.element_chunks(conn, nodes.shape[0])
+    hp = np.array([3e8, 0.0, 0.0, 1e9, 0.0, 0.0])
+    out = {}
+    for name, hg in (("gamma", ed.gamma), ("hx", ed.hx)):
+        st_out = np.zeros((conn.shape[0], 1, 14))
+        f, en = np.zeros_like(u), np.zeros((conn.shape[0], 2))
+        S.element_forces(u, conn, chunks, ed.dNdx, ed.wdet, hg, ed.khg, MAT.lam,
+                         MAT.shear_modulus, plastic, hp, np.zeros(0), np.zeros(0),
+                         np.zeros((conn.shape[0], 1, 14)), st_out, f, en)
+        out[name] = f, en, st_out
+    f0, en0, st0 = out["gamma"]
+    f1, en1, st1 = out["hx"]
+    assert np.abs(f0).max() > 0
+    np.testing.assert_allclose(f1, f0, rtol=0, atol=1e-12 * np.abs(f0).max())
+    np.testing.assert_allclose(en1, en0, rtol=1e-12, atol=1e-14 * np.abs(en0).max())
+    np.testing.assert_allclose(st1, st0, rtol=0, atol=1e-12 * max(np.abs(st0).max(), 1e-30))
+    if plastic:
+        assert st0[:, 0, S.P_INDEX].max() > 0          # some points yield

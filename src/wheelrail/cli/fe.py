@@ -85,8 +85,10 @@ def add_arguments(p) -> None:
     p.add_argument("case", metavar="CASE.toml", help="case file with an [fe] table")
     p.add_argument("--out", metavar="DIR", default="fe_out",
                    help="output directory (default fe_out): summary.json, history.csv, "
-                        "patch.nc, mesh.vtu, patch.png, history.png, restart.npz; plastic: "
-                        "fields.nc, plastic_strain_section.png (passes.nc, passes.png)")
+                        "patch.nc, mesh.vtu, patch.png (pressure, shear), history.png, "
+                        "von_mises_surface.png, restart.npz; plastic: fields.nc, "
+                        "plastic_strain_section.png, plastic_strain_surface.png (passes.nc, "
+                        "passes.png)")
     p.add_argument("--mode", choices=("roll", "indent"), default=None,
                    help="override the case's mode")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
@@ -273,6 +275,23 @@ def _check_size(case, mode) -> None:
                      size["memory"], detail)
 
 
+def _surface_figures(r, model, out) -> None:
+    """von_mises_surface.png (and, plastic, plastic_strain_surface.png): the rail's running
+    surface from above and a longitudinal section, in the manner of Toumi et al. (2016) Fig. 9
+    (:func:`wheelrail.fe.plots.plot_surface`; the elastic stresses if the run is elastic)."""
+    from ..fe.plots import plot_surface
+    from ..fe.rolling import stress_fields
+
+    fields = r.fields if r.fields is not None else stress_fields(model, r.u)
+    g = model.geometry
+    sy = getattr(model.material, "yield_stress", None)
+    plot_surface(fields, "rail_von_mises", y_section=g["y_c"], depth_max=4 * g["a"],
+                 yield_stress=sy, path=out / "von_mises_surface.png")
+    if r.fields is not None:
+        plot_surface(fields, "rail_equivalent_plastic_strain", y_section=g["y_c"],
+                     depth_max=4 * g["a"], path=out / "plastic_strain_surface.png")
+
+
 def run(args, console) -> int:
     import json
     from pathlib import Path
@@ -346,6 +365,8 @@ def run(args, console) -> int:
             plot_section(r.fields, "rail_equivalent_plastic_strain", y=model.geometry["y_c"],
                          path=out / "plastic_strain_section.png",
                          depth_max=3 * model.geometry["a"])
+        if mode == "roll":
+            _surface_figures(r, model, out)
         if mode == "roll" and r.passes is not None:
             from ..fe.plots import plot_passes
 

@@ -362,6 +362,177 @@ def _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, e
     energy[e, 1] = 0.0
 
 
+@njit(cache=True, inline="always")
+def _gradient(e, ue, dNdx, W):
+    """Displacement gradient W[i, j] = Σ_a u_ai ∂N_a/∂x_j (i, j < 3) at the element's first point."""
+    h00 = h01 = h02 = h10 = h11 = h12 = h20 = h21 = h22 = 0.0
+    for a in range(8):
+        bx = dNdx[e, 0, a, 0]
+        by = dNdx[e, 0, a, 1]
+        bz = dNdx[e, 0, a, 2]
+        ux = ue[a, 0]
+        uy = ue[a, 1]
+        uz = ue[a, 2]
+        h00 += ux * bx
+        h01 += ux * by
+        h02 += ux * bz
+        h10 += uy * bx
+        h11 += uy * by
+        h12 += uy * bz
+        h20 += uz * bx
+        h21 += uz * by
+        h22 += uz * bz
+    W[0, 0] = h00
+    W[0, 1] = h01
+    W[0, 2] = h02
+    W[1, 0] = h10
+    W[1, 1] = h11
+    W[1, 2] = h12
+    W[2, 0] = h20
+    W[2, 1] = h21
+    W[2, 2] = h22
+
+
+@njit(cache=True, inline="always")
+def _hourglass_hx(e, ue, hx, khg, W, hf):
+    """Flanagan-Belytschko hourglass forces from the compact element data hx = h·x (ne, 4, 3).
+
+    With γ_m = (h_m − Σ_j hx_mj b_j)/8 (h_m the base vectors :data:`_kernels.HG`, b the
+    gradients) the hourglass strain of mode m, component i, is q_mi = γ_m · u_i =
+    (h_m · u_i − Σ_j hx_mj H_ij)/8 with H the displacement gradient W[:3, :3], and the
+    nodal force k γ_ma q_mi = (k/8) h_ma q_mi − Σ_j b_aj R_ij with R_ij = (k/8) Σ_m q_mi
+    hx_mj. Writes the first part to hf (8, 3) and R to W[3:6, :3]; returns the energy
+    ½ k Σ q². The caller adds −b R to its stress term: the γ vectors (256 bytes per
+    element) are not read.
+    """
+    k = khg[e]
+    c = 0.125
+    ck = c * k
+    en = 0.0
+    x00, x01, x02 = hx[e, 0, 0], hx[e, 0, 1], hx[e, 0, 2]
+    x10, x11, x12 = hx[e, 1, 0], hx[e, 1, 1], hx[e, 1, 2]
+    x20, x21, x22 = hx[e, 2, 0], hx[e, 2, 1], hx[e, 2, 2]
+    x30, x31, x32 = hx[e, 3, 0], hx[e, 3, 1], hx[e, 3, 2]
+    for i in range(3):
+        h0 = W[i, 0]
+        h1 = W[i, 1]
+        h2 = W[i, 2]
+        u0, u1, u2, u3 = ue[0, i], ue[1, i], ue[2, i], ue[3, i]
+        u4, u5, u6, u7 = ue[4, i], ue[5, i], ue[6, i], ue[7, i]
+        # h_m . u_i (rows of HG)
+        s0 = (u0 + u1) - (u2 + u3) - (u4 + u5) + (u6 + u7)
+        s1 = (u0 - u1) - (u2 - u3) - (u4 - u5) + (u6 - u7)
+        s2 = (u0 - u1) + (u2 - u3) + (u4 - u5) + (u6 - u7)
+        s3 = -(u0 - u1) - (u2 - u3) + (u4 - u5) + (u6 - u7)
+        q0 = c * (s0 - (x00 * h0 + x01 * h1 + x02 * h2))
+        q1 = c * (s1 - (x10 * h0 + x11 * h1 + x12 * h2))
+        q2 = c * (s2 - (x20 * h0 + x21 * h1 + x22 * h2))
+        q3 = c * (s3 - (x30 * h0 + x31 * h1 + x32 * h2))
+        en += 0.5 * k * (q0 * q0 + q1 * q1 + q2 * q2 + q3 * q3)
+        q0 *= ck
+        q1 *= ck
+        q2 *= ck
+        q3 *= ck
+        # (k/8) sum_m h_ma q_m (columns of HG)
+        hf[0, i] = (q0 + q1) + (q2 - q3)
+        hf[1, i] = (q0 - q1) - (q2 - q3)
+        hf[2, i] = -(q0 + q1) + (q2 - q3)
+        hf[3, i] = -(q0 - q1) - (q2 - q3)
+        hf[4, i] = -(q0 + q1) + (q2 + q3)
+        hf[5, i] = -(q0 - q1) - (q2 + q3)
+        hf[6, i] = (q0 + q1) + (q2 + q3)
+        hf[7, i] = (q0 - q1) - (q2 + q3)
+        W[3 + i, 0] = q0 * x00 + q1 * x10 + q2 * x20 + q3 * x30
+        W[3 + i, 1] = q0 * x01 + q1 * x11 + q2 * x21 + q3 * x31
+        W[3 + i, 2] = q0 * x02 + q1 * x12 + q2 * x22 + q3 * x32
+    return en
+
+
+@njit(cache=True, inline="always")
+def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, energy, W, hf):
+    """:func:`_elastic_one_point` with the compact hourglass data (:func:`_hourglass_hx`):
+    one scatter per node. W (≥ 6, ≥ 3) and hf (8, 3) are scratch."""
+    _gradient(e, ue, dNdx, W)
+    exx = W[0, 0]
+    eyy = W[1, 1]
+    ezz = W[2, 2]
+    gxy = W[0, 1] + W[1, 0]
+    gyz = W[1, 2] + W[2, 1]
+    gxz = W[0, 2] + W[2, 0]
+    w = wdet[e, 0]
+    tr = lam * (exx + eyy + ezz)
+    sxx = w * (tr + 2.0 * G * exx)
+    syy = w * (tr + 2.0 * G * eyy)
+    szz = w * (tr + 2.0 * G * ezz)
+    sxy = w * G * gxy
+    syz = w * G * gyz
+    sxz = w * G * gxz
+    en = 0.5 * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz + sxz * gxz)
+    en += _hourglass_hx(e, ue, hx, khg, W, hf)
+    p00 = sxx - W[3, 0]
+    p01 = sxy - W[3, 1]
+    p02 = sxz - W[3, 2]
+    p10 = sxy - W[4, 0]
+    p11 = syy - W[4, 1]
+    p12 = syz - W[4, 2]
+    p20 = sxz - W[5, 0]
+    p21 = syz - W[5, 1]
+    p22 = szz - W[5, 2]
+    for a in range(8):
+        bx = dNdx[e, 0, a, 0]
+        by = dNdx[e, 0, a, 1]
+        bz = dNdx[e, 0, a, 2]
+        n = conn[e, a]
+        f[n, 0] += bx * p00 + by * p01 + bz * p02 + hf[a, 0]
+        f[n, 1] += bx * p10 + by * p11 + bz * p12 + hf[a, 1]
+        f[n, 2] += bx * p20 + by * p21 + bz * p22 + hf[a, 2]
+    energy[e, 0] = en
+    energy[e, 1] = 0.0
+
+
+@njit(cache=True, inline="always")
+def _plastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, hp, tp, ts, st_in, st_out,
+                          f, energy, eps, sig, W, hf):
+    """The one-point J2 element with the compact hourglass data (:func:`_hourglass_hx`): the
+    strain from the displacement gradient, the return map, one scatter per node."""
+    _gradient(e, ue, dNdx, W)
+    eps[0] = W[0, 0]
+    eps[1] = W[1, 1]
+    eps[2] = W[2, 2]
+    eps[3] = W[0, 1] + W[1, 0]
+    eps[4] = W[1, 2] + W[2, 1]
+    eps[5] = W[0, 2] + W[2, 0]
+    w = wdet[e, 0]
+    return_map(eps, st_in[e, 0], st_out[e, 0], lam, G, hp, tp, ts, sig, W, False)
+    pe = st_out[e, 0]
+    e_el = 0.5 * w * (sig[0] * (eps[0] - pe[0]) + sig[1] * (eps[1] - pe[1])
+                      + sig[2] * (eps[2] - pe[2]) + sig[3] * (eps[3] - pe[3])
+                      + sig[4] * (eps[4] - pe[4]) + sig[5] * (eps[5] - pe[5]))
+    e_pl = w * pe[WP_INDEX]
+    e_el += _hourglass_hx(e, ue, hx, khg, W, hf)
+    sxx, syy, szz = w * sig[0], w * sig[1], w * sig[2]
+    sxy, syz, sxz = w * sig[3], w * sig[4], w * sig[5]
+    p00 = sxx - W[3, 0]
+    p01 = sxy - W[3, 1]
+    p02 = sxz - W[3, 2]
+    p10 = sxy - W[4, 0]
+    p11 = syy - W[4, 1]
+    p12 = syz - W[4, 2]
+    p20 = sxz - W[5, 0]
+    p21 = syz - W[5, 1]
+    p22 = szz - W[5, 2]
+    for a in range(8):
+        bx = dNdx[e, 0, a, 0]
+        by = dNdx[e, 0, a, 1]
+        bz = dNdx[e, 0, a, 2]
+        n = conn[e, a]
+        f[n, 0] += bx * p00 + by * p01 + bz * p02 + hf[a, 0]
+        f[n, 1] += bx * p10 + by * p11 + bz * p12 + hf[a, 1]
+        f[n, 2] += bx * p20 + by * p21 + bz * p22 + hf[a, 2]
+    energy[e, 0] = e_el
+    energy[e, 1] = e_pl
+
+
 @njit(cache=True, parallel=True)
 def element_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
                    st_in, st_out, f, energy):
@@ -370,7 +541,8 @@ def element_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp,
     u, f : (nn, 3) (f is overwritten); conn : (ne, 8) node numbers into u; bounds :
     (nc + 1,) contiguous element chunks of :func:`element_chunks` (no node shared by two
     chunks of the same parity); dNdx : (ne, ng, 8, 3); wdet : (ne, ng); gamma : (ne, 4, 8)
-    or (0, 4, 8); khg : (ne,); st_in, st_out : (ne, ng, NSTATE) (ignored if not
+    hourglass vectors γ, or their compact form (ne, 4, 3) h·x (:attr:`ElementData.hx`, one
+    point only; the same forces to rounding, a third of the bytes), or (0, 4, 8); khg : (ne,); st_in, st_out : (ne, ng, NSTATE) (ignored if not
     ``plastic``); energy : (ne, 2) output, elastic strain energy (hourglass included) and
     plastic work of each element [J]. B-bar (mean dilatation) for plastic, fully
     integrated elements.
@@ -399,7 +571,15 @@ def _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, 
              st_in, st_out, f, energy, ue, eps, sig, D, bb):
     """Forces of element e added to f (its nodes), energies into energy[e]."""
     ng = dNdx.shape[1]
+    compact = has_hg and gamma.shape[2] == 3
     _gather(u, conn, e, ue)
+    if compact:                       # one point, hourglass data h.x
+        if plastic:
+            _plastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, hp, tp, ts, st_in,
+                                  st_out, f, energy, eps, sig, D, bb)
+        else:
+            _elastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, f, energy, D, bb)
+        return
     if ng == 1 and not plastic:
         _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy)
         return

@@ -16,7 +16,7 @@ References
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 
 import numpy as np
@@ -36,7 +36,10 @@ class ElementData:
 
     dNdx : (ne, ng, 8, 3) [1/m]; wdet : (ne, ng) [m³]; gamma : (ne, 4, 8) or
     (0, 4, 8); khg : (ne,) [N/m]; volume : (ne,) [m³]; length : (ne,) [m]
-    characteristic length (volume / largest face area) for the Courant step.
+    characteristic length (volume / largest face area) for the Courant step; hx : (ne, 4, 3)
+    [m] or (0, 4, 3), the hourglass base vectors times the node coordinates, h_m · x_j: the
+    compact form of γ (γ_m = (h_m − Σ_j hx_mj ∂N/∂x_j)/8) that the explicit step reads
+    instead of γ (96 instead of 256 bytes per element).
     """
 
     dNdx: np.ndarray
@@ -45,6 +48,7 @@ class ElementData:
     khg: np.ndarray
     volume: np.ndarray
     length: np.ndarray
+    hx: np.ndarray = field(default_factory=lambda: np.zeros((0, 4, 3)))
 
     @property
     def n_points(self) -> int:
@@ -54,20 +58,21 @@ class ElementData:
     @property
     def nbytes(self) -> int:
         return sum(a.nbytes for a in (self.dNdx, self.wdet, self.gamma, self.khg, self.volume,
-                                      self.length))
+                                      self.length, self.hx))
 
     def __getitem__(self, sl: slice) -> "ElementData":
         """The data of a contiguous range of elements (views, no copy)."""
         return ElementData(self.dNdx[sl], self.wdet[sl],
                            self.gamma[sl] if self.gamma.shape[0] else self.gamma,
                            self.khg[sl] if self.khg.shape[0] else self.khg,
-                           self.volume[sl], self.length[sl])
+                           self.volume[sl], self.length[sl],
+                           self.hx[sl] if self.hx.shape[0] else self.hx)
 
     @staticmethod
     def concatenate(parts) -> "ElementData":
         """One ElementData of several (same element type), elements in the given order."""
         cat = [np.concatenate([getattr(p, name) for p in parts])
-               for name in ("dNdx", "wdet", "gamma", "khg", "volume", "length")]
+               for name in ("dNdx", "wdet", "gamma", "khg", "volume", "length", "hx")]
         return ElementData(*cat)
 
 
@@ -133,6 +138,7 @@ class Hex8:
         dN0 = b[:, None]
         w0 = volume[:, None].copy()
         gamma = K.hourglass_vectors(x, b)
+        hx = np.einsum("ka,eaj->ekj", K.HG, x)
         k1 = _hourglass_unit_stiffness(material.lam, material.shear_modulus)
         khg = self.hourglass * k1 * np.cbrt(volume)
-        return ElementData(dN0, w0, gamma, khg, volume, length)
+        return ElementData(dN0, w0, gamma, khg, volume, length, hx)

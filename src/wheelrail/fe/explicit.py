@@ -152,9 +152,8 @@ def solve_explicit(case, progress, output_every, io):
     def forces(u, v, w, psi, s, mu_now, with_beta):
         c = fast.step(u, w, psi, s, mu_now, f_int, state)
         e_int = float(fast.sums[6] + fast.sums[7])
-        if state is not None:
+        if state is not None:                # updated in place by fast.step: nothing to commit
             state.energies = (float(fast.sums[6]), float(fast.sums[7]))
-            state.commit()
         if with_beta:
             model.internal_force(v, fd_beta, elastic=True)
             fd_beta[...] *= beta
@@ -332,6 +331,8 @@ class _ContactLoop:
         self.echunk = np.zeros((nc, 2))
         self.energy = np.zeros((model.n_elements, 2))
         self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
+        # the element kernel streams its connectivity every step: 32 bytes per element
+        self.conn = model.conn.astype(np.int32) if model.conn.max() < 2**31 else model.conn
         self.mat = (model.material.lam, model.material.shear_modulus) + tuple(model._hardening)
 
     def start(self, u, w, psi, s):
@@ -361,10 +362,12 @@ class _ContactLoop:
         ed = m.edata
         lam, G, hp, tp, ts = self.mat
         plastic = state is not None
-        st_in = state.committed if plastic else _NO_STATE
-        st_out = state.trial if plastic else _NO_STATE
-        explicit_forces(u, m.conn, m.chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam, G, plastic,
-                        hp, tp, ts, st_in, st_out, f, self.energy, self.echunk, self.tasks,
+        # an explicit step is always accepted: the state is updated in place (st_out = st_in;
+        # each integration point reads its own state before writing it)
+        st = state.committed if plastic else _NO_STATE
+        hg = ed.hx if ed.hx.shape[0] else ed.gamma          # compact hourglass data
+        explicit_forces(u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic,
+                        hp, tp, ts, st, st, f, self.energy, self.echunk, self.tasks,
                         self.ref_s, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old, self.dxs,
                         self.ref_m, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
                         m.slave_area, m.kn, mu, ft_old, self.x_ref, self.y_ref, self.reach, m.g0,

@@ -236,7 +236,8 @@ class Model:
         buf = self._scratch("energy", (self.n_elements, 2))
         st_in = state.committed if plastic else _NO_STATE
         st_out = state.trial if plastic else _NO_STATE
-        S.element_forces(u, self.conn, self.chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, lam, G,
+        hg = ed.hx if ed.hx.shape[0] else ed.gamma          # compact hourglass data
+        S.element_forces(u, self.conn, self.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G,
                          plastic, hp, tp, ts, st_in, st_out, f, buf)
         e_el = float(buf[:, 0].sum())
         e_pl = float(buf[:, 1].sum())

@@ -56,7 +56,7 @@ from .model import contact_geometry
 from .restart import write_restart
 
 __all__ = ["RollingResult", "stable_time_step", "saturation_creepage",
-           "steady_window", "plastic_fields"]
+           "steady_window", "plastic_fields", "stress_fields"]
 
 #: History columns of a rolling run (rows of the output dataset).
 COLUMNS = ("time", "travel", "Fx", "Fy", "Fz", "Fn", "kinetic", "internal", "contact",
@@ -383,13 +383,21 @@ def plastic_fields(model, u, state):
     of the wheel's material angle, y lateral, depth below the running surface [m].
     Stresses in the body frames (Voigt xx, yy, zz, xy, yz, xz).
     """
-    import xarray as xr
-
-
     if state is None:
         return None
+    return stress_fields(model, u, state)
+
+
+def stress_fields(model, u, state=None):
+    """The fields of :func:`plastic_fields` for any run: with ``state`` None (an elastic run)
+    the stresses of ``u`` and a zero plastic strain."""
+    import xarray as xr
+
     sig_w, sig_r = model.stress(u, state)
-    p_w, p_r = state.equivalent_plastic_strain()
+    if state is None:
+        p_w, p_r = np.zeros(model.wheel.n_elements), np.zeros(model.rail.n_elements)
+    else:
+        p_w, p_r = state.equivalent_plastic_strain()
     data, coords = {}, {"component": ["xx", "yy", "zz", "xy", "yz", "xz"]}
     R = model.geometry["r_c"]
     for body, sig, p, pre, scale in ((model.rail, sig_r, p_r, "", 1.0),
