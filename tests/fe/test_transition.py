@@ -119,3 +119,26 @@ def test_track_and_suspension_inputs_are_validated():
         seed004_case(0.02, traction=0.7)
     with pytest.raises(InputError, match="size"):
         seed004_case(0.02, size="huge")
+
+
+def test_tread_and_flange_nodes_that_touch_on_the_grid_are_split_by_contact_angle():
+    """On a coarse wheel-surface grid the flange-root (tread) and flange contacts are
+    neighbours: 8-connectivity merges them, the contact-angle split keeps them apart."""
+    from wheelrail.fe.transition_contact import patches, split_patches
+
+    status = np.zeros((6, 8), np.int64)
+    status[1:5, 2:6] = 1                       # one connected block of closed nodes
+    angle = np.zeros((6, 8))
+    angle[:, 2:4] = np.radians(70.0)           # flange side of the block
+    angle[:, 4:6] = np.radians(20.0)           # flange root
+    angle[0, 0] = np.radians(10.0)
+    status[0, 0] = 1                           # a separate one-node island on the tread
+    force = np.where(status > 0, 1.0, 0.0)
+    force[0, 0] = 0.1
+    _, n = patches(status)
+    assert n == 2                              # the block is one patch by connectivity
+    lab, counts = split_patches(status, angle, force)
+    assert counts == (2, 1)
+    assert np.all(lab[1:5, 2:4] == 2) and np.all(lab[1:5, 4:6] == 1)
+    assert lab[0, 0] == 3                      # the weaker tread island goes to "others"
+    assert np.all(lab[status == 0] == 0)
