@@ -142,3 +142,33 @@ def test_tread_and_flange_nodes_that_touch_on_the_grid_are_split_by_contact_angl
     assert np.all(lab[1:5, 2:4] == 2) and np.all(lab[1:5, 4:6] == 1)
     assert lab[0, 0] == 3                      # the weaker tread island goes to "others"
     assert np.all(lab[status == 0] == 0)
+
+
+@pytest.fixture(scope="module")
+def tiny_transition():
+    from wheelrail.fe.transition_model import build_transition_model
+
+    case = seed004_case(0.025, mesh_size=5e-3, travel=1.2e-3, settle=0.5e-3,
+                        flange_clearance=3e-3, output_interval=6e-6)
+    return case, build_transition_model(case)
+
+
+def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    f = tmp_path / "restart.npz"
+    a = run_transition(case, model=model, restart_file=f, restart_every=60)
+    with np.load(f) as z:
+        k = int(z["step"])
+    assert 0 < k < a.info["steps"] - 1
+    b = run_transition(case, model=model, restart=f)
+    np.testing.assert_allclose(b.patches["Fn"].values, a.patches["Fn"].values, rtol=1e-9,
+                               atol=1e-6)
+    np.testing.assert_allclose(b.u, a.u, rtol=1e-9, atol=1e-15)
+    with np.load(f) as z:
+        other = dict(z)
+    other["n_nodes"] = model.n_nodes + 1
+    np.savez(tmp_path / "other.npz", **other)
+    with pytest.raises(InputError, match="another case"):
+        run_transition(case, model=model, restart=tmp_path / "other.npz")

@@ -216,7 +216,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     restart : path, optional
         Continue from this restart file (written by an earlier run of the same case).
     restart_file : path, optional
-        Write the state here every ``restart_every`` steps (and at the end).
+        Write the state here every ``restart_every`` steps (overwritten each time).
     restart_every : int
         Steps between restart files (0: a tenth of the steps when ``restart_file`` is given).
 
@@ -329,12 +329,12 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     band_i = m.meta["band_i"]
     surf_rail = k_master
     # the rail's surface line (along x) through the start contact, for the wave analysis
-    xr = m.nodes[k_master]
-    near = np.abs(xr[:, 0]) < 2 * case.mesh_size
-    top = np.flatnonzero(near)[np.argmin(np.abs(xr[near, 1] - pose["rail_y_tread"])
-                                         + 10 * np.abs(xr[near, 2] - xr[near, 2].max()))]
-    line = k_master[(np.abs(xr[:, 1] - xr[top, 1]) < 1e-7)
-                    & (np.abs(xr[:, 2] - xr[top, 2]) < 1e-7)]
+    xref = m.nodes[k_master]
+    near = np.abs(xref[:, 0]) < 2 * case.mesh_size
+    top = np.flatnonzero(near)[np.argmin(np.abs(xref[near, 1] - pose["rail_y_tread"])
+                                         + 10 * np.abs(xref[near, 2] - xref[near, 2].max()))]
+    line = k_master[(np.abs(xref[:, 1] - xref[top, 1]) < 1e-7)
+                    & (np.abs(xref[:, 2] - xref[top, 2]) < 1e-7)]
     line = line[np.argsort(m.nodes[line, 0])]
     n_wave = int(case.wave_time / dt) if case.wave_time > 0 else 0
     wave_v = np.zeros((n_wave, line.size))
@@ -441,9 +441,6 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                          M_c, npatch, c[1]])
             if field_every and (len(rows) - 1) % field_every == 0:
                 fields.append(v[surf_rail].copy())
-            if restart_file is not None and (k // every) % max(1, restart_every // every) == 0 \
-                    and k > k0:
-                _write_restart(restart_file, n, n_steps, k, rows, hist, locals())
             if progress and len(rows) % 20 == 1:
                 done = (k + 1 - k0) / max(1, n_steps - k0)
                 el = time.perf_counter() - t_wall
@@ -451,6 +448,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                       f"s = {s * 1e3:6.1f} mm  patches {npatch}  Fz = {Fc[2] / 1e3:7.2f} kN  "
                       f"elapsed {el:6.0f} s, left ~{el * (1 - done) / max(done, 1e-9):6.0f} s",
                       flush=True)
+        if restart_file is not None and (k + 1) % restart_every == 0 and k + 1 < n_steps:
+            _write_restart(restart_file, n, n_steps, k, rows, hist, locals())
     cpu = time.process_time() - t_cpu
     wall = time.perf_counter() - t_wall
     rows = np.array(rows, float)                 # (nt, patch, field)

@@ -30,8 +30,8 @@ def rayleigh_speed(E: float, nu: float, rho: float) -> float:
     return float(cs * (0.862 + 1.14 * nu) / (1.0 + nu))
 
 
-def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.08,
-               side: str = "both") -> dict:
+def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.1,
+               side: str = "ahead") -> dict:
     """Surface wave speed [m/s] from the rail surface velocities of a run.
 
     Parameters
@@ -47,8 +47,9 @@ def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.08,
     Returns
     -------
     dict
-        ``speed`` [m/s] (least-squares slope of distance against arrival time), ``d`` and
-        ``t_arrival`` of the fitted nodes, ``residual`` (rms of the fit [s]).
+        ``speed`` [m/s] (inverse of the least-squares slope of the arrival time against the
+        distance), ``d`` and ``t_arrival`` of the fitted nodes, ``t0`` the intercept [s],
+        ``residual`` (rms of the fit [s]).
     """
     if wave is None:
         raise InputError("no wave record: run the case with wave_time > 0")
@@ -70,11 +71,14 @@ def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.08,
     ok = ta < t[-1] - 2 * (t[1] - t[0])
     if ok.sum() < 3:
         raise InputError("the wave has not passed the fitted nodes within the record")
-    A = np.stack([ta[ok], np.ones(ok.sum())], axis=1)
-    coef, *_ = np.linalg.lstsq(A, d[ok], rcond=None)
-    res = d[ok] - A @ coef
-    return {"speed": float(coef[0]), "d": d[ok], "t_arrival": ta[ok],
-            "residual": float(np.sqrt(np.mean(res ** 2)) / coef[0])}
+    # arrival time against distance (the distances are exact, the picked times noisy)
+    A = np.stack([d[ok], np.ones(ok.sum())], axis=1)
+    coef, *_ = np.linalg.lstsq(A, ta[ok], rcond=None)
+    res = ta[ok] - A @ coef
+    if not coef[0] > 0:
+        raise InputError("the picked arrival times do not increase with distance")
+    return {"speed": float(1.0 / coef[0]), "d": d[ok], "t_arrival": ta[ok],
+            "t0": float(coef[1]), "residual": float(np.sqrt(np.mean(res ** 2)))}
 
 
 def settled_vertical_balance(result, s_from: float, s_to: float) -> dict:
