@@ -172,3 +172,28 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     np.savez(tmp_path / "other.npz", **other)
     with pytest.raises(InputError, match="another case"):
         run_transition(case, model=model, restart=tmp_path / "other.npz")
+
+
+def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_path, capsys):
+    import json
+
+    from wheelrail.cli.main import main
+
+    case = tmp_path / "t.toml"
+    case.write_text('[fe]\nseed004 = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
+                    'travel = 1.2e-3\nsettle = 0.5e-3\nflange_clearance = 3e-3\n'
+                    'output_interval = 6e-6\n')
+    out = tmp_path / "out"
+    assert main(["fe", str(case), "--out", str(out), "--estimate-only"]) == 0
+    text = capsys.readouterr().out
+    assert "FE transition" in text and "estimate:" in text and not out.exists()
+    assert main(["fe", str(case), "--out", str(out), "--restart-every", "60"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["mode"] == "transition" and summary["steps"] > 100
+    for f in ("patches.nc", "history.nc", "restart.npz"):
+        assert (out / f).is_file()
+    assert (out / "transition.png").stat().st_size > 10_000
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[fe]\nseed004 = "reduced"\nangle_of_attak = 0.025\n')
+    assert main(["fe", str(bad), "--out", str(out)]) != 0
+    assert "angle_of_attak" in capsys.readouterr().err
