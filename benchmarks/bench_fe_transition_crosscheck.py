@@ -68,16 +68,48 @@ def crosscheck(run, s_values):
               ("Fn", "F_long", "F_lat", "contact_angle")}
         Q = float(h["Fz_total"].isel(time=sl).mean())
         om = float(h["omega"].isel(time=sl).mean())
-        y_wheel = y0 + s_all[k] * np.sin(alpha)
-        shift = yj - (yf - y_wheel)
+        tt = h["time"].values
+        wdot = float(np.polyfit(tt[sl], h["w"].values[sl], 1)[0])
+        # the same pose: the module's wheelset shift at which its rigid tread contact has
+        # the FE tread patch's contact angle (the yawed FE wheel's contact leads the axle,
+        # so a shift mapped from the axle's lateral position misses the flange root)
+        target = float(fe["contact_angle"][0])
+        lo, hi = yj - 4e-3, yj - 1e-5
+        for _ in range(30):
+            mid = 0.5 * (lo + hi)
+            cp = wr.contact_points(ws, tr, mid)
+            if cp.right.contact_angle[cp.right.primary] < target:
+                lo = mid
+            else:
+                hi = mid
+        shift = 0.5 * (lo + hi)
         pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
-        mot = wr.Motion(V, omega=om, lateral_velocity=V * np.sin(alpha))
-        line = {"s": float(s_all[k]), "Q": Q, "shift": shift, "fe": fe}
+        line = {"s": float(s_all[k]), "Q": Q, "shift": shift, "fe": fe, "wdot": wdot}
         for name, nm, tm in (("bem+exact", wr.normal.Bem(element_size=2.5e-4), "exact"),
                              ("kp+fastsim", "kik-piotrowski", "fastsim")):
             t0 = time.process_time()
-            res = solve_wheelrail(pos, mot, case.mu, normal=nm, tangential=tm)
-            ps = [p for p in res.side("right") if p.Fn > 1.0]
+            # the wheel's angular velocity at which the module's longitudinal force equals
+            # the FE tread patch's (the driving torque sets it; the FE's nominal creepage
+            # depends on a rolling radius that the two geometries define differently)
+
+            def fx(omega):
+                mot = wr.Motion(V, omega=omega, lateral_velocity=V * np.sin(alpha),
+                                vertical_velocity=wdot)
+                res = solve_wheelrail(pos, mot, case.mu, normal=nm, tangential=tm)
+                ps = [p for p in res.side("right") if p.Fn > 1.0]
+                return sum(p.Fx for p in ps), ps
+
+            a_, b_ = om * (1 - 2e-3), om * (1 + 2e-3)
+            fa, _ = fx(a_)
+            fb, ps = fx(b_)
+            goal = float(fe["F_long"][0])
+            for _ in range(8):
+                c_ = b_ + (goal - fb) * (b_ - a_) / (fb - fa)
+                a_, fa = b_, fb
+                b_ = c_
+                fb, ps = fx(b_)
+                if abs(fb - goal) < 0.002 * abs(goal) + 5.0:
+                    break
             line[name] = [(float(np.degrees(p.contact_angle)), p.Fn, p.Fx, p.Fs, p.xi, p.eta,
                            p.phi) for p in ps]
             line[name + "_cpu"] = time.process_time() - t0
@@ -89,7 +121,8 @@ def report(rows):
     for r in rows:
         fe = r["fe"]
         print(f"s = {r['s'] * 1e3:.1f} mm, vertical load {r['Q'] / 1e3:.1f} kN, "
-              f"module shift {r['shift'] * 1e3:.2f} mm")
+              f"module shift {r['shift'] * 1e3:.2f} mm, axle vertical velocity "
+              f"{r['wdot'] * 1e3:.1f} mm/s")
         for p, nm in ((0, "tread"), (1, "flange")):
             if fe["Fn"][p] > 100:
                 print(f"  FE {nm:6s}: angle {np.degrees(fe['contact_angle'][p]):5.1f} deg, "
