@@ -504,9 +504,13 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
     angle_of_attack : float
         Angle of attack [rad] (0.015, 0.020 and 0.025 are the studied values).
     size : {"reduced", "full"}
-        ``"reduced"``: 2 sleepers, 2 mm elements, 0.1 m of travel from 1 mm of flange
-        clearance (minutes on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution
-        zone, 0.67 m travel and a longer track (hours; not yet run).
+        ``"reduced"``: 2 sleepers, 4 mm elements, 3 mm of flange clearance (the start
+        contact on the tread at 6.7°, rigid), a travel of 30 mm + clearance / α (the flange
+        patch appears ≈ 10 mm before its end at 25 mrad), traction 0.3 (the driving torque:
+        half of μ; with less, the spin of the flange-root contact turns the tread shear
+        sideways well before the flange touches), 30 mm of damped settling (5–10 min CPU
+        on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution zone, 0.67 m travel
+        and a longer track (hours; not yet run).
     **changes
         Any :class:`TransitionCase` field.
     """
@@ -514,11 +518,14 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
                 inclination=float(np.arctan(1 / 40)), angle_of_attack=float(angle_of_attack),
                 speed=80 / 3.6, mu=0.6)
     if size == "reduced":
-        base.update(mesh_size=2.5e-3, travel=0.09, flange_clearance=1.0e-3, settle=0.02,
+        clearance = float(changes.get("flange_clearance", 3e-3))
+        a = abs(float(angle_of_attack))
+        base.update(mesh_size=4e-3, flange_clearance=3e-3, traction=0.3, settle=0.03,
+                    travel=0.03 + clearance / a if a > 5e-3 else 0.1,
                     track=TrackStructure(n_sleepers=2, overhang=0.25),
                     suspension=Suspension())
     elif size == "full":
-        base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25,
+        base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25, traction=0.3,
                     section_h_max=6e-3, track=TrackStructure(n_sleepers=5), suspension=Suspension())
     else:
         raise InputError(f"size must be 'reduced' or 'full', got {size!r}")
