@@ -526,7 +526,9 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
                     suspension=Suspension())
     elif size == "full":
         base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25, traction=0.3,
-                    section_h_max=6e-3, track=TrackStructure(n_sleepers=5), suspension=Suspension())
+                    section_h_max=6e-3, x_h_max=0.012, theta_h_max=0.012,
+                    track=TrackStructure(n_sleepers=5),
+                    suspension=Suspension())
     else:
         raise InputError(f"size must be 'reduced' or 'full', got {size!r}")
     base.update(changes)
