@@ -1,62 +1,112 @@
 """Benchmark of the one- to two-point contact transition model (wheelrail.fe.transition).
 
 Prints the model size, the estimate before the run, the CPU time, the cost per element and
-step, the onset of two-point contact and the patch forces at the end, with the load of
-the machine. Usage::
+step, the onset of two-point contact, the tread patch before the onset (θ, forces, Σ Fz
+against the wheel load) and the patches after it, with the load of the machine. Usage::
 
-    python benchmarks/bench_fe_transition.py [--aoa 0.025] [--mesh 3e-3] [--travel 0.06]
+    python benchmarks/bench_fe_transition.py [--aoa 0.025] [--mesh 4e-3] [--travel 0.13] \
+        [--save RUN.pkl] [--figure RUN.png]
     python benchmarks/bench_fe_transition.py --onset            # 15, 20, 25 mrad
+    python benchmarks/bench_fe_transition.py --report RUN.pkl   # a saved run again
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import pickle
 import time
 
 import numpy as np
 
 import wheelrail as wr
+from wheelrail.fe.transition_analysis import onset_travel
 
 
-def one(aoa, mesh, travel):
-    case = wr.fe.seed004_case(aoa, mesh_size=mesh, travel=travel,
-                              settle=min(0.015, 0.25 * travel))
+def report(run):
+    ds, h, info, kw = run["patches"], run["history"], run["info"], run["case_kw"]
+    case = wr.fe.seed004_case(**kw)
+    s = ds.travel.values
+    on = onset_travel(ds)
+    print(f"{kw}: {info['elements']} elements, {info['steps']} steps of "
+          f"{info['time_step'] * 1e9:.0f} ns, {info['cpu_s']:.0f} s CPU ({info['wall_s']:.0f} s "
+          f"wall), {info['ns_per_element_step']:.0f} ns/element/step (CPU)")
+    print(f"  wheel load {info['load'] / 1e3:.2f} kN; onset of two-point contact (flange "
+          f"patch > 1 kN for 3 outputs) at {on * 1e3:.1f} mm")
+    t1, t2 = ds.sel(patch=1), ds.sel(patch=2)
+    th1 = np.degrees(t1.theta.values)
+    pre = (s >= case.settle) & (s < (on if on == on else np.inf))
+    if pre.any():
+        fz = h.Fz_total.values[pre]
+        print(f"  before the onset ({s[pre][0] * 1e3:.0f}-{s[pre][-1] * 1e3:.0f} mm): tread θ "
+              f"median {np.nanmedian(th1[pre]):.1f}° (IQR {np.nanpercentile(th1[pre], 25):.1f}-"
+              f"{np.nanpercentile(th1[pre], 75):.1f}°), contact angle "
+              f"{np.degrees(np.nanmin(t1.contact_angle.values[pre])):.1f}-"
+              f"{np.degrees(np.nanmax(t1.contact_angle.values[pre])):.1f}°, F_long "
+              f"{t1.F_long.values[pre].mean() / 1e3:.1f} kN, F_lat "
+              f"{t1.F_lat.values[pre].mean() / 1e3:.1f} kN, Σ Fz {fz.mean() / 1e3:.1f} kN "
+              f"(std {fz.std() / 1e3:.1f}; {fz.mean() / info['load'] - 1:+.1%} of the load)")
+    if on == on:
+        k0 = int(np.flatnonzero(s >= on)[0])
+        print("  output, travel [mm], Fn tread/flange [kN], θ tread/flange [°], adhering "
+              "fraction tread/flange, flange contact angle [°], Σ Fz [kN]")
+        for k in range(max(0, k0 - 3), min(s.size, k0 + 12)):
+            print(f"   {k - k0:+3d} {s[k] * 1e3:6.1f} {t1.Fn.values[k] / 1e3:6.1f} "
+                  f"{t2.Fn.values[k] / 1e3:6.1f} {th1[k]:5.1f} "
+                  f"{np.degrees(t2.theta.values[k]):5.1f} {t1.adhesion.values[k]:.2f} "
+                  f"{t2.adhesion.values[k]:.2f} {np.degrees(t2.contact_angle.values[k]):5.1f} "
+                  f"{h.Fz_total.values[k] / 1e3:6.1f}")
+        post = (s >= on) & (t2.Fn.values > 1000)
+        a2 = np.degrees(t2.contact_angle.values[post])
+        th2 = np.degrees(t2.theta.values[post])
+        print(f"  flange patch: contact angle {np.median(a2):.1f}° ({a2.min():.1f}-"
+              f"{a2.max():.1f}), θ median {np.median(th2):.1f}° (IQR "
+              f"{np.percentile(th2, 25):.1f}-{np.percentile(th2, 75):.1f}), largest adhering "
+              f"fraction {np.nanmax(t2.adhesion.values[post]):.2f}; at the end tread "
+              f"{t1.Fn.values[-1] / 1e3:.1f} kN, flange {t2.Fn.values[-1] / 1e3:.1f} kN")
+    return on
+
+
+def one(kw, save=None, figure=None):
+    case = wr.fe.seed004_case(**kw)
     t0 = time.process_time()
     model = wr.fe.build_transition_model(case)
     t_build = time.process_time() - t0
     r = wr.fe.run_transition(case, model=model, progress=True)
-    ds = r.patches
-    last = ds.isel(time=-1)
-    print(f"aoa {aoa * 1e3:.0f} mrad, h = {mesh * 1e3:g} mm: {r.info['elements']} elements, "
-          f"{r.info['steps']} steps of {r.info['time_step'] * 1e9:.1f} ns, build {t_build:.1f} s, "
-          f"run {r.info['cpu_s']:.0f} s CPU ({r.info['wall_s']:.0f} s wall), "
-          f"{r.info['ns_per_element_step']:.0f} ns/element/step (CPU), "
-          f"load {os.getloadavg()[0]:.1f}")
-    print(f"  onset of two-point contact at travel {r.info['onset_travel'] * 1e3:.1f} mm; "
-          f"wheel load {r.info['load'] / 1e3:.1f} kN")
-    for p in ds.patch.values:
-        row = last.sel(patch=p)
-        if float(row.Fn) > 0:
-            print(f"  patch {p}: Fn {float(row.Fn) / 1e3:.1f} kN, Fz {float(row.Fz) / 1e3:.1f} kN, "
-                  f"angle {np.degrees(float(row.contact_angle)):.1f} deg, "
-                  f"theta {np.degrees(float(row.theta)):.1f} deg, adhesion {float(row.adhesion):.2f}")
-    return r
+    info = {k: v for k, v in r.info.items() if k != "fields"}
+    run = {"patches": r.patches, "history": r.history, "info": info, "case_kw": kw}
+    print(f"build {t_build:.1f} s CPU; load {os.getloadavg()[0]:.1f}")
+    if save:
+        with open(save, "wb") as f:
+            pickle.dump(run, f)
+    if figure:
+        from wheelrail.fe.plots import plot_transition
+
+        plot_transition(r.patches, r.history, path=figure,
+                        title=f"angle of attack {case.angle_of_attack * 1e3:g} mrad")
+    return report(run)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--aoa", type=float, default=0.025)
-    ap.add_argument("--mesh", type=float, default=3e-3)
-    ap.add_argument("--travel", type=float, default=0.06)
+    ap.add_argument("--mesh", type=float, default=None)
+    ap.add_argument("--travel", type=float, default=None)
     ap.add_argument("--onset", action="store_true")
+    ap.add_argument("--save")
+    ap.add_argument("--figure")
+    ap.add_argument("--report")
     a = ap.parse_args()
+    if a.report:
+        with open(a.report, "rb") as f:
+            report(pickle.load(f))
+        return
+    extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel)) if v is not None}
     if a.onset:
-        onsets = {aoa: one(aoa, a.mesh, a.travel).info["onset_travel"]
-                  for aoa in (0.015, 0.020, 0.025)}
+        onsets = {aoa: one(dict(angle_of_attack=aoa, **extra)) for aoa in (0.015, 0.020, 0.025)}
         print("onset [mm]:", {k: round(v * 1e3, 1) for k, v in onsets.items()})
     else:
-        one(a.aoa, a.mesh, a.travel)
+        one(dict(angle_of_attack=a.aoa, **extra), a.save, a.figure)
 
 
 if __name__ == "__main__":

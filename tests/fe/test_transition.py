@@ -119,3 +119,81 @@ def test_track_and_suspension_inputs_are_validated():
         seed004_case(0.02, traction=0.7)
     with pytest.raises(InputError, match="size"):
         seed004_case(0.02, size="huge")
+
+
+def test_tread_and_flange_nodes_that_touch_on_the_grid_are_split_by_contact_angle():
+    """On a coarse wheel-surface grid the flange-root (tread) and flange contacts are
+    neighbours: 8-connectivity merges them, the contact-angle split keeps them apart."""
+    from wheelrail.fe.transition_contact import patches, split_patches
+
+    status = np.zeros((6, 8), np.int64)
+    status[1:5, 2:6] = 1                       # one connected block of closed nodes
+    angle = np.zeros((6, 8))
+    angle[:, 2:4] = np.radians(70.0)           # flange side of the block
+    angle[:, 4:6] = np.radians(20.0)           # flange root
+    angle[0, 0] = np.radians(10.0)
+    status[0, 0] = 1                           # a separate one-node island on the tread
+    force = np.where(status > 0, 1.0, 0.0)
+    force[0, 0] = 0.1
+    _, n = patches(status)
+    assert n == 2                              # the block is one patch by connectivity
+    lab, counts = split_patches(status, angle, force)
+    assert counts == (2, 1)
+    assert np.all(lab[1:5, 2:4] == 2) and np.all(lab[1:5, 4:6] == 1)
+    assert lab[0, 0] == 3                      # the weaker tread island goes to "others"
+    assert np.all(lab[status == 0] == 0)
+
+
+@pytest.fixture(scope="module")
+def tiny_transition():
+    from wheelrail.fe.transition_model import build_transition_model
+
+    case = seed004_case(0.025, mesh_size=5e-3, travel=1.2e-3, settle=0.5e-3,
+                        flange_clearance=3e-3, output_interval=6e-6)
+    return case, build_transition_model(case)
+
+
+def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    f = tmp_path / "restart.npz"
+    a = run_transition(case, model=model, restart_file=f, restart_every=60)
+    with np.load(f) as z:
+        k = int(z["step"])
+    assert 0 < k < a.info["steps"] - 1
+    b = run_transition(case, model=model, restart=f)
+    np.testing.assert_allclose(b.patches["Fn"].values, a.patches["Fn"].values, rtol=1e-9,
+                               atol=1e-6)
+    np.testing.assert_allclose(b.u, a.u, rtol=1e-9, atol=1e-15)
+    with np.load(f) as z:
+        other = dict(z)
+    other["n_nodes"] = model.n_nodes + 1
+    np.savez(tmp_path / "other.npz", **other)
+    with pytest.raises(InputError, match="another case"):
+        run_transition(case, model=model, restart=tmp_path / "other.npz")
+
+
+def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_path, capsys):
+    import json
+
+    from wheelrail.cli.main import main
+
+    case = tmp_path / "t.toml"
+    case.write_text('[fe]\nseed004 = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
+                    'travel = 1.2e-3\nsettle = 0.5e-3\nflange_clearance = 3e-3\n'
+                    'output_interval = 6e-6\n')
+    out = tmp_path / "out"
+    assert main(["fe", str(case), "--out", str(out), "--estimate-only"]) == 0
+    text = capsys.readouterr().out
+    assert "FE transition" in text and "estimate:" in text and not out.exists()
+    assert main(["fe", str(case), "--out", str(out), "--restart-every", "60"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["mode"] == "transition" and summary["steps"] > 100
+    for f in ("patches.nc", "history.nc", "restart.npz"):
+        assert (out / f).is_file()
+    assert (out / "transition.png").stat().st_size > 10_000
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[fe]\nseed004 = "reduced"\nangle_of_attak = 0.025\n')
+    assert main(["fe", str(bad), "--out", str(out)]) != 0
+    assert "angle_of_attak" in capsys.readouterr().err

@@ -18,7 +18,13 @@ The case file holds one ``[fe]`` table; every key is a
   also overrides the R900A values;
 * ``seed000 = "table3"`` or ``"printed"`` — start from the case of Toumi et al. (2016)
   (:func:`wheelrail.fe.seed000_case`; ``wheel``/``rail`` not needed, other keys override);
-* ``mode`` — ``"roll"`` (default) or ``"indent"``.
+* ``mode`` — ``"roll"`` (default) or ``"indent"``;
+* ``seed004 = "reduced"`` or ``"full"`` — the one- to two-point contact transition of a
+  half-wheelset on a flexible track (:func:`wheelrail.fe.seed004_case`; every other key is a
+  :class:`wheelrail.fe.TransitionCase` field, e.g. ``angle_of_attack = 0.025``,
+  ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional). Writes
+  patches.nc (per-patch histories), history.nc, summary.json, transition.png, wave.png
+  (with ``wave_time`` > 0) and restart.npz.
 
 A plastic run also writes fields.nc (equivalent plastic strain, stresses, von Mises per
 element) and, with ``passes > 1``, passes.nc; restart files carry the plastic state.
@@ -149,6 +155,17 @@ def case_from_toml(path):
     mode = t.pop("mode", "roll")
     if mode not in ("roll", "indent"):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
+    seed4 = t.pop("seed004", None)
+    if seed4 is not None:
+        from ..fe import seed004_case
+
+        for key, kind in (("wheel", "wheel"), ("rail", "rail")):
+            if key in t:
+                t[key] = _profile(t[key], kind, path.parent)
+        try:
+            return seed004_case(size=seed4, **t), "transition"
+        except TypeError as exc:
+            raise CaseFileError(f"{path}: [fe] {exc}") from exc
     seed = t.pop("seed000", None)
     taper = float(t.pop("wheel_taper", 0.1))
     head = float(t.pop("rail_head_radius", 0.3))
@@ -299,6 +316,8 @@ def run(args, console) -> int:
     from ..fe import build_model, indent, solve, write_vtu
 
     case, mode = case_from_toml(args.case)
+    if mode == "transition":
+        return _run_transition(case, args, console)
     mode = args.mode or mode
     out = Path(args.out)
     _check_size(case, mode)
@@ -376,6 +395,62 @@ def run(args, console) -> int:
             scale, unit = {"p_max": (1e-6, "MPa"), "a": (1e3, "mm"), "b": (1e3, "mm")}.get(
                 k, (1.0, "N"))
             console.print(f"  {k:6s} = {summary[k] * scale:10.4g} {unit}")
+    console.print(f"written to {esc(out)}/")
+    return 0
+
+
+def _run_transition(case, args, console) -> int:
+    """``wheelrail fe`` for a transition case (``seed004`` in the [fe] table)."""
+    import json
+    from pathlib import Path
+
+    from .. import _resources
+    from ..fe import build_transition_model, run_transition
+
+    out = Path(args.out)
+    model = build_transition_model(case)
+    est = run_transition(case, model=model, estimate_only=True)
+    console.print(f"[bold]FE transition[/]: {model.n_elements} hex8 elements, {model.n_nodes} "
+                  f"nodes, mesh {case.mesh_size * 1e3:g} mm, angle of attack "
+                  f"{case.angle_of_attack * 1e3:g} mrad, travel {case.travel * 1e3:g} mm")
+    console.print(f"estimate: {est['steps']} explicit steps of {est['time_step'] * 1e9:.0f} ns, "
+                  f"about {_resources._duration(est['estimate_s'])} of CPU")
+    _resources.check(f"FE transition run of {model.n_elements} elements x {est['steps']} steps",
+                     est["estimate_s"], 400.0 * model.n_nodes + 2000.0 * model.n_elements,
+                     "measured cost per element and step")
+    if args.estimate_only:
+        return 0
+    out.mkdir(parents=True, exist_ok=True)
+    r = run_transition(case, model=model, progress=True, restart=args.restart,
+                       restart_file=out / "restart.npz",
+                       restart_every=args.restart_every or 0)
+    r.patches.to_netcdf(out / "patches.nc")
+    r.history.to_netcdf(out / "history.nc")
+    info = {k: v for k, v in r.info.items() if k not in ("fields", "wave")}
+    summary = {"mode": "transition", "n_elements": model.n_elements,
+               **{k: float(v) for k, v in info.items()}}
+    fit = None
+    if r.info.get("wave") is not None:
+        from ..fe.transition_analysis import wave_speed
+
+        try:
+            fit = wave_speed(r.info["wave"])
+            summary["wave_speed"] = fit["speed"]
+        except Exception as exc:  # noqa: BLE001 - a failed fit is reported, not fatal
+            console.print(f"wave speed: {esc(str(exc))}")
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
+    if not args.no_figures:
+        from ..fe.plots import plot_transition, plot_wave
+
+        plot_transition(r.patches, r.history, path=out / "transition.png",
+                        title=f"angle of attack {case.angle_of_attack * 1e3:g} mrad")
+        if r.info.get("wave") is not None:
+            plot_wave(r.info["wave"], fit, path=out / "wave.png")
+    onset = r.info["onset_travel"]
+    console.print(f"  onset of two-point contact: "
+                  f"{'none' if onset != onset else f'{onset * 1e3:.1f} mm'}; "
+                  f"{r.info['cpu_s']:.0f} s CPU, {r.info['ns_per_element_step']:.0f} ns per "
+                  f"element and step")
     console.print(f"written to {esc(out)}/")
     return 0
 

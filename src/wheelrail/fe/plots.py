@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 __all__ = ["plot_patch", "plot_history", "plot_patch_comparison", "plot_creep_curves", "plot_passes",
-           "plot_section", "plot_surface"]
+           "plot_section", "plot_surface", "plot_transition", "plot_wave"]
 
 
 def plot_patch(patch, mu: float, reference=None, path=None):
@@ -312,4 +312,90 @@ def plot_surface(fields, quantity="rail_von_mises", y_section=None, path=None, d
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=110)
+    return fig
+
+
+def plot_transition(patches, history=None, path=None, title=None):
+    """Per-patch histories of a one- to two-point contact transition over the travel:
+    normal, lateral and longitudinal force of the tread (patch 1) and flange (patch 2)
+    patches (in the manner of Fig. 4 of the explicit FE transition studies), the shear
+    direction θ (Fig. 7, bottom row), the adhering fraction of each patch and the contact
+    angles.
+
+    Parameters
+    ----------
+    patches : xarray.Dataset
+        ``TransitionResult.patches``.
+    history : xarray.Dataset, optional
+        ``TransitionResult.history``: the total vertical contact force is drawn beside Fz.
+    path : str or Path, optional
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    plt = _figure(path)
+    d = patches.travel.values * 1e3
+    fig, ax = plt.subplots(2, 3, figsize=(14, 7), sharex=True)
+    names = {1: "patch 1 (tread)", 2: "patch 2 (flange)"}
+    for p, nm in names.items():
+        row = patches.sel(patch=p)
+        on = row.Fn.values > 0
+        for a, key, lab in ((ax[0, 0], "Fn", "normal force"), (ax[0, 1], "F_lat", "lateral force"),
+                            (ax[0, 2], "F_long", "longitudinal force")):
+            a.plot(d[on], row[key].values[on] / 1e3, ".-", ms=3, label=nm)
+            a.set_ylabel(f"{lab} on the wheel [kN]")
+        ax[1, 0].plot(d[on], np.degrees(row.theta.values[on]), ".-", ms=3, label=nm)
+        ax[1, 1].plot(d[on], row.adhesion.values[on], ".-", ms=3, label=nm)
+        ax[1, 2].plot(d[on], np.degrees(row.contact_angle.values[on]), ".-", ms=3, label=nm)
+    if history is not None:
+        ax[0, 0].plot(history.travel.values * 1e3, history.Fz_total.values / 1e3, "k-", lw=0.8,
+                      label="Σ Fz (all patches)")
+    ax[1, 0].set_ylabel("θ: shear on the rail against −x [deg]")
+    ax[1, 1].set_ylabel("adhering fraction of the area")
+    ax[1, 2].set_ylabel("contact angle [deg]")
+    for a in ax.ravel():
+        a.grid(alpha=0.3)
+        a.legend(fontsize=8)
+    for a in ax[1]:
+        a.set_xlabel("travel [mm]")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=120)
+    return fig
+
+
+def plot_wave(wave, fit=None, path=None):
+    """Space–time map of the rail surface's vertical velocity along the line through the
+    start contact, with the fitted arrival line (surface wave speed).
+
+    Parameters
+    ----------
+    wave : dict
+        ``TransitionResult.info["wave"]``.
+    fit : dict, optional
+        :func:`wheelrail.fe.transition_analysis.wave_speed` of it.
+    path : str or Path, optional
+    """
+    plt = _figure(path)
+    fig, ax = plt.subplots(figsize=(7, 5))
+    vz = np.asarray(wave["vz"])
+    lim = np.percentile(np.abs(vz), 99.5) or 1.0
+    ax.pcolormesh(wave["x"] * 1e3, wave["t"] * 1e6, vz, cmap="RdBu_r", vmin=-lim, vmax=lim,
+                  shading="nearest")
+    if fit is not None:
+        ax.plot(fit["d"] * 1e3, fit["t_arrival"] * 1e6, "k.", ms=4, label="arrival of max |v_z|")
+        tt = np.linspace(0, wave["t"][-1], 10)
+        ax.plot(fit["speed"] * tt * 1e3, tt * 1e6, "k--", lw=0.8,
+                label=f"{fit['speed'] / 1e3:.2f} km/s")
+        ax.legend()
+    ax.set_xlabel("distance along the rail from the start contact [mm]")
+    ax.set_ylabel("time [µs]")
+    ax.set_title("rail surface vertical velocity")
+    fig.tight_layout()
+    if path is not None:
+        fig.savefig(path, dpi=120)
     return fig

@@ -37,6 +37,7 @@ from ..profiles import load as load_profile
 from . import _kernels as K
 from . import _solid as S
 from ._explicit import NCHUNK, advance
+from .transition_analysis import onset_travel
 from .transition_contact import (
     build_buckets,
     nodal_normals_quads,
@@ -44,6 +45,7 @@ from .transition_contact import (
     patch_summary,
     patches,
     scatter_master,
+    split_patches,
 )
 from .transition_mesh import (
     extrude_section,
@@ -83,9 +85,9 @@ class TransitionResult:
     Attributes
     ----------
     patches : xarray.Dataset
-        Per-patch histories, dims (``time``, ``patch``), patches ordered by their position
-        across the wheel profile (flange side first; the numbering of a patch can change
-        when another appears). Variables: :data:`PATCH_FIELDS` plus ``travel``.
+        Per-patch histories, dims (``time``, ``patch``): patch 1 the tread patch, 2 the
+        flange patch (split by the contact angle, ``case.patch_split_angle``), 3 any other
+        closed nodes (small islands). Variables: :data:`PATCH_FIELDS` plus ``travel``.
     history : xarray.Dataset
         Axle and suspension histories over ``time``.
     model : TransitionModel
@@ -183,15 +185,20 @@ def _static_approach(case, pose, load, model):
     B = 0.5 * (kw - kr)
     fn = load / np.cos(pose["tread_angle_rigid"])
     if not B > 1e-9:
-        return 1e-4
+        return 1e-4, 5e-3
     hz = hertz(fn, A, B, Material(mat.E, mat.nu))
     p_mean = fn / (np.pi * float(hz.a) * float(hz.b))
-    return float(hz.penetration) * np.cos(pose["tread_angle_rigid"]) + \
-        p_mean / float(np.median(model.kn))
+    return (float(hz.penetration) * np.cos(pose["tread_angle_rigid"])
+            + p_mean / float(np.median(model.kn)), float(np.sqrt(hz.a * hz.b)))
+
+
+_STATE = ("u", "v", "ft", "w", "vw", "zs", "vs", "omega", "omega_mean", "psi", "s", "t",
+          "fade", "xs_prev", "xm_prev")
 
 
 def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
-                   estimate_only: bool = False, field_every: int = 0):
+                   estimate_only: bool = False, field_every: int = 0, restart=None,
+                   restart_file=None, restart_every: int = 0):
     """Roll the half-wheelset of ``case`` into two-point contact (explicit FE).
 
     Parameters
@@ -206,6 +213,12 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     field_every : int
         If > 0, store the rail surface nodes' velocities every ``field_every`` outputs
         (for the wave-speed analysis) in ``info["fields"]``.
+    restart : path, optional
+        Continue from this restart file (written by an earlier run of the same case).
+    restart_file : path, optional
+        Write the state here every ``restart_every`` steps (overwritten each time).
+    restart_every : int
+        Steps between restart files (0: a tenth of the steps when ``restart_file`` is given).
 
     Returns
     -------
@@ -242,7 +255,13 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     sag = float(np.min(u[k_master, 2]))
     # start at 60 % of the Hertz approach: a coarse mesh cannot resolve the narrow flange-root
     # patch and is stiffer at the same overlap; the axle dashpot absorbs the rest
-    delta = 0.6 * _static_approach(case, pose, load, m)
+    delta, a_hz = _static_approach(case, pose, load, m)
+    delta *= 0.6
+    # tangential stiffness of the tread patch (circular, Johnson 1985 §7.2: δ = Q(2-ν)/(8Ga))
+    G = case.material.E / (2 * (1 + case.material.nu))
+    k_t = 8.0 * G * a_hz / (2.0 - case.material.nu)
+    # start creepage for the traction (Kalker's linear theory, C11 ≈ 4.2 at ν = 0.3, a ≈ b)
+    xi0 = case.traction * load / (G * np.pi * a_hz ** 2 * 4.2)
     c0 = np.array([0.0, pose["y0"], case.radius + pose["z0"] + sag - delta])
     v = np.zeros((n, 3))
     acc = np.zeros((n, 3))
@@ -279,8 +298,20 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     vw = 0.0
     zs = -(susp.sprung_mass * GRAVITY) / susp.stiffness   # suspension deflection, static
     vs = 0.0
-    omega = V / r0
+    omega = V / r0 * (1.0 + xi0)
+    omega_mean = omega
     psi = 0.0
+    # rolling dof against the patch's tangential stiffness: ω_n = r0 sqrt(k_t / J); a
+    # dashpot on ω − ω̄ (ω̄ low-passed over a few periods, so the mean creepage is free),
+    # critical, fading over `settle` like the axle dashpot
+    w_rot = r0 * np.sqrt(k_t / J)
+    c_rot0 = 2.0 * J * w_rot
+    tau_rot = 4.0 / w_rot
+    # mass-proportional damping of the start transient, fading over `settle`
+    alpha_m = case.settle_damping
+    fade = 1.0 if case.settle > 0 else 0.0
+    m_alpha[:] = alpha_m * fade * m.mass
+    m_alpha[m.fixed] = 0.0
     s = 0.0
     t = 0.0
     # Hertz-type axle dashpot over the settle distance: critical on k ≈ 1.5 Q / δ, δ ≈ 0.1 mm
@@ -296,10 +327,42 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     rows, hist, fields = [], [], []
     rim_shape = m.meta["rim_shape"]
     band_i = m.meta["band_i"]
+    surf_rail = k_master
+    # the rail's surface line (along x) through the start contact, for the wave analysis
+    xref = m.nodes[k_master]
+    near = np.abs(xref[:, 0]) < 2 * case.mesh_size
+    top = np.flatnonzero(near)[np.argmin(np.abs(xref[near, 1] - pose["rail_y_tread"])
+                                         + 10 * np.abs(xref[near, 2] - xref[near, 2].max()))]
+    line = k_master[(np.abs(xref[:, 1] - xref[top, 1]) < 1e-7)
+                    & (np.abs(xref[:, 2] - xref[top, 2]) < 1e-7)]
+    line = line[np.argsort(m.nodes[line, 0])]
+    n_wave = int(case.wave_time / dt) if case.wave_time > 0 else 0
+    wave_v = np.zeros((n_wave, line.size))
     t_cpu = time.process_time()
     t_wall = time.perf_counter()
-    surf_rail = k_master
-    for k in range(n_steps):
+    k0 = 0
+    if restart is not None:
+        with np.load(restart, allow_pickle=False) as z:
+            if int(z["n_nodes"]) != n or int(z["steps"]) != n_steps:
+                raise InputError(f"restart file {restart!s} belongs to another case "
+                                 f"({int(z['n_nodes'])} nodes, {int(z['steps'])} steps; this "
+                                 f"case {n} nodes, {n_steps} steps)")
+            st = {k2: z[k2] for k2 in _STATE}
+            k0 = int(z["step"]) + 1
+            rows = [r for r in z["rows"]]
+            hist = [h for h in z["hist"]]
+        u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
+        w, vw, zs, vs = (float(st[k2]) for k2 in ("w", "vw", "zs", "vs"))
+        omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
+                                              ("omega", "omega_mean", "psi", "s", "t", "fade"))
+        xs_prev, xm_prev = st["xs_prev"], st["xm_prev"]
+        m_alpha[:] = alpha_m * fade * m.mass
+        m_alpha[m.fixed] = 0.0
+        if progress:
+            print(f"  continued from {restart!s} at step {k0}", flush=True)
+    if restart_file is not None and restart_every <= 0:
+        restart_every = max(1, n_steps // 10)
+    for k in range(k0, n_steps):
         R = _rot(alpha, psi)
         c = c0 + s * heading + np.array([0.0, 0.0, w])
         # ---- element forces (both materials)
@@ -341,21 +404,31 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         M_c = float(np.sum(np.cross(arm, out["fs"]) @ e_axle))
         # primary suspension: zs its extension from free length (static: −M_s g / k)
         f_sprung = -susp.stiffness * zs - susp.damping * (vs - vw)     # on the sprung mass
-        c_axle = c_axle0 * max(0.0, 1.0 - s / case.settle) if case.settle > 0 else 0.0
+        fade_now = max(0.0, 1.0 - s / case.settle) if case.settle > 0 else 0.0
+        c_axle = c_axle0 * fade_now
         aw = (Fc[2] - f_sprung - M_axle * GRAVITY - c_axle * vw) / M_axle
         a_s = (f_sprung - susp.sprung_mass * GRAVITY) / susp.sprung_mass
         vw += dt * aw
         vs += dt * a_s
         w += dt * vw
         zs += dt * (vs - vw)
-        omega += dt * (torque + M_c) / J
+        omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
+        omega_mean += dt * (omega - omega_mean) / tau_rot
         psi += dt * omega
+        if fade > 0.0 and fade_now < fade - 0.02:
+            fade = fade_now
+            m_alpha[:] = alpha_m * fade * m.mass
+            m_alpha[m.fixed] = 0.0
         s += dt * V
         t += dt
+        if k < n_wave:
+            wave_v[k] = v[line, 2]
         if k % every == 0 or k == n_steps - 1:
-            grid = np.zeros((band_i.size, rim_shape[1]), np.int64)
-            grid[:] = status.reshape(band_i.size, rim_shape[1])
-            lab, npatch = patches(grid)
+            shape2 = (band_i.size, rim_shape[1])
+            ang = np.arccos(np.minimum(1.0, np.abs(out["normal"][:, 2])))
+            lab, counts = split_patches(status.reshape(shape2), ang.reshape(shape2),
+                                        out["pn"].reshape(shape2), case.patch_split_angle)
+            npatch = int(min(counts[0], 1) + min(counts[1], 1))
             lab = lab.ravel()
             row = []
             for p in range(1, MAX_PATCHES + 1):
@@ -369,8 +442,14 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             if field_every and (len(rows) - 1) % field_every == 0:
                 fields.append(v[surf_rail].copy())
             if progress and len(rows) % 20 == 1:
-                print(f"  t = {t * 1e3:7.3f} ms  s = {s * 1e3:6.1f} mm  patches {npatch}  "
-                      f"Fz = {Fc[2] / 1e3:7.2f} kN", flush=True)
+                done = (k + 1 - k0) / max(1, n_steps - k0)
+                el = time.perf_counter() - t_wall
+                print(f"  {100 * (k + 1) / n_steps:5.1f} %  t = {t * 1e3:7.3f} ms  "
+                      f"s = {s * 1e3:6.1f} mm  patches {npatch}  Fz = {Fc[2] / 1e3:7.2f} kN  "
+                      f"elapsed {el:6.0f} s, left ~{el * (1 - done) / max(done, 1e-9):6.0f} s",
+                      flush=True)
+        if restart_file is not None and (k + 1) % restart_every == 0 and k + 1 < n_steps:
+            _write_restart(restart_file, n, n_steps, k, rows, hist, locals())
     cpu = time.process_time() - t_cpu
     wall = time.perf_counter() - t_wall
     rows = np.array(rows, float)                 # (nt, patch, field)
@@ -393,17 +472,26 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             "wall_ns_per_element_step": wall / (n_steps * m.n_elements) * 1e9,
             "elements": m.n_elements, "load": load, "torque": torque, "J": J,
             "static_sag": sag, "fields": np.array(fields) if fields else None,
-            "onset_travel": _onset(ds)}
+            "onset_travel": _onset(ds),
+            "wave": ({"x": m.nodes[line, 0] - c0[0], "t": dt * np.arange(1, n_wave + 1),
+                      "vz": wave_v} if n_wave else None)}
     return TransitionResult(ds, hds, m, u, info)
 
 
-def _onset(ds, min_force=100.0):
-    """Travel [m] at which a second patch carrying > ``min_force`` first appears (NaN if
-    never)."""
-    fn = ds["Fn"].values
-    two = np.sum(fn > min_force, axis=1) >= 2
-    k = np.flatnonzero(two)
-    return float(ds["travel"].values[k[0]]) if k.size else float("nan")
+def _write_restart(path, n, n_steps, k, rows, hist, scope):
+    """State of the loop after step ``k`` (atomically: a temporary file renamed)."""
+    import os
+
+    tmp = str(path) + ".tmp.npz"
+    np.savez(tmp, n_nodes=n, steps=n_steps, step=k, rows=np.array(rows, float),
+             hist=np.array(hist, float), **{k2: np.asarray(scope[k2]) for k2 in _STATE})
+    os.replace(tmp, path)
+
+
+def _onset(ds, min_force=1000.0):
+    """Travel [m] at which the flange patch first carries > ``min_force`` [N] for three
+    consecutive outputs (NaN if never)."""
+    return onset_travel(ds, min_force)
 
 
 def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> TransitionCase:
@@ -416,9 +504,13 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
     angle_of_attack : float
         Angle of attack [rad] (0.015, 0.020 and 0.025 are the studied values).
     size : {"reduced", "full"}
-        ``"reduced"``: 2 sleepers, 2 mm elements, 0.1 m of travel from 1 mm of flange
-        clearance (minutes on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution
-        zone, 0.67 m travel and a longer track (hours; not yet run).
+        ``"reduced"``: 2 sleepers, 4 mm elements, 3 mm of flange clearance (the start
+        contact on the tread at 6.7°, rigid), a travel of 30 mm + clearance / α (the flange
+        patch appears ≈ 10 mm before its end at 25 mrad), traction 0.3 (the driving torque:
+        half of μ; with less, the spin of the flange-root contact turns the tread shear
+        sideways well before the flange touches), 30 mm of damped settling (5–10 min CPU
+        on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution zone, 0.67 m travel
+        and a longer track (hours; not yet run).
     **changes
         Any :class:`TransitionCase` field.
     """
@@ -426,12 +518,17 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
                 inclination=float(np.arctan(1 / 40)), angle_of_attack=float(angle_of_attack),
                 speed=80 / 3.6, mu=0.6)
     if size == "reduced":
-        base.update(mesh_size=2.5e-3, travel=0.09, flange_clearance=1.0e-3, settle=0.02,
+        clearance = float(changes.get("flange_clearance", 3e-3))
+        a = abs(float(angle_of_attack))
+        base.update(mesh_size=4e-3, flange_clearance=3e-3, traction=0.3, settle=0.03,
+                    travel=0.03 + clearance / a if a > 5e-3 else 0.1,
                     track=TrackStructure(n_sleepers=2, overhang=0.25),
                     suspension=Suspension())
     elif size == "full":
-        base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25,
-                    section_h_max=6e-3, track=TrackStructure(n_sleepers=5), suspension=Suspension())
+        base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25, traction=0.3,
+                    section_h_max=6e-3, x_h_max=0.012, theta_h_max=0.012,
+                    track=TrackStructure(n_sleepers=5),
+                    suspension=Suspension())
     else:
         raise InputError(f"size must be 'reduced' or 'full', got {size!r}")
     base.update(changes)

@@ -34,7 +34,12 @@ from numba import njit, prange
 from ._kernels import _bilinear_tangents, coulomb_update
 
 __all__ = ["BucketGrid", "build_buckets", "nodal_normals_quads", "node_to_segment", "patches",
-           "patch_summary"]
+           "split_patches", "patch_summary", "SPLIT_ANGLE"]
+
+#: Contact angle [rad] separating tread (below) from flange (above) contact nodes: the
+#: rigid contact of S1002 on 54E1 jumps from < 30° on the flange root to ≈ 70° on the
+#: flange, so any angle in between separates the two patches.
+SPLIT_ANGLE = float(np.radians(45.0))
 
 
 class BucketGrid:
@@ -299,6 +304,52 @@ def patches(status_grid: np.ndarray):
     remap = np.zeros(n + 1, np.int64)
     remap[order + 1] = np.arange(1, n + 1)
     return remap[lab], n
+
+
+def split_patches(status_grid: np.ndarray, angle_grid: np.ndarray, weight_grid: np.ndarray,
+                  split: float = SPLIT_ANGLE):
+    """Tread and flange patches by contact angle, robust on coarse meshes.
+
+    On a coarse surface grid the tread contact at the flange root and the flange contact
+    are neighbours and merge into one connected set; splitting the closed nodes by their
+    contact angle first (the master normal at the projection against the vertical) keeps
+    them apart.
+
+    Parameters
+    ----------
+    status_grid : (n_a, n_s) int
+        Contact status of the wheel-surface grid (> 0 closed).
+    angle_grid : (n_a, n_s) float
+        Contact angle of each node [rad].
+    weight_grid : (n_a, n_s) float
+        Normal nodal force [N] (ranks the components of a class).
+    split : float
+        Contact angle [rad] between the classes.
+
+    Returns
+    -------
+    labels : ndarray of int (n_a, n_s)
+        0 open; 1 the tread patch (the connected set below ``split`` carrying the largest
+        normal force); 2 the flange patch (likewise above ``split``); 3 every other closed
+        node (small separate islands).
+    counts : tuple of int
+        Number of connected sets below and above ``split``.
+    """
+    from scipy import ndimage
+
+    closed = status_grid > 0
+    out = np.zeros(status_grid.shape, np.int64)
+    counts = []
+    for cls, sel in ((1, closed & (angle_grid < split)), (2, closed & (angle_grid >= split))):
+        lab, n = ndimage.label(sel, structure=np.ones((3, 3)))
+        counts.append(int(n))
+        if n == 0:
+            continue
+        f = ndimage.sum(weight_grid, lab, index=np.arange(1, n + 1))
+        best = int(np.argmax(f)) + 1
+        out[lab == best] = cls
+        out[(lab > 0) & (lab != best)] = 3
+    return out, tuple(counts)
 
 
 #: Fraction of the patch's largest tangential nodal force below which μ p − |q| counts as

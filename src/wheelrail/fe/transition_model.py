@@ -105,6 +105,15 @@ class TransitionCase:
         the added mass is reported in the model's ``meta["added_mass"]``).
     output_interval : float
         Time between outputs [s].
+    settle_damping : float
+        Mass-proportional damping α [1/s] of all nodes at the start, fading linearly to 0
+        over ``settle`` (dissipates the start transient, as the structural damping of the
+        explicit studies does; 0 switches it off).
+    patch_split_angle : float
+        Contact angle [rad] separating the tread patch from the flange patch.
+    wave_time : float
+        Duration [s] from the start over which the vertical velocity of the rail's surface
+        line through the start contact is stored every step (wave-speed analysis).
     """
 
     wheel: Profile
@@ -131,12 +140,19 @@ class TransitionCase:
     courant: float = 0.9
     min_element_fraction: float = 0.5
     output_interval: float = 30e-6
+    settle_damping: float = 1000.0
+    patch_split_angle: float = float(np.radians(45.0))
+    wave_time: float = 0.0
 
     def __post_init__(self):
         for name in ("radius", "speed", "mu", "travel", "mesh_size", "section_h_max",
                      "x_h_max", "theta_h_max", "penalty", "output_interval"):
             object.__setattr__(self, name, float(positive(name, getattr(self, name))))
-        for name in ("flange_clearance", "settle", "contact_damping", "traction"):
+        object.__setattr__(self, "patch_split_angle",
+                           float(in_range("patch_split_angle", self.patch_split_angle,
+                                          np.radians(30.0), np.radians(60.0))))
+        for name in ("flange_clearance", "settle", "contact_damping", "traction",
+                     "settle_damping", "wave_time"):
             object.__setattr__(self, name, float(non_negative(name, getattr(self, name))))
         object.__setattr__(self, "angle_of_attack",
                            float(in_range("angle_of_attack", self.angle_of_attack, -0.1, 0.1)))

@@ -1,0 +1,108 @@
+"""Analyses of a one- to two-point contact transition run (waves, onset, equilibrium).
+
+:func:`wave_speed` measures the speed of the surface wave that the start of the contact
+(a step load on the rail surface) sends along the rail head: the arrival time of the
+largest vertical velocity at each node of the rail's surface line through the contact is
+fitted against its distance. For a step point load on an elastic half-space the surface
+response is dominated by the Rayleigh pulse (Lamb's problem), so the fitted speed should be
+the Rayleigh wave speed of steel, c_R ≈ 0.927 c_s ≈ 2.97 km/s for E = 210 GPa, ν = 0.3,
+ρ = 7850 kg/m³ (Viktorov's approximation c_R/c_s = (0.862 + 1.14 ν)/(1 + ν)).
+
+References
+----------
+.. [1] K.F. Graff, *Wave Motion in Elastic Solids*, Dover 1991, §6.4 (Lamb's problem,
+   Rayleigh pulse), §6.3 eq. (6.3.21) (Rayleigh wave speed).
+.. [2] I.A. Viktorov, *Rayleigh and Lamb Waves*, Plenum 1967, ch. 1 (c_R/c_s).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel"]
+
+
+def rayleigh_speed(E: float, nu: float, rho: float) -> float:
+    """Rayleigh wave speed [m/s] (Viktorov's approximation, within 0.5 % for 0 ≤ ν ≤ 0.5)."""
+    cs = np.sqrt(E / (2.0 * (1.0 + nu)) / rho)
+    return float(cs * (0.862 + 1.14 * nu) / (1.0 + nu))
+
+
+def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.1,
+               side: str = "ahead") -> dict:
+    """Surface wave speed [m/s] from the rail surface velocities of a run.
+
+    Parameters
+    ----------
+    wave : dict
+        ``info["wave"]`` of :func:`~wheelrail.fe.transition.run_transition` (``x`` (n,)
+        node distances along the rail from the start contact [m], ``t`` (nt,) times [s],
+        ``vz`` (nt, n) vertical velocities [m/s]); needs ``wave_time`` > 0 in the case.
+    d_min, d_max : float
+        Distances [m] used in the fit (beyond the contact patch, inside the recorded time).
+    side : {"both", "ahead", "behind"}
+
+    Returns
+    -------
+    dict
+        ``speed`` [m/s] (inverse of the least-squares slope of the arrival time against the
+        distance), ``d`` and ``t_arrival`` of the fitted nodes, ``t0`` the intercept [s],
+        ``residual`` (rms of the fit [s]).
+    """
+    if wave is None:
+        raise InputError("no wave record: run the case with wave_time > 0")
+    x = np.asarray(wave["x"])
+    t = np.asarray(wave["t"])
+    vz = np.asarray(wave["vz"])
+    sel = (np.abs(x) >= d_min) & (np.abs(x) <= d_max)
+    if side == "ahead":
+        sel &= x > 0
+    elif side == "behind":
+        sel &= x < 0
+    elif side != "both":
+        raise InputError(f"side must be 'both', 'ahead' or 'behind', got {side!r}")
+    if sel.sum() < 3:
+        raise InputError(f"fewer than 3 surface nodes between {d_min} and {d_max} m")
+    d = np.abs(x[sel])
+    ta = t[np.argmax(np.abs(vz[:, sel]), axis=0)]
+    # the largest velocity must arrive before the end of the record
+    ok = ta < t[-1] - 2 * (t[1] - t[0])
+    if ok.sum() < 3:
+        raise InputError("the wave has not passed the fitted nodes within the record")
+    # arrival time against distance (the distances are exact, the picked times noisy)
+    A = np.stack([d[ok], np.ones(ok.sum())], axis=1)
+    coef, *_ = np.linalg.lstsq(A, ta[ok], rcond=None)
+    res = ta[ok] - A @ coef
+    if not coef[0] > 0:
+        raise InputError("the picked arrival times do not increase with distance")
+    return {"speed": float(1.0 / coef[0]), "d": d[ok], "t_arrival": ta[ok],
+            "t0": float(coef[1]), "residual": float(np.sqrt(np.mean(res ** 2)))}
+
+
+def settled_vertical_balance(result, s_from: float, s_to: float) -> dict:
+    """Mean vertical contact force against the wheel load over a travel window [m].
+
+    Returns ``{"Fz": mean Σ Fz [N], "std": its standard deviation, "load": Q [N],
+    "error": Fz / Q − 1}``.
+    """
+    h = result.history
+    s = h["travel"].values
+    sel = (s >= s_from) & (s <= s_to)
+    if not np.any(sel):
+        raise InputError(f"no outputs between {s_from} and {s_to} m of travel")
+    fz = h["Fz_total"].values[sel]
+    q = result.info["load"]
+    return {"Fz": float(fz.mean()), "std": float(fz.std()), "load": float(q),
+            "error": float(fz.mean() / q - 1.0)}
+
+
+def onset_travel(patches, min_force: float = 1000.0, persist: int = 3) -> float:
+    """Travel [m] at which the flange patch (patch 2) first carries more than ``min_force``
+    [N] for ``persist`` consecutive outputs (NaN if never)."""
+    fn = patches["Fn"].sel(patch=2).values
+    on = fn > min_force
+    run = np.convolve(on.astype(int), np.ones(persist, int), mode="valid") == persist
+    k = np.flatnonzero(run)
+    return float(patches["travel"].values[k[0]]) if k.size else float("nan")
