@@ -84,10 +84,13 @@ import json
 import math
 from functools import lru_cache
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import InputError
+from ..hertzian import hertz_from_semiaxes
+from ..materials import Material
 from ..options import configured, option
 from ..plausibility import check_friction
 from ..results import CreepForcesResult, Status
@@ -103,6 +106,7 @@ __all__ = [
     "TableData",
     "full_slip",
     "load_table",
+    "random_cases",
     "table_coordinates",
 ]
 
@@ -370,6 +374,73 @@ def table_coordinates(a, b, G, nu, xi, eta, phi, mu, Fn):
                        np.log(ab), nu], axis=-1)
     alpha = np.arctan2(np.sin(theta) / C22, np.cos(theta) / C11)
     return coords, sx, sy, ph, alpha
+
+
+class TableCase(NamedTuple):
+    """One random contact of :func:`random_cases`."""
+
+    contact: object        #: :class:`~wheelrail.hertzian.HertzContact`
+    creepage: tuple        #: (ξ, η, φ) [-, -, 1/m]
+    mu: float              #: friction coefficient
+    Fn: float              #: normal force [N]
+    c: float               #: √(ab) [m]
+    ab: float              #: a/b
+    nu: float              #: Poisson's ratio
+    rho_hat: float         #: scaled creepage ρ̂ (module docstring)
+    theta: float           #: its direction [rad], any quadrant
+    phi_hat: float         #: scaled spin φ̂
+
+
+def random_cases(n, seed=2026, *, s_max=0.95, size=4e-3, E=2.1e11) -> list:
+    """Random contacts and creepages spread over the table's whole domain.
+
+    The points on which the table law is measured against the exact theory (benchmark
+    ``bench_contact_table_law.py``, ``tests/reference/test_table_law.py``, the validation
+    row ``table-law``): a/b log-uniform in [0.05, 20], ν uniform in [0.25, 0.30], Fn in
+    2–20 kN, μ in 0.1–0.5, ρ̂ = U(0, 3)² in any direction θ ∈ (−π, π), and the spin
+    φ̂ = s/(1 − |s|) with s uniform in (−``s_max``, ``s_max``) (|φ̂| up to 19 for 0.95).
+
+    Parameters
+    ----------
+    n : int
+        Number of cases.
+    seed : int
+        Seed of :func:`numpy.random.default_rng`.
+    s_max : float
+        Largest |s|.
+    size, E : float
+        √(ab) of the Hertz ellipse [m] and Young's modulus [Pa] (by similarity they do
+        not change the scaled forces).
+
+    Returns
+    -------
+    list of TableCase
+        Contact, creepages (ξ, η, φ) and the table coordinates of each case.
+    """
+    rng = np.random.default_rng(seed)
+    ab = np.exp(rng.uniform(np.log(0.05), np.log(20.0), n))
+    nu = rng.uniform(0.25, 0.30, n)
+    load = rng.uniform(2e3, 2e4, n)
+    mu = rng.uniform(0.1, 0.5, n)
+    rho = rng.uniform(0.0, 3.0, n) ** 2
+    th = rng.uniform(-np.pi, np.pi, n)
+    s = rng.uniform(-s_max, s_max, n)
+    ph = s / (1.0 - np.abs(s))
+    out = []
+    for i in range(n):
+        m = Material(E, float(nu[i]))
+        cont = hertz_from_semiaxes(size * math.sqrt(ab[i]), size / math.sqrt(ab[i]),
+                                   float(load[i]), m)
+        c = float(math.sqrt(cont.a * cont.b))
+        C11, C22, C23 = (float(v) for v in _coefficients(ab[i], nu[i]))
+        unit = 3.0 * mu[i] * load[i] / m.G
+        ell = float(_spin_length(c, cont.b, C11, C23))
+        creep = (float(rho[i] * np.cos(th[i]) * unit / (c**2 * C11)),
+                 float((rho[i] * np.sin(th[i]) - ph[i] * c * C23 / ell) * unit / (c**2 * C22)),
+                 float(ph[i] * unit / (c**2 * ell)))
+        out.append(TableCase(cont, creep, float(mu[i]), float(load[i]), c, float(ab[i]),
+                             float(nu[i]), float(rho[i]), float(th[i]), float(ph[i])))
+    return out
 
 
 def _table_path(name, v):
