@@ -10,27 +10,27 @@ line is ``wheelrail build-table``.
 Grid convergence (table version 2)
 ----------------------------------
 The exact solver converges slowly with its element count N (first order,
-observed p ≈ 1.0–1.1, with a large constant where spin and creepage combine
-and for elongated patches: with 36 elements a patch with a/b = 20 is still up
-to ≈ 4 % of μFn from its limit, a spin-dominated one with a/b = 1.6 ≈ 2.5 %).
-The table is therefore built from grid-extrapolated values. With
-``elements = (N₁, N₂, N₃)``:
+with a large constant where spin and creepage combine and for elongated
+patches: with 36 elements a patch with a/b = 20 is still up to ≈ 4 % of μFn
+from its limit, a spin-dominated one with a/b = 1.6 ≈ 2.5 %). The table is
+therefore the grid limit of the exact theory. With ``elements = (N₁, N₂, N₃)``:
 
-* every node (r, θ, s, a/b) is computed with N₁ at the first Poisson's ratio
-  of the grid, and with N₂ at every ν;
-* a sub-grid (every ``fine_every``-th node along r, θ, s and a/b, every ν) is
-  also computed with N₃;
-* the observed order p is fitted from the three resolutions on the sub-grid
-  (f₂ − f₁)/(f₃ − f₂) = (N₁⁻ᵖ − N₂⁻ᵖ)/(N₂⁻ᵖ − N₃⁻ᵖ) (:func:`observed_order`;
-  per a/b node where at least 50 values resolve it, else pooled);
-* every node is Richardson-extrapolated from N₁ and N₂,
-  f∞ = f₂ + (f₂ − f₁)/((N₂/N₁)ᵖ − 1), the grid error f₂ − f₁ of the first ν
-  standing for the other ν's (the effect of ν on the discretisation error is
-  below the solver's jitter).
+* every node (r, θ, s, a/b) is computed with N₂ at the first Poisson's ratio;
+* on the sub-grid of every ``extrapolation_stride``-th node along r, θ and s
+  (every a/b) all resolutions are computed at the first ν and the grid limit
+  is the least-squares fit f∞ + C N⁻ᵖ (:func:`grid_limit`, p = :data:`ORDER`
+  = 1, the solver's observed order at high resolution); its step f∞ − f_N₂ is
+  interpolated (Catmull–Rom cubics) onto every node and added;
+* the other Poisson's ratios: N₂ on the sub-grid of stride ``nu_stride``, the
+  difference to the first ν interpolated the same way (the effect of ν on the
+  discretisation error is below the solver's jitter).
 
-Every stage is its own Zarr sweep store under the work directory, so an
-interrupted build resumes where it stopped (``wheelrail build-table`` again
-with the same arguments); Dask ``LocalCluster`` workers with ``workers > 1``.
+Every resolution is computed by resumable :func:`wheelrail.sweep` runs into
+Zarr stores under the work directory; a node already in a store at that
+resolution (of this grid, or of another grid sharing the node, e.g. every other
+node of a refined axis) is reused, so an interrupted or
+refined build computes only what is missing. Dask ``LocalCluster`` workers with
+``workers > 1``.
 
 References
 ----------
