@@ -8,7 +8,7 @@ HELP = "build the creep-force table of method 'table' with the exact solver (res
 
 
 def add_arguments(p) -> None:
-    from ..sweeps.tables import ELEMENTS, ORDER
+    from ..sweeps.tables import ELEMENTS, EXTRAPOLATION_STRIDE, ORDER
     from ..tangential.table import DEFAULT_TABLE
 
     p.add_argument("--out", default=str(DEFAULT_TABLE), metavar="TABLE.npz",
@@ -20,6 +20,9 @@ def add_arguments(p) -> None:
                         f"{' '.join(map(str, ELEMENTS))})")
     p.add_argument("--order", type=float, default=ORDER, metavar="P",
                    help=f"convergence order of the grid-limit fit (default {ORDER:g})")
+    p.add_argument("--extrapolation-stride", type=int, default=EXTRAPOLATION_STRIDE, metavar="K",
+                   help="stride along r, theta, s of the sub-grid of the grid-limit fit (1: every "
+                        f"node; default {EXTRAPOLATION_STRIDE})")
     p.add_argument("--workers", type=int, default=2, metavar="N", help="local workers (default 2)")
     p.add_argument("--executor", choices=("serial", "processes", "dask"),
                    help="executor of the sweeps (default: serial for 1 worker, else dask)")
@@ -34,6 +37,7 @@ def run(args, console) -> int:
     from ..sweeps.tables import build_table
 
     path = build_table(args.out, elements=tuple(args.elements), order=args.order,
+                       extrapolation_stride=args.extrapolation_stride,
                        workers=args.workers, executor=args.executor, work=args.work,
                        keep_work=args.keep_work)
     console.print(f"wrote [bold]{esc(path)}[/bold]")

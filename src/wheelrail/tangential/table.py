@@ -47,15 +47,15 @@ reversed creepage gives them exactly (F is odd in (ξ, η, φ) together).
 Accuracy
 --------
 See ``benchmarks/bench_contact_table_law.py`` and docs/sweeps.md: random points
-over the whole domain (a/b 0.05–20, |φ̂| up to 19) against the exact theory
-extrapolated in the grid (24/36/54 elements). The shipped table (version 2) is
-a coarse grid (11 × 5 × 11 × 9 × 2 nodes) built from 16- and 24-element
-solutions extrapolated with the observed order: on 60 random points max
-|ΔF_t| = 5.6 % of μFn, rms 0.87 %, max |ΔMz| = 1.6 % of μFn c (load 13.6); the goal
-of 1 % needs a finer grid (docs/sweeps.md).
+over the whole domain (:func:`random_cases`: a/b 0.05–20, |φ̂| up to 19) against
+the exact theory's grid limit (least-squares f∞ + C/N to 36–122 elements,
+uncertainty ≤ 0.16 % of μFn). The shipped table (21 × 9 × 21 × 9 × 2 nodes,
+24-element values plus the grid-limit step fitted to 16/24/36 elements on every
+other node): on 60 points max |ΔF_t| = 1.41 % of μFn, rms 0.33 %, max |ΔMz| =
+0.76 % of μFn c; 58 of the 60 points within 1 %.
 
-Speed: one call of :meth:`Table.solve` takes about 0.08 ms (the exact solver
-with 40 elements: 17–27 ms), see the benchmark.
+Speed: one call of :meth:`Table.solve` takes about 0.04 ms (the exact solver
+with 40 elements: 16–21 ms), see the benchmark.
 
 Outside the domain (a/b outside [0.05, 20], ν outside [0.25, 0.30], or
 dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
