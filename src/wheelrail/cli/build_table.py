@@ -8,25 +8,27 @@ HELP = "build the creep-force table of method 'table' with the exact solver (res
 
 
 def add_arguments(p) -> None:
-    from ..sweeps.tables import ELEMENTS
+    from ..sweeps.tables import ELEMENTS, EXTRAPOLATION_STRIDE, ORDER
     from ..tangential.table import DEFAULT_TABLE
 
     p.add_argument("--out", default=str(DEFAULT_TABLE), metavar="TABLE.npz",
                    help="output table (default: the shipped file)")
     p.add_argument("--elements", type=int, nargs="+", default=list(ELEMENTS), metavar="N",
-                   help="exact-solver elements across the contact: N1 (every node, first nu), "
-                        "N2 (every node) and N3 (sub-grid, for the observed order) of the grid "
-                        f"extrapolation, or one value for none (default {' '.join(map(str, ELEMENTS))})")
-    p.add_argument("--fine-every", type=int, default=2, metavar="K",
-                   help="stride of the sub-grid computed at the finest resolution for the "
-                        "observed order (default 2: every other node along r, theta, s, a/b; "
-                        "1: every node)")
+                   help="exact-solver elements across the contact, N1 ... Nk: Nk-1 on every node "
+                        "and nu, the others on every node at the first nu; the table is their "
+                        "fitted grid limit (one value: no extrapolation; default "
+                        f"{' '.join(map(str, ELEMENTS))})")
+    p.add_argument("--order", type=float, default=ORDER, metavar="P",
+                   help=f"convergence order of the grid-limit fit (default {ORDER:g})")
+    p.add_argument("--extrapolation-stride", type=int, default=EXTRAPOLATION_STRIDE, metavar="K",
+                   help="stride along r, theta, s of the sub-grid of the grid-limit fit (1: every "
+                        f"node; default {EXTRAPOLATION_STRIDE})")
     p.add_argument("--workers", type=int, default=2, metavar="N", help="local workers (default 2)")
     p.add_argument("--executor", choices=("serial", "processes", "dask"),
                    help="executor of the sweeps (default: serial for 1 worker, else dask)")
     p.add_argument("--work", default=None, metavar="DIR",
                    help="directory of the Zarr work stores (default <out>.work); an interrupted "
-                        "build resumes from it")
+                        "build resumes from it, nodes already in its stores are reused")
     p.add_argument("--keep-work", action="store_true",
                    help="keep the work stores after writing the table")
 
@@ -34,7 +36,8 @@ def add_arguments(p) -> None:
 def run(args, console) -> int:
     from ..sweeps.tables import build_table
 
-    path = build_table(args.out, elements=tuple(args.elements), fine_every=args.fine_every,
+    path = build_table(args.out, elements=tuple(args.elements), order=args.order,
+                       extrapolation_stride=args.extrapolation_stride,
                        workers=args.workers, executor=args.executor, work=args.work,
                        keep_work=args.keep_work)
     console.print(f"wrote [bold]{esc(path)}[/bold]")

@@ -10,27 +10,27 @@ line is ``wheelrail build-table``.
 Grid convergence (table version 2)
 ----------------------------------
 The exact solver converges slowly with its element count N (first order,
-observed p ≈ 1.0–1.1, with a large constant where spin and creepage combine
-and for elongated patches: with 36 elements a patch with a/b = 20 is still up
-to ≈ 4 % of μFn from its limit, a spin-dominated one with a/b = 1.6 ≈ 2.5 %).
-The table is therefore built from grid-extrapolated values. With
-``elements = (N₁, N₂, N₃)``:
+with a large constant where spin and creepage combine and for elongated
+patches: with 36 elements a patch with a/b = 20 is still up to ≈ 4 % of μFn
+from its limit, a spin-dominated one with a/b = 1.6 ≈ 2.5 %). The table is
+therefore the grid limit of the exact theory. With ``elements = (N₁, N₂, N₃)``:
 
-* every node (r, θ, s, a/b) is computed with N₁ at the first Poisson's ratio
-  of the grid, and with N₂ at every ν;
-* a sub-grid (every ``fine_every``-th node along r, θ, s and a/b, every ν) is
-  also computed with N₃;
-* the observed order p is fitted from the three resolutions on the sub-grid
-  (f₂ − f₁)/(f₃ − f₂) = (N₁⁻ᵖ − N₂⁻ᵖ)/(N₂⁻ᵖ − N₃⁻ᵖ) (:func:`observed_order`;
-  per a/b node where at least 50 values resolve it, else pooled);
-* every node is Richardson-extrapolated from N₁ and N₂,
-  f∞ = f₂ + (f₂ − f₁)/((N₂/N₁)ᵖ − 1), the grid error f₂ − f₁ of the first ν
-  standing for the other ν's (the effect of ν on the discretisation error is
-  below the solver's jitter).
+* every node (r, θ, s, a/b) is computed with N₂ at the first Poisson's ratio;
+* on the sub-grid of every ``extrapolation_stride``-th node along r, θ and s
+  (every a/b) all resolutions are computed at the first ν and the grid limit
+  is the least-squares fit f∞ + C N⁻ᵖ (:func:`grid_limit`, p = :data:`ORDER`
+  = 1, the solver's observed order at high resolution); its step f∞ − f_N₂ is
+  interpolated (Catmull–Rom cubics) onto every node and added;
+* the other Poisson's ratios: N₂ on the sub-grid of stride ``nu_stride``, the
+  difference to the first ν interpolated the same way (the effect of ν on the
+  discretisation error is below the solver's jitter).
 
-Every stage is its own Zarr sweep store under the work directory, so an
-interrupted build resumes where it stopped (``wheelrail build-table`` again
-with the same arguments); Dask ``LocalCluster`` workers with ``workers > 1``.
+Every resolution is computed by resumable :func:`wheelrail.sweep` runs into
+Zarr stores under the work directory; a node already in a store at that
+resolution (of this grid, or of another grid sharing the node, e.g. every other
+node of a refined axis) is reused, so an interrupted or
+refined build computes only what is missing. Dask ``LocalCluster`` workers with
+``workers > 1``.
 
 References
 ----------
@@ -44,6 +44,7 @@ References
 
 from __future__ import annotations
 
+import hashlib
 import json
 import shutil
 from pathlib import Path
@@ -51,6 +52,7 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
+from ..tangential.exact import Exact
 from ..tangential.table import (
     AXES,
     DEFAULT_TABLE,
@@ -66,23 +68,41 @@ from .spec import SweepSpec
 __all__ = [
     "BUILD_CONTACT",
     "ELEMENTS",
+    "EXTRAPOLATION_STRIDE",
     "GRID",
+    "NU_STRIDE",
+    "ORDER",
+    "REFERENCE_ELEMENTS",
     "assemble_table",
     "build_table",
+    "exact_limit",
+    "grid_limit",
+    "observed_order",
+    "sub_grid",
     "table_nodes",
 ]
 
 #: Node grid of the table (version 2). r = ρ̂/(1 + |φ̂| + ρ̂) (r = 1 analytic), θ,
 #: s = φ̂/(1 + |φ̂|) (s = ±1 analytic), ln(a/b) for a/b in [0.05, 20], ν.
 GRID = {
-    "r": np.linspace(0.0, 1.0, 11),
-    "theta": np.linspace(0.0, 0.5 * np.pi, 5),
-    "s": np.linspace(-1.0, 1.0, 11),
+    "r": np.linspace(0.0, 1.0, 21),
+    "theta": np.linspace(0.0, 0.5 * np.pi, 9),
+    "s": np.linspace(-1.0, 1.0, 21),
     "log_ab": np.log(np.geomspace(0.05, 20.0, 9)),
     "nu": np.array([0.25, 0.30]),
 }
-#: Exact-solver resolutions: the base (every node) and the finer ones (sub-grid).
+#: Exact-solver resolutions (elements across the contact): 24 on every node and ν,
+#: 16 and 36 on every node at the first ν.
 ELEMENTS = (16, 24, 36)
+#: Convergence order of the exact solver in its element count (first order: the
+#: median observed order of 60 random contacts from 54/81/122 elements is 0.98 for
+#: Fx and Fy, benchmarks/bench_contact_table_law.py).
+ORDER = 1.0
+#: Resolutions of the table law's reference (:func:`exact_limit`).
+REFERENCE_ELEMENTS = (36, 54, 81, 122)
+#: Strides along r, θ, s of the sub-grids of the grid-limit fit and of the other ν.
+EXTRAPOLATION_STRIDE = 2
+NU_STRIDE = 2
 #: Parameters of the physical contacts on which the nodes are computed (any
 #: values give the same dimensionless result, by similarity).
 BUILD_CONTACT = {"E": 2.1e11, "Fn": 1.0e4, "mu": 0.3, "c": 5.0e-3}
@@ -157,32 +177,79 @@ def _analytic_values(grid):
     return vals
 
 
+def _node_keys(nodes):
+    """Keys identifying physical nodes across grids (inputs rounded to 10 relative digits).
+
+    The creepages are rounded relative to the node's largest one (ξ, η, φc), the semi-axes
+    and ν to 10 significant digits: the same table node computed on two grids that share it
+    (every other node of a refined axis) gets the same key despite round-off in the axes.
+    """
+    a, b, nu = (np.asarray(nodes[k], float) for k in ("a", "b", "nu"))
+    c = np.sqrt(a * b)
+    cr = np.stack([np.asarray(nodes["xi"], float), np.asarray(nodes["eta"], float),
+                   np.asarray(nodes["phi"], float) * c], axis=-1)
+    scale = np.abs(cr).max(-1, keepdims=True)
+    rel = np.round(np.divide(cr, scale, out=np.zeros_like(cr), where=scale > 0), 10) + 0.0
+    sig = [np.array([float(f"{v:.10g}") for v in col]) for col in (scale[:, 0], a, b, nu)]
+    return [tuple(row) for row in np.column_stack([rel] + sig)]
+
+
+def _stored(work, elements):
+    """Finished results at ``elements`` in every Zarr store of ``work``: {key: (fx, fy, mz)}."""
+    import xarray as xr
+
+    done = {}
+    mu, load = BUILD_CONTACT["mu"], BUILD_CONTACT["Fn"]
+    for store in sorted(Path(work).glob(f"*_e{int(elements)}.zarr")):
+        try:
+            ds = xr.open_zarr(store)
+        except (OSError, ValueError, KeyError):  # unreadable (interrupted at creation): recomputed
+            continue
+        nodes = {k: ds[k].values for k in ("xi", "eta", "phi", "a", "b", "nu")}
+        status = ds["status"].values
+        ok = (status != STATUS_CODES["pending"]) & (status != STATUS_CODES["failed"])
+        cn = np.sqrt(nodes["a"] * nodes["b"])
+        vals = np.stack([ds["Fx"].values / (mu * load), ds["Fy"].values / (mu * load),
+                         ds["Mz"].values / (mu * load * cn)], axis=-1)
+        ds.close()
+        for key, v, good in zip(_node_keys(nodes), vals, ok):
+            if good:
+                done[key] = v
+    return done
+
+
 def _stage_sweep(nodes, elements, work, workers, executor, progress):
-    """One resolution over ``nodes`` (resumable Zarr store ``work``); values (n, 3)."""
-    E, load, mu = (BUILD_CONTACT[k] for k in ("E", "Fn", "mu"))
-    spec = SweepSpec.from_points({k: nodes[k] for k in ("xi", "eta", "phi", "a", "b", "nu")},
-                                 method="exact", options={"elements": int(elements)}, Fn=load,
-                                 mu=mu, E=E, chunk=200)
-    ds = sweep(spec, work, workers=workers, executor=executor, resume=work.exists(),
-               progress=progress)
-    status = ds["status"].values
-    cn = np.sqrt(nodes["a"] * nodes["b"])
-    vals = np.stack([ds["Fx"].values / (mu * load), ds["Fy"].values / (mu * load),
-                     ds["Mz"].values / (mu * load * cn)], axis=-1)
-    bad = (status == STATUS_CODES["pending"]) | (status == STATUS_CODES["failed"])
-    vals[bad] = np.nan
-    ds.close()
-    return vals, status
+    """The exact solution at ``elements`` on ``nodes``: values (n, 3), NaN where failed.
 
-
-def _sub_index(n, every, name):
-    """Indices of the sub-grid along an axis of n computed nodes (ends included)."""
-    if every == 1 or name == "nu" or n <= 2:
-        return np.arange(n)
-    idx = np.arange(0, n, every)
-    if name != "r" and idx[-1] != n - 1:  # keep the far end (r: 0.95 lies next to r = 1)
-        idx = np.append(idx, n - 1)
-    return idx
+    Results already in a store of the work directory at the same resolution (of this or
+    another grid sharing the node) are reused; the missing nodes are computed by a
+    resumable :func:`wheelrail.sweep` into the store ``e<hash>_e<elements>.zarr``.
+    """
+    work = Path(work)
+    keys = _node_keys(nodes)
+    done = _stored(work, elements)
+    seen = set()
+    missing = np.zeros(len(keys), bool)
+    for i, k in enumerate(keys):  # r = 0: every θ is the same physical node, computed once
+        if k not in done and k not in seen:
+            missing[i] = True
+            seen.add(k)
+    n_comp = 0
+    if missing.any():
+        sel = {k: np.asarray(nodes[k])[missing] for k in ("xi", "eta", "phi", "a", "b", "nu")}
+        tag = hashlib.sha256(np.ascontiguousarray(np.column_stack(
+            [sel[k] for k in ("xi", "eta", "phi", "a", "b", "nu")])).tobytes()).hexdigest()[:12]
+        store = work / f"n{tag}_e{int(elements)}.zarr"
+        E, load, mu = (BUILD_CONTACT[k] for k in ("E", "Fn", "mu"))
+        spec = SweepSpec.from_points(sel, method="exact", options={"elements": int(elements)},
+                                     Fn=load, mu=mu, E=E, chunk=200)
+        ds = sweep(spec, store, workers=workers, executor=executor, resume=store.exists(),
+                   progress=progress)
+        n_comp = int((ds["status"].values == STATUS_CODES["not_converged"]).sum())
+        ds.close()
+        done = _stored(work, elements)
+    vals = np.array([done.get(k, (np.nan,) * 3) for k in keys], float).reshape(-1, 3)
+    return vals, n_comp
 
 
 def observed_order(f1, f2, f3, N, floor=2e-3):
@@ -208,62 +275,169 @@ def observed_order(f1, f2, f3, N, floor=2e-3):
     return float(np.median(p_each)), int(ok.sum())
 
 
-def assemble_table(grid, elements, base, fine, fine_every=2):
-    """Table values from the three resolutions (see the module docstring).
+def grid_limit(fs, elements, order=ORDER):
+    """Least-squares fit of f(N) = f∞ + C N⁻ᵖ (p = ``order``) to several resolutions: f∞.
+
+    Parameters
+    ----------
+    fs : sequence of ndarray
+        Values at the resolutions ``elements`` (arrays of one shape).
+    elements : sequence of int
+        The resolutions N (at least two).
+    order : float
+        Convergence order p.
+
+    Returns
+    -------
+    ndarray
+        f∞, the shape of ``fs[0]``.
+    """
+    N = np.asarray(elements, float)
+    A = np.stack([np.ones_like(N), N**-order], axis=1)
+    Y = np.stack([np.asarray(f, float).reshape(-1) for f in fs])
+    coef = np.linalg.pinv(A) @ Y
+    return coef[0].reshape(np.shape(fs[0]))
+
+
+def sub_grid(grid, stride):
+    """Every ``stride``-th node of ``grid`` along r, θ and s (a/b and ν unchanged)."""
+    g = {k: np.asarray(v, float) for k, v in grid.items()}
+    if stride == 1:
+        return g
+    for k in ("r", "theta", "s"):
+        if (len(g[k]) - 1) % stride:
+            raise ValueError(f"axis {k!r} of {len(g[k])} nodes has no sub-grid of stride {stride}")
+        g[k] = g[k][::stride]
+    return g
+
+
+def _refine(v, axis, odd_r=False):
+    """Midpoints of a uniform axis by Catmull–Rom cubics: 2n − 1 nodes from n along ``axis``.
+
+    Ghost nodes are quadratic extrapolations; with ``odd_r`` (axis 0 = r, axis 2 = s
+    symmetric) the ghost at r = −Δ is minus the node at +Δ with s reversed (the grid
+    error, like the force, is odd in the creepages reversed together).
+    """
+    v = np.moveaxis(v, axis, 0)
+    lo = 3.0 * v[0] - 3.0 * v[1] + v[2] if v.shape[0] >= 3 else 2.0 * v[0] - v[1]
+    hi = 3.0 * v[-1] - 3.0 * v[-2] + v[-3] if v.shape[0] >= 3 else 2.0 * v[-1] - v[-2]
+    if odd_r:
+        lo = -v[1][:, ::-1]
+    pad = np.concatenate([lo[None], v, hi[None]])
+    mid = (9.0 * (pad[1:-2] + pad[2:-1]) - (pad[:-3] + pad[3:])) / 16.0
+    out = np.empty((2 * v.shape[0] - 1,) + v.shape[1:])
+    out[0::2] = v
+    out[1::2] = mid
+    return np.moveaxis(out, 0, axis)
+
+
+def _to_grid(coarse, stride):
+    """A full-grid field (all nodes, analytic planes included) of a sub-grid, refined."""
+    out = coarse
+    while stride > 1:
+        for ax in (0, 1, 2):
+            out = _refine(out, ax, odd_r=ax == 0)
+        stride //= 2
+    return out
+
+
+def exact_limit(case, elements=REFERENCE_ELEMENTS, order=ORDER):
+    """The exact theory's grid limit at one contact: the reference of the table law.
+
+    The exact solver (:class:`wheelrail.tangential.exact.Exact`) at each resolution of
+    ``elements``, and the least-squares fit f∞ + C N⁻ᵖ (:func:`grid_limit`).
+
+    Parameters
+    ----------
+    case : TableCase
+        A contact and creepages (:func:`wheelrail.tangential.table.random_cases`).
+    elements : sequence of int
+        Resolutions (elements across the contact).
+    order : float
+        Convergence order p.
+
+    Returns
+    -------
+    limit : ndarray, shape (3,)
+        Fx, Fy [N], Mz [N m] extrapolated.
+    each : ndarray, shape (len(elements), 3)
+        The solutions at each resolution.
+    """
+    each = []
+    for n in elements:
+        r = Exact(elements=int(n)).solve(case.contact, *case.creepage, case.mu)
+        each.append([float(r.Fx), float(r.Fy), float(r.Mz)])
+    each = np.array(each)
+    return grid_limit(list(each), elements, order), each
+
+
+def assemble_table(grid, elements, main, others, nus, *, extrapolation_stride=1, nu_stride=1,
+                   order=ORDER):
+    """Table values from the resolutions (see the module docstring).
 
     Parameters
     ----------
     grid : dict
         The node grid (:data:`GRID`).
     elements : sequence of int
-        Resolutions (N₁, N₂, N₃) or (N₁,).
-    base : ndarray
-        (fx, fy, mz) of the computed nodes at N₁ and the first ν, shape
-        (n_r, n_θ, n_s, n_ab, 1, 3) (every ν for one resolution).
-    fine : list of ndarray
-        At N₂ every computed node and ν, shape (n_r, n_θ, n_s, n_ab, n_ν, 3);
-        at N₃ the sub-grid's nodes (every ν).
-    fine_every : int
-        Sub-grid stride of N₃.
+        Resolutions (N₁, …, N_k); ``main`` is at N_m, m = k − 1 (the last but one).
+    main : ndarray
+        (fx, fy, mz) at N_m on every computed node at the first ν, shape
+        (n_r, n_θ, n_s, n_ab, 1, 3).
+    others : list of ndarray
+        At every resolution N₁ … N_k (N_m included), the first ν, on the computed nodes of
+        the sub-grid of stride ``extrapolation_stride`` (:func:`sub_grid`).
+    nus : ndarray or None
+        At N_m, every ν, on the computed nodes of the sub-grid of stride ``nu_stride``.
+    extrapolation_stride, nu_stride : int
+        Strides (1, 2, 4, …) of those sub-grids along r, θ, s.
+    order : float
+        Convergence order p of the fit (:func:`grid_limit`).
 
     Returns
     -------
     values : ndarray
         The full table (analytic planes included).
     info : dict
-        Fitted orders, largest extrapolation step, failed-node count.
+        Observed order, largest extrapolation step, failed-node count.
     """
     g = {k: np.asarray(v, float) for k, v in grid.items()}
     comp = [_computed(g[k], k) for k in AXES]
-    sub = [_sub_index(int(m.sum()), fine_every, k) for m, k in zip(comp, AXES)]
     vals = _analytic_values(g)
     full_idx = np.ix_(*(np.flatnonzero(m) for m in comp))
-    info = {"failed_base": int(np.isnan(base).any(-1).sum())}
-    if len(elements) == 1 or not fine:
-        vals[full_idx] = base
-        return vals, info
-    f2_all, f3 = fine
-    f1 = base[np.ix_(*sub[:4], [0])]
-    f2 = f2_all[np.ix_(*sub)]
-    orders = []
-    pooled, n_pooled = observed_order(f1[..., 0, :], f2[..., 0, :], f3[..., 0, :],
-                                      elements[:3])
-    info["order_pooled"] = {"p": pooled, "values": n_pooled}
-    step = np.empty_like(base)
-    for j in range(len(g["log_ab"])):
-        js = np.flatnonzero(sub[3] == j)
-        p, used = (observed_order(f1[:, :, :, js[0], 0], f2[:, :, :, js[0], 0],
-                                  f3[:, :, :, js[0], 0], elements[:3])
-                   if js.size else (pooled, 0))
-        if used < 50:  # too few values resolve the order at this a/b: the pooled one
-            p = pooled
-        orders.append({"a/b": float(np.exp(g["log_ab"][j])), "p": p, "values": used})
-        ratio = (elements[1] / elements[0]) ** p - 1.0
-        step[:, :, :, j] = (f2_all[:, :, :, j, :1] - base[:, :, :, j]) / ratio
-    step = np.where(np.isfinite(step), step, 0.0)
-    info["orders"] = orders
-    info["max_extrapolation_step"] = float(np.abs(step).max())
-    vals[full_idx] = f2_all + step  # the first nu's grid error for every nu
+    n_nu = len(g["nu"])
+    info = {"failed": int(np.isnan(main).any(-1).sum())}
+
+    def on_sub(field, stride, nu):
+        """A field on the sub-grid's computed nodes -> every computed node of the grid
+        (zero on the analytic planes: no grid error there; the ν difference is analytic)."""
+        gs = sub_grid(dict(g, nu=nu), stride)
+        cs = [_computed(gs[k], k) for k in AXES]
+        full = np.zeros(tuple(len(gs[k]) for k in AXES) + (3,))
+        full[np.ix_(*(np.flatnonzero(m) for m in cs))] = np.where(np.isfinite(field), field, 0.0)
+        return _to_grid(full, stride)[np.ix_(*(np.flatnonzero(m) for m in comp[:4]), [0])]
+
+    value = np.repeat(main, n_nu, axis=4)
+    if n_nu > 1 and nus is not None:
+        an = _analytic_values(sub_grid(g, nu_stride))
+        gs = sub_grid(g, nu_stride)
+        cs = [_computed(gs[k], k) for k in AXES]
+        full = an - an[..., :1, :]
+        diff = nus - nus[..., :1, :]
+        full[np.ix_(*(np.flatnonzero(m) for m in cs))] = np.where(np.isfinite(diff), diff, 0.0)
+        full = np.where(np.isfinite(full), full, 0.0)
+        value = value + _to_grid(full, nu_stride)[full_idx]
+        info["max_nu_difference"] = float(np.abs(diff[np.isfinite(diff)]).max())
+    if len(elements) > 1:
+        m = len(elements) - 2 if len(elements) > 2 else len(elements) - 1
+        if len(elements) >= 3:
+            p, used = observed_order(*others[-3:], elements[-3:])
+            info["observed_order"] = {"p": p, "values": used, "elements": list(elements[-3:])}
+        step = grid_limit(others, elements, order) - others[m]
+        info["order"] = order
+        info["max_extrapolation_step"] = float(np.nanmax(np.abs(step)))
+        value = value + on_sub(step, extrapolation_stride, g["nu"][:1])
+    vals[full_idx] = value
     return vals, info
 
 
@@ -281,8 +455,9 @@ def _fill_failed(vals):
     return vals, n
 
 
-def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, fine_every=2, workers=2, work=None,
-                executor=None, progress=True, grid=None, keep_work=False) -> Path:
+def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, executor=None,
+                progress=True, grid=None, keep_work=False, order=ORDER,
+                extrapolation_stride=EXTRAPOLATION_STRIDE, nu_stride=NU_STRIDE) -> Path:
     """Compute the table with the exact solver (resumable :func:`wheelrail.sweep` runs) and save it.
 
     Parameters
@@ -290,21 +465,25 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, fine_every=2, workers=2
     out : path
         The ``.npz`` file to write.
     elements : int or sequence of int
-        Exact-solver elements across the contact: (N₁, N₂, N₃), N₁ and N₂ on
-        every node (N₁ at the first ν), N₃ on the sub-grid for the observed
-        order (module docstring); one value: no extrapolation.
-    fine_every : int
-        Stride of the sub-grid of N₃ along r, θ, s and a/b (1: every node).
+        Exact-solver elements across the contact (N₁, …, N_k): the last but one on every
+        node at the first ν, all of them on a sub-grid for the grid limit (module
+        docstring). One value: no extrapolation.
     workers : int
         Local workers of the sweeps (Dask ``LocalCluster``).
     work : path, optional
         Directory of the Zarr work stores (default ``<out>.work``); an
-        interrupted build resumes from it; deleted when ``out`` is written
-        unless ``keep_work``.
+        interrupted build resumes from it, and nodes already computed at a
+        resolution by an earlier build (also on another grid) are reused;
+        deleted when ``out`` is written unless ``keep_work``.
     executor : str, optional
         Executor of the sweeps (default: serial for 1 worker, Dask otherwise).
     grid : dict, optional
         Another node grid (tests use small ones); default :data:`GRID`.
+    order : float
+        Convergence order p of the grid-limit fit.
+    extrapolation_stride, nu_stride : int
+        Strides (1, 2, 4, …) along r, θ, s of the sub-grids of the grid-limit fit and of
+        the other Poisson's ratios (1: every node).
 
     Returns
     -------
@@ -316,34 +495,30 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, fine_every=2, workers=2
     out = Path(out)
     work = Path(work) if work is not None else out.with_name(out.name + ".work")
     work.mkdir(parents=True, exist_ok=True)
-    if len(elements) not in (1, 3):
-        raise ValueError(f"elements must be one resolution or three (base, two finer), "
-                         f"got {elements}")
-    g_base = dict(grid, nu=grid["nu"] if len(elements) == 1 else grid["nu"][:1])
-    nodes = table_nodes(g_base)
-    base, st = _stage_sweep(nodes, elements[0], work / f"all_e{elements[0]}.zarr", workers,
-                            executor, progress)
-    base = base.reshape(*nodes["shape"], 3)
-    not_conv = int((st == STATUS_CODES["not_converged"]).sum())
-    fine = []
-    if len(elements) > 1:
-        nodes2 = table_nodes(grid)
-        v, s_ = _stage_sweep(nodes2, elements[1], work / f"all_e{elements[1]}.zarr", workers,
-                             executor, progress)
-        fine.append(v.reshape(*nodes2["shape"], 3))
-        not_conv += int((s_ == STATUS_CODES["not_converged"]).sum())
-        comp = [_computed(grid[k], k) for k in AXES]
-        sub = [_sub_index(int(m.sum()), fine_every, k) for m, k in zip(comp, AXES)]
-        gsub = {k: grid[k][np.flatnonzero(m)[s]] for k, m, s in zip(AXES, comp, sub)}
-        snodes = table_nodes(gsub)
-        v, s_ = _stage_sweep(snodes, elements[2], work / f"sub{fine_every}_e{elements[2]}.zarr",
-                             workers, executor, progress)
-        fine.append(v.reshape(*snodes["shape"], 3))
-        not_conv += int((s_ == STATUS_CODES["not_converged"]).sum())
-    vals, info = assemble_table(grid, elements, base, fine, fine_every)
+    if len(elements) != len(set(elements)):
+        raise ValueError(f"elements must be distinct resolutions, got {elements}")
+    m = len(elements) - 2 if len(elements) > 2 else len(elements) - 1
+    first = dict(grid, nu=grid["nu"][:1])
+    not_conv = 0
+
+    def stage(g, n):
+        nonlocal not_conv
+        nodes = table_nodes(g)
+        v, nc = _stage_sweep(nodes, n, work, workers, executor, progress)
+        not_conv += nc
+        return v.reshape(*nodes["shape"], 3)
+
+    main = stage(first, elements[m])
+    nus = stage(sub_grid(grid, nu_stride), elements[m]) if len(grid["nu"]) > 1 else None
+    others = ([stage(sub_grid(first, extrapolation_stride), n) for n in elements]
+              if len(elements) > 1 else [])
+    vals, info = assemble_table(grid, elements, main, others, nus,
+                                extrapolation_stride=extrapolation_stride, nu_stride=nu_stride,
+                                order=order)
     vals, n_failed = _fill_failed(vals)
     meta = {"version": TABLE_VERSION, "wheelrail_version": __version__,
-            "method": "exact", "elements": list(elements), "fine_every": int(fine_every),
+            "method": "exact", "elements": list(elements), "order": order,
+            "extrapolation_stride": int(extrapolation_stride), "nu_stride": int(nu_stride),
             "build_contact": BUILD_CONTACT, "not_converged_nodes": not_conv,
             "failed_nodes_filled": n_failed, "extrapolation": info, "axes": list(AXES),
             "quantities": ["Fx/(mu Fn)", "Fy/(mu Fn)", "Mz/(mu Fn c)"]}

@@ -47,15 +47,15 @@ reversed creepage gives them exactly (F is odd in (ξ, η, φ) together).
 Accuracy
 --------
 See ``benchmarks/bench_contact_table_law.py`` and docs/sweeps.md: random points
-over the whole domain (a/b 0.05–20, |φ̂| up to 19) against the exact theory
-extrapolated in the grid (24/36/54 elements). The shipped table (version 2) is
-a coarse grid (11 × 5 × 11 × 9 × 2 nodes) built from 16- and 24-element
-solutions extrapolated with the observed order: on 60 random points max
-|ΔF_t| = 5.6 % of μFn, rms 0.87 %, max |ΔMz| = 1.6 % of μFn c (load 13.6); the goal
-of 1 % needs a finer grid (docs/sweeps.md).
+over the whole domain (:func:`random_cases`: a/b 0.05–20, |φ̂| up to 19) against
+the exact theory's grid limit (least-squares f∞ + C/N to 36–122 elements,
+uncertainty ≤ 0.16 % of μFn). The shipped table (21 × 9 × 21 × 9 × 2 nodes,
+24-element values plus the grid-limit step fitted to 16/24/36 elements on every
+other node): on 60 points max |ΔF_t| = 1.41 % of μFn, rms 0.33 %, max |ΔMz| =
+0.76 % of μFn c; 58 of the 60 points within 1 %.
 
-Speed: one call of :meth:`Table.solve` takes about 0.08 ms (the exact solver
-with 40 elements: 17–27 ms), see the benchmark.
+Speed: one call of :meth:`Table.solve` takes about 0.04 ms (the exact solver
+with 40 elements: 16–21 ms), see the benchmark.
 
 Outside the domain (a/b outside [0.05, 20], ν outside [0.25, 0.30], or
 dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
@@ -84,10 +84,13 @@ import json
 import math
 from functools import lru_cache
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from ..errors import InputError
+from ..hertzian import hertz_from_semiaxes
+from ..materials import Material
 from ..options import configured, option
 from ..plausibility import check_friction
 from ..results import CreepForcesResult, Status
@@ -103,6 +106,7 @@ __all__ = [
     "TableData",
     "full_slip",
     "load_table",
+    "random_cases",
     "table_coordinates",
 ]
 
@@ -370,6 +374,73 @@ def table_coordinates(a, b, G, nu, xi, eta, phi, mu, Fn):
                        np.log(ab), nu], axis=-1)
     alpha = np.arctan2(np.sin(theta) / C22, np.cos(theta) / C11)
     return coords, sx, sy, ph, alpha
+
+
+class TableCase(NamedTuple):
+    """One random contact of :func:`random_cases`."""
+
+    contact: object        #: :class:`~wheelrail.hertzian.HertzContact`
+    creepage: tuple        #: (ξ, η, φ) [-, -, 1/m]
+    mu: float              #: friction coefficient
+    Fn: float              #: normal force [N]
+    c: float               #: √(ab) [m]
+    ab: float              #: a/b
+    nu: float              #: Poisson's ratio
+    rho_hat: float         #: scaled creepage ρ̂ (module docstring)
+    theta: float           #: its direction [rad], any quadrant
+    phi_hat: float         #: scaled spin φ̂
+
+
+def random_cases(n, seed=2026, *, s_max=0.95, size=4e-3, E=2.1e11) -> list:
+    """Random contacts and creepages spread over the table's whole domain.
+
+    The points on which the table law is measured against the exact theory (benchmark
+    ``bench_contact_table_law.py``, ``tests/reference/test_table_law.py``, the validation
+    row ``table-law``): a/b log-uniform in [0.05, 20], ν uniform in [0.25, 0.30], Fn in
+    2–20 kN, μ in 0.1–0.5, ρ̂ = U(0, 3)² in any direction θ ∈ (−π, π), and the spin
+    φ̂ = s/(1 − |s|) with s uniform in (−``s_max``, ``s_max``) (|φ̂| up to 19 for 0.95).
+
+    Parameters
+    ----------
+    n : int
+        Number of cases.
+    seed : int
+        Seed of :func:`numpy.random.default_rng`.
+    s_max : float
+        Largest |s|.
+    size, E : float
+        √(ab) of the Hertz ellipse [m] and Young's modulus [Pa] (by similarity they do
+        not change the scaled forces).
+
+    Returns
+    -------
+    list of TableCase
+        Contact, creepages (ξ, η, φ) and the table coordinates of each case.
+    """
+    rng = np.random.default_rng(seed)
+    ab = np.exp(rng.uniform(np.log(0.05), np.log(20.0), n))
+    nu = rng.uniform(0.25, 0.30, n)
+    load = rng.uniform(2e3, 2e4, n)
+    mu = rng.uniform(0.1, 0.5, n)
+    rho = rng.uniform(0.0, 3.0, n) ** 2
+    th = rng.uniform(-np.pi, np.pi, n)
+    s = rng.uniform(-s_max, s_max, n)
+    ph = s / (1.0 - np.abs(s))
+    out = []
+    for i in range(n):
+        m = Material(E, float(nu[i]))
+        cont = hertz_from_semiaxes(size * math.sqrt(ab[i]), size / math.sqrt(ab[i]),
+                                   float(load[i]), m)
+        c = float(math.sqrt(cont.a * cont.b))
+        C11, C22, C23 = (float(v) for v in _coefficients(ab[i], nu[i]))
+        unit = 3.0 * mu[i] * load[i] / m.G
+        ell = float(_spin_length(c, cont.b, C11, C23))
+        creep = (float(rho[i] * np.cos(th[i]) * unit / (c**2 * C11)),
+                 float((rho[i] * np.sin(th[i]) - ph[i] * c * C23 / ell) * unit / (c**2 * C22)),
+                 float(ph[i] * unit / (c**2 * ell)))
+        out.append(TableCase(cont, creep, float(mu[i]), float(load[i]), c, float(ab[i]),
+                             float(nu[i]), float(rho[i]), float(th[i]), float(ph[i])))
+    return out
 
 
 def _table_path(name, v):
