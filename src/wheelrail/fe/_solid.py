@@ -449,6 +449,30 @@ def _hourglass_hx(e, ue, hx, khg, W, hf):
 
 
 @njit(cache=True, inline="always")
+def _scatter_one_point(e, conn, dNdx, sxx, syy, szz, sxy, syz, sxz, W, hf, f):
+    """Add the one-point element's nodal forces to ``f``: the weighted stress minus the
+    hourglass stress correction (rows 3-5 of ``W``, :func:`_hourglass_hx`) on the mean
+    gradients, plus the sign-only hourglass forces ``hf``; one scatter per node."""
+    p00 = sxx - W[3, 0]
+    p01 = sxy - W[3, 1]
+    p02 = sxz - W[3, 2]
+    p10 = sxy - W[4, 0]
+    p11 = syy - W[4, 1]
+    p12 = syz - W[4, 2]
+    p20 = sxz - W[5, 0]
+    p21 = syz - W[5, 1]
+    p22 = szz - W[5, 2]
+    for a in range(8):
+        bx = dNdx[e, 0, a, 0]
+        by = dNdx[e, 0, a, 1]
+        bz = dNdx[e, 0, a, 2]
+        n = conn[e, a]
+        f[n, 0] += bx * p00 + by * p01 + bz * p02 + hf[a, 0]
+        f[n, 1] += bx * p10 + by * p11 + bz * p12 + hf[a, 1]
+        f[n, 2] += bx * p20 + by * p21 + bz * p22 + hf[a, 2]
+
+
+@njit(cache=True, inline="always")
 def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, energy, W, hf):
     """:func:`_elastic_one_point` with the compact hourglass data (:func:`_hourglass_hx`):
     one scatter per node. W (≥ 6, ≥ 3) and hf (8, 3) are scratch."""
@@ -469,23 +493,7 @@ def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, energy, W
     sxz = w * G * gxz
     en = 0.5 * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz + sxz * gxz)
     en += _hourglass_hx(e, ue, hx, khg, W, hf)
-    p00 = sxx - W[3, 0]
-    p01 = sxy - W[3, 1]
-    p02 = sxz - W[3, 2]
-    p10 = sxy - W[4, 0]
-    p11 = syy - W[4, 1]
-    p12 = syz - W[4, 2]
-    p20 = sxz - W[5, 0]
-    p21 = syz - W[5, 1]
-    p22 = szz - W[5, 2]
-    for a in range(8):
-        bx = dNdx[e, 0, a, 0]
-        by = dNdx[e, 0, a, 1]
-        bz = dNdx[e, 0, a, 2]
-        n = conn[e, a]
-        f[n, 0] += bx * p00 + by * p01 + bz * p02 + hf[a, 0]
-        f[n, 1] += bx * p10 + by * p11 + bz * p12 + hf[a, 1]
-        f[n, 2] += bx * p20 + by * p21 + bz * p22 + hf[a, 2]
+    _scatter_one_point(e, conn, dNdx, sxx, syy, szz, sxy, syz, sxz, W, hf, f)
     energy[e, 0] = en
     energy[e, 1] = 0.0
 
@@ -512,23 +520,7 @@ def _plastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, hp, tp, ts, 
     e_el += _hourglass_hx(e, ue, hx, khg, W, hf)
     sxx, syy, szz = w * sig[0], w * sig[1], w * sig[2]
     sxy, syz, sxz = w * sig[3], w * sig[4], w * sig[5]
-    p00 = sxx - W[3, 0]
-    p01 = sxy - W[3, 1]
-    p02 = sxz - W[3, 2]
-    p10 = sxy - W[4, 0]
-    p11 = syy - W[4, 1]
-    p12 = syz - W[4, 2]
-    p20 = sxz - W[5, 0]
-    p21 = syz - W[5, 1]
-    p22 = szz - W[5, 2]
-    for a in range(8):
-        bx = dNdx[e, 0, a, 0]
-        by = dNdx[e, 0, a, 1]
-        bz = dNdx[e, 0, a, 2]
-        n = conn[e, a]
-        f[n, 0] += bx * p00 + by * p01 + bz * p02 + hf[a, 0]
-        f[n, 1] += bx * p10 + by * p11 + bz * p12 + hf[a, 1]
-        f[n, 2] += bx * p20 + by * p21 + bz * p22 + hf[a, 2]
+    _scatter_one_point(e, conn, dNdx, sxx, syy, szz, sxy, syz, sxz, W, hf, f)
     energy[e, 0] = e_el
     energy[e, 1] = e_pl
 

@@ -774,6 +774,14 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                 u_normal = conv_n(pn_new[None])
                 base = base + u_normal / h
 
+            def embed(pb, sb, sl):
+                """Tractions and slip of the solved box ``sl`` placed in the full grid."""
+                pp = np.zeros((2,) + nxy)
+                ss = np.zeros((2,) + nxy)
+                pp[sl] = pb
+                ss[sl] = sb
+                return pp, ss
+
             def solve(xi, p0):
                 nonlocal total_newton, total_krylov, total_solves
                 b = base.copy()
@@ -801,10 +809,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                                                         initial=p0[sl], tol=tol,
                                                         maxiter=maxiter, upwind=upwind,
                                                         krylov_conv=cb.single, forcing=_FORCING)
-                    pp = np.zeros((2,) + nxy)
-                    ss = np.zeros((2,) + nxy)
-                    pp[sl] = pb
-                    ss[sl] = sb
+                    pp, ss = embed(pb, sb, sl)
                 total_newton += its
                 total_krylov += kry
                 total_solves += 1
@@ -831,10 +836,7 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                     pb, sb, xi, its, res, kry = newton_force_step(
                         Kb, base[sl], g[box], conv=cb, initial=p0[sl], krylov_conv=cb.single,
                         **kw)
-                    pp = np.zeros((2,) + nxy)
-                    ss = np.zeros((2,) + nxy)
-                    pp[sl] = pb
-                    ss[sl] = sb
+                    pp, ss = embed(pb, sb, sl)
                 total_newton += its
                 total_krylov += kry
                 total_solves += 1
