@@ -159,12 +159,12 @@ def test_fe_plastic_roll_writes_fields_and_restarts_with_the_plastic_state(tmp_p
 
 def test_fe_seed000_table3_case_file_and_bad_material(tmp_path, capsys):
     from wheelrail.cli.fe import case_from_toml
-    from wheelrail.fe import seed000_load
+    from wheelrail.fe import toumi2016_load
 
     f = tmp_path / "seed.toml"
     f.write_text('[fe]\nseed000 = "table3"\nmaterial = "r900a"\nmesh_size = 2e-3\n')
     case, _ = case_from_toml(f)
-    assert case.load == pytest.approx(seed000_load()) and case.material.yield_stress == 489e6
+    assert case.load == pytest.approx(toumi2016_load()) and case.material.yield_stress == 489e6
     f.write_text('[fe]\nseed000 = "printed"\nmaterial = "steel"\n')
     assert main(["fe", str(f)]) == 2
     assert "material must be 'r900a'" in capsys.readouterr().err

@@ -5,7 +5,7 @@ Public names
 ``RollingCase``
     Frozen input: wheel and rail profiles, rolling radius, load, creepage,
     friction, material, mesh size and integrator.
-``seed000_case(load="table3", plastic=False, **changes)``, ``seed000_load``,
+``seed000_case(load="table3", plastic=False, **changes)``, ``toumi2016_load``,
 ``cone_wheel``, ``head_arc_rail``
     The Hertzian case of Toumi, Chollet & Yin (2016): a 1/10 cone on a 300 mm head arc
     inclined by 1/10, at the load of their Table 3 (81.3 kN) or as printed (7.5 kN).
@@ -54,12 +54,12 @@ _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
 from .case import (
                    INTEGRATORS,
-                   SEED000_TABLE3_HERTZ,
+                   TOUMI2016_TABLE3_HERTZ,
                    RollingCase,
                    cone_wheel,
                    head_arc_rail,
                    seed000_case,
-                   seed000_load,
+                   toumi2016_load,
 )
 from .curves import creep_curve
 from .elements import Hex8
@@ -81,7 +81,7 @@ from .transition import TransitionResult, pose_contact, run_transition, seed004_
 from .transition_model import TransitionCase, build_transition_model
 from .transition_track import Suspension, TrackStructure
 
-__all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "SEED000_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
+__all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "toumi2016_load", "TOUMI2016_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
            "solve", "indent", "RollingResult", "IndentResult",
            "Hex8", "LinearElastic", "J2Plastic", "Voce", "TabulatedHardening",
            "R900A_HARDENING", "r900a", "plastic_fields", "steady_window", "build_model", "write_vtu", "check_quality",

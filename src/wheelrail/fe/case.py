@@ -13,8 +13,8 @@ from ..plausibility import check_rolling_radius
 from ..profiles import Profile
 from .materials import J2Plastic, LinearElastic, r900a
 
-__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "seed000_load", "cone_wheel",
-           "head_arc_rail", "SEED000_TABLE3_HERTZ"]
+__all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "toumi2016_load", "cone_wheel",
+           "head_arc_rail", "TOUMI2016_TABLE3_HERTZ"]
 
 #: Names accepted by ``RollingCase(integrator=...)``.
 INTEGRATORS = ("explicit", "implicit-qs", "implicit-hht")
@@ -255,14 +255,14 @@ def head_arc_rail(radius: float = 0.3, half_width: float = 0.025, n: int = 201):
 
 
 #: Toumi, Chollet & Yin (2016), Table 3, Hertz row: semi-axes a, b [m] and peak pressure [Pa].
-SEED000_TABLE3_HERTZ = {"a": 6.66e-3, "b": 5.05e-3, "p0": 1160e6}
+TOUMI2016_TABLE3_HERTZ = {"a": 6.66e-3, "b": 5.05e-3, "p0": 1160e6}
 #: Their Table 1 ("7.5 kN load per wheel") [N].
-SEED000_PRINTED_LOAD = 7500.0
+TOUMI2016_PRINTED_LOAD = 7500.0
 #: Contact angle of their set-up, arctan(1/10) [rad] (cone 1/10 on a rail inclined 1/10).
-SEED000_CONTACT_ANGLE = float(np.arctan(0.1))
+TOUMI2016_CONTACT_ANGLE = float(np.arctan(0.1))
 
 
-def seed000_load(which="table3") -> float:
+def toumi2016_load(which="table3") -> float:
     """Vertical wheel load [N] of Toumi, Chollet & Yin's (2016) Hertzian case.
 
     ``"table3"``: the load consistent with their Table 3 Hertz row (a = 6.66 mm, b = 5.05 mm,
@@ -279,12 +279,12 @@ def seed000_load(which="table3") -> float:
     p0 = 518 MPa, not their Table 3).
     """
     if which == "printed":
-        return SEED000_PRINTED_LOAD
+        return TOUMI2016_PRINTED_LOAD
     if which != "table3":
-        raise InputError(f"seed000_load: which must be 'table3' or 'printed', got {which!r}")
-    t = SEED000_TABLE3_HERTZ
+        raise InputError(f"toumi2016_load: which must be 'table3' or 'printed', got {which!r}")
+    t = TOUMI2016_TABLE3_HERTZ
     fn = 2.0 * np.pi * t["a"] * t["b"] * t["p0"] / 3.0
-    return float(fn * np.cos(SEED000_CONTACT_ANGLE))
+    return float(fn * np.cos(TOUMI2016_CONTACT_ANGLE))
 
 
 def seed000_case(load="table3", plastic: bool = False, **changes) -> RollingCase:
@@ -299,7 +299,7 @@ def seed000_case(load="table3", plastic: bool = False, **changes) -> RollingCase
     ----------
     load : {"table3", "printed"} or float
         ``"table3"`` (default): 81.31 kN vertical, the load consistent with their Table 3
-        (:func:`seed000_load`); ``"printed"``: the 7.5 kN of their Table 1; or a load [N].
+        (:func:`toumi2016_load`); ``"printed"``: the 7.5 kN of their Table 1; or a load [N].
     plastic : bool
         Elasto-plastic R900A bodies (:func:`wheelrail.fe.r900a`: yield 489 MPa, Voce
         hardening) instead of elastic ones.
@@ -312,13 +312,13 @@ def seed000_case(load="table3", plastic: bool = False, **changes) -> RollingCase
     .. [1] M. Toumi, H. Chollet, H. Yin, Wear 366-367 (2016) 157-166, §2, Tables 1 and 3.
     """
     if isinstance(load, str):
-        load = seed000_load(load)
+        load = toumi2016_load(load)
     if plastic:
         material = r900a()
     else:
         material = Material(E=2.1e11, nu=0.28)
     args = dict(wheel=cone_wheel(0.1), rail=head_arc_rail(0.3), radius=0.46, load=load,
                 creepage=(-7e-4, 0.0, 0.0), mu=0.2, material=material,
-                inclination=SEED000_CONTACT_ANGLE, speed=50 / 3.6)
+                inclination=TOUMI2016_CONTACT_ANGLE, speed=50 / 3.6)
     args.update(changes)
     return RollingCase(**args)
