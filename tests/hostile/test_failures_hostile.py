@@ -245,6 +245,22 @@ def test_ctrl_c_with_worker_processes_is_one_line(tmp_path):
     assert len(lines) == 1 and "--resume" in lines[0], lines
 
 
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+def test_ctrl_c_while_a_worker_is_submitted_is_not_lost():
+    """A Ctrl-C during ``submit`` (where workers start) must still stop the sweep.
+
+    CI lost one: SIGINT was ignored around every submit, and a fast sweep spends
+    much of its time there, so a Ctrl-C could vanish and the sweep ran to the end.
+    """
+    from wheelrail.sweeps.executors import _sigint_deferred
+
+    with pytest.raises(KeyboardInterrupt):
+        with _sigint_deferred():
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)  # held back, not delivered, not discarded
+        time.sleep(0.05)  # delivered here
+
+
 # --------------------------------------------------------------------------- concurrent writers
 def test_concurrent_creation_loser_names_the_store(tmp_path):
     from wheelrail.errors import InputError

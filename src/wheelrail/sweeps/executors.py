@@ -98,7 +98,7 @@ class ProcessExecutor:
             return next(iter(done))
 
         def submit(*a):
-            with _sigint_ignored():  # worker processes are started here: they ignore Ctrl-C
+            with _sigint_deferred():  # worker processes are started here: they ignore Ctrl-C
                 return self._pool.submit(fn, *a)
 
         _bounded(submit, wait_one, tasks, on_result, 2 * self.workers)
@@ -275,6 +275,37 @@ class _sigint_ignored:
 
         if self._saved is not None:
             signal.signal(signal.SIGINT, self._saved)
+        return False
+
+
+class _sigint_deferred:
+    """Hold back SIGINT while worker processes may be started, without losing it.
+
+    ``submit`` starts the pool's worker processes on demand. A process started
+    with SIGINT blocked keeps it blocked until its initializer ignores it, so a
+    Ctrl-C never reaches a half-started worker; in this process a Ctrl-C that
+    arrives meanwhile stays pending and is delivered when the block ends (the
+    ``SIG_IGN`` of :class:`_sigint_ignored` would discard it, and the sweep would
+    run on). Falls back to :class:`_sigint_ignored` where signals cannot be
+    blocked (Windows).
+    """
+
+    def __enter__(self):
+        import signal
+
+        self._fallback = None
+        if hasattr(signal, "pthread_sigmask"):
+            self._mask = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        else:  # pragma: no cover - Windows
+            self._fallback = _sigint_ignored().__enter__()
+        return self
+
+    def __exit__(self, *exc):
+        import signal
+
+        if self._fallback is not None:  # pragma: no cover - Windows
+            return self._fallback.__exit__(*exc)
+        signal.pthread_sigmask(signal.SIG_SETMASK, self._mask)
         return False
 
 
