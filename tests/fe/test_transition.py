@@ -144,6 +144,28 @@ def test_tread_and_flange_nodes_that_touch_on_the_grid_are_split_by_contact_angl
     assert np.all(lab[status == 0] == 0)
 
 
+def test_a_patch_closed_without_pressure_is_reported_empty_not_nan():
+    """Closed nodes that carry no normal force (just touching) have no mean normal: the
+    summary reports an empty patch (Fn 0, no centre) instead of NaN forces and warnings."""
+    import warnings
+
+    from wheelrail.fe.transition_contact import patch_summary
+
+    n = 4
+    xs = np.zeros((n, 3))
+    zeros = np.zeros((n, 3))
+    normal = np.tile([0.0, 0.0, 1.0], (n, 1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s = patch_summary(np.ones(n, bool), xs, zeros, np.zeros(n), zeros, normal,
+                          np.full(n, 1e-6), np.ones(n, np.int64), 0.6)
+    assert s["Fn"] == 0.0 and s["Fz"] == 0.0 and s["n_nodes"] == 0
+    assert np.isnan(s["contact_angle"])        # no contact, no angle
+    p = patch_summary(np.ones(n, bool), xs, zeros, np.array([0.0, 1e3, 0.0, 0.0]), zeros,
+                      normal, np.full(n, 1e-6), np.ones(n, np.int64), 0.6)
+    assert p["Fn"] == 1e3 and p["contact_angle"] == 0.0
+
+
 @pytest.fixture(scope="module")
 def tiny_transition():
     from wheelrail.fe.transition_model import build_transition_model

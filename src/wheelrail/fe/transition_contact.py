@@ -375,7 +375,7 @@ def patch_summary(mask, xs, fs, pn, ft, normal, area, status, mu,
     """
     m = np.asarray(mask, bool) & (status > 0)
     nan = float("nan")
-    if not np.any(m):
+    if not np.any(m) or not pn[m].sum() > 0:  # nothing closed, or closed without pressure
         return dict(Fn=0.0, Fx=0.0, Fy=0.0, Fz=0.0, F_long=0.0, F_lat=0.0, contact_angle=nan,
                     x=nan, y=nan, z=nan, area=0.0, p_max=0.0, q_max=0.0, adhesion=nan,
                     theta=nan, n_nodes=0)
