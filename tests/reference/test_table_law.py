@@ -23,8 +23,10 @@ from wheelrail.tangential import table as T
 
 STEEL = wr.Material(2.1e11, 0.28)
 #: max |dF| / (mu Fn) of the shipped table against the extrapolated exact theory that the test
-#: below may see (the benchmark's measured maximum over 60 points, rounded up)
-TABLE_MAX_ERROR = 0.02
+#: below may see: the benchmark's measured maximum over 200 points (1.32 %,
+#: benchmarks/bench_contact_table_law.py --points 200) plus 0.3 % for the test's coarser
+#: 24/36/54 reference
+TABLE_MAX_ERROR = 0.017
 
 
 def _exact(c, creep, mu, elements=16):
@@ -68,7 +70,7 @@ def test_generator_reproduces_its_nodes(tmp_path):
     data = T.load_table(path)
     assert data.meta["elements"] == [10] and data.values.shape == (3, 2, 3, 2, 2, 3)
     nodes = table_nodes({k: np.asarray(v, float) for k, v in grid.items()})
-    for i in (8, 12):  # r = 0.5, s = 0 at theta = 0 and pi/2 (Catmull-Rom passes the nodes)
+    for i in (8, 12):  # r = 0.5, s = 0 at theta = 0 and pi/2 (the spline passes the nodes)
         m = wr.Material(2.1e11, nodes["nu"][i])
         c = wr.hertz_from_semiaxes(nodes["a"][i], nodes["b"][i], 1e4, m)
         creep = (nodes["xi"][i], nodes["eta"][i], nodes["phi"][i])
@@ -114,8 +116,9 @@ def test_strided_build_holds_the_grid_limit_on_its_sub_grid(tmp_path):
     grid = {"r": [0.0, 0.25, 0.5, 0.75, 1.0], "theta": [0.0, 0.25 * np.pi, 0.5 * np.pi],
             "s": [-1.0, -0.5, 0.0, 0.5, 1.0], "log_ab": np.log([0.8, 1.25]), "nu": [0.25, 0.30]}
     work = tmp_path / "w"
+    kw = dict(extrapolation_stride=2, nu_stride=2, first_plane_elements=(10, 12, 14))
     path = build_table(tmp_path / "t.npz", elements=(8, 10, 12), workers=1, progress=False,
-                       grid=grid, work=work, keep_work=True)
+                       grid=grid, work=work, keep_work=True, **kw)
     stores = sorted(p.name for p in work.iterdir())
     data = T.load_table(path)
     nodes = table_nodes({k: np.asarray(v, float) for k, v in grid.items()})
@@ -127,8 +130,18 @@ def test_strided_build_holds_the_grid_limit_on_its_sub_grid(tmp_path):
     f = [_exact(c, creep, 0.3, elements=n) for n in (8, 10, 12)]
     lim = grid_limit([np.array([r.Fx, r.Fy]) for r in f], (8, 10, 12))
     np.testing.assert_allclose(data.values[2, 0, 2, 1, 0, :2], lim / 3e3, atol=1e-6)
+    # the first plane r = 0.25 holds its own fit (10/12/14 elements); the other nu keeps
+    # its difference to the first (here on the stride-2 sub-grid: r = 0.25 interpolated)
+    j = np.ravel_multi_index((1, 0, 1, 1, 0), shape)
+    m = wr.Material(2.1e11, nodes["nu"][j])
+    c = wr.hertz_from_semiaxes(nodes["a"][j], nodes["b"][j], 1e4, m)
+    creep = (nodes["xi"][j], nodes["eta"][j], nodes["phi"][j])
+    f = [_exact(c, creep, 0.3, elements=n) for n in (10, 12, 14)]
+    lim = grid_limit([np.array([r.Fx, r.Fy]) for r in f], (10, 12, 14))
+    np.testing.assert_allclose(data.values[1, 0, 2, 1, 0, :2], lim / 3e3, atol=1e-6)
+    assert data.meta["first_plane_elements"] == [10, 12, 14]
     build_table(tmp_path / "t2.npz", elements=(8, 10, 12), workers=1, progress=False,
-                grid=grid, work=work, keep_work=True)
+                grid=grid, work=work, keep_work=True, **kw)
     assert sorted(p.name for p in work.iterdir()) == stores
 
 

@@ -8,7 +8,13 @@ HELP = "build the creep-force table of method 'table' with the exact solver (res
 
 
 def add_arguments(p) -> None:
-    from ..sweeps.tables import ELEMENTS, EXTRAPOLATION_STRIDE, ORDER
+    from ..sweeps.tables import (
+        ELEMENTS,
+        EXTRAPOLATION_STRIDE,
+        FIRST_PLANE_ELEMENTS,
+        NU_STRIDE,
+        ORDER,
+    )
     from ..tangential.table import DEFAULT_TABLE
 
     p.add_argument("--out", default=str(DEFAULT_TABLE), metavar="TABLE.npz",
@@ -23,6 +29,14 @@ def add_arguments(p) -> None:
     p.add_argument("--extrapolation-stride", type=int, default=EXTRAPOLATION_STRIDE, metavar="K",
                    help="stride along r, theta, s of the sub-grid of the grid-limit fit (1: every "
                         f"node; default {EXTRAPOLATION_STRIDE})")
+    p.add_argument("--nu-stride", type=int, default=NU_STRIDE, metavar="K",
+                   help="stride along r, theta, s of the sub-grid of the other Poisson's ratio "
+                        f"(1: every node; default {NU_STRIDE})")
+    p.add_argument("--first-plane-elements", type=int, nargs="*",
+                   default=list(FIRST_PLANE_ELEMENTS), metavar="N",
+                   help="resolutions of a separate grid-limit fit on the smallest creepages "
+                        "(r = dr), where the slip zone spans few elements (none: fit it like "
+                        f"the others; default {' '.join(map(str, FIRST_PLANE_ELEMENTS))})")
     p.add_argument("--workers", type=int, default=2, metavar="N", help="local workers (default 2)")
     p.add_argument("--executor", choices=("serial", "processes", "dask"),
                    help="executor of the sweeps (default: serial for 1 worker, else dask)")
@@ -37,7 +51,8 @@ def run(args, console) -> int:
     from ..sweeps.tables import build_table
 
     path = build_table(args.out, elements=tuple(args.elements), order=args.order,
-                       extrapolation_stride=args.extrapolation_stride,
+                       extrapolation_stride=args.extrapolation_stride, nu_stride=args.nu_stride,
+                       first_plane_elements=tuple(args.first_plane_elements),
                        workers=args.workers, executor=args.executor, work=args.work,
                        keep_work=args.keep_work)
     console.print(f"wrote [bold]{esc(path)}[/bold]")

@@ -23,7 +23,11 @@ therefore the grid limit of the exact theory. With ``elements = (N₁, N₂, N�
   interpolated (Catmull–Rom cubics) onto every node and added;
 * the other Poisson's ratios: N₂ on the sub-grid of stride ``nu_stride``, the
   difference to the first ν interpolated the same way (the effect of ν on the
-  discretisation error is below the solver's jitter).
+  discretisation error is below the solver's jitter);
+* the plane of the smallest creepages, r = Δr, at the first ν: its own fit to
+  :data:`FIRST_PLANE_ELEMENTS` (the slip zone is a few N₁-elements wide there).
+
+The shipped table uses stride 1 for both (every node).
 
 Every resolution is computed by resumable :func:`wheelrail.sweep` runs into
 Zarr stores under the work directory; a node already in a store at that
@@ -69,11 +73,13 @@ __all__ = [
     "BUILD_CONTACT",
     "ELEMENTS",
     "EXTRAPOLATION_STRIDE",
+    "FIRST_PLANE_ELEMENTS",
     "GRID",
     "NU_STRIDE",
     "ORDER",
     "REFERENCE_ELEMENTS",
     "assemble_table",
+    "replace_first_plane",
     "build_table",
     "exact_limit",
     "grid_limit",
@@ -87,7 +93,7 @@ __all__ = [
 GRID = {
     "r": np.linspace(0.0, 1.0, 21),
     "theta": np.linspace(0.0, 0.5 * np.pi, 9),
-    "s": np.linspace(-1.0, 1.0, 21),
+    "s": np.linspace(-1.0, 1.0, 41),
     "log_ab": np.log(np.geomspace(0.05, 20.0, 9)),
     "nu": np.array([0.25, 0.30]),
 }
@@ -100,9 +106,16 @@ ELEMENTS = (16, 24, 36)
 ORDER = 1.0
 #: Resolutions of the table law's reference (:func:`exact_limit`).
 REFERENCE_ELEMENTS = (36, 54, 81, 122)
-#: Strides along r, θ, s of the sub-grids of the grid-limit fit and of the other ν.
-EXTRAPOLATION_STRIDE = 2
-NU_STRIDE = 2
+#: Strides along r, θ, s of the sub-grids of the grid-limit fit and of the other ν
+#: (1: every node; the shipped table).
+EXTRAPOLATION_STRIDE = 1
+NU_STRIDE = 1
+#: Resolutions of the grid-limit fit on the first plane of computed creepages (r = Δr)
+#: at the first ν. There the slip zone is a few elements of N₁ wide and the exact
+#: solver is not yet in its first-order regime at N₁ … N₃: the 16/24/36 fit is up
+#: to 1.7 % of μFn off at r = 0.05, and 0.9 % low in the slope at a/b = 1 (Kalker's
+#: C11), where 36/54/81 holds it to 0.4 %.
+FIRST_PLANE_ELEMENTS = (36, 54, 81)
 #: Parameters of the physical contacts on which the nodes are computed (any
 #: values give the same dimensionless result, by similarity).
 BUILD_CONTACT = {"E": 2.1e11, "Fn": 1.0e4, "mu": 0.3, "c": 5.0e-3}
@@ -441,6 +454,22 @@ def assemble_table(grid, elements, main, others, nus, *, extrapolation_stride=1,
     return vals, info
 
 
+def replace_first_plane(vals, grid, limit):
+    """``vals`` with the plane r = Δr replaced by ``limit`` at the first ν, the other ν
+    shifted by the same change (their difference to the first ν kept).
+
+    ``limit`` has the shape of the plane's computed nodes, (1, n_θ, n_s − 2, n_ab, 1, 3).
+    Returns the new values and the largest change (fraction of μFn).
+    """
+    s_in = np.flatnonzero(_computed(np.asarray(grid["s"], float), "s"))
+    s_sl = slice(int(s_in[0]), int(s_in[-1]) + 1)  # |s| < 1: the interior nodes
+    vals = np.array(vals, copy=True)
+    new = limit[0, :, :, :, 0, :]
+    change = np.where(np.isfinite(new), new - vals[1, :, s_sl, :, 0, :], 0.0)
+    vals[1, :, s_sl] += change[:, :, :, None, :]
+    return vals, float(np.abs(change).max())
+
+
 def _fill_failed(vals):
     """Failed nodes (NaN) from the mean of their finite neighbours along r (then θ)."""
     bad = np.isnan(vals)
@@ -457,7 +486,8 @@ def _fill_failed(vals):
 
 def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, executor=None,
                 progress=True, grid=None, keep_work=False, order=ORDER,
-                extrapolation_stride=EXTRAPOLATION_STRIDE, nu_stride=NU_STRIDE) -> Path:
+                extrapolation_stride=EXTRAPOLATION_STRIDE, nu_stride=NU_STRIDE,
+                first_plane_elements=FIRST_PLANE_ELEMENTS) -> Path:
     """Compute the table with the exact solver (resumable :func:`wheelrail.sweep` runs) and save it.
 
     Parameters
@@ -484,6 +514,11 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, e
     extrapolation_stride, nu_stride : int
         Strides (1, 2, 4, …) along r, θ, s of the sub-grids of the grid-limit fit and of
         the other Poisson's ratios (1: every node).
+    first_plane_elements : sequence of int, optional
+        Resolutions of a separate grid-limit fit on the plane r = Δr at the first ν
+        (:data:`FIRST_PLANE_ELEMENTS`); the other ν keep their difference to it. Empty
+        or None, or a single resolution in ``elements`` (no extrapolation): that plane
+        is treated like the others.
 
     Returns
     -------
@@ -515,10 +550,17 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, e
     vals, info = assemble_table(grid, elements, main, others, nus,
                                 extrapolation_stride=extrapolation_stride, nu_stride=nu_stride,
                                 order=order)
+    plane_els = tuple(int(e) for e in (first_plane_elements or ()))
+    if plane_els and len(elements) > 1 and len(grid["r"]) > 2:
+        plane = dict(grid, r=grid["r"][1:2], nu=grid["nu"][:1])
+        fs = [stage(plane, n) for n in plane_els]
+        vals, change = replace_first_plane(vals, grid, grid_limit(fs, plane_els, order))
+        info["first_plane"] = {"elements": list(plane_els), "max_change": change}
     vals, n_failed = _fill_failed(vals)
     meta = {"version": TABLE_VERSION, "wheelrail_version": __version__,
             "method": "exact", "elements": list(elements), "order": order,
             "extrapolation_stride": int(extrapolation_stride), "nu_stride": int(nu_stride),
+            "first_plane_elements": list(plane_els),
             "build_contact": BUILD_CONTACT, "not_converged_nodes": not_conv,
             "failed_nodes_filled": n_failed, "extrapolation": info, "axes": list(AXES),
             "quantities": ["Fx/(mu Fn)", "Fy/(mu Fn)", "Mz/(mu Fn c)"]}

@@ -1,16 +1,16 @@
 """Compiled evaluation of the creep-force table (private kernel of :mod:`.table`).
 
 One pass per point: the table coordinates of the contact and creepages, the
-reflection into ξ, η ≥ 0, a tensor-product interpolation (Catmull–Rom cubic
-along the axes flagged cubic, linear along the others) of the values stored
+reflection into ξ, η ≥ 0, a tensor-product interpolation (interpolating cubic
+B-spline along the axes flagged cubic, linear along the others) of the values stored
 in the frame of the full-slip direction, the rotation back and the scaling to
 forces. Kalker's C11, C22, C23 come from a fine (ln a/b, ν) lookup built once
 by :mod:`.table` from :func:`wheelrail.tangential.linear.kalker_coefficients`.
 
 References
 ----------
-.. [1] E. Catmull, R. Rom, A class of local interpolating splines, in: Computer
-   Aided Geometric Design, Academic Press, 1974, 317-326.
+.. [1] C. de Boor, A Practical Guide to Splines, revised ed., Springer, 2001,
+   ch. IX (B-splines) and ch. XII (the not-a-knot end condition).
 """
 
 from __future__ import annotations
@@ -37,14 +37,16 @@ def _locate(x, x0, dx, n):
 
 @njit(cache=True, inline="always")
 def _weights(t, cubic, w):
-    """Weights of the 4 nodes i−1 … i+2 (Catmull–Rom) or of i, i+1 (linear, others 0)."""
+    """Weights of the 4 coefficients i−1 … i+2 of a uniform cubic B-spline, or of the
+    nodes i, i+1 (linear, others 0)."""
     if cubic:
+        u = 1.0 - t
         t2 = t * t
         t3 = t2 * t
-        w[0] = 0.5 * (-t3 + 2.0 * t2 - t)
-        w[1] = 0.5 * (3.0 * t3 - 5.0 * t2 + 2.0)
-        w[2] = 0.5 * (-3.0 * t3 + 4.0 * t2 + t)
-        w[3] = 0.5 * (t3 - t2)
+        w[0] = u * u * u / 6.0
+        w[1] = (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0
+        w[2] = (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0
+        w[3] = t3 / 6.0
     else:
         w[0] = 0.0
         w[1] = 1.0 - t
@@ -63,12 +65,13 @@ def point_forces(a, b, G, nu, xi, eta, phi, mu, Fn, values, x0, dx, n, cubic, c_
         Semi-axes [m], shear modulus [Pa], Poisson's ratio, creepages
         [-, -, 1/m], friction, normal force [N].
     values : ndarray, shape (n_r+2, n_θ+2, n_s+2, n_ab+2, n_ν+2, 3)
-        Table values (along, across the full-slip direction, mz) padded by one
-        ghost node at each end of every axis.
+        Along the cubic axes the B-spline coefficients c₋₁ … c_n of the table
+        values (along, across the full-slip direction, mz), along the linear
+        axes the values padded by one unused ghost node at each end.
     x0, dx : ndarray, shape (5,)
         First node and spacing of each (uniform) axis; ``n`` node counts (int64).
     cubic : ndarray of bool, shape (5,)
-        Axes interpolated with Catmull–Rom cubics.
+        Axes interpolated with cubic B-splines.
     c_x0, c_dx, c_n : ndarray, shape (2,)
         The (ln a/b, ν) lookup grid of ``coef`` (shape (c_n0, c_n1, 3): C11, C22, C23).
 

@@ -36,26 +36,31 @@ F(ξ, −η, −φ) = (Fx, −Fy, −Mz), reduce the creepage directions to the 
 in the creepages and its mirror symmetry in y, and are checked against the
 exact solver in ``tests/reference/test_table_law.py``.
 
-Interpolation is a tensor product of Catmull–Rom cubics in (r, θ, s, ln a/b)
-and linear in ν (a compiled kernel, :mod:`wheelrail.tangential._table_kernel`),
-for the tangential force in the frame of the full-slip direction (components
-along and across it), so that |F| = μFn is kept in full slip; |F| ≤ μFn is
-enforced (the cubic may overshoot the bound by a little). Ghost nodes beyond
-the axes' ends are quadratic extrapolations, except at r = 0 where the
-reversed creepage gives them exactly (F is odd in (ξ, η, φ) together).
+Interpolation is a tensor product of interpolating cubic B-splines in
+(r, θ, s, ln a/b) and linear in ν (a compiled kernel,
+:mod:`wheelrail.tangential._table_kernel`), for the tangential force in the
+frame of the full-slip direction (components along and across it), so that
+|F| = μFn is kept in full slip; |F| ≤ μFn is enforced (the cubic may
+overshoot the bound by a little). The spline coefficients are computed once
+when the table is loaded, with not-a-knot ends (de Boor 2001), except at r = 0
+where the spline is fitted to the odd extension that the reversed creepage
+gives exactly (F is odd in (ξ, η, φ) together). A global spline rather than
+local (Catmull–Rom) cubics: on the 60 benchmark points its largest error is
+about a fifth smaller (benchmarks/bench_contact_table_law.py).
 
 Accuracy
 --------
 See ``benchmarks/bench_contact_table_law.py`` and docs/sweeps.md: random points
 over the whole domain (:func:`random_cases`: a/b 0.05–20, |φ̂| up to 19) against
 the exact theory's grid limit (least-squares f∞ + C/N to 36–122 elements,
-uncertainty ≤ 0.16 % of μFn). The shipped table (21 × 9 × 21 × 9 × 2 nodes,
-24-element values plus the grid-limit step fitted to 16/24/36 elements on every
-other node): on 60 points max |ΔF_t| = 1.41 % of μFn, rms 0.33 %, max |ΔMz| =
-0.76 % of μFn c; 58 of the 60 points within 1 %.
+uncertainty ≤ 0.28 % of μFn). The shipped table (21 × 9 × 41 × 9 × 2 nodes,
+the grid limit fitted to 16/24/36 elements on every node, 36/54/81 on the
+smallest creepages): on 200 points max |ΔF_t| = 1.32 % of μFn, rms 0.21 %,
+max |ΔMz| = 0.84 % of μFn c; 199 of the 200 within 1 % (the exact solver itself
+with 122 elements: max 1.29 %, rms 0.25 %).
 
-Speed: one call of :meth:`Table.solve` takes about 0.04 ms (the exact solver
-with 40 elements: 16–21 ms), see the benchmark.
+Speed: one call of :meth:`Table.solve` takes about 0.035 ms (the exact solver
+with 40 elements: 15–19 ms), see the benchmark.
 
 Outside the domain (a/b outside [0.05, 20], ν outside [0.25, 0.30], or
 dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
@@ -76,6 +81,8 @@ References
 .. [2] J.J. Kalker, Book of tables for the Hertzian creep-force law, in:
    I. Zobory (ed.), Proc. 2nd Mini Conf. on Contact Mechanics and Wear of
    Wheel/Rail Systems, Budapest, 1996, 11-20.
+.. [3] C. de Boor, *A Practical Guide to Splines*, revised ed., Springer 2001,
+   ch. IX (B-splines) and ch. XII (the not-a-knot end condition).
 """
 
 from __future__ import annotations
@@ -188,28 +195,64 @@ def full_slip(a, b, xi, eta, phi, n_radial=96, n_angle=192):
     return out[:, 0], out[:, 1], out[:, 2]
 
 
-#: Axes interpolated with Catmull–Rom cubics (the others linearly): r, θ, s, ln a/b; ν linear.
+#: Axes interpolated with cubic B-splines (the others linearly): r, θ, s, ln a/b; ν linear.
 CUBIC = (True, True, True, True, False)
 
 
 def _ghosts(v, axis):
-    """Pad ``v`` by one node at each end of ``axis``: quadratic (or linear) extrapolation."""
+    """Pad ``v`` by one node at each end of ``axis`` (linear extrapolation; the kernel
+    gives these nodes weight 0 on a linear axis)."""
     v = np.moveaxis(v, axis, 0)
-    if v.shape[0] >= 3:
-        lo = 3.0 * v[0] - 3.0 * v[1] + v[2]
-        hi = 3.0 * v[-1] - 3.0 * v[-2] + v[-3]
-    else:
-        lo = 2.0 * v[0] - v[1]
-        hi = 2.0 * v[-1] - v[-2]
+    lo = 2.0 * v[0] - v[1]
+    hi = 2.0 * v[-1] - v[-2]
     return np.moveaxis(np.concatenate([lo[None], v, hi[None]]), 0, axis)
+
+
+def _spline_operator(n):
+    """(n + 2, n) matrix from node values to the coefficients c₋₁ … c_n of the
+    interpolating uniform cubic B-spline with not-a-knot ends (de Boor 2001, ch. XII):
+    (c_{i−1} + 4 c_i + c_{i+1}) / 6 = f_i, and no jump of the third derivative at the
+    second and the last-but-one node (Δ⁴c = 0 there). Axes of 2 or 3 nodes (small test
+    tables) get natural ends (no curvature at the end nodes: Δ²c = 0)."""
+    if n < 2:
+        raise InputError(f"a creep-table axis needs >= 2 nodes, got {n}")
+    A = np.zeros((n + 2, n + 2))
+    for i in range(n):
+        A[i, i:i + 3] = (1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0)
+    if n >= 4:
+        A[n, 0:5] = (1.0, -4.0, 6.0, -4.0, 1.0)
+        A[n + 1, n - 3:n + 2] = (1.0, -4.0, 6.0, -4.0, 1.0)
+    else:
+        A[n, 0:3] = (1.0, -2.0, 1.0)
+        A[n + 1, n - 1:n + 2] = (1.0, -2.0, 1.0)
+    return np.linalg.solve(A, np.eye(n + 2)[:, :n])
+
+
+def _spline_coefficients(v, axis, odd_start=None):
+    """B-spline coefficients of ``v`` along ``axis`` (:func:`_spline_operator`).
+
+    ``odd_start(v)`` gives the values at the mirrored nodes −x₁, −x₂, … of an axis that
+    starts at 0 where the table is odd (nodes 1, 2, … mapped by the symmetry): the
+    spline is then fitted to the odd extension and holds that symmetry at 0.
+    """
+    v = np.moveaxis(v, axis, 0)
+    n = v.shape[0]
+    if odd_start is not None:
+        mirror = odd_start(v[1:])[::-1]
+        ext = np.concatenate([mirror, v])
+        c = np.tensordot(_spline_operator(ext.shape[0]), ext, axes=(1, 0))[n - 1:]
+    else:
+        c = np.tensordot(_spline_operator(n), v, axes=(1, 0))
+    return np.moveaxis(c, 0, axis)
 
 
 class TableData:
     """A loaded table: node axes, values and metadata (see :func:`load_table`).
 
     ``kernel`` holds the arrays of the compiled evaluation
-    (:func:`wheelrail.tangential._table_kernel.point_forces`): the values in
-    the frame of the full-slip direction padded with ghost nodes, the axes'
+    (:func:`wheelrail.tangential._table_kernel.point_forces`): the cubic
+    B-spline coefficients of the values in the frame of the full-slip direction
+    (one extra coefficient at each end of every cubic axis), the axes'
     first node, spacing and count, the cubic flags and a (ln a/b, ν) lookup of
     Kalker's C11, C22, C23. ``_interp`` is the multilinear interpolant of the
     same frame values on the nodes (``_interp.values``: shape (n_r, n_θ, n_s,
@@ -258,16 +301,22 @@ class TableData:
             x0.append(ax[0])
             dx.append(step[0])
             n.append(ax.size)
-        padded = _ghosts(local, 0)
         r_ax, s_ax = np.asarray(axes["r"], float), np.asarray(axes["s"], float)
+        odd = None
         if r_ax[0] == 0.0 and r_ax.size > 1 and np.allclose(s_ax, -s_ax[::-1], atol=1e-12):
-            # r = -dr is the reversed creepage at the same theta: F(-c) = -F(c) for the
-            # creepages (xi, eta, phi) reversed together, i.e. minus the node at r = dr with
-            # the spin reversed (s -> -s), in the same local frame; exact, and it gives the
-            # cubic the secant slope at r = 0 (Kalker's C11, C22 up to the curvature in dr)
-            padded[0] = -local[1][:, ::-1]
-        for d in range(1, 5):
-            padded = _ghosts(padded, d)
+            # r = -x is the reversed creepage at the same theta: F(-c) = -F(c) for the
+            # creepages (xi, eta, phi) reversed together, i.e. minus the node at r = x with
+            # the spin reversed (s -> -s), in the same local frame; the spline through that
+            # odd extension has Kalker's slope at r = 0 up to the curvature in dr
+            def odd(v):
+                return -v[:, :, ::-1]
+        padded = local
+        ODDX = None
+
+        for d in range(4):
+            padded = (_spline_coefficients(padded, d, ODDX if d == 0 else None) if CUBIC[d]
+                      else _ghosts(padded, d))
+        padded = _ghosts(padded, 4)
         ab_lo, ab_hi = axes["log_ab"][0], axes["log_ab"][-1]
         nu_lo, nu_hi = axes["nu"][0], axes["nu"][-1]
         lab = np.linspace(ab_lo, ab_hi, 801)
