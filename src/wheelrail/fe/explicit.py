@@ -23,18 +23,19 @@ proportional to the rate of change of the penetration, which vanishes in steady
 rolling except where nodes enter and leave the patch); docs/fe_plastic.md measures that
 the steady forces do not change with it, and do not change with the mass scaling.
 
-Each step (one force evaluation) runs: the element forces (two parallel regions),
-the contact (parallel over slaves for large surfaces), the node update
-(:func:`wheelrail.fe._explicit.advance`, one parallel region). The plastic state is
-committed after every force evaluation (the explicit step is always accepted).
+Each step (one force evaluation) is one call of :func:`wheelrail.fe._explicit.explicit_step`:
+the element forces and the contact, then the node update fused into the second of its two
+parallel phases. The plastic state is updated in place (the explicit step is always
+accepted).
 """
 
 from __future__ import annotations
 
+import numba
 import numpy as np
 
 from ..errors import InputError
-from ._explicit import NCHUNK, advance_rolling, explicit_forces, interleaved_tasks
+from ._explicit import explicit_step, interleaved_tasks, node_groups
 from .model import build_model
 from .patch import patch_from_contact
 from .restart import read_restart
@@ -143,20 +144,22 @@ def solve_explicit(case, progress, output_every, io):
     f_int = np.zeros((n, 3))
     fd_beta = np.zeros((n, 3))
     acc = np.zeros((n, 3))
-    partial = np.zeros((NCHUNK, 6))
-    totals = np.zeros(6)
     state = model.new_state()
 
     fast = _ContactLoop(model, cdamp, dt, fcon)
+    totals = fast.totals
 
-    def forces(u, v, w, psi, s, mu_now, with_beta):
-        c = fast.step(u, w, psi, s, mu_now, f_int, state)
+    def step(u, v, w, psi, s, mu_now, m_alpha, with_beta):
+        """Forces at u, then u, v one step on (in place); the contact dict, the internal
+        energy at u and the vertical contact force on the wheel."""
+        if with_beta:                        # β K v_{k-1/2}: from v only, before the update
+            model.internal_force(v, fd_beta, elastic=True)
+            fd_beta[...] *= beta
+        c = fast.step(u, w, psi, s, mu_now, f_int, state, v, acc, fd_beta, with_beta, m_alpha,
+                      inv_m, m, cmap, dt)
         e_int = float(fast.sums[6] + fast.sums[7])
         if state is not None:                # updated in place by fast.step: nothing to commit
             state.energies = (float(fast.sums[6]), float(fast.sums[7]))
-        if with_beta:
-            model.internal_force(v, fd_beta, elastic=True)
-            fd_beta[...] *= beta
         return c, e_int, fast.sums[2]
 
     pass_rows = []
@@ -194,9 +197,7 @@ def solve_explicit(case, progress, output_every, io):
             fast.start(u, w, psi, s)
             n_ramp = max(1, int(RELAXATION_RAMP * n1))
             for k in range(n1):
-                c, e_int, fcw = forces(u, v, w, psi, s, 0.0, False)
-                advance_rolling(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon,
-                                dt, partial, totals)
+                c, e_int, fcw = step(u, v, w, psi, s, 0.0, m_alpha_dr, False)
                 load_k = load * float(_smoothstep((k + 1) / n_ramp))
                 aw = (fcw - load_k - c_axle_dr * vw) / M_dr
                 vw += dt * aw
@@ -226,12 +227,10 @@ def solve_explicit(case, progress, output_every, io):
         # ---- step 2: rolling (energies counted from here)
         sums = fast.sums
         for k in range(k0, n2):
-            c, e_int, fcw = forces(u, v, w, psi, s, mu, beta > 0)
+            c, e_int, fcw = step(u, v, w, psi, s, mu, m_alpha_roll, beta > 0)
             E["friction"] += sums[4]
             Fx, Fy, Fz, Fn = sums[0], sums[1], sums[2], sums[3]
             hist[k] = (s, Fx, Fy, Fz, Fn)
-            advance_rolling(u, v, acc, f_int, fd_beta, beta > 0, m_alpha_roll, inv_m, cmap,
-                            fcon, dt, partial, totals)
             # second halves of the trapezoidal work over the last interval (v = v_{k-1/2})
             E["contact_work"] += 0.5 * dt * (totals[2] + fcw * vw)
             if beta > 0:
@@ -240,9 +239,8 @@ def solve_explicit(case, progress, output_every, io):
             vw_new = vw + dt * aw
             E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw + totals[0])
             if k % every == 0 or k == n2 - 1:
-                vn = v - 0.5 * dt * acc                 # v_k
-                vwn = vw + 0.5 * dt * aw
-                E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
+                vwn = vw + 0.5 * dt * aw                # v_k; totals[6] = Σ m v_k·v_k
+                E["kinetic"] = 0.5 * float(totals[6]) + 0.5 * M_w * vwn * vwn
                 E["internal"] = e_int - e_int0
                 E["contact"] = float(sums[5])
                 if state is not None:
@@ -290,10 +288,11 @@ def solve_explicit(case, progress, output_every, io):
 class _ContactLoop:
     """Element forces and contact of an explicit step in preallocated buffers.
 
-    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_forces`): the element
+    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_step`): the element
     forces (into ``f``, which must hold zeros: the node update leaves it so), the surface
-    kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, and the contact
-    forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid). The
+    kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, the contact
+    forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid) and the
+    node update (:attr:`totals`: its sums, :data:`wheelrail.fe._explicit.ADV_COLUMNS`). The
     per-slave results are those of :meth:`wheelrail.fe.model.Model.contact` (same positions,
     increments, normals and contact law). Positions and tangential forces are
     double-buffered (the step reads the last ones); :attr:`sums` holds Fx, Fy, Fz, Σ p_n,
@@ -331,6 +330,10 @@ class _ContactLoop:
         self.echunk = np.zeros((nc, 2))
         self.energy = np.zeros((model.n_elements, 2))
         self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
+        self.gptr, self.gnodes = node_groups(model.conn, model.chunks, model.n_nodes)
+        self.partial = np.zeros((self.gptr.size - 1, 7))
+        self.totals = np.zeros(7)
+        self.counter = np.zeros(1, np.int64)
         # the element kernel streams its connectivity every step: 32 bytes per element
         self.conn = model.conn.astype(np.int32) if model.conn.max() < 2**31 else model.conn
         self.mat = (model.material.lam, model.material.shear_modulus) + tuple(model._hardening)
@@ -351,7 +354,10 @@ class _ContactLoop:
             if k in c:
                 buf[...] = c[k]
 
-    def step(self, u, w, psi, s, mu, f, state):
+    def step(self, u, w, psi, s, mu, f, state, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass,
+             cmap, dt):
+        """One step: forces at ``u`` into ``f``, then ``u``, ``v``, ``acc`` updated in place
+        (:func:`wheelrail.fe._explicit.explicit_step`); returns the contact dict."""
         m, o = self.model, self.out
         cpsi, spsi = np.cos(psi), np.sin(psi)
         lat = m.lateral_shift(s)
@@ -366,14 +372,16 @@ class _ContactLoop:
         # each integration point reads its own state before writing it)
         st = state.committed if plastic else _NO_STATE
         hg = ed.hx if ed.hx.shape[0] else ed.gamma          # compact hourglass data
-        explicit_forces(u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic,
-                        hp, tp, ts, st, st, f, self.energy, self.echunk, self.tasks,
-                        self.ref_s, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old, self.dxs,
-                        self.ref_m, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
-                        m.slave_area, m.kn, mu, ft_old, self.x_ref, self.y_ref, self.reach, m.g0,
-                        self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
-                        o["pn"], ft, o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
-                        self.fcon, self.sums)
+        explicit_step(u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic,
+                      hp, tp, ts, st, st, f, self.energy, self.echunk, self.tasks,
+                      self.ref_s, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old, self.dxs,
+                      self.ref_m, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
+                      m.slave_area, m.kn, mu, ft_old, self.x_ref, self.y_ref, self.reach, m.g0,
+                      self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
+                      o["pn"], ft, o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
+                      self.fcon, self.sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass,
+                      cmap, dt, self.gptr, self.gnodes, self.partial, self.totals, self.counter,
+                      numba.get_num_threads())
         self.xs.reverse()
         self.xm.reverse()
         self.ft.reverse()
