@@ -471,3 +471,99 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
     for g in range(n_groups):
         for j in range(totals.shape[0]):
             totals[j] += partial[g, j]
+
+
+@njit(cache=True)
+def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, sx, sy, tt, loads,
+              axle, y_ref0, cur, xsb, xmb, ftb,
+              u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+              st_in, st_out, f, energy, echunk, tasks, ref_s, snodes, z_axle, dxs,
+              ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt,
+              cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip,
+              fcon, sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+              gptr, gnodes, partial, totals, counter, nthr):
+    """Steps ``k0`` to ``k1 − 1`` of the explicit loop (:func:`explicit_step` each), with the
+    axle's vertical motion and the energy bookkeeping of the rolling step, without a return
+    to Python between steps.
+
+    ``relax``: the dynamic relaxation (axle load ``loads[k]``, ``axle`` = (mass, dashpot))
+    or the rolling step (``axle`` = (load, mass, α m + dashpot)). Per step k: ``cps``,
+    ``sps`` (cos, sin of the wheel angle), ``sx``, ``sy`` (rail travel and lateral drift [m]),
+    ``tt`` (time [s]); ``ax`` = (w, vw, e_int0, last vertical contact force) is updated;
+    the double buffers ``xsb``, ``xmb``, ``ftb`` (2, …) of the slave positions, master
+    positions and tangential forces have their previous values in row ``cur``; returns the
+    row of the last written ones. Rolling: ``E`` (8,) the energies in the order of the
+    rolling result (kinetic, internal, contact, friction, damping, external, contact work,
+    plastic work) [J], ``hist[k]`` = (travel, Fx, Fy, Fz, Fn), and every ``every`` steps
+    (and at step ``n_steps − 1``) a row of ``rows`` (time, travel, Fx, Fy, Fz, Fn, the
+    energies) at ``nrow[0]`` (incremented). The arithmetic is that of the Python loop it
+    replaces, operation for operation. Other arguments: :func:`explicit_step`.
+    """
+    w = ax[0]
+    vw = ax[1]
+    e_int0 = ax[2]
+    fcw = ax[3]
+    hdt = 0.5 * dt
+    for k in range(k0, k1):
+        lat = sy[k]
+        for j in range(y_ref.shape[0]):
+            y_ref[j] = y_ref0[j] - lat
+        new = 1 - cur
+        explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+                      st_in, st_out, f, energy, echunk, tasks,
+                      ref_s, snodes, cps[k], sps[k], z_axle + w, xsb[new], xsb[cur], dxs,
+                      ref_m, mnodes, sx[k], lat, xmb[new], xmb[cur], dxm, nm,
+                      area, kn, mu, ftb[cur], x_ref, y_ref, reach, g0, cdamp, inv_dt,
+                      cenergy, fs, fm, gap, pn, ftb[new], status, cell, rt, normal, slip,
+                      fcon, sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+                      gptr, gnodes, partial, totals, counter, nthr)
+        cur = new
+        fcw = sums[2]
+        if relax:
+            aw = (fcw - loads[k] - axle[1] * vw) / axle[0]
+            vw += dt * aw
+            w += dt * vw
+            continue
+        load = axle[0]
+        M_w = axle[1]
+        cv = axle[2]
+        e_int = sums[6] + sums[7]
+        E[3] += sums[4]
+        hist[k, 0] = sx[k]
+        hist[k, 1] = sums[0]
+        hist[k, 2] = sums[1]
+        hist[k, 3] = sums[2]
+        hist[k, 4] = sums[3]
+        E[6] += hdt * (totals[2] + fcw * vw)
+        if has_beta:
+            E[4] += hdt * totals[4]
+        aw = (fcw - load - cv * vw) / M_w
+        vw_new = vw + dt * aw
+        E[4] += hdt * (cv * vw * vw + totals[0])
+        if k % every == 0 or k == n_steps - 1:
+            vwn = vw + hdt * aw
+            E[0] = 0.5 * totals[6] + 0.5 * M_w * vwn * vwn
+            E[1] = e_int - e_int0
+            E[2] = sums[5]
+            if plastic:
+                E[7] = sums[7]
+            r = nrow[0]
+            rows[r, 0] = tt[k]
+            rows[r, 1] = sx[k]
+            for j in range(4):
+                rows[r, 2 + j] = sums[j]
+            for j in range(8):
+                rows[r, 6 + j] = E[j]
+            nrow[0] = r + 1
+        E[6] += hdt * (totals[3] + fcw * vw_new)
+        E[4] += hdt * (cv * vw * vw_new + totals[1])
+        if has_beta:
+            E[4] += hdt * totals[5]
+        dw = dt * vw_new
+        vw = vw_new
+        w += dw
+        E[5] += -load * dw
+    ax[0] = w
+    ax[1] = vw
+    ax[3] = fcw
+    return cur

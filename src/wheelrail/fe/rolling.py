@@ -366,6 +366,7 @@ def restart_writer(io, model, dt, n_steps):
             return True
         return False
 
+    maybe_write.every = every if path is not None else 0     # steps between writes (0: none)
     return maybe_write
 
 
