@@ -91,7 +91,8 @@ class RollingResult:
     u : ndarray, shape (n_nodes, 3)
         Final displacements in the body frames [m].
     info : dict
-        Time step, steps, solver counters.
+        Time step, steps, solver counters; explicit runs: ``loop_wall``, ``loop_cpu``
+        the wall and CPU seconds of the time loop (without the model build and output).
     steady : dict
         ``window`` (start, end) of travel [m], ``n`` samples, and for Fx, Fy, Fz, Fn,
         Fy_contact, Fn_contact: ``<name>`` the mean [N], ``<name>_std`` the standard
