@@ -135,9 +135,12 @@ def return_map(eps, st_in, st_out, lam, G, hp, tp, ts, sig, D, tangent):
         sy = hp[0]                       # virgin point: no exp (most points of a run)
     else:
         sy, h = yield_stress(p_n, hp, tp, ts)
-    for k in range(NSTATE):
-        st_out[k] = st_in[k]
     if q_tr <= sy * (1.0 + 1e-12):
+        # elastic: the state is unchanged (nothing to write when updated in place, as the
+        # explicit step does: a plastic run's points are mostly elastic)
+        if st_out.ctypes.data != st_in.ctypes.data:
+            for k in range(NSTATE):
+                st_out[k] = st_in[k]
         sig[0] = s0 + pm
         sig[1] = s1 + pm
         sig[2] = s2 + pm
