@@ -134,7 +134,7 @@ def node_groups(conn, bounds, n_nodes):
 
 
 @njit(cache=True, inline="always")
-def _update_nodes(g, gptr, gnodes, u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, mass,
+def _update_nodes(g, gptr, gnodes, u, v, f_int, fd_beta, has_beta, m_alpha, inv_m, mass,
                   cmap, fcon, dt, partial):
     """Central-difference update of the nodes of group ``g`` (in place), ``f_int`` zeroed;
     its partial sums (:data:`ADV_COLUMNS`) into ``partial[g]``."""
@@ -161,7 +161,6 @@ def _update_nodes(g, gptr, gnodes, u, v, acc, f_int, fd_beta, has_beta, m_alpha,
             if k >= 0:
                 fx += fcon[k, d]
             a = fx * im
-            acc[i, d] = a
             vn = vo + dt * a
             v[i, d] = vn
             u[i, d] += dt * vn
@@ -344,7 +343,7 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
                   ref_m, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm,
                   area, kn, mu, ft_old, x_ref, y_ref, reach, g0, cdamp, inv_dt,
                   cenergy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip,
-                  fcon, sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+                  fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
                   gptr, gnodes, partial, totals, counter, nthr):
     """One explicit step: element forces, contact and the central-difference node update,
     in two parallel phases.
@@ -355,8 +354,8 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
        the tasks ``tasks`` (:func:`interleaved_tasks`);
     2. the master forces scattered in slave order and :func:`contact_to_nodes` (serial);
     3. in parallel, per node group g of :func:`node_groups`: the odd element chunk 2g + 1,
-       then the update of the group's nodes (their forces are final then): acc = (f_con −
-       f_int − m_α v − f_β) / m; v ← v + Δt acc; u ← u + Δt v; ``f`` (the internal forces,
+       then the update of the group's nodes (their forces are final then): a = (f_con −
+       f_int − m_α v − f_β) / m; v ← v + Δt a; u ← u + Δt v (a is not stored); ``f`` (the internal forces,
        which must hold zeros on entry) is left zero;
     4. the sums in chunk and group order (serial).
 
@@ -366,15 +365,16 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
     per task and added in task order. Nothing depends on the number of threads.
 
     Parameters: as :func:`wheelrail.fe._solid.element_forces` (``u`` … ``energy``; ``u`` is
-    read by phases 1-3 before the update), the contact kernels named, and
+    read by phases 1-3 before the update; ``energy`` may be (0, 2): the element energies
+    are then only summed per chunk, not stored), the contact kernels named, and
 
     echunk : (nc, 2)
         Output: elastic energy and plastic work per element chunk.
     sums : (8,)
         Output: Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
         :func:`contact_to_nodes`), elastic strain energy and plastic work [J] of ``u``.
-    v, acc : (n, 3)
-        Half-step velocities (updated) and accelerations (output).
+    v : (n, 3)
+        Half-step velocities (updated).
     fd_beta : (n, 3)
         Stiffness-proportional damping forces [N] (read only if ``has_beta``).
     m_alpha, inv_m, mass : (n,)
@@ -386,7 +386,7 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
     partial : (ngroups, 7), totals : (7,)
         Output: per group and summed in group order, the sums of :data:`ADV_COLUMNS`:
         Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old, Σ f_con·v_new, Σ f_β·v_old,
-        Σ f_β·v_new and Σ m v_k·v_k with v_k = v_new − Δt acc / 2 (twice the kinetic
+        Σ f_β·v_new and Σ m v_k·v_k with v_k = v_new − Δt a / 2 (twice the kinetic
         energy at the step).
     counter : (1,) int64 scratch.
     nthr : int
@@ -420,10 +420,11 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
                 a0 = 0.0
                 a1 = 0.0
                 for e in range(bounds[ch], bounds[ch + 1]):
-                    _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
-                             hp, tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
-                    a0 += energy[e, 0]
-                    a1 += energy[e, 1]
+                    e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                                          plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
+                                          ue, eps, sig, D, bb)
+                    a0 += e_el
+                    a1 += e_pl
                 echunk[ch, 0] = a0
                 echunk[ch, 1] = a1
             else:
@@ -450,13 +451,14 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
                 a0 = 0.0
                 a1 = 0.0
                 for e in range(bounds[ch], bounds[ch + 1]):
-                    _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
-                             hp, tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
-                    a0 += energy[e, 0]
-                    a1 += energy[e, 1]
+                    e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                                          plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
+                                          ue, eps, sig, D, bb)
+                    a0 += e_el
+                    a1 += e_pl
                 echunk[ch, 0] = a0
                 echunk[ch, 1] = a1
-            _update_nodes(g, gptr, gnodes, u, v, acc, f, fd_beta, has_beta, m_alpha, inv_m,
+            _update_nodes(g, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
                           mass, cmap, fcon, dt, partial)
             g = _take_next(counter)
     e0 = 0.0
@@ -480,7 +482,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
               st_in, st_out, f, energy, echunk, tasks, ref_s, snodes, z_axle, dxs,
               ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt,
               cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip,
-              fcon, sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+              fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
               gptr, gnodes, partial, totals, counter, nthr):
     """Steps ``k0`` to ``k1 − 1`` of the explicit loop (:func:`explicit_step` each), with the
     axle's vertical motion and the energy bookkeeping of the rolling step, without a return
@@ -515,7 +517,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                       ref_m, mnodes, sx[k], lat, xmb[new], xmb[cur], dxm, nm,
                       area, kn, mu, ftb[cur], x_ref, y_ref, reach, g0, cdamp, inv_dt,
                       cenergy, fs, fm, gap, pn, ftb[new], status, cell, rt, normal, slip,
-                      fcon, sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+                      fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
                       gptr, gnodes, partial, totals, counter, nthr)
         cur = new
         fcw = sums[2]

@@ -184,7 +184,6 @@ def solve_explicit(case, progress, output_every, io):
     m_alpha_roll = alpha * m
     f_int = np.zeros((n, 3))
     fd_beta = np.zeros((n, 3))
-    acc = np.zeros((n, 3))
     state = model.new_state()
 
     fast = _ContactLoop(model, cdamp, dt, fcon)
@@ -207,10 +206,10 @@ def solve_explicit(case, progress, output_every, io):
                 model.internal_force(v, fd_beta, elastic=True)
                 fd_beta[...] *= beta
                 c = fast.run(k, k + 1, relax, per_step, ax, axle, mu_now, m_alpha, True, state,
-                             u, v, acc, f_int, fd_beta, inv_m, m, cmap, dt, **rolling)
+                             u, v, f_int, fd_beta, inv_m, m, cmap, dt, **rolling)
             return c
         return fast.run(k0, k1, relax, per_step, ax, axle, mu_now, m_alpha, False, state, u, v,
-                        acc, f_int, fd_beta, inv_m, m, cmap, dt, **rolling)
+                        f_int, fd_beta, inv_m, m, cmap, dt, **rolling)
 
     pass_rows = []
     if io["restart"] is not None:
@@ -363,7 +362,7 @@ class _ContactLoop:
         self.sums = np.zeros(8)
         nc = model.chunks.size - 1
         self.echunk = np.zeros((nc, 2))
-        self.energy = np.zeros((model.n_elements, 2))
+        self.energy = np.zeros((0, 2))             # element energies: summed, not stored
         self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
         self.gptr, self.gnodes = node_groups(model.conn, model.chunks, model.n_nodes)
         self.partial = np.zeros((self.gptr.size - 1, 7))
@@ -394,8 +393,8 @@ class _ContactLoop:
         c = self.cur
         return dict(self.out, xs=self.xsb[c], xm=self.xmb[c], ft=self.ftb[c])
 
-    def run(self, k0, k1, relax, per_step, ax, axle, mu, m_alpha, has_beta, state, u, v, acc,
-            f, fd_beta, inv_m, mass, cmap, dt, E=None, hist=None, rows=None, nrow=None,
+    def run(self, k0, k1, relax, per_step, ax, axle, mu, m_alpha, has_beta, state, u, v, f,
+            fd_beta, inv_m, mass, cmap, dt, E=None, hist=None, rows=None, nrow=None,
             every=1, n_steps=0):
         """Steps k0 … k1 − 1 (:func:`wheelrail.fe._explicit.run_steps`): ``per_step`` =
         (cos ψ, sin ψ, rail travel, lateral drift, time, axle load) arrays over the steps;
@@ -421,7 +420,7 @@ class _ContactLoop:
             m.slave_area, m.kn, mu, self.x_ref, self.y_ref, self.reach, m.g0,
             self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
             o["pn"], o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
-            self.fcon, self.sums, v, acc, fd_beta, has_beta, m_alpha, inv_m, mass,
+            self.fcon, self.sums, v, fd_beta, has_beta, m_alpha, inv_m, mass,
             cmap, dt, self.gptr, self.gnodes, self.partial, self.totals, self.counter,
             numba.get_num_threads())
         if plastic:                          # updated in place: nothing to commit
