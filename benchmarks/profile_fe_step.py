@@ -113,6 +113,7 @@ def _load_instrumented(out: Path):
         path.write_text(text)
     spec = importlib.util.spec_from_file_location("_fe_step_instrumented", path)
     mod = importlib.util.module_from_spec(spec)
+    sys.modules["_fe_step_instrumented"] = mod          # numba's cache imports it by name
     spec.loader.exec_module(mod)
     return mod
 
