@@ -472,17 +472,21 @@ def cmd_speed(a):
                 numba.set_num_threads(threads)
                 r, cpu, wall = timed(case, progress=False)
                 n = r.info["steps"] * r.model.n_elements
-                rows.append((plastic, threads, wall / n * 1e9, cpu / n * 1e9))
+                rows.append((plastic, threads, wall / n * 1e9, cpu / n * 1e9,
+                             r.info["loop_wall"] / n * 1e9))
                 print(f"{'plastic' if plastic else 'elastic'}, {threads} thread(s): "
                       f"{r.model.n_elements} elements x {r.info['steps']} steps: wall "
-                      f"{wall / n * 1e9:.1f} ns/element/step, CPU {cpu / n * 1e9:.1f}, {load()}",
-                      flush=True)
+                      f"{wall / n * 1e9:.1f} ns/element/step, CPU {cpu / n * 1e9:.1f} (time loop "
+                      f"only: wall {r.info['loop_wall'] / n * 1e9:.1f}), {load()}", flush=True)
     numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
     for plastic in (False, True):
         w1 = min(r[2] for r in rows if r[0] == plastic and r[1] == 1)
         w2 = min(r[2] for r in rows if r[0] == plastic and r[1] == 2)
+        l1 = min(r[4] for r in rows if r[0] == plastic and r[1] == 1)
+        l2 = min(r[4] for r in rows if r[0] == plastic and r[1] == 2)
         print(f"  {'plastic' if plastic else 'elastic'}: best wall 1 thread {w1:.1f}, 2 threads "
-              f"{w2:.1f} ns/element/step, speed-up {w1 / w2:.2f}")
+              f"{w2:.1f} ns/element/step, speed-up {w1 / w2:.2f}; time loop only {l1:.1f}, "
+              f"{l2:.1f}, speed-up {l1 / l2:.2f}")
 
 
 def cmd_speed_one(a):
@@ -494,6 +498,8 @@ def cmd_speed_one(a):
     solve(case.replace(travel=0.3 * a.travel), progress=False)              # compile, warm
     r, cpu, wall = timed(case, progress=False)
     print(json.dumps(dict(steps=r.info["steps"], elements=r.model.n_elements, cpu=cpu, wall=wall,
+                          loop_wall=r.info.get("loop_wall", float("nan")),
+                          loop_cpu=r.info.get("loop_cpu", float("nan")),
                           Fx=r.steady["Fx"], load=os.getloadavg()[0])))
 
 
@@ -522,12 +528,15 @@ def speed_against_baseline(a):
                     row = json.loads(out.strip().splitlines()[-1])
                     n = row["steps"] * row["elements"]
                     row.update(code=code, material=material, threads=threads, rep=rep,
-                               wall_ns=row["wall"] / n * 1e9, cpu_ns=row["cpu"] / n * 1e9)
+                               wall_ns=row["wall"] / n * 1e9, cpu_ns=row["cpu"] / n * 1e9,
+                               loop_ns=row["loop_wall"] / n * 1e9,
+                               loop_cpu_ns=row["loop_cpu"] / n * 1e9)
                     rows.append(row)
                     print(f"  {code:8s} {material}, {threads} thread(s): {row['elements']} elements"
                           f" x {row['steps']} steps: wall {row['wall_ns']:.1f}, CPU "
-                          f"{row['cpu_ns']:.1f} ns/element/step, steady Fx {row['Fx']:.6f} N, "
-                          f"load {row['load']:.1f}", flush=True)
+                          f"{row['cpu_ns']:.1f} ns/element/step (time loop only: wall "
+                          f"{row['loop_ns']:.1f}, CPU {row['loop_cpu_ns']:.1f}), steady Fx "
+                          f"{row['Fx']:.6f} N, load {row['load']:.1f}", flush=True)
     print(f"summary (ns/element/step, min-median-max over {a.repeats} repeats; speed-up = best "
           f"1-thread wall / best 2-thread wall, and the range of the per-repeat ratios):")
     for material in ("elastic", "plastic"):
@@ -543,8 +552,12 @@ def speed_against_baseline(a):
             w1 = np.array([r["wall_ns"] for r in sel[1]])
             w2 = np.array([r["wall_ns"] for r in sel[2]])
             ratios = w1 / w2
+            l1 = np.array([r["loop_ns"] for r in sel[1]])
+            l2 = np.array([r["loop_ns"] for r in sel[2]])
+            loop = (f"; time loop only: 1 thread {l1.min():.0f}, 2 threads {l2.min():.0f}, speed-up "
+                    f"{l1.min() / l2.min():.2f}" if np.isfinite(l1).all() else "")
             print(f"  {material}, {code}: " + "; ".join(txt) + f"; speed-up {w1.min() / w2.min():.2f}"
-                  f" (per repeat {ratios.min():.2f}-{ratios.max():.2f})")
+                  f" (per repeat {ratios.min():.2f}-{ratios.max():.2f})" + loop)
 
 
 def main():

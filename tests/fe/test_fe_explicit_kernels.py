@@ -10,12 +10,17 @@ import pytest
 import xarray as xr
 
 from wheelrail.errors import InputError
+from numba import njit
+
 from wheelrail.fe._explicit import (
+    _update_nodes,
     contact_to_nodes,
     interleaved_tasks,
     master_kinematics,
+    node_groups,
     slave_kinematics,
 )
+from wheelrail.fe._solid import element_chunks
 from wheelrail.fe.curves import merge_creep_curves
 from wheelrail.fe.model import nodal_normals
 
@@ -71,6 +76,79 @@ def test_interleaved_tasks_cover_both_kinds_in_proportion(ne, nc):
     assert sorted(t[t[:, 0] == 1, 1]) == list(range(nc))
     half = t[: len(t) // 2]
     assert abs((half[:, 0] == 0).sum() - ne / 2) <= 1
+
+
+def _slab_mesh(nx, ny, nz):
+    """Hex8 connectivity of an nx × ny × nz block, numbered slab by slab along x."""
+    idx = np.arange((nx + 1) * (ny + 1) * (nz + 1)).reshape(nx + 1, ny + 1, nz + 1)
+    i, j, k = np.meshgrid(np.arange(nx), np.arange(ny), np.arange(nz), indexing="ij")
+    corners = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0), (0, 0, 1), (1, 0, 1), (1, 1, 1),
+               (0, 1, 1)]
+    conn = np.stack([idx[i + a, j + b, k + c] for a, b, c in corners], axis=-1)
+    return conn.reshape(-1, 8), idx.size
+
+
+@pytest.mark.parametrize("nx, target", [(40, 8), (41, 8), (40, 1), (9, 32)])
+def test_node_groups_partition_the_nodes_so_that_odd_chunks_never_share_them(nx, target):
+    conn, n = _slab_mesh(nx, 3, 2)
+    bounds = element_chunks(conn, n, target)
+    gptr, gnodes = node_groups(conn, bounds, n)
+    nc = bounds.size - 1
+    assert gptr.size - 1 == max(nc // 2, 1)
+    assert sorted(gnodes) == list(range(n))                   # every node in exactly one group
+    group = np.empty(n, int)
+    for g in range(gptr.size - 1):
+        assert np.all(np.diff(gnodes[gptr[g]:gptr[g + 1]]) > 0)
+        group[gnodes[gptr[g]:gptr[g + 1]]] = g
+    odd = range(1, nc, 2)
+    for c in odd:           # an odd chunk's nodes are updated by its own task only
+        assert np.all(group[np.unique(conn[bounds[c]:bounds[c + 1]])] == (c - 1) // 2)
+    for c in odd:           # no odd chunk reads the nodes another odd chunk's task updates
+        for c2 in odd:
+            if c2 != c:
+                read = np.unique(conn[bounds[c2]:bounds[c2 + 1]])
+                assert not np.any(group[read] == (c - 1) // 2)
+
+
+@njit
+def _update_all(gptr, gnodes, u, v, f, fb, has_beta, ma, inv_m, mass, cmap, fcon, dt,
+                partial):
+    for g in range(gptr.size - 1):
+        _update_nodes(g, gptr, gnodes, u, v, f, fb, has_beta, ma, inv_m, mass, cmap, fcon,
+                      dt, partial)
+
+
+def test_node_update_is_the_central_difference_step_with_its_work_sums():
+    # Belytschko, Liu & Moran (2000) §6.2.1: a = M⁻¹ f, v_{n+1/2} = v_{n-1/2} + Δt a,
+    # u_{n+1} = u_n + Δt v_{n+1/2}; v_n = v_{n+1/2} − Δt a / 2
+    rng = np.random.default_rng(7)
+    n, dt = 30, 1e-3
+    u, v, f, fb = (rng.normal(size=(n, 3)) for _ in range(4))
+    mass = rng.random(n) + 0.5
+    inv_m = 1.0 / mass
+    inv_m[[0, 5]] = 0.0                                   # clamped
+    ma = 3.0 * mass
+    cmap = -np.ones(n, np.int64)
+    cmap[[2, 9, 17]] = [0, 1, 2]
+    fcon = rng.normal(size=(3, 3))
+    fc = np.zeros((n, 3))
+    fc[[2, 9, 17]] = fcon
+    gptr = np.array([0, 11, 30], np.int64)
+    gnodes = rng.permutation(n).astype(np.int64)
+    a_ref = (fc - f - ma[:, None] * v - fb) * inv_m[:, None]
+    vn_ref = v + dt * a_ref
+    u_ref = u + dt * vn_ref
+    vk = vn_ref - 0.5 * dt * a_ref
+    sums = [np.sum(ma[:, None] * v * v), np.sum(ma[:, None] * v * vn_ref), np.sum(fc * v),
+            np.sum(fc * vn_ref), np.sum(fb * v), np.sum(fb * vn_ref), np.sum(mass[:, None] * vk * vk)]
+    partial = np.empty((2, 7))
+    v0 = v.copy()
+    _update_all(gptr, gnodes, u, v, f, fb, True, ma, inv_m, mass, cmap, fcon, dt, partial)
+    np.testing.assert_allclose(v, vn_ref, rtol=1e-14)
+    np.testing.assert_allclose(u, u_ref, rtol=1e-14)
+    assert np.all(f == 0)                                 # left zero for the next assembly
+    np.testing.assert_allclose(partial.sum(0), sums, rtol=1e-12)
+    assert np.all(v[[0, 5]] == v0[[0, 5]])                # clamped nodes do not move
 
 
 def _curve(c, F, offset_attrs=None):

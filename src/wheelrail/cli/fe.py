@@ -82,7 +82,7 @@ def _kernels_cached() -> bool:
 
         # the entry points of the explicit rolling step (the kernels they call are
         # compiled into them; inlined helpers have no cache of their own)
-        return all(is_cached(d) for d in (_explicit.explicit_forces, _explicit.advance_rolling))
+        return all(is_cached(d) for d in (_explicit.run_steps, _explicit.explicit_step))
     except Exception:  # pragma: no cover - numba internals moved: assume cached
         return True
 

@@ -1,10 +1,14 @@
-"""Node-level kernels of the explicit central-difference step (private, numba).
+"""Kernels of the explicit central-difference step (private, numba).
 
-One parallel region per step for everything done node by node: the acceleration from
-the internal, contact and damping forces, the half-step velocity and the new
-displacement, and the partial sums of the damping and contact work. Partial sums are
-taken over a fixed number of node chunks (independent of the number of threads) and
-added in chunk order, so that the results do not depend on the thread count.
+:func:`explicit_step` runs a whole step of a rolling run in one call and two parallel
+phases: the element forces (in the parity-ordered chunks of
+:func:`wheelrail.fe._solid.element_chunks`), the contact, and the node update (the
+acceleration from the internal, contact and damping forces, the half-step velocity and the
+new displacement), fused into the second phase node group by node group
+(:func:`node_groups`). Partial sums are taken per task (element chunk, node group) and
+added in task order, so that the results do not depend on the thread count; the tasks are
+handed out dynamically, so that a slower thread (plastic elements, a busy core) does
+fewer of them. :func:`advance` is the node update alone (the transition driver).
 
 The contact bookkeeping of a step (positions of the contact surfaces, their increments
 and nodal normals, the contact forces rotated into the body frames, the force and energy
@@ -17,6 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 from numba import njit, prange
+from numba.core import types
+from numba.extending import intrinsic
 
 from ._kernels import _slave, scatter_to_grid
 from ._solid import _element
@@ -76,65 +82,105 @@ def advance(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, fcon, dt,
         partial[ch, 1] = pb
 
 
-#: Columns of the partial sums of :func:`advance_rolling`.
-ADV_COLUMNS = ("ma_vo_vo", "ma_vo_vn", "fcon_vo", "fcon_vn", "fbeta_vo", "fbeta_vn")
+#: Columns of the partial sums of the node update of :func:`explicit_step`.
+ADV_COLUMNS = ("ma_vo_vo", "ma_vo_vn", "fcon_vo", "fcon_vn", "fbeta_vo", "fbeta_vn", "m_vk_vk")
 
 
-@njit(cache=True, parallel=True)
-def advance_rolling(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, fcon, dt,
-                    partial, totals):
-    """:func:`advance` plus the work sums of the contact and β-damping forces.
+@intrinsic
+def _take_next(typingctx, counter):
+    """Atomically add 1 to ``counter[0]`` (int64 array) and return its old value: the
+    next task of a dynamically scheduled parallel phase."""
+    if not (isinstance(counter, types.Array) and counter.dtype == types.int64):
+        return None
+    sig = types.int64(counter)
 
-    Same update as :func:`advance`; ``partial`` (NCHUNK, 6) receives per node chunk, in the
-    order of :data:`ADV_COLUMNS`: Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old,
-    Σ f_con·v_new (contact nodes), Σ f_β·v_old, Σ f_β·v_new (zero unless ``has_beta``);
-    ``totals`` (6,) their sums in chunk order (independent of the number of threads).
-    ``f_int`` is left zero (:func:`explicit_forces` accumulates into it).
+    def codegen(context, builder, signature, args):
+        ary = context.make_array(signature.args[0])(context, builder, args[0])
+        return builder.atomic_rmw("add", ary.data, context.get_constant(types.int64, 1),
+                                  "seq_cst")
+
+    return sig, codegen
+
+
+def node_groups(conn, bounds, n_nodes):
+    """Node groups of the node update fused into the odd phase of :func:`explicit_step`.
+
+    Returns ``(gptr, gnodes)``: group g holds the nodes ``gnodes[gptr[g]:gptr[g + 1]]``
+    (ascending). Group g belongs to the odd element chunk 2g + 1 (:func:`wheelrail.fe._solid.
+    element_chunks`): the nodes that chunk touches, and the nodes touched by the even chunk
+    2g only (by the last even chunk only: the last group; untouched nodes: group 0). So a
+    group's nodes are final once its odd chunk has been assembled, and no other odd chunk
+    reads or writes them: the task of chunk 2g + 1 updates them right after its elements.
+    With a single chunk there is one group of all nodes. The groups do not depend on the
+    number of threads.
     """
-    n = u.shape[0]
-    for ch in prange(NCHUNK):
-        pa = 0.0
-        pb = 0.0
-        pc = 0.0
-        pd = 0.0
-        pe = 0.0
-        pf = 0.0
-        for i in range(n * ch // NCHUNK, n * (ch + 1) // NCHUNK):
-            im = inv_m[i]
-            ma = m_alpha[i]
-            k = cmap[i]
-            for d in range(3):
-                vo = v[i, d]
-                fx = -f_int[i, d] - ma * vo
-                f_int[i, d] = 0.0
-                if has_beta:
-                    fx -= fd_beta[i, d]
-                if k >= 0:
-                    fx += fcon[k, d]
-                a = fx * im
-                acc[i, d] = a
-                vn = vo + dt * a
-                v[i, d] = vn
-                u[i, d] += dt * vn
-                pa += ma * vo * vo
-                pb += ma * vo * vn
-                if k >= 0:
-                    pc += fcon[k, d] * vo
-                    pd += fcon[k, d] * vn
-                if has_beta:
-                    pe += fd_beta[i, d] * vo
-                    pf += fd_beta[i, d] * vn
-        partial[ch, 0] = pa
-        partial[ch, 1] = pb
-        partial[ch, 2] = pc
-        partial[ch, 3] = pd
-        partial[ch, 4] = pe
-        partial[ch, 5] = pf
-    for j in range(6):
-        totals[j] = 0.0
-    for ch in range(NCHUNK):
-        for j in range(6):
-            totals[j] += partial[ch, j]
+    conn = np.asarray(conn)
+    bounds = np.asarray(bounds)
+    nc = bounds.size - 1
+    ng = max(nc // 2, 1)
+    cid = np.repeat(np.arange(nc), np.diff(bounds))
+    lo = np.full(n_nodes, nc, np.int64)
+    hi = np.full(n_nodes, -1, np.int64)
+    np.minimum.at(lo, conn.ravel(), np.repeat(cid, conn.shape[1]))
+    np.maximum.at(hi, conn.ravel(), np.repeat(cid, conn.shape[1]))
+    if nc > 1 and np.any(hi - lo > 1):
+        raise ValueError("element chunks share nodes beyond their neighbours")
+    odd = np.where(hi % 2 == 1, hi, lo)             # the odd chunk touching the node, if any
+    group = np.where(odd % 2 == 1, (odd - 1) // 2, np.minimum(odd // 2, ng - 1))
+    group = np.where(hi < 0, 0, group) if nc > 1 else np.zeros(n_nodes, np.int64)
+    order = np.lexsort((np.arange(n_nodes), group))
+    gptr = np.searchsorted(group[order], np.arange(ng + 1)).astype(np.int64)
+    return gptr, order.astype(np.int64)
+
+
+@njit(cache=True, inline="always")
+def _update_nodes(g, gptr, gnodes, u, v, f_int, fd_beta, has_beta, m_alpha, inv_m, mass,
+                  cmap, fcon, dt, partial):
+    """Central-difference update of the nodes of group ``g`` (in place), ``f_int`` zeroed;
+    its partial sums (:data:`ADV_COLUMNS`) into ``partial[g]``."""
+    pa = 0.0
+    pb = 0.0
+    pc = 0.0
+    pd = 0.0
+    pe = 0.0
+    pf = 0.0
+    pk = 0.0
+    hdt = 0.5 * dt
+    for q in range(gptr[g], gptr[g + 1]):
+        i = gnodes[q]
+        im = inv_m[i]
+        ma = m_alpha[i]
+        mi = mass[i]
+        k = cmap[i]
+        for d in range(3):
+            vo = v[i, d]
+            fx = -f_int[i, d] - ma * vo
+            f_int[i, d] = 0.0
+            if has_beta:
+                fx -= fd_beta[i, d]
+            if k >= 0:
+                fx += fcon[k, d]
+            a = fx * im
+            vn = vo + dt * a
+            v[i, d] = vn
+            u[i, d] += dt * vn
+            pa += ma * vo * vo
+            pb += ma * vo * vn
+            if k >= 0:
+                pc += fcon[k, d] * vo
+                pd += fcon[k, d] * vn
+            if has_beta:
+                pe += fd_beta[i, d] * vo
+                pf += fd_beta[i, d] * vn
+            vk = vn - hdt * a
+            pk += mi * vk * vk
+    partial[g, 0] = pa
+    partial[g, 1] = pb
+    partial[g, 2] = pc
+    partial[g, 3] = pd
+    partial[g, 4] = pe
+    partial[g, 5] = pf
+    partial[g, 6] = pk
 
 
 @njit(cache=True, inline="always")
@@ -291,28 +337,60 @@ def interleaved_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarra
 
 
 @njit(cache=True, parallel=True)
-def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
-                    st_in, st_out, f, energy, echunk, tasks,
-                    ref_s, snodes, cpsi, spsi, z, xs, xs_prev, dxs,
-                    ref_m, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm,
-                    area, kn, mu, ft_old, x_ref, y_ref, reach, g0, cdamp, inv_dt,
-                    cenergy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip,
-                    fcon, sums):
-    """Element forces and contact of one explicit step in two parallel regions.
+def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+                  st_in, st_out, f, energy, echunk, tasks,
+                  ref_s, snodes, cpsi, spsi, z, xs, xs_prev, dxs,
+                  ref_m, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm,
+                  area, kn, mu, ft_old, x_ref, y_ref, reach, g0, cdamp, inv_dt,
+                  cenergy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip,
+                  fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+                  gptr, gnodes, partial, totals, counter, nthr):
+    """One explicit step: element forces, contact and the central-difference node update,
+    in two parallel phases.
 
-    The element part is :func:`wheelrail.fe._solid.element_forces` (same chunks, same
-    per-element arithmetic and scatter order) except that ``f`` must hold zeros on entry
-    (:func:`advance_rolling` leaves it so); the contact part is
-    :func:`master_kinematics` (serial, first), :func:`slave_kinematics` with
-    :func:`wheelrail.fe._kernels.node_to_surface` per slave chunk, run in the same
-    parallel region as the even element chunks (``tasks``, :func:`interleaved_tasks`),
-    then the master forces scattered in slave order and :func:`contact_to_nodes`
-    (serial). Nothing depends on the number of threads.
+    1. :func:`master_kinematics` (serial); then, in parallel, the even element chunks of
+       :func:`wheelrail.fe._solid.element_chunks` and the slave chunks of the contact
+       (:func:`slave_position` and :func:`wheelrail.fe._kernels.node_to_surface` per slave),
+       the tasks ``tasks`` (:func:`interleaved_tasks`);
+    2. the master forces scattered in slave order and :func:`contact_to_nodes` (serial);
+    3. in parallel, per node group g of :func:`node_groups`: the odd element chunk 2g + 1,
+       then the update of the group's nodes (their forces are final then): a = (f_con −
+       f_int − m_α v − f_β) / m; v ← v + Δt a; u ← u + Δt v (a is not stored); ``f`` (the internal forces,
+       which must hold zeros on entry) is left zero;
+    4. the sums in chunk and group order (serial).
 
-    ``energy`` (ne, 2) as in ``element_forces``; ``echunk`` (nc, 2) its sums per chunk and
-    ``sums`` (8,): Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
-    :func:`contact_to_nodes`), then the elastic strain energy and the plastic work [J]
-    (sums over the chunks in chunk order). Other arguments as the kernels named.
+    Both parallel phases take their tasks dynamically (an atomic counter): the results do
+    not depend on which thread runs a task, because the tasks of a phase write disjoint
+    nodes, each node receives its element forces in element order, and every sum is taken
+    per task and added in task order. Nothing depends on the number of threads.
+
+    Parameters: as :func:`wheelrail.fe._solid.element_forces` (``u`` … ``energy``; ``u`` is
+    read by phases 1-3 before the update; ``energy`` may be (0, 2): the element energies
+    are then only summed per chunk, not stored), the contact kernels named, and
+
+    echunk : (nc, 2)
+        Output: elastic energy and plastic work per element chunk.
+    sums : (8,)
+        Output: Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
+        :func:`contact_to_nodes`), elastic strain energy and plastic work [J] of ``u``.
+    v : (n, 3)
+        Half-step velocities (updated).
+    fd_beta : (n, 3)
+        Stiffness-proportional damping forces [N] (read only if ``has_beta``).
+    m_alpha, inv_m, mass : (n,)
+        α m [kg/s], inverse (scaled) lumped masses [1/kg] (0: clamped), masses [kg].
+    cmap : (n,) int
+        Row of the node in ``fcon`` (contact nodes) or −1.
+    dt : float
+    gptr, gnodes : node groups of :func:`node_groups`.
+    partial : (ngroups, 7), totals : (7,)
+        Output: per group and summed in group order, the sums of :data:`ADV_COLUMNS`:
+        Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old, Σ f_con·v_new, Σ f_β·v_old,
+        Σ f_β·v_new and Σ m v_k·v_k with v_k = v_new − Δt a / 2 (twice the kinetic
+        energy at the step).
+    counter : (1,) int64 scratch.
+    nthr : int
+        ``numba.get_num_threads()`` (each thread takes tasks until none is left).
     """
     ne = conn.shape[0]
     ng = dNdx.shape[1]
@@ -322,8 +400,11 @@ def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp
     ns = xs.shape[0]
     n_even = (nc + 1) // 2
     ncc = tasks.shape[0] - n_even
+    n_tasks = tasks.shape[0]
+    n_groups = gptr.shape[0] - 1
     master_kinematics(ref_m, u, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm)
-    for t in prange(tasks.shape[0]):
+    counter[0] = 0
+    for w in prange(nthr):
         ue = np.empty((8, 3))
         eps = np.empty(6)
         sig = np.empty(6)
@@ -332,42 +413,54 @@ def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp
         c = np.empty((4, 3))
         q = np.empty(3)
         dq = np.empty(3)
-        if tasks[t, 0] == 0:
-            ch = 2 * tasks[t, 1]
-            a0 = 0.0
-            a1 = 0.0
-            for e in range(bounds[ch], bounds[ch + 1]):
-                _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
-                         hp, tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
-                a0 += energy[e, 0]
-                a1 += energy[e, 1]
-            echunk[ch, 0] = a0
-            echunk[ch, 1] = a1
-        else:
-            j = tasks[t, 1]
-            for s in range(ns * j // ncc, ns * (j + 1) // ncc):
-                slave_position(s, snodes[s], ref_s, u, cpsi, spsi, z, xs_prev, xs, dxs)
-                _slave(s, xs, dxs, area, kn, kn, mu, ft_old, xm, nm, dxm, x_ref, y_ref,
-                       shift_x, reach, g0, cdamp, inv_dt, cenergy, fs, gap, pn, ft_new, status,
-                       cell, rt, normal, slip, c, q, dq)
-    for cc in prange(nc // 2):
-        ch = 2 * cc + 1
+        t = _take_next(counter)
+        while t < n_tasks:
+            if tasks[t, 0] == 0:
+                ch = 2 * tasks[t, 1]
+                a0 = 0.0
+                a1 = 0.0
+                for e in range(bounds[ch], bounds[ch + 1]):
+                    e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                                          plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
+                                          ue, eps, sig, D, bb)
+                    a0 += e_el
+                    a1 += e_pl
+                echunk[ch, 0] = a0
+                echunk[ch, 1] = a1
+            else:
+                j = tasks[t, 1]
+                for s in range(ns * j // ncc, ns * (j + 1) // ncc):
+                    slave_position(s, snodes[s], ref_s, u, cpsi, spsi, z, xs_prev, xs, dxs)
+                    _slave(s, xs, dxs, area, kn, kn, mu, ft_old, xm, nm, dxm, x_ref, y_ref,
+                           shift_x, reach, g0, cdamp, inv_dt, cenergy, fs, gap, pn, ft_new,
+                           status, cell, rt, normal, slip, c, q, dq)
+            t = _take_next(counter)
+    scatter_to_grid(status, cell, rt, fs, fm)
+    contact_to_nodes(fs, fm, pn, ft_new, slip, cenergy, cpsi, spsi, fcon, sums)
+    counter[0] = 0
+    for w in prange(nthr):
         ue = np.empty((8, 3))
         eps = np.empty(6)
         sig = np.empty(6)
         D = np.empty((6, 6))
         bb = np.empty((8, 3))
-        a0 = 0.0
-        a1 = 0.0
-        for e in range(bounds[ch], bounds[ch + 1]):
-            _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp,
-                     tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
-            a0 += energy[e, 0]
-            a1 += energy[e, 1]
-        echunk[ch, 0] = a0
-        echunk[ch, 1] = a1
-    scatter_to_grid(status, cell, rt, fs, fm)
-    contact_to_nodes(fs, fm, pn, ft_new, slip, cenergy, cpsi, spsi, fcon, sums)
+        g = _take_next(counter)
+        while g < n_groups:
+            ch = 2 * g + 1
+            if ch < nc:
+                a0 = 0.0
+                a1 = 0.0
+                for e in range(bounds[ch], bounds[ch + 1]):
+                    e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                                          plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
+                                          ue, eps, sig, D, bb)
+                    a0 += e_el
+                    a1 += e_pl
+                echunk[ch, 0] = a0
+                echunk[ch, 1] = a1
+            _update_nodes(g, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
+                          mass, cmap, fcon, dt, partial)
+            g = _take_next(counter)
     e0 = 0.0
     e1 = 0.0
     for ch in range(nc):
@@ -375,3 +468,104 @@ def explicit_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp
         e1 += echunk[ch, 1]
     sums[6] = e0
     sums[7] = e1
+    for j in range(totals.shape[0]):
+        totals[j] = 0.0
+    for g in range(n_groups):
+        for j in range(totals.shape[0]):
+            totals[j] += partial[g, j]
+
+
+@njit(cache=True)
+def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, sx, sy, tt, loads,
+              axle, y_ref0, cur, xsb, xmb, ftb,
+              u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+              st_in, st_out, f, energy, echunk, tasks, ref_s, snodes, z_axle, dxs,
+              ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt,
+              cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip,
+              fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+              gptr, gnodes, partial, totals, counter, nthr):
+    """Steps ``k0`` to ``k1 − 1`` of the explicit loop (:func:`explicit_step` each), with the
+    axle's vertical motion and the energy bookkeeping of the rolling step, without a return
+    to Python between steps.
+
+    ``relax``: the dynamic relaxation (axle load ``loads[k]``, ``axle`` = (mass, dashpot))
+    or the rolling step (``axle`` = (load, mass, α m + dashpot)). Per step k: ``cps``,
+    ``sps`` (cos, sin of the wheel angle), ``sx``, ``sy`` (rail travel and lateral drift [m]),
+    ``tt`` (time [s]); ``ax`` = (w, vw, e_int0, last vertical contact force) is updated;
+    the double buffers ``xsb``, ``xmb``, ``ftb`` (2, …) of the slave positions, master
+    positions and tangential forces have their previous values in row ``cur``; returns the
+    row of the last written ones. Rolling: ``E`` (8,) the energies in the order of the
+    rolling result (kinetic, internal, contact, friction, damping, external, contact work,
+    plastic work) [J], ``hist[k]`` = (travel, Fx, Fy, Fz, Fn), and every ``every`` steps
+    (and at step ``n_steps − 1``) a row of ``rows`` (time, travel, Fx, Fy, Fz, Fn, the
+    energies) at ``nrow[0]`` (incremented). The arithmetic is that of the Python loop it
+    replaces, operation for operation. Other arguments: :func:`explicit_step`.
+    """
+    w = ax[0]
+    vw = ax[1]
+    e_int0 = ax[2]
+    fcw = ax[3]
+    hdt = 0.5 * dt
+    for k in range(k0, k1):
+        lat = sy[k]
+        for j in range(y_ref.shape[0]):
+            y_ref[j] = y_ref0[j] - lat
+        new = 1 - cur
+        explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+                      st_in, st_out, f, energy, echunk, tasks,
+                      ref_s, snodes, cps[k], sps[k], z_axle + w, xsb[new], xsb[cur], dxs,
+                      ref_m, mnodes, sx[k], lat, xmb[new], xmb[cur], dxm, nm,
+                      area, kn, mu, ftb[cur], x_ref, y_ref, reach, g0, cdamp, inv_dt,
+                      cenergy, fs, fm, gap, pn, ftb[new], status, cell, rt, normal, slip,
+                      fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
+                      gptr, gnodes, partial, totals, counter, nthr)
+        cur = new
+        fcw = sums[2]
+        if relax:
+            aw = (fcw - loads[k] - axle[1] * vw) / axle[0]
+            vw += dt * aw
+            w += dt * vw
+            continue
+        load = axle[0]
+        M_w = axle[1]
+        cv = axle[2]
+        e_int = sums[6] + sums[7]
+        E[3] += sums[4]
+        hist[k, 0] = sx[k]
+        hist[k, 1] = sums[0]
+        hist[k, 2] = sums[1]
+        hist[k, 3] = sums[2]
+        hist[k, 4] = sums[3]
+        E[6] += hdt * (totals[2] + fcw * vw)
+        if has_beta:
+            E[4] += hdt * totals[4]
+        aw = (fcw - load - cv * vw) / M_w
+        vw_new = vw + dt * aw
+        E[4] += hdt * (cv * vw * vw + totals[0])
+        if k % every == 0 or k == n_steps - 1:
+            vwn = vw + hdt * aw
+            E[0] = 0.5 * totals[6] + 0.5 * M_w * vwn * vwn
+            E[1] = e_int - e_int0
+            E[2] = sums[5]
+            if plastic:
+                E[7] = sums[7]
+            r = nrow[0]
+            rows[r, 0] = tt[k]
+            rows[r, 1] = sx[k]
+            for j in range(4):
+                rows[r, 2 + j] = sums[j]
+            for j in range(8):
+                rows[r, 6 + j] = E[j]
+            nrow[0] = r + 1
+        E[6] += hdt * (totals[3] + fcw * vw_new)
+        E[4] += hdt * (cv * vw * vw_new + totals[1])
+        if has_beta:
+            E[4] += hdt * totals[5]
+        dw = dt * vw_new
+        vw = vw_new
+        w += dw
+        E[5] += -load * dw
+    ax[0] = w
+    ax[1] = vw
+    ax[3] = fcw
+    return cur

@@ -135,9 +135,12 @@ def return_map(eps, st_in, st_out, lam, G, hp, tp, ts, sig, D, tangent):
         sy = hp[0]                       # virgin point: no exp (most points of a run)
     else:
         sy, h = yield_stress(p_n, hp, tp, ts)
-    for k in range(NSTATE):
-        st_out[k] = st_in[k]
     if q_tr <= sy * (1.0 + 1e-12):
+        # elastic: the state is unchanged (nothing to write when updated in place, as the
+        # explicit step does: a plastic run's points are mostly elastic)
+        if st_out.ctypes.data != st_in.ctypes.data:
+            for k in range(NSTATE):
+                st_out[k] = st_in[k]
         sig[0] = s0 + pm
         sig[1] = s1 + pm
         sig[2] = s2 + pm
@@ -326,8 +329,9 @@ def _point_stress(eps, e, g, lam, G, plastic, bbar, theta_bar, hp, tp, ts, st_in
 
 
 @njit(cache=True, inline="always")
-def _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy):
-    """The one-point elastic element (the explicit fast path): forces added to f, energy."""
+def _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f):
+    """The one-point elastic element (the explicit fast path): forces added to f; returns
+    the energies (elastic, plastic = 0) [J]."""
     exx = eyy = ezz = gxy = gyz = gxz = 0.0
     for a in range(8):
         bx = dNdx[e, 0, a, 0]
@@ -358,8 +362,7 @@ def _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, e
         f[n, 2] += bx * sxz + by * syz + bz * szz
     if has_hg:
         en += _hourglass(e, ue, conn, gamma, khg, f)
-    energy[e, 0] = en
-    energy[e, 1] = 0.0
+    return en, 0.0
 
 
 @njit(cache=True, inline="always")
@@ -473,9 +476,9 @@ def _scatter_one_point(e, conn, dNdx, sxx, syy, szz, sxy, syz, sxz, W, hf, f):
 
 
 @njit(cache=True, inline="always")
-def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, energy, W, hf):
+def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, W, hf):
     """:func:`_elastic_one_point` with the compact hourglass data (:func:`_hourglass_hx`):
-    one scatter per node. W (≥ 6, ≥ 3) and hf (8, 3) are scratch."""
+    one scatter per node. W (≥ 6, ≥ 3) and hf (8, 3) are scratch. Returns the energies."""
     _gradient(e, ue, dNdx, W)
     exx = W[0, 0]
     eyy = W[1, 1]
@@ -494,13 +497,12 @@ def _elastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, f, energy, W
     en = 0.5 * (sxx * exx + syy * eyy + szz * ezz + sxy * gxy + syz * gyz + sxz * gxz)
     en += _hourglass_hx(e, ue, hx, khg, W, hf)
     _scatter_one_point(e, conn, dNdx, sxx, syy, szz, sxy, syz, sxz, W, hf, f)
-    energy[e, 0] = en
-    energy[e, 1] = 0.0
+    return en, 0.0
 
 
 @njit(cache=True, inline="always")
 def _plastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, hp, tp, ts, st_in, st_out,
-                          f, energy, eps, sig, W, hf):
+                          f, eps, sig, W, hf):
     """The one-point J2 element with the compact hourglass data (:func:`_hourglass_hx`): the
     strain from the displacement gradient, the return map, one scatter per node."""
     _gradient(e, ue, dNdx, W)
@@ -521,8 +523,7 @@ def _plastic_one_point_hx(e, ue, conn, dNdx, wdet, hx, khg, lam, G, hp, tp, ts, 
     sxx, syy, szz = w * sig[0], w * sig[1], w * sig[2]
     sxy, syz, sxz = w * sig[3], w * sig[4], w * sig[5]
     _scatter_one_point(e, conn, dNdx, sxx, syy, szz, sxy, syz, sxz, W, hf, f)
-    energy[e, 0] = e_el
-    energy[e, 1] = e_pl
+    return e_el, e_pl
 
 
 @njit(cache=True, parallel=True)
@@ -561,20 +562,35 @@ def element_forces(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp,
 @njit(cache=True, inline="always")
 def _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp, tp, ts,
              st_in, st_out, f, energy, ue, eps, sig, D, bb):
-    """Forces of element e added to f (its nodes), energies into energy[e]."""
+    """Forces of element e added to f (its nodes); returns its energies (elastic strain
+    energy with the hourglass part, plastic work) [J] and writes them to energy[e] unless
+    ``energy`` is empty (the explicit step sums them per chunk without storing them)."""
     ng = dNdx.shape[1]
     compact = has_hg and gamma.shape[2] == 3
     _gather(u, conn, e, ue)
     if compact:                       # one point, hourglass data h.x
         if plastic:
-            _plastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, hp, tp, ts, st_in,
-                                  st_out, f, energy, eps, sig, D, bb)
+            e_el, e_pl = _plastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, hp,
+                                               tp, ts, st_in, st_out, f, eps, sig, D, bb)
         else:
-            _elastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, f, energy, D, bb)
-        return
-    if ng == 1 and not plastic:
-        _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f, energy)
-        return
+            e_el, e_pl = _elastic_one_point_hx(e, ue, conn, dNdx, wdet, gamma, khg, lam, G, f, D,
+                                               bb)
+    elif ng == 1 and not plastic:
+        e_el, e_pl = _elastic_one_point(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, f)
+    else:
+        e_el, e_pl = _element_points(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                                     plastic, bbar, hp, tp, ts, st_in, st_out, f, eps, sig, D, bb)
+    if energy.shape[0] > 0:
+        energy[e, 0] = e_el
+        energy[e, 1] = e_pl
+    return e_el, e_pl
+
+
+@njit(cache=True, inline="always")
+def _element_points(e, ue, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, hp, tp,
+                    ts, st_in, st_out, f, eps, sig, D, bb):
+    """The general element of :func:`_element` (any integration rule, B-bar, γ hourglass)."""
+    ng = dNdx.shape[1]
     theta_bar = 0.0
     if bbar:
         _mean_gradient(dNdx, wdet, e, bb)
@@ -608,8 +624,7 @@ def _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar, 
             f[n, 2] += w * fz
     if has_hg:
         e_el += _hourglass(e, ue, conn, gamma, khg, f)
-    energy[e, 0] = e_el
-    energy[e, 1] = e_pl
+    return e_el, e_pl
 
 
 @njit(cache=True, inline="always")

@@ -23,18 +23,21 @@ proportional to the rate of change of the penetration, which vanishes in steady
 rolling except where nodes enter and leave the patch); docs/fe_plastic.md measures that
 the steady forces do not change with it, and do not change with the mass scaling.
 
-Each step (one force evaluation) runs: the element forces (two parallel regions),
-the contact (parallel over slaves for large surfaces), the node update
-(:func:`wheelrail.fe._explicit.advance`, one parallel region). The plastic state is
-committed after every force evaluation (the explicit step is always accepted).
+Each step (one force evaluation) is one call of :func:`wheelrail.fe._explicit.explicit_step`:
+the element forces and the contact, then the node update fused into the second of its two
+parallel phases. The plastic state is updated in place (the explicit step is always
+accepted).
 """
 
 from __future__ import annotations
 
+import time
+
+import numba
 import numpy as np
 
 from ..errors import InputError
-from ._explicit import NCHUNK, advance_rolling, explicit_forces, interleaved_tasks
+from ._explicit import interleaved_tasks, node_groups, run_steps
 from .model import build_model
 from .patch import patch_from_contact
 from .restart import read_restart
@@ -109,6 +112,45 @@ def relaxation_axle(model, M_w, omega1):
 #: Fraction of the dynamic relaxation over which the load rises (smooth step).
 RELAXATION_RAMP = 0.4
 
+#: Most steps per call of the numba loop (the progress bar moves between calls).
+BLOCK = 256
+
+#: The energies of a rolling result, in the order of its history columns.
+ENERGIES = ("kinetic", "internal", "contact", "friction", "damping", "external",
+            "contact_work", "plastic_work")
+
+
+def _relaxation_inputs(model, n1, n_ramp, load):
+    """Per-step inputs of the dynamic relaxation (:meth:`_ContactLoop.run`): the wheel angle
+    and the rail travel are zero; the axle load rises by a smooth step over ``n_ramp``."""
+    loads = np.array([load * float(_smoothstep((k + 1) / n_ramp)) for k in range(n1)])
+    return (np.full(n1, np.cos(0.0)), np.full(n1, np.sin(0.0)), np.zeros(n1),
+            np.full(n1, model.lateral_shift(0.0)), np.zeros(n1), loads)
+
+
+def _rolling_inputs(model, case, speed, R, dt, n2, k0, s, psi, t):
+    """Per-step inputs of the rolling step from step k0 on, accumulated as the time loop
+    does: the rail speed V at the half step, s += V Δt, ψ += V (1 − ξ) / r_c Δt, t += Δt.
+    Returns (cos ψ, sin ψ, s, lateral drift, t, loads (unused)) over the steps, and s, ψ,
+    t at the start of every step (index n2: the end)."""
+    s_k = np.zeros(n2 + 1)
+    psi_k = np.zeros(n2 + 1)
+    t_k = np.zeros(n2 + 1)
+    cps = np.zeros(n2)
+    sps = np.zeros(n2)
+    lat = np.zeros(n2)
+    for k in range(k0, n2 + 1):
+        s_k[k], psi_k[k], t_k[k] = s, psi, t
+        if k == n2:
+            break
+        cps[k], sps[k] = np.cos(psi), np.sin(psi)
+        lat[k] = model.lateral_shift(s)
+        V = speed(t + 0.5 * dt)
+        s += V * dt
+        psi += V * (1.0 - case.xi) / R * dt
+        t += dt
+    return (cps, sps, s_k[:n2], lat, t_k[:n2], np.zeros(n2)), s_k, psi_k, t_k
+
 
 def solve_explicit(case, progress, output_every, io):
     model = build_model(case, rolling=True)
@@ -142,22 +184,32 @@ def solve_explicit(case, progress, output_every, io):
     m_alpha_roll = alpha * m
     f_int = np.zeros((n, 3))
     fd_beta = np.zeros((n, 3))
-    acc = np.zeros((n, 3))
-    partial = np.zeros((NCHUNK, 6))
-    totals = np.zeros(6)
     state = model.new_state()
 
     fast = _ContactLoop(model, cdamp, dt, fcon)
+    has_beta = beta > 0
 
-    def forces(u, v, w, psi, s, mu_now, with_beta):
-        c = fast.step(u, w, psi, s, mu_now, f_int, state)
-        e_int = float(fast.sums[6] + fast.sums[7])
-        if state is not None:                # updated in place by fast.step: nothing to commit
-            state.energies = (float(fast.sums[6]), float(fast.sums[7]))
-        if with_beta:
-            model.internal_force(v, fd_beta, elastic=True)
-            fd_beta[...] *= beta
-        return c, e_int, fast.sums[2]
+    clock = np.zeros(2)                      # wall and CPU seconds in the time loop
+
+    def run(k0, k1, relax, per_step, ax, axle, mu_now, m_alpha, **rolling):
+        """Steps k0 … k1 − 1 in numba (with β damping one at a time: β K v from Python)."""
+        t0 = (time.perf_counter(), time.process_time())
+        try:
+            return _run(k0, k1, relax, per_step, ax, axle, mu_now, m_alpha, **rolling)
+        finally:
+            clock[0] += time.perf_counter() - t0[0]
+            clock[1] += time.process_time() - t0[1]
+
+    def _run(k0, k1, relax, per_step, ax, axle, mu_now, m_alpha, **rolling):
+        if has_beta and not relax:
+            for k in range(k0, k1):          # β K v_{k-1/2}: from v only, before the update
+                model.internal_force(v, fd_beta, elastic=True)
+                fd_beta[...] *= beta
+                c = fast.run(k, k + 1, relax, per_step, ax, axle, mu_now, m_alpha, True, state,
+                             u, v, f_int, fd_beta, inv_m, m, cmap, dt, **rolling)
+            return c
+        return fast.run(k0, k1, relax, per_step, ax, axle, mu_now, m_alpha, False, state, u, v,
+                        f_int, fd_beta, inv_m, m, cmap, dt, **rolling)
 
     pass_rows = []
     if io["restart"] is not None:
@@ -193,21 +245,19 @@ def solve_explicit(case, progress, output_every, io):
             vw = 0.0
             fast.start(u, w, psi, s)
             n_ramp = max(1, int(RELAXATION_RAMP * n1))
-            for k in range(n1):
-                c, e_int, fcw = forces(u, v, w, psi, s, 0.0, False)
-                advance_rolling(u, v, acc, f_int, fd_beta, False, m_alpha_dr, inv_m, cmap, fcon,
-                                dt, partial, totals)
-                load_k = load * float(_smoothstep((k + 1) / n_ramp))
-                aw = (fcw - load_k - c_axle_dr * vw) / M_dr
-                vw += dt * aw
-                w += dt * vw
-                if bar is not None and k % 200 == 0:
+            per_step = _relaxation_inputs(model, n1, n_ramp, load)
+            ax = np.array([w, vw, 0.0, 0.0])
+            for k in range(0, n1, BLOCK):
+                c = run(k, min(n1, k + BLOCK), True, per_step, ax, np.array([M_dr, c_axle_dr]),
+                        0.0, m_alpha_dr)
+                if bar is not None:
                     bar.update(bar.task_ids[0], completed=done + k)
+            w, fcw = float(ax[0]), fast.sums[2]
             done += n1
             relax_error = abs(fcw - load) / load
             v[:] = 0.0
             vw = 0.0
-            e_int0 = e_int
+            e_int0 = float(fast.sums[6] + fast.sums[7])
             k0 = 0
             rows = []
             hist = np.zeros((n2, 5))
@@ -224,49 +274,28 @@ def solve_explicit(case, progress, output_every, io):
 
         maybe_write = restart_writer(io, model, dt, n2)
         # ---- step 2: rolling (energies counted from here)
-        sums = fast.sums
-        for k in range(k0, n2):
-            c, e_int, fcw = forces(u, v, w, psi, s, mu, beta > 0)
-            E["friction"] += sums[4]
-            Fx, Fy, Fz, Fn = sums[0], sums[1], sums[2], sums[3]
-            hist[k] = (s, Fx, Fy, Fz, Fn)
-            advance_rolling(u, v, acc, f_int, fd_beta, beta > 0, m_alpha_roll, inv_m, cmap,
-                            fcon, dt, partial, totals)
-            # second halves of the trapezoidal work over the last interval (v = v_{k-1/2})
-            E["contact_work"] += 0.5 * dt * (totals[2] + fcw * vw)
-            if beta > 0:
-                E["damping"] += 0.5 * dt * totals[4]
-            aw = (fcw - load - (alpha * M_w + c_axle) * vw) / M_w
-            vw_new = vw + dt * aw
-            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw + totals[0])
-            if k % every == 0 or k == n2 - 1:
-                vn = v - 0.5 * dt * acc                 # v_k
-                vwn = vw + 0.5 * dt * aw
-                E["kinetic"] = 0.5 * float(np.sum(m[:, None] * vn * vn)) + 0.5 * M_w * vwn * vwn
-                E["internal"] = e_int - e_int0
-                E["contact"] = float(sums[5])
-                if state is not None:
-                    E["plastic_work"] = state.energies[1]
-                rows.append([t, s, Fx, Fy, Fz, Fn, E["kinetic"], E["internal"], E["contact"],
-                             E["friction"], E["damping"], E["external"], E["contact_work"],
-                             E["plastic_work"]])
-                if bar is not None:
-                    bar.update(bar.task_ids[0], completed=done + k)
-            # first halves over the next interval (v = v_{k+1/2})
-            E["contact_work"] += 0.5 * dt * (totals[3] + fcw * vw_new)
-            E["damping"] += 0.5 * dt * ((alpha * M_w + c_axle) * vw * vw_new + totals[1])
-            if beta > 0:
-                E["damping"] += 0.5 * dt * totals[5]
-            dw = dt * vw_new
-            vw = vw_new
-            w += dw
-            E["external"] += -load * dw
-            t_half = t + 0.5 * dt
-            V = speed(t_half)
-            s += V * dt
-            psi += V * (1.0 - case.xi) / R * dt
-            t += dt
-            maybe_write(k + 1, lambda: snapshot(k + 1))
+        per_step, s_end, psi_end, t_end_k = _rolling_inputs(model, case, speed, R, dt, n2, k0,
+                                                            s, psi, t)
+        ax = np.array([w, vw, e_int0, 0.0])
+        axle = np.array([load, M_w, alpha * M_w + c_axle])
+        Ea = np.array([E[key] for key in ENERGIES])
+        buf = np.zeros((n2 // every + 2, len(COLUMNS)))
+        k = k0
+        while k < n2:
+            k1 = min(n2, k + BLOCK)
+            if maybe_write.every:
+                k1 = min(k1, (k // maybe_write.every + 1) * maybe_write.every)
+            nrow = np.zeros(1, np.int64)
+            c = run(k, k1, False, per_step, ax, axle, mu, m_alpha_roll, E=Ea, hist=hist,
+                    rows=buf, nrow=nrow, every=every, n_steps=n2)
+            rows.extend(buf[:nrow[0]].tolist())
+            E = dict(zip(ENERGIES, Ea.tolist()))
+            w, vw = float(ax[0]), float(ax[1])
+            s, psi, t = s_end[k1], psi_end[k1], t_end_k[k1]
+            if bar is not None:
+                bar.update(bar.task_ids[0], completed=done + k1 - 1)
+            k = k1
+            maybe_write(k, lambda: snapshot(k))
         done += n2
         if passes > 1:
             pass_rows.append(_pass_summary(model, case, u, state, hist, window))
@@ -281,24 +310,27 @@ def solve_explicit(case, progress, output_every, io):
     fields = plastic_fields(model, u, state)
     info = {"time_step": dt, "steps": passes * (n1 + n2), "stable_time_step": dt_stable,
             "restarted_at_step": int(st["k"]) if io["restart"] is not None else 0,
-            "relaxation_steps": n1, "rolling_steps": n2}
+            "relaxation_steps": n1, "rolling_steps": n2,
+            "loop_wall": float(clock[0]), "loop_cpu": float(clock[1])}
     return RollingResult(ds, patch, steady["Fx"], steady["Fy"], patch.attrs["p_max"],
                          patch.attrs["a"], patch.attrs["b"], model, u, info, steady, state,
                          fields, _passes_dataset(pass_rows, model, state))
 
 
 class _ContactLoop:
-    """Element forces and contact of an explicit step in preallocated buffers.
+    """The explicit steps in preallocated buffers.
 
-    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_forces`): the element
+    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_step`): the element
     forces (into ``f``, which must hold zeros: the node update leaves it so), the surface
-    kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, and the contact
-    forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid). The
+    kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, the contact
+    forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid) and the
+    node update (:attr:`totals`: its sums, :data:`wheelrail.fe._explicit.ADV_COLUMNS`);
+    :meth:`run` loops over steps in numba (:func:`wheelrail.fe._explicit.run_steps`). The
     per-slave results are those of :meth:`wheelrail.fe.model.Model.contact` (same positions,
     increments, normals and contact law). Positions and tangential forces are
-    double-buffered (the step reads the last ones); :attr:`sums` holds Fx, Fy, Fz, Σ p_n,
-    the friction dissipation, the penalty energy, the elastic strain energy and the plastic
-    work of the last step.
+    double-buffered (row :attr:`cur` holds the last ones); :attr:`sums` holds Fx, Fy, Fz,
+    Σ p_n, the friction dissipation, the penalty energy, the elastic strain energy and the
+    plastic work of the last step.
     """
 
     def __init__(self, model, cdamp, dt, fcon):
@@ -314,9 +346,10 @@ class _ContactLoop:
         self.y_ref = self.y_ref0.copy()
         self.cdamp, self.inv_dt, self.fcon = cdamp, 1.0 / dt, fcon
         self.reach = 5.0 * model.case.mesh_size
-        self.xs = [np.zeros((ns, 3)), np.zeros((ns, 3))]       # [previous, current]
-        self.xm = [np.zeros((nx, ny, 3)), np.zeros((nx, ny, 3))]
-        self.ft = [np.zeros((ns, 3)), np.zeros((ns, 3))]
+        self.xsb = np.zeros((2, ns, 3))            # row cur: the last positions
+        self.xmb = np.zeros((2, nx, ny, 3))
+        self.ftb = np.zeros((2, ns, 3))
+        self.cur = 0
         self.dxs = np.zeros((ns, 3))
         self.dxm = np.zeros((nx, ny, 3))
         self.nm = np.zeros((nx, ny, 3))
@@ -329,8 +362,12 @@ class _ContactLoop:
         self.sums = np.zeros(8)
         nc = model.chunks.size - 1
         self.echunk = np.zeros((nc, 2))
-        self.energy = np.zeros((model.n_elements, 2))
+        self.energy = np.zeros((0, 2))             # element energies: summed, not stored
         self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
+        self.gptr, self.gnodes = node_groups(model.conn, model.chunks, model.n_nodes)
+        self.partial = np.zeros((self.gptr.size - 1, 7))
+        self.totals = np.zeros(7)
+        self.counter = np.zeros(1, np.int64)
         # the element kernel streams its connectivity every step: 32 bytes per element
         self.conn = model.conn.astype(np.int32) if model.conn.max() < 2**31 else model.conn
         self.mat = (model.material.lam, model.material.shear_modulus) + tuple(model._hardening)
@@ -338,27 +375,31 @@ class _ContactLoop:
     def start(self, u, w, psi, s):
         """The positions of the first step's 'previous' state; zero tangential forces."""
         m = self.model
-        self.xs[0][...] = m.slave_positions(u, w, psi)
-        self.xm[0][...] = m.master_positions(u, s)
-        self.ft[0][...] = 0.0
+        self.xsb[self.cur] = m.slave_positions(u, w, psi)
+        self.xmb[self.cur] = m.master_positions(u, s)
+        self.ftb[self.cur] = 0.0
 
     def restore(self, c):
         """The previous state from a contact dict (a restart file)."""
-        self.xs[0][...] = c["xs"]
-        self.xm[0][...] = c["xm"]
-        self.ft[0][...] = c["ft"]
+        self.xsb[self.cur] = c["xs"]
+        self.xmb[self.cur] = c["xm"]
+        self.ftb[self.cur] = c["ft"]
         for k, buf in self.out.items():
             if k in c:
                 buf[...] = c[k]
 
-    def step(self, u, w, psi, s, mu, f, state):
+    def contact(self):
+        """The contact dict of the last step (views of the buffers)."""
+        c = self.cur
+        return dict(self.out, xs=self.xsb[c], xm=self.xmb[c], ft=self.ftb[c])
+
+    def run(self, k0, k1, relax, per_step, ax, axle, mu, m_alpha, has_beta, state, u, v, f,
+            fd_beta, inv_m, mass, cmap, dt, E=None, hist=None, rows=None, nrow=None,
+            every=1, n_steps=0):
+        """Steps k0 … k1 − 1 (:func:`wheelrail.fe._explicit.run_steps`): ``per_step`` =
+        (cos ψ, sin ψ, rail travel, lateral drift, time, axle load) arrays over the steps;
+        ``ax`` = [w, vw, e_int0, F_z] is updated; the plastic state in place."""
         m, o = self.model, self.out
-        cpsi, spsi = np.cos(psi), np.sin(psi)
-        lat = m.lateral_shift(s)
-        xs_old, xs = self.xs
-        xm_old, xm = self.xm
-        ft_old, ft = self.ft
-        np.subtract(self.y_ref0, lat, out=self.y_ref)
         ed = m.edata
         lam, G, hp, tp, ts = self.mat
         plastic = state is not None
@@ -366,20 +407,30 @@ class _ContactLoop:
         # each integration point reads its own state before writing it)
         st = state.committed if plastic else _NO_STATE
         hg = ed.hx if ed.hx.shape[0] else ed.gamma          # compact hourglass data
-        explicit_forces(u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic,
-                        hp, tp, ts, st, st, f, self.energy, self.echunk, self.tasks,
-                        self.ref_s, self.slave, cpsi, spsi, m.z_axle + w, xs, xs_old, self.dxs,
-                        self.ref_m, self.master, s, lat, xm, xm_old, self.dxm, self.nm,
-                        m.slave_area, m.kn, mu, ft_old, self.x_ref, self.y_ref, self.reach, m.g0,
-                        self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
-                        o["pn"], ft, o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
-                        self.fcon, self.sums)
-        self.xs.reverse()
-        self.xm.reverse()
-        self.ft.reverse()
-        return dict(o, xs=xs, xm=xm, ft=ft)
+        if E is None:
+            E, hist, rows, nrow = _NO_E, _NO_HIST, _NO_HIST, _NO_ROW
+        cps, sps, sx, sy, tt, loads = per_step
+        self.cur = run_steps(
+            k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, sx, sy, tt, loads,
+            axle, self.y_ref0, self.cur, self.xsb, self.xmb, self.ftb,
+            u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic,
+            hp, tp, ts, st, st, f, self.energy, self.echunk, self.tasks,
+            self.ref_s, self.slave, m.z_axle, self.dxs,
+            self.ref_m, self.master, self.dxm, self.nm,
+            m.slave_area, m.kn, mu, self.x_ref, self.y_ref, self.reach, m.g0,
+            self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
+            o["pn"], o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
+            self.fcon, self.sums, v, fd_beta, has_beta, m_alpha, inv_m, mass,
+            cmap, dt, self.gptr, self.gnodes, self.partial, self.totals, self.counter,
+            numba.get_num_threads())
+        if plastic:                          # updated in place: nothing to commit
+            state.energies = (float(self.sums[6]), float(self.sums[7]))
+        return self.contact()
 
 
+_NO_E = np.zeros(8)
+_NO_HIST = np.zeros((0, 5))
+_NO_ROW = np.zeros(1, np.int64)
 _NO_STATE = np.zeros((0, 1, 14))
 
 

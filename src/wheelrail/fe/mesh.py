@@ -311,8 +311,10 @@ def check_quality(body: Body, max_aspect: float = 50.0) -> dict:
         dN = 0.125 * _XI * np.stack([(1 + _XI[:, 1] * p[1]) * (1 + _XI[:, 2] * p[2]),
                                      (1 + _XI[:, 0] * p[0]) * (1 + _XI[:, 2] * p[2]),
                                      (1 + _XI[:, 0] * p[0]) * (1 + _XI[:, 1] * p[1])], axis=1)
-        J = np.einsum("ai,eaj->eij", dN, x)
-        dets.append(np.linalg.det(J))
+        J = np.matmul(dN.T, x)                             # (ne, 3, 3)
+        dets.append(J[:, 0, 0] * (J[:, 1, 1] * J[:, 2, 2] - J[:, 1, 2] * J[:, 2, 1])
+                    - J[:, 0, 1] * (J[:, 1, 0] * J[:, 2, 2] - J[:, 1, 2] * J[:, 2, 0])
+                    + J[:, 0, 2] * (J[:, 1, 0] * J[:, 2, 1] - J[:, 1, 1] * J[:, 2, 0]))
     dets = np.array(dets)
     dmin, dmax = dets.min(axis=0), dets.max(axis=0)
     if np.any(dmin <= 0):

@@ -91,7 +91,8 @@ class RollingResult:
     u : ndarray, shape (n_nodes, 3)
         Final displacements in the body frames [m].
     info : dict
-        Time step, steps, solver counters.
+        Time step, steps, solver counters; explicit runs: ``loop_wall``, ``loop_cpu``
+        the wall and CPU seconds of the time loop (without the model build and output).
     steady : dict
         ``window`` (start, end) of travel [m], ``n`` samples, and for Fx, Fy, Fz, Fn,
         Fy_contact, Fn_contact: ``<name>`` the mean [N], ``<name>_std`` the standard
@@ -366,6 +367,7 @@ def restart_writer(io, model, dt, n_steps):
             return True
         return False
 
+    maybe_write.every = every if path is not None else 0     # steps between writes (0: none)
     return maybe_write
 
 
