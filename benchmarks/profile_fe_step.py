@@ -36,10 +36,9 @@ from numba import njit, prange
 from numba.core import cgutils, types
 from numba.core.extending import intrinsic
 
-from wheelrail.fe._explicit import (_take_next, _update_nodes, contact_to_nodes,
-                                    master_kinematics, slave_position)
+from wheelrail.fe._explicit import (_element_chunk, _take_next, _update_nodes,
+                                    contact_to_nodes, master_kinematics, slave_position)
 from wheelrail.fe._kernels import _slave, scatter_to_grid
-from wheelrail.fe._solid import _element
 
 
 @intrinsic

@@ -336,6 +336,22 @@ def interleaved_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarra
     return np.ascontiguousarray(np.stack([kind[order], idx[order]], axis=1).astype(np.int64))
 
 
+@njit(cache=True, inline="always")
+def _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
+                   hp, tp, ts, st_in, st_out, f, energy, echunk, ue, eps, sig, D, bb):
+    """Forces of the elements of chunk ``ch`` added to f; their energies (elastic, plastic
+    work) summed into ``echunk[ch]`` in element order (the same sums on any thread count)."""
+    a0 = 0.0
+    a1 = 0.0
+    for e in range(bounds[ch], bounds[ch + 1]):
+        e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, plastic, bbar,
+                              hp, tp, ts, st_in, st_out, f, energy, ue, eps, sig, D, bb)
+        a0 += e_el
+        a1 += e_pl
+    echunk[ch, 0] = a0
+    echunk[ch, 1] = a1
+
+
 @njit(cache=True, parallel=True)
 def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
                   st_in, st_out, f, energy, echunk, tasks,
@@ -416,17 +432,9 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
         t = _take_next(counter)
         while t < n_tasks:
             if tasks[t, 0] == 0:
-                ch = 2 * tasks[t, 1]
-                a0 = 0.0
-                a1 = 0.0
-                for e in range(bounds[ch], bounds[ch + 1]):
-                    e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
-                                          plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
-                                          ue, eps, sig, D, bb)
-                    a0 += e_el
-                    a1 += e_pl
-                echunk[ch, 0] = a0
-                echunk[ch, 1] = a1
+                _element_chunk(2 * tasks[t, 1], bounds, u, conn, dNdx, wdet, gamma, khg,
+                               has_hg, lam, G, plastic, bbar, hp, tp, ts, st_in, st_out, f,
+                               energy, echunk, ue, eps, sig, D, bb)
             else:
                 j = tasks[t, 1]
                 for s in range(ns * j // ncc, ns * (j + 1) // ncc):
@@ -448,16 +456,9 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
         while g < n_groups:
             ch = 2 * g + 1
             if ch < nc:
-                a0 = 0.0
-                a1 = 0.0
-                for e in range(bounds[ch], bounds[ch + 1]):
-                    e_el, e_pl = _element(e, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
-                                          plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
-                                          ue, eps, sig, D, bb)
-                    a0 += e_el
-                    a1 += e_pl
-                echunk[ch, 0] = a0
-                echunk[ch, 1] = a1
+                _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                               plastic, bbar, hp, tp, ts, st_in, st_out, f, energy, echunk,
+                               ue, eps, sig, D, bb)
             _update_nodes(g, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
                           mass, cmap, fcon, dt, partial)
             g = _take_next(counter)
