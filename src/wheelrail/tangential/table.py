@@ -42,9 +42,10 @@ Interpolation is a tensor product of interpolating cubic B-splines in
 frame of the full-slip direction (components along and across it), so that
 |F| = μFn is kept in full slip; |F| ≤ μFn is enforced (the cubic may
 overshoot the bound by a little). The spline coefficients are computed once
-when the table is loaded, with not-a-knot ends (de Boor 2001), except at r = 0
-where the spline is fitted to the odd extension that the reversed creepage
-gives exactly (F is odd in (ξ, η, φ) together). A global spline rather than
+when the table is loaded, with not-a-knot ends (de Boor 2001) on every cubic
+axis, r = 0 included (an odd extension through r = 0 was tried and not kept:
+F is odd in the creepages but not smooth through 0, and the table's slope
+there, Kalker's C11, came out 1.4 % low with it). A global spline rather than
 local (Catmull–Rom) cubics: on the 60 benchmark points its largest error is
 about a fifth smaller (benchmarks/bench_contact_table_law.py).
 
@@ -228,21 +229,9 @@ def _spline_operator(n):
     return np.linalg.solve(A, np.eye(n + 2)[:, :n])
 
 
-def _spline_coefficients(v, axis, odd_start=None):
-    """B-spline coefficients of ``v`` along ``axis`` (:func:`_spline_operator`).
-
-    ``odd_start(v)`` gives the values at the mirrored nodes −x₁, −x₂, … of an axis that
-    starts at 0 where the table is odd (nodes 1, 2, … mapped by the symmetry): the
-    spline is then fitted to the odd extension and holds that symmetry at 0.
-    """
-    v = np.moveaxis(v, axis, 0)
-    n = v.shape[0]
-    if odd_start is not None:
-        mirror = odd_start(v[1:])[::-1]
-        ext = np.concatenate([mirror, v])
-        c = np.tensordot(_spline_operator(ext.shape[0]), ext, axes=(1, 0))[n - 1:]
-    else:
-        c = np.tensordot(_spline_operator(n), v, axes=(1, 0))
+def _spline_coefficients(v, axis):
+    """B-spline coefficients of ``v`` along ``axis`` (:func:`_spline_operator`)."""
+    c = np.tensordot(_spline_operator(v.shape[axis]), np.moveaxis(v, axis, 0), axes=(1, 0))
     return np.moveaxis(c, 0, axis)
 
 
@@ -301,22 +290,9 @@ class TableData:
             x0.append(ax[0])
             dx.append(step[0])
             n.append(ax.size)
-        r_ax, s_ax = np.asarray(axes["r"], float), np.asarray(axes["s"], float)
-        odd = None
-        if r_ax[0] == 0.0 and r_ax.size > 1 and np.allclose(s_ax, -s_ax[::-1], atol=1e-12):
-            # r = -x is the reversed creepage at the same theta: F(-c) = -F(c) for the
-            # creepages (xi, eta, phi) reversed together, i.e. minus the node at r = x with
-            # the spin reversed (s -> -s), in the same local frame; the spline through that
-            # odd extension has Kalker's slope at r = 0 up to the curvature in dr
-            def odd(v):
-                return -v[:, :, ::-1]
         padded = local
-        ODDX = None
-
-        for d in range(4):
-            padded = (_spline_coefficients(padded, d, ODDX if d == 0 else None) if CUBIC[d]
-                      else _ghosts(padded, d))
-        padded = _ghosts(padded, 4)
+        for d in range(5):
+            padded = _spline_coefficients(padded, d) if CUBIC[d] else _ghosts(padded, d)
         ab_lo, ab_hi = axes["log_ab"][0], axes["log_ab"][-1]
         nu_lo, nu_hi = axes["nu"][0], axes["nu"][-1]
         lab = np.linspace(ab_lo, ab_hi, 801)
