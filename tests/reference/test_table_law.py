@@ -123,22 +123,23 @@ def test_strided_build_holds_the_grid_limit_on_its_sub_grid(tmp_path):
     data = T.load_table(path)
     nodes = table_nodes({k: np.asarray(v, float) for k, v in grid.items()})
     shape = nodes["shape"]  # (4, 3, 3, 2, 2): r < 1, |s| < 1
-    i = np.ravel_multi_index((2, 0, 1, 1, 0), shape)  # r = 0.5, theta = 0, s = 0: a sub-grid node
-    m = wr.Material(2.1e11, nodes["nu"][i])
-    c = wr.hertz_from_semiaxes(nodes["a"][i], nodes["b"][i], 1e4, m)
-    creep = (nodes["xi"][i], nodes["eta"][i], nodes["phi"][i])
-    f = [_exact(c, creep, 0.3, elements=n) for n in (8, 10, 12)]
-    lim = grid_limit([np.array([r.Fx, r.Fy]) for r in f], (8, 10, 12))
-    np.testing.assert_allclose(data.values[2, 0, 2, 1, 0, :2], lim / 3e3, atol=1e-6)
+
+    def limit_at(index, elements):
+        """Least-squares grid limit (Fx, Fy) of the exact solutions at one node."""
+        k = np.ravel_multi_index(index, shape)
+        m = wr.Material(2.1e11, nodes["nu"][k])
+        c = wr.hertz_from_semiaxes(nodes["a"][k], nodes["b"][k], 1e4, m)
+        creep = (nodes["xi"][k], nodes["eta"][k], nodes["phi"][k])
+        f = [_exact(c, creep, 0.3, elements=n) for n in elements]
+        return grid_limit([np.array([r.Fx, r.Fy]) for r in f], elements)
+
+    # r = 0.5, theta = 0, s = 0: a sub-grid node
+    np.testing.assert_allclose(data.values[2, 0, 2, 1, 0, :2],
+                               limit_at((2, 0, 1, 1, 0), (8, 10, 12)) / 3e3, atol=1e-6)
     # the first plane r = 0.25 holds its own fit (10/12/14 elements); the other nu keeps
     # its difference to the first (here on the stride-2 sub-grid: r = 0.25 interpolated)
-    j = np.ravel_multi_index((1, 0, 1, 1, 0), shape)
-    m = wr.Material(2.1e11, nodes["nu"][j])
-    c = wr.hertz_from_semiaxes(nodes["a"][j], nodes["b"][j], 1e4, m)
-    creep = (nodes["xi"][j], nodes["eta"][j], nodes["phi"][j])
-    f = [_exact(c, creep, 0.3, elements=n) for n in (10, 12, 14)]
-    lim = grid_limit([np.array([r.Fx, r.Fy]) for r in f], (10, 12, 14))
-    np.testing.assert_allclose(data.values[1, 0, 2, 1, 0, :2], lim / 3e3, atol=1e-6)
+    np.testing.assert_allclose(data.values[1, 0, 2, 1, 0, :2],
+                               limit_at((1, 0, 1, 1, 0), (10, 12, 14)) / 3e3, atol=1e-6)
     assert data.meta["first_plane_elements"] == [10, 12, 14]
     build_table(tmp_path / "t2.npz", elements=(8, 10, 12), workers=1, progress=False,
                 grid=grid, work=work, keep_work=True, **kw)
