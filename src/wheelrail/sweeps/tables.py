@@ -94,7 +94,7 @@ GRID = {
     "r": np.linspace(0.0, 1.0, 21),
     "theta": np.linspace(0.0, 0.5 * np.pi, 9),
     "s": np.linspace(-1.0, 1.0, 41),
-    "log_ab": np.log(np.geomspace(0.05, 20.0, 9)),
+    "log_ab": np.log(np.geomspace(0.05, 20.0, 17)),
     "nu": np.array([0.25, 0.30]),
 }
 #: Exact-solver resolutions (elements across the contact): 24 on every node and ν,

@@ -54,14 +54,14 @@ Accuracy
 See ``benchmarks/bench_contact_table_law.py`` and docs/sweeps.md: random points
 over the whole domain (:func:`random_cases`: a/b 0.05–20, |φ̂| up to 19) against
 the exact theory's grid limit (least-squares f∞ + C/N to 36–122 elements,
-uncertainty ≤ 0.28 % of μFn). The shipped table (21 × 9 × 41 × 9 × 2 nodes,
+uncertainty ≤ 0.28 % of μFn). The shipped table (21 × 9 × 41 × 17 × 2 nodes,
 the grid limit fitted to 16/24/36 elements on every node, 36/54/81 on the
-smallest creepages): on 200 points max |ΔF_t| = 1.32 % of μFn, rms 0.21 %,
-max |ΔMz| = 0.84 % of μFn c; 199 of the 200 within 1 % (the exact solver itself
-with 122 elements: max 1.29 %, rms 0.25 %).
+smallest creepages): on 200 points max |ΔF_t| = 0.79 % of μFn, rms 0.14 %,
+max |ΔMz| = 0.75 % of μFn c; on 100 independent points (seed 7) max 0.34 %,
+rms 0.10 % (the exact solver itself with 122 elements: max 1.29 % and 0.76 %).
 
-Speed: one call of :meth:`Table.solve` takes about 0.035 ms (the exact solver
-with 40 elements: 15–19 ms), see the benchmark.
+Speed: one call of :meth:`Table.solve` takes about 0.035 ms on an idle core (the
+exact solver with 40 elements: 15–19 ms), see the benchmark.
 
 Outside the domain (a/b outside [0.05, 20], ν outside [0.25, 0.30], or
 dissimilar materials K ≠ 0) the law raises :class:`~wheelrail.errors.InputError`
