@@ -1,19 +1,21 @@
 """Kernels of the explicit central-difference step (private, numba).
 
-:func:`explicit_step` runs a whole step of a rolling run in one call and two parallel
-phases: the element forces (in the parity-ordered chunks of
-:func:`wheelrail.fe._solid.element_chunks`), the contact, and the node update (the
+A step has two parallel phases: the element forces (in the parity-ordered chunks of
+:func:`wheelrail.fe._solid.element_chunks`) with the contact, and the node update (the
 acceleration from the internal, contact and damping forces, the half-step velocity and the
 new displacement), fused into the second phase node group by node group
 (:func:`node_groups`). Partial sums are taken per task (element chunk, node group) and
 added in task order, so that the results do not depend on the thread count; the tasks are
 handed out dynamically, so that a slower thread (plastic elements, a busy core) does
-fewer of them. :func:`advance` is the node update alone (the transition driver).
+fewer of them. :func:`run_steps` runs a block of steps in one parallel region (its
+threads wait for each other's phases without sleeping); :func:`explicit_step` is one step
+in two OpenMP regions (the same numbers). :func:`advance` is the node update alone (the
+transition driver).
 
 The contact bookkeeping of a step (positions of the contact surfaces, their increments
 and nodal normals, the contact forces rotated into the body frames, the force and energy
 sums) runs in small serial kernels (:func:`slave_kinematics`, :func:`master_kinematics`,
-:func:`contact_to_nodes`): a few thousand nodes at most, where a parallel region would
+:func:`contact_to_nodes`): a few thousand nodes at most, where a parallel phase would
 cost more than it saves, and where NumPy temporaries cost more than the arithmetic.
 """
 
