@@ -84,3 +84,4 @@ def test_rolling_loop_finishes_when_fewer_threads_run_it_than_it_was_told(monkey
         numba.set_num_threads(default)
     np.testing.assert_array_equal(r1.u, r3.u)
     np.testing.assert_array_equal(r1.dataset["Fx"].values, r3.dataset["Fx"].values)
+

@@ -818,4 +818,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                         _atomic_store(ctl, _PHASE, p + 1)
                     g = _take_task(ctl, p, n_groups)
             p = _wait_phase(ctl, p)
+    if ctl[_PHASE] != n_phases:      # a thread left the region early: a task raised
+        raise RuntimeError("run_steps: a task of the explicit step raised an exception (a "
+                           "division by zero on a degenerate element or contact cell?)")
     return ctl[_CUR]
