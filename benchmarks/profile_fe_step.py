@@ -5,13 +5,15 @@
     python benchmarks/profile_fe_step.py table fe_step_profile/elastic_1.npz fe_step_profile/elastic_2.npz
 
 ``run`` solves the 2 mm speed case of ``bench_fe_plastic.py speed`` (Toumi et al.'s case,
-11 840 one-point elements, 4 920 steps) with an instrumented copy of the compiled time loop
-(``wheelrail.fe._explicit.run_steps`` and ``explicit_step``, generated from their source
-text with cycle-counter reads at the phase boundaries and around every task: the
-arithmetic is the same, the run prints the same steady Fx) and saves the timestamps;
-``table`` prints the median time per step of every phase, the serial parts, and per
-thread the tasks, busy time, start latency and idle time at the end of each parallel
-region. Timings are wall-clock (the x86 time-stamp counter); state the machine load.
+11 840 one-point elements, 4 920 steps; ``--mesh 1e-3 --travel 0.004``: 47 736 elements,
+7 533 steps) with an instrumented copy of the compiled time loop
+(``wheelrail.fe._explicit.run_steps``, generated from its source text with cycle-counter
+reads at the phase boundaries and around every task: the arithmetic is the same, the run
+prints the same steady Fx) and saves the timestamps; ``table`` prints the median time per
+step of every phase and serial part, per thread the tasks, busy time, start latency and
+idle time at the end of each parallel phase, and where the threads' time goes (in tasks,
+before the first task, between tasks, after the last, phases missed). Timings are
+wall-clock (the x86 time-stamp counter); state the machine load.
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 
-_HEADER = '''"""Instrumented copy of wheelrail.fe._explicit.run_steps / explicit_step (generated)."""
+_HEADER = '''"""Instrumented copy of wheelrail.fe._explicit.run_steps (generated)."""
 import numba
 import numpy as np
 from llvmlite import ir
@@ -36,8 +38,10 @@ from numba import njit, prange
 from numba.core import cgutils, types
 from numba.core.extending import intrinsic
 
-from wheelrail.fe._explicit import (_element_chunk, _take_next, _update_nodes,
-                                    contact_to_nodes, master_kinematics, slave_position)
+from wheelrail.fe._explicit import (_CUR, _DONE, _PHASE, _TAKE, _atomic_add, _atomic_load,
+                                    _atomic_store, _element_chunk, _step_end, _step_start,
+                                    _take_task, _update_nodes, _wait_phase, contact_to_nodes,
+                                    slave_position)
 from wheelrail.fe._kernels import _slave, scatter_to_grid
 
 
@@ -71,38 +75,40 @@ def _sub(src, old, new, count=1):
 
 
 def instrumented_source() -> str:
-    """The source of the instrumented copies (from the installed wheelrail)."""
+    """The source of the instrumented copy (from the installed wheelrail).
+
+    ``T[k]``: cycle counter when step k's first phase opens, when its last task ends, when
+    the second phase opens, when its last task ends and when the next step's first phase
+    opens; ``TA[k, t]`` / ``TB[k, g]``: start, end and thread of every task."""
     import wheelrail.fe._explicit as X
 
     src = Path(X.__file__).read_text()
-    es = src[src.index("@njit(cache=True, parallel=True)\ndef explicit_step("):
-             src.index("@njit(cache=True)\ndef run_steps(")]
-    rs = src[src.index("@njit(cache=True)\ndef run_steps("):]
-    es = _strip_doc(es, "One explicit step")
-    es = _sub(es, "def explicit_step(", "def explicit_step_t(")
-    es = _sub(es, "counter, nthr):", "counter, nthr, T, TA, TB):")
-    es = _sub(es, "    ne = conn.shape[0]\n", "    T[0] = rdtsc()\n    ne = conn.shape[0]\n")
-    es = _sub(es, "    master_kinematics(ref_m, u, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm)\n",
-              "    master_kinematics(ref_m, u, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm)\n"
-              "    T[1] = rdtsc()\n")
-    es = _sub(es, "        while t < n_tasks:\n", "        while t < n_tasks:\n            TA[t, 0] = rdtsc()\n")
-    es = _sub(es, "            t = _take_next(counter)\n    scatter_to_grid",
-              "            TA[t, 1] = rdtsc()\n            TA[t, 2] = numba.get_thread_id()\n"
-              "            t = _take_next(counter)\n    T[2] = rdtsc()\n    scatter_to_grid")
-    es = _sub(es, "fcon, sums)\n    counter[0] = 0\n", "fcon, sums)\n    T[3] = rdtsc()\n    counter[0] = 0\n")
-    es = _sub(es, "        while g < n_groups:\n", "        while g < n_groups:\n            TB[g, 0] = rdtsc()\n")
-    es = _sub(es, "            g = _take_next(counter)\n    e0 = 0.0",
-              "            TB[g, 1] = rdtsc()\n            TB[g, 2] = numba.get_thread_id()\n"
-              "            g = _take_next(counter)\n    T[4] = rdtsc()\n    e0 = 0.0")
-    es += "    T[5] = rdtsc()\n"
+    rs = src[src.index("@njit(cache=True, parallel=True)\ndef run_steps("):]
     rs = _strip_doc(rs, "Steps ``k0``")
     rs = _sub(rs, "def run_steps(", "def run_steps_t(")
-    rs = _sub(rs, "counter, nthr):", "counter, nthr, T, TA, TB, TL):")
-    rs = _sub(rs, "gptr, gnodes, partial, totals, counter, nthr)\n",
-              "gptr, gnodes, partial, totals, counter, nthr, T[k], TA[k], TB[k])\n")
-    rs = _sub(rs, "        explicit_step(", "        TL[k, 0] = rdtsc()\n        explicit_step_t(")
-    rs = _sub(rs, "        cur = new\n", "        cur = new\n        TL[k, 1] = rdtsc()\n")
-    return _HEADER + es + "\n\n" + rs
+    rs = _sub(rs, "counter, nthr):", "counter, nthr, T, TA, TB):")
+    rs = _sub(rs, "    for w in prange(nthr):\n", "    T[k0, 0] = rdtsc()\n    for w in prange(nthr):\n")
+    pad = " " * 20
+    rs = _sub(rs, "                while t >= 0:\n",
+              "                while t >= 0:\n" + pad + "TA[k, t, 0] = rdtsc()\n")
+    last = "if _atomic_add(ctl, _DONE, 1) == n_tasks - 1:"
+    rs = _sub(rs, pad + last, pad + "TA[k, t, 1] = rdtsc()\n" + pad + "TA[k, t, 2] = numba.get_thread_id()\n"
+              + pad + last)
+    i = rs.index(last)
+    rs = rs[:i] + _sub(rs[i:], "\n", "\n" + pad + "    T[k, 1] = rdtsc()\n")
+    pub = pad + "    _atomic_store(ctl, _PHASE, p + 1)\n"
+    rs = _sub(rs, pub, pad + "    T[k, 2] = rdtsc()\n" + pub)
+    rs = _sub(rs, "                while g >= 0:\n",
+              "                while g >= 0:\n" + pad + "TB[k, g, 0] = rdtsc()\n")
+    last = "if _atomic_add(ctl, _DONE, 1) == n_groups - 1:"
+    rs = _sub(rs, pad + last, pad + "TB[k, g, 1] = rdtsc()\n" + pad + "TB[k, g, 2] = numba.get_thread_id()\n"
+              + pad + last)
+    i = rs.index(last)
+    rs = rs[:i] + _sub(rs[i:], "\n", "\n" + pad + "    T[k, 3] = rdtsc()\n")
+    i = rs.index("ctl[_CUR] = new")
+    rs = rs[:i] + _sub(rs[i:], pub, pad + "    T[k, 4] = rdtsc()\n" + pad + "    if k + 1 < k1:\n"
+                       + pad + "        T[k + 1, 0] = T[k, 4]\n" + pub)
+    return _HEADER + rs
 
 
 def _load_instrumented(out: Path):
@@ -135,9 +141,8 @@ def cmd_run(a):
     R = {}
 
     def fresh(n_tasks_a=64, n_tasks_b=64, n=200_000):
-        return dict(T=np.zeros((n, 6), np.int64), TA=np.zeros((n, n_tasks_a, 3), np.int64),
-                    TB=np.zeros((n, n_tasks_b, 3), np.int64), TL=np.zeros((n, 2), np.int64),
-                    calls=[], n1=0)
+        return dict(T=np.zeros((n, 5), np.int64), TA=np.zeros((n, n_tasks_a, 3), np.int64),
+                    TB=np.zeros((n, n_tasks_b, 3), np.int64), calls=[], n1=0)
 
     def run_steps(*args):
         r = R["r"]
@@ -151,8 +156,7 @@ def cmd_run(a):
         if r["TA"].shape[1] != n_a or r["TB"].shape[1] != n_b:
             r.update({k: v for k, v in fresh(n_a, n_b, r["T"].shape[0]).items() if k in ("TA", "TB")})
         c0 = mod.tsc()
-        cur = mod.run_steps_t(*args, r["T"][base:], r["TA"][base:], r["TB"][base:],
-                              r["TL"][base:])
+        cur = mod.run_steps_t(*args, r["T"][base:], r["TA"][base:], r["TB"][base:])
         r["calls"].append((base + k0, base + k1, c0, mod.tsc()))
         return cur
 
@@ -182,7 +186,7 @@ def cmd_run(a):
                 load_after=os.getloadavg()[0], date=time.strftime("%Y-%m-%d %H:%M"))
     print(json.dumps(info))
     path = out / f"{a.material}_{a.threads}.npz"
-    np.savez(path, T=r["T"][:n], TA=r["TA"][:n], TB=r["TB"][:n], TL=r["TL"][:n],
+    np.savez(path, T=r["T"][:n], TA=r["TA"][:n], TB=r["TB"][:n],
              calls=np.array(r["calls"], np.int64), hz=hz, info=json.dumps(info), kinds=kinds,
              run=np.array([c_start, c_end], np.int64))
     print(f"saved {path}")
@@ -190,29 +194,24 @@ def cmd_run(a):
 
 def table(path):
     d = np.load(path)
-    T, TA, TB, TL, calls = d["T"], d["TA"], d["TB"], d["TL"], d["calls"]
+    T, TA, TB, calls = d["T"], d["TA"], d["TB"], d["calls"]
     us = 1e6 / float(d["hz"])
     info = json.loads(str(d["info"]))
     kinds = d["kinds"]
     n, ne = T.shape[0], info["elements"]
     run = (d["run"][1] - d["run"][0]) * us
     loop = (calls[-1, 3] - calls[0, 2]) * us
-    first = np.zeros(n, bool)
-    first[calls[:, 0]] = True
-    book = ((TL[1:, 0] - TL[:-1, 1]) * us)[~first[1:]]
     between = ((calls[1:, 2] - calls[:-1, 3]) * us).sum() / n
-    entry = sum((TL[c[0], 0] - c[2]) + (c[3] - TL[c[1] - 1, 1]) for c in calls) * us / n
+    entry = sum((T[c[0], 0] - c[2]) + (c[3] - T[c[1] - 1, 4]) for c in calls) * us / n
     rows = [
         ("model build before the first step and results after the last (serial)", (run - loop) / n),
         ("Python between calls of the compiled loop (averaged over the steps)", between),
         ("entry/exit of the compiled loop (averaged)", entry),
-        ("axle and energy bookkeeping in the loop (serial)", np.median(book)),
-        ("entry/exit of explicit_step", np.median((T[:, 0] - TL[:, 0]) + (TL[:, 1] - T[:, 5])) * us),
-        ("rail surface positions and normals (serial)", np.median(T[:, 1] - T[:, 0]) * us),
-        ("region 1: even element chunks + contact (parallel)", np.median(T[:, 2] - T[:, 1]) * us),
-        ("contact forces scattered and rotated, sums (serial)", np.median(T[:, 3] - T[:, 2]) * us),
-        ("region 2: odd element chunks + node update (parallel)", np.median(T[:, 4] - T[:, 3]) * us),
-        ("energy and work sums (serial)", np.median(T[:, 5] - T[:, 4]) * us),
+        ("phase 1: even element chunks + contact (parallel)", np.median(T[:, 1] - T[:, 0]) * us),
+        ("contact forces scattered and rotated, sums (serial)", np.median(T[:, 2] - T[:, 1]) * us),
+        ("phase 2: odd element chunks + node update (parallel)", np.median(T[:, 3] - T[:, 2]) * us),
+        ("energy sums, axle, bookkeeping, next step's rail surface (serial)",
+         np.median(T[:, 4] - T[:, 3]) * us),
     ]
     print(f"{path}: {info}")
     print(f"  {n} steps x {ne} elements: whole solve {run / n:.0f} us/step "
@@ -226,25 +225,30 @@ def table(path):
     print(f"  work in tasks, summed over threads (medians): even element chunks "
           f"{np.median(dA[:, kinds == 0].sum(1)):.0f} us, contact {np.median(dA[:, kinds == 1].sum(1)):.0f}"
           f" us, odd element chunks + node update {np.median(dB.sum(1)):.0f} us")
-    both = np.ones(n, bool)
-    for name, TT, start, end in (("1", TA, T[:, 1], T[:, 2]), ("2", TB, T[:, 3], T[:, 4])):
+    nthr = info["threads"]
+    for name, TT, start, end in (("1", TA, T[:, 0], T[:, 1]), ("2", TB, T[:, 2], T[:, 3])):
         txt = []
-        for tid in np.unique(TT[:, :, 2]):
+        wall = (end - start) * us
+        tot = dict(tasks=0.0, before=0.0, between=0.0, after=0.0, missed=0.0)
+        for tid in range(nthr):
             m = TT[:, :, 2] == tid
             has = m.any(axis=1)
-            both &= has
             b = np.where(m, TT[:, :, 1] - TT[:, :, 0], 0).sum(axis=1) * us
-            st = (np.where(m, TT[:, :, 0], np.iinfo(np.int64).max).min(axis=1) - start) * us
-            idle = (end - np.where(m, TT[:, :, 1], 0).max(axis=1)) * us
+            st = np.where(has, (np.where(m, TT[:, :, 0], np.iinfo(np.int64).max).min(axis=1)
+                                - start) * us, 0)
+            idle = np.where(has, (end - np.where(m, TT[:, :, 1], 0).max(axis=1)) * us, 0)
             txt.append(f"thread {tid}: {np.median(m.sum(1)):.0f} tasks, busy {np.median(b):.0f} us, "
-                       f"first task +{np.median(st[has]):.1f} us, idle at the end "
-                       f"{np.median(idle[has]):.1f} us (works in {has.mean():.0%} of the steps)")
-        print(f"  region {name}: {np.median((end - start) * us):.0f} us; " + "; ".join(txt))
-    if info["threads"] > 1:
-        s = (T[:, 5] - T[:, 0]) * us
-        print(f"  steps in which every thread works in both regions: {both.mean():.0%}; their "
-              f"explicit_step {np.median(s[both]):.0f} us (all steps {np.median(s):.0f} us); task "
-              f"work in them {np.median(dA[both].sum(1) + dB[both].sum(1)):.0f} us")
+                       f"first task +{np.median(st[has]) if has.any() else 0:.1f} us, idle at the "
+                       f"end {np.median(idle[has]) if has.any() else 0:.1f} us (works in "
+                       f"{has.mean():.0%} of the steps)")
+            tot["tasks"] += b.mean()
+            tot["before"] += st.mean()
+            tot["after"] += idle.mean()
+            tot["between"] += np.where(has, wall - st - idle - b, 0).mean()
+            tot["missed"] += np.where(has, 0, wall).mean()
+        print(f"  phase {name}: {np.median(wall):.0f} us; " + "; ".join(txt))
+        print(f"    thread time, mean per step: {nthr * wall.mean():.0f} us = "
+              + ", ".join(f"{k} {v:.0f}" for k, v in tot.items()))
 
 
 def main():

@@ -36,3 +36,52 @@ def test_rolling_is_bitwise_identical_on_one_and_two_threads():
     # the one-off compile time (it did, +35 s, when inlined helpers were checked for a cache)
     from wheelrail.cli.fe import _kernels_cached
     assert _kernels_cached()
+
+
+def test_task_counter_hands_out_each_task_once_and_only_in_its_phase():
+    from numba import njit, prange
+
+    from wheelrail.fe._explicit import _TAKE, _take_task
+
+    @njit(parallel=True)
+    def take_all(ctl, p, n, owner):
+        for w in prange(2):
+            t = _take_task(ctl, p, n)
+            while t >= 0:
+                owner[t] += w + 1
+                t = _take_task(ctl, p, n)
+
+    for n in (1, 7, 200):
+        ctl = np.zeros(32, np.int64)
+        ctl[_TAKE] = 5 << 32                     # phase 5, task 0
+        owner = np.zeros(n, np.int64)
+        take_all(ctl, 5, n, owner)
+        assert np.all((owner == 1) | (owner == 2))       # each task taken by one thread once
+        assert ctl[_TAKE] == (5 << 32) + n
+        take_all(ctl, 4, n, owner)                       # a late thread of phase 4 takes nothing
+        take_all(ctl, 6, n, owner)                       # nor one of phase 6 before it opens
+        assert np.all((owner == 1) | (owner == 2))
+
+
+def test_rolling_loop_finishes_when_fewer_threads_run_it_than_it_was_told(monkeypatch):
+    """run_steps keeps its threads in one region with its own waits: a thread waits only for
+    tasks another thread has taken, so the loop also ends (with the same numbers) if its
+    parallel loop over ``nthr`` runs on fewer threads."""
+    import wheelrail.fe.explicit as EX
+
+    flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
+    case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+                       mu=0.2, creepage=(7e-4, 2e-4, 0.0), mesh_size=2e-3, element="reduced",
+                       mass_scaling=400, depth=3, half_width=3, half_length=3, travel=0.002)
+    default = numba.get_num_threads()
+    try:
+        numba.set_num_threads(1)
+        r1 = solve(case, progress=False, output_every=1)
+        monkeypatch.setattr(EX.numba, "get_num_threads", lambda: 3)
+        r3 = solve(case, progress=False, output_every=1)
+    finally:
+        monkeypatch.undo()
+        numba.set_num_threads(default)
+    np.testing.assert_array_equal(r1.u, r3.u)
+    np.testing.assert_array_equal(r1.dataset["Fx"].values, r3.dataset["Fx"].values)
+

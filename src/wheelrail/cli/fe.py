@@ -80,9 +80,9 @@ def _kernels_cached() -> bool:
         from .._numba_cache import is_cached
         from ..fe import _explicit
 
-        # the entry points of the explicit rolling step (the kernels they call are
-        # compiled into them; inlined helpers have no cache of their own)
-        return all(is_cached(d) for d in (_explicit.run_steps, _explicit.explicit_step))
+        # the entry point of the explicit rolling loop (the kernels it calls are compiled
+        # into it; inlined helpers have no cache of their own)
+        return is_cached(_explicit.run_steps)
     except Exception:  # pragma: no cover - numba internals moved: assume cached
         return True
 

@@ -1,27 +1,35 @@
 """Kernels of the explicit central-difference step (private, numba).
 
-:func:`explicit_step` runs a whole step of a rolling run in one call and two parallel
-phases: the element forces (in the parity-ordered chunks of
-:func:`wheelrail.fe._solid.element_chunks`), the contact, and the node update (the
+A step has two parallel phases: the element forces (in the parity-ordered chunks of
+:func:`wheelrail.fe._solid.element_chunks`) with the contact, and the node update (the
 acceleration from the internal, contact and damping forces, the half-step velocity and the
 new displacement), fused into the second phase node group by node group
 (:func:`node_groups`). Partial sums are taken per task (element chunk, node group) and
 added in task order, so that the results do not depend on the thread count; the tasks are
 handed out dynamically, so that a slower thread (plastic elements, a busy core) does
-fewer of them. :func:`advance` is the node update alone (the transition driver).
+fewer of them. :func:`run_steps` runs a block of steps in one parallel region (its
+threads wait for each other's phases without sleeping); :func:`explicit_step` is one step
+in two OpenMP regions (the same numbers). :func:`advance` is the node update alone (the
+transition driver).
 
 The contact bookkeeping of a step (positions of the contact surfaces, their increments
 and nodal normals, the contact forces rotated into the body frames, the force and energy
 sums) runs in small serial kernels (:func:`slave_kinematics`, :func:`master_kinematics`,
-:func:`contact_to_nodes`): a few thousand nodes at most, where a parallel region would
+:func:`contact_to_nodes`): a few thousand nodes at most, where a parallel phase would
 cost more than it saves, and where NumPy temporaries cost more than the arithmetic.
 """
 
 from __future__ import annotations
 
+import ctypes
+import platform
+import sys
+
 import numpy as np
+from llvmlite import binding as llvm_binding
+from llvmlite import ir
 from numba import njit, prange
-from numba.core import types
+from numba.core import cgutils, types
 from numba.extending import intrinsic
 
 from ._kernels import _slave, scatter_to_grid
@@ -100,6 +108,140 @@ def _take_next(typingctx, counter):
                                   "seq_cst")
 
     return sig, codegen
+
+
+# ----------------------------------------------------------------------------- synchronisation
+def _yield_address():
+    """Address of the C function that gives the CPU to another runnable thread
+    (``sched_yield``; ``SwitchToThread`` on Windows), or 0."""
+    try:
+        if sys.platform == "win32":
+            fn = ctypes.windll.kernel32.SwitchToThread
+        else:
+            fn = ctypes.CDLL(None).sched_yield
+        return ctypes.cast(fn, ctypes.c_void_p).value or 0
+    except (AttributeError, OSError):
+        return 0
+
+
+_YIELD = "wheelrail_fe_yield"
+_HAS_YIELD = _yield_address() != 0
+if _HAS_YIELD:                       # resolvable by the JIT and by cached kernels
+    llvm_binding.add_symbol(_YIELD, _yield_address())
+_X86 = platform.machine().lower() in ("x86_64", "amd64", "i386", "i686", "x86")
+
+
+def _element_pointer(context, builder, sig, args):
+    aryty = sig.args[0]
+    ary = context.make_array(aryty)(context, builder, args[0])
+    return cgutils.get_item_pointer(context, builder, aryty, ary, [args[1]])
+
+
+@intrinsic
+def _atomic_load(typingctx, arr, idx):
+    """``arr[idx]`` (int64 array) read atomically (sequentially consistent)."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.int64):
+        return None
+
+    def codegen(context, builder, sig, args):
+        return builder.load_atomic(_element_pointer(context, builder, sig, args), "seq_cst", 8)
+
+    return types.int64(arr, types.intp), codegen
+
+
+@intrinsic
+def _atomic_store(typingctx, arr, idx, val):
+    """``arr[idx] = val`` (int64 array), atomically (sequentially consistent)."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.int64):
+        return None
+
+    def codegen(context, builder, sig, args):
+        builder.store_atomic(args[2], _element_pointer(context, builder, sig, args), "seq_cst", 8)
+        return context.get_dummy_value()
+
+    return types.none(arr, types.intp, types.int64), codegen
+
+
+@intrinsic
+def _atomic_add(typingctx, arr, idx, val):
+    """``arr[idx] += val`` (int64 array) atomically; returns the old value."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.int64):
+        return None
+
+    def codegen(context, builder, sig, args):
+        return builder.atomic_rmw("add", _element_pointer(context, builder, sig, args), args[2],
+                                  "seq_cst")
+
+    return types.int64(arr, types.intp, types.int64), codegen
+
+
+@intrinsic
+def _compare_swap(typingctx, arr, idx, old, new):
+    """If ``arr[idx] == old``, set it to ``new`` (atomically); True if it did."""
+    if not (isinstance(arr, types.Array) and arr.dtype == types.int64):
+        return None
+
+    def codegen(context, builder, sig, args):
+        res = builder.cmpxchg(_element_pointer(context, builder, sig, args), args[2], args[3],
+                              "seq_cst", "seq_cst")
+        return builder.extract_value(res, 1)
+
+    return types.boolean(arr, types.intp, types.int64, types.int64), codegen
+
+
+@intrinsic
+def _relax(typingctx, spins):
+    """Wait a little: a pause instruction (x86) while ``spins`` < 64, then give the CPU to
+    any other runnable thread (``sched_yield``): a waiting thread never sleeps (no wake-up
+    latency), and on a busy machine it does not keep a core from the other jobs."""
+    def codegen(context, builder, sig, args):
+        mod = builder.module
+        few = builder.icmp_signed("<", args[0], context.get_constant(types.int64, 64))
+        with builder.if_else(few) as (then, otherwise):
+            with then:
+                if _X86:
+                    fn = cgutils.get_or_insert_function(mod, ir.FunctionType(ir.VoidType(), []),
+                                                        "llvm.x86.sse2.pause")
+                    builder.call(fn, [])
+            with otherwise:
+                if _HAS_YIELD:
+                    fn = cgutils.get_or_insert_function(mod, ir.FunctionType(ir.IntType(32), []),
+                                                        _YIELD)
+                    builder.call(fn, [])
+        return context.get_dummy_value()
+
+    return types.none(types.int64), codegen
+
+
+#: Slots of the control array of :func:`run_steps` (one cache line apart): the next task of
+#: the current phase (phase · 2³² + task), the tasks done in it, the phase under way, the
+#: current row of the double buffers.
+_TAKE, _DONE, _PHASE, _CUR = 0, 8, 16, 24
+
+
+@njit(cache=True, inline="always")
+def _take_task(ctl, p, n):
+    """The next task of phase ``p`` (of ``n``), or −1 when there is none left or the phase
+    is over (the phase number is part of the counter: a thread that comes late never takes
+    a task of a later phase)."""
+    while True:
+        c = _atomic_load(ctl, _TAKE)
+        if (c >> 32) != p or (c & 0xFFFFFFFF) >= n:
+            return -1
+        if _compare_swap(ctl, _TAKE, c, c + 1):
+            return c & 0xFFFFFFFF
+
+
+@njit(cache=True, inline="always")
+def _wait_phase(ctl, p):
+    """Wait until the phase under way is past ``p``; returns the new phase."""
+    spins = 0
+    q = _atomic_load(ctl, _PHASE)
+    while q <= p:
+        _relax(spins)
+        spins += 1
+        q = _atomic_load(ctl, _PHASE)
+    return q
 
 
 def node_groups(conn, bounds, n_nodes):
@@ -476,7 +618,90 @@ def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, 
             totals[j] += partial[g, j]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def _step_start(k, cur, sx, sy, y_ref, y_ref0, ref_m, u, mnodes, xmb, dxm, nm, fm):
+    """The serial start of step k: the lateral drift of the rail grid's y axis, the rail
+    surface positions, increments and normals (:func:`master_kinematics`)."""
+    lat = sy[k]
+    for j in range(y_ref.shape[0]):
+        y_ref[j] = y_ref0[j] - lat
+    master_kinematics(ref_m, u, mnodes, sx[k], lat, xmb[1 - cur], xmb[cur], dxm, nm, fm)
+
+
+@njit(cache=True, inline="always")
+def _step_end(k, relax, every, n_steps, ax, E, hist, rows, nrow, sx, tt, loads, axle, sums,
+              echunk, partial, totals, has_beta, plastic, dt):
+    """The serial end of step k: the energy sums in chunk and group order, then the axle's
+    vertical motion and the energy bookkeeping (``ax`` = w, vw, e_int0, F_z)."""
+    e0 = 0.0
+    e1 = 0.0
+    for ch in range(echunk.shape[0]):
+        e0 += echunk[ch, 0]
+        e1 += echunk[ch, 1]
+    sums[6] = e0
+    sums[7] = e1
+    for j in range(totals.shape[0]):
+        totals[j] = 0.0
+    for g in range(partial.shape[0]):
+        for j in range(totals.shape[0]):
+            totals[j] += partial[g, j]
+    hdt = 0.5 * dt
+    w = ax[0]
+    vw = ax[1]
+    e_int0 = ax[2]
+    fcw = sums[2]
+    ax[3] = fcw
+    if relax:
+        aw = (fcw - loads[k] - axle[1] * vw) / axle[0]
+        vw += dt * aw
+        w += dt * vw
+        ax[0] = w
+        ax[1] = vw
+        return
+    load = axle[0]
+    M_w = axle[1]
+    cv = axle[2]
+    e_int = sums[6] + sums[7]
+    E[3] += sums[4]
+    hist[k, 0] = sx[k]
+    hist[k, 1] = sums[0]
+    hist[k, 2] = sums[1]
+    hist[k, 3] = sums[2]
+    hist[k, 4] = sums[3]
+    E[6] += hdt * (totals[2] + fcw * vw)
+    if has_beta:
+        E[4] += hdt * totals[4]
+    aw = (fcw - load - cv * vw) / M_w
+    vw_new = vw + dt * aw
+    E[4] += hdt * (cv * vw * vw + totals[0])
+    if k % every == 0 or k == n_steps - 1:
+        vwn = vw + hdt * aw
+        E[0] = 0.5 * totals[6] + 0.5 * M_w * vwn * vwn
+        E[1] = e_int - e_int0
+        E[2] = sums[5]
+        if plastic:
+            E[7] = sums[7]
+        r = nrow[0]
+        rows[r, 0] = tt[k]
+        rows[r, 1] = sx[k]
+        for j in range(4):
+            rows[r, 2 + j] = sums[j]
+        for j in range(8):
+            rows[r, 6 + j] = E[j]
+        nrow[0] = r + 1
+    E[6] += hdt * (totals[3] + fcw * vw_new)
+    E[4] += hdt * (cv * vw * vw_new + totals[1])
+    if has_beta:
+        E[4] += hdt * totals[5]
+    dw = dt * vw_new
+    vw = vw_new
+    w += dw
+    E[5] += -load * dw
+    ax[0] = w
+    ax[1] = vw
+
+
+@njit(cache=True, parallel=True)
 def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, sx, sy, tt, loads,
               axle, y_ref0, cur, xsb, xmb, ftb,
               u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
@@ -485,9 +710,20 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
               cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip,
               fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
               gptr, gnodes, partial, totals, counter, nthr):
-    """Steps ``k0`` to ``k1 − 1`` of the explicit loop (:func:`explicit_step` each), with the
-    axle's vertical motion and the energy bookkeeping of the rolling step, without a return
-    to Python between steps.
+    """Steps ``k0`` to ``k1 − 1`` of the explicit loop, with the axle's vertical motion and
+    the energy bookkeeping of the rolling step, in one parallel region.
+
+    Every step is :func:`explicit_step` (the same tasks, the same arithmetic in the same
+    order, so the same numbers bit for bit), but the ``nthr`` threads stay in one parallel
+    region for all the steps instead of meeting in two OpenMP regions per step: a thread that
+    runs out of tasks waits for the next phase spinning, then yielding the CPU
+    (:func:`_relax`), instead of falling asleep and waking late. The phases (step k: 2(k −
+    k0) the even element chunks and the contact, 2(k − k0) + 1 the odd chunks and the node
+    update) hand out their tasks through a counter that carries the phase number; the thread
+    that completes a phase's last task runs the serial part after it (the contact scatter
+    and sums; the energy sums, the axle and the bookkeeping of the step and the start of the
+    next step) and then opens the next phase. No thread ever waits for a thread that has not
+    taken a task, so the loop also finishes if fewer threads than ``nthr`` run it.
 
     ``relax``: the dynamic relaxation (axle load ``loads[k]``, ``axle`` = (mass, dashpot))
     or the rolling step (``axle`` = (load, mass, α m + dashpot)). Per step k: ``cps``,
@@ -499,74 +735,90 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
     rolling result (kinetic, internal, contact, friction, damping, external, contact work,
     plastic work) [J], ``hist[k]`` = (travel, Fx, Fy, Fz, Fn), and every ``every`` steps
     (and at step ``n_steps − 1``) a row of ``rows`` (time, travel, Fx, Fy, Fz, Fn, the
-    energies) at ``nrow[0]`` (incremented). The arithmetic is that of the Python loop it
-    replaces, operation for operation. Other arguments: :func:`explicit_step`.
+    energies) at ``nrow[0]`` (incremented). ``counter`` is not used (the synchronisation
+    has its own array). Other arguments: :func:`explicit_step`.
     """
-    w = ax[0]
-    vw = ax[1]
-    e_int0 = ax[2]
-    fcw = ax[3]
-    hdt = 0.5 * dt
-    for k in range(k0, k1):
-        lat = sy[k]
-        for j in range(y_ref.shape[0]):
-            y_ref[j] = y_ref0[j] - lat
-        new = 1 - cur
-        explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
-                      st_in, st_out, f, energy, echunk, tasks,
-                      ref_s, snodes, cps[k], sps[k], z_axle + w, xsb[new], xsb[cur], dxs,
-                      ref_m, mnodes, sx[k], lat, xmb[new], xmb[cur], dxm, nm,
-                      area, kn, mu, ftb[cur], x_ref, y_ref, reach, g0, cdamp, inv_dt,
-                      cenergy, fs, fm, gap, pn, ftb[new], status, cell, rt, normal, slip,
-                      fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
-                      gptr, gnodes, partial, totals, counter, nthr)
-        cur = new
-        fcw = sums[2]
-        if relax:
-            aw = (fcw - loads[k] - axle[1] * vw) / axle[0]
-            vw += dt * aw
-            w += dt * vw
-            continue
-        load = axle[0]
-        M_w = axle[1]
-        cv = axle[2]
-        e_int = sums[6] + sums[7]
-        E[3] += sums[4]
-        hist[k, 0] = sx[k]
-        hist[k, 1] = sums[0]
-        hist[k, 2] = sums[1]
-        hist[k, 3] = sums[2]
-        hist[k, 4] = sums[3]
-        E[6] += hdt * (totals[2] + fcw * vw)
-        if has_beta:
-            E[4] += hdt * totals[4]
-        aw = (fcw - load - cv * vw) / M_w
-        vw_new = vw + dt * aw
-        E[4] += hdt * (cv * vw * vw + totals[0])
-        if k % every == 0 or k == n_steps - 1:
-            vwn = vw + hdt * aw
-            E[0] = 0.5 * totals[6] + 0.5 * M_w * vwn * vwn
-            E[1] = e_int - e_int0
-            E[2] = sums[5]
-            if plastic:
-                E[7] = sums[7]
-            r = nrow[0]
-            rows[r, 0] = tt[k]
-            rows[r, 1] = sx[k]
-            for j in range(4):
-                rows[r, 2 + j] = sums[j]
-            for j in range(8):
-                rows[r, 6 + j] = E[j]
-            nrow[0] = r + 1
-        E[6] += hdt * (totals[3] + fcw * vw_new)
-        E[4] += hdt * (cv * vw * vw_new + totals[1])
-        if has_beta:
-            E[4] += hdt * totals[5]
-        dw = dt * vw_new
-        vw = vw_new
-        w += dw
-        E[5] += -load * dw
-    ax[0] = w
-    ax[1] = vw
-    ax[3] = fcw
-    return cur
+    if k1 <= k0:
+        return cur
+    ne = conn.shape[0]
+    ng = dNdx.shape[1]
+    has_hg = gamma.shape[0] == ne
+    bbar = plastic and ng > 1
+    nc = bounds.shape[0] - 1
+    ns = fs.shape[0]
+    n_even = (nc + 1) // 2
+    n_tasks = tasks.shape[0]
+    ncc = n_tasks - n_even
+    n_groups = gptr.shape[0] - 1
+    if n_tasks < 1 or n_groups < 1:
+        raise ValueError("run_steps: no tasks")
+    n_phases = 2 * (k1 - k0)
+    ctl = np.zeros(32, np.int64)
+    ctl[_CUR] = cur
+    _step_start(k0, cur, sx, sy, y_ref, y_ref0, ref_m, u, mnodes, xmb, dxm, nm, fm)
+    for w in prange(nthr):
+        ue = np.empty((8, 3))
+        eps = np.empty(6)
+        sig = np.empty(6)
+        D = np.empty((6, 6))
+        bb = np.empty((8, 3))
+        c4 = np.empty((4, 3))
+        q = np.empty(3)
+        dq = np.empty(3)
+        p = _atomic_load(ctl, _PHASE)
+        while p < n_phases:
+            k = k0 + p // 2
+            old = ctl[_CUR]
+            new = 1 - old
+            if p % 2 == 0:
+                t = _take_task(ctl, p, n_tasks)
+                while t >= 0:
+                    if tasks[t, 0] == 0:
+                        _element_chunk(2 * tasks[t, 1], bounds, u, conn, dNdx, wdet, gamma, khg,
+                                       has_hg, lam, G, plastic, bbar, hp, tp, ts, st_in, st_out,
+                                       f, energy, echunk, ue, eps, sig, D, bb)
+                    else:
+                        j = tasks[t, 1]
+                        z = z_axle + ax[0]
+                        xs = xsb[new]
+                        for s in range(ns * j // ncc, ns * (j + 1) // ncc):
+                            slave_position(s, snodes[s], ref_s, u, cps[k], sps[k], z, xsb[old],
+                                           xs, dxs)
+                            _slave(s, xs, dxs, area, kn, kn, mu, ftb[old], xmb[new], nm, dxm,
+                                   x_ref, y_ref, sx[k], reach, g0, cdamp, inv_dt, cenergy, fs,
+                                   gap, pn, ftb[new], status, cell, rt, normal, slip, c4, q, dq)
+                    if _atomic_add(ctl, _DONE, 1) == n_tasks - 1:       # the phase's last task
+                        scatter_to_grid(status, cell, rt, fs, fm)
+                        contact_to_nodes(fs, fm, pn, ftb[new], slip, cenergy, cps[k], sps[k],
+                                         fcon, sums)
+                        _atomic_store(ctl, _DONE, 0)
+                        _atomic_store(ctl, _TAKE, (p + 1) << 32)
+                        _atomic_store(ctl, _PHASE, p + 1)
+                    t = _take_task(ctl, p, n_tasks)
+            else:
+                g = _take_task(ctl, p, n_groups)
+                while g >= 0:
+                    ch = 2 * g + 1
+                    if ch < nc:
+                        _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam,
+                                       G, plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
+                                       echunk, ue, eps, sig, D, bb)
+                    _update_nodes(g, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
+                                  mass, cmap, fcon, dt, partial)
+                    if _atomic_add(ctl, _DONE, 1) == n_groups - 1:      # the step's last task
+                        _step_end(k, relax, every, n_steps, ax, E, hist, rows, nrow, sx, tt,
+                                  loads, axle, sums, echunk, partial, totals, has_beta, plastic,
+                                  dt)
+                        ctl[_CUR] = new
+                        if k + 1 < k1:
+                            _step_start(k + 1, new, sx, sy, y_ref, y_ref0, ref_m, u, mnodes,
+                                        xmb, dxm, nm, fm)
+                        _atomic_store(ctl, _DONE, 0)
+                        _atomic_store(ctl, _TAKE, (p + 1) << 32)
+                        _atomic_store(ctl, _PHASE, p + 1)
+                    g = _take_task(ctl, p, n_groups)
+            p = _wait_phase(ctl, p)
+    if ctl[_PHASE] != n_phases:      # a thread left the region early: a task raised
+        raise RuntimeError("run_steps: a task of the explicit step raised an exception (a "
+                           "division by zero on a degenerate element or contact cell?)")
+    return ctl[_CUR]

@@ -23,10 +23,10 @@ proportional to the rate of change of the penetration, which vanishes in steady
 rolling except where nodes enter and leave the patch); docs/fe_plastic.md measures that
 the steady forces do not change with it, and do not change with the mass scaling.
 
-Each step (one force evaluation) is one call of :func:`wheelrail.fe._explicit.explicit_step`:
-the element forces and the contact, then the node update fused into the second of its two
-parallel phases. The plastic state is updated in place (the explicit step is always
-accepted).
+Each step (one force evaluation) is two parallel phases of
+:func:`wheelrail.fe._explicit.run_steps`, which runs a block of steps in one parallel region:
+the element forces and the contact, then the node update fused into the second phase.
+The plastic state is updated in place (the explicit step is always accepted).
 """
 
 from __future__ import annotations
@@ -320,12 +320,13 @@ def solve_explicit(case, progress, output_every, io):
 class _ContactLoop:
     """The explicit steps in preallocated buffers.
 
-    Per step one numba kernel (:func:`wheelrail.fe._explicit.explicit_step`): the element
+    Per step the two phases of :func:`wheelrail.fe._explicit.explicit_step`: the element
     forces (into ``f``, which must hold zeros: the node update leaves it so), the surface
     kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, the contact
     forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid) and the
     node update (:attr:`totals`: its sums, :data:`wheelrail.fe._explicit.ADV_COLUMNS`);
-    :meth:`run` loops over steps in numba (:func:`wheelrail.fe._explicit.run_steps`). The
+    :meth:`run` runs blocks of steps in one parallel region
+    (:func:`wheelrail.fe._explicit.run_steps`). The
     per-slave results are those of :meth:`wheelrail.fe.model.Model.contact` (same positions,
     increments, normals and contact law). Positions and tangential forces are
     double-buffered (row :attr:`cur` holds the last ones); :attr:`sums` holds Fx, Fy, Fz,
