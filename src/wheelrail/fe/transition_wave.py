@@ -326,9 +326,11 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
         ``"envelope"``: the first local maximum of the trace's envelope (modulus of the
         analytic signal, Hilbert transform) inside the arrival window that reaches
         ``peak_fraction`` of the window's largest (the leading pulse; on the rail head a
-        slower guided wave train follows it and can be larger); ``"xcorr"``: the lag of the
-        cross-correlation with the station nearest ``d_min`` (both traces windowed around
-        their envelope peaks by the pulse's duration); ``"first"``: the first time the
+        slower guided wave train follows it and can be larger); ``"xcorr"``: the pulse tracked outwards from the
+        station nearest ``d_min`` (its envelope pick) by the lag of the cross-correlation
+        of each pair of neighbouring stations, both under one Hann window of twice the
+        pulse's duration centred at the time tracked so far (lags within half the pulse's
+        duration: no cycle skips; the later wave train stays outside the window); ``"first"``: the first time the
         trace exceeds ``threshold`` × the largest amplitude at that station inside the
         window (the first arrival, P-like).
     c_min, c_max : float, optional
@@ -403,21 +405,32 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
     if ok.sum() < 3:
         raise InputError("the pulse has not reached 3 stations inside the record")
     if method == "xcorr":
-        ref = int(np.flatnonzero(ok)[np.argmin(d[ok])])
+        # track the pulse outwards on each side: the lag between neighbouring stations
+        # (both traces under the same Hann window, centred at the time tracked so far),
+        # starting from the envelope pick of the station nearest the source
         half = int(np.ceil(t_pulse / dtr))
-
-        def windowed(j):
-            k = int(round((ta[j] - t[0]) / dtr))
-            w = np.zeros(t.size)
-            a, b = max(0, k - half), min(t.size, k + half + 1)
-            w[a:b] = np.hanning(b - a)
-            return sig[:, j] * w
-
-        r0 = windowed(ref)
-        for j in np.flatnonzero(ok):
-            cc = np.correlate(windowed(j), r0, mode="full")
-            k = int(np.argmax(cc))
-            ta[j] = ta[ref] + (_parabolic_peak(cc, k) - (t.size - 1)) * dtr
+        max_lag = 0.5 * t_pulse
+        xs_sel = x[idx]
+        for sgn in (1.0, -1.0):
+            js = np.flatnonzero(np.sign(xs_sel) == sgn)
+            js = js[np.argsort(d[js])]
+            js = js[np.isfinite(ta[js])] if js.size else js
+            if js.size < 2:
+                continue
+            tk = ta[js[0]]
+            for jp, jn in zip(js[:-1], js[1:]):
+                k = int(round((tk - t[0]) / dtr))
+                w = np.zeros(t.size)
+                a, b = max(0, k - half), min(t.size, k + half + 1)
+                w[a:b] = np.hanning(b - a)
+                cc = np.correlate(sig[:, jn] * w, sig[:, jp] * w, mode="full")
+                lags = (np.arange(cc.size) - (t.size - 1)) * dtr
+                cc[np.abs(lags) > max_lag] = -np.inf
+                kk = int(np.argmax(cc))
+                lag = (_parabolic_peak(np.where(np.isfinite(cc), cc, cc[kk]), kk)
+                       - (t.size - 1)) * dtr
+                tk = tk + lag
+                ta[jn] = tk
     out = _fit(d[ok], ta[ok])
     out.update(method=method, component=component)
     return out
