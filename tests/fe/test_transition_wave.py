@@ -6,6 +6,7 @@ import pytest
 
 from wheelrail.errors import InputError
 from wheelrail.fe.transition import seed004_case
+from wheelrail.fe.transition_model import build_transition_model
 from wheelrail.fe.transition_wave import (
     elastic_wave_speeds,
     force_pulse,
@@ -45,12 +46,18 @@ def test_force_pulses():
 
 
 @pytest.fixture(scope="module")
-def pulse_4mm():
+def model_4mm():
     # the reduced transition case's own 4 mm rail and track mesh, shortened (fine band
-    # about ±80 mm around the source); 80 kHz: the Rayleigh wavelength 37 mm spans 9
-    # elements and is below the head's depth
+    # about ±80 mm around the source)
     case = seed004_case(0.025, travel=0.09)
-    return rail_pulse(case, frequency=80e3)
+    return case, build_transition_model(case)
+
+
+@pytest.fixture(scope="module")
+def pulse_4mm(model_4mm):
+    # 80 kHz: the Rayleigh wavelength 37 mm spans 9 elements and is below the head's depth
+    case, model = model_4mm
+    return rail_pulse(case, model=model, frequency=80e3)
 
 
 def test_pulse_on_the_rail_head_travels_at_the_rayleigh_speed(pulse_4mm):
@@ -73,7 +80,17 @@ def test_pulse_on_the_rail_head_travels_at_the_rayleigh_speed(pulse_4mm):
     assert p["speed"] == pytest.approx(c["c_p"], rel=0.12)
 
 
-def test_pulse_arrivals_refuses_bad_inputs(pulse_4mm):
+def test_pulse_on_the_gauge_corner_at_the_flange_contact(model_4mm):
+    case, model = model_4mm
+    r = rail_pulse(case, model=model, at="flange", frequency=80e3)
+    # the line through the rigid flange contact (70.3° at the first flange contact)
+    assert r.info["contact_angle"] == pytest.approx(70.3, abs=3.0)
+    a = pulse_arrivals(r, d_min=0.02, d_max=0.08, component="n", method="xcorr")
+    # measured 2.91-2.98 km/s over fit ranges 20-60 and 30-80 mm on this mesh
+    assert a["speed"] == pytest.approx(r.info["speeds"]["c_R"], rel=0.05)
+
+
+def test_pulse_arrivals_refuses_bad_inputs(pulse_4mm, model_4mm):
     with pytest.raises(InputError, match="component"):
         pulse_arrivals(pulse_4mm, component="w")
     with pytest.raises(InputError, match="method"):
@@ -81,4 +98,6 @@ def test_pulse_arrivals_refuses_bad_inputs(pulse_4mm):
     with pytest.raises(InputError, match="fewer than 3"):
         pulse_arrivals(pulse_4mm, d_min=0.5, d_max=0.6)
     with pytest.raises(InputError, match="source_x"):
-        rail_pulse(seed004_case(0.025, travel=0.09), source_x=5.0)
+        rail_pulse(*model_4mm[:1], model=model_4mm[1], source_x=5.0)
+    with pytest.raises(InputError, match="at must be"):
+        rail_pulse(seed004_case(0.025, travel=0.09), at="web")

@@ -46,6 +46,7 @@ import numpy as np
 from ..errors import InputError
 from . import _solid as S
 from ._explicit import NCHUNK, advance
+from .transition_contact import nodal_normals_quads
 from .transition_model import TransitionCase, _group, build_transition_model
 
 __all__ = ["RailPulseResult", "elastic_wave_speeds", "rail_pulse", "pulse_arrivals",
@@ -128,7 +129,9 @@ class RailPulseResult:
     info : dict
         ``elements`` (rail and sleepers), ``time_step`` [s], ``steps``, ``cpu_s``,
         ``source_nodes``, ``mesh_size`` [m], ``pulse``, ``frequency`` [Hz], ``fine_band``
-        (x range [m] of the fine mesh, relative to the source), ``head_width`` [m].
+        (x range [m] of the fine mesh, relative to the source), ``head_width`` [m], ``at``,
+        ``normal`` (3,) the outward surface normal of the line, ``contact_angle`` [deg]
+        (its angle from the vertical), ``speeds`` (:func:`elastic_wave_speeds`).
     """
 
     x: np.ndarray
@@ -138,7 +141,7 @@ class RailPulseResult:
     info: dict
 
 
-def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
+def rail_pulse(case: TransitionCase, *, model=None, at: str = "tread", pulse: str = "ricker",
                frequency: float = 100e3, force: float = 1e3, duration: float | None = None,
                source_x: float | None = None, every: int = 1) -> RailPulseResult:
     """Strike the rail of a transition case with a vertical force pulse; record the surface.
@@ -146,10 +149,12 @@ def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
     The rail head, web, foot, pads, sleepers and ballast of
     :func:`~wheelrail.fe.transition_model.build_transition_model` (the same mesh, masses,
     ties and springs as :func:`~wheelrail.fe.transition.run_transition`) start at rest; the
-    wheel's nodes are held and its elements left out. A vertical force ``force`` ×
-    :func:`force_pulse` (downwards) is shared by the running-surface nodes within one
-    element size of the source point (the rail's top line at the start contact's lateral
-    position, at ``source_x``). The central-difference loop of the engine
+    wheel's nodes are held and its elements left out. A force ``force`` ×
+    :func:`force_pulse` along the inward surface normal at the source point (within a few
+    degrees of vertical on the tread) is shared by the surface nodes within one element
+    size of it: the rail's surface line at the start contact's lateral position
+    (``at="tread"``) or at the rigid flange contact on the gauge corner (``at="flange"``,
+    the node whose normal is closest to the rigid flange contact angle), at ``source_x``. The central-difference loop of the engine
     (:func:`~wheelrail.fe._solid.element_forces`, :func:`~wheelrail.fe._explicit.advance`)
     runs with the transition run's step; no damping.
 
@@ -160,6 +165,8 @@ def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
         50 mm) and track define the mesh.
     model : TransitionModel, optional
         Already built for ``case``.
+    at : {"tread", "flange"}
+        Source and recorded line: the tread contact's or the flange contact's position.
     pulse : {"ricker", "half-sine"}
     frequency : float
         Central frequency [Hz] of the Ricker pulse or inverse duration of the half-sine.
@@ -182,6 +189,8 @@ def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
     if every < 1:
         raise InputError(f"every must be >= 1, got {every!r}")
     force_pulse(0.0, pulse, frequency)            # validates the shape
+    if at not in ("tread", "flange"):
+        raise InputError(f"at must be 'tread' or 'flange', got {at!r}")
     m = model if model is not None else build_transition_model(case)
     h = case.mesh_size
     nw = m.n_wheel
@@ -210,11 +219,20 @@ def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
     if duration is None:
         duration = 1.3 * (t_pulse + half / speeds["c_R"])
     n_steps = int(np.ceil(duration / dt))
-    # the running-surface line through the source at the start contact's lateral position
+    # the surface line through the source at the tread or the flange contact position
     xm = m.nodes[m.master]
+    nrm = nodal_normals_quads(xm, m.quads)
     near = np.abs(xm[:, 0] - xs) < 2 * h
-    top = np.flatnonzero(near)[np.argmin(np.abs(xm[near, 1] - m.pose["rail_y_tread"])
-                                         + 10 * np.abs(xm[near, 2] - xm[near, 2].max()))]
+    if at == "tread":
+        top = np.flatnonzero(near)[np.argmin(np.abs(xm[near, 1] - m.pose["rail_y_tread"])
+                                             + 10 * np.abs(xm[near, 2] - xm[near, 2].max()))]
+    elif at == "flange":
+        ang = np.arccos(np.clip(np.abs(nrm[:, 2]), 0.0, 1.0))
+        cand = np.flatnonzero(near & (np.abs(xm[:, 1] - m.pose["rail_y_flange"]) < 2 * h))
+        top = cand[np.argmin(np.abs(ang[cand] - m.pose["flange_angle_rigid"]))]
+    else:
+        raise InputError(f"at must be 'tread' or 'flange', got {at!r}")
+    n_out = nrm[top] / np.linalg.norm(nrm[top])
     on_line = ((np.abs(xm[:, 1] - xm[top, 1]) < 1e-7)
                & (np.abs(xm[:, 2] - xm[top, 2]) < 1e-7))
     line = m.master[on_line]
@@ -258,7 +276,7 @@ def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
             f_int += f_tmp
         fext[:] = 0.0
         fk = force * float(force_pulse(t, pulse, frequency))
-        fext[src, 2] = -fk * w_src
+        fext[src] = -fk * w_src * n_out
         m.springs.forces(u, v, fext)
         fs_t = fext[t_s] - f_int[t_s]
         for col in range(2):
@@ -280,7 +298,8 @@ def rail_pulse(case: TransitionCase, *, model=None, pulse: str = "ricker",
             "ns_per_element_step": cpu / (n_steps * n_el) * 1e9, "source_nodes": int(src.size),
             "mesh_size": h, "pulse": pulse, "frequency": float(frequency),
             "fine_band": (band[0] - x_src, band[1] - x_src),
-            "head_width": float(np.ptp(head[:, 0])), "speeds": speeds}
+            "head_width": float(np.ptp(head[:, 0])), "speeds": speeds, "at": at,
+            "normal": n_out, "contact_angle": float(np.degrees(np.arccos(abs(n_out[2]))))}
     return RailPulseResult(m.nodes[line, 0] - x_src, t_rec, rec, f_rec, info)
 
 
@@ -320,8 +339,8 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
     d_min, d_max : float
         Distances [m] from the source used in the fit (beyond the near field, inside the
         fine band and the record).
-    component : {"x", "y", "z"}
-        Velocity component.
+    component : {"x", "y", "z", "n"}
+        Velocity component (``"n"``: along the line's surface normal).
     method : {"envelope", "xcorr", "first"}
         ``"envelope"``: the first local maximum of the trace's envelope (modulus of the
         analytic signal, Hilbert transform) inside the arrival window that reaches
@@ -353,9 +372,9 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
     """
     from scipy.signal import hilbert
 
-    comp = {"x": 0, "y": 1, "z": 2}
+    comp = {"x": 0, "y": 1, "z": 2, "n": 3}
     if component not in comp:
-        raise InputError(f"component must be 'x', 'y' or 'z', got {component!r}")
+        raise InputError(f"component must be 'x', 'y', 'z' or 'n', got {component!r}")
     if method not in ("envelope", "xcorr", "first"):
         raise InputError(f"method must be 'envelope', 'xcorr' or 'first', got {method!r}")
     x = rec.x
@@ -377,7 +396,8 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
     dtr = t[1] - t[0]
     idx = np.flatnonzero(sel)
     d = np.abs(x[idx])
-    sig = rec.v[:, idx, comp[component]]
+    sig = (rec.v[:, idx] @ rec.info["normal"] if component == "n"
+           else rec.v[:, idx, comp[component]])
     env = np.abs(hilbert(sig, axis=0))
     ta = np.full(idx.size, np.nan)
     for j in range(idx.size):
@@ -437,17 +457,18 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
 
 
 def pulse_phase(rec: RailPulseResult, arrivals: dict) -> dict:
-    """Phase lag between the longitudinal and the vertical surface velocity at the pulse.
+    """Phase lag between the longitudinal and the surface-normal velocity at the pulse.
 
-    For a Rayleigh wave the surface particle moves on an ellipse: the horizontal and the
-    vertical motion are a quarter period (90°) apart (Graff 1991, §6.3). At each station of
-    ``arrivals`` (from :func:`pulse_arrivals` with ``component="z"``) the phases of the
-    analytic signals of v_x and v_z are compared at the picked arrival time.
+    For a Rayleigh wave the surface particle moves on an ellipse: the motion along the
+    surface and the motion normal to it are a quarter period (90°) apart (Graff 1991,
+    §6.3). At each station of ``arrivals`` (from :func:`pulse_arrivals`) the phases of the
+    analytic signals of v_x and of the velocity along the line's surface normal (within a
+    few degrees of v_z on the tread) are compared at the picked arrival time.
 
     Returns
     -------
     dict
-        ``phase`` [deg] (median over the stations of |φ_x − φ_z| wrapped to 0–180°, v_x
+        ``phase`` [deg] (median over the stations of |φ_x − φ_n| wrapped to 0–180°, v_x
         taken positive away from the source),
         ``iqr`` [deg] (its interquartile range), ``per_station`` [deg].
     """
@@ -457,7 +478,7 @@ def pulse_phase(rec: RailPulseResult, arrivals: dict) -> dict:
     ph = []
     for d, ta in zip(arrivals["d"], arrivals["t_arrival"]):
         for j in np.flatnonzero(np.isclose(np.abs(rec.x), d, rtol=0, atol=1e-9)):
-            az = hilbert(rec.v[:, j, 2])
+            az = hilbert(rec.v[:, j] @ rec.info["normal"])
             # mirrored behind the source (v_x is odd in x), so both sides compare alike
             ax = hilbert(np.sign(rec.x[j]) * rec.v[:, j, 0])
             k = int(np.clip(np.round((ta - t[0]) / (t[1] - t[0])), 0, t.size - 1))
