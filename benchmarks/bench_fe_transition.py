@@ -99,6 +99,33 @@ def save_results(run, name, directory=None):
         f.write(buf.getvalue())
 
 
+def from_restart(kw, path, results=None):
+    """Report (and save) the outputs of a run up to its last restart file (a run stopped
+    before its end): the CPU time is not stored there (NaN)."""
+    patches, history, prog = wr.fe.read_transition_restart(path)
+    case = wr.fe.seed004_case(**kw)
+    model = wr.fe.build_transition_model(case)
+    est = wr.fe.transition.transition_time_estimate(model)
+    nan = float("nan")
+    info = {"time_step": est["time_step"], "steps": prog["step"] + 1, "cpu_s": nan,
+            "wall_s": nan, "ns_per_element_step": nan, "elements": est["elements"],
+            "load": case.suspension.wheel_load(float(model.mass[:model.n_wheel].sum())),
+            "partial": f"restart file at step {prog['step'] + 1} of {prog['steps']}",
+            "onset_travel": onset_travel(patches)}
+    run = {"patches": patches, "history": history, "info": info, "case_kw": kw,
+           "load_avg": None}
+    print(f"partial run: {info['partial']} ({patches.travel.values[-1] * 1e3:.1f} mm of "
+          f"{case.travel * 1e3:.0f} mm)")
+    if results:
+        save_results(run, results)
+        from wheelrail.fe.plots import plot_transition
+
+        plot_transition(patches, history, path=os.path.join(RESULTS, f"{results}.png"),
+                        title=f"angle of attack {case.angle_of_attack * 1e3:g} mrad (to "
+                              f"{patches.travel.values[-1] * 1e3:.0f} mm)")
+    return report(run)
+
+
 def one(kw, save=None, figure=None, results=None, restart=None, restart_file=None,
         restart_every=0):
     case = wr.fe.seed004_case(**kw)
@@ -140,12 +167,17 @@ def main():
     ap.add_argument("--restart", help="continue from this restart file")
     ap.add_argument("--restart-file", help="write restart files here during the run")
     ap.add_argument("--restart-every", type=int, default=0, help="steps between them")
+    ap.add_argument("--report-restart", help="report (and --results: save) the outputs "
+                    "stored in this restart file of a run with the same --aoa/--travel")
     a = ap.parse_args()
     if a.report:
         with open(a.report, "rb") as f:
             report(pickle.load(f))
         return
     extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel)) if v is not None}
+    if a.report_restart:
+        from_restart(dict(angle_of_attack=a.aoa, **extra), a.report_restart, a.results)
+        return
     if a.onset:
         onsets = {aoa: one(dict(angle_of_attack=aoa, **extra)) for aoa in (0.015, 0.020, 0.025)}
         print("onset [mm]:", {k: round(v * 1e3, 1) for k, v in onsets.items()})

@@ -184,6 +184,15 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     with np.load(f) as z:
         k = int(z["step"])
     assert 0 < k < a.info["steps"] - 1
+    # the histories up to the restart's step, as the uninterrupted run has them
+    from wheelrail.fe.transition import read_transition_restart
+
+    pp, hh, prog = read_transition_restart(f)
+    assert prog == {"step": k, "steps": a.info["steps"]}
+    nt = pp.sizes["time"]
+    assert 0 < nt < a.patches.sizes["time"]
+    np.testing.assert_array_equal(pp["Fn"].values, a.patches["Fn"].values[:nt])
+    np.testing.assert_array_equal(hh["Fz_total"].values, a.history["Fz_total"].values[:nt])
     b = run_transition(case, model=model, restart=f)
     np.testing.assert_allclose(b.patches["Fn"].values, a.patches["Fn"].values, rtol=1e-9,
                                atol=1e-6)
