@@ -94,7 +94,9 @@ class TransitionResult:
     u : ndarray (n, 3)
         Final displacements (wheel nodes in the wheel frame).
     info : dict
-        Step, number of steps, CPU time, ns per element per step, onset of two-point contact.
+        Step, number of steps (``steps``; ``steps_run`` of them in this call, fewer after a
+        restart), CPU time of this call, ns per element per step run, onset of two-point
+        contact.
     """
 
     def __init__(self, patches, history, model, u, info):
@@ -451,9 +453,12 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     cpu = time.process_time() - t_cpu
     wall = time.perf_counter() - t_wall
     ds, hds = _histories(rows, hist)
-    info = {"time_step": dt, "steps": n_steps, "cpu_s": cpu, "wall_s": wall,
-            "ns_per_element_step": cpu / (n_steps * m.n_elements) * 1e9,
-            "wall_ns_per_element_step": wall / (n_steps * m.n_elements) * 1e9,
+    # the cost per step of the steps run in this call (a restart continues at k0)
+    run_steps = max(1, n_steps - k0)
+    info = {"time_step": dt, "steps": n_steps, "steps_run": n_steps - k0, "cpu_s": cpu,
+            "wall_s": wall,
+            "ns_per_element_step": cpu / (run_steps * m.n_elements) * 1e9,
+            "wall_ns_per_element_step": wall / (run_steps * m.n_elements) * 1e9,
             "elements": m.n_elements, "load": load, "torque": torque, "J": J,
             "static_sag": sag, "fields": np.array(fields) if fields else None,
             "onset_travel": _onset(ds),
