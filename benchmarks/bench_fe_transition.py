@@ -8,11 +8,21 @@ against the wheel load) and the patches after it, with the load of the machine. 
         [--save RUN.pkl] [--figure RUN.png]
     python benchmarks/bench_fe_transition.py --onset            # 15, 20, 25 mrad
     python benchmarks/bench_fe_transition.py --report RUN.pkl   # a saved run again
+    python benchmarks/bench_fe_transition.py --aoa 0.020 --travel 0.24 --results a20_h4_240 \
+        --restart-file /tmp/a20.npz            # results/fe_transition/a20_h4_240_*.nc, ...
+
+``--results NAME`` writes ``NAME_patches.nc``, ``NAME_history.nc``, ``NAME_info.json``,
+``NAME.png`` and ``report_NAME.txt`` into ``benchmarks/results/fe_transition/``;
+``--restart-file``/``--restart-every`` write restart files during the run and
+``--restart`` continues one.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
+import io
+import json
 import os
 import pickle
 import time
@@ -67,18 +77,75 @@ def report(run):
     return on
 
 
-def one(kw, save=None, figure=None):
+RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results", "fe_transition")
+
+
+def save_results(run, name, directory=None):
+    """Write a run as ``name``'s netCDF files, info json and text report into ``directory``
+    (default :data:`RESULTS`)."""
+    directory = directory or RESULTS
+    os.makedirs(directory, exist_ok=True)
+    run["patches"].to_netcdf(os.path.join(directory, f"{name}_patches.nc"))
+    run["history"].to_netcdf(os.path.join(directory, f"{name}_history.nc"))
+    info = {k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
+            for k, v in run["info"].items() if k not in ("fields", "wave")}
+    info["load_avg"] = run.get("load_avg")
+    with open(os.path.join(directory, f"{name}_info.json"), "w") as f:
+        json.dump({"case": run["case_kw"], "info": info}, f, indent=1)
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        report(run)
+    with open(os.path.join(directory, f"report_{name}.txt"), "w") as f:
+        f.write(buf.getvalue())
+
+
+def from_restart(kw, path, results=None):
+    """Report (and save) the outputs of a run up to its last restart file (a run stopped
+    before its end): the CPU time is not stored there (NaN)."""
+    patches, history, prog = wr.fe.read_transition_restart(path)
+    case = wr.fe.seed004_case(**kw)
+    model = wr.fe.build_transition_model(case)
+    est = wr.fe.transition.transition_time_estimate(model)
+    nan = float("nan")
+    info = {"time_step": est["time_step"], "steps": prog["step"] + 1, "cpu_s": nan,
+            "wall_s": nan, "ns_per_element_step": nan, "elements": est["elements"],
+            "load": case.suspension.wheel_load(float(model.mass[:model.n_wheel].sum())),
+            "partial": f"restart file at step {prog['step'] + 1} of {prog['steps']}",
+            "onset_travel": onset_travel(patches)}
+    run = {"patches": patches, "history": history, "info": info, "case_kw": kw,
+           "load_avg": None}
+    print(f"partial run: {info['partial']} ({patches.travel.values[-1] * 1e3:.1f} mm of "
+          f"{case.travel * 1e3:.0f} mm)")
+    if results:
+        save_results(run, results)
+        from wheelrail.fe.plots import plot_transition
+
+        plot_transition(patches, history, path=os.path.join(RESULTS, f"{results}.png"),
+                        title=f"angle of attack {case.angle_of_attack * 1e3:g} mrad (to "
+                              f"{patches.travel.values[-1] * 1e3:.0f} mm)")
+    return report(run)
+
+
+def one(kw, save=None, figure=None, results=None, restart=None, restart_file=None,
+        restart_every=0):
     case = wr.fe.seed004_case(**kw)
     t0 = time.process_time()
     model = wr.fe.build_transition_model(case)
     t_build = time.process_time() - t0
-    r = wr.fe.run_transition(case, model=model, progress=True)
+    load0 = os.getloadavg()[0]
+    r = wr.fe.run_transition(case, model=model, progress=True, restart=restart,
+                             restart_file=restart_file, restart_every=restart_every)
     info = {k: v for k, v in r.info.items() if k != "fields"}
-    run = {"patches": r.patches, "history": r.history, "info": info, "case_kw": kw}
-    print(f"build {t_build:.1f} s CPU; load {os.getloadavg()[0]:.1f}")
+    run = {"patches": r.patches, "history": r.history, "info": info, "case_kw": kw,
+           "load_avg": [load0, os.getloadavg()[0]]}
+    print(f"build {t_build:.1f} s CPU; load {load0:.1f} at the start, "
+          f"{os.getloadavg()[0]:.1f} at the end (1-min average)")
     if save:
         with open(save, "wb") as f:
             pickle.dump(run, f)
+    if results:
+        save_results(run, results)
+        figure = figure or os.path.join(RESULTS, f"{results}.png")
     if figure:
         from wheelrail.fe.plots import plot_transition
 
@@ -96,17 +163,27 @@ def main():
     ap.add_argument("--save")
     ap.add_argument("--figure")
     ap.add_argument("--report")
+    ap.add_argument("--results", help="name of the run's files in results/fe_transition")
+    ap.add_argument("--restart", help="continue from this restart file")
+    ap.add_argument("--restart-file", help="write restart files here during the run")
+    ap.add_argument("--restart-every", type=int, default=0, help="steps between them")
+    ap.add_argument("--report-restart", help="report (and --results: save) the outputs "
+                    "stored in this restart file of a run with the same --aoa/--travel")
     a = ap.parse_args()
     if a.report:
         with open(a.report, "rb") as f:
             report(pickle.load(f))
         return
     extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel)) if v is not None}
+    if a.report_restart:
+        from_restart(dict(angle_of_attack=a.aoa, **extra), a.report_restart, a.results)
+        return
     if a.onset:
         onsets = {aoa: one(dict(angle_of_attack=aoa, **extra)) for aoa in (0.015, 0.020, 0.025)}
         print("onset [mm]:", {k: round(v * 1e3, 1) for k, v in onsets.items()})
     else:
-        one(dict(angle_of_attack=a.aoa, **extra), a.save, a.figure)
+        one(dict(angle_of_attack=a.aoa, **extra), a.save, a.figure, a.results, a.restart,
+            a.restart_file, a.restart_every)
 
 
 if __name__ == "__main__":

@@ -184,7 +184,20 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     with np.load(f) as z:
         k = int(z["step"])
     assert 0 < k < a.info["steps"] - 1
+    # the histories up to the restart's step, as the uninterrupted run has them
+    from wheelrail.fe.transition import read_transition_restart
+
+    pp, hh, prog = read_transition_restart(f)
+    assert prog == {"step": k, "steps": a.info["steps"]}
+    nt = pp.sizes["time"]
+    assert 0 < nt < a.patches.sizes["time"]
+    np.testing.assert_array_equal(pp["Fn"].values, a.patches["Fn"].values[:nt])
+    np.testing.assert_array_equal(hh["Fz_total"].values, a.history["Fz_total"].values[:nt])
     b = run_transition(case, model=model, restart=f)
+    # the cost per step counts the steps run in the continuation only
+    assert b.info["steps_run"] == a.info["steps"] - (k + 1)
+    assert b.info["ns_per_element_step"] == pytest.approx(
+        b.info["cpu_s"] / (b.info["steps_run"] * model.n_elements) * 1e9)
     np.testing.assert_allclose(b.patches["Fn"].values, a.patches["Fn"].values, rtol=1e-9,
                                atol=1e-6)
     np.testing.assert_allclose(b.u, a.u, rtol=1e-9, atol=1e-15)

@@ -27,6 +27,10 @@ Public names
     The creepage beyond which the patch slides entirely (warning threshold).
 ``read_restart``, ``write_restart``
     Restart files of a rolling run (``solve(case, restart=...)``).
+``seed004_case``, ``run_transition``, ``read_transition_restart``, ``pose_contact``
+    The one- to two-point contact transition (docs/fe_transition.md).
+``rail_pulse``, ``pulse_arrivals``, ``elastic_wave_speeds``
+    Surface-wave speed on the transition model's rail from a clean force pulse.
 
 Parts: :mod:`.mesh` (structured generator), :mod:`.elements`, :mod:`.materials`,
 :mod:`._solid` (parallel element kernels, J2 return map), :mod:`._kernels` (contact),
@@ -77,9 +81,16 @@ from .rolling import (
 )
 from .run import solve
 from .static import IndentResult, indent
-from .transition import TransitionResult, pose_contact, run_transition, seed004_case
+from .transition import (
+                   TransitionResult,
+                   pose_contact,
+                   read_transition_restart,
+                   run_transition,
+                   seed004_case,
+)
 from .transition_model import TransitionCase, build_transition_model
 from .transition_track import Suspension, TrackStructure
+from .transition_wave import elastic_wave_speeds, pulse_arrivals, rail_pulse
 
 __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "toumi2016_load", "TOUMI2016_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
            "solve", "indent", "RollingResult", "IndentResult",
@@ -87,4 +98,5 @@ __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "toumi20
            "R900A_HARDENING", "r900a", "plastic_fields", "steady_window", "build_model", "write_vtu", "check_quality",
            "MeshQualityError", "stable_time_step", "saturation_creepage", "read_restart",
            "write_restart", "seed004_case", "run_transition", "TransitionCase", "TransitionResult",
-           "TrackStructure", "Suspension", "build_transition_model", "pose_contact"]
+           "TrackStructure", "Suspension", "build_transition_model", "pose_contact",
+           "read_transition_restart", "rail_pulse", "pulse_arrivals", "elastic_wave_speeds"]

@@ -58,7 +58,7 @@ from .transition_model import TransitionCase, build_transition_model, rigid_pose
 from .transition_track import GRAVITY, Suspension, TrackStructure
 
 __all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate",
-           "pose_contact",
+           "pose_contact", "read_transition_restart",
            "NS_PER_ELEMENT_STEP"]
 
 #: Measured CPU cost of one step per element (ns; 412 ns at load 15 on the shared 2-core
@@ -94,7 +94,9 @@ class TransitionResult:
     u : ndarray (n, 3)
         Final displacements (wheel nodes in the wheel frame).
     info : dict
-        Step, number of steps, CPU time, ns per element per step, onset of two-point contact.
+        Step, number of steps (``steps``; ``steps_run`` of them in this call, fewer after a
+        restart), CPU time of this call, ns per element per step run, onset of two-point
+        contact.
     """
 
     def __init__(self, patches, history, model, u, info):
@@ -224,8 +226,6 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     -------
     TransitionResult
     """
-    import xarray as xr
-
     m = model if model is not None else build_transition_model(case)
     dt = case.courant * stable_step(m)
     est = transition_time_estimate(m, dt)
@@ -452,6 +452,25 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             _write_restart(restart_file, n, n_steps, k, rows, hist, locals())
     cpu = time.process_time() - t_cpu
     wall = time.perf_counter() - t_wall
+    ds, hds = _histories(rows, hist)
+    # the cost per step of the steps run in this call (a restart continues at k0)
+    run_steps = max(1, n_steps - k0)
+    info = {"time_step": dt, "steps": n_steps, "steps_run": n_steps - k0, "cpu_s": cpu,
+            "wall_s": wall,
+            "ns_per_element_step": cpu / (run_steps * m.n_elements) * 1e9,
+            "wall_ns_per_element_step": wall / (run_steps * m.n_elements) * 1e9,
+            "elements": m.n_elements, "load": load, "torque": torque, "J": J,
+            "static_sag": sag, "fields": np.array(fields) if fields else None,
+            "onset_travel": _onset(ds),
+            "wave": ({"x": m.nodes[line, 0] - c0[0], "t": dt * np.arange(1, n_wave + 1),
+                      "vz": wave_v} if n_wave else None)}
+    return TransitionResult(ds, hds, m, u, info)
+
+
+def _histories(rows, hist):
+    """The per-patch and axle histories (xarray.Dataset) from the loop's output rows."""
+    import xarray as xr
+
     rows = np.array(rows, float)                 # (nt, patch, field)
     hist = np.array(hist, float)
     tt = hist[:, 0]
@@ -467,15 +486,23 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
               "torque_contact", "n_patches", "axle_y")
     hds = xr.Dataset({nm: ("time", hist[:, i + 2]) for i, nm in enumerate(hnames)},
                      coords={"time": tt, "travel": ("time", hist[:, 1])})
-    info = {"time_step": dt, "steps": n_steps, "cpu_s": cpu, "wall_s": wall,
-            "ns_per_element_step": cpu / (n_steps * m.n_elements) * 1e9,
-            "wall_ns_per_element_step": wall / (n_steps * m.n_elements) * 1e9,
-            "elements": m.n_elements, "load": load, "torque": torque, "J": J,
-            "static_sag": sag, "fields": np.array(fields) if fields else None,
-            "onset_travel": _onset(ds),
-            "wave": ({"x": m.nodes[line, 0] - c0[0], "t": dt * np.arange(1, n_wave + 1),
-                      "vz": wave_v} if n_wave else None)}
-    return TransitionResult(ds, hds, m, u, info)
+    return ds, hds
+
+
+def read_transition_restart(path):
+    """The histories stored in a restart file of :func:`run_transition` (a run stopped or
+    still running: its outputs up to the file's step).
+
+    Returns
+    -------
+    patches, history : xarray.Dataset
+        As :attr:`TransitionResult.patches` and :attr:`TransitionResult.history`.
+    progress : dict
+        ``step`` (last step done, 0-based) and ``steps`` (of the whole run).
+    """
+    with np.load(path, allow_pickle=False) as z:
+        ds, hds = _histories(z["rows"], z["hist"])
+        return ds, hds, {"step": int(z["step"]), "steps": int(z["steps"])}
 
 
 def _write_restart(path, n, n_steps, k, rows, hist, scope):

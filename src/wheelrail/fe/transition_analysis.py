@@ -34,6 +34,11 @@ def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.1,
                side: str = "ahead") -> dict:
     """Surface wave speed [m/s] from the rail surface velocities of a run.
 
+    The start of a run is not a clean impulse (the wheel settles and bounces; 1.5–1.9 km/s
+    on the 4 mm runs): for a clean measurement on the same rail mesh see
+    :func:`wheelrail.fe.transition_wave.rail_pulse` and
+    :func:`~wheelrail.fe.transition_wave.pulse_arrivals`.
+
     Parameters
     ----------
     wave : dict
