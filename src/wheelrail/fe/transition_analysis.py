@@ -21,13 +21,29 @@ import numpy as np
 
 from ..errors import InputError
 
-__all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel"]
+__all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel",
+           "surface_stations"]
 
 
 def rayleigh_speed(E: float, nu: float, rho: float) -> float:
     """Rayleigh wave speed [m/s] (Viktorov's approximation, within 0.5 % for 0 ≤ ν ≤ 0.5)."""
     cs = np.sqrt(E / (2.0 * (1.0 + nu)) / rho)
     return float(cs * (0.862 + 1.14 * nu) / (1.0 + nu))
+
+
+def surface_stations(x, d_min, d_max, side="both"):
+    """Mask of the surface stations at distances ``d_min`` ≤ |x| ≤ ``d_max`` [m] from the
+    source, on ``side`` "ahead" (x > 0), "behind" (x < 0) or "both"; at least three."""
+    sel = (np.abs(x) >= d_min) & (np.abs(x) <= d_max)
+    if side == "ahead":
+        sel &= x > 0
+    elif side == "behind":
+        sel &= x < 0
+    elif side != "both":
+        raise InputError(f"side must be 'both', 'ahead' or 'behind', got {side!r}")
+    if sel.sum() < 3:
+        raise InputError(f"fewer than 3 surface nodes between {d_min} and {d_max} m")
+    return sel
 
 
 def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.1,
@@ -61,15 +77,7 @@ def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.1,
     x = np.asarray(wave["x"])
     t = np.asarray(wave["t"])
     vz = np.asarray(wave["vz"])
-    sel = (np.abs(x) >= d_min) & (np.abs(x) <= d_max)
-    if side == "ahead":
-        sel &= x > 0
-    elif side == "behind":
-        sel &= x < 0
-    elif side != "both":
-        raise InputError(f"side must be 'both', 'ahead' or 'behind', got {side!r}")
-    if sel.sum() < 3:
-        raise InputError(f"fewer than 3 surface nodes between {d_min} and {d_max} m")
+    sel = surface_stations(x, d_min, d_max, side)
     d = np.abs(x[sel])
     ta = t[np.argmax(np.abs(vz[:, sel]), axis=0)]
     # the largest velocity must arrive before the end of the record

@@ -46,6 +46,7 @@ import numpy as np
 from ..errors import InputError
 from . import _solid as S
 from ._explicit import NCHUNK, advance
+from .transition_analysis import surface_stations
 from .transition_contact import nodal_normals_quads
 from .transition_model import TransitionCase, _group, build_transition_model
 
@@ -378,15 +379,7 @@ def pulse_arrivals(rec: RailPulseResult, d_min: float = 0.03, d_max: float = 0.0
     if method not in ("envelope", "xcorr", "first"):
         raise InputError(f"method must be 'envelope', 'xcorr' or 'first', got {method!r}")
     x = rec.x
-    sel = (np.abs(x) >= d_min) & (np.abs(x) <= d_max)
-    if side == "ahead":
-        sel &= x > 0
-    elif side == "behind":
-        sel &= x < 0
-    elif side != "both":
-        raise InputError(f"side must be 'both', 'ahead' or 'behind', got {side!r}")
-    if sel.sum() < 3:
-        raise InputError(f"fewer than 3 surface nodes between {d_min} and {d_max} m")
+    sel = surface_stations(x, d_min, d_max, side)
     sp = rec.info["speeds"]
     c_min = 0.5 * sp["c_s"] if c_min is None else c_min
     c_max = 1.05 * sp["c_p"] if c_max is None else c_max
