@@ -89,22 +89,18 @@ def instrumented_source() -> str:
     rs = _sub(rs, "counter, nthr):", "counter, nthr, T, TA, TB):")
     rs = _sub(rs, "    for w in prange(nthr):\n", "    T[k0, 0] = rdtsc()\n    for w in prange(nthr):\n")
     pad = " " * 20
-    rs = _sub(rs, "                while t >= 0:\n",
-              "                while t >= 0:\n" + pad + "TA[k, t, 0] = rdtsc()\n")
-    last = "if _atomic_add(ctl, _DONE, 1) == n_tasks - 1:"
-    rs = _sub(rs, pad + last, pad + "TA[k, t, 1] = rdtsc()\n" + pad + "TA[k, t, 2] = numba.get_thread_id()\n"
-              + pad + last)
-    i = rs.index(last)
-    rs = rs[:i] + _sub(rs[i:], "\n", "\n" + pad + "    T[k, 1] = rdtsc()\n")
     pub = pad + "    _atomic_store(ctl, _PHASE, p + 1)\n"
-    rs = _sub(rs, pub, pad + "    T[k, 2] = rdtsc()\n" + pub)
-    rs = _sub(rs, "                while g >= 0:\n",
-              "                while g >= 0:\n" + pad + "TB[k, g, 0] = rdtsc()\n")
-    last = "if _atomic_add(ctl, _DONE, 1) == n_groups - 1:"
-    rs = _sub(rs, pad + last, pad + "TB[k, g, 1] = rdtsc()\n" + pad + "TB[k, g, 2] = numba.get_thread_id()\n"
-              + pad + last)
-    i = rs.index(last)
-    rs = rs[:i] + _sub(rs[i:], "\n", "\n" + pad + "    T[k, 3] = rdtsc()\n")
+    # per phase: its task index, task record, task count and the slot of T at its last task
+    for var, rec, count, slot in (("t", "TA", "n_tasks", 1), ("g", "TB", "n_groups", 3)):
+        loop = f"                while {var} >= 0:\n"
+        rs = _sub(rs, loop, loop + pad + f"{rec}[k, {var}, 0] = rdtsc()\n")
+        last = f"if _atomic_add(ctl, _DONE, 1) == {count} - 1:"
+        rs = _sub(rs, pad + last, pad + f"{rec}[k, {var}, 1] = rdtsc()\n" + pad
+                  + f"{rec}[k, {var}, 2] = numba.get_thread_id()\n" + pad + last)
+        i = rs.index(last)
+        rs = rs[:i] + _sub(rs[i:], "\n", "\n" + pad + f"    T[k, {slot}] = rdtsc()\n")
+        if var == "t":      # the second phase opens after the first phase's serial part
+            rs = _sub(rs, pub, pad + "    T[k, 2] = rdtsc()\n" + pub)
     i = rs.index("ctl[_CUR] = new")
     rs = rs[:i] + _sub(rs[i:], pub, pad + "    T[k, 4] = rdtsc()\n" + pad + "    if k + 1 < k1:\n"
                        + pad + "        T[k + 1, 0] = T[k, 4]\n" + pub)
