@@ -105,6 +105,7 @@ def ab_line(index, n_points=200, seed=2026):
     """Exact forces along ln a/b through one benchmark point, and spline errors (see --ab-line)."""
     from wheelrail.hertzian import hertz_from_semiaxes
     from wheelrail.sweeps.tables import _physical
+    from wheelrail.tangential._table_kernel import _locate, _weights
     from wheelrail.tangential.table import _spline_operator, table_coordinates
 
     cs = random_cases(n_points, seed=seed)[index]
@@ -127,7 +128,7 @@ def ab_line(index, n_points=200, seed=2026):
             e = wr.creep_forces(cont, (P["xi"][i], P["eta"][i], P["phi"][i]), mu,
                                 method="exact", elements=N, on_fail="status", progress=False)
             f.append(np.array([e.Fx, e.Fy, e.Mz / np.sqrt(P["a"][i] * P["b"][i])]) / (mu * Fn))
-        return (36 * f[1] - 24 * f[0]) / 12.0   # first-order grid limit
+        return grid_limit(f, (24, 36), order=1.0)   # first-order grid limit
 
     t0 = time.process_time()
     f = np.array([limit(i) for i in range(L.size)])
@@ -139,11 +140,9 @@ def ab_line(index, n_points=200, seed=2026):
     def spline(nodes, vals, x):
         h = nodes[1] - nodes[0]
         C = _spline_operator(nodes.size) @ vals
-        u = (x - nodes[0]) / h
-        i = min(max(int(np.floor(u)), 0), nodes.size - 2)
-        t = u - i
-        w = np.array([(1 - t) ** 3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1,
-                      t**3]) / 6.0
+        i, t = _locate(x, nodes[0], h, nodes.size)
+        w = np.empty(4)
+        _weights(t, True, w)
         return w @ C[i:i + 4]
 
     for step in (4, 2):
