@@ -171,6 +171,11 @@ def test_merged_creep_points_give_the_line_through_them():
     np.testing.assert_allclose(m.shifted_creepage, [-3.3e-4, 3.7e-4])
     with pytest.raises(InputError, match="mu"):
         merge_creep_curves([a, _curve([1e-4], [0.0]).assign_attrs(mu=0.3)])
+    # a point written before the steady window was stored: NaN there
+    c = b.assign(window_start=("creepage", [0.01]))
+    m = merge_creep_curves([a, c])
+    assert m.attrs["slope"] == pytest.approx(-1e7)
+    np.testing.assert_array_equal(m.window_start, [0.01, np.nan])
 
 
 def test_creep_curve_reports_the_steady_window_of_each_point():

@@ -153,7 +153,8 @@ def merge_creep_curves(curves):
     ----------
     curves : sequence of xarray.Dataset
         Results of :func:`creep_curve` for the same case and component (the attributes of
-        the first are kept); a creepage present twice keeps its first occurrence.
+        the first are kept); a creepage present twice keeps its first occurrence; a
+        variable missing from some (a file written by an older version) is NaN there.
 
     Returns
     -------
@@ -171,8 +172,14 @@ def merge_creep_curves(curves):
             if ds.attrs.get(key) != first.get(key):
                 raise InputError(f"creep curves differ in {key!r}: {ds.attrs.get(key)!r} "
                                  f"against {first.get(key)!r}")
-    ds = xr.concat([d.drop_vars("shifted_creepage") for d in curves], dim="creepage",
-                   combine_attrs="override")
+    names = {n for d in curves for n in d.data_vars}
+    parts = []
+    for d in curves:      # curves written before a variable existed: NaN there
+        d = d.drop_vars("shifted_creepage")
+        for n in names - set(d.data_vars):
+            d[n] = ("creepage", np.full(d.sizes["creepage"], np.nan))
+        parts.append(d)
+    ds = xr.concat(parts, dim="creepage", combine_attrs="override")
     _, keep = np.unique(ds.creepage.values, return_index=True)
     ds = ds.isel(creepage=np.sort(keep)).sortby("creepage")
     ds.attrs = dict(first)
