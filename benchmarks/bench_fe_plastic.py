@@ -9,6 +9,7 @@ machine load, and saves NetCDF / VTU / PNG files under --out):
   python benchmarks/bench_fe_plastic.py creep --mesh 2e-3 --component xi   # creep curves, elastic/plastic
   python benchmarks/bench_fe_plastic.py figures --mesh 2e-3          # Figs. 9-11 (surface, patch)
   python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3    # implicit Δt sensitivity (§3)
+  python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3 --material plastic  # J2 bodies
   python benchmarks/bench_fe_plastic.py passes --mesh 2e-3 --passes 4 # repeated passes
   python benchmarks/bench_fe_plastic.py speed                         # ns/element/step, 1 and 2 threads
   python benchmarks/bench_fe_plastic.py speed --baseline /tmp/base/src  # the same, alternating with another version
@@ -316,27 +317,39 @@ def cmd_creep_compare(a):
     compare_creep(a, curves)
 
 
+def _time_increment_plastic(a):
+    """time-increment: elasto-plastic (R900A) with ``--material plastic`` (or ``--extra
+    '{"plastic": true}'``), else elastic."""
+    return a.material == "plastic" or bool(a.extra.get("plastic"))
+
+
 def cmd_time_increment(a):
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
     warnings.simplefilter("ignore")
     V = 50 / 3.6
+    plastic = _time_increment_plastic(a)
+    extra = {k: v for k, v in a.extra.items() if k != "plastic"}
     for dt in a.dts:
         k = dt / (a.mesh / (2 * V))
-        case = seed(a.mesh, integrator="implicit-hht", mass_scaling=1.0, time_step=dt,
-                    travel=a.travel, **a.extra)
+        case = seed(a.mesh, plastic=plastic, integrator="implicit-hht", mass_scaling=1.0,
+                    time_step=dt, travel=a.travel, **extra)
         r, cpu, wall = timed(case, progress=True)
         p = r.patch
         _, vm_r = r.model.von_mises(r.u, r.state)
         amp, wl, wx, wz = rear_waves(r, profile=True)
         row = dict(dt=dt, Fx=r.Fx, p_max=r.p_max, tau=float(p.shear.max()), vm=float(vm_r.max()),
                    a=r.a, b=r.b, waves=amp, wavelength=wl)
-        print(f"implicit HHT, dt = {dt:.3g} s ({k:g} x h/(2V)): " + describe(r, cpu, wall))
+        if plastic and r.fields is not None:
+            row["eps_p"] = float(r.fields.rail_equivalent_plastic_strain.max())
+        print(f"implicit HHT, {'elasto-plastic' if plastic else 'elastic'}, dt = {dt:.3g} s "
+              f"({k:g} x h/(2V)): " + describe(r, cpu, wall))
         print(f"    p_max {row['p_max'] / 1e6:.0f} MPa, tau_max {row['tau'] / 1e6:.0f} MPa, von Mises max "
               f"{row['vm'] / 1e6:.0f} MPa, a {row['a'] * 1e3:.2f} mm, b {row['b'] * 1e3:.2f} mm, "
               f"rear-wave amplitude {row['waves'] * 1e6:.2f} um, wavelength {wl * 1e3:.1f} mm (2 V dt "
-              f"= {2 * V * dt * 1e3:.1f} mm)", flush=True)
-        tag = f"hht_dt{dt:g}_{a.mesh * 1e3:g}mm{'_plastic' if a.extra.get('plastic') else ''}"
+              f"= {2 * V * dt * 1e3:.1f} mm)" + (f", max eps_p (rail) {row['eps_p']:.5f}"
+                                                  if "eps_p" in row else ""), flush=True)
+        tag = f"hht_dt{dt:g}_{a.mesh * 1e3:g}mm{'_plastic' if plastic else ''}"
         r.dataset.to_netcdf(out / f"{tag}.nc")
         from wheelrail.fe.plots import plot_section
         from wheelrail.fe.rolling import stress_fields
@@ -357,7 +370,7 @@ def cmd_time_increment(a):
 def time_increment_table(a):
     """The differences against the smallest step of every run saved in --out for this mesh
     (runs may be split over several processes, one --dts value each)."""
-    plastic = "_plastic" if a.extra.get("plastic") else ""
+    plastic = "_plastic" if _time_increment_plastic(a) else ""
     rows = sorted((json.loads(f.read_text()) for f in
                    Path(a.out).glob(f"hht_dt*_{a.mesh * 1e3:g}mm{plastic}.json")),
                   key=lambda r: r["dt"])
@@ -573,7 +586,9 @@ def main():
                     default=[-3.0, -1.5, -0.7, -0.35, 0.0, 0.35, 0.7, 1.5, 3.0],
                     help="creepages in permille")
     ap.add_argument("--material", choices=["both", "elastic", "plastic"], default="both",
-                    help="creep: run only one material (compare later with creep-compare)")
+                    help="creep: run only one material (compare later with creep-compare); "
+                         "time-increment: plastic for the elasto-plastic R900A bodies (else "
+                         "elastic)")
     ap.add_argument("--hardening", choices=["r900a", "perfect"], default="r900a",
                     help="creep, creep-compare: the plastic material's hardening (r900a: the "
                          "default Voce law; perfect: perfect plasticity at 489 MPa)")

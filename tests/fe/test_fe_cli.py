@@ -45,6 +45,43 @@ def test_fe_estimate_only_prints_steps(tmp_path, capsys):
     assert "explicit steps" in capsys.readouterr().out
 
 
+@pytest.mark.parametrize("plastic, threads, ns", [(False, 1, 163.7), (True, 1, 214.7),
+                                                   (False, 2, 106.3), (True, 2, 127.3)])
+def test_fe_time_estimate_matches_the_measured_step(monkeypatch, plastic, threads, ns):
+    """The estimate of a large explicit run against the measured wall time of the whole run
+    (build, time loop, results) with the one-region time loop: Toumi et al.'s case on the
+    1 mm mesh, 47 736 reduced hex8 x 7 533 steps, on the idle 2-core machine
+    (docs/fe_plastic.md, "Cost": 163.7 / 214.7 ns per element and step on one thread, 106.3 /
+    127.3 ns on two; elastic / plastic). The per-element constants come from the time loop of
+    the same runs, the build and per-step constants from other runs: this checks that the
+    parts add up to the measured whole (within 3 %)."""
+    import wheelrail.cli.fe as F
+    from wheelrail.fe import seed000_case
+
+    monkeypatch.setattr(F, "_kernels_cached", lambda: True)
+    case = seed000_case(plastic=plastic, mesh_size=1e-3, element="reduced")
+    n, steps = 47_736, 7_533
+    measured = ns * 1e-9 * n * steps
+    est = F.seconds_estimate(case, n, steps, plastic, threads=threads)
+    assert est == pytest.approx(measured, rel=0.03)
+    assert F.seconds_estimate(case, n, steps, plastic, threads=8) == pytest.approx(
+        F.seconds_estimate(case, n, steps, plastic, threads=2))
+
+
+def test_fe_estimate_names_the_threads(tmp_path, capsys):
+    import numba
+
+    case = tmp_path / "case.toml"
+    case.write_text(CASE.replace('mode = "indent"', 'mode = "roll"'))
+    numba.set_num_threads(1)
+    try:
+        assert main(["fe", str(case), "--estimate-only"]) == 0
+    finally:
+        numba.set_num_threads(numba.config.NUMBA_NUM_THREADS)
+    out = " ".join(capsys.readouterr().out.split())
+    assert "explicit steps" in out and "on 1 thread " in out
+
+
 def test_fe_bad_key_is_a_usage_error(tmp_path, capsys):
     case = tmp_path / "case.toml"
     case.write_text(CASE + "mesh_sise = 1.0\n")

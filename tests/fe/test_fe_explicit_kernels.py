@@ -171,3 +171,33 @@ def test_merged_creep_points_give_the_line_through_them():
     np.testing.assert_allclose(m.shifted_creepage, [-3.3e-4, 3.7e-4])
     with pytest.raises(InputError, match="mu"):
         merge_creep_curves([a, _curve([1e-4], [0.0]).assign_attrs(mu=0.3)])
+    # a point written before the steady window was stored: NaN there
+    c = b.assign(window_start=("creepage", [0.01]))
+    m = merge_creep_curves([a, c])
+    assert m.attrs["slope"] == pytest.approx(-1e7)
+    np.testing.assert_array_equal(m.window_start, [0.01, np.nan])
+
+
+def test_creep_curve_reports_the_steady_window_of_each_point():
+    """Every point of a creep curve carries the steady window of its rolling run (travel
+    interval and steps averaged), as the rolling result reports it, and the window follows
+    its definition (from the end of the speed ramp plus 4 a, at most the last quarter of
+    the travel, to the end)."""
+    import wheelrail as wr
+    from wheelrail.fe import RollingCase, build_model, creep_curve, solve
+    from wheelrail.fe.rolling import steady_window
+
+    flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
+    case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+                       mu=0.2, creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3, element="reduced",
+                       mass_scaling=400, depth=3, half_width=3, half_length=3, travel=0.005)
+    ds = creep_curve(case, [7e-4], progress=False)
+    r = solve(case, progress=False)
+    g = build_model(case).geometry
+    lo, hi = steady_window(case, build_model(case))
+    assert hi == pytest.approx(g["travel"])
+    assert lo == pytest.approx(min(case.ramp * g["travel"] + 4 * g["a"], 0.75 * g["travel"]))
+    assert float(ds.window_start[0]) == pytest.approx(lo)
+    assert float(ds.window_end[0]) == pytest.approx(hi)
+    assert int(ds.steady_steps[0]) == r.steady["n"] > 10
+    assert float(ds.Fx[0]) == r.steady["Fx"]

@@ -48,27 +48,62 @@ from ._output import esc
 
 HELP = "finite-element rolling contact (or static indentation) of an [fe] case file"
 
-#: Time model of an explicit run (``benchmarks/bench_estimates.py``; CPU time on one core
-#: of the 2-core machine, reduced and full hex8, cached kernels): per step a fixed cost
-#: (contact, kinematics, bookkeeping) plus a cost per element, and the model's build. Fitted
-#: on the rolling case of tests/fe/test_fe_cli.py at mesh 2, 1.5, 1 and 0.7 mm (952–16 632
-#: elements, 1 802–4 307 steps): 1.6, 2.2, 2.9 and 5.3 ms per step.
-STEP_COST = 1.4e-3
-COST_PER_ELEMENT_STEP = {"full": 4.5e-7, "reduced": 2.3e-7}
-#: Plastic / elastic cost of the per-element part of a step (J2 return mapping at the
-#: integration points; measured 1.3 on the reduced hex8 at 8 370 elements).
-PLASTIC_COST_FACTOR = 1.3
-#: Build of the model: fixed and per element [s].
-BUILD_COST = (0.3, 6e-5)
+#: Time model of an explicit run: wall time on an unloaded machine with cached kernels, on
+#: the numba threads of the process (one or two; more are estimated as two): the model's
+#: build and output (:data:`BUILD_COST`), then per step a fixed cost (:data:`STEP_COST`) plus
+#: a cost per element (:data:`COST_PER_ELEMENT_STEP`).
+#:
+#: Per element and step: the time loop of the one-region kernel
+#: (:func:`wheelrail.fe._explicit.run_steps`: element forces and plasticity, contact, node
+#: update, bookkeeping) of Toumi et al.'s case on the 1 mm mesh (47 736 reduced hex8 x 7 533
+#: steps), measured on the idle 2-core machine on 2026-11-27 (load 1.0–1.9; ``python
+#: benchmarks/bench_fe_plastic.py speed --mesh 1e-3 --travel 0.004``, "time loop only" of
+#: benchmarks/results/fe19_session5/speed_interleaved_1mm_idle.log; docs/fe_plastic.md,
+#: "Cost", gives the whole runs: 163.7 / 214.7 ns on one thread, 106.3 / 127.3 ns on two):
+#: 160.7 ns elastic and 212.1 ns plastic on one thread, 102.9 and 123.9 ns on two. Full hex8
+#: (8 points): 2.5 times the reduced element (2.3–2.9 measured on the rolling case of
+#: tests/fe/test_fe_cli.py at 1.5 and 1 mm, 2 904 and 8 370 elements, one thread, CPU time,
+#: load 3.6–4.7, 2026-11-27); its two-thread factor is taken as the reduced one's.
+#:
+#: Per step: the serial parts that do not grow with the elements (rail surface, contact
+#: scatter and sums, axle, one Python call per block of steps): the intercept of the
+#: one-thread CPU time per step against the elements, rolling case of tests/fe/test_fe_cli.py
+#: at 2, 1.5 and 1 mm (952, 2 904 and 8 370 elements: 0.246, 0.694 and 1.79 ms per step;
+#: load 3.6–3.8, 2026-11-27). The time loop before the one-region kernel (issue 19) cost
+#: 1.4 ms per step and 230 ns per element.
+STEP_COST = 5e-5
+COST_PER_ELEMENT_STEP = {"full": 2.5 * 160.7e-9, "reduced": 160.7e-9}
+#: Plastic / elastic cost of the per-element part of a step on one thread (J2 return
+#: mapping at the integration points): 212.1 / 160.7.
+PLASTIC_COST_FACTOR = 212.1 / 160.7
+#: Two-thread / one-thread wall time of the per-element part, elastic and plastic:
+#: 102.9 / 160.7 and 123.9 / 212.1.
+TWO_THREAD_FACTOR = {False: 102.9 / 160.7, True: 123.9 / 212.1}
+#: Build of the model and the results (all but the time loop): fixed and per element [s]
+#: (1.08 s at 47 736 elements, the 1 mm run above; 0.46 s at 8 370, the 1 mm rolling case of
+#: tests/fe/test_fe_cli.py).
+BUILD_COST = (0.3, 1.7e-5)
 #: First run only: numba compiles the FE kernels (measured 35 s; cached afterwards).
 COMPILE_SECONDS = 35.0
 
 
-def seconds_estimate(case, n_elements: int, steps: float, plastic: bool) -> float:
-    """Estimated time [s] of an explicit run of ``steps`` steps on ``n_elements`` elements:
-    model build, steps × (:data:`STEP_COST` + elements × :data:`COST_PER_ELEMENT_STEP`)
-    and, when the FE kernels are not cached yet, their compilation."""
+def _threads() -> int:
+    """The numba threads the FE kernels will run on."""
+    import numba
+
+    return numba.get_num_threads()
+
+
+def seconds_estimate(case, n_elements: int, steps: float, plastic: bool,
+                     threads: int | None = None) -> float:
+    """Estimated wall time [s] of an explicit run of ``steps`` steps on ``n_elements``
+    elements on ``threads`` numba threads (default: the process's): model build, steps ×
+    (:data:`STEP_COST` + elements × :data:`COST_PER_ELEMENT_STEP` × the plastic and
+    two-thread factors) and, when the FE kernels are not cached yet, their compilation."""
+    threads = _threads() if threads is None else threads
     per_element = COST_PER_ELEMENT_STEP[case.element] * (PLASTIC_COST_FACTOR if plastic else 1.0)
+    if threads >= 2:
+        per_element *= TWO_THREAD_FACTOR[bool(plastic)]
     seconds = BUILD_COST[0] + BUILD_COST[1] * n_elements + steps * (STEP_COST + n_elements
                                                                     * per_element)
     return seconds + (COMPILE_SECONDS if not _kernels_cached() else 0.0)
@@ -330,9 +365,11 @@ def run(args, console) -> int:
         from ..fe.model import mesh_size_estimate
 
         steps, seconds = estimate(case, model)
+        nthr = _threads()
         console.print(f"estimate: {steps} explicit steps, about {_resources._duration(seconds)} "
-                      f"on one core" + ("" if _kernels_cached() else
-                                        " (including compiling the FE kernels, once)"))
+                      f"on {nthr} thread{'s' if nthr > 1 else ''}"
+                      + ("" if _kernels_cached()
+                         else " (including compiling the FE kernels, once)"))
         _resources.check(f"FE run of {model.n_elements} elements x {steps} steps", seconds,
                          mesh_size_estimate(case)["memory"], "measured cost per element and step")
     if args.estimate_only:

@@ -8,9 +8,8 @@ new displacement), fused into the second phase node group by node group
 added in task order, so that the results do not depend on the thread count; the tasks are
 handed out dynamically, so that a slower thread (plastic elements, a busy core) does
 fewer of them. :func:`run_steps` runs a block of steps in one parallel region (its
-threads wait for each other's phases without sleeping); :func:`explicit_step` is one step
-in two OpenMP regions (the same numbers). :func:`advance` is the node update alone (the
-transition driver).
+threads wait for each other's phases without sleeping). :func:`advance` is the node update
+alone (the transition driver).
 
 The contact bookkeeping of a step (positions of the contact surfaces, their increments
 and nodal normals, the contact forces rotated into the body frames, the force and energy
@@ -90,24 +89,8 @@ def advance(u, v, acc, f_int, fd_beta, has_beta, m_alpha, inv_m, cmap, fcon, dt,
         partial[ch, 1] = pb
 
 
-#: Columns of the partial sums of the node update of :func:`explicit_step`.
+#: Columns of the partial sums of the node update of :func:`run_steps`.
 ADV_COLUMNS = ("ma_vo_vo", "ma_vo_vn", "fcon_vo", "fcon_vn", "fbeta_vo", "fbeta_vn", "m_vk_vk")
-
-
-@intrinsic
-def _take_next(typingctx, counter):
-    """Atomically add 1 to ``counter[0]`` (int64 array) and return its old value: the
-    next task of a dynamically scheduled parallel phase."""
-    if not (isinstance(counter, types.Array) and counter.dtype == types.int64):
-        return None
-    sig = types.int64(counter)
-
-    def codegen(context, builder, signature, args):
-        ary = context.make_array(signature.args[0])(context, builder, args[0])
-        return builder.atomic_rmw("add", ary.data, context.get_constant(types.int64, 1),
-                                  "seq_cst")
-
-    return sig, codegen
 
 
 # ----------------------------------------------------------------------------- synchronisation
@@ -245,7 +228,7 @@ def _wait_phase(ctl, p):
 
 
 def node_groups(conn, bounds, n_nodes):
-    """Node groups of the node update fused into the odd phase of :func:`explicit_step`.
+    """Node groups of the node update fused into the odd phase of :func:`run_steps`.
 
     Returns ``(gptr, gnodes)``: group g holds the nodes ``gnodes[gptr[g]:gptr[g + 1]]``
     (ascending). Group g belongs to the odd element chunk 2g + 1 (:func:`wheelrail.fe._solid.
@@ -465,10 +448,10 @@ def contact_to_nodes(fs, fm, pn, ft, slip, energy, cpsi, spsi, fcon, sums):
 
 
 def interleaved_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarray:
-    """Task table (T, 2) of the first parallel phase of :func:`explicit_forces`: rows
+    """Task table (T, 2) of the first parallel phase of :func:`run_steps`: rows
     (0, k) for the k-th even element chunk and (1, j) for the j-th contact chunk, in an
     order where every contiguous share of the table holds the same proportion of both (the
-    static schedule of a numba ``prange`` gives each thread a contiguous share)."""
+    tasks are taken in table order, so the contact chunks are spread over the phase)."""
     key = np.concatenate([(np.arange(n_element_chunks) + 0.5) / max(n_element_chunks, 1),
                           (np.arange(n_contact_chunks) + 0.5) / max(n_contact_chunks, 1)])
     kind = np.concatenate([np.zeros(n_element_chunks, np.int64),
@@ -492,130 +475,6 @@ def _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G, 
         a1 += e_pl
     echunk[ch, 0] = a0
     echunk[ch, 1] = a1
-
-
-@njit(cache=True, parallel=True)
-def explicit_step(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
-                  st_in, st_out, f, energy, echunk, tasks,
-                  ref_s, snodes, cpsi, spsi, z, xs, xs_prev, dxs,
-                  ref_m, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm,
-                  area, kn, mu, ft_old, x_ref, y_ref, reach, g0, cdamp, inv_dt,
-                  cenergy, fs, fm, gap, pn, ft_new, status, cell, rt, normal, slip,
-                  fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
-                  gptr, gnodes, partial, totals, counter, nthr):
-    """One explicit step: element forces, contact and the central-difference node update,
-    in two parallel phases.
-
-    1. :func:`master_kinematics` (serial); then, in parallel, the even element chunks of
-       :func:`wheelrail.fe._solid.element_chunks` and the slave chunks of the contact
-       (:func:`slave_position` and :func:`wheelrail.fe._kernels.node_to_surface` per slave),
-       the tasks ``tasks`` (:func:`interleaved_tasks`);
-    2. the master forces scattered in slave order and :func:`contact_to_nodes` (serial);
-    3. in parallel, per node group g of :func:`node_groups`: the odd element chunk 2g + 1,
-       then the update of the group's nodes (their forces are final then): a = (f_con −
-       f_int − m_α v − f_β) / m; v ← v + Δt a; u ← u + Δt v (a is not stored); ``f`` (the internal forces,
-       which must hold zeros on entry) is left zero;
-    4. the sums in chunk and group order (serial).
-
-    Both parallel phases take their tasks dynamically (an atomic counter): the results do
-    not depend on which thread runs a task, because the tasks of a phase write disjoint
-    nodes, each node receives its element forces in element order, and every sum is taken
-    per task and added in task order. Nothing depends on the number of threads.
-
-    Parameters: as :func:`wheelrail.fe._solid.element_forces` (``u`` … ``energy``; ``u`` is
-    read by phases 1-3 before the update; ``energy`` may be (0, 2): the element energies
-    are then only summed per chunk, not stored), the contact kernels named, and
-
-    echunk : (nc, 2)
-        Output: elastic energy and plastic work per element chunk.
-    sums : (8,)
-        Output: Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
-        :func:`contact_to_nodes`), elastic strain energy and plastic work [J] of ``u``.
-    v : (n, 3)
-        Half-step velocities (updated).
-    fd_beta : (n, 3)
-        Stiffness-proportional damping forces [N] (read only if ``has_beta``).
-    m_alpha, inv_m, mass : (n,)
-        α m [kg/s], inverse (scaled) lumped masses [1/kg] (0: clamped), masses [kg].
-    cmap : (n,) int
-        Row of the node in ``fcon`` (contact nodes) or −1.
-    dt : float
-    gptr, gnodes : node groups of :func:`node_groups`.
-    partial : (ngroups, 7), totals : (7,)
-        Output: per group and summed in group order, the sums of :data:`ADV_COLUMNS`:
-        Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old, Σ f_con·v_new, Σ f_β·v_old,
-        Σ f_β·v_new and Σ m v_k·v_k with v_k = v_new − Δt a / 2 (twice the kinetic
-        energy at the step).
-    counter : (1,) int64 scratch.
-    nthr : int
-        ``numba.get_num_threads()`` (each thread takes tasks until none is left).
-    """
-    ne = conn.shape[0]
-    ng = dNdx.shape[1]
-    has_hg = gamma.shape[0] == ne
-    bbar = plastic and ng > 1
-    nc = bounds.shape[0] - 1
-    ns = xs.shape[0]
-    n_even = (nc + 1) // 2
-    ncc = tasks.shape[0] - n_even
-    n_tasks = tasks.shape[0]
-    n_groups = gptr.shape[0] - 1
-    master_kinematics(ref_m, u, mnodes, shift_x, shift_y, xm, xm_prev, dxm, nm, fm)
-    counter[0] = 0
-    for w in prange(nthr):
-        ue = np.empty((8, 3))
-        eps = np.empty(6)
-        sig = np.empty(6)
-        D = np.empty((6, 6))
-        bb = np.empty((8, 3))
-        c = np.empty((4, 3))
-        q = np.empty(3)
-        dq = np.empty(3)
-        t = _take_next(counter)
-        while t < n_tasks:
-            if tasks[t, 0] == 0:
-                _element_chunk(2 * tasks[t, 1], bounds, u, conn, dNdx, wdet, gamma, khg,
-                               has_hg, lam, G, plastic, bbar, hp, tp, ts, st_in, st_out, f,
-                               energy, echunk, ue, eps, sig, D, bb)
-            else:
-                j = tasks[t, 1]
-                for s in range(ns * j // ncc, ns * (j + 1) // ncc):
-                    slave_position(s, snodes[s], ref_s, u, cpsi, spsi, z, xs_prev, xs, dxs)
-                    _slave(s, xs, dxs, area, kn, kn, mu, ft_old, xm, nm, dxm, x_ref, y_ref,
-                           shift_x, reach, g0, cdamp, inv_dt, cenergy, fs, gap, pn, ft_new,
-                           status, cell, rt, normal, slip, c, q, dq)
-            t = _take_next(counter)
-    scatter_to_grid(status, cell, rt, fs, fm)
-    contact_to_nodes(fs, fm, pn, ft_new, slip, cenergy, cpsi, spsi, fcon, sums)
-    counter[0] = 0
-    for w in prange(nthr):
-        ue = np.empty((8, 3))
-        eps = np.empty(6)
-        sig = np.empty(6)
-        D = np.empty((6, 6))
-        bb = np.empty((8, 3))
-        g = _take_next(counter)
-        while g < n_groups:
-            ch = 2 * g + 1
-            if ch < nc:
-                _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
-                               plastic, bbar, hp, tp, ts, st_in, st_out, f, energy, echunk,
-                               ue, eps, sig, D, bb)
-            _update_nodes(g, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
-                          mass, cmap, fcon, dt, partial)
-            g = _take_next(counter)
-    e0 = 0.0
-    e1 = 0.0
-    for ch in range(nc):
-        e0 += echunk[ch, 0]
-        e1 += echunk[ch, 1]
-    sums[6] = e0
-    sums[7] = e1
-    for j in range(totals.shape[0]):
-        totals[j] = 0.0
-    for g in range(n_groups):
-        for j in range(totals.shape[0]):
-            totals[j] += partial[g, j]
 
 
 @njit(cache=True, inline="always")
@@ -713,30 +572,108 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
     """Steps ``k0`` to ``k1 − 1`` of the explicit loop, with the axle's vertical motion and
     the energy bookkeeping of the rolling step, in one parallel region.
 
-    Every step is :func:`explicit_step` (the same tasks, the same arithmetic in the same
-    order, so the same numbers bit for bit), but the ``nthr`` threads stay in one parallel
-    region for all the steps instead of meeting in two OpenMP regions per step: a thread that
-    runs out of tasks waits for the next phase spinning, then yielding the CPU
-    (:func:`_relax`), instead of falling asleep and waking late. The phases (step k: 2(k −
-    k0) the even element chunks and the contact, 2(k − k0) + 1 the odd chunks and the node
-    update) hand out their tasks through a counter that carries the phase number; the thread
-    that completes a phase's last task runs the serial part after it (the contact scatter
-    and sums; the energy sums, the axle and the bookkeeping of the step and the start of the
-    next step) and then opens the next phase. No thread ever waits for a thread that has not
-    taken a task, so the loop also finishes if fewer threads than ``nthr`` run it.
+    A step k has two parallel phases and serial parts between them:
 
-    ``relax``: the dynamic relaxation (axle load ``loads[k]``, ``axle`` = (mass, dashpot))
-    or the rolling step (``axle`` = (load, mass, α m + dashpot)). Per step k: ``cps``,
-    ``sps`` (cos, sin of the wheel angle), ``sx``, ``sy`` (rail travel and lateral drift [m]),
-    ``tt`` (time [s]); ``ax`` = (w, vw, e_int0, last vertical contact force) is updated;
-    the double buffers ``xsb``, ``xmb``, ``ftb`` (2, …) of the slave positions, master
-    positions and tangential forces have their previous values in row ``cur``; returns the
-    row of the last written ones. Rolling: ``E`` (8,) the energies in the order of the
-    rolling result (kinetic, internal, contact, friction, damping, external, contact work,
-    plastic work) [J], ``hist[k]`` = (travel, Fx, Fy, Fz, Fn), and every ``every`` steps
-    (and at step ``n_steps − 1``) a row of ``rows`` (time, travel, Fx, Fy, Fz, Fn, the
-    energies) at ``nrow[0]`` (incremented). ``counter`` is not used (the synchronisation
-    has its own array). Other arguments: :func:`explicit_step`.
+    1. (serial) the lateral drift of the rail grid and :func:`master_kinematics`;
+    2. (phase 2(k − k0)) the even element chunks of
+       :func:`wheelrail.fe._solid.element_chunks` and the slave chunks of the contact
+       (:func:`slave_position` and :func:`wheelrail.fe._kernels.node_to_surface` per slave),
+       the tasks ``tasks`` (:func:`interleaved_tasks`);
+    3. (serial) the master forces scattered in slave order and :func:`contact_to_nodes`;
+    4. (phase 2(k − k0) + 1) per node group g of :func:`node_groups`: the odd element chunk
+       2g + 1, then the update of the group's nodes (their forces are final then):
+       a = (f_con − f_int − m_α v − f_β) / m; v ← v + Δt a; u ← u + Δt v (a is not stored);
+       ``f`` (the internal forces, which must hold zeros on entry) is left zero;
+    5. (serial) the sums in chunk and group order, the axle and the bookkeeping.
+
+    The tasks of a phase are handed out dynamically through a counter that carries the
+    phase number: the results do not depend on which thread runs a task, because the tasks
+    of a phase write disjoint nodes, each node receives its element forces in element
+    order, and every sum is taken per task and added in task order. Nothing depends on the
+    number of threads. The ``nthr`` threads stay in one parallel region for all the steps:
+    a thread that runs out of tasks waits for the next phase spinning, then yielding the CPU
+    (:func:`_relax`), instead of falling asleep and waking late; the thread that completes a
+    phase's last task runs the serial part after it and then opens the next phase. No
+    thread ever waits for a thread that has not taken a task, so the loop also finishes if
+    fewer threads than ``nthr`` run it.
+
+    Parameters
+    ----------
+    k0, k1 : int
+        The steps to run.
+    relax : bool
+        The dynamic relaxation (axle load ``loads[k]``, ``axle`` = (mass, dashpot)) or the
+        rolling step (``axle`` = (load, mass, α m + dashpot)).
+    every, n_steps : int
+        Rolling: a row of ``rows`` every ``every`` steps and at step ``n_steps − 1``.
+    ax : (4,)
+        w, vw (the axle's vertical displacement [m] and velocity [m/s]), e_int0 (the internal
+        energy at the start of rolling [J]) and the last vertical contact force [N]; updated.
+    E : (8,)
+        Rolling: the energies in the order of the rolling result (kinetic, internal,
+        contact, friction, damping, external, contact work, plastic work) [J]; updated.
+    hist : (n_steps, 5)
+        Rolling: ``hist[k]`` = (travel, Fx, Fy, Fz, Fn).
+    rows, nrow : (m, 14), (1,) int
+        Rolling: the output rows (time, travel, Fx, Fy, Fz, Fn, the energies), written at
+        ``nrow[0]`` (incremented).
+    cps, sps, sx, sy, tt, loads : (n_steps,)
+        Per step: cos and sin of the wheel angle, rail travel and lateral drift [m], time
+        [s], axle load of the relaxation [N].
+    axle : (3,)
+        See ``relax``.
+    y_ref0 : (ny,)
+        The rail grid's y axis without drift [m] (``y_ref`` is the drifted copy).
+    cur : int
+        The row of the double buffers ``xsb``, ``xmb``, ``ftb`` (2, …) (slave positions,
+        master positions, tangential forces) that holds the previous values.
+    u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts, st_in, st_out, f, energy
+        As :func:`wheelrail.fe._solid.element_forces`; ``u`` (n, 3) [m] is read by the
+        element and contact tasks before the node update; ``energy`` may be (0, 2): the
+        element energies are then only summed per chunk, not stored.
+    echunk : (nc, 2)
+        Output: elastic energy and plastic work per element chunk.
+    tasks : (T, 2) int
+        The first phase's tasks (:func:`interleaved_tasks`).
+    ref_s, snodes, z_axle, dxs, ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt, cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip
+        The contact: as :func:`slave_position`, :func:`master_kinematics` and
+        :func:`wheelrail.fe._kernels.node_to_surface` (``z_axle`` + w is the axle height).
+    fcon : (nc, 3)
+        Output: contact forces [N] in the body frames of the contact nodes.
+    sums : (8,)
+        Output: Fx, Fy, Fz, Σ p_n, friction dissipation, penalty energy (as
+        :func:`contact_to_nodes`), elastic strain energy and plastic work [J] of ``u``.
+    v : (n, 3)
+        Half-step velocities [m/s] (updated).
+    fd_beta : (n, 3)
+        Stiffness-proportional damping forces [N] (read only if ``has_beta``).
+    m_alpha, inv_m, mass : (n,)
+        α m [kg/s], inverse (scaled) lumped masses [1/kg] (0: clamped), masses [kg].
+    cmap : (n,) int
+        Row of the node in ``fcon`` (contact nodes) or −1.
+    dt : float
+        Time step [s].
+    gptr, gnodes : int arrays
+        Node groups of :func:`node_groups`.
+    partial : (ngroups, 7), totals : (7,)
+        Output: per group and summed in group order, the sums of :data:`ADV_COLUMNS`:
+        Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old, Σ f_con·v_new, Σ f_β·v_old,
+        Σ f_β·v_new and Σ m v_k·v_k with v_k = v_new − Δt a / 2 (twice the kinetic
+        energy at the step).
+    counter : (1,) int64
+        Not used (kept for the signature; the synchronisation has its own array).
+    nthr : int
+        ``numba.get_num_threads()``.
+
+    Returns
+    -------
+    int
+        The row of the double buffers holding the last written values.
+
+    Raises
+    ------
+    RuntimeError
+        If a thread left the region before the last phase (a task raised).
     """
     if k1 <= k0:
         return cur

@@ -51,7 +51,9 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
     xarray.Dataset
         Over ``creepage``: Fx, Fy, Fy_contact, Fn [N] (steady means), Fx_std, Fy_std,
         Fy_contact_std [N] and Fx_scatter, Fy_scatter, Fy_contact_scatter [-] (standard
-        deviation over the steady window / |mean|), cpu_seconds [s]; coordinate
+        deviation over the steady window / |mean|), window_start, window_end [m] (the steady
+        window of travel, :func:`wheelrail.fe.rolling.steady_window`), steady_steps (the steps
+        averaged), cpu_seconds [s]; coordinate
         ``shifted_creepage`` = creepage − offset. Attributes: ``offset`` [-] (the creepage
         of zero force), ``slope`` [N] (initial slope dF/dc), ``fit_points``, ``component``,
         ``force`` (the force of the curve), the case's load, friction and mesh size.
@@ -77,6 +79,7 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
     rows = {n: [] for n in names}
     stds = {n: [] for n in ("Fx", "Fy", "Fy_contact")}
     cpu = []
+    window = []
     bar = None
     if progress:
         from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
@@ -98,6 +101,7 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
                 rows[n].append(r.steady[n])
             for n in stds:
                 stds[n].append(r.steady[f"{n}_std"])
+            window.append((*r.steady["window"], r.steady["n"]))
             if bar is not None:
                 bar.update(task, advance=1)
     finally:
@@ -109,6 +113,10 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
     for n, v in stds.items():
         ds[f"{n}_std"] = ("creepage", np.array(v), {"units": "N"})
         ds[f"{n}_scatter"] = ("creepage", np.abs(np.array(v) / np.array(rows[n])))
+    w = np.array(window, float).reshape(-1, 3)
+    ds["window_start"] = ("creepage", w[:, 0], {"units": "m"})
+    ds["window_end"] = ("creepage", w[:, 1], {"units": "m"})
+    ds["steady_steps"] = ("creepage", w[:, 2].astype(np.int64))
     ds["cpu_seconds"] = ("creepage", np.array(cpu), {"units": "s"})
     ds.attrs.update({"component": component, "force": force, "load": case.load,
                      "normal_load": float(contact_geometry(case)["normal_load"]),
@@ -145,7 +153,8 @@ def merge_creep_curves(curves):
     ----------
     curves : sequence of xarray.Dataset
         Results of :func:`creep_curve` for the same case and component (the attributes of
-        the first are kept); a creepage present twice keeps its first occurrence.
+        the first are kept); a creepage present twice keeps its first occurrence; a
+        variable missing from some (a file written by an older version) is NaN there.
 
     Returns
     -------
@@ -163,8 +172,14 @@ def merge_creep_curves(curves):
             if ds.attrs.get(key) != first.get(key):
                 raise InputError(f"creep curves differ in {key!r}: {ds.attrs.get(key)!r} "
                                  f"against {first.get(key)!r}")
-    ds = xr.concat([d.drop_vars("shifted_creepage") for d in curves], dim="creepage",
-                   combine_attrs="override")
+    names = {n for d in curves for n in d.data_vars}
+    parts = []
+    for d in curves:      # curves written before a variable existed: NaN there
+        d = d.drop_vars("shifted_creepage")
+        for n in names - set(d.data_vars):
+            d[n] = ("creepage", np.full(d.sizes["creepage"], np.nan))
+        parts.append(d)
+    ds = xr.concat(parts, dim="creepage", combine_attrs="override")
     _, keep = np.unique(ds.creepage.values, return_index=True)
     ds = ds.isel(creepage=np.sort(keep)).sortby("creepage")
     ds.attrs = dict(first)

@@ -320,13 +320,12 @@ def solve_explicit(case, progress, output_every, io):
 class _ContactLoop:
     """The explicit steps in preallocated buffers.
 
-    Per step the two phases of :func:`wheelrail.fe._explicit.explicit_step`: the element
+    Per step the two phases of :func:`wheelrail.fe._explicit.run_steps`: the element
     forces (into ``f``, which must hold zeros: the node update leaves it so), the surface
     kinematics and :func:`wheelrail.fe._kernels.node_to_surface` per slave, the contact
     forces into ``fcon`` (rows: slaves in the wheel frame, then the master grid) and the
     node update (:attr:`totals`: its sums, :data:`wheelrail.fe._explicit.ADV_COLUMNS`);
-    :meth:`run` runs blocks of steps in one parallel region
-    (:func:`wheelrail.fe._explicit.run_steps`). The
+    :meth:`run` runs blocks of steps in one parallel region. The
     per-slave results are those of :meth:`wheelrail.fe.model.Model.contact` (same positions,
     increments, normals and contact law). Positions and tangential forces are
     double-buffered (row :attr:`cur` holds the last ones); :attr:`sums` holds Fx, Fy, Fz,
