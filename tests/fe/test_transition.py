@@ -15,7 +15,7 @@ from wheelrail.fe.transition_mesh import (
     sweep_section,
     wheel_section,
 )
-from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose
+from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose, yawed_contact
 from wheelrail.fe.transition_track import Suspension, TrackStructure
 
 S1002 = wr.profiles.load("S1002")
@@ -100,6 +100,67 @@ def test_flange_contact_angle_against_the_rigid_contact_search():
     assert 65 < fe < 75
     assert fe == pytest.approx(ang, abs=2.0)
     assert fe == pytest.approx(np.degrees(rigid_pose(case, yf + 3e-4)["contact_angle"]), abs=2.0)
+
+
+def _first_flange(has_flange, lo, hi, n=14):
+    """Smallest lateral offset in [lo, hi] where ``has_flange`` turns true (bisection)."""
+    for _ in range(n):
+        m = 0.5 * (lo + hi)
+        lo, hi = (lo, m) if has_flange(m) else (m, hi)
+    return hi
+
+
+def test_yawed_first_flange_contact_against_the_wheelset_contact_search():
+    """First flange touch of the yawed wheel (S1002 on 54E1 1:40) against wr.contact_points
+    with yaw (an independent search: whole wheelset with roll, yawed about its centre):
+    the contact angle does not depend on the angle of attack (≈ 70°, the flange flank of
+    S1002), the flange contact's lead ahead of the axle grows in proportion to it."""
+    ws = wr.Wheelset(S1002, nominal_radius=0.46)
+    tr = wr.Track(R54, inclination=1 / 40)
+
+    def cp_flange(y, yaw):
+        r = wr.contact_points(ws, tr, y, yaw=yaw).right
+        k = np.flatnonzero(r.contact_angle > np.radians(45))
+        return (r.contact_angle[k[0]], r.x[k[0]]) if k.size else None
+
+    leads = []
+    for aoa in (0.015, 0.025):
+        case = seed004_case(aoa)
+        yf = flange_contact_offset(case)
+        y1 = _first_flange(lambda y: yawed_contact(case, y, aoa)["flange"]["gap"] <= 0,
+                           yf - 1e-3, yf)
+        f = yawed_contact(case, y1, aoa)["flange"]
+        y2 = _first_flange(lambda y: cp_flange(y, aoa) is not None, 0.0055, 0.0065)
+        ang, x = cp_flange(y2, aoa)
+        assert np.degrees(f["angle"]) == pytest.approx(np.degrees(ang), abs=0.5)
+        assert 68 < np.degrees(f["angle"]) < 72
+        assert f["x"] == pytest.approx(x, rel=0.05)
+        assert y1 < yf                       # the yawed flange touches before the unyawed
+        leads.append(f["x"] / aoa)
+    assert leads[0] == pytest.approx(leads[1], rel=0.02)   # lead ∝ α (≈ 1.33 m · α)
+    # no yaw: the same contact as the 2-D rigid search
+    case = seed004_case(0.02)
+    yf = flange_contact_offset(case)
+    for y in (yf - 2e-3, yf + 5e-4):
+        r = yawed_contact(case, y, 0.0)
+        p = rigid_pose(case, y)
+        assert r["z_off"] == pytest.approx(p["z_off"], abs=2e-6)
+        hit = r["flange"] if r["flange"]["gap"] <= r["tread"]["gap"] else r["tread"]
+        assert hit["angle"] == pytest.approx(p["contact_angle"], abs=np.radians(1.0))
+
+
+def test_fe_contact_search_at_the_rigid_yawed_flange_pose():
+    """The FE contact search on a 1 mm mesh, with the wheel yawed by 20 mrad at the rigid
+    yawed pose (:func:`yawed_contact`) lowered by 50 µm: one flange patch at the rigid
+    contact angle (≈ 70°) and lead (within two elements)."""
+    case = seed004_case(0.020, mesh_size=1e-3)
+    y = flange_contact_offset(case) - 2e-4
+    rig = yawed_contact(case, y, 0.020)
+    (flange,) = pose_contact(case, y, overlap=5e-5, yaw=0.020, half_length=0.05,
+                             z_off=rig["z_off"])
+    assert np.degrees(flange["contact_angle"]) == pytest.approx(
+        np.degrees(rig["flange"]["angle"]), abs=1.5)
+    assert flange["x"] == pytest.approx(rig["flange"]["x"], abs=2e-3)
 
 
 def test_track_and_suspension_inputs_are_validated():

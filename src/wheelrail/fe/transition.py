@@ -563,11 +563,13 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
 
 
 def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
-                 half_length: float = 0.02, yaw: float = 0.0):
+                 half_length: float = 0.02, yaw: float = 0.0, z_off: float | None = None):
     """Rigid-pose contact of short wheel and rail pieces (no dynamics): the wheel profile's
     origin at lateral offset ``y_off`` [m] in the inclined rail frame, lowered by ``overlap``
-    [m] below the rigid first touch without yaw, the wheel yawed by ``yaw`` [rad] about the
-    vertical through its axle centre; one evaluation of the contact search with μ = 0.
+    [m] below the rigid first touch without yaw (or below the height ``z_off`` [m] of the
+    profile origin, e.g. ``yawed_contact(case, y_off, yaw)["z_off"]``), the wheel yawed by
+    ``yaw`` [rad] about the vertical through its axle centre; one evaluation of the contact
+    search with μ = 0 on the case's mesh size.
 
     Returns
     -------
@@ -592,7 +594,8 @@ def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
     xm = rail.nodes[master]
     b = build_buckets(xm, quads, cell=max(4 * h, 6e-3), margin=4 * h)
     slave = wheel.surface_nodes.ravel()
-    c0 = np.array([0.0, y_off, R + pose["z_off"] - overlap])
+    z0 = pose["z_off"] if z_off is None else float(z_off)
+    c0 = np.array([0.0, y_off, R + z0 - overlap])
     xs = wheel.nodes[slave] @ _rot(yaw, 0.0).T + c0
     p = wheel.nodes[wheel.surface]
     qa = 0.5 * np.linalg.norm(np.cross(p[..., 2, :] - p[..., 0, :], p[..., 3, :] - p[..., 1, :]),

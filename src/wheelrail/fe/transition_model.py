@@ -52,6 +52,7 @@ from .transition_mesh import (
 from .transition_track import SpringSet, Suspension, TrackStructure
 
 __all__ = ["TransitionCase", "TransitionModel", "build_transition_model", "rigid_pose",
+           "yawed_contact",
            "model_size_estimate"]
 
 
@@ -239,6 +240,104 @@ def flange_contact_offset(case, lo=-0.02, hi=0.02, n=801):
         else:
             a = m
     return float(b)
+
+
+def yawed_contact(case, y_off: float, yaw: float, hold: str = "touch", dy: float = 1e-5,
+                  phi_max: float = 0.3) -> dict:
+    """Rigid contact of the wheel yawed by ``yaw`` [rad] about the vertical through its
+    profile origin, at lateral offset ``y_off`` [m] in the inclined rail frame (the pose of
+    the transition runs' wheel, without roll).
+
+    The rail is prismatic along x, so the contact lies in the wheel's shadow on the (y, z)
+    plane: for each rail point y the lowest wheel point over it is found exactly on every
+    profile station (the circle of radius r(y_w) yawed by α reaches y at
+    sin φ = (y − y_w cos α) / (r sin α); its height R − r cos φ, its position along the
+    rail x = r sin φ cos α − y_w sin α). The contact angle is the rail's slope at the
+    contact point (the rail's normal has no x component).
+
+    Parameters
+    ----------
+    case : TransitionCase
+    y_off, yaw : float
+        Lateral offset [m] and yaw angle [rad] of the wheel.
+    hold : {"touch", "tread"}
+        ``"touch"``: the wheel rests where it first touches the rail (on the flange once
+        that is reached: it climbs); ``"tread"``: the wheel's height is set by its tread
+        (rail slope below ``case.patch_split_angle``) and the flange may overlap the rail
+        (the elastic runs keep the tread loaded).
+    dy : float
+        Sampling of the rail and the wheel profile [m].
+    phi_max : float
+        Largest angle about the axle searched [rad].
+
+    Returns
+    -------
+    dict
+        ``z_off`` (height of the profile origin [m]); ``tread`` and ``flange`` (rail slope
+        below / above the split angle): ``angle`` [rad], ``x`` (lead ahead of the profile
+        origin [m]), ``y``, ``z`` (rail point [m]) and ``gap`` [m, vertical, negative:
+        overlap] of the closest point; for ``flange`` also ``overlap_angle`` and
+        ``overlap_x`` (weighted by the normal overlap; NaN without overlap) and
+        ``overlap_x_range`` [m].
+    """
+    if hold not in ("touch", "tread"):
+        raise InputError(f"hold must be 'touch' or 'tread', got {hold!r}")
+    (wy, wz), (ry, rz) = _curves(case)
+    o = np.argsort(ry)
+    Y = np.arange(ry.min(), ry.max(), dy)
+    Zr = np.interp(Y, ry[o], rz[o])
+    ang = np.arctan(np.abs(np.gradient(Zr, Y)))
+    ow = np.argsort(wy)
+    yw = np.arange(wy.min(), wy.max(), dy)
+    R = case.radius
+    r = R - np.interp(yw, wy[ow], wz[ow])
+    ca, sa = np.cos(yaw), np.sin(yaw)
+    Yw = Y - y_off                                  # rail points in the wheel's lateral frame
+    zw = np.full(Y.size, np.inf)
+    xw = np.zeros(Y.size)
+    if abs(sa) < 1e-12:
+        ok = (Yw > yw[0]) & (Yw < yw[-1])
+        zw[ok] = R - np.interp(Yw[ok], yw, r)
+    else:
+        half = int(np.ceil(r.max() * abs(sa) * np.sin(phi_max) / (dy * ca))) + 1
+        win = np.arange(-half, half + 1)
+        i0 = np.round((Yw / ca - yw[0]) / dy).astype(np.int64)
+        for a in range(0, Y.size, 2000):
+            idx = i0[a:a + 2000, None] + win[None, :]
+            valid = (idx >= 0) & (idx < yw.size)
+            idx = np.clip(idx, 0, yw.size - 1)
+            rr = r[idx]
+            sphi = (Yw[a:a + 2000, None] - yw[idx] * ca) / (rr * sa)
+            valid &= np.abs(sphi) < np.sin(phi_max)
+            z = np.where(valid, R - rr * np.sqrt(np.clip(1.0 - sphi ** 2, 0.0, 1.0)), np.inf)
+            k = np.argmin(z, axis=1)
+            row = np.arange(z.shape[0])
+            zw[a:a + 2000] = z[row, k]
+            xw[a:a + 2000] = (rr[row, k] * sphi[row, k] * ca - yw[idx[row, k]] * sa)
+    ok = np.isfinite(zw)
+    gap0 = np.where(ok, zw - Zr, np.inf)
+    split = case.patch_split_angle
+    tread = ok & (ang < split)
+    flange = ok & (ang >= split)
+    z_off = -float(gap0.min() if hold == "touch" else gap0[tread].min())
+    gap = gap0 + z_off
+    out = {"z_off": z_off}
+    for name, reg in (("tread", tread), ("flange", flange)):
+        if not reg.any():
+            out[name] = None
+            continue
+        k = np.flatnonzero(reg)[np.argmin(gap[reg])]
+        out[name] = {"angle": float(ang[k]), "x": float(xw[k]), "y": float(Y[k]),
+                     "z": float(Zr[k]), "gap": float(gap[k])}
+    if out["flange"] is not None:
+        ov = flange & (gap < 0)
+        w = -gap[ov] * np.cos(ang[ov])                 # normal overlap
+        f = out["flange"]
+        f["overlap_angle"] = float(np.sum(w * ang[ov]) / w.sum()) if ov.any() else np.nan
+        f["overlap_x"] = float(np.sum(w * xw[ov]) / w.sum()) if ov.any() else np.nan
+        f["overlap_x_range"] = ((float(xw[ov].min()), float(xw[ov].max())) if ov.any()
+                                else (np.nan, np.nan))
+    return out
 
 
 # ----------------------------------------------------------------------------- model
