@@ -278,7 +278,7 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     case = tmp_path / "t.toml"
     case.write_text('[fe]\nseed004 = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
                     'travel = 1.2e-3\nsettle = 0.5e-3\nflange_clearance = 3e-3\n'
-                    'output_interval = 6e-6\n')
+                    'output_interval = 6e-6\nfield_travel = [0.6e-3, 1.2e-3]\n')
     out = tmp_path / "out"
     assert main(["fe", str(case), "--out", str(out), "--estimate-only"]) == 0
     text = capsys.readouterr().out
@@ -286,10 +286,65 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     assert main(["fe", str(case), "--out", str(out), "--restart-every", "60"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["mode"] == "transition" and summary["steps"] > 100
-    for f in ("patches.nc", "history.nc", "restart.npz"):
+    for f in ("patches.nc", "history.nc", "restart.npz", "contact_fields.nc"):
         assert (out / f).is_file()
     assert (out / "transition.png").stat().st_size > 10_000
+    for kind in ("stress", "slip"):
+        assert (out / f"contact_fields_{kind}.png").stat().st_size > 10_000
     bad = tmp_path / "bad.toml"
     bad.write_text('[fe]\nseed004 = "reduced"\nangle_of_attak = 0.025\n')
     assert main(["fe", str(bad), "--out", str(out)]) != 0
     assert "angle_of_attak" in capsys.readouterr().err
+
+
+def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transition, tmp_path):
+    """The surface fields recorded at the outputs in a travel window: the nodal pressures
+    and shear stresses integrate to the per-patch forces of the same outputs (computed
+    from the contact forces directly by ``patch_summary``), the adhering area by the
+    tolerance definition matches the patch's adhering fraction, the micro-slip lies in the
+    contact plane, and the maps are drawn; a bad window is refused."""
+    import xarray as xr
+
+    from wheelrail.fe.plots import plot_contact_fields
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    r = run_transition(case.replace(field_travel=(0.6e-3, 1.1e-3), field_stride=2),
+                       model=model)
+    f = r.contact_fields
+    assert f is not None and set(f.dims) == {"time", "row", "col"}
+    s = f.travel.values
+    assert s.min() >= 0.6e-3 and s.max() <= 1.1e-3 and f.sizes["time"] >= 2
+    P = r.patches
+    every = np.flatnonzero((P.travel.values >= 0.6e-3) & (P.travel.values <= 1.1e-3))
+    np.testing.assert_array_equal(f.time.values, P.time.values[every[::2]])
+    for i, tt in enumerate(f.time.values):
+        k = int(np.flatnonzero(P.time.values == tt)[0])
+        sel = f.patch.values[i] == 1
+        A = f.area.values[i][sel]
+        assert sel.sum() == P.n_nodes.values[k, 0] > 0
+        assert np.sum(f.pressure.values[i][sel] * A) == pytest.approx(P.Fn.values[k, 0],
+                                                                      rel=1e-9)
+        # shear on the rail = −(tangential force on the wheel), along the rail
+        assert np.sum(f.traction_x.values[i][sel] * A) == pytest.approx(
+            -P.F_long.values[k, 0], rel=1e-9, abs=1e-6)
+        adh = np.sum(A[f.state.values[i][sel] == 2]) / A.sum()
+        assert adh == pytest.approx(P.adhesion.values[k, 0], abs=1e-12)
+        assert (f.state.values[i][~sel & (f.patch.values[i] == 0)] == 0).all()
+        # micro-slip ⟂ the contact normal (prismatic rail: n = (0, −sin φ, cos φ))
+        phi = f.contact_angle.values[i][sel]
+        vn = -f.slip_y.values[i][sel] * np.sin(phi) + f.slip_z.values[i][sel] * np.cos(phi)
+        v = np.hypot(np.hypot(f.slip_x.values[i][sel], f.slip_y.values[i][sel]),
+                     f.slip_z.values[i][sel])
+        assert np.all(np.abs(vn) <= 0.02 * v.max() + 1e-12)
+    path = tmp_path / "fields.nc"
+    f.to_netcdf(path)
+    with xr.open_dataset(path) as g:
+        np.testing.assert_array_equal(g.pressure.values, f.pressure.values)
+    for kind in ("stress", "slip", "line"):
+        plot_contact_fields(f, kind=kind, mu=case.mu, path=tmp_path / f"{kind}.png")
+        assert (tmp_path / f"{kind}.png").stat().st_size > 10_000
+    with pytest.raises(InputError, match="field_travel"):
+        case.replace(field_travel=(0.01, 0.005))
+    with pytest.raises(InputError, match="field_stride"):
+        case.replace(field_stride=0)

@@ -115,6 +115,12 @@ class TransitionCase:
     wave_time : float
         Duration [s] from the start over which the vertical velocity of the rail's surface
         line through the start contact is stored every step (wave-speed analysis).
+    field_travel : tuple of float
+        ``(from, to)`` [m] of travel in which the contact's surface fields (pressure,
+        traction, micro-slip, adhesion/slip per wheel surface node) are recorded at the
+        outputs (``TransitionResult.contact_fields``); empty: none.
+    field_stride : int
+        Record the surface fields at every ``field_stride``-th output in that window.
     """
 
     wheel: Profile
@@ -144,6 +150,8 @@ class TransitionCase:
     settle_damping: float = 1000.0
     patch_split_angle: float = float(np.radians(45.0))
     wave_time: float = 0.0
+    field_travel: tuple = ()
+    field_stride: int = 1
 
     def __post_init__(self):
         for name in ("radius", "speed", "mu", "travel", "mesh_size", "section_h_max",
@@ -160,6 +168,15 @@ class TransitionCase:
         object.__setattr__(self, "courant", float(in_range("courant", self.courant, 0.0, 1.0,
                                                            lo_open=True)))
         object.__setattr__(self, "grading", float(in_range("grading", self.grading, 1.0, 2.0)))
+        ft = tuple(float(v) for v in self.field_travel)
+        if ft and not (len(ft) == 2 and 0.0 <= ft[0] < ft[1]):
+            raise InputError(f"field_travel must be (from, to) with 0 <= from < to [m], got "
+                             f"{self.field_travel!r}")
+        object.__setattr__(self, "field_travel", ft)
+        if int(self.field_stride) != self.field_stride or self.field_stride < 1:
+            raise InputError(f"field_stride must be a positive integer, got "
+                             f"{self.field_stride!r}")
+        object.__setattr__(self, "field_stride", int(self.field_stride))
         if self.traction >= self.mu:
             raise InputError(f"traction {self.traction!r} must stay below mu {self.mu!r}")
         if self.mesh_size > 5e-3:
