@@ -348,3 +348,30 @@ def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transit
         case.replace(field_travel=(0.01, 0.005))
     with pytest.raises(InputError, match="field_stride"):
         case.replace(field_stride=0)
+
+
+def test_full_size_wheel_plate_passes_the_aspect_check():
+    """The 1 mm case's wheel plate (radial size from ``plate_size``) swept over the fine
+    arc at h/R: every element passes ``check_quality`` (aspect ≤ 60; with the former
+    30 mm radial size the hub elements had 84.7)."""
+    from wheelrail.fe.transition_mesh import wheel_plate_rows
+    from wheelrail.fe.transition_model import PLATE_HUB, plate_size
+
+    case = seed004_case(0.025, size="full")
+    assert plate_size(case) < 0.03
+    rows = wheel_plate_rows(-0.03, hub=PLATE_HUB, h_max=plate_size(case))
+    th = spacing_axis(-0.02, 0.02, [(-0.01, 0.01)], case.mesh_size / case.radius,
+                      case.grading, case.theta_h_max / case.radius)
+    plate = sweep_section(rows, th, case.radius, name="wheel plate")
+    assert plate.meta["quality"]["max_aspect"] <= 60
+    with pytest.raises(MeshQualityError, match="aspect"):
+        sweep_section(wheel_plate_rows(-0.03, hub=PLATE_HUB, h_max=0.03), th, case.radius,
+                      name="wheel plate")
+
+
+def test_a_run_longer_than_its_model_is_refused(tiny_transition):
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    with pytest.raises(InputError, match="fine zone"):
+        run_transition(case.replace(travel=2 * case.travel), model=model)

@@ -145,9 +145,10 @@ def stable_step(model) -> float:
     return dt
 
 
-def transition_time_estimate(model, dt=None) -> dict:
-    """Steps and an estimated wall time [s] before a run (from :data:`NS_PER_ELEMENT_STEP`)."""
-    c = model.case
+def transition_time_estimate(model, dt=None, case=None) -> dict:
+    """Steps and an estimated wall time [s] before a run (from :data:`NS_PER_ELEMENT_STEP`)
+    of ``case`` (default: the case the model was built for) on ``model``."""
+    c = case if case is not None else model.case
     dt = dt or c.courant * stable_step(model)
     steps = int(np.ceil(c.travel / c.speed / dt))
     return {"time_step": dt, "steps": steps, "elements": model.n_elements,
@@ -248,8 +249,11 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     TransitionResult
     """
     m = model if model is not None else build_transition_model(case)
+    if case.travel > m.case.travel * (1 + 1e-9):
+        raise InputError(f"travel {case.travel!r} m is longer than the {m.case.travel!r} m the "
+                         f"model's fine zone was built for")
     dt = case.courant * stable_step(m)
-    est = transition_time_estimate(m, dt)
+    est = transition_time_estimate(m, dt, case)
     if progress or estimate_only:
         msg = (f"transition FE: {m.n_elements} elements, {est['steps']} steps of "
                f"{dt * 1e9:.1f} ns, estimated {est['estimate_s'] / 60:.1f} min")

@@ -357,6 +357,19 @@ def yawed_contact(case, y_off: float, yaw: float, hold: str = "touch", dy: float
     return out
 
 
+#: Height of the wheel plate's hub end above the tape circle [m] (radius R − 0.30).
+PLATE_HUB = 0.30
+
+
+def plate_size(case) -> float:
+    """Radial element size of the wheel plate [m]: 30 mm (or ``section_h_max``), but at
+    most 50 × the plate's circumferential size at the hub in the fine arc,
+    h (R − hub) / R, so that the elements keep an aspect ratio below the mesh check's 60
+    (the 1 mm mesh had 84.7 with 30 mm)."""
+    return min(max(case.section_h_max, 0.03),
+               50.0 * case.mesh_size * (case.radius - PLATE_HUB) / case.radius)
+
+
 # ----------------------------------------------------------------------------- model
 @dataclass(eq=False)
 class TransitionModel:
@@ -425,7 +438,8 @@ def build_transition_model(case: TransitionCase) -> TransitionModel:
     wheel_rows, wheel_curve, _ = wheel_section(
         case.wheel, h, [(yw_tread - b_t, yw_tread + b_t), (yw_flange - b_f, yw_flange + b_f)],
         ratio=case.grading, h_max=case.section_h_max)
-    plate_rows = wheel_plate_rows(wheel_rows[-1, 0, 1], h_max=max(case.section_h_max, 0.03))
+    plate_rows = wheel_plate_rows(wheel_rows[-1, 0, 1], hub=PLATE_HUB,
+                                  h_max=plate_size(case))
     # ---- rail along x: the wheel starts at x = 0; the fine band covers the travel plus the
     # flange contact's lead ahead of the axle
     track = case.track
