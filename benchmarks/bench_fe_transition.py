@@ -172,6 +172,8 @@ def main():
     ap.add_argument("--restart-every", type=int, default=0, help="steps between them")
     ap.add_argument("--report-restart", help="report (and --results: save) the outputs "
                     "stored in this restart file of a run with the same --aoa/--travel")
+    ap.add_argument("--clearance", type=float, default=None,
+                    help="flange clearance at the start [m] (reduced case: 3e-3)")
     ap.add_argument("--fields", type=float, nargs=2, metavar=("FROM", "TO"),
                     help="record the contact's surface fields over this travel [m] "
                          "(written as NAME_fields.nc with --results)")
@@ -181,7 +183,8 @@ def main():
         with open(a.report, "rb") as f:
             report(pickle.load(f))
         return
-    extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel)) if v is not None}
+    extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel),
+                               ("flange_clearance", a.clearance)) if v is not None}
     if a.fields:
         extra.update(field_travel=tuple(a.fields), field_stride=a.field_stride)
     if a.report_restart:
