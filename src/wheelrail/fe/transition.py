@@ -635,7 +635,7 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
         half of μ; with less, the spin of the flange-root contact turns the tread shear
         sideways well before the flange touches), 30 mm of damped settling (5–10 min CPU
         on 2 cores); ``"full"``: 1 mm elements along the whole 0.67 m of travel, five
-        sleepers (1.49 M elements, 4.4 GB, 402 066 steps of 75 ns: ≈ 41 h CPU measured
+        sleepers (1.49 M elements, 4.4 GB, 402 066 steps of 75 ns: ≈ 41–45 h CPU measured
         on one thread; not yet run).
     **changes
         Any :class:`TransitionCase` field.
