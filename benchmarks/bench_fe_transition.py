@@ -14,7 +14,8 @@ against the wheel load) and the patches after it, with the load of the machine. 
 ``--results NAME`` writes ``NAME_patches.nc``, ``NAME_history.nc``, ``NAME_info.json``,
 ``NAME.png`` and ``report_NAME.txt`` into ``benchmarks/results/fe_transition/``;
 ``--restart-file``/``--restart-every`` write restart files during the run and
-``--restart`` continues one.
+``--restart`` continues one; ``--fields FROM TO`` records the contact's surface fields
+over that travel (``NAME_fields.nc``).
 """
 
 from __future__ import annotations
@@ -135,6 +136,8 @@ def one(kw, save=None, figure=None, results=None, restart=None, restart_file=Non
     load0 = os.getloadavg()[0]
     r = wr.fe.run_transition(case, model=model, progress=True, restart=restart,
                              restart_file=restart_file, restart_every=restart_every)
+    if r.contact_fields is not None and results:
+        r.contact_fields.to_netcdf(os.path.join(RESULTS, f"{results}_fields.nc"))
     info = {k: v for k, v in r.info.items() if k != "fields"}
     run = {"patches": r.patches, "history": r.history, "info": info, "case_kw": kw,
            "load_avg": [load0, os.getloadavg()[0]]}
@@ -169,12 +172,21 @@ def main():
     ap.add_argument("--restart-every", type=int, default=0, help="steps between them")
     ap.add_argument("--report-restart", help="report (and --results: save) the outputs "
                     "stored in this restart file of a run with the same --aoa/--travel")
+    ap.add_argument("--clearance", type=float, default=None,
+                    help="flange clearance at the start [m] (reduced case: 3e-3)")
+    ap.add_argument("--fields", type=float, nargs=2, metavar=("FROM", "TO"),
+                    help="record the contact's surface fields over this travel [m] "
+                         "(written as NAME_fields.nc with --results)")
+    ap.add_argument("--field-stride", type=int, default=1, help="every N-th output")
     a = ap.parse_args()
     if a.report:
         with open(a.report, "rb") as f:
             report(pickle.load(f))
         return
-    extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel)) if v is not None}
+    extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel),
+                               ("flange_clearance", a.clearance)) if v is not None}
+    if a.fields:
+        extra.update(field_travel=tuple(a.fields), field_stride=a.field_stride)
     if a.report_restart:
         from_restart(dict(angle_of_attack=a.aoa, **extra), a.report_restart, a.results)
         return

@@ -15,7 +15,7 @@ from wheelrail.fe.transition_mesh import (
     sweep_section,
     wheel_section,
 )
-from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose
+from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose, yawed_contact
 from wheelrail.fe.transition_track import Suspension, TrackStructure
 
 S1002 = wr.profiles.load("S1002")
@@ -100,6 +100,67 @@ def test_flange_contact_angle_against_the_rigid_contact_search():
     assert 65 < fe < 75
     assert fe == pytest.approx(ang, abs=2.0)
     assert fe == pytest.approx(np.degrees(rigid_pose(case, yf + 3e-4)["contact_angle"]), abs=2.0)
+
+
+def _first_flange(has_flange, lo, hi, n=14):
+    """Smallest lateral offset in [lo, hi] where ``has_flange`` turns true (bisection)."""
+    for _ in range(n):
+        m = 0.5 * (lo + hi)
+        lo, hi = (lo, m) if has_flange(m) else (m, hi)
+    return hi
+
+
+def test_yawed_first_flange_contact_against_the_wheelset_contact_search():
+    """First flange touch of the yawed wheel (S1002 on 54E1 1:40) against wr.contact_points
+    with yaw (an independent search: whole wheelset with roll, yawed about its centre):
+    the contact angle does not depend on the angle of attack (≈ 70°, the flange flank of
+    S1002), the flange contact's lead ahead of the axle grows in proportion to it."""
+    ws = wr.Wheelset(S1002, nominal_radius=0.46)
+    tr = wr.Track(R54, inclination=1 / 40)
+
+    def cp_flange(y, yaw):
+        r = wr.contact_points(ws, tr, y, yaw=yaw).right
+        k = np.flatnonzero(r.contact_angle > np.radians(45))
+        return (r.contact_angle[k[0]], r.x[k[0]]) if k.size else None
+
+    leads = []
+    for aoa in (0.015, 0.025):
+        case = seed004_case(aoa)
+        yf = flange_contact_offset(case)
+        y1 = _first_flange(lambda y: yawed_contact(case, y, aoa)["flange"]["gap"] <= 0,
+                           yf - 1e-3, yf)
+        f = yawed_contact(case, y1, aoa)["flange"]
+        y2 = _first_flange(lambda y: cp_flange(y, aoa) is not None, 0.0055, 0.0065)
+        ang, x = cp_flange(y2, aoa)
+        assert np.degrees(f["angle"]) == pytest.approx(np.degrees(ang), abs=0.5)
+        assert 68 < np.degrees(f["angle"]) < 72
+        assert f["x"] == pytest.approx(x, rel=0.05)
+        assert y1 < yf                       # the yawed flange touches before the unyawed
+        leads.append(f["x"] / aoa)
+    assert leads[0] == pytest.approx(leads[1], rel=0.02)   # lead ∝ α (≈ 1.33 m · α)
+    # no yaw: the same contact as the 2-D rigid search
+    case = seed004_case(0.02)
+    yf = flange_contact_offset(case)
+    for y in (yf - 2e-3, yf + 5e-4):
+        r = yawed_contact(case, y, 0.0)
+        p = rigid_pose(case, y)
+        assert r["z_off"] == pytest.approx(p["z_off"], abs=2e-6)
+        hit = r["flange"] if r["flange"]["gap"] <= r["tread"]["gap"] else r["tread"]
+        assert hit["angle"] == pytest.approx(p["contact_angle"], abs=np.radians(1.0))
+
+
+def test_fe_contact_search_at_the_rigid_yawed_flange_pose():
+    """The FE contact search on a 1 mm mesh, with the wheel yawed by 20 mrad at the rigid
+    yawed pose (:func:`yawed_contact`) lowered by 50 µm: one flange patch at the rigid
+    contact angle (≈ 70°) and lead (within two elements)."""
+    case = seed004_case(0.020, mesh_size=1e-3)
+    y = flange_contact_offset(case) - 2e-4
+    rig = yawed_contact(case, y, 0.020)
+    (flange,) = pose_contact(case, y, overlap=5e-5, yaw=0.020, half_length=0.05,
+                             z_off=rig["z_off"])
+    assert np.degrees(flange["contact_angle"]) == pytest.approx(
+        np.degrees(rig["flange"]["angle"]), abs=1.5)
+    assert flange["x"] == pytest.approx(rig["flange"]["x"], abs=2e-3)
 
 
 def test_track_and_suspension_inputs_are_validated():
@@ -217,7 +278,7 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     case = tmp_path / "t.toml"
     case.write_text('[fe]\nseed004 = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
                     'travel = 1.2e-3\nsettle = 0.5e-3\nflange_clearance = 3e-3\n'
-                    'output_interval = 6e-6\n')
+                    'output_interval = 6e-6\nfield_travel = [0.6e-3, 1.2e-3]\n')
     out = tmp_path / "out"
     assert main(["fe", str(case), "--out", str(out), "--estimate-only"]) == 0
     text = capsys.readouterr().out
@@ -225,10 +286,92 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     assert main(["fe", str(case), "--out", str(out), "--restart-every", "60"]) == 0
     summary = json.loads((out / "summary.json").read_text())
     assert summary["mode"] == "transition" and summary["steps"] > 100
-    for f in ("patches.nc", "history.nc", "restart.npz"):
+    for f in ("patches.nc", "history.nc", "restart.npz", "contact_fields.nc"):
         assert (out / f).is_file()
     assert (out / "transition.png").stat().st_size > 10_000
+    for kind in ("stress", "slip"):
+        assert (out / f"contact_fields_{kind}.png").stat().st_size > 10_000
     bad = tmp_path / "bad.toml"
     bad.write_text('[fe]\nseed004 = "reduced"\nangle_of_attak = 0.025\n')
     assert main(["fe", str(bad), "--out", str(out)]) != 0
     assert "angle_of_attak" in capsys.readouterr().err
+
+
+def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transition, tmp_path):
+    """The surface fields recorded at the outputs in a travel window: the nodal pressures
+    and shear stresses integrate to the per-patch forces of the same outputs (computed
+    from the contact forces directly by ``patch_summary``), the adhering area by the
+    tolerance definition matches the patch's adhering fraction, the micro-slip lies in the
+    contact plane, and the maps are drawn; a bad window is refused."""
+    import xarray as xr
+
+    from wheelrail.fe.plots import plot_contact_fields
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    r = run_transition(case.replace(field_travel=(0.6e-3, 1.1e-3), field_stride=2),
+                       model=model)
+    f = r.contact_fields
+    assert f is not None and set(f.dims) == {"time", "row", "col"}
+    s = f.travel.values
+    assert s.min() >= 0.6e-3 and s.max() <= 1.1e-3 and f.sizes["time"] >= 2
+    P = r.patches
+    every = np.flatnonzero((P.travel.values >= 0.6e-3) & (P.travel.values <= 1.1e-3))
+    np.testing.assert_array_equal(f.time.values, P.time.values[every[::2]])
+    for i, tt in enumerate(f.time.values):
+        k = int(np.flatnonzero(P.time.values == tt)[0])
+        sel = f.patch.values[i] == 1
+        A = f.area.values[i][sel]
+        assert sel.sum() == P.n_nodes.values[k, 0] > 0
+        assert np.sum(f.pressure.values[i][sel] * A) == pytest.approx(P.Fn.values[k, 0],
+                                                                      rel=1e-9)
+        # shear on the rail = −(tangential force on the wheel), along the rail
+        assert np.sum(f.traction_x.values[i][sel] * A) == pytest.approx(
+            -P.F_long.values[k, 0], rel=1e-9, abs=1e-6)
+        adh = np.sum(A[f.state.values[i][sel] == 2]) / A.sum()
+        assert adh == pytest.approx(P.adhesion.values[k, 0], abs=1e-12)
+        assert (f.state.values[i][~sel & (f.patch.values[i] == 0)] == 0).all()
+        # micro-slip ⟂ the contact normal (prismatic rail: n = (0, −sin φ, cos φ))
+        phi = f.contact_angle.values[i][sel]
+        vn = -f.slip_y.values[i][sel] * np.sin(phi) + f.slip_z.values[i][sel] * np.cos(phi)
+        v = np.hypot(np.hypot(f.slip_x.values[i][sel], f.slip_y.values[i][sel]),
+                     f.slip_z.values[i][sel])
+        assert np.all(np.abs(vn) <= 0.02 * v.max() + 1e-12)
+    path = tmp_path / "fields.nc"
+    f.to_netcdf(path)
+    with xr.open_dataset(path) as g:
+        np.testing.assert_array_equal(g.pressure.values, f.pressure.values)
+    for kind in ("stress", "slip", "line"):
+        plot_contact_fields(f, kind=kind, mu=case.mu, path=tmp_path / f"{kind}.png")
+        assert (tmp_path / f"{kind}.png").stat().st_size > 10_000
+    with pytest.raises(InputError, match="field_travel"):
+        case.replace(field_travel=(0.01, 0.005))
+    with pytest.raises(InputError, match="field_stride"):
+        case.replace(field_stride=0)
+
+
+def test_full_size_wheel_plate_passes_the_aspect_check():
+    """The 1 mm case's wheel plate (radial size from ``plate_size``) swept over the fine
+    arc at h/R: every element passes ``check_quality`` (aspect ≤ 60; with the former
+    30 mm radial size the hub elements had 84.7)."""
+    from wheelrail.fe.transition_mesh import wheel_plate_rows
+    from wheelrail.fe.transition_model import PLATE_HUB, plate_size
+
+    case = seed004_case(0.025, size="full")
+    assert plate_size(case) < 0.03
+    rows = wheel_plate_rows(-0.03, hub=PLATE_HUB, h_max=plate_size(case))
+    th = spacing_axis(-0.02, 0.02, [(-0.01, 0.01)], case.mesh_size / case.radius,
+                      case.grading, case.theta_h_max / case.radius)
+    plate = sweep_section(rows, th, case.radius, name="wheel plate")
+    assert plate.meta["quality"]["max_aspect"] <= 60
+    with pytest.raises(MeshQualityError, match="aspect"):
+        sweep_section(wheel_plate_rows(-0.03, hub=PLATE_HUB, h_max=0.03), th, case.radius,
+                      name="wheel plate")
+
+
+def test_a_run_longer_than_its_model_is_refused(tiny_transition):
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    with pytest.raises(InputError, match="fine zone"):
+        run_transition(case.replace(travel=2 * case.travel), model=model)

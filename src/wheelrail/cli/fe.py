@@ -24,7 +24,10 @@ The case file holds one ``[fe]`` table; every key is a
   :class:`wheelrail.fe.TransitionCase` field, e.g. ``angle_of_attack = 0.025``,
   ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional). Writes
   patches.nc (per-patch histories), history.nc, summary.json, transition.png, wave.png
-  (with ``wave_time`` > 0) and restart.npz.
+  (with ``wave_time`` > 0) and restart.npz; with ``field_travel = [FROM, TO]`` (m of
+  travel) also contact_fields.nc (pressure, shear, micro-slip, adhesion/slip per wheel
+  surface node at every ``field_stride``-th output) and contact_fields_stress.png /
+  contact_fields_slip.png (maps of both patches around the first flange patch).
 
 A plastic run also writes fields.nc (equivalent plastic strain, stresses, von Mises per
 element) and, with ``passes > 1``, passes.nc; restart files carry the plastic state.
@@ -463,6 +466,8 @@ def _run_transition(case, args, console) -> int:
                        restart_every=args.restart_every or 0)
     r.patches.to_netcdf(out / "patches.nc")
     r.history.to_netcdf(out / "history.nc")
+    if r.contact_fields is not None:
+        r.contact_fields.to_netcdf(out / "contact_fields.nc")
     info = {k: v for k, v in r.info.items() if k not in ("fields", "wave")}
     summary = {"mode": "transition", "n_elements": model.n_elements,
                **{k: float(v) for k, v in info.items()}}
@@ -483,6 +488,12 @@ def _run_transition(case, args, console) -> int:
                         title=f"angle of attack {case.angle_of_attack * 1e3:g} mrad")
         if r.info.get("wave") is not None:
             plot_wave(r.info["wave"], fit, path=out / "wave.png")
+        if r.contact_fields is not None:
+            from ..fe.plots import plot_contact_fields
+
+            for kind in ("stress", "slip"):
+                plot_contact_fields(r.contact_fields, kind=kind,
+                                    path=out / f"contact_fields_{kind}.png")
     onset = r.info["onset_travel"]
     console.print(f"  onset of two-point contact: "
                   f"{'none' if onset != onset else f'{onset * 1e3:.1f} mm'}; "

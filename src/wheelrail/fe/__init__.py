@@ -88,7 +88,7 @@ from .transition import (
                    run_transition,
                    seed004_case,
 )
-from .transition_model import TransitionCase, build_transition_model
+from .transition_model import TransitionCase, build_transition_model, yawed_contact
 from .transition_track import Suspension, TrackStructure
 from .transition_wave import elastic_wave_speeds, pulse_arrivals, rail_pulse
 
@@ -99,4 +99,5 @@ __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "toumi20
            "MeshQualityError", "stable_time_step", "saturation_creepage", "read_restart",
            "write_restart", "seed004_case", "run_transition", "TransitionCase", "TransitionResult",
            "TrackStructure", "Suspension", "build_transition_model", "pose_contact",
-           "read_transition_restart", "rail_pulse", "pulse_arrivals", "elastic_wave_speeds"]
+           "read_transition_restart", "rail_pulse", "pulse_arrivals", "elastic_wave_speeds",
+           "yawed_contact"]

@@ -399,3 +399,146 @@ def plot_wave(wave, fit=None, path=None):
     if path is not None:
         fig.savefig(path, dpi=120)
     return fig
+
+
+def _onset_outputs(fields, n_before=4, n_after=4):
+    """Indices of the outputs around the first one with a flange patch (patch 2)."""
+    has2 = (fields.patch.values == 2).any(axis=(1, 2))
+    k = int(np.argmax(has2)) if has2.any() else fields.sizes["time"] // 2
+    return list(range(max(0, k - n_before), min(fields.sizes["time"], k + n_after)))
+
+
+def _patch_local(fields, i, p):
+    """Patch ``p`` at output ``i`` in its own frame: the block of the surface grid around it
+    (one node of margin), coordinates along the rail and across the patch in its tangent
+    plane [m] (centre: pressure-weighted), the lateral unit vector and the patch mask."""
+    lab = fields.patch.values[i]
+    sel = lab == p
+    if not sel.any():
+        return None
+    r_, c_ = np.nonzero(sel)
+    rs = slice(max(0, r_.min() - 1), r_.max() + 2)
+    cs = slice(max(0, c_.min() - 1), c_.max() + 2)
+    w = (fields.pressure.values[i] * fields.area.values[i])[sel]
+    w = w if w.sum() > 0 else np.ones_like(w)
+    phi = float(np.sum(w * fields.contact_angle.values[i][sel]) / w.sum())
+    X, Y, Z = (fields[k].values[i] for k in ("x", "y", "z"))
+    xc, yc, zc = (float(np.sum(w * V[sel]) / w.sum()) for V in (X, Y, Z))
+    e_lat = np.array([0.0, np.cos(phi), np.sin(phi)])
+    eta = (Y - yc) * e_lat[1] + (Z - zc) * e_lat[2]
+    return {"rs": rs, "cs": cs, "xi": (X - xc)[rs, cs], "eta": eta[rs, cs], "e_lat": e_lat,
+            "mask": sel[rs, cs], "phi": phi}
+
+
+def plot_contact_fields(fields, outputs=None, kind="stress", mu=None, path=None, title=None):
+    """Maps of the contact's surface fields of a transition run for a few outputs, tread
+    patch (left) and flange patch (right), each in its own tangent plane (along the rail ×
+    across the patch), in the manner of Figs. 5–6 (pressure and surface shear) and 11–12
+    (micro-slip) of the explicit FE transition study.
+
+    Parameters
+    ----------
+    fields : xarray.Dataset
+        ``TransitionResult.contact_fields``.
+    outputs : list of int, optional
+        Output indices (default: four before and four from the first flange patch).
+    kind : {"stress", "slip", "line"}
+        ``"stress"``: pressure (colour, interpolated between the nodes), the shear stress on
+        the rail (arrows, common scale), adhering nodes (black dots; tolerance definition);
+        ``"slip"``: the normal relative velocity (colour; negative: approaching) and the
+        micro-slip of the wheel against the rail (arrows); ``"line"``: μ·p and |q| along
+        the rail on the patch's most loaded row of nodes across the profile (adhesion where
+        the two curves part; Figs. 9–10 of the study; needs ``mu``).
+    mu : float, optional
+        Friction coefficient (for ``kind="line"``).
+    path : str or Path, optional
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if kind not in ("stress", "slip", "line"):
+        raise ValueError(f"kind must be 'stress', 'slip' or 'line', got {kind!r}")
+    if kind == "line" and mu is None:
+        raise ValueError("kind='line' needs mu")
+    plt = _figure(path)
+    outputs = list(outputs) if outputs is not None else _onset_outputs(fields)
+    n = len(outputs)
+    fig, ax = plt.subplots(n, 2, figsize=(10, 2.2 * n + 0.8), squeeze=False,
+                           layout="constrained")
+    s = fields.travel.values
+    clabel, cmap = {"stress": ("pressure [MPa]", "viridis"),
+                     "slip": ("normal relative velocity [m/s]", "coolwarm"),
+                     "line": ("", "")}[kind]
+    cval = (fields.pressure.values / 1e6 if kind == "stress"
+            else fields.normal_velocity.values)
+    sub = np.array(outputs)
+    if kind != "line":
+        vmax = float(np.nanmax(np.abs(cval[sub]))) or 1.0
+        vmin = 0.0 if kind == "stress" else -vmax
+        if kind == "stress":
+            vec = np.stack([fields[f"traction_{c}"].values for c in "xyz"], -1) / 1e6
+        else:
+            vec = np.stack([fields[f"slip_{c}"].values for c in "xyz"], -1)
+        vscale = float(np.nanmax(np.linalg.norm(vec[sub], axis=-1))) or 1.0
+    mesh = None
+    for r, i in enumerate(outputs):
+        for col, p in enumerate((1, 2)):
+            a = ax[r, col]
+            loc = _patch_local(fields, i, p)
+            name = "tread" if p == 1 else "flange"
+            if loc is None:
+                a.text(0.5, 0.5, f"no {name} patch", ha="center", va="center",
+                       transform=a.transAxes)
+                a.set_xticks([])
+                a.set_yticks([])
+                a.set_title(f"{s[i] * 1e3:.1f} mm", fontsize=8)
+                continue
+            rs, cs, m_ = loc["rs"], loc["cs"], loc["mask"]
+            xi, eta = loc["xi"] * 1e3, loc["eta"] * 1e3
+            st = fields.state.values[i][rs, cs]
+            if kind == "line":
+                P = fields.pressure.values[i][rs, cs] / 1e6
+                Q = np.linalg.norm(np.stack([fields[f"traction_{c}"].values[i][rs, cs]
+                                             for c in "xyz"], -1), axis=-1) / 1e6
+                j = int(np.argmax((P * m_).sum(axis=0)))
+                o = np.argsort(xi[:, j])
+                a.plot(xi[o, j], mu * P[o, j], "o-", ms=3, label="μ·p")
+                a.plot(xi[o, j], Q[o, j], "s--", ms=3, label="|q|")
+                adh = st[o, j] == 2
+                a.plot(xi[o, j][adh], Q[o, j][adh], "k.", ms=8, label="adhesion")
+                a.set_ylabel("stress [MPa]", fontsize=8)
+                if r == 0:
+                    a.legend(fontsize=7)
+            else:
+                mesh = a.pcolormesh(xi, eta, cval[i][rs, cs],
+                                    shading="gouraud", cmap=cmap, vmin=vmin, vmax=vmax)
+                v = vec[i][rs, cs]
+                vl = (v[..., 0], v @ loc["e_lat"])
+                a.quiver(xi[m_], eta[m_], vl[0][m_], vl[1][m_], color="r", angles="xy",
+                         scale_units="xy", scale=vscale / 4.0, width=0.006)
+                if kind == "stress":
+                    adh = m_ & (st == 2)
+                    a.plot(xi[adh], eta[adh], "k.", ms=6)
+                a.set_aspect("equal")
+                a.set_ylabel("across [mm]", fontsize=8)
+            sel = fields.patch.values[i] == p
+            A = fields.area.values[i][sel]
+            Fn = float(np.sum(fields.pressure.values[i][sel] * A))
+            Ft = np.array([np.sum(fields[f"traction_{c}"].values[i][sel] * A) for c in "xyz"])
+            th = np.degrees(np.arccos(np.clip(-Ft[0] / max(np.linalg.norm(Ft), 1e-300), -1, 1)))
+            a.set_title(f"{s[i] * 1e3:.1f} mm, {name} at {np.degrees(loc['phi']):.0f}°: "
+                        f"Fn {Fn / 1e3:.1f} kN, θ {th:.0f}°", fontsize=8)
+            a.tick_params(labelsize=7)
+            if r == n - 1:
+                a.set_xlabel("along the rail [mm]", fontsize=8)
+    if mesh is not None:
+        fig.colorbar(mesh, ax=ax, shrink=0.5, label=clabel)
+    sup = {"stress": "pressure (colour), shear stress on the rail (arrows), adhesion (dots)",
+           "slip": "normal relative velocity (colour), micro-slip of the wheel (arrows)",
+           "line": "μ·p and |q| along the rail"}[kind]
+    fig.suptitle((title + ": " if title else "") + sup, fontsize=9)
+    if path:
+        fig.savefig(path, dpi=110)
+    return fig

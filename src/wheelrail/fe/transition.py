@@ -39,6 +39,7 @@ from . import _solid as S
 from ._explicit import NCHUNK, advance
 from .transition_analysis import onset_travel
 from .transition_contact import (
+    ADHESION_TOLERANCE,
     build_buckets,
     nodal_normals_quads,
     node_to_segment,
@@ -69,6 +70,11 @@ NS_PER_ELEMENT_STEP = 400.0
 PATCH_FIELDS = ("Fn", "Fx", "Fy", "Fz", "F_long", "F_lat", "contact_angle", "x", "y", "z",
                 "area", "p_max", "q_max", "adhesion", "theta", "n_nodes")
 MAX_PATCHES = 3
+#: Rows of the wheel surface in the contact-field record: from 30 mm behind to 80 mm ahead
+#: of the axle (the yawed flange contact leads by up to ≈ 55 mm at 25 mrad).
+FIELD_LEAD = (-0.03, 0.08)
+_FIELD_VARS = ("x", "y", "z", "area", "pressure", "traction_x", "traction_y", "traction_z", "slip_x",
+               "slip_y", "slip_z", "normal_velocity", "contact_angle", "patch", "state")
 
 
 def _rot(alpha, psi):
@@ -97,14 +103,29 @@ class TransitionResult:
         Step, number of steps (``steps``; ``steps_run`` of them in this call, fewer after a
         restart), CPU time of this call, ns per element per step run, onset of two-point
         contact.
+    contact_fields : xarray.Dataset or None
+        With ``case.field_travel``: the contact's surface fields on the wheel's surface
+        grid near the axle, dims (``time``, ``row``, ``col``): ``row`` the circumferential
+        rows of the wheel's surface nodes from ``FIELD_LEAD[0]`` behind to ``FIELD_LEAD[1]``
+        ahead of the axle (ordered along the rail), ``col`` the nodes across the profile.
+        Variables: ``x``, ``y``, ``z`` node positions [m]; ``area`` the nodes' tributary
+        areas [m²]; ``pressure`` [Pa]; ``traction_x``,
+        ``_y``, ``_z`` the shear stress on the rail (global components) [Pa]; ``slip_x``,
+        ``_y``, ``_z`` the micro-slip, the wheel's tangential velocity relative to the rail
+        [m/s]; ``normal_velocity`` the wheel's velocity against the rail along the
+        rail's outward normal (negative: approaching) [m/s]; ``contact_angle`` [rad]; ``patch`` (0 open, 1 tread, 2 flange, 3 other);
+        ``state`` (0 open, 1 slip, 2 adhesion: μ p − |q| above the tolerance of
+        :func:`~wheelrail.fe.transition_contact.patch_summary`); ``travel`` over ``time``.
+        Only the outputs of this call (a restart continues the record after its step).
     """
 
-    def __init__(self, patches, history, model, u, info):
+    def __init__(self, patches, history, model, u, info, contact_fields=None):
         self.patches = patches
         self.history = history
         self.model = model
         self.u = u
         self.info = info
+        self.contact_fields = contact_fields
 
 
 def stable_step(model) -> float:
@@ -124,9 +145,10 @@ def stable_step(model) -> float:
     return dt
 
 
-def transition_time_estimate(model, dt=None) -> dict:
-    """Steps and an estimated wall time [s] before a run (from :data:`NS_PER_ELEMENT_STEP`)."""
-    c = model.case
+def transition_time_estimate(model, dt=None, case=None) -> dict:
+    """Steps and an estimated wall time [s] before a run (from :data:`NS_PER_ELEMENT_STEP`)
+    of ``case`` (default: the case the model was built for) on ``model``."""
+    c = case if case is not None else model.case
     dt = dt or c.courant * stable_step(model)
     steps = int(np.ceil(c.travel / c.speed / dt))
     return {"time_step": dt, "steps": steps, "elements": model.n_elements,
@@ -227,8 +249,11 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     TransitionResult
     """
     m = model if model is not None else build_transition_model(case)
+    if case.travel > m.case.travel * (1 + 1e-9):
+        raise InputError(f"travel {case.travel!r} m is longer than the {m.case.travel!r} m the "
+                         f"model's fine zone was built for")
     dt = case.courant * stable_step(m)
-    est = transition_time_estimate(m, dt)
+    est = transition_time_estimate(m, dt, case)
     if progress or estimate_only:
         msg = (f"transition FE: {m.n_elements} elements, {est['steps']} steps of "
                f"{dt * 1e9:.1f} ns, estimated {est['estimate_s'] / 60:.1f} min")
@@ -325,6 +350,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     n_steps = est["steps"]
     every = max(1, int(round(case.output_interval / dt)))
     rows, hist, fields = [], [], []
+    fwin = case.field_travel
+    sf, sf_t, n_rec = [], [], 0
     rim_shape = m.meta["rim_shape"]
     band_i = m.meta["band_i"]
     surf_rail = k_master
@@ -373,6 +400,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                              np.zeros((0, 1, 14)), np.zeros((0, 1, 14)), f_tmp, e_buf[g])
             f_int += f_tmp
         # ---- contact
+        is_out = k % every == 0 or k == n_steps - 1
+        rec = (is_out and fwin and fwin[0] <= s + dt * V <= fwin[1]
+               and n_rec % case.field_stride == 0)
         xs = c + (Xw + u[m.slave]) @ R.T
         xm = xm_ref + u[k_master]
         nmn = nodal_normals_quads(xm, m.quads)
@@ -382,6 +412,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                         out["ft"], status, seg, out["rt"], out["normal"], out["slip"])
         fm[:] = 0.0
         scatter_master(out["fs"], status, seg, out["rt"], m.quads, fm)
+        if rec:
+            dxs, dxm = xs - xs_prev, xm - xm_prev
         ft[:] = out["ft"]
         xs_prev = xs
         xm_prev = xm
@@ -423,7 +455,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         t += dt
         if k < n_wave:
             wave_v[k] = v[line, 2]
-        if k % every == 0 or k == n_steps - 1:
+        if is_out:
             shape2 = (band_i.size, rim_shape[1])
             ang = np.arccos(np.minimum(1.0, np.abs(out["normal"][:, 2])))
             lab, counts = split_patches(status.reshape(shape2), ang.reshape(shape2),
@@ -436,6 +468,12 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                                   m.slave_area, status, case.mu)
                 row.append([d[f] for f in PATCH_FIELDS])
             rows.append(row)
+            if fwin and fwin[0] <= s <= fwin[1]:
+                if rec:
+                    sf.append(_contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab,
+                                              m, case.mu, shape2))
+                    sf_t.append((t, s))
+                n_rec += 1
             creep = (omega * r0 - V) / V
             hist.append([t, s, w, omega, creep, Fc[0], Fc[1], Fc[2], float(out["pn"].sum()),
                          M_c, npatch, c[1]])
@@ -464,7 +502,67 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             "onset_travel": _onset(ds),
             "wave": ({"x": m.nodes[line, 0] - c0[0], "t": dt * np.arange(1, n_wave + 1),
                       "vz": wave_v} if n_wave else None)}
-    return TransitionResult(ds, hds, m, u, info)
+    return TransitionResult(ds, hds, m, u, info, _fields_dataset(sf, sf_t) if sf else None)
+
+
+def _contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab, m, mu, shape2):
+    """One output of the contact's surface fields on the rows of the wheel's surface grid
+    within :data:`FIELD_LEAD` of the axle (see :class:`TransitionResult`)."""
+    nr, nc = shape2
+    h = m.case.mesh_size
+    n_keep = int(round((FIELD_LEAD[1] - FIELD_LEAD[0]) / h)) + 2
+    X = xs.reshape(nr, nc, 3)
+    lead = X[:, :, 0].mean(axis=1) - c[0]
+    mid = 0.5 * (FIELD_LEAD[0] + FIELD_LEAD[1])
+    keep = np.sort(np.argsort(np.abs(lead - mid))[:min(n_keep, nr)])
+    keep = keep[np.argsort(lead[keep])]
+    A = m.slave_area
+    closed = status > 0
+    pres = np.where(closed, out["pn"] / A, 0.0)
+    trac = np.where(closed[:, None], -out["ft"] / A[:, None], 0.0)
+    # micro-slip: the wheel node's velocity against the rail point under it, tangential part
+    r_, t_ = out["rt"][:, 0], out["rt"][:, 1]
+    w = np.stack(((1 - r_) * (1 - t_), r_ * (1 - t_), r_ * t_, (1 - r_) * t_), axis=1)
+    q = m.quads[np.maximum(seg, 0)]
+    vr = (dxs - np.einsum("sa,sad->sd", w, dxm[q])) / dt
+    nrm = out["normal"]
+    vn = (vr * nrm).sum(axis=1)
+    vt = vr - vn[:, None] * nrm
+    vt[~closed] = 0.0
+    vn[~closed] = 0.0
+    ang = np.where(closed, np.arccos(np.minimum(1.0, np.abs(nrm[:, 2]))), np.nan)
+    state = closed.astype(np.int64)
+    qn = np.linalg.norm(out["ft"], axis=1)
+    for p in range(1, MAX_PATCHES + 1):
+        sel = closed & (lab == p)
+        if sel.any():
+            eps = ADHESION_TOLERANCE * qn[sel].max()
+            state[sel & (mu * out["pn"] - qn > eps)] = 2
+    cols = [xs[:, 0], xs[:, 1], xs[:, 2], A, pres, trac[:, 0], trac[:, 1], trac[:, 2], vt[:, 0],
+            vt[:, 1], vt[:, 2], vn, ang, lab, state]
+    return [np.asarray(v).reshape(nr, nc)[keep] for v in cols]
+
+
+def _fields_dataset(sf, sf_t):
+    """The recorded contact fields as an xarray.Dataset (time, row, col)."""
+    import xarray as xr
+
+    tt = np.array(sf_t)
+    data = {}
+    for i, name in enumerate(_FIELD_VARS):
+        arr = np.array([f[i] for f in sf])
+        if name in ("patch", "state"):
+            arr = arr.astype(np.int8)
+        data[name] = (("time", "row", "col"), arr)
+    ds = xr.Dataset(data, coords={"time": tt[:, 0], "travel": ("time", tt[:, 1])})
+    units = {"x": "m", "y": "m", "z": "m", "area": "m2", "pressure": "Pa", "traction_x": "Pa",
+             "traction_y": "Pa", "traction_z": "Pa", "slip_x": "m/s", "slip_y": "m/s",
+             "slip_z": "m/s", "normal_velocity": "m/s", "contact_angle": "rad"}
+    for k2, un in units.items():
+        ds[k2].attrs["units"] = un
+    ds.attrs["state"] = "0 open, 1 slip, 2 adhesion (tolerance definition)"
+    ds.attrs["patch"] = "0 open, 1 tread, 2 flange, 3 other"
+    return ds
 
 
 def _histories(rows, hist):
@@ -536,8 +634,9 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
         patch appears ≈ 10 mm before its end at 25 mrad), traction 0.3 (the driving torque:
         half of μ; with less, the spin of the flange-root contact turns the tread shear
         sideways well before the flange touches), 30 mm of damped settling (5–10 min CPU
-        on 2 cores); ``"full"``: 1 mm elements in a 150 mm solution zone, 0.67 m travel
-        and a longer track (hours; not yet run).
+        on 2 cores); ``"full"``: 1 mm elements along the whole 0.67 m of travel, five
+        sleepers (1.49 M elements, 4.4 GB, 402 066 steps of 75 ns: ≈ 41–45 h CPU measured
+        on one thread; not yet run).
     **changes
         Any :class:`TransitionCase` field.
     """
@@ -563,11 +662,13 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
 
 
 def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
-                 half_length: float = 0.02, yaw: float = 0.0):
+                 half_length: float = 0.02, yaw: float = 0.0, z_off: float | None = None):
     """Rigid-pose contact of short wheel and rail pieces (no dynamics): the wheel profile's
     origin at lateral offset ``y_off`` [m] in the inclined rail frame, lowered by ``overlap``
-    [m] below the rigid first touch without yaw, the wheel yawed by ``yaw`` [rad] about the
-    vertical through its axle centre; one evaluation of the contact search with μ = 0.
+    [m] below the rigid first touch without yaw (or below the height ``z_off`` [m] of the
+    profile origin, e.g. ``yawed_contact(case, y_off, yaw)["z_off"]``), the wheel yawed by
+    ``yaw`` [rad] about the vertical through its axle centre; one evaluation of the contact
+    search with μ = 0 on the case's mesh size.
 
     Returns
     -------
@@ -592,7 +693,8 @@ def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
     xm = rail.nodes[master]
     b = build_buckets(xm, quads, cell=max(4 * h, 6e-3), margin=4 * h)
     slave = wheel.surface_nodes.ravel()
-    c0 = np.array([0.0, y_off, R + pose["z_off"] - overlap])
+    z0 = pose["z_off"] if z_off is None else float(z_off)
+    c0 = np.array([0.0, y_off, R + z0 - overlap])
     xs = wheel.nodes[slave] @ _rot(yaw, 0.0).T + c0
     p = wheel.nodes[wheel.surface]
     qa = 0.5 * np.linalg.norm(np.cross(p[..., 2, :] - p[..., 0, :], p[..., 3, :] - p[..., 1, :]),

@@ -52,6 +52,7 @@ from .transition_mesh import (
 from .transition_track import SpringSet, Suspension, TrackStructure
 
 __all__ = ["TransitionCase", "TransitionModel", "build_transition_model", "rigid_pose",
+           "yawed_contact",
            "model_size_estimate"]
 
 
@@ -114,6 +115,12 @@ class TransitionCase:
     wave_time : float
         Duration [s] from the start over which the vertical velocity of the rail's surface
         line through the start contact is stored every step (wave-speed analysis).
+    field_travel : tuple of float
+        ``(from, to)`` [m] of travel in which the contact's surface fields (pressure,
+        traction, micro-slip, adhesion/slip per wheel surface node) are recorded at the
+        outputs (``TransitionResult.contact_fields``); empty: none.
+    field_stride : int
+        Record the surface fields at every ``field_stride``-th output in that window.
     """
 
     wheel: Profile
@@ -143,6 +150,8 @@ class TransitionCase:
     settle_damping: float = 1000.0
     patch_split_angle: float = float(np.radians(45.0))
     wave_time: float = 0.0
+    field_travel: tuple = ()
+    field_stride: int = 1
 
     def __post_init__(self):
         for name in ("radius", "speed", "mu", "travel", "mesh_size", "section_h_max",
@@ -159,6 +168,15 @@ class TransitionCase:
         object.__setattr__(self, "courant", float(in_range("courant", self.courant, 0.0, 1.0,
                                                            lo_open=True)))
         object.__setattr__(self, "grading", float(in_range("grading", self.grading, 1.0, 2.0)))
+        ft = tuple(float(v) for v in self.field_travel)
+        if ft and not (len(ft) == 2 and 0.0 <= ft[0] < ft[1]):
+            raise InputError(f"field_travel must be (from, to) with 0 <= from < to [m], got "
+                             f"{self.field_travel!r}")
+        object.__setattr__(self, "field_travel", ft)
+        if int(self.field_stride) != self.field_stride or self.field_stride < 1:
+            raise InputError(f"field_stride must be a positive integer, got "
+                             f"{self.field_stride!r}")
+        object.__setattr__(self, "field_stride", int(self.field_stride))
         if self.traction >= self.mu:
             raise InputError(f"traction {self.traction!r} must stay below mu {self.mu!r}")
         if self.mesh_size > 5e-3:
@@ -241,6 +259,117 @@ def flange_contact_offset(case, lo=-0.02, hi=0.02, n=801):
     return float(b)
 
 
+def yawed_contact(case, y_off: float, yaw: float, hold: str = "touch", dy: float = 1e-5,
+                  phi_max: float = 0.3) -> dict:
+    """Rigid contact of the wheel yawed by ``yaw`` [rad] about the vertical through its
+    profile origin, at lateral offset ``y_off`` [m] in the inclined rail frame (the pose of
+    the transition runs' wheel, without roll).
+
+    The rail is prismatic along x, so the contact lies in the wheel's shadow on the (y, z)
+    plane: for each rail point y the lowest wheel point over it is found exactly on every
+    profile station (the circle of radius r(y_w) yawed by α reaches y at
+    sin φ = (y − y_w cos α) / (r sin α); its height R − r cos φ, its position along the
+    rail x = r sin φ cos α − y_w sin α). The contact angle is the rail's slope at the
+    contact point (the rail's normal has no x component).
+
+    Parameters
+    ----------
+    case : TransitionCase
+    y_off, yaw : float
+        Lateral offset [m] and yaw angle [rad] of the wheel.
+    hold : {"touch", "tread"}
+        ``"touch"``: the wheel rests where it first touches the rail (on the flange once
+        that is reached: it climbs); ``"tread"``: the wheel's height is set by its tread
+        (rail slope below ``case.patch_split_angle``) and the flange may overlap the rail
+        (the elastic runs keep the tread loaded).
+    dy : float
+        Sampling of the rail and the wheel profile [m].
+    phi_max : float
+        Largest angle about the axle searched [rad].
+
+    Returns
+    -------
+    dict
+        ``z_off`` (height of the profile origin [m]); ``tread`` and ``flange`` (rail slope
+        below / above the split angle): ``angle`` [rad], ``x`` (lead ahead of the profile
+        origin [m]), ``y``, ``z`` (rail point [m]) and ``gap`` [m, vertical, negative:
+        overlap] of the closest point; for ``flange`` also ``overlap_angle`` and
+        ``overlap_x`` (weighted by the normal overlap; NaN without overlap) and
+        ``overlap_x_range`` [m].
+    """
+    if hold not in ("touch", "tread"):
+        raise InputError(f"hold must be 'touch' or 'tread', got {hold!r}")
+    (wy, wz), (ry, rz) = _curves(case)
+    o = np.argsort(ry)
+    Y = np.arange(ry.min(), ry.max(), dy)
+    Zr = np.interp(Y, ry[o], rz[o])
+    ang = np.arctan(np.abs(np.gradient(Zr, Y)))
+    ow = np.argsort(wy)
+    yw = np.arange(wy.min(), wy.max(), dy)
+    R = case.radius
+    r = R - np.interp(yw, wy[ow], wz[ow])
+    ca, sa = np.cos(yaw), np.sin(yaw)
+    Yw = Y - y_off                                  # rail points in the wheel's lateral frame
+    zw = np.full(Y.size, np.inf)
+    xw = np.zeros(Y.size)
+    if abs(sa) < 1e-12:
+        ok = (Yw > yw[0]) & (Yw < yw[-1])
+        zw[ok] = R - np.interp(Yw[ok], yw, r)
+    else:
+        half = int(np.ceil(r.max() * abs(sa) * np.sin(phi_max) / (dy * ca))) + 1
+        win = np.arange(-half, half + 1)
+        i0 = np.round((Yw / ca - yw[0]) / dy).astype(np.int64)
+        for a in range(0, Y.size, 2000):
+            idx = i0[a:a + 2000, None] + win[None, :]
+            valid = (idx >= 0) & (idx < yw.size)
+            idx = np.clip(idx, 0, yw.size - 1)
+            rr = r[idx]
+            sphi = (Yw[a:a + 2000, None] - yw[idx] * ca) / (rr * sa)
+            valid &= np.abs(sphi) < np.sin(phi_max)
+            z = np.where(valid, R - rr * np.sqrt(np.clip(1.0 - sphi ** 2, 0.0, 1.0)), np.inf)
+            k = np.argmin(z, axis=1)
+            row = np.arange(z.shape[0])
+            zw[a:a + 2000] = z[row, k]
+            xw[a:a + 2000] = (rr[row, k] * sphi[row, k] * ca - yw[idx[row, k]] * sa)
+    ok = np.isfinite(zw)
+    gap0 = np.where(ok, zw - Zr, np.inf)
+    split = case.patch_split_angle
+    tread = ok & (ang < split)
+    flange = ok & (ang >= split)
+    z_off = -float(gap0.min() if hold == "touch" else gap0[tread].min())
+    gap = gap0 + z_off
+    out = {"z_off": z_off}
+    for name, reg in (("tread", tread), ("flange", flange)):
+        if not reg.any():
+            out[name] = None
+            continue
+        k = np.flatnonzero(reg)[np.argmin(gap[reg])]
+        out[name] = {"angle": float(ang[k]), "x": float(xw[k]), "y": float(Y[k]),
+                     "z": float(Zr[k]), "gap": float(gap[k])}
+    if out["flange"] is not None:
+        ov = flange & (gap < 0)
+        w = -gap[ov] * np.cos(ang[ov])                 # normal overlap
+        f = out["flange"]
+        f["overlap_angle"] = float(np.sum(w * ang[ov]) / w.sum()) if ov.any() else np.nan
+        f["overlap_x"] = float(np.sum(w * xw[ov]) / w.sum()) if ov.any() else np.nan
+        f["overlap_x_range"] = ((float(xw[ov].min()), float(xw[ov].max())) if ov.any()
+                                else (np.nan, np.nan))
+    return out
+
+
+#: Height of the wheel plate's hub end above the tape circle [m] (radius R − 0.30).
+PLATE_HUB = 0.30
+
+
+def plate_size(case) -> float:
+    """Radial element size of the wheel plate [m]: 30 mm (or ``section_h_max``), but at
+    most 50 × the plate's circumferential size at the hub in the fine arc,
+    h (R − hub) / R, so that the elements keep an aspect ratio below the mesh check's 60
+    (the 1 mm mesh had 84.7 with 30 mm)."""
+    return min(max(case.section_h_max, 0.03),
+               50.0 * case.mesh_size * (case.radius - PLATE_HUB) / case.radius)
+
+
 # ----------------------------------------------------------------------------- model
 @dataclass(eq=False)
 class TransitionModel:
@@ -309,7 +438,8 @@ def build_transition_model(case: TransitionCase) -> TransitionModel:
     wheel_rows, wheel_curve, _ = wheel_section(
         case.wheel, h, [(yw_tread - b_t, yw_tread + b_t), (yw_flange - b_f, yw_flange + b_f)],
         ratio=case.grading, h_max=case.section_h_max)
-    plate_rows = wheel_plate_rows(wheel_rows[-1, 0, 1], h_max=max(case.section_h_max, 0.03))
+    plate_rows = wheel_plate_rows(wheel_rows[-1, 0, 1], hub=PLATE_HUB,
+                                  h_max=plate_size(case))
     # ---- rail along x: the wheel starts at x = 0; the fine band covers the travel plus the
     # flange contact's lead ahead of the axle
     track = case.track
