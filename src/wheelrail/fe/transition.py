@@ -39,7 +39,7 @@ from . import _solid as S
 from ._explicit import NCHUNK, advance
 from .transition_analysis import onset_travel
 from .transition_contact import (
-    ADHESION_TOLERANCE,
+    adhering,
     build_buckets,
     nodal_normals_quads,
     node_to_segment,
@@ -536,8 +536,7 @@ def _contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab, m, mu, shape2):
     for p in range(1, MAX_PATCHES + 1):
         sel = closed & (lab == p)
         if sel.any():
-            eps = ADHESION_TOLERANCE * qn[sel].max()
-            state[sel & (mu * out["pn"] - qn > eps)] = 2
+            state[np.flatnonzero(sel)[adhering(out["pn"][sel], qn[sel], mu)]] = 2
     cols = [xs[:, 0], xs[:, 1], xs[:, 2], A, pres, trac[:, 0], trac[:, 1], trac[:, 2], vt[:, 0],
             vt[:, 1], vt[:, 2], vn, ang, lab, state]
     return [np.asarray(v).reshape(nr, nc)[keep] for v in cols]

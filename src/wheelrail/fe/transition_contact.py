@@ -357,6 +357,25 @@ def split_patches(status_grid: np.ndarray, angle_grid: np.ndarray, weight_grid: 
 ADHESION_TOLERANCE = 0.02
 
 
+def adhering(p, q, mu, tolerance: float = ADHESION_TOLERANCE) -> np.ndarray:
+    """Adhering nodes of one patch by the tolerance definition (Zhao & Li 2011):
+    μ p − |q| > ``tolerance`` × the patch's largest |q|.
+
+    Parameters
+    ----------
+    p, q : ndarray, shape (n,)
+        Normal and tangential nodal forces of the patch's closed nodes [N].
+    mu : float
+        Friction coefficient.
+
+    Returns
+    -------
+    ndarray of bool, shape (n,)
+    """
+    eps = tolerance * q.max() if q.size else 0.0
+    return (mu * p - q) > eps
+
+
 def patch_summary(mask, xs, fs, pn, ft, normal, area, status, mu,
                   tolerance: float = ADHESION_TOLERANCE, heading: float = 0.0) -> dict:
     """Per-patch quantities of the slave nodes ``mask`` (forces on the wheel, global frame).
@@ -391,8 +410,7 @@ def patch_summary(mask, xs, fs, pn, ft, normal, area, status, mu,
     Ft = ft[m].sum(axis=0)
     q = np.linalg.norm(ft[m], axis=1)
     A = area[m]
-    eps = tolerance * q.max() if q.size else 0.0
-    stick = (mu * p - q) > eps
+    stick = adhering(p, q, mu, tolerance)
     c = (xs[m] * p[:, None]).sum(axis=0) / p.sum()
     # shear on the rail = −(tangential force on the wheel)
     tau = -Ft
