@@ -34,7 +34,6 @@ from ..errors import InputError
 from ..materials import Material
 from ..normal.hertz import hertz
 from ..profiles import load as load_profile
-from . import _kernels as K
 from . import _solid as S
 from ._explicit import NCHUNK, advance
 from .transition_analysis import onset_travel
@@ -73,8 +72,8 @@ MAX_PATCHES = 3
 #: Rows of the wheel surface in the contact-field record: from 30 mm behind to 80 mm ahead
 #: of the axle (the yawed flange contact leads by up to ≈ 55 mm at 25 mrad).
 FIELD_LEAD = (-0.03, 0.08)
-_FIELD_VARS = ("x", "y", "z", "area", "pressure", "traction_x", "traction_y", "traction_z", "slip_x",
-               "slip_y", "slip_z", "normal_velocity", "contact_angle", "patch", "state")
+_FIELD_VARS = ("x", "y", "z", "area", "pressure", "traction_x", "traction_y", "traction_z",
+               "slip_x", "slip_y", "slip_z", "normal_velocity", "contact_angle", "patch", "state")
 
 
 def _rot(alpha, psi):
@@ -113,9 +112,10 @@ class TransitionResult:
         ``_y``, ``_z`` the shear stress on the rail (global components) [Pa]; ``slip_x``,
         ``_y``, ``_z`` the micro-slip, the wheel's tangential velocity relative to the rail
         [m/s]; ``normal_velocity`` the wheel's velocity against the rail along the
-        rail's outward normal (negative: approaching) [m/s]; ``contact_angle`` [rad]; ``patch`` (0 open, 1 tread, 2 flange, 3 other);
-        ``state`` (0 open, 1 slip, 2 adhesion: μ p − |q| above the tolerance of
-        :func:`~wheelrail.fe.transition_contact.patch_summary`); ``travel`` over ``time``.
+        rail's outward normal (negative: approaching) [m/s]; ``contact_angle`` [rad];
+        ``patch`` (0 open, 1 tread, 2 flange, 3 other); ``state`` (0 open, 1 slip,
+        2 adhesion: μ p − |q| above the tolerance of
+        :func:`~wheelrail.fe.transition_contact.adhering`); ``travel`` over ``time``.
         Only the outputs of this call (a restart continues the record after its step).
     """
 
