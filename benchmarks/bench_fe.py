@@ -3,13 +3,13 @@
 Run:  python benchmarks/bench_fe.py [--mesh 1e-3]            (explicit cost, as below)
       python benchmarks/bench_fe.py --implicit 1.5e-3         (implicit linear solvers)
       python benchmarks/bench_fe.py --lateral 1.5e-3          (lateral creepage vs exact)
-      python benchmarks/bench_fe.py --seed000 1.5e-3          (seed 000's cone/arc case)
+      python benchmarks/bench_fe.py --toumi2016 1.5e-3        (Toumi et al.'s cone/arc case)
       python benchmarks/bench_fe.py --creep-curve 1.5e-3      (creep curve vs exact)
 
 Prints, with the problem sizes and the machine load (uptime):
 * ns per element per internal-force evaluation (hex8 full 2x2x2 and reduced 1-point + hourglass);
 * ns per element per complete explicit step (contact, kinematics and bookkeeping included)
-  and steps per second, on the seed-000-like rolling mesh;
+  and steps per second, on a rolling mesh like Toumi et al.'s (2016);
 * memory per element of the precomputed element data;
 * the stable time step and the number of steps the default rolling run needs, and the
   resulting time estimate.
@@ -120,9 +120,9 @@ def lateral(h):
               f"{load():.2f})", flush=True)
 
 
-def seed000(h):
-    """Seed 000's Hertzian set-up (1/10 cone on a 300 mm arc inclined 1/10): indentation
-    against Hertz, then an explicit rolling run (xi = -0.7 permille) against the exact solver."""
+def toumi2016(h):
+    """Toumi, Chollet & Yin's (2016) Hertzian set-up (1/10 cone on a 300 mm arc inclined
+    1/10): indentation against Hertz, then an explicit rolling run (xi = -0.7 permille) against the exact solver."""
     import warnings
 
     from wheelrail.fe import indent, seed000_case, solve
@@ -132,7 +132,7 @@ def seed000(h):
     t = time.perf_counter()
     r = indent(case)
     hz = r.hertz
-    print(f"\nseed 000 cone/arc, mesh {h * 1e3:g} mm, indentation ({r.model.n_elements} "
+    print(f"\nToumi et al. cone/arc, mesh {h * 1e3:g} mm, indentation ({r.model.n_elements} "
           f"elements, {time.perf_counter() - t:.1f} s): contact angle "
           f"{np.degrees(r.model.geometry['delta']):.2f} deg, normal force {r.Fn:.1f} N "
           f"(load/cos = {r.model.geometry['normal_load']:.1f} N)")
@@ -189,11 +189,11 @@ def main():
     ap.add_argument("--steps", type=int, default=0, help=argparse.SUPPRESS)
     ap.add_argument("--implicit", type=float, metavar="H")
     ap.add_argument("--lateral", type=float, metavar="H")
-    ap.add_argument("--seed000", type=float, metavar="H")
+    ap.add_argument("--toumi2016", "--seed000", type=float, metavar="H")
     ap.add_argument("--creep-curve", type=float, metavar="H")
     args = ap.parse_args()
     extra = [(args.implicit, implicit_solvers), (args.lateral, lateral),
-             (args.seed000, seed000), (args.creep_curve, creep_curve)]
+             (args.toumi2016, toumi2016), (args.creep_curve, creep_curve)]
     if any(h is not None for h, _ in extra):
         print(f"load average before: {load():.2f} (2-core machine shared with other agents)")
         for h, fn in extra:

@@ -194,14 +194,36 @@ def test_fe_plastic_roll_writes_fields_and_restarts_with_the_plastic_state(tmp_p
                                   fields.rail_equivalent_plastic_strain.values)
 
 
-def test_fe_seed000_table3_case_file_and_bad_material(tmp_path, capsys):
+def test_fe_named_case_keys_old_names_warn_and_plastic_is_kept(tmp_path):
+    """The named-case keys: ``toumi2016`` keeps the case's own material, so ``plastic = true``
+    gives the J2 body of Toumi et al. (2016) (yield 489 MPa); the old key ``seed000`` still
+    works with a DeprecationWarning; giving both names is an error naming them."""
+    from wheelrail.cli.fe import case_from_toml
+    from wheelrail.errors import CaseFileError
+
+    f = tmp_path / "toumi.toml"
+    f.write_text('[fe]\ntoumi2016 = "printed"\nplastic = true\n')
+    case, _ = case_from_toml(f)
+    assert case.load == pytest.approx(7500.0) and case.material.yield_stress == 489e6
+    f.write_text('[fe]\ntoumi2016 = "printed"\n')
+    assert not hasattr(case_from_toml(f)[0].material, "yield_stress")
+    f.write_text('[fe]\nseed000 = "printed"\n')
+    with pytest.warns(DeprecationWarning, match="'seed000' is deprecated, use 'toumi2016'"):
+        case, _ = case_from_toml(f)
+    assert case.load == pytest.approx(7500.0)
+    f.write_text('[fe]\nseed004 = "reduced"\ntransition = "reduced"\n')
+    with pytest.raises(CaseFileError, match="'transition' and its old name 'seed004'"):
+        case_from_toml(f)
+
+
+def test_fe_toumi2016_table3_case_file_and_bad_material(tmp_path, capsys):
     from wheelrail.cli.fe import case_from_toml
     from wheelrail.fe import toumi2016_load
 
     f = tmp_path / "seed.toml"
-    f.write_text('[fe]\nseed000 = "table3"\nmaterial = "r900a"\nmesh_size = 2e-3\n')
+    f.write_text('[fe]\ntoumi2016 = "table3"\nmaterial = "r900a"\nmesh_size = 2e-3\n')
     case, _ = case_from_toml(f)
     assert case.load == pytest.approx(toumi2016_load()) and case.material.yield_stress == 489e6
-    f.write_text('[fe]\nseed000 = "printed"\nmaterial = "steel"\n')
+    f.write_text('[fe]\ntoumi2016 = "printed"\nmaterial = "steel"\n')
     assert main(["fe", str(f)]) == 2
     assert "material must be 'r900a'" in capsys.readouterr().err

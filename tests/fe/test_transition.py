@@ -276,7 +276,7 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     from wheelrail.cli.main import main
 
     case = tmp_path / "t.toml"
-    case.write_text('[fe]\nseed004 = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
+    case.write_text('[fe]\ntransition = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
                     'travel = 1.2e-3\nsettle = 0.5e-3\nflange_clearance = 3e-3\n'
                     'output_interval = 6e-6\nfield_travel = [0.6e-3, 1.2e-3]\n')
     out = tmp_path / "out"
@@ -292,7 +292,7 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     for kind in ("stress", "slip"):
         assert (out / f"contact_fields_{kind}.png").stat().st_size > 10_000
     bad = tmp_path / "bad.toml"
-    bad.write_text('[fe]\nseed004 = "reduced"\nangle_of_attak = 0.025\n')
+    bad.write_text('[fe]\ntransition = "reduced"\nangle_of_attak = 0.025\n')
     assert main(["fe", str(bad), "--out", str(out)]) != 0
     assert "angle_of_attak" in capsys.readouterr().err
 

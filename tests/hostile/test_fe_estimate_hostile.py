@@ -44,7 +44,7 @@ def test_mesh_estimate_equals_the_built_mesh(changes):
 
 def test_micrometre_mesh_refused_before_allocation(tmp_path, capsys):
     case = tmp_path / "fe.toml"
-    case.write_text('[fe]\nseed000 = "table3"\nmesh_size = 1e-6\n')
+    case.write_text('[fe]\ntoumi2016 = "table3"\nmesh_size = 1e-6\n')
     t0 = time.process_time()
     code, _, err = run_cli(["fe", case, "--out", tmp_path / "out"], capsys)
     assert time.process_time() - t0 < 30.0          # no 2.8 TiB allocation attempted
@@ -56,7 +56,7 @@ def test_micrometre_mesh_refused_before_allocation(tmp_path, capsys):
 
 def test_radius_in_millimetres_is_named(tmp_path, capsys):
     case = tmp_path / "fe.toml"
-    case.write_text('[fe]\nseed000 = "table3"\nradius = 460\n')
+    case.write_text('[fe]\ntoumi2016 = "table3"\nradius = 460\n')
     code, _, err = run_cli(["fe", case, "--out", tmp_path / "out"], capsys)
     assert_clean_failure(code, err, "radius", "460", "mm")
     assert "mesh_size" not in err[-1]

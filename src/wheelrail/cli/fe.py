@@ -16,11 +16,13 @@ The case file holds one ``[fe]`` table; every key is a
   stresses]]``), ``hardening_saturation`` [Pa] and ``hardening_rate`` (Voce),
   ``kinematic`` [Pa] and ``kinematic_recovery`` (Prager / Armstrong–Frederick); any of them
   also overrides the R900A values;
-* ``seed000 = "table3"`` or ``"printed"`` — start from the case of Toumi et al. (2016)
-  (:func:`wheelrail.fe.seed000_case`; ``wheel``/``rail`` not needed, other keys override);
+* ``toumi2016 = "table3"`` or ``"printed"`` — start from the case of Toumi et al. (2016)
+  (:func:`wheelrail.fe.seed000_case`; ``wheel``/``rail`` not needed, other keys override,
+  e.g. ``plastic = true``); the old key ``seed000`` still works and is deprecated;
 * ``mode`` — ``"roll"`` (default) or ``"indent"``;
-* ``seed004 = "reduced"`` or ``"full"`` — the one- to two-point contact transition of a
-  half-wheelset on a flexible track (:func:`wheelrail.fe.seed004_case`; every other key is a
+* ``transition = "reduced"`` or ``"full"`` — the one- to two-point contact transition of a
+  half-wheelset on a flexible track (:func:`wheelrail.fe.seed004_case`; the old key
+  ``seed004`` still works and is deprecated; every other key is a
   :class:`wheelrail.fe.TransitionCase` field, e.g. ``angle_of_attack = 0.025``,
   ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional). Writes
   patches.nc (per-patch histories), history.nc, summary.json, transition.png, wave.png
@@ -193,7 +195,7 @@ def case_from_toml(path):
     mode = t.pop("mode", "roll")
     if mode not in ("roll", "indent"):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
-    seed4 = t.pop("seed004", None)
+    seed4 = _case_key(t, "transition", "seed004", path)
     if seed4 is not None:
         from ..fe import seed004_case
 
@@ -204,7 +206,7 @@ def case_from_toml(path):
             return seed004_case(size=seed4, **t), "transition"
         except TypeError as exc:
             raise CaseFileError(f"{path}: [fe] {exc}") from exc
-    seed = t.pop("seed000", None)
+    seed = _case_key(t, "toumi2016", "seed000", path)
     taper = float(t.pop("wheel_taper", 0.1))
     head = float(t.pop("rail_head_radius", 0.3))
     if seed is None:
@@ -214,7 +216,7 @@ def case_from_toml(path):
     for key, kind, param in (("wheel", "wheel", taper), ("rail", "rail", head)):
         if key in t:
             t[key] = _profile(t[key], kind, path.parent, param)
-    material = _material(t, path)
+    material = _material(t, path, case_default=seed is not None)
     if material is not None:
         t["material"] = material
     for key in ("creepage", "rayleigh"):
@@ -234,8 +236,27 @@ _PLASTIC_KEYS = ("yield_stress", "hardening", "hardening_saturation", "hardening
                  "kinematic", "kinematic_recovery")
 
 
-def _material(t, path):
-    """The material of an [fe] table (popping its keys); None keeps the case default."""
+def _case_key(t, key, old, path):
+    """Pop a named-case key of an [fe] table, accepting its deprecated old name."""
+    import warnings
+
+    from ..errors import CaseFileError
+
+    if old in t:
+        if key in t:
+            raise CaseFileError(f"{path}: [fe] gives both {key!r} and its old name {old!r}")
+        warnings.warn(f"{path}: [fe] key {old!r} is deprecated, use {key!r}",
+                      DeprecationWarning, stacklevel=3)
+        return t.pop(old)
+    return t.pop(key, None)
+
+
+def _material(t, path, case_default=False):
+    """The material of an [fe] table (popping its keys); None keeps the case default.
+
+    With ``case_default`` (a named case) and no material keys the named case's own
+    material is kept (None), so its ``plastic`` option still applies.
+    """
     import wheelrail as wr
     from ..errors import CaseFileError
     from ..fe import J2Plastic, Voce, r900a
@@ -247,7 +268,7 @@ def _material(t, path):
         raise CaseFileError(f"{path}: [fe] material must be 'r900a' (or give E, nu, "
                             f"yield_stress ...), got {name!r}")
     if name is None and not plastic:
-        if E is None and nu is None and "seed000" not in t:
+        if E is None and nu is None and not case_default:
             return wr.Material(E=2.1e11, nu=0.28)
         if E is None and nu is None:
             return None
@@ -440,7 +461,7 @@ def run(args, console) -> int:
 
 
 def _run_transition(case, args, console) -> int:
-    """``wheelrail fe`` for a transition case (``seed004`` in the [fe] table)."""
+    """``wheelrail fe`` for a transition case (``transition`` in the [fe] table)."""
     import json
     from pathlib import Path
 
