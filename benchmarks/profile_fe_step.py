@@ -45,6 +45,7 @@ from wheelrail.fe._explicit import (_CUR, _DONE, _PHASE, _TAKE, _atomic_add, _at
 from wheelrail.fe._kernels import _slave, scatter_to_grid
 import wheelrail.fe._explicit as _X
 _open_tasks = getattr(_X, "_open_tasks", None)      # the task ranges (absent before issue 19/7)
+MAX_TASKS = getattr(_X, "MAX_TASKS", 0xFFFF)
 
 
 @intrinsic
