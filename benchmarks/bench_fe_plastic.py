@@ -229,11 +229,18 @@ def cmd_creep(a):
 def with_hardening(case, hardening):
     """The plastic case with another hardening law (``--hardening``) and its file name:
     ``r900a`` the default Voce law (name "plastic"), ``perfect`` perfect plasticity at the
-    same yield stress 489 MPa (the softest isotropic law; name "perfect")."""
+    same yield stress 489 MPa (the softest isotropic law; name "perfect"), ``kinematic`` the
+    same uniaxial monotonic curve as the default law but from an Armstrong–Frederick back
+    stress on a constant yield surface (C/γ = Q, γ = b of the Voce law: back stress
+    Q (1 − e^(−b p)); name "kinematic")."""
     if hardening == "r900a":
         return "plastic", case
-    from wheelrail.fe import r900a
+    from wheelrail.fe import R900A_HARDENING, r900a
 
+    if hardening == "kinematic":
+        h = R900A_HARDENING
+        return hardening, case.replace(material=r900a(
+            hardening=0.0, kinematic=h.saturation * h.rate, kinematic_recovery=h.rate))
     return hardening, case.replace(material=r900a(hardening=0.0))
 
 
@@ -589,9 +596,10 @@ def main():
                     help="creep: run only one material (compare later with creep-compare); "
                          "time-increment: plastic for the elasto-plastic R900A bodies (else "
                          "elastic)")
-    ap.add_argument("--hardening", choices=["r900a", "perfect"], default="r900a",
+    ap.add_argument("--hardening", choices=["r900a", "perfect", "kinematic"], default="r900a",
                     help="creep, creep-compare: the plastic material's hardening (r900a: the "
-                         "default Voce law; perfect: perfect plasticity at 489 MPa)")
+                         "default Voce law; perfect: perfect plasticity at 489 MPa; kinematic: "
+                         "the same tensile curve from an Armstrong-Frederick back stress)")
     ap.add_argument("--per-point", action="store_true",
                     help="creep: one NetCDF file per point (creep-compare merges them)")
     ap.add_argument("--dts", type=float, nargs="+", default=[2e-5, 1e-4, 3.7e-4],

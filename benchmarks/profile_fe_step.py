@@ -43,6 +43,9 @@ from wheelrail.fe._explicit import (_CUR, _DONE, _PHASE, _TAKE, _atomic_add, _at
                                     _take_task, _update_nodes, _wait_phase, contact_to_nodes,
                                     slave_position)
 from wheelrail.fe._kernels import _slave, scatter_to_grid
+import wheelrail.fe._explicit as _X
+_open_tasks = getattr(_X, "_open_tasks", None)      # the task ranges (absent before issue 19/7)
+MAX_TASKS = getattr(_X, "MAX_TASKS", 0xFFFF)
 
 
 @intrinsic
@@ -127,7 +130,10 @@ def cmd_run(a):
 
     import wheelrail.fe.explicit as EX
     from wheelrail.fe import solve
-    from wheelrail.fe._explicit import interleaved_tasks
+    try:
+        from wheelrail.fe._explicit import phase_one_tasks
+    except ImportError:                  # an older version (--baseline-style comparisons)
+        from wheelrail.fe._explicit import interleaved_tasks as phase_one_tasks
 
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -176,7 +182,7 @@ def cmd_run(a):
     n = r["calls"][-1][1]
     ns = res.model.slave.size
     nc = res.model.chunks.size - 1
-    kinds = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))[:, 0]
+    kinds = phase_one_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))[:, 0]
     info = dict(threads=a.threads, material=a.material, steps=n, elements=res.model.n_elements,
                 wall=w1 - w0, cpu=p1 - p0, Fx=res.steady["Fx"], load_before=load0,
                 load_after=os.getloadavg()[0], date=time.strftime("%Y-%m-%d %H:%M"))

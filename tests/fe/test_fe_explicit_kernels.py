@@ -15,9 +15,9 @@ from numba import njit
 from wheelrail.fe._explicit import (
     _update_nodes,
     contact_to_nodes,
-    interleaved_tasks,
     master_kinematics,
     node_groups,
+    phase_one_tasks,
     slave_kinematics,
 )
 from wheelrail.fe._solid import element_chunks
@@ -69,13 +69,14 @@ def test_contact_forces_rotate_into_the_wheel_frame_and_sum():
                                       (np.linalg.norm(ft, axis=1) * slip).sum(), energy.sum()])
 
 
-@pytest.mark.parametrize("ne, nc", [(16, 8), (3, 40), (5, 1)])
-def test_interleaved_tasks_cover_both_kinds_in_proportion(ne, nc):
-    t = interleaved_tasks(ne, nc)
-    assert sorted(t[t[:, 0] == 0, 1]) == list(range(ne))
-    assert sorted(t[t[:, 0] == 1, 1]) == list(range(nc))
-    half = t[: len(t) // 2]
-    assert abs((half[:, 0] == 0).sum() - ne / 2) <= 1
+@pytest.mark.parametrize("ne, nc", [(16, 8), (3, 40), (5, 1), (4, 0)])
+def test_phase_one_tasks_take_every_chunk_once_the_contact_in_the_middle(ne, nc):
+    t = phase_one_tasks(ne, nc)
+    h = (ne + 1) // 2
+    assert t.shape == (ne + nc, 2)
+    assert t[:h].tolist() == [[0, k] for k in range(h)]                # the first half
+    assert t[h:h + nc].tolist() == [[1, j] for j in range(nc)]         # the contact
+    assert t[h + nc:].tolist() == [[0, k] for k in range(h, ne)]       # the second half
 
 
 def _slab_mesh(nx, ny, nz):

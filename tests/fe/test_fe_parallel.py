@@ -41,26 +41,36 @@ def test_rolling_is_bitwise_identical_on_one_and_two_threads():
 def test_task_counter_hands_out_each_task_once_and_only_in_its_phase():
     from numba import njit, prange
 
-    from wheelrail.fe._explicit import _TAKE, _take_task
+    from wheelrail.fe._explicit import _TAKE, _open_tasks, _take_task
 
     @njit(parallel=True)
-    def take_all(ctl, p, n, owner):
-        for w in prange(2):
-            t = _take_task(ctl, p, n)
+    def take_all(ctl, p, owner, order):
+        for w in prange(2):                      # thread 0 from the front, thread 1 from the back
+            t = _take_task(ctl, p, w == 1)
+            last = -1
             while t >= 0:
                 owner[t] += w + 1
-                t = _take_task(ctl, p, n)
+                if (w == 0 and t < last) or (w == 1 and last >= 0 and t > last):
+                    order[0] = 1                 # out of order
+                last = t
+                t = _take_task(ctl, p, w == 1)
 
     for n in (1, 7, 200):
         ctl = np.zeros(32, np.int64)
-        ctl[_TAKE] = 5 << 32                     # phase 5, task 0
+        ctl[_TAKE] = _open_tasks(5, n)           # phase 5, tasks 0 ... n - 1
         owner = np.zeros(n, np.int64)
-        take_all(ctl, 5, n, owner)
+        order = np.zeros(1, np.int64)
+        take_all(ctl, 5, owner, order)
         assert np.all((owner == 1) | (owner == 2))       # each task taken by one thread once
-        assert ctl[_TAKE] == (5 << 32) + n
-        take_all(ctl, 4, n, owner)                       # a late thread of phase 4 takes nothing
-        take_all(ctl, 6, n, owner)                       # nor one of phase 6 before it opens
+        assert order[0] == 0                             # front ascending, back descending
+        lo, hi = ctl[_TAKE] & 0xFFFF, (ctl[_TAKE] >> 16) & 0xFFFF
+        assert ctl[_TAKE] >> 32 == 5 and lo == hi       # the range is used up, still phase 5
+        take_all(ctl, 4, owner, order)                   # a late thread of phase 4 takes nothing
+        take_all(ctl, 6, owner, order)                   # nor one of phase 6 before it opens
         assert np.all((owner == 1) | (owner == 2))
+    ctl = np.zeros(32, np.int64)
+    ctl[_TAKE] = _open_tasks(0, 4)
+    assert [_take_task(ctl, 0, b) for b in (True, False, True, False, False)] == [3, 0, 2, 1, -1]
 
 
 def test_rolling_loop_finishes_when_fewer_threads_run_it_than_it_was_told(monkeypatch):

@@ -7,7 +7,8 @@ new displacement), fused into the second phase node group by node group
 (:func:`node_groups`). Partial sums are taken per task (element chunk, node group) and
 added in task order, so that the results do not depend on the thread count; the tasks are
 handed out dynamically, so that a slower thread (plastic elements, a busy core) does
-fewer of them. :func:`run_steps` runs a block of steps in one parallel region (its
+fewer of them, even threads from the front of a phase's task range and odd threads from
+its back, so that a thread works on the same part of the mesh in every step. :func:`run_steps` runs a block of steps in one parallel region (its
 threads wait for each other's phases without sleeping). :func:`advance` is the node update
 alone (the transition driver).
 
@@ -196,23 +197,38 @@ def _relax(typingctx, spins):
     return types.none(types.int64), codegen
 
 
-#: Slots of the control array of :func:`run_steps` (one cache line apart): the next task of
-#: the current phase (phase · 2³² + task), the tasks done in it, the phase under way, the
-#: current row of the double buffers.
+#: Slots of the control array of :func:`run_steps` (one cache line apart): the tasks left in
+#: the current phase (phase · 2³² + hi · 2¹⁶ + lo: tasks lo ≤ t < hi), the tasks done in it,
+#: the phase under way, the current row of the double buffers.
 _TAKE, _DONE, _PHASE, _CUR = 0, 8, 16, 24
+#: Most tasks of a phase (the task range is packed into 16-bit fields of ``ctl[_TAKE]``).
+MAX_TASKS = 0xFFFF
 
 
 @njit(cache=True, inline="always")
-def _take_task(ctl, p, n):
-    """The next task of phase ``p`` (of ``n``), or −1 when there is none left or the phase
-    is over (the phase number is part of the counter: a thread that comes late never takes
-    a task of a later phase)."""
+def _open_tasks(p, n):
+    """The value of ``ctl[_TAKE]`` that opens phase ``p`` with tasks 0 … n − 1."""
+    return (p << 32) | (n << 16)
+
+
+@njit(cache=True, inline="always")
+def _take_task(ctl, p, back):
+    """The next task of phase ``p`` from the front of its range (the lowest left) or, if
+    ``back``, from the back (the highest left); −1 when there is none left or the phase is
+    over (the phase number is part of the word: a thread that comes late never takes a
+    task of a later phase). Threads taking from opposite ends meet where the work is
+    done; each task is taken exactly once."""
     while True:
         c = _atomic_load(ctl, _TAKE)
-        if (c >> 32) != p or (c & 0xFFFFFFFF) >= n:
+        lo = c & 0xFFFF
+        hi = (c >> 16) & 0xFFFF
+        if (c >> 32) != p or lo >= hi:
             return -1
-        if _compare_swap(ctl, _TAKE, c, c + 1):
-            return c & 0xFFFFFFFF
+        if back:
+            if _compare_swap(ctl, _TAKE, c, c - 0x10000):
+                return hi - 1
+        elif _compare_swap(ctl, _TAKE, c, c + 1):
+            return lo
 
 
 @njit(cache=True, inline="always")
@@ -447,18 +463,23 @@ def contact_to_nodes(fs, fm, pn, ft, slip, energy, cpsi, spsi, fcon, sums):
     sums[5] = se
 
 
-def interleaved_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarray:
-    """Task table (T, 2) of the first parallel phase of :func:`run_steps`: rows
-    (0, k) for the k-th even element chunk and (1, j) for the j-th contact chunk, in an
-    order where every contiguous share of the table holds the same proportion of both (the
-    tasks are taken in table order, so the contact chunks are spread over the phase)."""
-    key = np.concatenate([(np.arange(n_element_chunks) + 0.5) / max(n_element_chunks, 1),
-                          (np.arange(n_contact_chunks) + 0.5) / max(n_contact_chunks, 1)])
-    kind = np.concatenate([np.zeros(n_element_chunks, np.int64),
-                           np.ones(n_contact_chunks, np.int64)])
-    idx = np.concatenate([np.arange(n_element_chunks), np.arange(n_contact_chunks)])
-    order = np.argsort(key, kind="stable")
-    return np.ascontiguousarray(np.stack([kind[order], idx[order]], axis=1).astype(np.int64))
+def phase_one_tasks(n_element_chunks: int, n_contact_chunks: int) -> np.ndarray:
+    """Task table (T, 2) of the first parallel phase of :func:`run_steps`: rows (0, k) for
+    the k-th even element chunk and (1, j) for the j-th contact chunk, the contact chunks in
+    the middle: (0, 0) … (0, h − 1), (1, 0) … (1, n_c − 1), (0, h) … with h = ⌈n_e / 2⌉.
+
+    One thread takes the tasks from the front of the table and the other from the back
+    (:func:`_take_task`), so each works on the same half of the mesh in every step (its
+    data stay in its core's caches), and the two meet among the short contact tasks (a few
+    tens of µs each, against 50–200 µs for an element chunk): they end the phase within
+    about one contact task of each other.
+    """
+    h = (n_element_chunks + 1) // 2
+    kind = np.concatenate([np.zeros(h, np.int64), np.ones(n_contact_chunks, np.int64),
+                           np.zeros(n_element_chunks - h, np.int64)])
+    idx = np.concatenate([np.arange(h), np.arange(n_contact_chunks),
+                          np.arange(h, n_element_chunks)])
+    return np.ascontiguousarray(np.stack([kind, idx], axis=1).astype(np.int64))
 
 
 @njit(cache=True, inline="always")
@@ -578,7 +599,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
     2. (phase 2(k − k0)) the even element chunks of
        :func:`wheelrail.fe._solid.element_chunks` and the slave chunks of the contact
        (:func:`slave_position` and :func:`wheelrail.fe._kernels.node_to_surface` per slave),
-       the tasks ``tasks`` (:func:`interleaved_tasks`);
+       the tasks ``tasks`` (:func:`phase_one_tasks`);
     3. (serial) the master forces scattered in slave order and :func:`contact_to_nodes`;
     4. (phase 2(k − k0) + 1) per node group g of :func:`node_groups`: the odd element chunk
        2g + 1, then the update of the group's nodes (their forces are final then):
@@ -586,8 +607,12 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
        ``f`` (the internal forces, which must hold zeros on entry) is left zero;
     5. (serial) the sums in chunk and group order, the axle and the bookkeeping.
 
-    The tasks of a phase are handed out dynamically through a counter that carries the
-    phase number: the results do not depend on which thread runs a task, because the tasks
+    The tasks of a phase are handed out dynamically through a word that holds the range of
+    the tasks left and the phase number (:func:`_take_task`): even threads take from the
+    front of the range, odd threads from its back, so that with two threads each works on
+    the same half of the mesh in every step (its element and node data stay in its core's
+    caches) and they meet in the middle of the range (in the first phase among the short
+    contact tasks, :func:`phase_one_tasks`). The results do not depend on which thread runs a task, because the tasks
     of a phase write disjoint nodes, each node receives its element forces in element
     order, and every sum is taken per task and added in task order. Nothing depends on the
     number of threads. The ``nthr`` threads stay in one parallel region for all the steps:
@@ -634,7 +659,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
     echunk : (nc, 2)
         Output: elastic energy and plastic work per element chunk.
     tasks : (T, 2) int
-        The first phase's tasks (:func:`interleaved_tasks`).
+        The first phase's tasks (:func:`phase_one_tasks`).
     ref_s, snodes, z_axle, dxs, ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt, cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip
         The contact: as :func:`slave_position`, :func:`master_kinematics` and
         :func:`wheelrail.fe._kernels.node_to_surface` (``z_axle`` + w is the axle height).
@@ -689,9 +714,12 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
     n_groups = gptr.shape[0] - 1
     if n_tasks < 1 or n_groups < 1:
         raise ValueError("run_steps: no tasks")
+    if n_tasks > MAX_TASKS or n_groups > MAX_TASKS:
+        raise ValueError("run_steps: more than 65 535 tasks in a phase")
     n_phases = 2 * (k1 - k0)
     ctl = np.zeros(32, np.int64)
     ctl[_CUR] = cur
+    ctl[_TAKE] = _open_tasks(0, n_tasks)
     _step_start(k0, cur, sx, sy, y_ref, y_ref0, ref_m, u, mnodes, xmb, dxm, nm, fm)
     for w in prange(nthr):
         ue = np.empty((8, 3))
@@ -702,13 +730,14 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
         c4 = np.empty((4, 3))
         q = np.empty(3)
         dq = np.empty(3)
+        back = w % 2 == 1                # odd threads take from the back of the task ranges
         p = _atomic_load(ctl, _PHASE)
         while p < n_phases:
             k = k0 + p // 2
             old = ctl[_CUR]
             new = 1 - old
             if p % 2 == 0:
-                t = _take_task(ctl, p, n_tasks)
+                t = _take_task(ctl, p, back)
                 while t >= 0:
                     if tasks[t, 0] == 0:
                         _element_chunk(2 * tasks[t, 1], bounds, u, conn, dNdx, wdet, gamma, khg,
@@ -729,11 +758,11 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                         contact_to_nodes(fs, fm, pn, ftb[new], slip, cenergy, cps[k], sps[k],
                                          fcon, sums)
                         _atomic_store(ctl, _DONE, 0)
-                        _atomic_store(ctl, _TAKE, (p + 1) << 32)
+                        _atomic_store(ctl, _TAKE, _open_tasks(p + 1, n_groups))
                         _atomic_store(ctl, _PHASE, p + 1)
-                    t = _take_task(ctl, p, n_tasks)
+                    t = _take_task(ctl, p, back)
             else:
-                g = _take_task(ctl, p, n_groups)
+                g = _take_task(ctl, p, back)
                 while g >= 0:
                     ch = 2 * g + 1
                     if ch < nc:
@@ -751,9 +780,9 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                             _step_start(k + 1, new, sx, sy, y_ref, y_ref0, ref_m, u, mnodes,
                                         xmb, dxm, nm, fm)
                         _atomic_store(ctl, _DONE, 0)
-                        _atomic_store(ctl, _TAKE, (p + 1) << 32)
+                        _atomic_store(ctl, _TAKE, _open_tasks(p + 1, n_tasks))
                         _atomic_store(ctl, _PHASE, p + 1)
-                    g = _take_task(ctl, p, n_groups)
+                    g = _take_task(ctl, p, back)
             p = _wait_phase(ctl, p)
     if ctl[_PHASE] != n_phases:      # a thread left the region early: a task raised
         raise RuntimeError("run_steps: a task of the explicit step raised an exception (a "

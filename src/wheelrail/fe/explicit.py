@@ -37,7 +37,7 @@ import numba
 import numpy as np
 
 from ..errors import InputError
-from ._explicit import interleaved_tasks, node_groups, run_steps
+from ._explicit import node_groups, phase_one_tasks, run_steps
 from .model import build_model
 from .patch import patch_from_contact
 from .restart import read_restart
@@ -363,7 +363,7 @@ class _ContactLoop:
         nc = model.chunks.size - 1
         self.echunk = np.zeros((nc, 2))
         self.energy = np.zeros((0, 2))             # element energies: summed, not stored
-        self.tasks = interleaved_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
+        self.tasks = phase_one_tasks((nc + 1) // 2, min(64, max(1, ns // 64)))
         self.gptr, self.gnodes = node_groups(model.conn, model.chunks, model.n_nodes)
         self.partial = np.zeros((self.gptr.size - 1, 7))
         self.totals = np.zeros(7)

@@ -445,7 +445,10 @@ def build_model(case, *, rolling: bool = True) -> Model:
                                      elem.precompute(rail.nodes, rail.elements, mat)])
     nw = wheel.n_nodes
     conn = np.concatenate([wheel.elements, rail.elements + nw])
-    chunks = element_chunks(conn, nw + rail.n_nodes)
+    # 32 chunks, up to 64 above 16 384 elements (tasks of >= 512 elements): finer tasks shorten
+    # the wait for the last task of a parallel phase of the explicit step
+    target = min(max(conn.shape[0] // 512, 32), 64)
+    chunks = element_chunks(conn, nw + rail.n_nodes, target)
     mass = np.zeros(nw + rail.n_nodes)
     vol = edata.volume
     np.add.at(mass, conn.ravel(), np.repeat(mat.density * vol / 8.0, 8))
