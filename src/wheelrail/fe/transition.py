@@ -492,8 +492,14 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         c_axle = c_axle0 * fade_now
         if pre:
             # a massless axle on a dashpot: it creeps towards the vertical balance (the
-            # sprung mass and the rolling held)
-            vw = (Fc[2] - f_sprung - M_axle * GRAVITY) / c_pre if k + 1 < n_pre else 0.0
+            # sprung mass and the rolling held); the dashpots that its own velocity
+            # loads (the closed contact nodes' normal dashpots, the suspension's) are
+            # taken implicitly, else a stiff patch's dashpots exceed c_pre and the
+            # explicit update flips sign every step
+            c_c = float(np.sum(cdamp[status > 0] * out["normal"][status > 0, 2] ** 2))
+            f_el = Fc[2] + c_c * vw + susp.stiffness * zs
+            c_tot = c_pre + c_c + susp.damping
+            vw = (f_el - M_axle * GRAVITY) / c_tot if k + 1 < n_pre else 0.0
         else:
             aw = (Fc[2] - f_sprung - M_axle * GRAVITY - c_axle * vw) / M_axle
             a_s = (f_sprung - susp.sprung_mass * GRAVITY) / susp.sprung_mass
