@@ -178,13 +178,19 @@ def main():
                     help="record the contact's surface fields over this travel [m] "
                          "(written as NAME_fields.nc with --results)")
     ap.add_argument("--field-stride", type=int, default=1, help="every N-th output")
+    ap.add_argument("--preload", type=float, default=None,
+                    help="static preload (dynamic relaxation) before rolling [s]")
+    ap.add_argument("--settle", type=float, default=None, help="damped settle distance [m]")
+    ap.add_argument("--output-interval", type=float, default=None, help="[s]")
     a = ap.parse_args()
     if a.report:
         with open(a.report, "rb") as f:
             report(pickle.load(f))
         return
     extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel),
-                               ("flange_clearance", a.clearance)) if v is not None}
+                               ("flange_clearance", a.clearance), ("preload", a.preload),
+                               ("settle", a.settle), ("output_interval", a.output_interval))
+             if v is not None}
     if a.fields:
         extra.update(field_travel=tuple(a.fields), field_stride=a.field_stride)
     if a.report_restart:

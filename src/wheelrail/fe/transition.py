@@ -150,9 +150,38 @@ def transition_time_estimate(model, dt=None, case=None) -> dict:
     of ``case`` (default: the case the model was built for) on ``model``."""
     c = case if case is not None else model.case
     dt = dt or c.courant * stable_step(model)
-    steps = int(np.ceil(c.travel / c.speed / dt))
-    return {"time_step": dt, "steps": steps, "elements": model.n_elements,
+    pre = int(np.ceil(c.preload / dt)) if c.preload > 0 else 0
+    steps = int(np.ceil(c.travel / c.speed / dt)) + pre
+    return {"time_step": dt, "steps": steps, "preload_steps": pre,
+            "elements": model.n_elements,
             "estimate_s": steps * model.n_elements * NS_PER_ELEMENT_STEP * 1e-9}
+
+
+#: Fictitious masses of the dynamic relaxation in the preload (``TransitionCase.preload``):
+#: the sleepers' nodes at most at this fraction of their mass (less if their elements' or
+#: the pads' stable step would fall below 2 Δt); the axle is massless then.
+PRELOAD_SLEEPER_MASS = 1.0 / 100.0
+
+
+def _preload_masses(m, mass_eff, dt):
+    """Lumped masses of the preload's dynamic relaxation: the sleepers' nodes scaled down
+    by up to 1 / :data:`PRELOAD_SLEEPER_MASS` within the stable step (elements L/c, pads)."""
+    mass = mass_eff.copy()
+    sl = [np.unique(conn) for conn, _, ed, mat in m.groups if mat is not m.case.material]
+    if not sl:
+        return mass
+    sl = np.unique(np.concatenate(sl))
+    dt_el = min(float(ed.length.min()) / mat.wave_speed for conn, _, ed, mat in m.groups
+                if mat is not m.case.material)
+    scale = min(1.0 / PRELOAD_SLEEPER_MASS, (dt_el / (2.0 * dt)) ** 2)
+    while scale > 1.0:
+        trial = m.mass.copy()
+        trial[sl] /= scale
+        if m.springs.stable_step(trial) >= 2.0 * dt:
+            break
+        scale /= 2.0
+    mass[sl] /= max(scale, 1.0)
+    return mass
 
 
 def _static_track(model, load, point, EI=2.1e11 * 2.346e-5):
@@ -303,6 +332,14 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     inv_m = 1.0 / mass_eff
     inv_m[m.fixed] = 0.0
     inv_m[m.tie_slave] = 0.0
+    n_pre = est["preload_steps"]
+    if n_pre:
+        # dynamic relaxation: fictitious masses and damping until the rolling starts
+        mass_pre = _preload_masses(m, mass_eff, dt)
+        inv_m_pre = np.where(inv_m > 0.0, 1.0 / mass_pre, 0.0)
+        m_alpha_pre = case.preload_damping * mass_pre
+        m_alpha_pre[m.fixed] = 0.0
+        inv_m_run = inv_m
     m_alpha = np.zeros(n)
     no_beta = np.zeros((1, 3))
     # contact arrays
@@ -323,7 +360,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     vw = 0.0
     zs = -(susp.sprung_mass * GRAVITY) / susp.stiffness   # suspension deflection, static
     vs = 0.0
-    omega = V / r0 * (1.0 + xi0)
+    omega_roll = V / r0 * (1.0 + xi0)
+    omega = omega_roll if not n_pre else 0.0
     omega_mean = omega
     psi = 0.0
     # rolling dof against the patch's tangential stiffness: ω_n = r0 sqrt(k_t / J); a
@@ -338,9 +376,13 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     m_alpha[:] = alpha_m * fade * m.mass
     m_alpha[m.fixed] = 0.0
     s = 0.0
-    t = 0.0
+    t = -n_pre * dt
     # Hertz-type axle dashpot over the settle distance: critical on k ≈ 1.5 Q / δ, δ ≈ 0.1 mm
     c_axle0 = 2.0 * np.sqrt(1.5 * load / 1e-4 * M_axle)
+    # the preload's axle dashpot: the massless axle's explicit update w += Δt F / c is
+    # stable for c > Δt k / 2; 20 Δt k_Hertz keeps it so for a contact 10 × stiffer and
+    # lets the axle follow the track's ≈ 0.1 GN/m within ≈ 0.1 ms
+    c_pre = 20.0 * dt * 1.5 * load / (delta / 0.6)
     Xw = m.nodes[m.slave]
     xm_ref = m.nodes[k_master]
     xs_prev = c0 + (Xw + u[m.slave]) @ _rot(alpha, psi).T
@@ -390,6 +432,16 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     if restart_file is not None and restart_every <= 0:
         restart_every = max(1, n_steps // 10)
     for k in range(k0, n_steps):
+        pre = k < n_pre
+        if n_pre and k <= n_pre:
+            # the preload's masses and damping until it ends, then the rolling start
+            inv_m = inv_m_pre if pre else inv_m_run
+            if pre:
+                m_alpha[:] = m_alpha_pre
+            elif k == n_pre:
+                omega = omega_mean = omega_roll
+                m_alpha[:] = alpha_m * fade * m.mass
+                m_alpha[m.fixed] = 0.0
         R = _rot(alpha, psi)
         c = c0 + s * heading + np.array([0.0, 0.0, w])
         # ---- element forces (both materials)
@@ -401,7 +453,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             f_int += f_tmp
         # ---- contact
         is_out = k % every == 0 or k == n_steps - 1
-        rec = (is_out and fwin and fwin[0] <= s + dt * V <= fwin[1]
+        rec = (is_out and not pre and fwin and fwin[0] <= s + dt * V <= fwin[1]
                and n_rec % case.field_stride == 0)
         xs = c + (Xw + u[m.slave]) @ R.T
         xm = xm_ref + u[k_master]
@@ -438,23 +490,36 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         f_sprung = -susp.stiffness * zs - susp.damping * (vs - vw)     # on the sprung mass
         fade_now = max(0.0, 1.0 - s / case.settle) if case.settle > 0 else 0.0
         c_axle = c_axle0 * fade_now
-        aw = (Fc[2] - f_sprung - M_axle * GRAVITY - c_axle * vw) / M_axle
-        a_s = (f_sprung - susp.sprung_mass * GRAVITY) / susp.sprung_mass
-        vw += dt * aw
-        vs += dt * a_s
+        if pre:
+            # a massless axle on a dashpot: it creeps towards the vertical balance (the
+            # sprung mass and the rolling held); the dashpots that its own velocity
+            # loads (the closed contact nodes' normal dashpots, the suspension's) are
+            # taken implicitly, else a stiff patch's dashpots exceed c_pre and the
+            # explicit update flips sign every step
+            c_c = float(np.sum(cdamp[status > 0] * out["normal"][status > 0, 2] ** 2))
+            f_el = Fc[2] + c_c * vw + susp.stiffness * zs
+            c_tot = c_pre + c_c + susp.damping
+            vw = (f_el - M_axle * GRAVITY) / c_tot if k + 1 < n_pre else 0.0
+        else:
+            aw = (Fc[2] - f_sprung - M_axle * GRAVITY - c_axle * vw) / M_axle
+            a_s = (f_sprung - susp.sprung_mass * GRAVITY) / susp.sprung_mass
+            vw += dt * aw
+            vs += dt * a_s
         w += dt * vw
         zs += dt * (vs - vw)
-        omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
-        omega_mean += dt * (omega - omega_mean) / tau_rot
-        psi += dt * omega
-        if fade > 0.0 and fade_now < fade - 0.02:
+        if not pre:
+            omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
+            omega_mean += dt * (omega - omega_mean) / tau_rot
+            psi += dt * omega
+        if not pre and fade > 0.0 and fade_now < fade - 0.02:
             fade = fade_now
             m_alpha[:] = alpha_m * fade * m.mass
             m_alpha[m.fixed] = 0.0
-        s += dt * V
+        if not pre:
+            s += dt * V
         t += dt
-        if k < n_wave:
-            wave_v[k] = v[line, 2]
+        if 0 <= k - n_pre < n_wave:
+            wave_v[k - n_pre] = v[line, 2]
         if is_out:
             shape2 = (band_i.size, rim_shape[1])
             ang = np.arccos(np.minimum(1.0, np.abs(out["normal"][:, 2])))
@@ -468,13 +533,13 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                                   m.slave_area, status, case.mu)
                 row.append([d[f] for f in PATCH_FIELDS])
             rows.append(row)
-            if fwin and fwin[0] <= s <= fwin[1]:
+            if fwin and not pre and fwin[0] <= s <= fwin[1]:
                 if rec:
                     sf.append(_contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab,
                                               m, case.mu, shape2))
                     sf_t.append((t, s))
                 n_rec += 1
-            creep = (omega * r0 - V) / V
+            creep = (omega * r0 - V) / V if not pre else np.nan
             hist.append([t, s, w, omega, creep, Fc[0], Fc[1], Fc[2], float(out["pn"].sum()),
                          M_c, npatch, c[1]])
             if field_every and (len(rows) - 1) % field_every == 0:

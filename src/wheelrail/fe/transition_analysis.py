@@ -20,9 +20,10 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import InputError
+from .transition_model import flange_contact_offset, rigid_pose
 
 __all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel",
-           "surface_stations"]
+           "surface_stations", "climb_load"]
 
 
 def rayleigh_speed(E: float, nu: float, rho: float) -> float:
@@ -109,6 +110,70 @@ def settled_vertical_balance(result, s_from: float, s_to: float) -> dict:
     q = result.info["load"]
     return {"Fz": float(fz.mean()), "std": float(fz.std()), "load": float(q),
             "error": float(fz.mean() / q - 1.0)}
+
+
+def climb_load(case, travel, wheel_mass: float, dy: float = 1e-4,
+               smooth: float = 5e-4) -> dict:
+    """Vertical contact force beyond the wheel load that the rigid climb of the axle along
+    its prescribed lateral path needs (the transition runs' kinematics).
+
+    The axle moves laterally at V sin α (its heading is yawed by α), so its rigid height
+    z(y) over the rail — the height of the wheel profile's origin where the unyawed wheel
+    touches the rail (:func:`~wheelrail.fe.transition_model.rigid_pose`) — changes at
+    ż = V sin α z′(y) and z̈ = (V sin α)² z″(y). The unsprung mass M_u (the half-axle and
+    the wheel) then needs M_u z̈ more contact force, and the primary suspension pushes
+    with k (z − z(y₀)) + c ż more while the sprung mass (≈ 2 Hz) has not moved. By the
+    envelope theorem z′ is the common slope of the profiles at the contact (tan of the
+    contact angle), so z″ grows where the contact climbs the flange root, and the jump of
+    the rigid contact onto the flange root is a kink of z (a short peak of z″; the elastic
+    run spreads it).
+
+    Parameters
+    ----------
+    case : TransitionCase
+    travel : array_like
+        Travel s [m] along the heading from the start (lateral offset y₀ = y_f − the
+        flange clearance; y_f from
+        :func:`~wheelrail.fe.transition_model.flange_contact_offset`).
+    wheel_mass : float
+        Mass of the (FE) wheel [kg]; the unsprung mass is it plus
+        ``case.suspension.axle_mass``.
+    dy : float
+        Sampling of the lateral offset [m].
+    smooth : float
+        Width [m] of the moving average of z′ before it is differentiated (z′ is
+        piecewise constant on the profiles' stations).
+
+    Returns
+    -------
+    dict
+        Arrays over ``travel``: ``y`` lateral offset [m], ``z`` rigid height [m], ``dz``
+        z′ [-], ``d2z`` z″ [1/m], ``inertia`` M_u (V sin α)² z″ [N], ``suspension``
+        k (z − z(y₀)) + c V sin α z′ [N], ``total`` their sum [N].
+    """
+    s = np.atleast_1d(np.asarray(travel, float))
+    if not np.all(np.isfinite(s)) or np.any(s < 0):
+        raise InputError(f"travel must be finite and >= 0 [m], got {travel!r}")
+    if not (dy > 0 and smooth >= dy):
+        raise InputError(f"need dy > 0 and smooth >= dy, got dy={dy!r}, smooth={smooth!r}")
+    sa = np.sin(case.angle_of_attack)
+    y0 = flange_contact_offset(case) - case.flange_clearance
+    y = y0 + s * sa
+    pad = smooth + 3 * dy
+    grid = np.arange(y.min() - pad, y.max() + pad + dy, dy)
+    z = np.array([rigid_pose(case, g)["z_off"] for g in grid])
+    dz = np.gradient(z, grid)
+    n = max(1, int(round(smooth / dy)))
+    dz_s = np.convolve(dz, np.ones(n) / n, mode="same")
+    d2z = np.gradient(dz_s, grid)
+    vy = case.speed * sa
+    susp = case.suspension
+    mu = susp.axle_mass + float(wheel_mass)
+    zi, dzi, d2zi = (np.interp(y, grid, a) for a in (z, dz, d2z))
+    inertia = mu * vy ** 2 * d2zi
+    spring = susp.stiffness * (zi - np.interp(y0, grid, z)) + susp.damping * vy * dzi
+    return {"y": y, "z": zi, "dz": dzi, "d2z": d2zi, "inertia": inertia,
+            "suspension": spring, "total": inertia + spring}
 
 
 def onset_travel(patches, min_force: float = 1000.0, persist: int = 3) -> float:

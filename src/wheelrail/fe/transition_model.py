@@ -110,6 +110,18 @@ class TransitionCase:
         Mass-proportional damping α [1/s] of all nodes at the start, fading linearly to 0
         over ``settle`` (dissipates the start transient, as the structural damping of the
         explicit studies does; 0 switches it off).
+    preload : float
+        Duration [s] of a static preload before the wheel starts rolling (0: none): the
+        wheel stands at its start pose under the static load, without torque, and the
+        structure relaxes to its static equilibrium by dynamic relaxation (fictitious
+        masses for the slow lumped dofs — the axle massless on a dashpot, moving at
+        (ΣFz − Q) / c, the sleepers at a 100th of their mass — and mass-proportional
+        damping ``preload_damping`` of every node); the damping and the fictitious masses
+        are switched off when the rolling starts. Removes the start transient of the vertical dynamics
+        (the axle and the track on the contact stiffness) that ``settle`` does not reach.
+        The outputs of the preload have negative times and zero travel.
+    preload_damping : float
+        Mass-proportional damping α [1/s] during the preload.
     patch_split_angle : float
         Contact angle [rad] separating the tread patch from the flange patch.
     wave_time : float
@@ -148,6 +160,8 @@ class TransitionCase:
     min_element_fraction: float = 0.5
     output_interval: float = 30e-6
     settle_damping: float = 1000.0
+    preload: float = 0.0
+    preload_damping: float = 2000.0
     patch_split_angle: float = float(np.radians(45.0))
     wave_time: float = 0.0
     field_travel: tuple = ()
@@ -161,7 +175,7 @@ class TransitionCase:
                            float(in_range("patch_split_angle", self.patch_split_angle,
                                           np.radians(30.0), np.radians(60.0))))
         for name in ("flange_clearance", "settle", "contact_damping", "traction",
-                     "settle_damping", "wave_time"):
+                     "settle_damping", "wave_time", "preload", "preload_damping"):
             object.__setattr__(self, name, float(non_negative(name, getattr(self, name))))
         object.__setattr__(self, "angle_of_attack",
                            float(in_range("angle_of_attack", self.angle_of_attack, -0.1, 0.1)))
