@@ -89,7 +89,7 @@ def instrumented_source() -> str:
     rs = src[src.index("@njit(cache=True, parallel=True)\ndef run_steps("):]
     rs = _strip_doc(rs, "Steps ``k0``")
     rs = _sub(rs, "def run_steps(", "def run_steps_t(")
-    rs = _sub(rs, "counter, nthr):", "counter, nthr, T, TA, TB):")
+    rs = _sub(rs, "totals, nthr):", "totals, nthr, T, TA, TB):")
     rs = _sub(rs, "    for w in prange(nthr):\n", "    T[k0, 0] = rdtsc()\n    for w in prange(nthr):\n")
     pad = " " * 20
     pub = pad + "    _atomic_store(ctl, _PHASE, p + 1)\n"

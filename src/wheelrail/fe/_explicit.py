@@ -589,7 +589,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
               ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt,
               cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip,
               fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
-              gptr, gnodes, partial, totals, counter, nthr):
+              gptr, gnodes, partial, totals, nthr):
     """Steps ``k0`` to ``k1 − 1`` of the explicit loop, with the axle's vertical motion and
     the energy bookkeeping of the rolling step, in one parallel region.
 
@@ -685,8 +685,6 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
         Σ m_α v_old·v_old, Σ m_α v_old·v_new, Σ f_con·v_old, Σ f_con·v_new, Σ f_β·v_old,
         Σ f_β·v_new and Σ m v_k·v_k with v_k = v_new − Δt a / 2 (twice the kinetic
         energy at the step).
-    counter : (1,) int64
-        Not used (kept for the signature; the synchronisation has its own array).
     nthr : int
         ``numba.get_num_threads()``.
 

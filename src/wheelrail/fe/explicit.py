@@ -367,7 +367,6 @@ class _ContactLoop:
         self.gptr, self.gnodes = node_groups(model.conn, model.chunks, model.n_nodes)
         self.partial = np.zeros((self.gptr.size - 1, 7))
         self.totals = np.zeros(7)
-        self.counter = np.zeros(1, np.int64)
         # the element kernel streams its connectivity every step: 32 bytes per element
         self.conn = model.conn.astype(np.int32) if model.conn.max() < 2**31 else model.conn
         self.mat = (model.material.lam, model.material.shear_modulus) + tuple(model._hardening)
@@ -421,7 +420,7 @@ class _ContactLoop:
             self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
             o["pn"], o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
             self.fcon, self.sums, v, fd_beta, has_beta, m_alpha, inv_m, mass,
-            cmap, dt, self.gptr, self.gnodes, self.partial, self.totals, self.counter,
+            cmap, dt, self.gptr, self.gnodes, self.partial, self.totals,
             numba.get_num_threads())
         if plastic:                          # updated in place: nothing to commit
             state.energies = (float(self.sums[6]), float(self.sums[7]))
