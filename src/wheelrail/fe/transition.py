@@ -326,7 +326,6 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     e_buf = [np.zeros((g[0].shape[0], 2)) for g in m.groups]
     partial = np.zeros((NCHUNK, 2))
     cmap = np.arange(n, dtype=np.int64)
-    inv_m = 1.0 / m.mass
     mass_eff = m.mass.copy()
     np.add.at(mass_eff, m.tie_master.ravel(), (m.tie_weight * m.mass[m.tie_slave, None]).ravel())
     inv_m = 1.0 / mass_eff
@@ -341,6 +340,12 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         m_alpha_pre[m.fixed] = 0.0
         inv_m_run = inv_m
     m_alpha = np.zeros(n)
+
+    def settle_damping(f):
+        # mass-proportional damping α f m of the start transient (clamped nodes: none)
+        m_alpha[:] = alpha_m * f * m.mass
+        m_alpha[m.fixed] = 0.0
+
     no_beta = np.zeros((1, 3))
     # contact arrays
     ns = m.slave.size
@@ -373,8 +378,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     # mass-proportional damping of the start transient, fading over `settle`
     alpha_m = case.settle_damping
     fade = 1.0 if case.settle > 0 else 0.0
-    m_alpha[:] = alpha_m * fade * m.mass
-    m_alpha[m.fixed] = 0.0
+    settle_damping(fade)
     s = 0.0
     t = -n_pre * dt
     # Hertz-type axle dashpot over the settle distance: critical on k ≈ 1.5 Q / δ, δ ≈ 0.1 mm
@@ -425,23 +429,22 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
                                               ("omega", "omega_mean", "psi", "s", "t", "fade"))
         xs_prev, xm_prev = st["xs_prev"], st["xm_prev"]
-        m_alpha[:] = alpha_m * fade * m.mass
-        m_alpha[m.fixed] = 0.0
+        settle_damping(fade)
         if progress:
             print(f"  continued from {restart!s} at step {k0}", flush=True)
     if restart_file is not None and restart_every <= 0:
         restart_every = max(1, n_steps // 10)
+    if k0 < n_pre:
+        # the preload's fictitious masses and damping until the rolling starts
+        inv_m = inv_m_pre
+        m_alpha[:] = m_alpha_pre
     for k in range(k0, n_steps):
         pre = k < n_pre
-        if n_pre and k <= n_pre:
-            # the preload's masses and damping until it ends, then the rolling start
-            inv_m = inv_m_pre if pre else inv_m_run
-            if pre:
-                m_alpha[:] = m_alpha_pre
-            elif k == n_pre:
-                omega = omega_mean = omega_roll
-                m_alpha[:] = alpha_m * fade * m.mass
-                m_alpha[m.fixed] = 0.0
+        if n_pre and k == n_pre:
+            # the rolling starts: the real masses, the settle damping, the rolling speed
+            inv_m = inv_m_run
+            omega = omega_mean = omega_roll
+            settle_damping(fade)
         R = _rot(alpha, psi)
         c = c0 + s * heading + np.array([0.0, 0.0, w])
         # ---- element forces (both materials)
@@ -513,8 +516,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             psi += dt * omega
         if not pre and fade > 0.0 and fade_now < fade - 0.02:
             fade = fade_now
-            m_alpha[:] = alpha_m * fade * m.mass
-            m_alpha[m.fixed] = 0.0
+            settle_damping(fade)
         if not pre:
             s += dt * V
         t += dt
