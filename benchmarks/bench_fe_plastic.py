@@ -10,6 +10,7 @@ machine load, and saves NetCDF / VTU / PNG files under --out):
   python benchmarks/bench_fe_plastic.py figures --mesh 2e-3          # Figs. 9-11 (surface, patch)
   python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3    # implicit Δt sensitivity (§3)
   python benchmarks/bench_fe_plastic.py time-increment --mesh 3e-3 --material plastic  # J2 bodies
+  python benchmarks/bench_fe_plastic.py linear-solvers --mesh 2e-3  # SuperLU vs PARDISO, one Newton matrix
   python benchmarks/bench_fe_plastic.py passes --mesh 2e-3 --passes 4 # repeated passes
   python benchmarks/bench_fe_plastic.py speed                         # ns/element/step, 1 and 2 threads
   python benchmarks/bench_fe_plastic.py speed --baseline /tmp/base/src  # the same, alternating with another version
@@ -397,6 +398,51 @@ def time_increment_table(a):
               f"{row.get('wavelength', np.nan) * 1e3:.1f} mm")
 
 
+def cmd_linear_solvers(a):
+    """The implicit HHT run's first Newton matrix (static step, unscaled mass, the
+    time-increment case with --dts[0], --travel) factorised and solved by SuperLU
+    (`linear_solver="direct"`) and MKL PARDISO (`"pardiso"`), CPU time of each over
+    --repeats, alternating; MKL on one thread unless MKL_NUM_THREADS says otherwise."""
+    import scipy.sparse as sp
+
+    import wheelrail.fe._newton as nw
+
+    os.environ.setdefault("MKL_NUM_THREADS", "1")
+    grabbed = {}
+
+    class Stop(Exception):
+        pass
+
+    def grab(J, b):
+        grabbed.update(J=sp.csr_matrix(J), b=np.array(b))
+        raise Stop
+
+    case = seed(a.mesh, plastic=_time_increment_plastic(a), integrator="implicit-hht",
+                mass_scaling=1.0, time_step=a.dts[0], travel=a.travel, **a.extra)
+    real = nw.solve_linear
+    nw.solve_linear = grab
+    try:
+        solve(case)
+    except Stop:
+        pass
+    finally:
+        nw.solve_linear = real
+    J, b = grabbed["J"], grabbed["b"]
+    print(f"  {a.mesh * 1e3:g} mm mesh: {J.shape[0]} unknowns, {J.nnz} non-zeros")
+    cpu = {"direct": [], "pardiso": []}
+    for _ in range(a.repeats):
+        for name in cpu:
+            solver = nw.make_solver(name)
+            t = time.process_time()
+            x = solver.solve(J, b)
+            cpu[name].append(time.process_time() - t)
+            res = np.linalg.norm(J @ x - b) / np.linalg.norm(b)
+            print(f"    {name:8s}: CPU {cpu[name][-1]:.2f} s, relative residual {res:.1e}",
+                  flush=True)
+    print(f"  best: SuperLU {min(cpu['direct']):.2f} s, PARDISO {min(cpu['pardiso']):.2f} s, "
+          f"ratio {min(cpu['direct']) / min(cpu['pardiso']):.2f}, {load()}")
+
+
 def rear_waves(r, profile=False):
     """Amplitude [m] of the vertical rail-surface displacement oscillation behind the contact
     (std of u_z of the rail surface nodes from 1.5 a to 6 a behind the contact, after removing
@@ -583,7 +629,7 @@ def speed_against_baseline(a):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     ap.add_argument("part", choices=["steady", "mass-scaling", "table3", "creep", "creep-compare", "figures",
-                                     "time-increment",
+                                     "time-increment", "linear-solvers",
                                      "passes", "speed", "speed-one"])
     ap.add_argument("--mesh", type=float, default=2e-3)
     ap.add_argument("--out", default="fe_plastic_out")

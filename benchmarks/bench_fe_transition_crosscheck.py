@@ -31,7 +31,6 @@ import numpy as np
 
 import wheelrail as wr
 from wheelrail.contact.wheelrail import WheelRailPosition, solve_wheelrail
-from wheelrail.fe.transition_model import flange_contact_offset
 
 S1002 = wr.profiles.load("S1002")
 R54 = wr.profiles.load("54E1")
@@ -52,9 +51,7 @@ def module_jump_shift(ws, tr):
 
 def crosscheck(run, s_values):
     case = wr.fe.seed004_case(**run["case_kw"])
-    ds, h, info = run["patches"], run["history"], run["info"]
-    yf = flange_contact_offset(case)
-    y0 = yf - case.flange_clearance
+    ds, h = run["patches"], run["history"]
     ws = wr.Wheelset(S1002, nominal_radius=case.radius)
     tr = wr.Track(R54, inclination=np.tan(case.inclination))
     yj = module_jump_shift(ws, tr)

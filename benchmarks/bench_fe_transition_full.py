@@ -8,10 +8,9 @@ every timing. Writes ``results/fe_transition/full_size_build.json`` and
 """
 
 import os, sys, time, resource, json
-import numpy as np
 t0c, t0w = time.process_time(), time.perf_counter()
 import wheelrail as wr
-from wheelrail.fe.transition import run_transition, stable_step, transition_time_estimate
+from wheelrail.fe.transition import run_transition, transition_time_estimate
 from wheelrail.fe.transition_model import build_transition_model
 import numba
 

@@ -24,7 +24,7 @@ import threading
 import time
 
 import pytest
-from _helpers import SOLVE_CASE, assert_clean_failure, assert_no_debris, run_cli, wheelset_case
+from _helpers import SOLVE_CASE, assert_clean_failure, run_cli, wheelset_case
 
 CASE = SOLVE_CASE
 

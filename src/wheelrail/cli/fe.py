@@ -178,7 +178,6 @@ def case_from_toml(path):
     else:  # pragma: no cover
         import tomli as tomllib
 
-    import wheelrail as wr
     from ..errors import CaseFileError
     from ..fe import RollingCase
 

@@ -222,6 +222,64 @@ class ReusedFactorSolver(DirectSolver):
         return self.lu.solve(b)
 
 
+class PardisoSolver(DirectSolver):
+    """Newton-system solver: a fresh MKL PARDISO factorisation per call (optional extra).
+
+    PARDISO (real unsymmetric, ``mtype=11``; nested-dissection ordering, multithreaded by
+    ``MKL_NUM_THREADS``) factorises the 3-D hex meshes' Newton matrices about 3x faster
+    than SuperLU on one thread (54 061 unknowns: 4.4 s against 12.4 s CPU,
+    benchmarks/bench_fe_plastic.py ``linear-solvers``). Every solve is checked: a relative
+    residual above 1e-10 (PARDISO perturbs tiny pivots) falls back to SuperLU.
+
+    Raises
+    ------
+    ImportError
+        When pypardiso is not installed (``pip install wheelrail[pardiso]``, x86-64 only).
+
+    References
+    ----------
+    O. Schenk, K. Gärtner, "Solving unsymmetric sparse systems of linear equations with
+    PARDISO", Future Generation Computer Systems 20 (2004) 475–487.
+    """
+
+    def __init__(self):
+        super().__init__()
+        try:
+            import pypardiso
+        except ImportError as e:
+            raise ImportError("linear_solver='pardiso' needs pypardiso (MKL PARDISO): "
+                              "pip install 'wheelrail[pardiso]' (x86-64 only)") from e
+        self._pardiso = pypardiso.PyPardisoSolver(mtype=11)
+        self.fallbacks = 0
+
+    def solve(self, J, b):
+        import time
+        import warnings
+
+        import scipy.sparse as sp
+
+        t = time.perf_counter()
+        self.solves += 1
+        self.factorizations += 1
+        A = sp.csr_matrix(J)
+        A.sort_indices()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
+            x = self._pardiso.solve(A, np.asarray(b, dtype=float))
+        res = np.linalg.norm(A @ x - b)
+        if not np.isfinite(res) or res > 1e-10 * max(np.linalg.norm(b), 1e-300):
+            self.fallbacks += 1
+            x = solve_linear(J, b)
+        self.seconds += time.perf_counter() - t
+        return x
+
+
+def make_solver(name):
+    """The Newton-system solver of ``FECase.linear_solver``."""
+    return {"direct": DirectSolver, "reuse": ReusedFactorSolver,
+            "pardiso": PardisoSolver}[name]()
+
+
 def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *,
            dyn=None, static_scale=1.0, diag=None, tol=3e-3, max_iter=40, solver=None,
            state=None, tangent=None):

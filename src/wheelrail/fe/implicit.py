@@ -30,7 +30,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._newton import DirectSolver, ReusedFactorSolver, newton
+from ._newton import make_solver, newton
 from .model import build_model
 from .patch import patch_from_contact
 from .restart import read_restart
@@ -77,7 +77,7 @@ def _implicit_start(case, io):
         u, w, c, _ = static_equilibrium(model, K, state=state)
     else:
         u = w = c = None
-    solver = ReusedFactorSolver() if case.linear_solver == "reuse" else DirectSolver()
+    solver = make_solver(case.linear_solver)
     return (model, K, free, Kff, u, w, c, speed, dt, nsteps, model.geometry["r_c"], solver,
             state)
 

@@ -34,9 +34,8 @@ import numpy as np
 from .._validation import in_range, non_negative, positive
 from ..errors import InputError
 from ..profiles import Profile
-from . import _kernels as K
 from ._solid import element_chunks
-from .elements import ElementData, Hex8
+from .elements import Hex8
 from .materials import LinearElastic
 from .transition_contact import build_buckets
 from .transition_mesh import (
@@ -473,7 +472,7 @@ def build_transition_model(case: TransitionCase) -> TransitionModel:
     rim = sweep_section(wheel_rows, th, R, periodic=True, name="wheel rim")
     plate = sweep_section(plate_rows, th, R, periodic=True, name="wheel plate")
     # ---- sleepers
-    sl_nodes, sl_conn, sl_bottom, sl_top = [], [], [], []
+    sl_nodes = []
     z_foot = float(web_rows[-1, 0, 1])
     Lx, Ly, Hz = track.sleeper_size
     ex, ey, ez = track.sleeper_elements

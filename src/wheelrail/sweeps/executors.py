@@ -137,7 +137,6 @@ class DaskExecutor:
         except ImportError as exc:  # pragma: no cover - dask is a dependency
             raise InputError("the dask executor needs 'dask[distributed]' "
                              f"(pip install 'dask[distributed]'): {exc}") from None
-        import dask
 
         if self.scheduler is not None:
             self._client = _connect(Client, self.scheduler, self.timeout)
