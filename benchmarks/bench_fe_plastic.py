@@ -396,6 +396,40 @@ def time_increment_table(a):
             f"{k} {row[k] / base[k] - 1:+.1%}" for k in ("p_max", "a", "b", "vm", "tau", "Fx"))
               + f", rear waves {row['waves'] * 1e6:.2f} um, wavelength "
               f"{row.get('wavelength', np.nan) * 1e3:.1f} mm")
+    plot_rear_profiles(rows, Path(a.out) / f"hht_rear_{a.mesh * 1e3:g}mm{plastic}.png",
+                       f"{a.mesh * 1e3:g} mm mesh, {'elasto-plastic' if plastic else 'elastic'}")
+
+
+def plot_rear_profiles(rows, path, title):
+    """The detrended rail-surface u_z behind the contact of every run (x from the contact,
+    the wheel rolling towards +x), with a cosine of wavelength 2 V dt for each step."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    V = 50 / 3.6
+    fig, ax = plt.subplots(figsize=(7, 3.6))
+    for k, row in enumerate(rows):
+        if not row.get("profile_x"):
+            continue
+        x = (np.asarray(row["profile_x"]) - row["travel"]) * 1e3
+        uz = np.asarray(row["profile_uz"]) * 1e6
+        ax.plot(x, uz, "o-", color=f"C{k}", ms=3,
+                label=f"dt = {row['dt']:.2g} s ({row['travel'] * 1e3:g} mm of travel"
+                      + (", elasto-plastic)" if "eps_p" in row else ")"))
+        xx = np.linspace(x.min(), x.max(), 300)
+        lam = 2 * V * row["dt"] * 1e3
+        if lam > 2 * np.min(np.diff(np.sort(x))):
+            ax.plot(xx, np.std(uz) * np.sqrt(2) * np.cos(2 * np.pi * xx / lam), ":",
+                    color=f"C{k}", lw=0.8, label=f"2 V dt = {lam:.1f} mm (phase arbitrary)")
+    ax.set_xlabel("rail x minus the travel [mm] (behind the wheel: < 0)")
+    ax.set_ylabel("detrended rail-surface $u_z$ [µm]")
+    ax.set_title(f"Rail surface behind the patch, implicit HHT: {title}", fontsize=9)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
 
 
 def cmd_linear_solvers(a):
