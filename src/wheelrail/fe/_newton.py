@@ -226,8 +226,8 @@ class PardisoSolver(DirectSolver):
     """Newton-system solver: a fresh MKL PARDISO factorisation per call (optional extra).
 
     PARDISO (real unsymmetric, ``mtype=11``; nested-dissection ordering, multithreaded by
-    ``MKL_NUM_THREADS``) factorises the 3-D hex meshes' Newton matrices about 3x faster
-    than SuperLU on one thread (54 061 unknowns: 4.4 s against 12.4 s CPU,
+    ``MKL_NUM_THREADS``) factorises the 3-D hex meshes' Newton matrices 2.3-4.6x faster
+    than SuperLU on one thread (54 061 unknowns: 3.2 s against 14.7 s CPU,
     benchmarks/bench_fe_plastic.py ``linear-solvers``). Every solve is checked: a relative
     residual above 1e-10 (PARDISO perturbs tiny pivots) falls back to SuperLU.
 

@@ -86,7 +86,7 @@ class RollingCase:
         across iterations and steps and refactorises only when GMRES needs more than 40
         iterations (same results to 1e-10; not faster on the meshes measured, see
         docs/fe.md); ``"pardiso"`` factorises every iteration with MKL PARDISO (optional
-        extra ``wheelrail[pardiso]``; about 3x faster than SuperLU on the 2 mm meshes,
+        extra ``wheelrail[pardiso]``; 2.3-4.6x less CPU than SuperLU on 3 and 2 mm meshes,
         same results to rounding).
     hht_alpha : float
         HHT-α parameter in [-1/3, 0].
