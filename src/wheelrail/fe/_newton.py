@@ -274,10 +274,13 @@ class PardisoSolver(DirectSolver):
         return x
 
 
+#: The Newton-system solvers by their ``linear_solver`` name (the one list of the choices).
+LINEAR_SOLVERS = {"direct": DirectSolver, "reuse": ReusedFactorSolver, "pardiso": PardisoSolver}
+
+
 def make_solver(name):
-    """The Newton-system solver of ``FECase.linear_solver``."""
-    return {"direct": DirectSolver, "reuse": ReusedFactorSolver,
-            "pardiso": PardisoSolver}[name]()
+    """The Newton-system solver of ``RollingCase.linear_solver``."""
+    return LINEAR_SOLVERS[name]()
 
 
 def newton(model, Kff, free, u, w, psi, s, xs_prev, xm_prev, ft_old, mu, load, *,
