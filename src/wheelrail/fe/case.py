@@ -11,6 +11,7 @@ from ..errors import InputError
 from ..materials import STEEL, Material
 from ..plausibility import check_rolling_radius
 from ..profiles import Profile
+from ._newton import LINEAR_SOLVERS
 from .materials import J2Plastic, LinearElastic, r900a
 
 __all__ = ["RollingCase", "INTEGRATORS", "seed000_case", "toumi2016_load", "cone_wheel",
@@ -196,8 +197,6 @@ class RollingCase:
         if self.integrator == "implicit-qs" and r[0] > 0:
             raise InputError(f"rayleigh alpha = {r[0]!r} 1/s (mass-proportional damping) needs "
                              f"inertia: use integrator 'implicit-hht' or 'explicit', or alpha = 0")
-        from ._newton import LINEAR_SOLVERS
-
         if self.linear_solver not in LINEAR_SOLVERS:
             raise InputError(f"linear_solver must be 'direct', 'reuse' or 'pardiso', got "
                              f"{self.linear_solver!r}")
