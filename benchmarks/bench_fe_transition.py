@@ -138,7 +138,11 @@ def one(kw, save=None, figure=None, results=None, restart=None, restart_file=Non
                              restart_file=restart_file, restart_every=restart_every)
     if r.contact_fields is not None and results:
         r.contact_fields.to_netcdf(os.path.join(RESULTS, f"{results}_fields.nc"))
-    info = {k: v for k, v in r.info.items() if k != "fields"}
+    wave = r.info.get("wave")
+    if wave is not None and results:
+        np.savez_compressed(os.path.join(RESULTS, f"{results}_wave.npz"),
+                            **{k: np.asarray(v) for k, v in wave.items() if k != "vz"})
+    info = {k: v for k, v in r.info.items() if k not in ("fields", "wave")}
     run = {"patches": r.patches, "history": r.history, "info": info, "case_kw": kw,
            "load_avg": [load0, os.getloadavg()[0]]}
     print(f"build {t_build:.1f} s CPU; load {load0:.1f} at the start, "
@@ -182,6 +186,11 @@ def main():
                     help="static preload (dynamic relaxation) before rolling [s]")
     ap.add_argument("--settle", type=float, default=None, help="damped settle distance [m]")
     ap.add_argument("--output-interval", type=float, default=None, help="[s]")
+    ap.add_argument("--traction", type=float, default=None,
+                    help="driving torque as a traction coefficient (reduced case: 0.3)")
+    ap.add_argument("--wave", nargs=3, metavar=("TRAVEL", "TIME", "LINE"),
+                    help="record a rail surface line's velocities every step from TRAVEL [m] "
+                         "for TIME [s]; LINE tread or flange (NAME_wave.npz with --results)")
     a = ap.parse_args()
     if a.report:
         with open(a.report, "rb") as f:
@@ -189,10 +198,14 @@ def main():
         return
     extra = {k: v for k, v in (("mesh_size", a.mesh), ("travel", a.travel),
                                ("flange_clearance", a.clearance), ("preload", a.preload),
-                               ("settle", a.settle), ("output_interval", a.output_interval))
+                               ("settle", a.settle), ("output_interval", a.output_interval),
+                               ("traction", a.traction))
              if v is not None}
     if a.fields:
         extra.update(field_travel=tuple(a.fields), field_stride=a.field_stride)
+    if a.wave:
+        extra.update(wave_travel=float(a.wave[0]), wave_time=float(a.wave[1]),
+                     wave_line=a.wave[2])
     if a.report_restart:
         from_restart(dict(angle_of_attack=a.aoa, **extra), a.report_restart, a.results)
         return

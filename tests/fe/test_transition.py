@@ -240,6 +240,9 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     from wheelrail.fe.transition import run_transition
 
     case, model = tiny_transition
+    # with a record of the flange line's velocities from 0.3 mm of travel on (asked for
+    # longer than the run: it ends with the run)
+    case = case.replace(wave_travel=0.3e-3, wave_time=1e-3, wave_line="flange")
     f = tmp_path / "restart.npz"
     a = run_transition(case, model=model, restart_file=f, restart_every=60)
     with np.load(f) as z:
@@ -262,6 +265,18 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     np.testing.assert_allclose(b.patches["Fn"].values, a.patches["Fn"].values, rtol=1e-9,
                                atol=1e-6)
     np.testing.assert_allclose(b.u, a.u, rtol=1e-9, atol=1e-15)
+    # the wave record: it starts at the requested travel, on the gauge-corner line (the
+    # rigid flange contact at 70.3 deg), and a continuation returns the rows it ran
+    wa, wb = a.info["wave"], b.info["wave"]
+    dt = a.info["time_step"]
+    assert wa["t"][0] == pytest.approx(0.3e-3 / case.speed, abs=1.01 * dt)
+    assert wa["v"].shape == (wa["t"].size, wa["x"].size, 3)
+    assert np.degrees(np.arccos(abs(wa["normal"][2]))) == pytest.approx(70.3, abs=4.0)
+    assert np.abs(wa["v"][-1]).max() > 0
+    assert wa["t"][-1] == pytest.approx(case.travel / case.speed, abs=1.01 * dt)
+    assert wb["t"][0] > wa["t"][0] and wb["t"][-1] == wa["t"][-1]
+    tail = wa["t"].size - wb["t"].size
+    np.testing.assert_allclose(wb["v"], wa["v"][tail:], rtol=1e-9, atol=1e-12)
     with np.load(f) as z:
         other = dict(z)
     other["n_nodes"] = model.n_nodes + 1
@@ -337,6 +352,16 @@ def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transit
         v = np.hypot(np.hypot(f.slip_x.values[i][sel], f.slip_y.values[i][sel]),
                      f.slip_z.values[i][sel])
         assert np.all(np.abs(vn) <= 0.02 * v.max() + 1e-12)
+    # the patch's shear direction from the fields: the mean stress's angle is the patch
+    # history's theta (from the contact forces), up to its sign
+    from wheelrail.fe.transition_analysis import shear_direction
+
+    sd = shear_direction(f, patch=1)
+    k = [int(np.flatnonzero(P.time.values == tt)[0]) for tt in f.time.values]
+    np.testing.assert_allclose(np.abs(sd.mean_stress.values),
+                               np.degrees(P.theta.values[k, 0]), rtol=1e-9, atol=1e-9)
+    assert (sd.n_nodes.values == P.n_nodes.values[k, 0]).all()
+    assert np.isnan(shear_direction(f, patch=2).mean_angle.values).all()
     path = tmp_path / "fields.nc"
     f.to_netcdf(path)
     with xr.open_dataset(path) as g:
@@ -401,6 +426,18 @@ def test_preload_phase_is_restartable_and_rolls_from_time_zero(tiny_transition, 
     np.testing.assert_allclose(s[~pre], case.speed * t[~pre], rtol=1e-9)
     b = run_transition(case, model=model, restart=f)
     np.testing.assert_allclose(b.u, a.u, rtol=1e-9, atol=1e-15)
+    # the wave record: it starts at the requested travel, on the gauge-corner line (the
+    # rigid flange contact at 70.3 deg), and a continuation returns the rows it ran
+    wa, wb = a.info["wave"], b.info["wave"]
+    dt = a.info["time_step"]
+    assert wa["t"][0] == pytest.approx(0.3e-3 / case.speed, abs=1.01 * dt)
+    assert wa["v"].shape == (wa["t"].size, wa["x"].size, 3)
+    assert np.degrees(np.arccos(abs(wa["normal"][2]))) == pytest.approx(70.3, abs=4.0)
+    assert np.abs(wa["v"][-1]).max() > 0
+    assert wa["t"][-1] == pytest.approx(case.travel / case.speed, abs=1.01 * dt)
+    assert wb["t"][0] > wa["t"][0] and wb["t"][-1] == wa["t"][-1]
+    tail = wa["t"].size - wb["t"].size
+    np.testing.assert_allclose(wb["v"], wa["v"][tail:], rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose(b.history.Fz_total.values, a.history.Fz_total.values,
                                rtol=1e-9, atol=1e-6)
 
@@ -455,3 +492,32 @@ def test_climb_load_follows_the_contact_slope_of_the_rigid_pose():
     assert np.all(climb_load(case.replace(angle_of_attack=0.0), s, 212.0)["total"] == 0.0)
     with pytest.raises(InputError, match="travel"):
         climb_load(case, [-0.1], 212.0)
+
+
+def test_shear_direction_averages_of_a_turning_shear():
+    """Half the patch sheared at +60 deg, half at -60 deg (equal magnitudes), as under pure
+    spin: the mean stress points along the rail (0 deg), the nodes' mean signed angle is
+    0 deg, their mean |angle| 60 deg; a uniform 30 deg shear gives 30 deg three times."""
+    import xarray as xr
+
+    from wheelrail.fe.transition_analysis import shear_direction
+
+    nt, nr, nc = 2, 4, 6
+    ang = np.radians(np.where(np.arange(nc) < 3, 60.0, -60.0))[None, None, :] * np.ones((nt, nr, 1))
+    ang[1] = np.radians(30.0)
+    phi = np.radians(20.0)             # contact angle: the lateral tangent (0, cos, sin)
+    q = 1e8
+    ds = xr.Dataset({"traction_x": (("time", "row", "col"), -q * np.cos(ang)),
+                     "traction_y": (("time", "row", "col"), q * np.sin(ang) * np.cos(phi)),
+                     "traction_z": (("time", "row", "col"), q * np.sin(ang) * np.sin(phi)),
+                     "area": (("time", "row", "col"), np.full((nt, nr, nc), 4e-6)),
+                     "patch": (("time", "row", "col"), np.ones((nt, nr, nc), np.int8))},
+                    coords={"time": [0.0, 1e-5], "travel": ("time", [0.0, 2e-4])})
+    sd = shear_direction(ds, patch=1)
+    np.testing.assert_allclose(sd.mean_stress.values, [0.0, 30.0], atol=1e-9)
+    np.testing.assert_allclose(sd.mean_angle.values, [0.0, 30.0], atol=1e-9)
+    np.testing.assert_allclose(sd.mean_abs_angle.values, [60.0, 30.0], atol=1e-9)
+    with pytest.raises(InputError, match="patch"):
+        shear_direction(ds, patch=4)
+    with pytest.raises(InputError, match="traction_x"):
+        shear_direction(ds.drop_vars("traction_x"))

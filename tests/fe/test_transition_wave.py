@@ -10,6 +10,7 @@ from wheelrail.fe.transition_model import build_transition_model
 from wheelrail.fe.transition_wave import (
     elastic_wave_speeds,
     force_pulse,
+    phase_velocity,
     pulse_arrivals,
     pulse_phase,
     rail_pulse,
@@ -101,3 +102,63 @@ def test_pulse_arrivals_refuses_bad_inputs(pulse_4mm, model_4mm):
         rail_pulse(*model_4mm[:1], model=model_4mm[1], source_x=5.0)
     with pytest.raises(InputError, match="at must be"):
         rail_pulse(seed004_case(0.025, travel=0.09), at="web")
+
+
+def _travelling(c_of_f, x, t, backward=None):
+    """A pulse (Gaussian spectrum about 60 kHz, leaving x = 0 at 0.2 ms) travelling along +x
+    with phase velocity c(f) (exact, built in the frequency domain), optionally plus the
+    same pulse travelling along -x."""
+    nt = t.size
+    f = np.fft.rfftfreq(nt, t[1] - t[0])
+    s = np.exp(-(((f - 60e3) / 30e3) ** 2) - 2j * np.pi * f * 2e-4)
+    c = c_of_f(np.maximum(f, 1.0))
+    v = np.fft.irfft(s[:, None] * np.exp(-2j * np.pi * f[:, None] * x[None, :] / c[:, None]),
+                     n=nt, axis=0)
+    if backward is not None:
+        v = v + backward * np.fft.irfft(
+            s[:, None] * np.exp(2j * np.pi * f[:, None] * x[None, :] / c[:, None]), n=nt, axis=0)
+    out = np.zeros((nt, x.size, 3))
+    out[:, :, 2] = v
+    return {"x": x, "t": t, "v": out}
+
+
+def test_phase_velocity_of_a_synthetic_travelling_wave():
+    # the motion is built with a known phase velocity; the record resembles a 4 mm run's
+    # (stations 4 mm apart, 300 ns sampling, 0.6 ms)
+    x = np.arange(0.0, 0.1, 0.004)
+    t = np.arange(2000) * 3e-7
+    rec = _travelling(lambda f: np.full_like(f, 2975.0), x, t)
+    r = phase_velocity(rec, band=(40e3, 90e3), d_min=0.0, d_max=0.09)
+    assert r["speed"] == pytest.approx(2975.0, rel=2e-3)
+    assert r["accepted"] == 1.0 and r["stations"] == 23
+    # dispersive: c rising from 1.5 to 3 km/s over the band; each frequency's own speed
+    disp = lambda f: 1500.0 + 1500.0 * np.clip((f - 20e3) / 80e3, 0, 1)  # noqa: E731
+    r = phase_velocity(_travelling(disp, x, t), band=(20e3, 100e3), d_min=0.0,
+                       d_max=0.09)
+    np.testing.assert_allclose(r["c"], disp(r["f"]), rtol=5e-3)
+    # the same wave running the other way is seen on the side behind the source
+    rec_b = dict(rec, x=-x)
+    assert phase_velocity(rec_b, band=(40e3, 90e3), d_min=0.0, d_max=0.09,
+                          side="behind")["speed"] == pytest.approx(2975.0, rel=2e-3)
+    # two equal waves in opposite directions (a standing pattern): no single wave dominates
+    with pytest.raises(InputError, match="dominant"):
+        phase_velocity(_travelling(lambda f: np.full_like(f, 2975.0), x, t, backward=1.0),
+                       band=(40e3, 90e3), d_min=0.0, d_max=0.09, min_r2=0.99)
+    with pytest.raises(InputError, match="Nyquist"):
+        phase_velocity(rec, band=(40e3, 2e6), d_max=0.09)
+    with pytest.raises(InputError, match="stations"):
+        phase_velocity(rec, d_min=0.5, d_max=0.6)
+    with pytest.raises(InputError, match="side"):
+        phase_velocity(rec, side="both")
+    with pytest.raises(InputError, match="wave record"):
+        phase_velocity(None)
+
+
+def test_phase_velocity_of_the_pulse_on_the_rail_head(pulse_4mm):
+    # the same pulse as above, measured from its phase spectra instead of its arrival times:
+    # 2917-3085 m/s over 40-120 kHz on this 4 mm mesh (c_R = 2975 m/s)
+    c_r = pulse_4mm.info["speeds"]["c_R"]
+    for side in ("ahead", "behind"):
+        r = phase_velocity(pulse_4mm, band=(60e3, 120e3), d_min=0.02, d_max=0.07, side=side)
+        assert r["speed"] == pytest.approx(c_r, rel=0.05)
+        assert r["accepted"] >= 0.8

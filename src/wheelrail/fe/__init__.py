@@ -29,8 +29,9 @@ Public names
     Restart files of a rolling run (``solve(case, restart=...)``).
 ``seed004_case``, ``run_transition``, ``read_transition_restart``, ``pose_contact``
     The one- to two-point contact transition (docs/fe_transition.md).
-``rail_pulse``, ``pulse_arrivals``, ``elastic_wave_speeds``
-    Surface-wave speed on the transition model's rail from a clean force pulse.
+``rail_pulse``, ``pulse_arrivals``, ``phase_velocity``, ``elastic_wave_speeds``
+    Surface-wave speed on the transition model's rail: from a clean force pulse
+    (arrival times) or from any record, a rolling run's included (phase spectra).
 
 Parts: :mod:`.mesh` (structured generator), :mod:`.elements`, :mod:`.materials`,
 :mod:`._solid` (parallel element kernels, J2 return map), :mod:`._kernels` (contact),
@@ -90,7 +91,7 @@ from .transition import (
 )
 from .transition_model import TransitionCase, build_transition_model, yawed_contact
 from .transition_track import Suspension, TrackStructure
-from .transition_wave import elastic_wave_speeds, pulse_arrivals, rail_pulse
+from .transition_wave import elastic_wave_speeds, phase_velocity, pulse_arrivals, rail_pulse
 
 __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "toumi2016_load", "TOUMI2016_TABLE3_HERTZ", "cone_wheel", "head_arc_rail",
            "solve", "indent", "RollingResult", "IndentResult",
@@ -99,5 +100,5 @@ __all__ = ["creep_curve", "RollingCase", "INTEGRATORS", "seed000_case", "toumi20
            "MeshQualityError", "stable_time_step", "saturation_creepage", "read_restart",
            "write_restart", "seed004_case", "run_transition", "TransitionCase", "TransitionResult",
            "TrackStructure", "Suspension", "build_transition_model", "pose_contact",
-           "read_transition_restart", "rail_pulse", "pulse_arrivals", "elastic_wave_speeds",
-           "yawed_contact"]
+           "read_transition_restart", "rail_pulse", "pulse_arrivals", "phase_velocity",
+           "elastic_wave_speeds", "yawed_contact"]

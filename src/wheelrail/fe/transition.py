@@ -54,7 +54,8 @@ from .transition_mesh import (
     sweep_section,
     wheel_section,
 )
-from .transition_model import TransitionCase, build_transition_model, rigid_pose
+from .transition_model import (TransitionCase, build_transition_model, rail_surface_line,
+                               rigid_pose)
 from .transition_track import GRAVITY, Suspension, TrackStructure
 
 __all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate",
@@ -401,16 +402,17 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     rim_shape = m.meta["rim_shape"]
     band_i = m.meta["band_i"]
     surf_rail = k_master
-    # the rail's surface line (along x) through the start contact, for the wave analysis
-    xref = m.nodes[k_master]
-    near = np.abs(xref[:, 0]) < 2 * case.mesh_size
-    top = np.flatnonzero(near)[np.argmin(np.abs(xref[near, 1] - pose["rail_y_tread"])
-                                         + 10 * np.abs(xref[near, 2] - xref[near, 2].max()))]
-    line = k_master[(np.abs(xref[:, 1] - xref[top, 1]) < 1e-7)
-                    & (np.abs(xref[:, 2] - xref[top, 2]) < 1e-7)]
-    line = line[np.argsort(m.nodes[line, 0])]
+    # a rail surface line (along x) through the contact at the record's start, for the
+    # wave analysis: all three velocity components every step over wave_time
+    x_wave = c0[0] + case.wave_travel * np.cos(alpha)
     n_wave = int(case.wave_time / dt) if case.wave_time > 0 else 0
-    wave_v = np.zeros((n_wave, line.size))
+    if n_wave:
+        line, wave_normal = rail_surface_line(m, x_wave, case.wave_line)
+    else:
+        line, wave_normal = np.zeros(0, np.int64), np.zeros(3)
+    j_wave = n_pre + int(round(case.wave_travel / (V * dt)))     # step of the first record
+    n_wave = max(0, min(n_wave, n_steps - j_wave))        # not beyond the run's end
+    wave_v = np.zeros((n_wave, line.size, 3))
     t_cpu = time.process_time()
     t_wall = time.perf_counter()
     k0 = 0
@@ -520,8 +522,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         if not pre:
             s += dt * V
         t += dt
-        if 0 <= k - n_pre < n_wave:
-            wave_v[k - n_pre] = v[line, 2]
+        if 0 <= k - j_wave < n_wave:
+            wave_v[k - j_wave] = v[line]
         if is_out:
             shape2 = (band_i.size, rim_shape[1])
             ang = np.arccos(np.minimum(1.0, np.abs(out["normal"][:, 2])))
@@ -567,9 +569,21 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             "elements": m.n_elements, "load": load, "torque": torque, "J": J,
             "static_sag": sag, "fields": np.array(fields) if fields else None,
             "onset_travel": _onset(ds),
-            "wave": ({"x": m.nodes[line, 0] - c0[0], "t": dt * np.arange(1, n_wave + 1),
-                      "vz": wave_v} if n_wave else None)}
+            "wave": _wave_record(m, line, wave_normal, wave_v, x_wave, dt, n_pre, j_wave,
+                                 k0, case)}
     return TransitionResult(ds, hds, m, u, info, _fields_dataset(sf, sf_t) if sf else None)
+
+
+def _wave_record(m, line, normal, wave_v, x_wave, dt, n_pre, j_wave, k0, case):
+    """``info["wave"]``: the rows actually run (a restart continues at step ``k0``)."""
+    if not wave_v.shape[0]:
+        return None
+    first = max(0, k0 - j_wave)
+    t = dt * (np.arange(wave_v.shape[0]) + j_wave + 1 - n_pre)
+    v = wave_v[first:]
+    return {"x": m.nodes[line, 0] - x_wave, "t": t[first:], "v": v, "vz": v[:, :, 2],
+            "normal": normal, "line": case.wave_line, "travel": case.wave_travel,
+            "speed": case.speed * float(np.cos(case.angle_of_attack))}
 
 
 def _contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab, m, mu, shape2):

@@ -23,7 +23,7 @@ from ..errors import InputError
 from .transition_model import flange_contact_offset, rigid_pose
 
 __all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel",
-           "surface_stations", "climb_load"]
+           "surface_stations", "climb_load", "shear_direction"]
 
 
 def rayleigh_speed(E: float, nu: float, rho: float) -> float:
@@ -184,3 +184,74 @@ def onset_travel(patches, min_force: float = 1000.0, persist: int = 3) -> float:
     run = np.convolve(on.astype(int), np.ones(persist, int), mode="valid") == persist
     k = np.flatnonzero(run)
     return float(patches["travel"].values[k[0]]) if k.size else float("nan")
+
+
+def shear_direction(fields, patch: int = 1):
+    """Direction of the surface shear stress of a patch over time, three ways of averaging.
+
+    The orientation angle θ of the shear stress on the rail is measured from the negative
+    longitudinal axis (0: the traction of a driven wheel), positive towards the patch's
+    lateral tangent pointing to +y (the field side of the gauge corner), per node from the
+    recorded surface fields. A patch under spin carries a shear whose direction turns across
+    the patch, so the patch's "θ" depends on how it is averaged:
+
+    * ``mean_stress``: the angle of the area-weighted mean shear stress (the direction of
+      the patch's tangential force; ``theta`` of the patch histories, with its sign);
+    * ``mean_angle``: the area-weighted mean of the nodes' signed θ;
+    * ``mean_abs_angle``: the area-weighted mean of the nodes' |θ|.
+
+    Parameters
+    ----------
+    fields : xarray.Dataset
+        ``TransitionResult.contact_fields`` (dims time, row, col; ``traction_x/y/z`` [Pa] on
+        the rail, ``area`` [m²], ``patch`` labels).
+    patch : int
+        1 tread, 2 flange, 3 other.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``mean_stress``, ``mean_angle``, ``mean_abs_angle`` [deg] and ``n_nodes`` over
+        ``time`` (with ``travel``); NaN where the patch is not in contact.
+
+    References
+    ----------
+    The orientation angle as defined in the explicit-FE transition study of Zhao & Li's
+    group (S1002 on UIC 54E1, the angle between the surface shear stress and the negative
+    longitudinal axis; patch values averaged over its elements).
+    """
+    import xarray as xr
+
+    if patch not in (1, 2, 3):
+        raise InputError(f"patch must be 1, 2 or 3, got {patch!r}")
+    for name in ("traction_x", "traction_y", "traction_z", "area", "patch"):
+        if name not in fields:
+            raise InputError(f"fields has no {name!r}: pass TransitionResult.contact_fields")
+    tx = fields["traction_x"].values
+    ty = fields["traction_y"].values
+    tz = fields["traction_z"].values
+    A = fields["area"].values
+    sel = fields["patch"].values == patch
+    # the tangential traction's part across the rail lies along ±(the lateral tangent);
+    # its sign is that of its y component
+    t_lat = np.sign(ty) * np.hypot(ty, tz)
+    th = np.degrees(np.arctan2(t_lat, -tx))
+    w = np.where(sel, A, 0.0)
+    ws = w.sum(axis=(1, 2))
+    has = ws > 0
+    den = np.where(has, ws, 1.0)
+    mx, my, mz = ((w * t).sum(axis=(1, 2)) / den for t in (tx, ty, tz))
+    ml = np.sign(my) * np.hypot(my, mz)
+    nan = np.full(ws.shape, np.nan)
+    out = {"mean_stress": np.where(has, np.degrees(np.arctan2(ml, -mx)), nan),
+           "mean_angle": np.where(has, (w * np.where(sel, th, 0.0)).sum(axis=(1, 2)) / den,
+                                  nan),
+           "mean_abs_angle": np.where(has, (w * np.where(sel, np.abs(th), 0.0)).sum(
+               axis=(1, 2)) / den, nan),
+           "n_nodes": sel.sum(axis=(1, 2))}
+    ds = xr.Dataset({k: ("time", v) for k, v in out.items()},
+                    coords={"time": fields["time"].values,
+                            "travel": ("time", fields["travel"].values)})
+    for k in ("mean_stress", "mean_angle", "mean_abs_angle"):
+        ds[k].attrs["units"] = "deg"
+    return ds

@@ -37,7 +37,7 @@ from ..profiles import Profile
 from ._solid import element_chunks
 from .elements import Hex8
 from .materials import LinearElastic
-from .transition_contact import build_buckets
+from .transition_contact import build_buckets, nodal_normals_quads
 from .transition_mesh import (
     extrude_section,
     line_tie,
@@ -51,7 +51,7 @@ from .transition_mesh import (
 from .transition_track import SpringSet, Suspension, TrackStructure
 
 __all__ = ["TransitionCase", "TransitionModel", "build_transition_model", "rigid_pose",
-           "yawed_contact",
+           "yawed_contact", "rail_surface_line",
            "model_size_estimate"]
 
 
@@ -124,8 +124,14 @@ class TransitionCase:
     patch_split_angle : float
         Contact angle [rad] separating the tread patch from the flange patch.
     wave_time : float
-        Duration [s] from the start over which the vertical velocity of the rail's surface
-        line through the start contact is stored every step (wave-speed analysis).
+        Duration [s] over which the velocities of a rail surface line are stored every step
+        (``info["wave"]``, for the wave-speed analysis; 0: none).
+    wave_travel : float
+        Travel [m] at which that record starts (0: at the start of the rolling).
+    wave_line : {"tread", "flange"}
+        The recorded line: the rail's surface line along x through the tread contact's
+        lateral position, or through the rigid flange contact on the gauge corner
+        (:func:`rail_surface_line`).
     field_travel : tuple of float
         ``(from, to)`` [m] of travel in which the contact's surface fields (pressure,
         traction, micro-slip, adhesion/slip per wheel surface node) are recorded at the
@@ -163,6 +169,8 @@ class TransitionCase:
     preload_damping: float = 2000.0
     patch_split_angle: float = float(np.radians(45.0))
     wave_time: float = 0.0
+    wave_travel: float = 0.0
+    wave_line: str = "tread"
     field_travel: tuple = ()
     field_stride: int = 1
 
@@ -174,13 +182,19 @@ class TransitionCase:
                            float(in_range("patch_split_angle", self.patch_split_angle,
                                           np.radians(30.0), np.radians(60.0))))
         for name in ("flange_clearance", "settle", "contact_damping", "traction",
-                     "settle_damping", "wave_time", "preload", "preload_damping"):
+                     "settle_damping", "wave_time", "wave_travel", "preload",
+                     "preload_damping"):
             object.__setattr__(self, name, float(non_negative(name, getattr(self, name))))
         object.__setattr__(self, "angle_of_attack",
                            float(in_range("angle_of_attack", self.angle_of_attack, -0.1, 0.1)))
         object.__setattr__(self, "courant", float(in_range("courant", self.courant, 0.0, 1.0,
                                                            lo_open=True)))
         object.__setattr__(self, "grading", float(in_range("grading", self.grading, 1.0, 2.0)))
+        if self.wave_line not in ("tread", "flange"):
+            raise InputError(f"wave_line must be 'tread' or 'flange', got {self.wave_line!r}")
+        if self.wave_travel >= self.travel:
+            raise InputError(f"wave_travel {self.wave_travel!r} m must be below the travel "
+                             f"{self.travel!r} m")
         ft = tuple(float(v) for v in self.field_travel)
         if ft and not (len(ft) == 2 and 0.0 <= ft[0] < ft[1]):
             raise InputError(f"field_travel must be (from, to) with 0 <= from < to [m], got "
@@ -238,6 +252,49 @@ def _vertical_contact(wy, wz, ry, rz, y_off):
         y_c = ry[okr][kr]
         return -gap_r[kr], y_c
     return -gap[k], yy[ok][k]
+
+
+def rail_surface_line(model, x_at: float, at: str = "tread"):
+    """The rail's running-surface line along x through the tread or the flange contact.
+
+    Parameters
+    ----------
+    model : TransitionModel
+    x_at : float
+        Position along the rail [m] near which the line's cross-section node is chosen.
+    at : {"tread", "flange"}
+        ``"tread"``: the surface node at the start contact's lateral position on the rail
+        head's top; ``"flange"``: the gauge-corner node near the rigid flange contact whose
+        outward normal is closest to the rigid flange contact angle.
+
+    Returns
+    -------
+    line : ndarray of int (n,)
+        Global node indices of the surface nodes with that node's (y, z), sorted along x.
+    normal : ndarray (3,)
+        Outward unit surface normal at the chosen node (reference configuration).
+    """
+    if at not in ("tread", "flange"):
+        raise InputError(f"at must be 'tread' or 'flange', got {at!r}")
+    m = model
+    h = m.case.mesh_size
+    xm = m.nodes[m.master]
+    nrm = nodal_normals_quads(xm, m.quads)
+    near = np.abs(xm[:, 0] - x_at) < 2 * h
+    if not near.any():
+        raise InputError(f"x_at {x_at!r} m is outside the rail's contact band")
+    if at == "tread":
+        top = np.flatnonzero(near)[np.argmin(np.abs(xm[near, 1] - m.pose["rail_y_tread"])
+                                             + 10 * np.abs(xm[near, 2] - xm[near, 2].max()))]
+    else:
+        ang = np.arccos(np.clip(np.abs(nrm[:, 2]), 0.0, 1.0))
+        cand = np.flatnonzero(near & (np.abs(xm[:, 1] - m.pose["rail_y_flange"]) < 2 * h))
+        top = cand[np.argmin(np.abs(ang[cand] - m.pose["flange_angle_rigid"]))]
+    on_line = ((np.abs(xm[:, 1] - xm[top, 1]) < 1e-7)
+               & (np.abs(xm[:, 2] - xm[top, 2]) < 1e-7))
+    line = m.master[on_line]
+    line = line[np.argsort(m.nodes[line, 0])]
+    return line, nrm[top] / np.linalg.norm(nrm[top])
 
 
 def rigid_pose(case, y_off: float):

@@ -47,11 +47,11 @@ from ..errors import InputError
 from . import _solid as S
 from ._explicit import NCHUNK, advance
 from .transition_analysis import surface_stations
-from .transition_contact import nodal_normals_quads
-from .transition_model import TransitionCase, _group, build_transition_model
+from .transition_model import (TransitionCase, _group, build_transition_model,
+                               rail_surface_line)
 
 __all__ = ["RailPulseResult", "elastic_wave_speeds", "rail_pulse", "pulse_arrivals",
-           "force_pulse", "pulse_phase"]
+           "force_pulse", "pulse_phase", "phase_velocity"]
 
 
 def elastic_wave_speeds(E: float, nu: float, rho: float) -> dict:
@@ -222,25 +222,11 @@ def rail_pulse(case: TransitionCase, *, model=None, at: str = "tread", pulse: st
     n_steps = int(np.ceil(duration / dt))
     # the surface line through the source at the tread or the flange contact position
     xm = m.nodes[m.master]
-    nrm = nodal_normals_quads(xm, m.quads)
-    near = np.abs(xm[:, 0] - xs) < 2 * h
-    if at == "tread":
-        top = np.flatnonzero(near)[np.argmin(np.abs(xm[near, 1] - m.pose["rail_y_tread"])
-                                             + 10 * np.abs(xm[near, 2] - xm[near, 2].max()))]
-    elif at == "flange":
-        ang = np.arccos(np.clip(np.abs(nrm[:, 2]), 0.0, 1.0))
-        cand = np.flatnonzero(near & (np.abs(xm[:, 1] - m.pose["rail_y_flange"]) < 2 * h))
-        top = cand[np.argmin(np.abs(ang[cand] - m.pose["flange_angle_rigid"]))]
-    else:
-        raise InputError(f"at must be 'tread' or 'flange', got {at!r}")
-    n_out = nrm[top] / np.linalg.norm(nrm[top])
-    on_line = ((np.abs(xm[:, 1] - xm[top, 1]) < 1e-7)
-               & (np.abs(xm[:, 2] - xm[top, 2]) < 1e-7))
-    line = m.master[on_line]
-    line = line[np.argsort(m.nodes[line, 0])]
+    line, n_out = rail_surface_line(m, xs, at)
     x_src = float(m.nodes[line[np.argmin(np.abs(m.nodes[line, 0] - xs))], 0])
     # source: surface nodes within one element size of the source point (surface distance)
-    d_src = np.linalg.norm(xm - np.array([x_src, xm[top, 1], xm[top, 2]]), axis=1)
+    y_l, z_l = m.nodes[line[0], 1], m.nodes[line[0], 2]
+    d_src = np.linalg.norm(xm - np.array([x_src, y_l, z_l]), axis=1)
     src = m.master[d_src <= 1.01 * h]
     w_src = 1.0 / src.size
     # masses, ties (rail web to head only), holds
@@ -482,3 +468,130 @@ def pulse_phase(rec: RailPulseResult, arrivals: dict) -> dict:
         raise InputError("no station of the arrivals found in the record")
     q1, q3 = np.percentile(ph, [25, 75])
     return {"phase": float(np.median(ph)), "iqr": (float(q1), float(q3)), "per_station": ph}
+
+
+def _record_arrays(record):
+    """(x, t, v, normal, source_shift) of a :class:`RailPulseResult` or ``info["wave"]``."""
+    if isinstance(record, RailPulseResult):
+        return record.x, record.t, record.v, record.info["normal"], 0.0
+    if record is None:
+        raise InputError("no wave record: run the case with wave_time > 0")
+    x, t = np.asarray(record["x"], float), np.asarray(record["t"], float)
+    v = np.asarray(record["v"], float) if "v" in record else None
+    if v is None:
+        raise InputError("the wave record has no 'v' (three components): rerun with this "
+                         "version")
+    # the contact moves on during the record: the stations ahead must stay ahead of it
+    shift = float(record.get("speed", 0.0)) * float(t[-1] - t[0])
+    return x, t, v, np.asarray(record.get("normal", (0.0, 0.0, 1.0)), float), shift
+
+
+def phase_velocity(record, band: tuple = (40e3, 80e3), d_min: float = 0.02,
+                   d_max: float = 0.08, side: str = "ahead", component: str = "z",
+                   min_r2: float = 0.9) -> dict:
+    """Phase velocity of the surface motion along a rail surface line, from its spectra.
+
+    For a wave travelling along the line the phase of its Fourier component at frequency
+    f falls linearly with the distance d travelled, φ(d) = φ₀ − 2πf d / c(f). At each
+    frequency of ``band`` the phases of the stations (relative to the nearest station,
+    unwrapped outwards along the line; the stations of the fine mesh are one element apart,
+    so the phase step is below π for c > 2 f h) are fitted by a straight line in d; its
+    slope gives c(f) and its coefficient of determination R² says whether one wave
+    dominates at that frequency. This is the spectral-analysis-of-surface-waves idea
+    (Nazarian & Stokoe 1984) on an array of stations: it needs no clean, isolated pulse, so
+    it measures the waves in the record of a rolling run (``info["wave"]`` of
+    :func:`~wheelrail.fe.transition.run_transition`) as well as those of
+    :func:`rail_pulse`. Each trace is detrended (linear) and Hann-windowed in time first.
+
+    Parameters
+    ----------
+    record : RailPulseResult or dict
+        A :func:`rail_pulse` record or ``info["wave"]`` (``x`` (n,) [m] from the wheel
+        centre at the record's start, ``t`` (nt,) [s], ``v`` (nt, n, 3) [m/s]).
+    band : (float, float)
+        Frequency band [Hz].
+    d_min, d_max : float
+        Distances [m] of the stations from the source (for a run: stations ahead are
+        counted from where the contact is at the *end* of the record, so they stay ahead).
+    side : {"ahead", "behind"}
+        Stations at positive (ahead of the source, waves running in +x) or negative x.
+    component : {"x", "y", "z", "n"}
+        Velocity component (``"n"``: along the line's outward surface normal).
+    min_r2 : float
+        Frequencies whose linear phase fit has R² below this are left out of the band's
+        estimate (several waves of similar size at that frequency).
+
+    Returns
+    -------
+    dict
+        ``speed`` [m/s]: 1 / (the power-weighted mean slowness over the accepted
+        frequencies); ``speed_median`` [m/s] and ``speed_iqr`` over them; ``f`` [Hz],
+        ``c`` [m/s], ``r2`` per frequency of the band; ``accepted`` (fraction of the band's
+        frequencies with R² ≥ ``min_r2``); ``stations``; ``d`` [m] (their distances).
+
+    References
+    ----------
+    S. Nazarian, K.H. Stokoe, "In situ shear wave velocities from spectral analysis of
+    surface waves", Proc. 8th World Conf. on Earthquake Engineering, vol. 3 (1984) 31–38.
+    K.F. Graff, *Wave Motion in Elastic Solids*, Dover 1991, §6.3 (Rayleigh waves).
+    """
+    from scipy.signal import detrend
+
+    if side not in ("ahead", "behind"):
+        raise InputError(f"side must be 'ahead' or 'behind', got {side!r}")
+    f1, f2 = (float(b) for b in band)
+    if not 0 < f1 < f2:
+        raise InputError(f"band must be (f1, f2) with 0 < f1 < f2 [Hz], got {band!r}")
+    if not 0 <= d_min < d_max:
+        raise InputError(f"need 0 <= d_min < d_max, got {d_min!r}, {d_max!r}")
+    x, t, v, normal, shift = _record_arrays(record)
+    comp = {"x": 0, "y": 1, "z": 2}
+    if component == "n":
+        trace = v @ normal
+    elif component in comp:
+        trace = v[:, :, comp[component]]
+    else:
+        raise InputError(f"component must be 'x', 'y', 'z' or 'n', got {component!r}")
+    if side == "ahead":
+        d = x - shift
+    else:
+        d = -x
+    sel = np.flatnonzero((d >= d_min) & (d <= d_max))
+    if sel.size < 4:
+        raise InputError(f"only {sel.size} stations between {d_min} and {d_max} m {side} of "
+                         f"the source (need 4)")
+    sel = sel[np.argsort(d[sel])]
+    dt = float(t[1] - t[0])
+    if f2 > 0.5 / dt:
+        raise InputError(f"band {band!r} reaches above the Nyquist frequency {0.5 / dt:.0f} Hz")
+    y = detrend(trace[:, sel], axis=0) * np.hanning(t.size)[:, None]
+    spec = np.fft.rfft(y, axis=0)
+    freq = np.fft.rfftfreq(t.size, dt)
+    kb = np.flatnonzero((freq >= f1) & (freq <= f2))
+    if kb.size < 2:
+        raise InputError(f"the record ({t.size} samples of {dt:.3g} s) resolves fewer than 2 "
+                         f"frequencies in the band {band!r}")
+    ds = d[sel]
+    dd = ds - ds[0]
+    c = np.full(kb.size, np.nan)
+    r2 = np.zeros(kb.size)
+    power = np.zeros(kb.size)
+    for i, k in enumerate(kb):
+        s = spec[k]
+        phi = np.unwrap(np.angle(s * np.conj(s[0])))
+        coef = np.polyfit(dd, phi, 1)
+        res = phi - np.polyval(coef, dd)
+        tot = float(np.sum((phi - phi.mean()) ** 2))
+        r2[i] = 1.0 - float(np.sum(res ** 2)) / tot if tot > 0 else 0.0
+        if coef[0] < 0:
+            c[i] = -2.0 * np.pi * freq[k] / coef[0]
+        power[i] = float(np.sum(np.abs(s) ** 2))
+    ok = (r2 >= min_r2) & np.isfinite(c)
+    if not ok.any():
+        raise InputError(f"no frequency in the band {band!r} has one dominant wave "
+                         f"(largest R² {r2.max():.2f} < {min_r2})")
+    slow = np.sum(power[ok] / c[ok]) / np.sum(power[ok])
+    q1, q3 = np.percentile(c[ok], [25, 75])
+    return {"speed": float(1.0 / slow), "speed_median": float(np.median(c[ok])),
+            "speed_iqr": (float(q1), float(q3)), "f": freq[kb], "c": c, "r2": r2,
+            "accepted": float(ok.mean()), "stations": int(sel.size), "d": ds}
