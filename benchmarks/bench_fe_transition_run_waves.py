@@ -71,10 +71,22 @@ def window(rec, patches, s_from, s_to, patch, case):
 def fit(rec, band, side, comp):
     lo, hi = DISTANCES[side]
     try:
-        r = phase_velocity(rec, band=band, d_min=lo, d_max=hi, side=side, component=comp)
-    except InputError as e:
-        return None, str(e)
-    return r, ""
+        return phase_velocity(rec, band=band, d_min=lo, d_max=hi, side=side, component=comp)
+    except InputError:
+        return None
+
+
+def table(rec, label, key, rows):
+    """One printed line per side and component: the speed (accepted share) per band."""
+    for side in ("ahead", "behind"):
+        for comp in ("z", "n"):
+            cells = []
+            for band in BANDS:
+                r = fit(rec, band, side, comp)
+                cells.append("      —      " if r is None else
+                             f"{r['speed']:6.0f} ({r['accepted']:.2f})")
+                rows.append((*key, side, comp, band, r))
+            print(f"  {label}  {side:6s} v_{comp}: " + "  ".join(cells))
 
 
 def main():
@@ -128,16 +140,8 @@ def run(a):
             except InputError as e:
                 print(f"  {s_from * 1e3:.1f}-{s_to * 1e3:.1f} mm, patch {patch}: {e}")
                 continue
-            for side in ("ahead", "behind"):
-                for comp in ("z", "n"):
-                    cells = []
-                    for band in BANDS:
-                        r, err = fit(wrec, band, side, comp)
-                        cells.append("      —      " if r is None else
-                                     f"{r['speed']:6.0f} ({r['accepted']:.2f})")
-                        rows.append((s_from, s_to, patch, side, comp, band, r))
-                    print(f"  {s_from * 1e3:5.1f}-{s_to * 1e3:5.1f} mm  source patch {patch}  "
-                          f"{side:6s} v_{comp}: " + "  ".join(cells))
+            table(wrec, f"{s_from * 1e3:5.1f}-{s_to * 1e3:5.1f} mm  source patch {patch}",
+                  (s_from, s_to, patch), rows)
     # the same bands on a clean pulse at the same line of the same mesh
     t0 = time.process_time()
     model = build_transition_model(case)
@@ -145,15 +149,7 @@ def run(a):
     print(f"clean Ricker pulse (60 kHz) at the {line} line, same mesh "
           f"({pulse.info['elements']} elements, {pulse.info['steps']} steps, "
           f"{time.process_time() - t0:.1f} s CPU):")
-    for side in ("ahead", "behind"):
-        for comp in ("z", "n"):
-            cells = []
-            for band in BANDS:
-                r, err = fit(pulse, band, side, comp)
-                cells.append("      —      " if r is None else
-                             f"{r['speed']:6.0f} ({r['accepted']:.2f})")
-                rows.append(("pulse", None, None, side, comp, band, r))
-            print(f"  pulse {side:6s} v_{comp}: " + "  ".join(cells))
+    table(pulse, "pulse", ("pulse", None, None), rows)
     print("bands [kHz]: " + ", ".join(f"{b[0] / 1e3:.0f}-{b[1] / 1e3:.0f}" for b in BANDS))
     print(f"load average {os.getloadavg()[0]:.1f}")
     if a.figure:

@@ -1,17 +1,27 @@
-"""The tread patch's shear direction θ before and after the onset, three ways of averaging.
+"""The tread patch's shear direction θ before the onset: how it is averaged, and the traction.
 
-Reads the surface fields of a run of ``bench_fe_transition.py --fields FROM TO --results
-NAME`` (``results/fe_transition/NAME_fields.nc``) and prints, over travel windows before
-and after the onset of two-point contact, the medians of the tread patch's θ as the angle
-of its mean shear stress (the patch histories' ``theta``), as the area-weighted mean of the
-nodes' signed angles and as the mean of their absolute angles
+``fields NAME ...`` reads the surface fields of a run of ``bench_fe_transition.py --fields
+FROM TO --results NAME`` (``results/fe_transition/NAME_fields.nc``) and prints, over travel
+windows before and after the onset of two-point contact, the medians of the tread patch's
+θ as the angle of its mean shear stress (the patch histories' ``theta``), as the
+area-weighted mean of the nodes' signed angles and as the mean of their absolute angles
 (:func:`wheelrail.fe.transition_analysis.shear_direction`), with the patch's contact angle
-and tangential forces. Usage::
+and forces.
+
+``module`` gives the quasi-static, independent estimate from Kalker's exact theory. With
+the transition case's kinematics (yaw α, the wheel moving along its heading: no lateral
+creepage, spin from the contact angle) the tread contact's lateral force comes from spin
+alone, so θ = atan(|F_lat| / |F_long|) depends on where the contact sits and on how hard
+the wheel is driven: ``solve_wheelrail`` (S1002 on 54E1 1:40, BEM + exact) at the wheelset
+shifts where the rigid tread contact has the given contact angles, with the angular
+velocity at which the longitudinal force is traction × Q. Usage::
 
     python benchmarks/bench_fe_transition.py --aoa 0.025 --travel 0.13 \
         --fields 0.06 0.125 --results a25_h4_wave_tread
-    python benchmarks/bench_fe_transition_theta.py a25_h4_wave_tread a25_h4_t50 \
-        --out results/fe_transition/theta_a25.txt
+    python benchmarks/bench_fe_transition_theta.py fields a25_h4_wave_tread a25_h4_t50 \
+        --out results/fe_transition/theta_fe_a25.txt
+    python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
+        --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
 """
 
 from __future__ import annotations
@@ -21,13 +31,19 @@ import contextlib
 import io
 import json
 import os
+import time
 
 import numpy as np
 import xarray as xr
+from bench_fe_transition_crosscheck import module_jump_shift
 
+import wheelrail as wr
+from wheelrail.contact.wheelrail import WheelRailPosition, solve_wheelrail
 from wheelrail.fe.transition_analysis import onset_travel, shear_direction
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results", "fe_transition")
+S1002 = wr.profiles.load("S1002")
+R54 = wr.profiles.load("54E1")
 
 
 def windows(onset, start, end):
@@ -36,7 +52,7 @@ def windows(onset, start, end):
     return [(a, b) for a, b in w if b > a + 1e-4 and a >= start - 1e-9]
 
 
-def one(name):
+def one(name, compare=False):
     fields = xr.open_dataset(os.path.join(RESULTS, f"{name}_fields.nc")).load()
     patches = xr.open_dataset(os.path.join(RESULTS, f"{name}_patches.nc")).load()
     with open(os.path.join(RESULTS, f"{name}_info.json")) as f:
@@ -53,26 +69,129 @@ def one(name):
           f"{s[-1] * 1e3:.1f} mm at {s.size} outputs")
     print("  travel [mm]     outputs  θ mean stress  θ mean angle  θ mean |angle|  "
           "contact angle  Fn [kN]  F_long  F_lat  nodes   (medians)")
+    rows = []
     for a, b in windows(onset, s[0], s[-1]):
         m = (s >= a) & (s < b) & np.isfinite(sd.mean_stress.values)
         if not m.any():
             continue
         med = lambda v: float(np.median(v[m]))  # noqa: E731
+        if b <= onset + 1e-9:
+            rows.append((a, b, med(np.abs(sd.mean_stress.values)), med(ang), med(fn), med(fl)))
         print(f"  {a * 1e3:6.1f}-{b * 1e3:6.1f}  {m.sum():6d}   {med(np.abs(sd.mean_stress.values)):8.1f}°"
               f"    {med(sd.mean_angle.values):8.1f}°    {med(sd.mean_abs_angle.values):8.1f}°"
               f"      {med(ang):6.1f}°    {med(fn):6.1f}  {med(fl):6.1f} {med(ft):6.1f}"
               f"  {med(sd.n_nodes.values):5.0f}")
+    if compare:
+        # Kalker's exact theory at the FE patch's contact angle, normal and longitudinal force
+        c = wr.fe.seed004_case(**{k: v for k, v in case.items() if k != "field_travel"})
+        ws = wr.Wheelset(S1002, nominal_radius=c.radius)
+        tr = wr.Track(R54, inclination=np.tan(c.inclination))
+        print("  against BEM + exact at the FE tread patch's contact angle, Fn and F_long "
+              "(medians of the windows before the onset):")
+        print("  travel [mm]     F_long/(mu Fn)  θ FE   θ module  (module Fn, F_lat [kN])")
+        for a, b, th_fe, ang_fe, fn_fe, fl_fe in rows:
+            shift, got = shift_at_angle(ws, tr, ang_fe)
+            Q = fn_fe * 1e3 * np.cos(np.radians(got))
+            for _ in range(3):          # the vertical load at which the module's Fn is the FE's
+                _, _, ps = solve(c, shift, 0.0, wr.normal.Bem(element_size=2.5e-4), Q=Q,
+                                 f_long=fl_fe * 1e3)
+                p = max(ps, key=lambda q: q.Fn)
+                Q *= fn_fe * 1e3 / p.Fn
+            th = np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx)))
+            print(f"  {a * 1e3:6.1f}-{b * 1e3:6.1f}      {fl_fe / (c.mu * fn_fe):5.2f}      "
+                  f"{th_fe:5.1f}°   {th:5.1f}°    ({p.Fn / 1e3:5.1f}, {p.Fs / 1e3:5.1f})",
+                  flush=True)
+
+
+def shift_at_angle(ws, tr, target_deg):
+    """Wheelset shift [m] at which the right wheel's rigid primary contact has the given
+    contact angle (bisection below the jump onto the flange)."""
+    jump = module_jump_shift(ws, tr)
+    lo, hi = jump - 6e-3, jump - 1e-5
+    for _ in range(30):
+        m = 0.5 * (lo + hi)
+        cp = wr.contact_points(ws, tr, m)
+        if np.degrees(cp.right.contact_angle[cp.right.primary]) < target_deg:
+            lo = m
+        else:
+            hi = m
+    cp = wr.contact_points(ws, tr, 0.5 * (lo + hi))
+    return 0.5 * (lo + hi), float(np.degrees(cp.right.contact_angle[cp.right.primary]))
+
+
+def solve(case, shift, traction, normal, Q=None, f_long=None):
+    """The module's tread contact with F_long = traction × Q (or ``f_long`` [N]) under the
+    vertical load Q [N] (default the static wheel load)."""
+    ws = wr.Wheelset(S1002, nominal_radius=case.radius)
+    tr = wr.Track(R54, inclination=np.tan(case.inclination))
+    alpha, V = case.angle_of_attack, case.speed
+    if Q is None:
+        Q = case.suspension.wheel_load(211.0)      # the FE wheel's mass on the 4 mm mesh
+    pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
+    goal = traction * Q if f_long is None else f_long
+
+    def fx(omega):
+        mot = wr.Motion(V, omega=omega, lateral_velocity=V * np.sin(alpha))
+        res = solve_wheelrail(pos, mot, case.mu, normal=normal, tangential="exact")
+        ps = [p for p in res.side("right") if p.Fn > 1.0]
+        return sum(p.Fx for p in ps), ps
+
+    om0 = V / case.radius
+    a_, b_ = om0 * (1 + 1e-3), om0 * (1 + 4e-3)
+    fa, _ = fx(a_)
+    fb, ps = fx(b_)
+    for _ in range(12):
+        if abs(fb - goal) < 0.002 * abs(goal) + 5.0:
+            break
+        c_ = b_ + (goal - fb) * (b_ - a_) / (fb - fa)
+        a_, fa = b_, fb
+        b_, (fb, ps) = c_, fx(c_)
+    return Q, b_ / om0 - 1.0, ps
+
+
+def module(a):
+    case = wr.fe.seed004_case(a.aoa)
+    ws = wr.Wheelset(S1002, nominal_radius=case.radius)
+    tr = wr.Track(R54, inclination=np.tan(case.inclination))
+    print(f"S1002 on 54E1 1:{1 / np.tan(case.inclination):.0f}, yaw {a.aoa * 1e3:g} mrad, "
+          f"lateral velocity V sin(yaw) (no lateral creepage), mu {case.mu}, BEM "
+          f"{a.element * 1e3:g} mm + exact; F_long = traction x Q")
+    print("  contact angle  shift [mm]  traction  Fn [kN]  F_long  F_lat [kN]  "
+          "theta [deg]  spin [1/m]  CPU [s]")
+    for ang in a.angles:
+        shift, got = shift_at_angle(ws, tr, ang)
+        for trc in a.traction:
+            t0 = time.process_time()
+            Q, dom, ps = solve(case, shift, trc, wr.normal.Bem(element_size=a.element))
+            p = max(ps, key=lambda q: q.Fn)
+            th = np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx)))
+            print(f"  {got:8.1f}°     {shift * 1e3:7.2f}     {trc:4.2f}   {p.Fn / 1e3:7.1f}"
+                  f"  {p.Fx / 1e3:6.1f}  {p.Fs / 1e3:6.1f}      {th:5.1f}"
+                  f"       {p.phi:6.3f}   {time.process_time() - t0:5.1f}", flush=True)
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("names", nargs="+")
-    ap.add_argument("--out")
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    pf = sub.add_parser("fields", help="θ of FE runs from their surface fields")
+    pf.add_argument("names", nargs="+")
+    pf.add_argument("--module", action="store_true",
+                    help="compare with BEM + exact at each window's FE state")
+    pm = sub.add_parser("module", help="θ from Kalker's exact theory against the traction")
+    pm.add_argument("--aoa", type=float, default=0.025)
+    pm.add_argument("--angles", type=float, nargs="+", default=[8.0, 16.0, 20.0, 24.0])
+    pm.add_argument("--traction", type=float, nargs="+", default=[0.3, 0.4, 0.5])
+    pm.add_argument("--element", type=float, default=2.5e-4, help="BEM element size [m]")
+    for p in (pf, pm):
+        p.add_argument("--out")
     a = ap.parse_args()
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf) if a.out else contextlib.nullcontext():
-        for name in a.names:
-            one(name)
+        if a.cmd == "fields":
+            for name in a.names:
+                one(name, a.module)
+        else:
+            module(a)
         print(f"load average {os.getloadavg()[0]:.1f}")
     if a.out:
         print(buf.getvalue(), end="")

@@ -426,18 +426,6 @@ def test_preload_phase_is_restartable_and_rolls_from_time_zero(tiny_transition, 
     np.testing.assert_allclose(s[~pre], case.speed * t[~pre], rtol=1e-9)
     b = run_transition(case, model=model, restart=f)
     np.testing.assert_allclose(b.u, a.u, rtol=1e-9, atol=1e-15)
-    # the wave record: it starts at the requested travel, on the gauge-corner line (the
-    # rigid flange contact at 70.3 deg), and a continuation returns the rows it ran
-    wa, wb = a.info["wave"], b.info["wave"]
-    dt = a.info["time_step"]
-    assert wa["t"][0] == pytest.approx(0.3e-3 / case.speed, abs=1.01 * dt)
-    assert wa["v"].shape == (wa["t"].size, wa["x"].size, 3)
-    assert np.degrees(np.arccos(abs(wa["normal"][2]))) == pytest.approx(70.3, abs=4.0)
-    assert np.abs(wa["v"][-1]).max() > 0
-    assert wa["t"][-1] == pytest.approx(case.travel / case.speed, abs=1.01 * dt)
-    assert wb["t"][0] > wa["t"][0] and wb["t"][-1] == wa["t"][-1]
-    tail = wa["t"].size - wb["t"].size
-    np.testing.assert_allclose(wb["v"], wa["v"][tail:], rtol=1e-9, atol=1e-12)
     np.testing.assert_allclose(b.history.Fz_total.values, a.history.Fz_total.values,
                                rtol=1e-9, atol=1e-6)
 
