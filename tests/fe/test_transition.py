@@ -293,7 +293,8 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     case = tmp_path / "t.toml"
     case.write_text('[fe]\ntransition = "reduced"\nangle_of_attack = 0.025\nmesh_size = 5e-3\n'
                     'travel = 1.2e-3\nsettle = 0.5e-3\nflange_clearance = 3e-3\n'
-                    'output_interval = 6e-6\nfield_travel = [0.6e-3, 1.2e-3]\n')
+                    'output_interval = 6e-6\nfield_travel = [0.6e-3, 1.2e-3]\n'
+                    'wave_time = 1e-3\nwave_travel = 0.2e-3\nwave_line = "flange"\n')
     out = tmp_path / "out"
     assert main(["fe", str(case), "--out", str(out), "--estimate-only"]) == 0
     text = capsys.readouterr().out
@@ -306,6 +307,9 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     assert (out / "transition.png").stat().st_size > 10_000
     for kind in ("stress", "slip"):
         assert (out / f"contact_fields_{kind}.png").stat().st_size > 10_000
+    with np.load(out / "wave.npz") as z:
+        assert str(z["line"]) == "flange" and z["v"].shape == (z["t"].size, z["x"].size, 3)
+        assert z["t"][0] == pytest.approx(0.2e-3 / (80 / 3.6), abs=1.01 * summary["time_step"])
     bad = tmp_path / "bad.toml"
     bad.write_text('[fe]\ntransition = "reduced"\nangle_of_attak = 0.025\n')
     assert main(["fe", str(bad), "--out", str(out)]) != 0

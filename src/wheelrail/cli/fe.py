@@ -25,8 +25,10 @@ The case file holds one ``[fe]`` table; every key is a
   ``seed004`` still works and is deprecated; every other key is a
   :class:`wheelrail.fe.TransitionCase` field, e.g. ``angle_of_attack = 0.025``,
   ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional). Writes
-  patches.nc (per-patch histories), history.nc, summary.json, transition.png, wave.png
-  (with ``wave_time`` > 0) and restart.npz; with ``field_travel = [FROM, TO]`` (m of
+  patches.nc (per-patch histories), history.nc, summary.json, transition.png, restart.npz
+  and, with ``wave_time`` > 0, wave.png and wave.npz (``x``, ``t``, ``v`` of the rail line
+  ``wave_line`` from ``wave_travel``: :func:`wheelrail.fe.phase_velocity` reads it as a
+  dict); with ``field_travel = [FROM, TO]`` (m of
   travel) also contact_fields.nc (pressure, shear, micro-slip, adhesion/slip per wheel
   surface node at every ``field_stride``-th output) and contact_fields_stress.png /
   contact_fields_slip.png (maps of both patches around the first flange patch).
@@ -488,6 +490,11 @@ def _run_transition(case, args, console) -> int:
     r.history.to_netcdf(out / "history.nc")
     if r.contact_fields is not None:
         r.contact_fields.to_netcdf(out / "contact_fields.nc")
+    if r.info.get("wave") is not None:
+        import numpy as np
+
+        np.savez_compressed(out / "wave.npz", **{k: np.asarray(v) for k, v in
+                                                 r.info["wave"].items() if k != "vz"})
     info = {k: v for k, v in r.info.items() if k not in ("fields", "wave")}
     summary = {"mode": "transition", "n_elements": model.n_elements,
                **{k: float(v) for k, v in info.items()}}
