@@ -102,7 +102,12 @@ class TransitionResult:
     info : dict
         Step, number of steps (``steps``; ``steps_run`` of them in this call, fewer after a
         restart), CPU time of this call, ns per element per step run, onset of two-point
-        contact.
+        contact; ``wave`` (with ``case.wave_time`` > 0, else None): ``x`` (n,) [m] of the
+        rail line's nodes from the wheel centre at ``wave_travel``, ``t`` (nt,) [s] from
+        the start of rolling, ``v`` (nt, n, 3) their velocities [m/s] every step (``vz`` the
+        vertical part), ``normal`` (3,) the line's outward surface normal, ``line``,
+        ``travel``, ``speed`` (the wheel's speed along the rail [m/s]); after a restart
+        only the rows run in this call.
     contact_fields : xarray.Dataset or None
         With ``case.field_travel``: the contact's surface fields on the wheel's surface
         grid near the axle, dims (``time``, ``row``, ``col``): ``row`` the circumferential
