@@ -581,9 +581,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
 
 def _wave_record(m, line, normal, wave_v, x_wave, dt, n_pre, j_wave, k0, case):
     """``info["wave"]``: the rows actually run (a restart continues at step ``k0``)."""
-    if not wave_v.shape[0]:
-        return None
     first = max(0, k0 - j_wave)
+    if first >= wave_v.shape[0]:         # no record, or all of it before the restart
+        return None
     t = dt * (np.arange(wave_v.shape[0]) + j_wave + 1 - n_pre)
     v = wave_v[first:]
     return {"x": m.nodes[line, 0] - x_wave, "t": t[first:], "v": v, "vz": v[:, :, 2],
