@@ -198,7 +198,8 @@ class RollingCase:
             raise InputError(f"rayleigh alpha = {r[0]!r} 1/s (mass-proportional damping) needs "
                              f"inertia: use integrator 'implicit-hht' or 'explicit', or alpha = 0")
         if self.linear_solver not in LINEAR_SOLVERS:
-            raise InputError(f"linear_solver must be 'direct', 'reuse' or 'pardiso', got "
+            *first, last = map(repr, LINEAR_SOLVERS)
+            raise InputError(f"linear_solver must be {', '.join(first)} or {last}, got "
                              f"{self.linear_solver!r}")
         s(self, "hht_alpha", float(in_range("hht_alpha", self.hht_alpha, -1 / 3, 0.0)))
         s(self, "density", float(positive("density", self.density)))
