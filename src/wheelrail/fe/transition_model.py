@@ -51,7 +51,7 @@ from .transition_mesh import (
 from .transition_track import SpringSet, Suspension, TrackStructure
 
 __all__ = ["TransitionCase", "TransitionModel", "build_transition_model", "rigid_pose",
-           "yawed_contact", "rail_surface_line",
+           "yawed_contact", "rail_surface_line", "SURFACE_LINES",
            "model_size_estimate"]
 
 
@@ -190,8 +190,7 @@ class TransitionCase:
         object.__setattr__(self, "courant", float(in_range("courant", self.courant, 0.0, 1.0,
                                                            lo_open=True)))
         object.__setattr__(self, "grading", float(in_range("grading", self.grading, 1.0, 2.0)))
-        if self.wave_line not in ("tread", "flange"):
-            raise InputError(f"wave_line must be 'tread' or 'flange', got {self.wave_line!r}")
+        check_surface_line("wave_line", self.wave_line)
         if self.wave_travel >= self.travel:
             raise InputError(f"wave_travel {self.wave_travel!r} m must be below the travel "
                              f"{self.travel!r} m")
@@ -254,6 +253,17 @@ def _vertical_contact(wy, wz, ry, rz, y_off):
     return -gap[k], yy[ok][k]
 
 
+#: The rail surface lines that a pulse strikes or a run records (:func:`rail_surface_line`).
+SURFACE_LINES = ("tread", "flange")
+
+
+def check_surface_line(name: str, value) -> str:
+    """``value`` if it names one of :data:`SURFACE_LINES`, else an InputError naming ``name``."""
+    if value not in SURFACE_LINES:
+        raise InputError(f"{name} must be 'tread' or 'flange', got {value!r}")
+    return value
+
+
 def rail_surface_line(model, x_at: float, at: str = "tread"):
     """The rail's running-surface line along x through the tread or the flange contact.
 
@@ -274,8 +284,7 @@ def rail_surface_line(model, x_at: float, at: str = "tread"):
     normal : ndarray (3,)
         Outward unit surface normal at the chosen node (reference configuration).
     """
-    if at not in ("tread", "flange"):
-        raise InputError(f"at must be 'tread' or 'flange', got {at!r}")
+    check_surface_line("at", at)
     m = model
     h = m.case.mesh_size
     xm = m.nodes[m.master]

@@ -48,7 +48,7 @@ from . import _solid as S
 from ._explicit import NCHUNK, advance
 from .transition_analysis import surface_stations
 from .transition_model import (TransitionCase, _group, build_transition_model,
-                               rail_surface_line)
+                               check_surface_line, rail_surface_line)
 
 __all__ = ["RailPulseResult", "elastic_wave_speeds", "rail_pulse", "pulse_arrivals",
            "force_pulse", "pulse_phase", "phase_velocity"]
@@ -190,8 +190,7 @@ def rail_pulse(case: TransitionCase, *, model=None, at: str = "tread", pulse: st
     if every < 1:
         raise InputError(f"every must be >= 1, got {every!r}")
     force_pulse(0.0, pulse, frequency)            # validates the shape
-    if at not in ("tread", "flange"):
-        raise InputError(f"at must be 'tread' or 'flange', got {at!r}")
+    check_surface_line("at", at)             # before the model is built
     m = model if model is not None else build_transition_model(case)
     h = case.mesh_size
     nw = m.n_wheel
