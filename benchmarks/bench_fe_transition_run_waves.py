@@ -111,15 +111,15 @@ def main():
 def run(a):
     rec, patches, info = load(a.name)
     case_kw = info["case"]
+    case = seed004_case(**case_kw)
     line = str(rec["line"])
     onset = onset_travel(patches)
     s0 = float(rec["travel"])
-    s1 = float(rec["t"][-1]) * seed004_case(**case_kw).speed
+    s1 = float(rec["t"][-1]) * case.speed
     if a.windows:
         wins = list(zip(a.windows[::2], a.windows[1::2]))
     else:
         wins = [(max(s0, onset - 0.040), onset - 0.005), (onset, s1)]
-    case = seed004_case(**case_kw)
     sp = elastic_wave_speeds(case.material.E, case.material.nu, case.material.density)
     print(f"run {a.name}: {case_kw}; {line} line, {rec['x'].size} nodes, record "
           f"{s0 * 1e3:.1f}-{s1 * 1e3:.1f} mm of travel ({rec['t'].size} samples of "
