@@ -34,9 +34,20 @@ import wheelrail as wr
 from wheelrail.fe.transition_analysis import onset_travel
 
 
+def build_case(kw):
+    """``seed004_case`` from the options (JSON-able: ``lateral`` = [stiffness, damping] of
+    the wheel's lateral restraint, the rest ``TransitionCase`` fields)."""
+    kw = dict(kw)
+    lateral = kw.pop("lateral", None)
+    if lateral is not None:
+        kw["suspension"] = wr.fe.Suspension(lateral_stiffness=float(lateral[0]),
+                                            lateral_damping=float(lateral[1]))
+    return wr.fe.seed004_case(**kw)
+
+
 def report(run):
     ds, h, info, kw = run["patches"], run["history"], run["info"], run["case_kw"]
-    case = wr.fe.seed004_case(**kw)
+    case = build_case(kw)
     s = ds.travel.values
     on = onset_travel(ds)
     print(f"{kw}: {info['elements']} elements, {info['steps']} steps of "
@@ -104,7 +115,7 @@ def from_restart(kw, path, results=None):
     """Report (and save) the outputs of a run up to its last restart file (a run stopped
     before its end): the CPU time is not stored there (NaN)."""
     patches, history, prog = wr.fe.read_transition_restart(path)
-    case = wr.fe.seed004_case(**kw)
+    case = build_case(kw)
     model = wr.fe.build_transition_model(case)
     est = wr.fe.transition.transition_time_estimate(model)
     nan = float("nan")
@@ -129,7 +140,7 @@ def from_restart(kw, path, results=None):
 
 def one(kw, save=None, figure=None, results=None, restart=None, restart_file=None,
         restart_every=0):
-    case = wr.fe.seed004_case(**kw)
+    case = build_case(kw)
     t0 = time.process_time()
     model = wr.fe.build_transition_model(case)
     t_build = time.process_time() - t0
@@ -188,6 +199,9 @@ def main():
     ap.add_argument("--output-interval", type=float, default=None, help="[s]")
     ap.add_argument("--traction", type=float, default=None,
                     help="driving torque as a traction coefficient (reduced case: 0.3)")
+    ap.add_argument("--lateral", type=float, nargs=2, metavar=("K", "C"),
+                    help="the wheel's lateral restraint to its heading path [N/m] [N s/m] "
+                         "(default: lateral motion prescribed; 0 0: free)")
     ap.add_argument("--wave", nargs=3, metavar=("TRAVEL", "TIME", "LINE"),
                     help="record a rail surface line's velocities every step from TRAVEL [m] "
                          "for TIME [s]; LINE tread or flange (NAME_wave.npz with --results)")
@@ -201,6 +215,8 @@ def main():
                                ("settle", a.settle), ("output_interval", a.output_interval),
                                ("traction", a.traction))
              if v is not None}
+    if a.lateral:
+        extra["lateral"] = list(a.lateral)
     if a.fields:
         extra.update(field_travel=tuple(a.fields), field_stride=a.field_stride)
     if a.wave:

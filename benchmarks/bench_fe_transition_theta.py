@@ -8,6 +8,12 @@ area-weighted mean of the nodes' signed angles and as the mean of their absolute
 (:func:`wheelrail.fe.transition_analysis.shear_direction`), with the patch's contact angle
 and forces.
 
+``jump NAME ...`` resolves the tread θ in time around the onset from a run with fine outputs
+(``--output-interval 1e-5`` or finer): times from the flange patch's first contact force,
+medians over bins of ``--bin`` seconds of the flange and tread normal forces, the tread θ,
+its adhering fraction and its utilisation F_long/(μFn), and the first times at which a
+running median of θ over one bin reaches 30°, 40°, ... 70°.
+
 ``module`` gives the quasi-static, independent estimate from Kalker's exact theory. With
 the transition case's kinematics (yaw α, the wheel moving along its heading: no lateral
 creepage, spin from the contact angle) the tread contact's lateral force comes from spin
@@ -20,6 +26,8 @@ velocity at which the longitudinal force is traction × Q. Usage::
         --fields 0.06 0.125 --results a25_h4_wave_tread
     python benchmarks/bench_fe_transition_theta.py fields a25_h4_wave_tread a25_h4_t50 \
         --out results/fe_transition/theta_fe_a25.txt
+    python benchmarks/bench_fe_transition_theta.py jump a25_h4_c7_t55_340 \
+        --out results/fe_transition/theta_jump_a25_c7_t55.txt
     python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
         --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
 """
@@ -103,6 +111,54 @@ def one(name, compare=False):
                   flush=True)
 
 
+def jump(name, width, before, after, first=500.0):
+    """The tread θ against the time from the flange patch's first force > ``first`` [N]."""
+    p = xr.open_dataset(os.path.join(RESULTS, f"{name}_patches.nc")).load()
+    with open(os.path.join(RESULTS, f"{name}_info.json")) as f:
+        case = json.load(f)["case"]
+    mu = case.get("mu", 0.6)
+    t = p.time.values
+    s = p.travel.values
+    fn = np.nan_to_num(p.Fn.values)
+    k0 = int(np.argmax(fn[:, 1] > first))
+    if fn[k0, 1] <= first:
+        print(f"{name}: no flange force above {first:g} N")
+        return
+    dt = float(np.median(np.diff(t)))
+    tau = t - t[k0]
+    th = np.degrees(np.abs(p.theta.values[:, 0]))
+    ad = p.adhesion.values[:, 0]
+    ut = np.abs(p.F_long.values[:, 0]) / (mu * np.maximum(fn[:, 0], 1.0))
+    print(f"{name}: {case}")
+    print(f"  outputs every {dt * 1e6:.1f} µs; flange patch's first force > {first / 1e3:g} kN "
+          f"at {s[k0] * 1e3:.2f} mm (t = {t[k0] * 1e3:.4f} ms); onset "
+          f"{onset_travel(p) * 1e3:.1f} mm; medians over {width * 1e6:.0f} µs bins")
+    fl = np.abs(p.F_long.values[:, 0]) / 1e3
+    ft = np.abs(p.F_lat.values[:, 0]) / 1e3
+    print("  time [µs]       outputs  flange Fn [kN]  tread Fn  tread θ  adhering  "
+          "F_long/(μFn)  tread |F_long| |F_lat| [kN]")
+    edges = np.arange(-before, after + 0.5 * width, width)
+    for a, b in zip(edges[:-1], edges[1:]):
+        m = (tau >= a - 1e-12) & (tau < b - 1e-12)
+        if not m.any():
+            continue
+        med = lambda v: float(np.nanmedian(v[m]))  # noqa: E731
+        print(f"  {a * 1e6:6.0f} to {b * 1e6:5.0f}  {m.sum():5d}     {med(fn[:, 1]) / 1e3:6.1f}"
+              f"       {med(fn[:, 0]) / 1e3:6.1f}   {med(th):5.1f}°    {med(ad):4.2f}"
+              f"       {med(ut):4.2f}          {med(fl):5.1f}  {med(ft):5.1f}")
+    n = max(int(round(width / dt)), 1)
+    run = np.array([np.nanmedian(th[max(i - n + 1, 0):i + 1]) for i in range(th.size)])
+    base = float(np.nanmedian(th[(tau < 0) & (tau >= -before)]))
+    print(f"  tread θ over the {before * 1e6:.0f} µs before: {base:.1f}° (median); "
+          f"first time the {width * 1e6:.0f} µs running median reaches:")
+    for lim in (30, 40, 50, 55, 60, 65, 70):
+        hit = np.nonzero((tau >= 0) & (run >= lim))[0]
+        when = (f"{tau[hit[0]] * 1e6:6.0f} µs ({s[hit[0]] * 1e3:.2f} mm)" if hit.size
+                else "not reached")
+        print(f"    {lim:3d}°  {when}")
+    print(f"  run ends {tau[-1] * 1e6:.0f} µs after the flange's first force")
+
+
 def shift_at_angle(ws, tr, target_deg):
     """Wheelset shift [m] at which the right wheel's rigid primary contact has the given
     contact angle (bisection below the jump onto the flange)."""
@@ -177,12 +233,17 @@ def main():
     pf.add_argument("names", nargs="+")
     pf.add_argument("--module", action="store_true",
                     help="compare with BEM + exact at each window's FE state")
+    pj = sub.add_parser("jump", help="the tread θ in time around the onset")
+    pj.add_argument("names", nargs="+")
+    pj.add_argument("--bin", type=float, default=3e-5, help="bin width [s]")
+    pj.add_argument("--before", type=float, default=1.2e-4, help="[s]")
+    pj.add_argument("--after", type=float, default=1.2e-3, help="[s]")
     pm = sub.add_parser("module", help="θ from Kalker's exact theory against the traction")
     pm.add_argument("--aoa", type=float, default=0.025)
     pm.add_argument("--angles", type=float, nargs="+", default=[8.0, 16.0, 20.0, 24.0])
     pm.add_argument("--traction", type=float, nargs="+", default=[0.3, 0.4, 0.5])
     pm.add_argument("--element", type=float, default=2.5e-4, help="BEM element size [m]")
-    for p in (pf, pm):
+    for p in (pf, pj, pm):
         p.add_argument("--out")
     a = ap.parse_args()
     buf = io.StringIO()
@@ -190,6 +251,9 @@ def main():
         if a.cmd == "fields":
             for name in a.names:
                 one(name, a.module)
+        elif a.cmd == "jump":
+            for name in a.names:
+                jump(name, a.bin, a.before, a.after)
         else:
             module(a)
         print(f"load average {os.getloadavg()[0]:.1f}")

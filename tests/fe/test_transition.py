@@ -176,6 +176,11 @@ def test_track_and_suspension_inputs_are_validated():
     assert s.wheel_load(200.0) == pytest.approx((8000 + 300 + 200) * 9.81)
     with pytest.raises(InputError, match="torque"):
         Suspension(torque=float("nan"))
+    with pytest.raises(InputError, match="lateral_stiffness"):
+        Suspension(lateral_stiffness=-1.0)
+    with pytest.raises(InputError, match="lateral_damping"):
+        Suspension(lateral_damping=float("inf"))
+    assert Suspension(lateral_stiffness=0.0).lateral_stiffness == 0.0
     with pytest.raises(InputError, match="traction"):
         seed004_case(0.02, traction=0.7)
     with pytest.raises(InputError, match="size"):
@@ -316,6 +321,26 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     assert "angle_of_attak" in capsys.readouterr().err
 
 
+def test_case_file_suspension_and_track_tables(tmp_path, capsys):
+    """[fe.suspension] and [fe.track] tables become Suspension / TrackStructure fields; an
+    unknown field is refused with its name."""
+    from wheelrail.cli.fe import case_from_toml
+    from wheelrail.cli.main import main
+
+    f = tmp_path / "t.toml"
+    f.write_text('[fe]\ntransition = "reduced"\nangle_of_attack = 0.025\n'
+                 '[fe.suspension]\nlateral_stiffness = 0.0\nlateral_damping = 1e3\n'
+                 '[fe.track]\nn_sleepers = 3\n')
+    case, mode = case_from_toml(f)
+    assert mode == "transition"
+    assert case.suspension.lateral_stiffness == 0.0
+    assert case.suspension.lateral_damping == 1e3
+    assert case.track.n_sleepers == 3
+    f.write_text('[fe]\ntransition = "reduced"\n[fe.suspension]\nlateral_stifness = 0.0\n')
+    assert main(["fe", str(f), "--out", str(tmp_path / "o"), "--estimate-only"]) != 0
+    assert "lateral_stifness" in capsys.readouterr().err
+
+
 def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transition, tmp_path):
     """The surface fields recorded at the outputs in a travel window: the nodal pressures
     and shear stresses integrate to the per-patch forces of the same outputs (computed
@@ -435,6 +460,49 @@ def test_preload_phase_is_restartable_and_rolls_from_time_zero(tiny_transition, 
 
 
 @pytest.mark.slow
+def test_free_lateral_motion_follows_newtons_law_and_a_stiff_restraint_the_path(
+        tiny_transition):
+    """With ``lateral_stiffness = 0`` the wheel's displacement along the axle from its
+    heading path obeys M y'' = F_axle (Newton's second law for the half-axle and wheel
+    mass M; F_axle the contact force's part along the axle, from the force histories
+    output every step): exactly in the loop's semi-implicit Euler sums, and within 10 %
+    by the trapezoid rule. A stiff restraint (1e11 N/m) keeps y within 2 F/k and the
+    vertical force within 2 % of the held run's."""
+    from dataclasses import replace
+
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    case = case.replace(output_interval=1e-9)          # an output every step
+    held = run_transition(case, model=model)
+    assert np.all(held.history["lateral"].values == 0.0)
+    free = run_transition(case.replace(suspension=replace(case.suspension,
+                                                          lateral_stiffness=0.0)),
+                          model=model)
+    h = free.history
+    t = h.time.values
+    dt = free.info["time_step"]
+    assert t.size == free.info["steps"]
+    alpha = case.angle_of_attack
+    f_ax = -np.sin(alpha) * h.Fx_total.values + np.cos(alpha) * h.Fy_total.values
+    m_lat = case.suspension.axle_mass + float(model.mass[:model.n_wheel].sum())
+    got = h["lateral"].values
+    assert abs(got[-1]) > 1e-9
+    # semi-implicit Euler: v_k = v_{k-1} + dt F_k / M, y_k = y_{k-1} + dt v_k, from rest
+    y_euler = np.cumsum(np.cumsum(f_ax) * dt / m_lat) * dt
+    np.testing.assert_allclose(got, y_euler, rtol=1e-6, atol=1e-15)
+    vy = np.concatenate(([0.0], np.cumsum(0.5 * (f_ax[1:] + f_ax[:-1]) * np.diff(t)))) / m_lat
+    y = np.concatenate(([0.0], np.cumsum(0.5 * (vy[1:] + vy[:-1]) * np.diff(t))))
+    assert got[-1] == pytest.approx(y[-1], rel=0.10)
+    stiff = run_transition(case.replace(suspension=replace(case.suspension,
+                                                           lateral_stiffness=1e11,
+                                                           lateral_damping=2e6)),
+                           model=model)
+    assert np.abs(stiff.history["lateral"].values).max() < 2 * np.abs(f_ax).max() / 1e11
+    np.testing.assert_allclose(stiff.history["Fz_total"].values,
+                               held.history["Fz_total"].values, rtol=0.02)
+
+
 def test_preload_brings_the_contact_to_the_static_wheel_load():
     """Dynamic relaxation before rolling: over the last quarter of a 1.2 ms preload the
     vertical contact force equals the static wheel load (sprung + half-axle + wheel mass

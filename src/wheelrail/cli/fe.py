@@ -24,7 +24,10 @@ The case file holds one ``[fe]`` table; every key is a
   half-wheelset on a flexible track (:func:`wheelrail.fe.seed004_case`; the old key
   ``seed004`` still works and is deprecated; every other key is a
   :class:`wheelrail.fe.TransitionCase` field, e.g. ``angle_of_attack = 0.025``,
-  ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional). Writes
+  ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional; ``[fe.track]`` and
+  ``[fe.suspension]`` tables give :class:`wheelrail.fe.TrackStructure` and
+  :class:`wheelrail.fe.Suspension` fields, e.g. ``lateral_stiffness = 0.0`` for free
+  lateral motion). Writes
   patches.nc (per-patch histories), history.nc, summary.json, transition.png, restart.npz
   and, with ``wave_time`` > 0, wave.png and wave.npz (``x``, ``t``, ``v`` of the rail line
   ``wave_line`` from ``wave_travel``: :func:`wheelrail.fe.phase_velocity` reads it as a
@@ -198,12 +201,16 @@ def case_from_toml(path):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
     seed4 = _case_key(t, "transition", "seed004", path)
     if seed4 is not None:
-        from ..fe import seed004_case
+        from ..fe import Suspension, TrackStructure, seed004_case
 
         for key, kind in (("wheel", "wheel"), ("rail", "rail")):
             if key in t:
                 t[key] = _profile(t[key], kind, path.parent)
         try:
+            # [fe.track] and [fe.suspension] tables: TrackStructure / Suspension fields
+            for key, cls in (("track", TrackStructure), ("suspension", Suspension)):
+                if isinstance(t.get(key), dict):
+                    t[key] = cls(**t[key])
             return seed004_case(size=seed4, **t), "transition"
         except TypeError as exc:
             raise CaseFileError(f"{path}: [fe] {exc}") from exc

@@ -95,7 +95,12 @@ class TransitionResult:
         flange patch (split by the contact angle, ``case.patch_split_angle``), 3 any other
         closed nodes (small islands). Variables: :data:`PATCH_FIELDS` plus ``travel``.
     history : xarray.Dataset
-        Axle and suspension histories over ``time``.
+        Axle and suspension histories over ``time``: ``w`` the axle's vertical
+        displacement [m], ``omega`` [rad/s], ``creepage`` (ω r0 − V)/V, the total contact
+        forces on the wheel ``Fx_total``, ``Fy_total``, ``Fz_total``, ``Fn_total`` [N],
+        ``torque_contact`` [N m], ``n_patches``, ``axle_y`` the wheel centre's global y [m]
+        and ``lateral`` its displacement along the axle from the heading path [m] (0 unless
+        ``suspension.lateral_stiffness`` is finite).
     model : TransitionModel
     u : ndarray (n, 3)
         Final displacements (wheel nodes in the wheel frame).
@@ -252,7 +257,9 @@ def _static_approach(case, pose, load, model):
 
 
 _STATE = ("u", "v", "ft", "w", "vw", "zs", "vs", "omega", "omega_mean", "psi", "s", "t",
-          "fade", "xs_prev", "xm_prev")
+          "fade", "xs_prev", "xm_prev", "y", "vy")
+# state added after the first restart files were written: their value in older files
+_STATE_DEFAULTS = {"y": 0.0, "vy": 0.0}
 
 
 def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
@@ -369,6 +376,11 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     # axle and suspension states
     w = 0.0
     vw = 0.0
+    # lateral dof along the axle (only with a finite lateral_stiffness): y from the path
+    # along the heading, driven by the contact forces' part along the axle
+    y = 0.0
+    vy = 0.0
+    lat_free = bool(np.isfinite(susp.lateral_stiffness))
     zs = -(susp.sprung_mass * GRAVITY) / susp.stiffness   # suspension deflection, static
     vs = 0.0
     omega_roll = V / r0 * (1.0 + xi0)
@@ -427,12 +439,12 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                 raise InputError(f"restart file {restart!s} belongs to another case "
                                  f"({int(z['n_nodes'])} nodes, {int(z['steps'])} steps; this "
                                  f"case {n} nodes, {n_steps} steps)")
-            st = {k2: z[k2] for k2 in _STATE}
+            st = {k2: (z[k2] if k2 in z.files else _STATE_DEFAULTS[k2]) for k2 in _STATE}
             k0 = int(z["step"]) + 1
             rows = [r for r in z["rows"]]
-            hist = [h for h in z["hist"]]
+            hist = [h if h.size == N_HIST else np.append(h, 0.0) for h in z["hist"]]
         u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
-        w, vw, zs, vs = (float(st[k2]) for k2 in ("w", "vw", "zs", "vs"))
+        w, vw, zs, vs, y, vy = (float(st[k2]) for k2 in ("w", "vw", "zs", "vs", "y", "vy"))
         omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
                                               ("omega", "omega_mean", "psi", "s", "t", "fade"))
         xs_prev, xm_prev = st["xs_prev"], st["xm_prev"]
@@ -453,7 +465,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             omega = omega_mean = omega_roll
             settle_damping(fade)
         R = _rot(alpha, psi)
-        c = c0 + s * heading + np.array([0.0, 0.0, w])
+        c = c0 + s * heading + np.array([0.0, 0.0, w]) + y * e_axle
         # ---- element forces (both materials)
         f_int[:] = 0.0
         for g, (conn, chunks, ed, mat) in enumerate(m.groups):
@@ -517,6 +529,11 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             vs += dt * a_s
         w += dt * vw
         zs += dt * (vs - vw)
+        if lat_free and not pre:
+            ay = (float(Fc @ e_axle) - susp.lateral_stiffness * y
+                  - susp.lateral_damping * vy) / M_axle
+            vy += dt * ay
+            y += dt * vy
         if not pre:
             omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
             omega_mean += dt * (omega - omega_mean) / tau_rot
@@ -550,7 +567,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                 n_rec += 1
             creep = (omega * r0 - V) / V if not pre else np.nan
             hist.append([t, s, w, omega, creep, Fc[0], Fc[1], Fc[2], float(out["pn"].sum()),
-                         M_c, npatch, c[1]])
+                         M_c, npatch, c[1], y])
             if field_every and (len(rows) - 1) % field_every == 0:
                 fields.append(v[surf_rail].copy())
             if progress and len(rows) % 20 == 1:
@@ -650,12 +667,17 @@ def _fields_dataset(sf, sf_t):
     return ds
 
 
+N_HIST = 13          # columns of the axle history rows: time, travel and the names below
+
+
 def _histories(rows, hist):
     """The per-patch and axle histories (xarray.Dataset) from the loop's output rows."""
     import xarray as xr
 
     rows = np.array(rows, float)                 # (nt, patch, field)
     hist = np.array(hist, float)
+    if hist.shape[1] < N_HIST:                   # a restart file from before "lateral"
+        hist = np.pad(hist, ((0, 0), (0, N_HIST - hist.shape[1])))
     tt = hist[:, 0]
     data = {f: (("time", "patch"), rows[:, :, i]) for i, f in enumerate(PATCH_FIELDS)}
     ds = xr.Dataset(data, coords={"time": tt, "patch": np.arange(1, MAX_PATCHES + 1),
@@ -666,7 +688,7 @@ def _histories(rows, hist):
     for k2, un in units.items():
         ds[k2].attrs["units"] = un
     hnames = ("w", "omega", "creepage", "Fx_total", "Fy_total", "Fz_total", "Fn_total",
-              "torque_contact", "n_patches", "axle_y")
+              "torque_contact", "n_patches", "axle_y", "lateral")
     hds = xr.Dataset({nm: ("time", hist[:, i + 2]) for i, nm in enumerate(hnames)},
                      coords={"time": tt, "travel": ("time", hist[:, 1])})
     return ds, hds

@@ -149,6 +149,13 @@ class Suspension:
         own inertia is added).
     torque : float
         Driving torque on the axle [N m] (positive drives the wheel forward).
+    lateral_stiffness, lateral_damping : float
+        The wheel's lateral restraint [N/m], [N s/m] against the path along its heading
+        (the direction of the axle, in the horizontal plane). ``inf`` (default): the lateral
+        motion is prescribed, the wheel follows its heading whatever the contact forces.
+        Finite: a lateral degree of freedom of the half-axle and wheel mass driven by the
+        contact forces' lateral part, on a spring–damper to the heading path (0: free
+        lateral motion, only the inertia resists).
     """
 
     sprung_mass: float = 8000.0
@@ -157,10 +164,17 @@ class Suspension:
     axle_mass: float = 300.0
     axle_inertia: float = 5.0
     torque: float = 0.0
+    lateral_stiffness: float = np.inf
+    lateral_damping: float = 0.0
 
     def __post_init__(self):
         _check(self, ("sprung_mass", "stiffness", "axle_mass"),
-               ("damping", "axle_inertia"))
+               ("damping", "axle_inertia", "lateral_damping"))
+        k_y = float(self.lateral_stiffness)
+        if np.isnan(k_y) or k_y < 0.0:
+            raise InputError(f"lateral_stiffness must be >= 0 (inf: prescribed lateral "
+                             f"motion), got {self.lateral_stiffness!r}")
+        object.__setattr__(self, "lateral_stiffness", k_y)
         object.__setattr__(self, "torque", float(self.torque))
         if not np.isfinite(self.torque):
             raise InputError(f"torque must be finite, got {self.torque!r}")
