@@ -284,6 +284,14 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     np.testing.assert_allclose(wb["v"], wa["v"][tail:], rtol=1e-9, atol=1e-12)
     with np.load(f) as z:
         other = dict(z)
+    # a restart file written before the lateral degree of freedom (no y, vy; 12 history
+    # columns) continues the same way
+    old = {k2: v2 for k2, v2 in other.items() if k2 not in ("y", "vy")}
+    old["hist"] = old["hist"][:, :-1]
+    np.savez(tmp_path / "old.npz", **old)
+    c = run_transition(case, model=model, restart=tmp_path / "old.npz")
+    np.testing.assert_array_equal(c.patches["Fn"].values, b.patches["Fn"].values)
+    assert np.all(c.history["lateral"].values == 0.0)
     other["n_nodes"] = model.n_nodes + 1
     np.savez(tmp_path / "other.npz", **other)
     with pytest.raises(InputError, match="another case"):

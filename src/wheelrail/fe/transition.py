@@ -442,7 +442,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             st = {k2: (z[k2] if k2 in z.files else _STATE_DEFAULTS[k2]) for k2 in _STATE}
             k0 = int(z["step"]) + 1
             rows = [r for r in z["rows"]]
-            hist = [h if h.size == N_HIST else np.append(h, 0.0) for h in z["hist"]]
+            hist = [np.pad(h, (0, N_HIST - h.size)) for h in z["hist"]]   # older: fewer
         u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
         w, vw, zs, vs, y, vy = (float(st[k2]) for k2 in ("w", "vw", "zs", "vs", "y", "vy"))
         omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
