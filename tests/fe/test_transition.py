@@ -467,7 +467,6 @@ def test_preload_phase_is_restartable_and_rolls_from_time_zero(tiny_transition, 
                                rtol=1e-9, atol=1e-6)
 
 
-@pytest.mark.slow
 def test_free_lateral_motion_follows_newtons_law_and_a_stiff_restraint_the_path(
         tiny_transition):
     """With ``lateral_stiffness = 0`` the wheel's displacement along the axle from its
@@ -511,6 +510,7 @@ def test_free_lateral_motion_follows_newtons_law_and_a_stiff_restraint_the_path(
                                held.history["Fz_total"].values, rtol=0.02)
 
 
+@pytest.mark.slow
 def test_preload_brings_the_contact_to_the_static_wheel_load():
     """Dynamic relaxation before rolling: over the last quarter of a 1.2 ms preload the
     vertical contact force equals the static wheel load (sprung + half-axle + wheel mass
