@@ -26,8 +26,9 @@ velocity at which the longitudinal force is traction × Q. Usage::
         --fields 0.06 0.125 --results a25_h4_wave_tread
     python benchmarks/bench_fe_transition_theta.py fields a25_h4_wave_tread a25_h4_t50 \
         --out results/fe_transition/theta_fe_a25.txt
-    python benchmarks/bench_fe_transition_theta.py jump a25_h4_c7_t55_340 \
-        --out results/fe_transition/theta_jump_a25_c7_t55.txt
+    python benchmarks/bench_fe_transition_theta.py jump a25_h4_jump a25_h4_c7_t55_340 \
+        a25_h4_c7_t55_lat0 a25_h4_c7_t3_lat0 --bin 1.2e-4 --before 2.4e-4 --after 2e-3 \
+        --out results/fe_transition/theta_jump_a25.txt
     python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
         --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
 """
@@ -128,13 +129,13 @@ def jump(name, width, before, after, first=500.0):
     tau = t - t[k0]
     th = np.degrees(np.abs(p.theta.values[:, 0]))
     ad = p.adhesion.values[:, 0]
-    ut = np.abs(p.F_long.values[:, 0]) / (mu * np.maximum(fn[:, 0], 1.0))
+    fl = np.abs(p.F_long.values[:, 0])
+    ut = fl / (mu * np.maximum(fn[:, 0], 1.0))
     print(f"{name}: {case}")
     print(f"  outputs every {dt * 1e6:.1f} µs; flange patch's first force > {first / 1e3:g} kN "
           f"at {s[k0] * 1e3:.2f} mm (t = {t[k0] * 1e3:.4f} ms); onset "
           f"{onset_travel(p) * 1e3:.1f} mm; medians over {width * 1e6:.0f} µs bins")
-    fl = np.abs(p.F_long.values[:, 0]) / 1e3
-    ft = np.abs(p.F_lat.values[:, 0]) / 1e3
+    ft = np.abs(p.F_lat.values[:, 0])
     print("  time [µs]       outputs  flange Fn [kN]  tread Fn  tread θ  adhering  "
           "F_long/(μFn)  tread |F_long| |F_lat| [kN]")
     edges = np.arange(-before, after + 0.5 * width, width)
@@ -145,7 +146,7 @@ def jump(name, width, before, after, first=500.0):
         med = lambda v: float(np.nanmedian(v[m]))  # noqa: E731
         print(f"  {a * 1e6:6.0f} to {b * 1e6:5.0f}  {m.sum():5d}     {med(fn[:, 1]) / 1e3:6.1f}"
               f"       {med(fn[:, 0]) / 1e3:6.1f}   {med(th):5.1f}°    {med(ad):4.2f}"
-              f"       {med(ut):4.2f}          {med(fl):5.1f}  {med(ft):5.1f}")
+              f"       {med(ut):4.2f}          {med(fl) / 1e3:5.1f}  {med(ft) / 1e3:5.1f}")
     n = max(int(round(width / dt)), 1)
     run = np.array([np.nanmedian(th[max(i - n + 1, 0):i + 1]) for i in range(th.size)])
     base = float(np.nanmedian(th[(tau < 0) & (tau >= -before)]))

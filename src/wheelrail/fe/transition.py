@@ -442,7 +442,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             st = {k2: (z[k2] if k2 in z.files else _STATE_DEFAULTS[k2]) for k2 in _STATE}
             k0 = int(z["step"]) + 1
             rows = [r for r in z["rows"]]
-            hist = [np.pad(h, (0, N_HIST - h.size)) for h in z["hist"]]   # older: fewer
+            hist = list(_full_history_rows(z["hist"]))
         u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
         w, vw, zs, vs, y, vy = (float(st[k2]) for k2 in ("w", "vw", "zs", "vs", "y", "vy"))
         omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
@@ -670,14 +670,19 @@ def _fields_dataset(sf, sf_t):
 N_HIST = 13          # columns of the axle history rows: time, travel and the names below
 
 
+def _full_history_rows(hist):
+    """The axle history rows (nt, N_HIST); the rows of a restart file written before the
+    last columns existed ("lateral") are padded with zeros."""
+    hist = np.array(hist, float)
+    return np.pad(hist, ((0, 0), (0, N_HIST - hist.shape[1])))
+
+
 def _histories(rows, hist):
     """The per-patch and axle histories (xarray.Dataset) from the loop's output rows."""
     import xarray as xr
 
     rows = np.array(rows, float)                 # (nt, patch, field)
-    hist = np.array(hist, float)
-    if hist.shape[1] < N_HIST:                   # a restart file from before "lateral"
-        hist = np.pad(hist, ((0, 0), (0, N_HIST - hist.shape[1])))
+    hist = _full_history_rows(hist)
     tt = hist[:, 0]
     data = {f: (("time", "patch"), rows[:, :, i]) for i, f in enumerate(PATCH_FIELDS)}
     ds = xr.Dataset(data, coords={"time": tt, "patch": np.arange(1, MAX_PATCHES + 1),
@@ -746,6 +751,13 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
         on one thread; not yet run).
     **changes
         Any :class:`TransitionCase` field.
+
+    References
+    ----------
+    .. [1] "Modelling of non-steady-state transition from single-point to two-point rolling
+       contact" (explicit FE study: S1002 on UIC 54E1 at 1:40, 80 km/h, angles of attack
+       15–25 mrad, μ = 0.6), built on the model of
+    .. [2] X. Zhao, Z. Li, Wear 271 (2011) 444-452.
     """
     base = dict(wheel=load_profile("S1002"), rail=load_profile("54E1"), radius=0.46,
                 inclination=float(np.arctan(1 / 40)), angle_of_attack=float(angle_of_attack),

@@ -260,7 +260,8 @@ SURFACE_LINES = ("tread", "flange")
 def check_surface_line(name: str, value) -> str:
     """``value`` if it names one of :data:`SURFACE_LINES`, else an InputError naming ``name``."""
     if value not in SURFACE_LINES:
-        raise InputError(f"{name} must be 'tread' or 'flange', got {value!r}")
+        names = " or ".join(repr(v) for v in SURFACE_LINES)
+        raise InputError(f"{name} must be {names}, got {value!r}")
     return value
 
 
