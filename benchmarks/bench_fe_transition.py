@@ -35,13 +35,17 @@ from wheelrail.fe.transition_analysis import onset_travel
 
 
 def build_case(kw):
-    """``seed004_case`` from the options (JSON-able: ``lateral`` = [stiffness, damping] of
-    the wheel's lateral restraint, the rest ``TransitionCase`` fields)."""
+    """``seed004_case`` from the options (JSON-able: ``lateral`` and ``roll`` =
+    [stiffness, damping] of the wheel's lateral and roll restraints, the rest
+    ``TransitionCase`` fields)."""
     kw = dict(kw)
-    lateral = kw.pop("lateral", None)
-    if lateral is not None:
-        kw["suspension"] = wr.fe.Suspension(lateral_stiffness=float(lateral[0]),
-                                            lateral_damping=float(lateral[1]))
+    susp = {}
+    for key in ("lateral", "roll"):
+        val = kw.pop(key, None)
+        if val is not None:
+            susp.update({f"{key}_stiffness": float(val[0]), f"{key}_damping": float(val[1])})
+    if susp:
+        kw["suspension"] = wr.fe.Suspension(**susp)
     return wr.fe.seed004_case(**kw)
 
 
@@ -202,6 +206,10 @@ def main():
     ap.add_argument("--lateral", type=float, nargs=2, metavar=("K", "C"),
                     help="the wheel's lateral restraint to its heading path [N/m] [N s/m] "
                          "(default: lateral motion prescribed; 0 0: free)")
+    ap.add_argument("--roll", type=float, nargs=2, metavar=("K", "C"),
+                    help="the wheel's roll restraint about its heading [N m/rad] "
+                         "[N m s/rad] (default: no roll; the half-axle's bending: "
+                         "Suspension.half_axle_roll_stiffness() = 1.44e7)")
     ap.add_argument("--wave", nargs=3, metavar=("TRAVEL", "TIME", "LINE"),
                     help="record a rail surface line's velocities every step from TRAVEL [m] "
                          "for TIME [s]; LINE tread or flange (NAME_wave.npz with --results)")
@@ -217,6 +225,8 @@ def main():
              if v is not None}
     if a.lateral:
         extra["lateral"] = list(a.lateral)
+    if a.roll:
+        extra["roll"] = list(a.roll)
     if a.fields:
         extra.update(field_travel=tuple(a.fields), field_stride=a.field_stride)
     if a.wave:

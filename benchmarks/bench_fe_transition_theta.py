@@ -136,8 +136,17 @@ def jump(name, width, before, after, first=500.0):
           f"at {s[k0] * 1e3:.2f} mm (t = {t[k0] * 1e3:.4f} ms); onset "
           f"{onset_travel(p) * 1e3:.1f} mm; medians over {width * 1e6:.0f} µs bins")
     ft = np.abs(p.F_lat.values[:, 0])
+    # the wheel bottom's lateral speed from its lateral and roll dofs, over V (a lateral
+    # creepage of the tread that the prescribed path does not have)
+    h = xr.open_dataset(os.path.join(RESULTS, f"{name}_history.nc")).load()
+    ref = wr.fe.seed004_case(angle_of_attack=case["angle_of_attack"])
+    bottom = np.zeros_like(t)
+    for v, arm in (("lateral", 1.0), ("roll_angle", ref.radius)):
+        if v in h:                       # results written before the roll dof have none
+            bottom += arm * h[v].values
+    v_bot = np.gradient(bottom, t) / ref.speed
     print("  time [µs]       outputs  flange Fn [kN]  tread Fn  tread θ  adhering  "
-          "F_long/(μFn)  tread |F_long| |F_lat| [kN]")
+          "F_long/(μFn)  tread |F_long| |F_lat| [kN]  bottom v_y/V [%]")
     edges = np.arange(-before, after + 0.5 * width, width)
     for a, b in zip(edges[:-1], edges[1:]):
         m = (tau >= a - 1e-12) & (tau < b - 1e-12)
@@ -146,7 +155,8 @@ def jump(name, width, before, after, first=500.0):
         med = lambda v: float(np.nanmedian(v[m]))  # noqa: E731
         print(f"  {a * 1e6:6.0f} to {b * 1e6:5.0f}  {m.sum():5d}     {med(fn[:, 1]) / 1e3:6.1f}"
               f"       {med(fn[:, 0]) / 1e3:6.1f}   {med(th):5.1f}°    {med(ad):4.2f}"
-              f"       {med(ut):4.2f}          {med(fl) / 1e3:5.1f}  {med(ft) / 1e3:5.1f}")
+              f"       {med(ut):4.2f}          {med(fl) / 1e3:5.1f}  {med(ft) / 1e3:5.1f}"
+              f"         {100 * med(v_bot):+6.2f}")
     n = max(int(round(width / dt)), 1)
     run = np.array([np.nanmedian(th[max(i - n + 1, 0):i + 1]) for i in range(th.size)])
     base = float(np.nanmedian(th[(tau < 0) & (tau >= -before)]))

@@ -178,6 +178,17 @@ def test_track_and_suspension_inputs_are_validated():
         Suspension(torque=float("nan"))
     with pytest.raises(InputError, match="lateral_stiffness"):
         Suspension(lateral_stiffness=-1.0)
+    with pytest.raises(InputError, match="roll_stiffness"):
+        Suspension(roll_stiffness=float("nan"))
+    with pytest.raises(InputError, match="roll_damping"):
+        Suspension(roll_damping=-1.0)
+    with pytest.raises(InputError, match="axle_roll_inertia"):
+        Suspension(axle_roll_inertia=float("inf"))
+    with pytest.raises(InputError, match="diameter"):
+        Suspension.half_axle_roll_stiffness(diameter=0.0)
+    # E I / L, I = π d⁴/64 = 5.153e-5 m⁴ for a 180 mm solid shaft (Timoshenko & Gere)
+    assert Suspension.half_axle_roll_stiffness(0.18, 0.75, 2.1e11) == pytest.approx(
+        2.1e11 * 5.153e-5 / 0.75, rel=1e-3)
     with pytest.raises(InputError, match="lateral_damping"):
         Suspension(lateral_damping=float("inf"))
     assert Suspension(lateral_stiffness=0.0).lateral_stiffness == 0.0
@@ -284,14 +295,21 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     np.testing.assert_allclose(wb["v"], wa["v"][tail:], rtol=1e-9, atol=1e-12)
     with np.load(f) as z:
         other = dict(z)
-    # a restart file written before the lateral degree of freedom (no y, vy; 12 history
-    # columns) continues the same way
-    old = {k2: v2 for k2, v2 in other.items() if k2 not in ("y", "vy")}
-    old["hist"] = old["hist"][:, :-1]
+    # a restart file written before the lateral and roll degrees of freedom (no y, vy,
+    # phi, vphi, m_roll0; 12 history columns) continues the same way
+    old = {k2: v2 for k2, v2 in other.items()
+           if k2 not in ("y", "vy", "phi", "vphi", "m_roll0")}
+    old["hist"] = old["hist"][:, :12]
     np.savez(tmp_path / "old.npz", **old)
     c = run_transition(case, model=model, restart=tmp_path / "old.npz")
     np.testing.assert_array_equal(c.patches["Fn"].values, b.patches["Fn"].values)
     assert np.all(c.history["lateral"].values == 0.0)
+    assert np.all(c.history["roll_angle"].values == 0.0)
+    n_old = old["hist"].shape[0]
+    assert np.all(c.history["roll_moment"].values[:n_old] == 0.0)     # padded rows
+    np.testing.assert_array_equal(c.history["roll_moment"].values[n_old:],
+                                  a.history["roll_moment"].values[n_old:])
+    assert np.abs(a.history["roll_moment"].values[n_old:]).min() > 0.0
     other["n_nodes"] = model.n_nodes + 1
     np.savez(tmp_path / "other.npz", **other)
     with pytest.raises(InputError, match="another case"):
@@ -338,11 +356,12 @@ def test_case_file_suspension_and_track_tables(tmp_path, capsys):
     f = tmp_path / "t.toml"
     f.write_text('[fe]\ntransition = "reduced"\nangle_of_attack = 0.025\n'
                  '[fe.suspension]\nlateral_stiffness = 0.0\nlateral_damping = 1e3\n'
-                 '[fe.track]\nn_sleepers = 3\n')
+                 'roll_stiffness = 1.44e7\n[fe.track]\nn_sleepers = 3\n')
     case, mode = case_from_toml(f)
     assert mode == "transition"
     assert case.suspension.lateral_stiffness == 0.0
     assert case.suspension.lateral_damping == 1e3
+    assert case.suspension.roll_stiffness == 1.44e7 and case.suspension.roll_damping == 0.0
     assert case.track.n_sleepers == 3
     f.write_text('[fe]\ntransition = "reduced"\n[fe.suspension]\nlateral_stifness = 0.0\n')
     assert main(["fe", str(f), "--out", str(tmp_path / "o"), "--estimate-only"]) != 0
@@ -508,6 +527,52 @@ def test_free_lateral_motion_follows_newtons_law_and_a_stiff_restraint_the_path(
     assert np.abs(stiff.history["lateral"].values).max() < 2 * np.abs(f_ax).max() / 1e11
     np.testing.assert_allclose(stiff.history["Fz_total"].values,
                                held.history["Fz_total"].values, rtol=0.02)
+
+
+def test_roll_follows_eulers_law_and_a_stiff_restraint_holds_the_wheel(tiny_transition):
+    """With ``roll_stiffness = 0`` the wheel's roll φ about its heading obeys
+    I φ'' = M − M0 (Euler's law for the FE wheel's Σ m (y² + z²) plus the half-axle's
+    share; M the contact moment about the heading axis, from the histories output every
+    step; M0 its value at the first rolling step): exactly in the loop's semi-implicit
+    Euler sums, and within 10 % by the trapezoid rule. A stiff restraint (1e10 N m/rad)
+    keeps φ within 2 max|M − M0|/k and the vertical force within 2 % of the held run's."""
+    from dataclasses import replace
+
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    case = case.replace(output_interval=1e-9)          # an output every step
+    held = run_transition(case, model=model)
+    assert np.all(held.history["roll_angle"].values == 0.0)
+    nw = model.n_wheel
+    i_fe = float(np.sum(model.mass[:nw] * (model.nodes[:nw, 1] ** 2 + model.nodes[:nw, 2] ** 2)))
+    free = run_transition(case.replace(suspension=replace(case.suspension, roll_stiffness=0.0)),
+                          model=model)
+    assert free.info["roll_inertia"] == pytest.approx(i_fe + 8.0, rel=1e-12)
+    assert 10.0 < i_fe < 30.0         # a 211 kg wheel of radius 0.46 m: about m r² / 4 + rim
+    h = free.history
+    rolling = ~np.isnan(h.creepage.values)
+    t = h.time.values[rolling]
+    dt = free.info["time_step"]
+    dm = h["roll_moment"].values[rolling]
+    dm = dm - dm[0]
+    got = h["roll_angle"].values[rolling]
+    assert abs(got[-1]) > 1e-8
+    assert np.all(h["roll_angle"].values[~rolling] == 0.0)
+    i_roll = free.info["roll_inertia"]
+    phi_euler = np.cumsum(np.cumsum(dm) * dt / i_roll) * dt
+    np.testing.assert_allclose(got, phi_euler, rtol=1e-6, atol=1e-15)
+    om = np.concatenate(([0.0], np.cumsum(0.5 * (dm[1:] + dm[:-1]) * np.diff(t)))) / i_roll
+    phi = np.concatenate(([0.0], np.cumsum(0.5 * (om[1:] + om[:-1]) * np.diff(t))))
+    assert got[-1] == pytest.approx(phi[-1], rel=0.10)
+    stiff = run_transition(case.replace(suspension=replace(case.suspension,
+                                                           roll_stiffness=1e10)), model=model)
+    hs = stiff.history
+    dms = hs["roll_moment"].values[rolling]
+    assert np.abs(hs["roll_angle"].values).max() < 2 * np.abs(dms - dms[0]).max() / 1e10
+    assert np.abs(hs["roll_angle"].values).max() > 0.0
+    np.testing.assert_allclose(hs["Fz_total"].values, held.history["Fz_total"].values,
+                               rtol=0.02)
 
 
 @pytest.mark.slow

@@ -27,7 +27,8 @@ The case file holds one ``[fe]`` table; every key is a
   ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional; ``[fe.track]`` and
   ``[fe.suspension]`` tables give :class:`wheelrail.fe.TrackStructure` and
   :class:`wheelrail.fe.Suspension` fields, e.g. ``lateral_stiffness = 0.0`` for free
-  lateral motion). Writes
+  lateral motion, ``roll_stiffness = 1.44e7`` for the wheel's roll on its half-axle).
+  Writes
   patches.nc (per-patch histories), history.nc, summary.json, transition.png, restart.npz
   and, with ``wave_time`` > 0, wave.png and wave.npz (``x``, ``t``, ``v`` of the rail line
   ``wave_line`` from ``wave_travel``: :func:`wheelrail.fe.phase_velocity` reads it as a

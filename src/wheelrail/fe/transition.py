@@ -15,7 +15,8 @@ Step
    suspension deflection.
 2. Explicit rolling over ``travel`` at the speed V along the wheel's heading (yawed by α):
    the element forces, the contact, the springs, the axle (vertical: M ẅ = F_z − load
-   terms; rolling: J ψ̈ = T − M_contact), the node update, the ties. An axle dashpot
+   terms; rolling: J ψ̈ = T − M_contact; optionally lateral along the axle and roll about
+   the heading, see :class:`.transition_track.Suspension`), the node update, the ties. An axle dashpot
    (critical on the Hertz stiffness) damps the start transient over ``settle``.
    Outputs every ``output_interval``: the patches (:func:`.transition_contact.patch_summary`).
 
@@ -77,12 +78,18 @@ _FIELD_VARS = ("x", "y", "z", "area", "pressure", "traction_x", "traction_y", "t
                "slip_x", "slip_y", "slip_z", "normal_velocity", "contact_angle", "patch", "state")
 
 
-def _rot(alpha, psi):
+def _rot(alpha, psi, phi=0.0):
+    """Wheel frame to global: yaw α about z, roll φ about the heading, rolling ψ about the
+    axle."""
     ca, sa = np.cos(alpha), np.sin(alpha)
     cp, sp = np.cos(psi), np.sin(psi)
     Rz = np.array([[ca, -sa, 0.0], [sa, ca, 0.0], [0.0, 0.0, 1.0]])
     Ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
-    return Rz @ Ry
+    if phi == 0.0:
+        return Rz @ Ry
+    cf, sf = np.cos(phi), np.sin(phi)
+    Rx = np.array([[1.0, 0.0, 0.0], [0.0, cf, -sf], [0.0, sf, cf]])
+    return Rz @ Rx @ Ry
 
 
 class TransitionResult:
@@ -98,16 +105,20 @@ class TransitionResult:
         Axle and suspension histories over ``time``: ``w`` the axle's vertical
         displacement [m], ``omega`` [rad/s], ``creepage`` (ω r0 − V)/V, the total contact
         forces on the wheel ``Fx_total``, ``Fy_total``, ``Fz_total``, ``Fn_total`` [N],
-        ``torque_contact`` [N m], ``n_patches``, ``axle_y`` the wheel centre's global y [m]
-        and ``lateral`` its displacement along the axle from the heading path [m] (0 unless
-        ``suspension.lateral_stiffness`` is finite).
+        ``torque_contact`` [N m], ``n_patches``, ``axle_y`` the wheel centre's global y [m],
+        ``lateral`` its displacement along the axle from the heading path [m] (0 unless
+        ``suspension.lateral_stiffness`` is finite), ``roll_angle`` the wheel's rotation about
+        its heading [rad] (0 unless ``suspension.roll_stiffness`` is finite; positive
+        turns the wheel's bottom towards +y of the wheel frame) and ``roll_moment`` the
+        contact forces' moment about the heading axis through the wheel centre [N m].
     model : TransitionModel
     u : ndarray (n, 3)
         Final displacements (wheel nodes in the wheel frame).
     info : dict
         Step, number of steps (``steps``; ``steps_run`` of them in this call, fewer after a
         restart), CPU time of this call, ns per element per step run, onset of two-point
-        contact; ``wave`` (with ``case.wave_time`` > 0, else None): ``x`` (n,) [m] of the
+        contact, ``J`` and ``roll_inertia`` the wheel's rolling and roll inertias [kg m²];
+        ``wave`` (with ``case.wave_time`` > 0, else None): ``x`` (n,) [m] of the
         rail line's nodes from the wheel centre at ``wave_travel``, ``t`` (nt,) [s] from
         the start of rolling, ``v`` (nt, n, 3) their velocities [m/s] every step (``vz`` the
         vertical part), ``normal`` (3,) the line's outward surface normal, ``line``,
@@ -257,9 +268,10 @@ def _static_approach(case, pose, load, model):
 
 
 _STATE = ("u", "v", "ft", "w", "vw", "zs", "vs", "omega", "omega_mean", "psi", "s", "t",
-          "fade", "xs_prev", "xm_prev", "y", "vy")
+          "fade", "xs_prev", "xm_prev", "y", "vy", "phi", "vphi", "m_roll0")
 # state added after the first restart files were written: their value in older files
-_STATE_DEFAULTS = {"y": 0.0, "vy": 0.0}
+# (m_roll0 NaN: the roll spring's preload is taken at the next rolling step)
+_STATE_DEFAULTS = {"y": 0.0, "vy": 0.0, "phi": 0.0, "vphi": 0.0, "m_roll0": np.nan}
 
 
 def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
@@ -381,6 +393,16 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     y = 0.0
     vy = 0.0
     lat_free = bool(np.isfinite(susp.lateral_stiffness))
+    # roll dof about the heading (only with a finite roll_stiffness), about the balance at
+    # the start of rolling (m_roll0: the contact moment then, the spring's preload); a
+    # critical dashpot fading over `settle`
+    phi = 0.0
+    vphi = 0.0
+    m_roll0 = np.nan
+    roll_free = bool(np.isfinite(susp.roll_stiffness))
+    I_roll = (float(np.sum(m.mass[:nw] * (m.nodes[:nw, 1] ** 2 + m.nodes[:nw, 2] ** 2)))
+              + susp.axle_roll_inertia)
+    c_roll0 = 2.0 * np.sqrt(susp.roll_stiffness * I_roll) if roll_free else 0.0
     zs = -(susp.sprung_mass * GRAVITY) / susp.stiffness   # suspension deflection, static
     vs = 0.0
     omega_roll = V / r0 * (1.0 + xi0)
@@ -444,7 +466,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             rows = [r for r in z["rows"]]
             hist = list(_full_history_rows(z["hist"]))
         u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
-        w, vw, zs, vs, y, vy = (float(st[k2]) for k2 in ("w", "vw", "zs", "vs", "y", "vy"))
+        w, vw, zs, vs, y, vy, phi, vphi, m_roll0 = (
+            float(st[k2]) for k2 in ("w", "vw", "zs", "vs", "y", "vy", "phi", "vphi",
+                                     "m_roll0"))
         omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
                                               ("omega", "omega_mean", "psi", "s", "t", "fade"))
         xs_prev, xm_prev = st["xs_prev"], st["xm_prev"]
@@ -464,7 +488,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             inv_m = inv_m_run
             omega = omega_mean = omega_roll
             settle_damping(fade)
-        R = _rot(alpha, psi)
+        R = _rot(alpha, psi, phi)
         c = c0 + s * heading + np.array([0.0, 0.0, w]) + y * e_axle
         # ---- element forces (both materials)
         f_int[:] = 0.0
@@ -507,7 +531,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         # ---- axle: vertical (with the primary suspension) and rolling
         Fc = out["fs"].sum(axis=0)
         arm = xs - c
-        M_c = float(np.sum(np.cross(arm, out["fs"]) @ e_axle))
+        moments = np.cross(arm, out["fs"]).sum(axis=0)
+        M_c = float(moments @ R[:, 1])                 # about the (rolled) axle
+        m_roll = float(moments @ heading)
         # primary suspension: zs its extension from free length (static: −M_s g / k)
         f_sprung = -susp.stiffness * zs - susp.damping * (vs - vw)     # on the sprung mass
         fade_now = max(0.0, 1.0 - s / case.settle) if case.settle > 0 else 0.0
@@ -534,6 +560,13 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                   - susp.lateral_damping * vy) / M_axle
             vy += dt * ay
             y += dt * vy
+        if roll_free and not pre:
+            if np.isnan(m_roll0):
+                m_roll0 = m_roll
+            a_phi = (m_roll - m_roll0 - susp.roll_stiffness * phi
+                     - (susp.roll_damping + c_roll0 * fade_now) * vphi) / I_roll
+            vphi += dt * a_phi
+            phi += dt * vphi
         if not pre:
             omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
             omega_mean += dt * (omega - omega_mean) / tau_rot
@@ -567,7 +600,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                 n_rec += 1
             creep = (omega * r0 - V) / V if not pre else np.nan
             hist.append([t, s, w, omega, creep, Fc[0], Fc[1], Fc[2], float(out["pn"].sum()),
-                         M_c, npatch, c[1], y])
+                         M_c, npatch, c[1], y, phi, m_roll])
             if field_every and (len(rows) - 1) % field_every == 0:
                 fields.append(v[surf_rail].copy())
             if progress and len(rows) % 20 == 1:
@@ -589,7 +622,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             "ns_per_element_step": cpu / (run_steps * m.n_elements) * 1e9,
             "wall_ns_per_element_step": wall / (run_steps * m.n_elements) * 1e9,
             "elements": m.n_elements, "load": load, "torque": torque, "J": J,
-            "static_sag": sag, "fields": np.array(fields) if fields else None,
+            "roll_inertia": I_roll, "static_sag": sag, "fields": np.array(fields) if fields else None,
             "onset_travel": _onset(ds),
             "wave": _wave_record(m, line, wave_normal, wave_v, x_wave, dt, n_pre, j_wave,
                                  k0, case)}
@@ -667,12 +700,12 @@ def _fields_dataset(sf, sf_t):
     return ds
 
 
-N_HIST = 13          # columns of the axle history rows: time, travel and the names below
+N_HIST = 15          # columns of the axle history rows: time, travel and the names below
 
 
 def _full_history_rows(hist):
     """The axle history rows (nt, N_HIST); the rows of a restart file written before the
-    last columns existed ("lateral") are padded with zeros."""
+    last columns existed ("lateral", "roll_angle", "roll_moment") are padded with zeros."""
     hist = np.array(hist, float)
     return np.pad(hist, ((0, 0), (0, N_HIST - hist.shape[1])))
 
@@ -693,7 +726,7 @@ def _histories(rows, hist):
     for k2, un in units.items():
         ds[k2].attrs["units"] = un
     hnames = ("w", "omega", "creepage", "Fx_total", "Fy_total", "Fz_total", "Fn_total",
-              "torque_contact", "n_patches", "axle_y", "lateral")
+              "torque_contact", "n_patches", "axle_y", "lateral", "roll_angle", "roll_moment")
     hds = xr.Dataset({nm: ("time", hist[:, i + 2]) for i, nm in enumerate(hnames)},
                      coords={"time": tt, "travel": ("time", hist[:, 1])})
     return ds, hds

@@ -156,6 +156,20 @@ class Suspension:
         Finite: a lateral degree of freedom of the half-axle and wheel mass driven by the
         contact forces' lateral part, on a spring–damper to the heading path (0: free
         lateral motion, only the inertia resists).
+    roll_stiffness, roll_damping : float
+        The wheel's roll restraint [N m/rad], [N m s/rad]: its rotation φ about its heading
+        axis through the wheel centre. ``inf`` (default): no roll. Finite: a roll degree
+        of freedom driven by the contact forces' moment about that axis, on a torsion
+        spring–damper about the balance at the start of rolling (the static moment of the
+        contact forces is taken by the spring's preload). The study's half-wheelset
+        (axle's lateral displacement held at its inner end, the symmetry plane) rolls by
+        bending its half-axle: :meth:`half_axle_roll_stiffness`. A critical dashpot on
+        roll fades over the case's ``settle`` distance like the axle's vertical one.
+    axle_roll_inertia : float
+        The half-axle's share of the roll inertia [kg m²], added to the FE wheel's own
+        Σ m (y² + z²) about its centre. Default 8: a 300 kg, 0.75 m half-axle bent by a
+        moment at the wheel with zero slope at the symmetry plane (deflection φ s²/(2L)
+        at distance s from that plane) has the kinetic energy of m L²/20 ≈ 8.4 kg m².
     """
 
     sprung_mass: float = 8000.0
@@ -166,18 +180,50 @@ class Suspension:
     torque: float = 0.0
     lateral_stiffness: float = np.inf
     lateral_damping: float = 0.0
+    roll_stiffness: float = np.inf
+    roll_damping: float = 0.0
+    axle_roll_inertia: float = 8.0
 
     def __post_init__(self):
         _check(self, ("sprung_mass", "stiffness", "axle_mass"),
-               ("damping", "axle_inertia", "lateral_damping"))
-        k_y = float(self.lateral_stiffness)
-        if np.isnan(k_y) or k_y < 0.0:
-            raise InputError(f"lateral_stiffness must be >= 0 (inf: prescribed lateral "
-                             f"motion), got {self.lateral_stiffness!r}")
-        object.__setattr__(self, "lateral_stiffness", k_y)
+               ("damping", "axle_inertia", "lateral_damping", "roll_damping",
+                "axle_roll_inertia"))
+        for name, what in (("lateral_stiffness", "prescribed lateral motion"),
+                           ("roll_stiffness", "no roll")):
+            k = float(getattr(self, name))
+            if np.isnan(k) or k < 0.0:
+                raise InputError(f"{name} must be >= 0 (inf: {what}), got "
+                                 f"{getattr(self, name)!r}")
+            object.__setattr__(self, name, k)
         object.__setattr__(self, "torque", float(self.torque))
         if not np.isfinite(self.torque):
             raise InputError(f"torque must be finite, got {self.torque!r}")
+
+    @staticmethod
+    def half_axle_roll_stiffness(diameter: float = 0.18, length: float = 0.75,
+                                 youngs_modulus: float = 2.1e11) -> float:
+        """Roll stiffness of a wheel on a half-axle bent by a moment at the wheel, with zero
+        slope at the axle's symmetry plane: k = E I / L, I = π d⁴ / 64 [N m/rad].
+
+        Parameters
+        ----------
+        diameter : float
+            Axle body diameter [m] (solid).
+        length : float
+            Distance from the symmetry plane to the wheel [m].
+        youngs_modulus : float
+            [Pa].
+
+        References
+        ----------
+        .. [1] S. P. Timoshenko, J. M. Gere, Mechanics of Materials, 1972 (a beam in pure
+           bending: end rotation M L / (E I)).
+        """
+        for name, v in (("diameter", diameter), ("length", length),
+                        ("youngs_modulus", youngs_modulus)):
+            if not (np.isfinite(v) and v > 0.0):
+                raise InputError(f"{name} must be a positive finite number, got {v!r}")
+        return youngs_modulus * np.pi * diameter ** 4 / 64.0 / length
 
     def wheel_load(self, wheel_mass: float) -> float:
         """Static vertical wheel load (sprung + axle + wheel mass) × g [N]."""
