@@ -533,15 +533,19 @@ def test_roll_follows_eulers_law_and_a_stiff_restraint_holds_the_wheel(tiny_tran
     """With ``roll_stiffness = 0`` the wheel's roll φ about its heading obeys
     I φ'' = M − M0 (Euler's law for the FE wheel's Σ m (y² + z²) plus the half-axle's
     share; M the contact moment about the heading axis, from the histories output every
-    step; M0 its value at the first rolling step): exactly in the loop's semi-implicit
-    Euler sums, and within 10 % by the trapezoid rule. A stiff restraint (1e10 N m/rad)
-    keeps φ within 2 max|M − M0|/k and the vertical force within 2 % of the held run's."""
+    step; M0 its value at the end of the static preload): exactly in the loop's
+    semi-implicit Euler sums, and within 10 % by the trapezoid rule. A stiff restraint
+    (1e10 N m/rad) keeps φ within 2 max|M − M0|/k and the vertical force within 2 % of the
+    held run's. Without a preload the roll spring has no static balance: refused."""
     from dataclasses import replace
 
     from wheelrail.fe.transition import run_transition
 
     case, model = tiny_transition
-    case = case.replace(output_interval=1e-9)          # an output every step
+    with pytest.raises(InputError, match="roll_stiffness.*preload"):
+        run_transition(case.replace(suspension=replace(case.suspension, roll_stiffness=1e7)),
+                       model=model)
+    case = case.replace(output_interval=1e-9, preload=0.1e-3)     # an output every step
     held = run_transition(case, model=model)
     assert np.all(held.history["roll_angle"].values == 0.0)
     nw = model.n_wheel

@@ -393,13 +393,18 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     y = 0.0
     vy = 0.0
     lat_free = bool(np.isfinite(susp.lateral_stiffness))
-    # roll dof about the heading (only with a finite roll_stiffness), about the balance at
-    # the start of rolling (m_roll0: the contact moment then, the spring's preload); a
+    # roll dof about the heading (only with a finite roll_stiffness), about the static
+    # balance at the end of the preload (m_roll0: the contact moment then, the spring's
+    # preload; without a preload the first steps' moment is the start transient's); a
     # critical dashpot fading over `settle`
     phi = 0.0
     vphi = 0.0
     m_roll0 = np.nan
     roll_free = bool(np.isfinite(susp.roll_stiffness))
+    if roll_free and not n_pre:
+        raise InputError(f"a finite roll_stiffness ({susp.roll_stiffness!r} N m/rad) needs "
+                         f"a static preload (case.preload > 0, e.g. 1e-3 s): the roll "
+                         f"spring is balanced by the contact moment at its end")
     I_roll = (float(np.sum(m.mass[:nw] * (m.nodes[:nw, 1] ** 2 + m.nodes[:nw, 2] ** 2)))
               + susp.axle_roll_inertia)
     c_roll0 = 2.0 * np.sqrt(susp.roll_stiffness * I_roll) if roll_free else 0.0

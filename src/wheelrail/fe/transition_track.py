@@ -160,8 +160,9 @@ class Suspension:
         The wheel's roll restraint [N m/rad], [N m s/rad]: its rotation φ about its heading
         axis through the wheel centre. ``inf`` (default): no roll. Finite: a roll degree
         of freedom driven by the contact forces' moment about that axis, on a torsion
-        spring–damper about the balance at the start of rolling (the static moment of the
-        contact forces is taken by the spring's preload). The study's half-wheelset
+        spring–damper about the static balance: the spring's preload is the contact
+        moment at the end of the case's static preload (``TransitionCase.preload`` > 0 is
+        required). The study's half-wheelset
         (axle's lateral displacement held at its inner end, the symmetry plane) rolls by
         bending its half-axle: :meth:`half_axle_roll_stiffness`. A critical dashpot on
         roll fades over the case's ``settle`` distance like the axle's vertical one.
