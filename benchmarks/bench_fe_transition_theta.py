@@ -27,7 +27,8 @@ velocity at which the longitudinal force is traction × Q. Usage::
     python benchmarks/bench_fe_transition_theta.py fields a25_h4_wave_tread a25_h4_t50 \
         --out results/fe_transition/theta_fe_a25.txt
     python benchmarks/bench_fe_transition_theta.py jump a25_h4_jump a25_h4_c7_t55_340 \
-        a25_h4_c7_t55_lat0 a25_h4_c7_t3_lat0 --bin 1.2e-4 --before 2.4e-4 --after 2e-3 \
+        a25_h4_c7_t55_lat0 a25_h4_c7_t3_lat0 a25_h4_c7_t55_roll a25_h4_c7_t55_roll_lat0 \
+        --bin 1.2e-4 --before 2.4e-4 --after 2e-3 \
         --out results/fe_transition/theta_jump_a25.txt
     python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
         --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
