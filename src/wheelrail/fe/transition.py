@@ -16,8 +16,8 @@ Step
 2. Explicit rolling over ``travel`` at the speed V along the wheel's heading (yawed by α):
    the element forces, the contact, the springs, the axle (vertical: M ẅ = F_z − load
    terms; rolling: J ψ̈ = T − M_contact; optionally lateral along the axle and roll about
-   the heading, see :class:`.transition_track.Suspension`), the node update, the ties. An axle dashpot
-   (critical on the Hertz stiffness) damps the start transient over ``settle``.
+   the heading, see :class:`.transition_track.Suspension`), the node update, the ties.
+   An axle dashpot (critical on the Hertz stiffness) damps the start transient over ``settle``.
    Outputs every ``output_interval``: the patches (:func:`.transition_contact.patch_summary`).
 
 References
@@ -627,7 +627,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             "ns_per_element_step": cpu / (run_steps * m.n_elements) * 1e9,
             "wall_ns_per_element_step": wall / (run_steps * m.n_elements) * 1e9,
             "elements": m.n_elements, "load": load, "torque": torque, "J": J,
-            "roll_inertia": I_roll, "static_sag": sag, "fields": np.array(fields) if fields else None,
+            "roll_inertia": I_roll, "static_sag": sag,
+            "fields": np.array(fields) if fields else None,
             "onset_travel": _onset(ds),
             "wave": _wave_record(m, line, wave_normal, wave_v, x_wave, dt, n_pre, j_wave,
                                  k0, case)}

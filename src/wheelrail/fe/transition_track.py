@@ -162,9 +162,8 @@ class Suspension:
         of freedom driven by the contact forces' moment about that axis, on a torsion
         spring–damper about the static balance: the spring's preload is the contact
         moment at the end of the case's static preload (``TransitionCase.preload`` > 0 is
-        required). The study's half-wheelset
-        (axle's lateral displacement held at its inner end, the symmetry plane) rolls by
-        bending its half-axle: :meth:`half_axle_roll_stiffness`. A critical dashpot on
+        required). A half-wheelset whose axle is held laterally at its symmetry plane
+        rolls by bending its half-axle: :meth:`half_axle_roll_stiffness`. A critical dashpot on
         roll fades over the case's ``settle`` distance like the axle's vertical one.
     axle_roll_inertia : float
         The half-axle's share of the roll inertia [kg m²], added to the FE wheel's own
