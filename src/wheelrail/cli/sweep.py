@@ -39,6 +39,13 @@ def run(args, console) -> int:
     except KeyboardInterrupt:
         import shlex
         import sys
+        import warnings
+
+        # the Zarr write the interrupt abandoned leaves coroutines that are never awaited;
+        # their RuntimeWarnings (at garbage collection, after this message) are noise: a
+        # chunk counts as done only once its marker is written, so --resume redoes it
+        warnings.filterwarnings("ignore", message="coroutine .* was never awaited",
+                                category=RuntimeWarning)
 
         again = " ".join(shlex.quote(str(a)) for a in ("wheelrail", "sweep", args.case,
                                                        "--out", args.out))
