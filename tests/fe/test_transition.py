@@ -418,6 +418,13 @@ def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transit
                                np.degrees(P.theta.values[k, 0]), rtol=1e-9, atol=1e-9)
     assert (sd.n_nodes.values == P.n_nodes.values[k, 0]).all()
     assert np.isnan(shear_direction(f, patch=2).mean_angle.values).all()
+    # the patch's mean micro-slip on the same nodes (its direction: a sliding patch's θ)
+    from wheelrail.fe.transition_analysis import slip_direction
+
+    sl = slip_direction(f, patch=1)
+    assert (sl.n_nodes.values == sd.n_nodes.values).all()
+    on = sd.n_nodes.values > 0
+    assert np.isfinite(sl.angle.values[on]).all() and np.isnan(sl.angle.values[~on]).all()
     path = tmp_path / "fields.nc"
     f.to_netcdf(path)
     with xr.open_dataset(path) as g:
@@ -661,3 +668,40 @@ def test_shear_direction_averages_of_a_turning_shear():
         shear_direction(ds, patch=4)
     with pytest.raises(InputError, match="traction_x"):
         shear_direction(ds.drop_vars("traction_x"))
+
+
+def test_slip_direction_of_a_sliding_patch():
+    """A patch sliding backwards along the rail at 0.8 m/s and sideways at 0.3 m/s in its
+    tangent plane (contact angle 20 deg) has the mean slip (-0.8, 0.3) and the direction
+    atan(0.3/0.8) = 20.6 deg against the negative longitudinal axis, as θ of the shear it
+    drags the rail with; a node of another patch and an open time do not count."""
+    import xarray as xr
+
+    from wheelrail.fe.transition_analysis import shear_direction, slip_direction
+
+    nt, nr, nc = 2, 3, 4
+    phi = np.radians(20.0)              # the lateral tangent (0, cos φ, sin φ)
+    sx, sl = -0.8, 0.3
+    lab = np.ones((nt, nr, nc), np.int8)
+    lab[0, 0, 0] = 2                    # the flange patch's node, sliding elsewhere
+    lab[1] = 0                          # out of contact at the second time
+    full = np.ones((nt, nr, nc))
+    vx, vy, vz = sx * full, sl * np.cos(phi) * full, sl * np.sin(phi) * full
+    vx[0, 0, 0], vy[0, 0, 0] = 5.0, -5.0
+    q = 1e8 / np.hypot(sx, sl)          # Coulomb: the shear on the rail along the slip
+    ds = xr.Dataset({n: (("time", "row", "col"), v) for n, v in (
+        ("slip_x", vx), ("slip_y", vy), ("slip_z", vz), ("traction_x", q * vx),
+        ("traction_y", q * vy), ("traction_z", q * vz), ("area", np.full((nt, nr, nc), 1e-6)),
+        ("patch", lab))}, coords={"time": [0.0, 3e-6], "travel": ("time", [0.0, 6.7e-5])})
+    sd = slip_direction(ds, patch=1)
+    np.testing.assert_allclose(sd.slip_long.values[0], sx, rtol=1e-12)
+    np.testing.assert_allclose(sd.slip_lat.values[0], sl, rtol=1e-12)
+    assert sd.angle.values[0] == pytest.approx(np.degrees(np.arctan(0.3 / 0.8)), abs=1e-9)
+    assert sd.n_nodes.values.tolist() == [nr * nc - 1, 0]
+    assert np.isnan(sd.angle.values[1]) and np.isnan(sd.slip_long.values[1])
+    assert sd.angle.values[0] == pytest.approx(shear_direction(ds, 1).mean_stress.values[0])
+    assert sd.slip_long.attrs["units"] == "m/s"
+    with pytest.raises(InputError, match="slip_y"):
+        slip_direction(ds.drop_vars("slip_y"))
+    with pytest.raises(InputError, match="patch"):
+        slip_direction(ds, patch=0)

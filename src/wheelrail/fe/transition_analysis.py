@@ -23,7 +23,7 @@ from ..errors import InputError
 from .transition_model import flange_contact_offset, rigid_pose
 
 __all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel",
-           "surface_stations", "climb_load", "shear_direction"]
+           "surface_stations", "climb_load", "shear_direction", "slip_direction"]
 
 
 def rayleigh_speed(E: float, nu: float, rho: float) -> float:
@@ -220,38 +220,94 @@ def shear_direction(fields, patch: int = 1):
     group (S1002 on UIC 54E1, the angle between the surface shear stress and the negative
     longitudinal axis; patch values averaged over its elements).
     """
-    import xarray as xr
-
-    if patch not in (1, 2, 3):
-        raise InputError(f"patch must be 1, 2 or 3, got {patch!r}")
-    for name in ("traction_x", "traction_y", "traction_z", "area", "patch"):
-        if name not in fields:
-            raise InputError(f"fields has no {name!r}: pass TransitionResult.contact_fields")
-    tx = fields["traction_x"].values
-    ty = fields["traction_y"].values
-    tz = fields["traction_z"].values
-    A = fields["area"].values
-    sel = fields["patch"].values == patch
+    w, tx, ty, tz = _patch_weights(fields, patch, "traction")
+    sel = w > 0
     # the tangential traction's part across the rail lies along ±(the lateral tangent);
     # its sign is that of its y component
-    t_lat = np.sign(ty) * np.hypot(ty, tz)
-    th = np.degrees(np.arctan2(t_lat, -tx))
-    w = np.where(sel, A, 0.0)
+    th = np.degrees(np.arctan2(np.sign(ty) * np.hypot(ty, tz), -tx))
+    has, (mx, ml), mean = _patch_means(w, tx, ty, tz)
+    out = {"mean_stress": np.where(has, np.degrees(np.arctan2(ml, -mx)), np.nan),
+           "mean_angle": mean(np.where(sel, th, 0.0)),
+           "mean_abs_angle": mean(np.where(sel, np.abs(th), 0.0)),
+           "n_nodes": sel.sum(axis=(1, 2))}
+    return _over_time(fields, out, dict.fromkeys(("mean_stress", "mean_angle",
+                                                  "mean_abs_angle"), "deg"))
+
+
+def _patch_weights(fields, patch, kind):
+    """Area weights of ``patch``'s nodes (0 elsewhere) and the ``kind``_x/_y/_z fields."""
+    if patch not in (1, 2, 3):
+        raise InputError(f"patch must be 1, 2 or 3, got {patch!r}")
+    names = [f"{kind}_{c}" for c in "xyz"]
+    for name in names + ["area", "patch"]:
+        if name not in fields:
+            raise InputError(f"fields has no {name!r}: pass TransitionResult.contact_fields")
+    w = np.where(fields["patch"].values == patch, fields["area"].values, 0.0)
+    return (w, *(fields[n].values for n in names))
+
+
+def _patch_means(w, vx, vy, vz):
+    """Whether the patch is in contact at each time, the area-weighted mean vector's parts
+    along the rail and across it (along the lateral tangent, signed by y), and a function
+    giving the area-weighted mean of a (time, row, col) array (NaN out of contact)."""
     ws = w.sum(axis=(1, 2))
     has = ws > 0
     den = np.where(has, ws, 1.0)
-    mx, my, mz = ((w * t).sum(axis=(1, 2)) / den for t in (tx, ty, tz))
-    ml = np.sign(my) * np.hypot(my, mz)
-    nan = np.full(ws.shape, np.nan)
-    out = {"mean_stress": np.where(has, np.degrees(np.arctan2(ml, -mx)), nan),
-           "mean_angle": np.where(has, (w * np.where(sel, th, 0.0)).sum(axis=(1, 2)) / den,
-                                  nan),
-           "mean_abs_angle": np.where(has, (w * np.where(sel, np.abs(th), 0.0)).sum(
-               axis=(1, 2)) / den, nan),
-           "n_nodes": sel.sum(axis=(1, 2))}
+
+    def mean(v):
+        return np.where(has, (w * v).sum(axis=(1, 2)) / den, np.nan)
+
+    mx, my, mz = mean(vx), mean(vy), mean(vz)
+    return has, (mx, np.sign(my) * np.hypot(my, mz)), mean
+
+
+def _over_time(fields, out, units):
+    import xarray as xr
+
     ds = xr.Dataset({k: ("time", v) for k, v in out.items()},
                     coords={"time": fields["time"].values,
                             "travel": ("time", fields["travel"].values)})
-    for k in ("mean_stress", "mean_angle", "mean_abs_angle"):
-        ds[k].attrs["units"] = "deg"
+    for k, u in units.items():
+        ds[k].attrs["units"] = u
     return ds
+
+
+def slip_direction(fields, patch: int = 1):
+    """The mean micro-slip of a patch over time: its components along and across the rail
+    and its direction, measured like the shear direction θ.
+
+    In a sliding patch the shear on the rail points along the wheel's micro-slip (Coulomb),
+    so the slip direction is what turns θ: a patch in full slip under a longitudinal slip
+    s_long and a lateral slip s_lat has θ ≈ atan(|s_lat| / |s_long|), whatever its load.
+
+    Parameters
+    ----------
+    fields : xarray.Dataset
+        ``TransitionResult.contact_fields`` (dims time, row, col; ``slip_x/y/z`` [m/s]: the
+        wheel's tangential velocity relative to the rail, global components; ``area`` [m²];
+        ``patch`` labels).
+    patch : int
+        1 tread, 2 flange, 3 other.
+
+    Returns
+    -------
+    xarray.Dataset
+        Over ``time`` (with ``travel``), NaN where the patch is not in contact:
+        ``slip_long`` [m/s], the area-weighted mean slip along the rail (x; negative for
+        the slip of a driven wheel); ``slip_lat`` [m/s], its part across the rail, along the
+        patch's lateral tangent, signed by its y component; ``angle`` [deg],
+        atan2(slip_lat, −slip_long), the angle against the negative longitudinal axis as
+        θ of :func:`shear_direction`; ``n_nodes``.
+
+    References
+    ----------
+    The orientation angle as defined in the explicit-FE transition study of Zhao & Li's
+    group (angle against the negative longitudinal axis); Coulomb's law of sliding
+    friction, K.L. Johnson, *Contact Mechanics*, CUP 1985, §8.1.
+    """
+    w, sx, sy, sz = _patch_weights(fields, patch, "slip")
+    has, (mx, ml), _ = _patch_means(w, sx, sy, sz)
+    out = {"slip_long": mx, "slip_lat": ml,
+           "angle": np.where(has, np.degrees(np.arctan2(ml, -mx)), np.nan),
+           "n_nodes": (w > 0).sum(axis=(1, 2))}
+    return _over_time(fields, out, {"slip_long": "m/s", "slip_lat": "m/s", "angle": "deg"})
