@@ -210,6 +210,9 @@ def main():
                     help="the wheel's roll restraint about its heading [N m/rad] "
                          "[N m s/rad] (default: no roll; the half-axle's bending: "
                          "Suspension.half_axle_roll_stiffness() = 1.44e7)")
+    ap.add_argument("--set", nargs="+", default=[], metavar="FIELD=VALUE",
+                    help="any other TransitionCase field with a number, e.g. "
+                         "section_h_max=6e-3 x_h_max=0.012 theta_h_max=0.012 (1 mm meshes)")
     ap.add_argument("--wave", nargs=3, metavar=("TRAVEL", "TIME", "LINE"),
                     help="record a rail surface line's velocities every step from TRAVEL [m] "
                          "for TIME [s]; LINE tread or flange (NAME_wave.npz with --results)")
@@ -223,6 +226,11 @@ def main():
                                ("settle", a.settle), ("output_interval", a.output_interval),
                                ("traction", a.traction))
              if v is not None}
+    for item in a.set:
+        key, sep, val = item.partition("=")
+        if not sep:
+            ap.error(f"--set takes FIELD=VALUE, got {item!r}")
+        extra[key] = float(val)
     if a.lateral:
         extra["lateral"] = list(a.lateral)
     if a.roll:
