@@ -49,7 +49,7 @@ from bench_fe_transition_crosscheck import module_jump_shift
 
 import wheelrail as wr
 from wheelrail.contact.wheelrail import WheelRailPosition, solve_wheelrail
-from wheelrail.fe.transition_analysis import onset_travel, shear_direction
+from wheelrail.fe.transition_analysis import onset_travel, shear_direction, slip_direction
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results", "fe_transition")
 S1002 = wr.profiles.load("S1002")
@@ -146,8 +146,16 @@ def jump(name, width, before, after, first=500.0):
         if v in h:                       # results written before the roll dof have none
             bottom += arm * h[v].values
     v_bot = np.gradient(bottom, t) / ref.speed
+    # the tread patch's mean micro-slip from the surface fields, where they were recorded
+    fpath = os.path.join(RESULTS, f"{name}_fields.nc")
+    slip, slip_tau = None, None
+    if os.path.exists(fpath):
+        with xr.open_dataset(fpath) as fields:
+            slip = slip_direction(fields.load(), patch=1)
+        slip_tau = slip.time.values - t[k0]
     print("  time [µs]       outputs  flange Fn [kN]  tread Fn  tread θ  adhering  "
-          "F_long/(μFn)  tread |F_long| |F_lat| [kN]  bottom v_y/V [%]")
+          "F_long/(μFn)  tread |F_long| |F_lat| [kN]  bottom v_y/V [%]"
+          + ("  tread slip long, lat [m/s], angle" if slip is not None else ""))
     edges = np.arange(-before, after + 0.5 * width, width)
     for a, b in zip(edges[:-1], edges[1:]):
         m = (tau >= a - 1e-12) & (tau < b - 1e-12)
@@ -157,7 +165,8 @@ def jump(name, width, before, after, first=500.0):
         print(f"  {a * 1e6:6.0f} to {b * 1e6:5.0f}  {m.sum():5d}     {med(fn[:, 1]) / 1e3:6.1f}"
               f"       {med(fn[:, 0]) / 1e3:6.1f}   {med(th):5.1f}°    {med(ad):4.2f}"
               f"       {med(ut):4.2f}          {med(fl) / 1e3:5.1f}  {med(ft) / 1e3:5.1f}"
-              f"         {100 * med(v_bot):+6.2f}")
+              f"         {100 * med(v_bot):+6.2f}"
+              + (slip_columns(slip, slip_tau, a, b) if slip is not None else ""))
     n = max(int(round(width / dt)), 1)
     run = np.array([np.nanmedian(th[max(i - n + 1, 0):i + 1]) for i in range(th.size)])
     base = float(np.nanmedian(th[(tau < 0) & (tau >= -before)]))
@@ -169,6 +178,15 @@ def jump(name, width, before, after, first=500.0):
                 else "not reached")
         print(f"    {lim:3d}°  {when}")
     print(f"  run ends {tau[-1] * 1e6:.0f} µs after the flange's first force")
+
+
+def slip_columns(slip, tau, a, b):
+    """Medians of the tread's mean slip and its angle over the fields' outputs in [a, b)."""
+    m = (tau >= a - 1e-12) & (tau < b - 1e-12) & np.isfinite(slip.angle.values)
+    if not m.any():
+        return ""
+    return (f"   {np.median(slip.slip_long.values[m]):+6.2f} {np.median(slip.slip_lat.values[m]):+6.2f}"
+            f"  {np.median(np.abs(slip.angle.values[m])):5.1f}° ({m.sum()})")
 
 
 def shift_at_angle(ws, tr, target_deg):
@@ -199,9 +217,7 @@ def solve(case, shift, traction, normal, Q=None, f_long=None):
     goal = traction * Q if f_long is None else f_long
 
     def fx(omega):
-        mot = wr.Motion(V, omega=omega, lateral_velocity=V * np.sin(alpha))
-        res = solve_wheelrail(pos, mot, case.mu, normal=normal, tangential="exact")
-        ps = [p for p in res.side("right") if p.Fn > 1.0]
+        ps = tread_patches(case, pos, omega, V * np.sin(alpha), normal)
         return sum(p.Fx for p in ps), ps
 
     om0 = V / case.radius
@@ -215,6 +231,64 @@ def solve(case, shift, traction, normal, Q=None, f_long=None):
         a_, fa = b_, fb
         b_, (fb, ps) = c_, fx(c_)
     return Q, b_ / om0 - 1.0, ps
+
+
+def tread_patches(case, pos, omega, v_lat, normal):
+    """The module's right-wheel patches (Fn > 1 N) at angular velocity ``omega`` [rad/s] and
+    the wheelset's lateral velocity ``v_lat`` [m/s] (V sin α: moving along its heading)."""
+    mot = wr.Motion(case.speed, omega=omega, lateral_velocity=v_lat)
+    res = solve_wheelrail(pos, mot, case.mu, normal=normal, tangential="exact")
+    return [p for p in res.side("right") if p.Fn > 1.0]
+
+
+def theta_of(p):
+    return float(np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx))))
+
+
+def after(a):
+    """θ of the tread patch once the flange stops the wheel's lateral approach: at each
+    pre-onset state (contact angle, F_long = traction × Q, the wheel moving along its
+    heading) the angular velocity is kept and the lateral velocity against the rail reduced
+    by ``dv``: by V sin α (the tread stopped laterally on the rail, the largest lateral slip
+    the approach can give) and by the dv at which θ reaches ``--target``."""
+    case = wr.fe.seed004_case(a.aoa)
+    ws = wr.Wheelset(S1002, nominal_radius=case.radius)
+    tr = wr.Track(R54, inclination=np.tan(case.inclination))
+    V, alpha = case.speed, case.angle_of_attack
+    v0 = V * np.sin(alpha)
+    normal = wr.normal.Bem(element_size=a.element)
+    print(f"S1002 on 54E1 1:{1 / np.tan(case.inclination):.0f}, yaw {a.aoa * 1e3:g} mrad, "
+          f"V sin(yaw) = {v0:.3f} m/s, mu {case.mu}, BEM {a.element * 1e3:g} mm + exact; "
+          f"before: F_long = traction x Q, moving along the heading; after: the same omega "
+          f"and load, lateral velocity V sin(yaw) - dv")
+    print("  contact angle  traction  xi [%]  eta [%]  spin [1/m]  theta before  "
+          f"theta at dv = V sin(yaw)  dv for {a.target:g} deg [m/s] (/ V sin yaw)  CPU [s]")
+    for ang in a.angles:
+        shift, got = shift_at_angle(ws, tr, ang)
+        for trc in a.traction:
+            t0 = time.process_time()
+            Q, dom, ps = solve(case, shift, trc, normal)
+            p0 = max(ps, key=lambda q: q.Fn)
+            omega = (1.0 + dom) * V / case.radius
+            pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
+
+            def th(dv, pos=pos, omega=omega):
+                return theta_of(max(tread_patches(case, pos, omega, v0 - dv, normal),
+                                    key=lambda q: q.Fn))
+
+            th_stop = th(v0)
+            lo, hi = 0.0, 4.0 * v0
+            if th(hi) < a.target:
+                need = f"> {hi:.2f}"
+            else:
+                for _ in range(12):
+                    mid = 0.5 * (lo + hi)
+                    lo, hi = (mid, hi) if th(mid) < a.target else (lo, mid)
+                need = f"{0.5 * (lo + hi):5.2f} ({0.5 * (lo + hi) / v0:4.2f})"
+            print(f"  {got:8.1f}°      {trc:4.2f}   {100 * p0.xi:+6.2f}  {100 * p0.eta:+6.2f}"
+                  f"    {p0.phi:+6.3f}      {theta_of(p0):5.1f}°          {th_stop:5.1f}°"
+                  f"                  {need}          {time.process_time() - t0:5.1f}",
+                  flush=True)
 
 
 def module(a):
@@ -255,7 +329,14 @@ def main():
     pm.add_argument("--angles", type=float, nargs="+", default=[8.0, 16.0, 20.0, 24.0])
     pm.add_argument("--traction", type=float, nargs="+", default=[0.3, 0.4, 0.5])
     pm.add_argument("--element", type=float, default=2.5e-4, help="BEM element size [m]")
-    for p in (pf, pj, pm):
+    pa = sub.add_parser("after", help="θ from Kalker's exact theory once the flange stops "
+                        "the wheel's lateral approach")
+    pa.add_argument("--aoa", type=float, default=0.025)
+    pa.add_argument("--angles", type=float, nargs="+", default=[7.0, 16.0, 20.0])
+    pa.add_argument("--traction", type=float, nargs="+", default=[0.3, 0.4, 0.5, 0.55])
+    pa.add_argument("--target", type=float, default=70.0, help="θ to reach [deg]")
+    pa.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
+    for p in (pf, pj, pm, pa):
         p.add_argument("--out")
     a = ap.parse_args()
     buf = io.StringIO()
@@ -266,6 +347,8 @@ def main():
         elif a.cmd == "jump":
             for name in a.names:
                 jump(name, a.bin, a.before, a.after)
+        elif a.cmd == "after":
+            after(a)
         else:
             module(a)
         print(f"load average {os.getloadavg()[0]:.1f}")
