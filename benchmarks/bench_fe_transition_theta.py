@@ -12,7 +12,15 @@ and forces.
 (``--output-interval 1e-5`` or finer): times from the flange patch's first contact force,
 medians over bins of ``--bin`` seconds of the flange and tread normal forces, the tread θ,
 its adhering fraction and its utilisation F_long/(μFn), and the first times at which a
-running median of θ over one bin reaches 30°, 40°, ... 70°.
+running median of θ over one bin reaches 30°, 40°, ... 70°; where the run recorded its
+surface fields, also the tread patch's mean micro-slip along and across the rail and its
+direction (:func:`wheelrail.fe.transition_analysis.slip_direction`).
+
+``after`` asks the same theory what the onset can do to θ: at each pre-onset state
+(contact angle; F_long = traction × Q at the static load; the wheel moving along its
+heading) it keeps the angular velocity and load and reduces the wheel's lateral velocity
+against the rail by V sin α (the tread stopped laterally on the rail: the largest lateral
+slip the approach can give), and finds the reduction at which θ reaches 70°.
 
 ``module`` gives the quasi-static, independent estimate from Kalker's exact theory. With
 the transition case's kinematics (yaw α, the wheel moving along its heading: no lateral
@@ -32,6 +40,9 @@ velocity at which the longitudinal force is traction × Q. Usage::
         --out results/fe_transition/theta_jump_a25.txt
     python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
         --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
+    python benchmarks/bench_fe_transition_theta.py after \
+        --state 21.9 77.9 44.8 --state 20.0 71.2 40.0 \
+        --out results/fe_transition/theta_after_a25.txt
 """
 
 from __future__ import annotations
@@ -100,13 +111,8 @@ def one(name, compare=False):
               "(medians of the windows before the onset):")
         print("  travel [mm]     F_long/(mu Fn)  θ FE   θ module  (module Fn, F_lat [kN])")
         for a, b, th_fe, ang_fe, fn_fe, fl_fe in rows:
-            shift, got = shift_at_angle(ws, tr, ang_fe)
-            Q = fn_fe * 1e3 * np.cos(np.radians(got))
-            for _ in range(3):          # the vertical load at which the module's Fn is the FE's
-                _, _, ps = solve(c, shift, 0.0, wr.normal.Bem(element_size=2.5e-4), Q=Q,
-                                 f_long=fl_fe * 1e3)
-                p = max(ps, key=lambda q: q.Fn)
-                Q *= fn_fe * 1e3 / p.Fn
+            *_, p = at_state(c, ws, tr, ang_fe, fn_fe * 1e3, fl_fe * 1e3,
+                             wr.normal.Bem(element_size=2.5e-4))
             th = np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx)))
             print(f"  {a * 1e3:6.1f}-{b * 1e3:6.1f}      {fl_fe / (c.mu * fn_fe):5.2f}      "
                   f"{th_fe:5.1f}°   {th:5.1f}°    ({p.Fn / 1e3:5.1f}, {p.Fs / 1e3:5.1f})",
@@ -185,8 +191,8 @@ def slip_columns(slip, tau, a, b):
     m = (tau >= a - 1e-12) & (tau < b - 1e-12) & np.isfinite(slip.angle.values)
     if not m.any():
         return ""
-    return (f"   {np.median(slip.slip_long.values[m]):+6.2f} {np.median(slip.slip_lat.values[m]):+6.2f}"
-            f"  {np.median(np.abs(slip.angle.values[m])):5.1f}° ({m.sum()})")
+    sl, st = np.median(slip.slip_long.values[m]), np.median(slip.slip_lat.values[m])
+    return f"   {sl:+6.2f} {st:+6.2f}  {np.median(np.abs(slip.angle.values[m])):5.1f}° ({m.sum()})"
 
 
 def shift_at_angle(ws, tr, target_deg):
@@ -233,6 +239,19 @@ def solve(case, shift, traction, normal, Q=None, f_long=None):
     return Q, b_ / om0 - 1.0, ps
 
 
+def at_state(case, ws, tr, angle, fn, f_long, normal):
+    """The module's tread contact at the contact angle ``angle`` [deg], normal force ``fn``
+    and longitudinal force ``f_long`` [N]: the shift, the vertical load (iterated until the
+    module's Fn is ``fn``), the relative angular velocity and the patch."""
+    shift, got = shift_at_angle(ws, tr, angle)
+    Q = fn * np.cos(np.radians(got))
+    for _ in range(3):
+        _, dom, ps = solve(case, shift, 0.0, normal, Q=Q, f_long=f_long)
+        p = max(ps, key=lambda q: q.Fn)
+        Q *= fn / p.Fn
+    return shift, got, Q, dom, p
+
+
 def tread_patches(case, pos, omega, v_lat, normal):
     """The module's right-wheel patches (Fn > 1 N) at angular velocity ``omega`` [rad/s] and
     the wheelset's lateral velocity ``v_lat`` [m/s] (V sin α: moving along its heading)."""
@@ -263,32 +282,39 @@ def after(a):
           f"and load, lateral velocity V sin(yaw) - dv")
     print("  contact angle  traction  xi [%]  eta [%]  spin [1/m]  theta before  "
           f"theta at dv = V sin(yaw)  dv for {a.target:g} deg [m/s] (/ V sin yaw)  CPU [s]")
-    for ang in a.angles:
-        shift, got = shift_at_angle(ws, tr, ang)
-        for trc in a.traction:
-            t0 = time.process_time()
+    states = [(ang, trc, None) for ang in a.angles for trc in a.traction]
+    states += [(st[0], None, st[1:]) for st in a.state]
+    for ang, trc, forces in states:
+        t0 = time.process_time()
+        if forces is None:          # the static load, F_long = traction × Q
+            shift, got = shift_at_angle(ws, tr, ang)
             Q, dom, ps = solve(case, shift, trc, normal)
             p0 = max(ps, key=lambda q: q.Fn)
-            omega = (1.0 + dom) * V / case.radius
-            pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
+            label = f"{trc:4.2f}"
+        else:                       # an FE state: Fn and F_long [kN]
+            shift, got, Q, dom, p0 = at_state(case, ws, tr, ang, forces[0] * 1e3,
+                                              forces[1] * 1e3, normal)
+            label = f"Fn {forces[0]:g}, F_long {forces[1]:g} kN"
+        omega = (1.0 + dom) * V / case.radius
+        pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
 
-            def th(dv, pos=pos, omega=omega):
-                return theta_of(max(tread_patches(case, pos, omega, v0 - dv, normal),
-                                    key=lambda q: q.Fn))
+        def th(dv, pos=pos, omega=omega):
+            return theta_of(max(tread_patches(case, pos, omega, v0 - dv, normal),
+                                key=lambda q: q.Fn))
 
-            th_stop = th(v0)
-            lo, hi = 0.0, 4.0 * v0
-            if th(hi) < a.target:
-                need = f"> {hi:.2f}"
-            else:
-                for _ in range(12):
-                    mid = 0.5 * (lo + hi)
-                    lo, hi = (mid, hi) if th(mid) < a.target else (lo, mid)
-                need = f"{0.5 * (lo + hi):5.2f} ({0.5 * (lo + hi) / v0:4.2f})"
-            print(f"  {got:8.1f}°      {trc:4.2f}   {100 * p0.xi:+6.2f}  {100 * p0.eta:+6.2f}"
-                  f"    {p0.phi:+6.3f}      {theta_of(p0):5.1f}°          {th_stop:5.1f}°"
-                  f"                  {need}          {time.process_time() - t0:5.1f}",
-                  flush=True)
+        th_stop = th(v0)
+        lo, hi = 0.0, 4.0 * v0
+        if th(hi) < a.target:
+            need = f"> {hi:.2f}"
+        else:
+            for _ in range(12):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if th(mid) < a.target else (lo, mid)
+            need = f"{0.5 * (lo + hi):5.2f} ({0.5 * (lo + hi) / v0:4.2f})"
+        print(f"  {got:8.1f}°      {label}   {100 * p0.xi:+6.2f}  {100 * p0.eta:+6.2f}"
+              f"    {p0.phi:+6.3f}      {theta_of(p0):5.1f}°          {th_stop:5.1f}°"
+              f"                  {need}          {time.process_time() - t0:5.1f}",
+              flush=True)
 
 
 def module(a):
@@ -335,6 +361,9 @@ def main():
     pa.add_argument("--angles", type=float, nargs="+", default=[7.0, 16.0, 20.0])
     pa.add_argument("--traction", type=float, nargs="+", default=[0.3, 0.4, 0.5, 0.55])
     pa.add_argument("--target", type=float, default=70.0, help="θ to reach [deg]")
+    pa.add_argument("--state", type=float, nargs=3, action="append", default=[],
+                    metavar=("ANGLE", "FN", "F_LONG"), help="also an FE tread state: contact "
+                    "angle [deg], Fn and F_long [kN] (repeatable)")
     pa.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
     for p in (pf, pj, pm, pa):
         p.add_argument("--out")
