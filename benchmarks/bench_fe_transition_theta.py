@@ -36,12 +36,14 @@ velocity at which the longitudinal force is traction × Q. Usage::
         --out results/fe_transition/theta_fe_a25.txt
     python benchmarks/bench_fe_transition_theta.py jump a25_h4_jump a25_h4_c7_t55_340 \
         a25_h4_c7_t55_lat0 a25_h4_c7_t3_lat0 a25_h4_c7_t55_roll a25_h4_c7_t55_roll_lat0 \
+        a25_h4_c7_t50 a25_h4_c7_t45 \
         --bin 1.2e-4 --before 2.4e-4 --after 2e-3 \
         --out results/fe_transition/theta_jump_a25.txt
     python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
         --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
     python benchmarks/bench_fe_transition_theta.py after \
-        --state 21.9 77.9 44.8 --state 20.0 71.2 40.0 \
+        --state 21.9 77.9 44.8 --state 20.0 71.2 40.0 --state 23.2 72.4 39.5 \
+        --state 23.2 72.8 37.5 --state 23.0 88.7 39.2 \
         --out results/fe_transition/theta_after_a25.txt
 """
 
