@@ -115,7 +115,7 @@ def one(name, compare=False):
         for a, b, th_fe, ang_fe, fn_fe, fl_fe in rows:
             *_, p = at_state(c, ws, tr, ang_fe, fn_fe * 1e3, fl_fe * 1e3,
                              wr.normal.Bem(element_size=2.5e-4))
-            th = np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx)))
+            th = theta_of(p)
             print(f"  {a * 1e3:6.1f}-{b * 1e3:6.1f}      {fl_fe / (c.mu * fn_fe):5.2f}      "
                   f"{th_fe:5.1f}°   {th:5.1f}°    ({p.Fn / 1e3:5.1f}, {p.Fs / 1e3:5.1f})",
                   flush=True)
@@ -263,6 +263,7 @@ def tread_patches(case, pos, omega, v_lat, normal):
 
 
 def theta_of(p):
+    """θ [deg] of a module patch: atan(|lateral| / |longitudinal| tangential force)."""
     return float(np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx))))
 
 
@@ -334,7 +335,7 @@ def module(a):
             t0 = time.process_time()
             Q, dom, ps = solve(case, shift, trc, wr.normal.Bem(element_size=a.element))
             p = max(ps, key=lambda q: q.Fn)
-            th = np.degrees(np.arctan2(abs(p.Fs), abs(p.Fx)))
+            th = theta_of(p)
             print(f"  {got:8.1f}°     {shift * 1e3:7.2f}     {trc:4.2f}   {p.Fn / 1e3:7.1f}"
                   f"  {p.Fx / 1e3:6.1f}  {p.Fs / 1e3:6.1f}      {th:5.1f}"
                   f"       {p.phi:6.3f}   {time.process_time() - t0:5.1f}", flush=True)

@@ -225,11 +225,11 @@ def shear_direction(fields, patch: int = 1):
     # the tangential traction's part across the rail lies along ±(the lateral tangent);
     # its sign is that of its y component
     th = np.degrees(np.arctan2(np.sign(ty) * np.hypot(ty, tz), -tx))
-    has, (mx, ml), mean = _patch_means(w, tx, ty, tz)
-    out = {"mean_stress": np.where(has, np.degrees(np.arctan2(ml, -mx)), np.nan),
+    _, _, angle, n_nodes, mean = _patch_means(w, tx, ty, tz)
+    out = {"mean_stress": angle,
            "mean_angle": mean(np.where(sel, th, 0.0)),
            "mean_abs_angle": mean(np.where(sel, np.abs(th), 0.0)),
-           "n_nodes": sel.sum(axis=(1, 2))}
+           "n_nodes": n_nodes}
     return _over_time(fields, out, dict.fromkeys(("mean_stress", "mean_angle",
                                                   "mean_abs_angle"), "deg"))
 
@@ -247,9 +247,10 @@ def _patch_weights(fields, patch, kind):
 
 
 def _patch_means(w, vx, vy, vz):
-    """Whether the patch is in contact at each time, the area-weighted mean vector's parts
-    along the rail and across it (along the lateral tangent, signed by y), and a function
-    giving the area-weighted mean of a (time, row, col) array (NaN out of contact)."""
+    """Over time, NaN where the patch is out of contact: the area-weighted mean vector's
+    parts along the rail and across it (along the lateral tangent, signed by y), its angle
+    against the negative longitudinal axis [deg], the patch's node count, and a function
+    giving the area-weighted mean of a (time, row, col) array."""
     ws = w.sum(axis=(1, 2))
     has = ws > 0
     den = np.where(has, ws, 1.0)
@@ -258,7 +259,8 @@ def _patch_means(w, vx, vy, vz):
         return np.where(has, (w * v).sum(axis=(1, 2)) / den, np.nan)
 
     mx, my, mz = mean(vx), mean(vy), mean(vz)
-    return has, (mx, np.sign(my) * np.hypot(my, mz)), mean
+    ml = np.sign(my) * np.hypot(my, mz)
+    return mx, ml, np.degrees(np.arctan2(ml, -mx)), (w > 0).sum(axis=(1, 2)), mean
 
 
 def _over_time(fields, out, units):
@@ -306,8 +308,6 @@ def slip_direction(fields, patch: int = 1):
     friction, K.L. Johnson, *Contact Mechanics*, CUP 1985, §8.1.
     """
     w, sx, sy, sz = _patch_weights(fields, patch, "slip")
-    has, (mx, ml), _ = _patch_means(w, sx, sy, sz)
-    out = {"slip_long": mx, "slip_lat": ml,
-           "angle": np.where(has, np.degrees(np.arctan2(ml, -mx)), np.nan),
-           "n_nodes": (w > 0).sum(axis=(1, 2))}
+    mx, ml, angle, n_nodes, _ = _patch_means(w, sx, sy, sz)
+    out = {"slip_long": mx, "slip_lat": ml, "angle": angle, "n_nodes": n_nodes}
     return _over_time(fields, out, {"slip_long": "m/s", "slip_lat": "m/s", "angle": "deg"})
