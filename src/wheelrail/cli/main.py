@@ -58,8 +58,14 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(f"{message} (see '{self.prog} --help')")
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The ``wheelrail`` parser with every sub-command of :data:`COMMANDS`."""
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The ``wheelrail`` parser with every sub-command of :data:`COMMANDS`.
+
+    With ``only`` (a word of the command line), only the sub-command of that name gets
+    its options; the others are listed with their help but not built. Building a sub-command's options may
+    import the library (``build-table`` shows the table builder's defaults), so a run
+    builds only the command it runs.
+    """
     from .. import __version__
 
     parser = _Parser(prog="wheelrail",
@@ -80,6 +86,8 @@ def build_parser() -> argparse.ArgumentParser:
     for name, module_name in COMMANDS:
         module = importlib.import_module(module_name)
         p = sub.add_parser(name, help=module.HELP, description=module.HELP)
+        if only is not None and name != only:
+            continue
         p.add_argument("--debug", action="store_true", default=argparse.SUPPRESS,
                        help="show tracebacks on errors")
         module.add_arguments(p)
@@ -89,6 +97,22 @@ def build_parser() -> argparse.ArgumentParser:
                                 "computation and stop (nothing is computed or written)")
         p.set_defaults(_run=module.run)
     return parser
+
+
+#: Options of ``wheelrail`` itself that take a value (the word after them is not a command).
+_VALUED = ("--memory-limit", "--time-limit")
+
+
+def _command_of(argv) -> str:
+    """The sub-command ``argv`` asks for: its first word that is neither an option nor an
+    option's value ("" when there is none, as in ``wheelrail --help``)."""
+    it = iter(argv)
+    for a in it:
+        if a in _VALUED:
+            next(it, None)
+        elif not a.startswith("-"):
+            return a
+    return ""
 
 
 def _exit_code(exc: BaseException) -> int:
@@ -205,7 +229,7 @@ def main(argv=None) -> int:
 def _main(argv, debug) -> int:
     args = None
     try:
-        parser = build_parser()
+        parser = build_parser(_command_of(argv))
         try:
             args = parser.parse_args(argv)
         except SystemExit as exc:  # --help, --version
