@@ -121,6 +121,52 @@ def one(name, compare=False):
                   flush=True)
 
 
+def steady(name, start, width, compare=False, normal=None):
+    """The tread patch of a run without onset (angle of attack 0: rolling along the rail on
+    the flange root) over travel bins from ``start`` [m]: medians of its forces, contact
+    angle, θ, adhering fraction and mean micro-slip; with ``compare``, Kalker's exact theory
+    at the last bin's contact angle, Fn and F_long (its creepage ξ·V against the FE slip)."""
+    p = xr.open_dataset(os.path.join(RESULTS, f"{name}_patches.nc")).load()
+    with open(os.path.join(RESULTS, f"{name}_info.json")) as f:
+        case = json.load(f)["case"]
+    s = p.travel.values
+    fpath = os.path.join(RESULTS, f"{name}_fields.nc")
+    slip = None
+    if os.path.exists(fpath):
+        with xr.open_dataset(fpath) as fields:
+            slip = slip_direction(fields.load(), patch=1)
+    print(f"{name}: {case}")
+    print("  travel [mm]   outputs  Fn [kN]  F_long  F_lat  F_long/(mu Fn)  contact angle  "
+          "tread θ  adhering  slip long, lat [m/s], angle")
+    mu = case.get("mu", 0.6)
+    last = None
+    for a in np.arange(start, s[-1] - 0.5 * width, width):
+        m = (s >= a) & (s < a + width) & np.isfinite(p.Fn.values[:, 0])
+        if not m.any():
+            continue
+        med = lambda v: float(np.median(v[m, 0]))  # noqa: E731
+        fn, fl, ft = med(p.Fn.values) / 1e3, med(p.F_long.values) / 1e3, med(p.F_lat.values) / 1e3
+        ang, th = np.degrees(med(p.contact_angle.values)), np.degrees(med(np.abs(p.theta.values)))
+        cols = ""
+        if slip is not None:
+            cols = slip_columns(slip, slip.travel.values, a, a + width)
+        print(f"  {a * 1e3:5.0f}-{(a + width) * 1e3:4.0f}  {m.sum():6d}   {fn:6.1f}  "
+              f"{abs(fl):6.1f} {abs(ft):6.1f}      {abs(fl) / (mu * fn):5.2f}        {ang:5.1f}°"
+              f"      {th:5.1f}°   {med(p.adhesion.values):4.2f}   {cols}")
+        last = (ang, fn, abs(fl), th, cols)
+    if compare and last is not None:
+        c = wr.fe.seed004_case(**{k: v for k, v in case.items() if k != "field_travel"})
+        ws = wr.Wheelset(S1002, nominal_radius=c.radius)
+        tr = wr.Track(R54, inclination=np.tan(c.inclination))
+        t0 = time.process_time()
+        *_, q = at_state(c, ws, tr, last[0], last[1] * 1e3, last[2] * 1e3, normal)
+        print(f"  BEM + exact at the last bin's state ({last[0]:.1f}°, Fn {last[1]:.1f} kN, "
+              f"F_long {last[2]:.1f} kN): xi {100 * q.xi:+.2f} %, eta {100 * q.eta:+.2f} %, "
+              f"spin {q.phi:+.3f} 1/m, xi V = {abs(q.xi) * c.speed:.3f} m/s, θ {theta_of(q):.1f}° "
+              f"(FE {last[3]:.1f}°), F_lat {abs(q.Fs) / 1e3:.1f} kN; "
+              f"{time.process_time() - t0:.1f} s CPU", flush=True)
+
+
 def jump(name, width, before, after, first=500.0):
     """The tread θ against the time from the flange patch's first force > ``first`` [N]."""
     p = xr.open_dataset(os.path.join(RESULTS, f"{name}_patches.nc")).load()
@@ -353,6 +399,14 @@ def main():
     pj.add_argument("--bin", type=float, default=3e-5, help="bin width [s]")
     pj.add_argument("--before", type=float, default=1.2e-4, help="[s]")
     pj.add_argument("--after", type=float, default=1.2e-3, help="[s]")
+    ps = sub.add_parser("steady", help="the tread patch of a run without onset over travel, "
+                        "against Kalker's exact theory at its state")
+    ps.add_argument("names", nargs="+")
+    ps.add_argument("--from", dest="start", type=float, default=0.03, help="[m]")
+    ps.add_argument("--width", type=float, default=0.02, help="bin width [m]")
+    ps.add_argument("--module", action="store_true",
+                    help="BEM (--element) + exact at the last bin's state")
+    ps.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
     pm = sub.add_parser("module", help="θ from Kalker's exact theory against the traction")
     pm.add_argument("--aoa", type=float, default=0.025)
     pm.add_argument("--angles", type=float, nargs="+", default=[8.0, 16.0, 20.0, 24.0])
@@ -368,7 +422,7 @@ def main():
                     metavar=("ANGLE", "FN", "F_LONG"), help="also an FE tread state: contact "
                     "angle [deg], Fn and F_long [kN] (repeatable)")
     pa.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
-    for p in (pf, pj, pm, pa):
+    for p in (pf, pj, ps, pm, pa):
         p.add_argument("--out")
     a = ap.parse_args()
     buf = io.StringIO()
@@ -379,6 +433,9 @@ def main():
         elif a.cmd == "jump":
             for name in a.names:
                 jump(name, a.bin, a.before, a.after)
+        elif a.cmd == "steady":
+            for name in a.names:
+                steady(name, a.start, a.width, a.module, wr.normal.Bem(element_size=a.element))
         elif a.cmd == "after":
             after(a)
         else:
