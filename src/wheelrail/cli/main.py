@@ -58,13 +58,13 @@ class _Parser(argparse.ArgumentParser):
         raise _UsageError(f"{message} (see '{self.prog} --help')")
 
 
-def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+def build_parser(argv=None) -> argparse.ArgumentParser:
     """The ``wheelrail`` parser with every sub-command of :data:`COMMANDS`.
 
-    With ``only`` (a word of the command line), only the sub-command of that name gets
-    its options; the others are listed with their help but not built. Building a sub-command's options may
-    import the library (``build-table`` shows the table builder's defaults), so a run
-    builds only the command it runs.
+    With ``argv`` (the command line to parse), only the sub-command it names gets its
+    options; the others are listed with their help but not built. Building a
+    sub-command's options may import the library (``build-table`` shows the table
+    builder's defaults), so a run builds only the command it runs.
     """
     from .. import __version__
 
@@ -82,6 +82,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--no-plausibility-checks", action="store_true",
                         help="accept values outside the wheel-rail range (e.g. mu > 2, a patch "
                              "larger than the radii) without warning or refusal")
+    only = None if argv is None else _command_of(argv, parser)
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name, module_name in COMMANDS:
         module = importlib.import_module(module_name)
@@ -99,17 +100,15 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
-#: Options of ``wheelrail`` itself that take a value (the word after them is not a command).
-_VALUED = ("--memory-limit", "--time-limit")
-
-
-def _command_of(argv) -> str:
-    """The sub-command ``argv`` asks for: its first word that is neither an option nor an
-    option's value ("" when there is none, as in ``wheelrail --help``)."""
+def _command_of(argv, parser) -> str:
+    """The sub-command ``argv`` asks for: its first word that is neither an option nor the
+    value of one of ``parser``'s options ("" when there is none, as in ``wheelrail
+    --help``)."""
     it = iter(argv)
     for a in it:
-        if a in _VALUED:
-            next(it, None)
+        action = parser._option_string_actions.get(a)
+        if action is not None and action.nargs != 0:
+            next(it, None)              # the option's value
         elif not a.startswith("-"):
             return a
     return ""
@@ -229,7 +228,7 @@ def main(argv=None) -> int:
 def _main(argv, debug) -> int:
     args = None
     try:
-        parser = build_parser(_command_of(argv))
+        parser = build_parser(argv)
         try:
             args = parser.parse_args(argv)
         except SystemExit as exc:  # --help, --version
