@@ -69,6 +69,23 @@ S1002 = wr.profiles.load("S1002")
 R54 = wr.profiles.load("54E1")
 
 
+def wheelset_track(case):
+    """The module's S1002 wheelset and 54E1 track with the radius and rail inclination of a
+    transition ``case``."""
+    return (wr.Wheelset(S1002, nominal_radius=case.radius),
+            wr.Track(R54, inclination=np.tan(case.inclination)))
+
+
+def tread_slip(name):
+    """The tread patch's mean micro-slip over time from run NAME's surface fields
+    (:func:`slip_direction`), or None where the run recorded none."""
+    fpath = os.path.join(RESULTS, f"{name}_fields.nc")
+    if not os.path.exists(fpath):
+        return None
+    with xr.open_dataset(fpath) as fields:
+        return slip_direction(fields.load(), patch=1)
+
+
 def windows(onset, start, end):
     w = [(start, onset - 0.030), (onset - 0.030, onset - 0.010), (onset - 0.010, onset),
          (onset, onset + 0.003), (onset + 0.003, onset + 0.010), (onset + 0.010, end)]
@@ -107,8 +124,7 @@ def one(name, compare=False):
     if compare:
         # Kalker's exact theory at the FE patch's contact angle, normal and longitudinal force
         c = wr.fe.seed004_case(**{k: v for k, v in case.items() if k != "field_travel"})
-        ws = wr.Wheelset(S1002, nominal_radius=c.radius)
-        tr = wr.Track(R54, inclination=np.tan(c.inclination))
+        ws, tr = wheelset_track(c)
         print("  against BEM + exact at the FE tread patch's contact angle, Fn and F_long "
               "(medians of the windows before the onset):")
         print("  travel [mm]     F_long/(mu Fn)  θ FE   θ module  (module Fn, F_lat [kN])")
@@ -130,11 +146,7 @@ def steady(name, start, width, compare=False, normal=None):
     with open(os.path.join(RESULTS, f"{name}_info.json")) as f:
         case = json.load(f)["case"]
     s = p.travel.values
-    fpath = os.path.join(RESULTS, f"{name}_fields.nc")
-    slip = None
-    if os.path.exists(fpath):
-        with xr.open_dataset(fpath) as fields:
-            slip = slip_direction(fields.load(), patch=1)
+    slip = tread_slip(name)
     print(f"{name}: {case}")
     print("  travel [mm]   outputs  Fn [kN]  F_long  F_lat  F_long/(mu Fn)  contact angle  "
           "tread θ  adhering  slip long, lat [m/s], angle")
@@ -153,11 +165,10 @@ def steady(name, start, width, compare=False, normal=None):
         print(f"  {a * 1e3:5.0f}-{(a + width) * 1e3:4.0f}  {m.sum():6d}   {fn:6.1f}  "
               f"{abs(fl):6.1f} {abs(ft):6.1f}      {abs(fl) / (mu * fn):5.2f}        {ang:5.1f}°"
               f"      {th:5.1f}°   {med(p.adhesion.values):4.2f}   {cols}")
-        last = (ang, fn, abs(fl), th, cols)
+        last = (ang, fn, abs(fl), th)
     if compare and last is not None:
         c = wr.fe.seed004_case(**{k: v for k, v in case.items() if k != "field_travel"})
-        ws = wr.Wheelset(S1002, nominal_radius=c.radius)
-        tr = wr.Track(R54, inclination=np.tan(c.inclination))
+        ws, tr = wheelset_track(c)
         t0 = time.process_time()
         *_, q = at_state(c, ws, tr, last[0], last[1] * 1e3, last[2] * 1e3, normal)
         print(f"  BEM + exact at the last bin's state ({last[0]:.1f}°, Fn {last[1]:.1f} kN, "
@@ -201,12 +212,8 @@ def jump(name, width, before, after, first=500.0):
             bottom += arm * h[v].values
     v_bot = np.gradient(bottom, t) / ref.speed
     # the tread patch's mean micro-slip from the surface fields, where they were recorded
-    fpath = os.path.join(RESULTS, f"{name}_fields.nc")
-    slip, slip_tau = None, None
-    if os.path.exists(fpath):
-        with xr.open_dataset(fpath) as fields:
-            slip = slip_direction(fields.load(), patch=1)
-        slip_tau = slip.time.values - t[k0]
+    slip = tread_slip(name)
+    slip_tau = None if slip is None else slip.time.values - t[k0]
     print("  time [µs]       outputs  flange Fn [kN]  tread Fn  tread θ  adhering  "
           "F_long/(μFn)  tread |F_long| |F_lat| [kN]  bottom v_y/V [%]"
           + ("  tread slip long, lat [m/s], angle" if slip is not None else ""))
@@ -262,8 +269,7 @@ def shift_at_angle(ws, tr, target_deg):
 def solve(case, shift, traction, normal, Q=None, f_long=None):
     """The module's tread contact with F_long = traction × Q (or ``f_long`` [N]) under the
     vertical load Q [N] (default the static wheel load)."""
-    ws = wr.Wheelset(S1002, nominal_radius=case.radius)
-    tr = wr.Track(R54, inclination=np.tan(case.inclination))
+    ws, tr = wheelset_track(case)
     alpha, V = case.angle_of_attack, case.speed
     if Q is None:
         Q = case.suspension.wheel_load(211.0)      # the FE wheel's mass on the 4 mm mesh
@@ -320,8 +326,7 @@ def after(a):
     by ``dv``: by V sin α (the tread stopped laterally on the rail, the largest lateral slip
     the approach can give) and by the dv at which θ reaches ``--target``."""
     case = wr.fe.seed004_case(a.aoa)
-    ws = wr.Wheelset(S1002, nominal_radius=case.radius)
-    tr = wr.Track(R54, inclination=np.tan(case.inclination))
+    ws, tr = wheelset_track(case)
     V, alpha = case.speed, case.angle_of_attack
     v0 = V * np.sin(alpha)
     normal = wr.normal.Bem(element_size=a.element)
@@ -368,8 +373,7 @@ def after(a):
 
 def module(a):
     case = wr.fe.seed004_case(a.aoa)
-    ws = wr.Wheelset(S1002, nominal_radius=case.radius)
-    tr = wr.Track(R54, inclination=np.tan(case.inclination))
+    ws, tr = wheelset_track(case)
     print(f"S1002 on 54E1 1:{1 / np.tan(case.inclination):.0f}, yaw {a.aoa * 1e3:g} mrad, "
           f"lateral velocity V sin(yaw) (no lateral creepage), mu {case.mu}, BEM "
           f"{a.element * 1e3:g} mm + exact; F_long = traction x Q")
