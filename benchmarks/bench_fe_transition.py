@@ -143,14 +143,15 @@ def from_restart(kw, path, results=None):
 
 
 def one(kw, save=None, figure=None, results=None, restart=None, restart_file=None,
-        restart_every=0):
+        restart_every=0, stop=None):
     case = build_case(kw)
     t0 = time.process_time()
     model = wr.fe.build_transition_model(case)
     t_build = time.process_time() - t0
     load0 = os.getloadavg()[0]
     r = wr.fe.run_transition(case, model=model, progress=True, restart=restart,
-                             restart_file=restart_file, restart_every=restart_every)
+                             restart_file=restart_file, restart_every=restart_every,
+                             stop_travel=stop)
     if r.contact_fields is not None and results:
         r.contact_fields.to_netcdf(os.path.join(RESULTS, f"{results}_fields.nc"))
     wave = r.info.get("wave")
@@ -216,6 +217,9 @@ def main():
     ap.add_argument("--wave", nargs=3, metavar=("TRAVEL", "TIME", "LINE"),
                     help="record a rail surface line's velocities every step from TRAVEL [m] "
                          "for TIME [s]; LINE tread or flange (NAME_wave.npz with --results)")
+    ap.add_argument("--stop", type=float, default=None,
+                    help="stop at this travel [m] (the restart file is written there; "
+                         "continue with --restart, output options may change)")
     a = ap.parse_args()
     if a.report:
         with open(a.report, "rb") as f:
@@ -248,7 +252,7 @@ def main():
         print("onset [mm]:", {k: round(v * 1e3, 1) for k, v in onsets.items()})
     else:
         one(dict(angle_of_attack=a.aoa, **extra), a.save, a.figure, a.results, a.restart,
-            a.restart_file, a.restart_every)
+            a.restart_file, a.restart_every, a.stop)
 
 
 if __name__ == "__main__":

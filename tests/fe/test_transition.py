@@ -316,6 +316,68 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
         run_transition(case, model=model, restart=tmp_path / "other.npz")
 
 
+def test_a_run_stopped_early_continues_with_its_fields_recorded(tiny_transition, tmp_path):
+    """``stop_travel`` ends a run part way, writes the restart file at the stop, and a
+    continuation with a field window from there (an output option: the motion is the
+    same) reproduces the uninterrupted run and records the fields it ran."""
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    full = run_transition(case, model=model)
+    f = tmp_path / "stop.npz"
+    stop = 0.5e-3
+    a = run_transition(case, model=model, restart_file=f, stop_travel=stop)
+    dt = a.info["time_step"]
+    k_stop = a.info["stopped_at"]
+    assert 0 < k_stop < full.info["steps"] and a.info["steps_run"] == k_stop
+    with np.load(f) as z:
+        assert int(z["step"]) == k_stop - 1
+        assert float(z["s"]) == pytest.approx(stop, abs=1.01 * dt * case.speed)
+    # the last output is the stop, at the travel asked for
+    assert a.patches["travel"].values[-1] == pytest.approx(stop, abs=1.01 * dt * case.speed)
+    assert a.contact_fields is None
+    later = case.replace(field_travel=(stop, case.travel))
+    b = run_transition(later, model=model, restart=f)
+    assert b.info["stopped_at"] is None
+    assert b.info["steps_run"] == full.info["steps"] - k_stop
+    np.testing.assert_allclose(b.u, full.u, rtol=1e-9, atol=1e-15)
+    # outputs every output_interval, plus the one at the stop
+    t_full, t_b = full.patches["time"].values, b.patches["time"].values
+    extra = np.setdiff1d(t_b, t_full)
+    assert extra.size == 1 and extra[0] == pytest.approx(a.patches["time"].values[-1])
+    keep = np.isin(t_b, t_full)
+    np.testing.assert_allclose(b.patches["Fn"].values[keep], full.patches["Fn"].values,
+                               rtol=1e-9, atol=1e-6)
+    tr = b.contact_fields["travel"].values
+    assert tr.size > 0 and tr.min() > stop
+    with pytest.raises(InputError, match="at or past the stop"):
+        run_transition(case, model=model, restart=f, stop_travel=0.2e-3)
+    with pytest.raises(InputError, match="stop_travel"):
+        run_transition(case, model=model, stop_travel=-1.0)
+
+
+def test_prescribed_creepage_holds_the_rolling_and_the_contact_brakes_it(tiny_transition):
+    """With ``creepage`` the wheel turns at ω = (1 + creepage) V / r0 from the first rolling
+    step, whatever the contact does; a driven wheel's contact moment opposes the rolling
+    (Kalker's convention: a positive creepage of the wheel gives a negative force on it)."""
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    c = case.replace(creepage=0.01)
+    r = run_transition(c, model=model)
+    h = r.history
+    np.testing.assert_allclose(h["creepage"].values, 0.01, rtol=1e-12)
+    r0 = model.pose["r0"]
+    np.testing.assert_allclose(h["omega"].values, 1.01 * c.speed / r0, rtol=1e-12)
+    assert r.info["torque"] == 0.0
+    # the patch's longitudinal force and the contact moment act against the spin-up once
+    # the patch has built up (last third of the run)
+    late = h["travel"].values > 0.6 * c.travel
+    assert np.all(h["torque_contact"].values[late] < 0.0)
+    with pytest.raises(InputError, match="creepage"):
+        case.replace(creepage=0.5)
+
+
 def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_path, capsys):
     import json
 
@@ -345,6 +407,21 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     bad.write_text('[fe]\ntransition = "reduced"\nangle_of_attak = 0.025\n')
     assert main(["fe", str(bad), "--out", str(out)]) != 0
     assert "angle_of_attak" in capsys.readouterr().err
+    # --stop-travel: part of the run, with the restart file at the stop
+    part = tmp_path / "part"
+    assert main(["fe", str(case), "--out", str(part), "--stop-travel", "0.4e-3",
+                 "--no-figures"]) == 0
+    assert "stopped at 0.4 mm" in capsys.readouterr().out
+    part_summary = json.loads((part / "summary.json").read_text())
+    assert 0 < part_summary["stopped_at"] < summary["steps"]
+    assert "stopped_at" not in summary           # the whole run: no stop
+    with np.load(part / "restart.npz") as z:
+        assert int(z["step"]) == part_summary["stopped_at"] - 1
+    plain = tmp_path / "plain.toml"
+    plain.write_text('[fe]\nwheel = "cylinder"\nrail = "60E1"\nradius = 0.46\nload = 7500.0\n'
+                     'creepage = [7e-4, 0.0, 0.0]\nmu = 0.2\n')
+    assert main(["fe", str(plain), "--out", str(part), "--stop-travel", "0.01"]) != 0
+    assert "--stop-travel" in capsys.readouterr().err
 
 
 def test_case_file_suspension_and_track_tables(tmp_path, capsys):

@@ -152,6 +152,10 @@ def add_arguments(p) -> None:
     p.add_argument("--restart-every", metavar="N", type=int, default=None,
                    help="write DIR/restart.npz every N rolling steps (default: a tenth of "
                         "the steps)")
+    p.add_argument("--stop-travel", metavar="M", type=float, default=None,
+                   help="transition cases: stop once the wheel has rolled M metres, writing "
+                        "DIR/restart.npz there (continue with --restart; the output keys, "
+                        "e.g. field_travel, may change in between)")
 
 
 def _profile(value, kind, base, param=0.0):
@@ -386,6 +390,11 @@ def run(args, console) -> int:
     case, mode = case_from_toml(args.case)
     if mode == "transition":
         return _run_transition(case, args, console)
+    if args.stop_travel is not None:
+        from ..errors import CaseFileError
+
+        raise CaseFileError(f"--stop-travel {args.stop_travel!r} is for transition cases "
+                            f"(a 'transition' key in the [fe] table); {args.case} is not one")
     mode = args.mode or mode
     out = Path(args.out)
     _check_size(case, mode)
@@ -493,7 +502,8 @@ def _run_transition(case, args, console) -> int:
     out.mkdir(parents=True, exist_ok=True)
     r = run_transition(case, model=model, progress=True, restart=args.restart,
                        restart_file=out / "restart.npz",
-                       restart_every=args.restart_every or 0)
+                       restart_every=args.restart_every or 0,
+                       stop_travel=args.stop_travel)
     r.patches.to_netcdf(out / "patches.nc")
     r.history.to_netcdf(out / "history.nc")
     if r.contact_fields is not None:
@@ -505,7 +515,7 @@ def _run_transition(case, args, console) -> int:
                                                  r.info["wave"].items() if k != "vz"})
     info = {k: v for k, v in r.info.items() if k not in ("fields", "wave")}
     summary = {"mode": "transition", "n_elements": model.n_elements,
-               **{k: float(v) for k, v in info.items()}}
+               **{k: float(v) for k, v in info.items() if v is not None}}
     fit = None
     if r.info.get("wave") is not None:
         from ..fe.transition_analysis import wave_speed
@@ -529,6 +539,10 @@ def _run_transition(case, args, console) -> int:
             for kind in ("stress", "slip"):
                 plot_contact_fields(r.contact_fields, kind=kind,
                                     path=out / f"contact_fields_{kind}.png")
+    if r.info["stopped_at"] is not None:
+        console.print(f"  stopped at {r.patches['travel'].values[-1] * 1e3:.1f} mm (step "
+                      f"{r.info['stopped_at']} of {r.info['steps']}); continue with "
+                      f"--restart {esc(out / 'restart.npz')}")
     onset = r.info["onset_travel"]
     console.print(f"  onset of two-point contact: "
                   f"{'none' if onset != onset else f'{onset * 1e3:.1f} mm'}; "

@@ -276,7 +276,7 @@ _STATE_DEFAULTS = {"y": 0.0, "vy": 0.0, "phi": 0.0, "vphi": 0.0, "m_roll0": np.n
 
 def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                    estimate_only: bool = False, field_every: int = 0, restart=None,
-                   restart_file=None, restart_every: int = 0):
+                   restart_file=None, restart_every: int = 0, stop_travel=None):
     """Roll the half-wheelset of ``case`` into two-point contact (explicit FE).
 
     Parameters
@@ -297,6 +297,15 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         Write the state here every ``restart_every`` steps (overwritten each time).
     restart_every : int
         Steps between restart files (0: a tenth of the steps when ``restart_file`` is given).
+    stop_travel : float, optional
+        Stop once the wheel has rolled this far [m] (after the preload), before the case's
+        ``travel``: the outputs up to there are returned, ``info["stopped_at"]`` is the
+        number of steps run in all, and with ``restart_file`` the state is written at
+        the stop, so that ``restart=`` continues the same case from there. The output
+        options that do not change the motion (``output_interval``, ``field_travel``,
+        ``field_stride``, ``wave_travel``, ``wave_time``, ``wave_line``) may differ in
+        the continuation: a long run can be stopped before a window and continued with
+        its fields recorded.
 
     Returns
     -------
@@ -327,7 +336,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     rho2 = m.nodes[:nw, 0] ** 2 + m.nodes[:nw, 2] ** 2
     J = float(np.sum(m.mass[:nw] * rho2)) + susp.axle_inertia
     r0 = pose["r0"]
-    torque = case.traction * load * r0 + susp.torque
+    fixed_rolling = case.creepage is not None
+    # the driving torque; none when the rolling is prescribed (case.creepage)
+    torque = 0.0 if fixed_rolling else case.traction * load * r0 + susp.torque
     # ---- static track and initial pose
     u = _static_track(m, load, (0.0, pose["rail_y_tread"]))
     k_master = m.master
@@ -340,7 +351,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     G = case.material.E / (2 * (1 + case.material.nu))
     k_t = 8.0 * G * a_hz / (2.0 - case.material.nu)
     # start creepage for the traction (Kalker's linear theory, C11 ≈ 4.2 at ν = 0.3, a ≈ b)
-    xi0 = case.traction * load / (G * np.pi * a_hz ** 2 * 4.2)
+    xi0 = (case.creepage if fixed_rolling
+           else case.traction * load / (G * np.pi * a_hz ** 2 * 4.2))
     c0 = np.array([0.0, pose["y0"], case.radius + pose["z0"] + sag - delta])
     v = np.zeros((n, 3))
     acc = np.zeros((n, 3))
@@ -455,7 +467,13 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     else:
         line, wave_normal = np.zeros(0, np.int64), np.zeros(3)
     j_wave = n_pre + int(round(case.wave_travel / (V * dt)))     # step of the first record
-    n_wave = max(0, min(n_wave, n_steps - j_wave))        # not beyond the run's end
+    n_end = n_steps
+    if stop_travel is not None:
+        if not np.isfinite(stop_travel) or stop_travel <= 0.0:
+            raise InputError(f"stop_travel must be a positive distance [m], got "
+                             f"{stop_travel!r}")
+        n_end = min(n_steps, n_pre + int(np.ceil(stop_travel / (V * dt))))
+    n_wave = max(0, min(n_wave, n_end - j_wave))          # not beyond the run's end
     wave_v = np.zeros((n_wave, line.size, 3))
     t_cpu = time.process_time()
     t_wall = time.perf_counter()
@@ -468,6 +486,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                                  f"case {n} nodes, {n_steps} steps)")
             st = {k2: (z[k2] if k2 in z.files else _STATE_DEFAULTS[k2]) for k2 in _STATE}
             k0 = int(z["step"]) + 1
+            if k0 >= n_end:
+                raise InputError(f"restart file {restart!s} is at step {k0}, at or past the "
+                                 f"stop ({n_end} steps; stop_travel {stop_travel!r} m)")
             rows = [r for r in z["rows"]]
             hist = list(_full_history_rows(z["hist"]))
         u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
@@ -486,7 +507,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         # the preload's fictitious masses and damping until the rolling starts
         inv_m = inv_m_pre
         m_alpha[:] = m_alpha_pre
-    for k in range(k0, n_steps):
+    for k in range(k0, n_end):
         pre = k < n_pre
         if n_pre and k == n_pre:
             # the rolling starts: the real masses, the settle damping, the rolling speed
@@ -503,7 +524,7 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                              np.zeros((0, 1, 14)), np.zeros((0, 1, 14)), f_tmp, e_buf[g])
             f_int += f_tmp
         # ---- contact
-        is_out = k % every == 0 or k == n_steps - 1
+        is_out = k % every == 0 or k == n_end - 1
         rec = (is_out and not pre and fwin and fwin[0] <= s + dt * V <= fwin[1]
                and n_rec % case.field_stride == 0)
         xs = c + (Xw + u[m.slave]) @ R.T
@@ -573,8 +594,9 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             vphi += dt * a_phi
             phi += dt * vphi
         if not pre:
-            omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
-            omega_mean += dt * (omega - omega_mean) / tau_rot
+            if not fixed_rolling:
+                omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
+                omega_mean += dt * (omega - omega_mean) / tau_rot
             psi += dt * omega
         if not pre and fade > 0.0 and fade_now < fade - 0.02:
             fade = fade_now
@@ -609,20 +631,22 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
             if field_every and (len(rows) - 1) % field_every == 0:
                 fields.append(v[surf_rail].copy())
             if progress and len(rows) % 20 == 1:
-                done = (k + 1 - k0) / max(1, n_steps - k0)
+                done = (k + 1 - k0) / max(1, n_end - k0)
                 el = time.perf_counter() - t_wall
                 print(f"  {100 * (k + 1) / n_steps:5.1f} %  t = {t * 1e3:7.3f} ms  "
                       f"s = {s * 1e3:6.1f} mm  patches {npatch}  Fz = {Fc[2] / 1e3:7.2f} kN  "
                       f"elapsed {el:6.0f} s, left ~{el * (1 - done) / max(done, 1e-9):6.0f} s",
                       flush=True)
-        if restart_file is not None and (k + 1) % restart_every == 0 and k + 1 < n_steps:
+        if restart_file is not None and k + 1 < n_steps and (
+                (k + 1) % restart_every == 0 or k + 1 == n_end):
             _write_restart(restart_file, n, n_steps, k, rows, hist, locals())
     cpu = time.process_time() - t_cpu
     wall = time.perf_counter() - t_wall
     ds, hds = _histories(rows, hist)
     # the cost per step of the steps run in this call (a restart continues at k0)
-    run_steps = max(1, n_steps - k0)
-    info = {"time_step": dt, "steps": n_steps, "steps_run": n_steps - k0, "cpu_s": cpu,
+    run_steps = max(1, n_end - k0)
+    info = {"time_step": dt, "steps": n_steps, "steps_run": n_end - k0, "cpu_s": cpu,
+            "stopped_at": n_end if n_end < n_steps else None,
             "wall_s": wall,
             "ns_per_element_step": cpu / (run_steps * m.n_elements) * 1e9,
             "wall_ns_per_element_step": wall / (run_steps * m.n_elements) * 1e9,

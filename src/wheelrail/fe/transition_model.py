@@ -75,7 +75,14 @@ class TransitionCase:
         Friction coefficient.
     traction : float
         Driving torque as a traction coefficient: T = traction · Q · r0 (Q the static wheel
-        load, r0 the rolling radius); must stay below μ.
+        load, r0 the rolling radius); must stay below μ. Not used with ``creepage``.
+    creepage : float or None
+        If given, the wheel's rolling is prescribed once it rolls: a constant angular
+        velocity ω = (1 + creepage) V / r0 (r0 the rigid rolling radius at the start
+        contact; the history's ``creepage`` column), no torque: the contact takes the
+        moment the prescribed rolling needs (the history's ``torque_contact``). A steady
+        creepage for creep curves, instead of a torque that spins the wheel up until the
+        contact balances it. |creepage| < 0.1.
     flange_clearance : float
         Lateral distance [m] the wheel moves (rigidly, without yaw) from its start to the
         flange contact.
@@ -148,6 +155,7 @@ class TransitionCase:
     speed: float = 80 / 3.6
     mu: float = 0.6
     traction: float = 0.1
+    creepage: float | None = None
     flange_clearance: float = 1.0e-3
     travel: float = 0.10
     settle: float = 0.02
@@ -191,6 +199,9 @@ class TransitionCase:
                                                            lo_open=True)))
         object.__setattr__(self, "grading", float(in_range("grading", self.grading, 1.0, 2.0)))
         check_surface_line("wave_line", self.wave_line)
+        if self.creepage is not None:
+            object.__setattr__(self, "creepage",
+                               float(in_range("creepage", self.creepage, -0.1, 0.1)))
         if self.wave_travel >= self.travel:
             raise InputError(f"wave_travel {self.wave_travel!r} m must be below the travel "
                              f"{self.travel!r} m")
