@@ -263,6 +263,9 @@ def test_restart_continues_a_transition_run_exactly(tiny_transition, tmp_path):
     a = run_transition(case, model=model, restart_file=f, restart_every=60)
     with np.load(f) as z:
         k = int(z["step"])
+        # past the settle distance the start damping is off entirely (it fades in steps
+        # of 2 % and is set to 0 at the settle distance, not left at its last step)
+        assert float(z["s"]) > case.settle and float(z["fade"]) == 0.0
     assert 0 < k < a.info["steps"] - 1
     # the histories up to the restart's step, as the uninterrupted run has them
     from wheelrail.fe.transition import read_transition_restart

@@ -598,7 +598,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                 omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
                 omega_mean += dt * (omega - omega_mean) / tau_rot
             psi += dt * omega
-        if not pre and fade > 0.0 and fade_now < fade - 0.02:
+        # (re)set in steps of 2 % of the start value, and to exactly 0 at the settle distance
+        if not pre and fade > 0.0 and (fade_now < fade - 0.02 or fade_now == 0.0):
             fade = fade_now
             settle_damping(fade)
         if not pre:
