@@ -22,6 +22,11 @@ heading) it keeps the angular velocity and load and reduces the wheel's lateral 
 against the rail by V sin α (the tread stopped laterally on the rail: the largest lateral
 slip the approach can give), and finds the reduction at which θ reaches 70°.
 
+``creep NAME ...`` reads runs at a prescribed creepage (``--set creepage=...``: a constant
+angular velocity instead of the driving torque, angle of attack 0): the tread patch's
+medians from ``--from`` to the end, against Kalker's exact theory (BEM + exact) at the FE
+patch's contact angle and Fn, at the same creepage and at the same F_long.
+
 ``module`` gives the quasi-static, independent estimate from Kalker's exact theory. With
 the transition case's kinematics (yaw α, the wheel moving along its heading: no lateral
 creepage, spin from the contact angle) the tread contact's lateral force comes from spin
@@ -39,6 +44,12 @@ velocity at which the longitudinal force is traction × Q. Usage::
         a25_h4_c7_t50 a25_h4_c7_t45 \
         --bin 1.2e-4 --before 2.4e-4 --after 2e-3 \
         --out results/fe_transition/theta_jump_a25.txt
+    for c in 0.0015 0.003 0.006 0.012; do python benchmarks/bench_fe_transition.py \
+        --aoa 0 --mesh 0.004 --travel 0.06 --clearance 0.003 --preload 1e-3 \
+        --output-interval 1e-5 --set creepage=$c --fields 0.035 0.06 \
+        --results a0_h4_c3_xi${c#0.}; done
+    python benchmarks/bench_fe_transition_theta.py creep a0_h4_c3_xi0015 a0_h4_c3_xi003 \
+        a0_h4_c3_xi006 a0_h4_c3_xi012 --out results/fe_transition/creep_a0_tread.txt
     python benchmarks/bench_fe_transition_theta.py module --angles 7 9 16 20 24 \
         --traction 0.3 0.4 0.5 0.55 --out results/fe_transition/theta_module_a25.txt
     python benchmarks/bench_fe_transition_theta.py after \
@@ -241,6 +252,59 @@ def jump(name, width, before, after, first=500.0):
     print(f"  run ends {tau[-1] * 1e6:.0f} µs after the flange's first force")
 
 
+def creep(name, start, normal):
+    """A run at a prescribed creepage (``--set creepage=...``, angle of attack 0): the tread
+    patch's medians from ``start`` [m] to the end against Kalker's exact theory at its
+    contact angle and Fn, (a) at the same creepage and (b) at the same F_long."""
+    p = xr.open_dataset(os.path.join(RESULTS, f"{name}_patches.nc")).load()
+    h = xr.open_dataset(os.path.join(RESULTS, f"{name}_history.nc")).load()
+    with open(os.path.join(RESULTS, f"{name}_info.json")) as f:
+        case = json.load(f)["case"]
+    s = p.travel.values
+    m = (s >= start) & np.isfinite(p.Fn.values[:, 0])
+    med = lambda v: float(np.median(v[m, 0]))  # noqa: E731
+    fn, fl, ft = med(p.Fn.values), abs(med(p.F_long.values)), abs(med(p.F_lat.values))
+    ang, th = np.degrees(med(p.contact_angle.values)), np.degrees(med(np.abs(p.theta.values)))
+    xi = float(np.nanmedian(h.creepage.values[h.travel.values >= start]))
+    slip = tread_slip(name)
+    cols = slip_columns(slip, slip.travel.values, start, s[-1] + 1e-9) if slip is not None else ""
+    c = wr.fe.seed004_case(**{k: v for k, v in case.items() if k != "field_travel"})
+    mu = c.mu
+    print(f"{name}: creepage {100 * xi:.2f} % (prescribed), {start * 1e3:.0f}-{s[-1] * 1e3:.0f} "
+          f"mm, {m.sum()} outputs")
+    print(f"  FE      : angle {ang:5.2f}°, Fn {fn / 1e3:6.1f} kN, F_long {fl / 1e3:6.2f} kN "
+          f"({fl / (mu * fn):4.2f} mu Fn), F_lat {ft / 1e3:6.2f} kN, θ {th:5.1f}°, adhering "
+          f"{med(p.adhesion.values):4.2f}; mean slip long, lat [m/s], angle {cols}")
+    ws, tr = wheelset_track(c)
+    t0 = time.process_time()
+    shift, got = shift_at_angle(ws, tr, ang)
+    alpha, V = c.angle_of_attack, c.speed
+    Q = fn * np.cos(np.radians(got))
+    om0 = V / c.radius
+    for _ in range(3):
+        pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
+
+        def xi_of(om):
+            q = max(tread_patches(c, pos, om, V * np.sin(alpha), normal), key=lambda r: r.Fn)
+            return -q.xi, q
+        a_, b_ = om0 * (1 + 0.5 * xi), om0 * (1 + 1.5 * xi)
+        fa, _ = xi_of(a_)
+        fb, q = xi_of(b_)
+        for _ in range(8):
+            if abs(fb - xi) < 1e-3 * abs(xi):
+                break
+            c_ = b_ + (xi - fb) * (b_ - a_) / (fb - fa)
+            a_, fa = b_, fb
+            b_, (fb, q) = c_, xi_of(c_)
+        Q *= fn / q.Fn
+    print(f"  Kalker  : same creepage ({100 * -q.xi:.2f} %, spin {q.phi:+.3f} 1/m): Fn "
+          f"{q.Fn / 1e3:6.1f} kN, F_long {abs(q.Fx) / 1e3:6.2f} kN ({abs(q.Fx) / (mu * q.Fn):4.2f}"
+          f" mu Fn), F_lat {abs(q.Fs) / 1e3:6.2f} kN, θ {theta_of(q):5.1f}°")
+    *_, r = at_state(c, ws, tr, ang, fn, fl, normal)
+    print(f"  Kalker  : same F_long: creepage {100 * -r.xi:.2f} %, F_lat {abs(r.Fs) / 1e3:6.2f}"
+          f" kN, θ {theta_of(r):5.1f}°; {time.process_time() - t0:.0f} s CPU", flush=True)
+
+
 def slip_columns(slip, tau, a, b):
     """Medians of the tread's mean slip and its angle over the fields' outputs in [a, b)."""
     m = (tau >= a - 1e-12) & (tau < b - 1e-12) & np.isfinite(slip.angle.values)
@@ -411,6 +475,11 @@ def main():
     ps.add_argument("--module", action="store_true",
                     help="BEM (--element) + exact at the last bin's state")
     ps.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
+    pc = sub.add_parser("creep", help="runs at a prescribed creepage against Kalker's exact "
+                        "theory at the same creepage and at the same F_long")
+    pc.add_argument("names", nargs="+")
+    pc.add_argument("--from", dest="start", type=float, default=0.035, help="[m]")
+    pc.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
     pm = sub.add_parser("module", help="θ from Kalker's exact theory against the traction")
     pm.add_argument("--aoa", type=float, default=0.025)
     pm.add_argument("--angles", type=float, nargs="+", default=[8.0, 16.0, 20.0, 24.0])
@@ -426,7 +495,7 @@ def main():
                     metavar=("ANGLE", "FN", "F_LONG"), help="also an FE tread state: contact "
                     "angle [deg], Fn and F_long [kN] (repeatable)")
     pa.add_argument("--element", type=float, default=5e-4, help="BEM element size [m]")
-    for p in (pf, pj, ps, pm, pa):
+    for p in (pf, pj, ps, pc, pm, pa):
         p.add_argument("--out")
     a = ap.parse_args()
     buf = io.StringIO()
@@ -440,6 +509,9 @@ def main():
         elif a.cmd == "steady":
             for name in a.names:
                 steady(name, a.start, a.width, a.module, wr.normal.Bem(element_size=a.element))
+        elif a.cmd == "creep":
+            for name in a.names:
+                creep(name, a.start, wr.normal.Bem(element_size=a.element))
         elif a.cmd == "after":
             after(a)
         else:
