@@ -95,9 +95,15 @@ def main():
     ap.add_argument("--windows", type=float, nargs="*",
                     help="travel windows FROM TO FROM TO ... [m] (default: 13.3 mm windows "
                          "before and after the onset)")
+    ap.add_argument("--bands", type=float, nargs="*",
+                    help="frequency bands FROM TO FROM TO ... [kHz] (default 10-20, 20-40, "
+                         "40-70, 60-100)")
     ap.add_argument("--out")
     ap.add_argument("--figure")
     a = ap.parse_args()
+    if a.bands:
+        global BANDS
+        BANDS = tuple((lo * 1e3, hi * 1e3) for lo, hi in zip(a.bands[::2], a.bands[1::2]))
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf) if a.out else contextlib.nullcontext():
         run(a)

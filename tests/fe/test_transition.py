@@ -172,6 +172,8 @@ def test_track_and_suspension_inputs_are_validated():
         TrackStructure(pad_stiffness=-1.0)
     with pytest.raises(InputError, match="pad_length"):
         TrackStructure(pad_length=0.7)
+    with pytest.raises(InputError, match="sleeper_hold"):
+        TrackStructure(sleeper_hold="top")
     s = Suspension()
     assert s.wheel_load(200.0) == pytest.approx((8000 + 300 + 200) * 9.81)
     with pytest.raises(InputError, match="torque"):
@@ -535,6 +537,29 @@ def test_full_size_wheel_plate_passes_the_aspect_check():
     with pytest.raises(MeshQualityError, match="aspect"):
         sweep_section(wheel_plate_rows(-0.03, hub=PLATE_HUB, h_max=0.03), th, case.radius,
                       name="wheel plate")
+
+
+def test_sleepers_are_held_in_x_and_y_at_every_node_or_at_their_bottom(tiny_transition):
+    """``sleeper_hold="body"`` (default) holds every sleeper node laterally and
+    longitudinally (the sleepers move only vertically: they cannot pitch or roll on the
+    vertical ballast springs); ``"bottom"`` holds the bottom face (3 x 4 nodes a sleeper
+    with the default 2 x 3 x 2 elements)."""
+    from dataclasses import replace as dc_replace
+
+    from wheelrail.fe.transition_model import build_transition_model
+
+    case, model = tiny_transition
+    ex, ey, ez = case.track.sleeper_elements
+    per = (ex + 1) * (ey + 1)
+    assert model.held_xy.size == case.track.n_sleepers * per * (ez + 1)
+    bottom = build_transition_model(case.replace(
+        track=dc_replace(case.track, sleeper_hold="bottom")))
+    assert bottom.held_xy.size == case.track.n_sleepers * per
+    assert np.isin(bottom.held_xy, model.held_xy).all()
+    # the held nodes are the sleepers': from their bottom (−0.359 m) up to their top at
+    # the rail foot (the 54E1 rail is 159 mm high)
+    z = model.nodes[model.held_xy, 2]
+    assert z.min() == pytest.approx(-0.359, abs=1e-3) and z.max() == pytest.approx(-0.159, abs=1e-3)
 
 
 def test_a_run_longer_than_its_model_is_refused(tiny_transition):

@@ -472,7 +472,7 @@ class TransitionModel:
     groups: list                 # [(conn, chunks, edata, material)]
     mass: np.ndarray             # (n,)
     fixed: np.ndarray            # nodes clamped (hub)
-    held_xy: np.ndarray          # nodes held in x and y (sleeper bottoms)
+    held_xy: np.ndarray          # nodes held in x and y (sleepers; see sleeper_hold)
     tie_slave: np.ndarray        # (nt,)
     tie_master: np.ndarray       # (nt, 2)
     tie_weight: np.ndarray       # (nt, 2)
@@ -647,8 +647,11 @@ def build_transition_model(case: TransitionCase) -> TransitionModel:
                 springs.add([sl_index(s, i, j, 0)], [1.0], 2, track.ballast_stiffness * sh,
                             track.ballast_damping * sh)
     springs.finish()
-    held = np.array([sl_index(s, i, j, 0) for s in range(len(xs_sl)) for i in range(ex + 1)
-                     for j in range(ey + 1)], np.int64)
+    # sleepers held in x and y: every node (they move only vertically on the ballast), or
+    # the bottom face only (TrackStructure.sleeper_hold)
+    layers = range(ez + 1) if track.sleeper_hold == "body" else (0,)
+    held = np.array([sl_index(s, i, j, k) for s in range(len(xs_sl)) for i in range(ex + 1)
+                     for j in range(ey + 1) for k in layers], np.int64)
     # ---- contact: wheel surface nodes in the fine θ band (slaves), rail quads in the band
     na_w, ns_wh, nr_wh = rim.shape
     band_i = np.flatnonzero((th >= th_band[0] - 4 * h / R) & (th <= th_band[1] + 4 * h / R))
