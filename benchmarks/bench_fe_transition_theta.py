@@ -287,11 +287,11 @@ def creep(name, start, normal):
         def xi_of(om):
             q = max(tread_patches(c, pos, om, V * np.sin(alpha), normal), key=lambda r: r.Fn)
             return -q.xi, q
-        a_, b_ = om0 * (1 + 0.5 * xi), om0 * (1 + 1.5 * xi)
+        a_, b_ = om0 * (1 + xi - 5e-4), om0 * (1 + xi + 5e-4)
         fa, _ = xi_of(a_)
         fb, q = xi_of(b_)
         for _ in range(8):
-            if abs(fb - xi) < 1e-3 * abs(xi):
+            if abs(fb - xi) < 1e-3 * abs(xi) + 1e-6:
                 break
             c_ = b_ + (xi - fb) * (b_ - a_) / (fb - fa)
             a_, fa = b_, fb
