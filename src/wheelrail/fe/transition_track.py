@@ -2,8 +2,8 @@
 
 :class:`TrackStructure` — a rail on discrete solid sleepers: railpads as
 spring–dampers between the rail foot and the sleeper top, the ballast as vertical
-spring–dampers under the sleeper, the sleeper's bottom held laterally and
-longitudinally (Zhao, Li & Liu 2012).
+spring–dampers under the sleeper, the sleepers held laterally and longitudinally
+(every node by default: they move only vertically; Zhao, Li & Liu 2012).
 :class:`Suspension` — the sprung mass (car body and bogie lumped, per wheel) on the
 primary suspension, the half-axle's mass and inertia, the driving torque.
 
