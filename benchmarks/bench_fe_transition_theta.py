@@ -277,26 +277,7 @@ def creep(name, start, normal):
           f"{med(p.adhesion.values):4.2f}; mean slip long, lat [m/s], angle {cols}")
     ws, tr = wheelset_track(c)
     t0 = time.process_time()
-    shift, got = shift_at_angle(ws, tr, ang)
-    alpha, V = c.angle_of_attack, c.speed
-    Q = fn * np.cos(np.radians(got))
-    om0 = V / c.radius
-    for _ in range(3):
-        pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
-
-        def xi_of(om):
-            q = max(tread_patches(c, pos, om, V * np.sin(alpha), normal), key=lambda r: r.Fn)
-            return -q.xi, q
-        a_, b_ = om0 * (1 + xi - 5e-4), om0 * (1 + xi + 5e-4)
-        fa, _ = xi_of(a_)
-        fb, q = xi_of(b_)
-        for _ in range(8):
-            if abs(fb - xi) < 1e-3 * abs(xi) + 1e-6:
-                break
-            c_ = b_ + (xi - fb) * (b_ - a_) / (fb - fa)
-            a_, fa = b_, fb
-            b_, (fb, q) = c_, xi_of(c_)
-        Q *= fn / q.Fn
+    *_, q = at_state(c, ws, tr, ang, fn, None, normal, xi=xi)
     print(f"  Kalker  : same creepage ({100 * -q.xi:.2f} %, spin {q.phi:+.3f} 1/m): Fn "
           f"{q.Fn / 1e3:6.1f} kN, F_long {abs(q.Fx) / 1e3:6.2f} kN ({abs(q.Fx) / (mu * q.Fn):4.2f}"
           f" mu Fn), F_lat {abs(q.Fs) / 1e3:6.2f} kN, θ {theta_of(q):5.1f}°")
@@ -330,41 +311,58 @@ def shift_at_angle(ws, tr, target_deg):
     return 0.5 * (lo + hi), float(np.degrees(cp.right.contact_angle[cp.right.primary]))
 
 
-def solve(case, shift, traction, normal, Q=None, f_long=None):
-    """The module's tread contact with F_long = traction × Q (or ``f_long`` [N]) under the
+def secant(f, goal, a_, b_, tol, iters):
+    """Secant iteration for ``f(x)[0] = goal`` from ``a_`` and ``b_``: the last iterate
+    and ``f(x)[1]`` there (within ``tol`` of the goal, or after ``iters`` updates)."""
+    fa, _ = f(a_)
+    fb, extra = f(b_)
+    for _ in range(iters):
+        if abs(fb - goal) < tol:
+            break
+        c_ = b_ + (goal - fb) * (b_ - a_) / (fb - fa)
+        a_, fa = b_, fb
+        b_, (fb, extra) = c_, f(c_)
+    return b_, extra
+
+
+def solve(case, shift, traction, normal, Q=None, f_long=None, xi=None):
+    """The module's tread contact with F_long = traction × Q (or ``f_long`` [N]), or with
+    the creepage ``xi`` of its largest patch (the wheel's, positive when driven), under the
     vertical load Q [N] (default the static wheel load)."""
     ws, tr = wheelset_track(case)
     alpha, V = case.angle_of_attack, case.speed
     if Q is None:
         Q = case.suspension.wheel_load(211.0)      # the FE wheel's mass on the 4 mm mesh
     pos = WheelRailPosition(ws, tr, shift, yaw=alpha, roll=0.0, vertical_load=Q)
-    goal = traction * Q if f_long is None else f_long
-
-    def fx(omega):
-        ps = tread_patches(case, pos, omega, V * np.sin(alpha), normal)
-        return sum(p.Fx for p in ps), ps
-
     om0 = V / case.radius
-    a_, b_ = om0 * (1 + 1e-3), om0 * (1 + 4e-3)
-    fa, _ = fx(a_)
-    fb, ps = fx(b_)
-    for _ in range(12):
-        if abs(fb - goal) < 0.002 * abs(goal) + 5.0:
-            break
-        c_ = b_ + (goal - fb) * (b_ - a_) / (fb - fa)
-        a_, fa = b_, fb
-        b_, (fb, ps) = c_, fx(c_)
-    return Q, b_ / om0 - 1.0, ps
+    if xi is None:
+        goal = traction * Q if f_long is None else f_long
+
+        def fx(omega):
+            ps = tread_patches(case, pos, omega, V * np.sin(alpha), normal)
+            return sum(p.Fx for p in ps), ps
+
+        om, ps = secant(fx, goal, om0 * (1 + 1e-3), om0 * (1 + 4e-3),
+                        0.002 * abs(goal) + 5.0, 12)
+    else:
+        def creepage(omega):
+            ps = tread_patches(case, pos, omega, V * np.sin(alpha), normal)
+            return -max(ps, key=lambda q: q.Fn).xi, ps
+
+        om, ps = secant(creepage, xi, om0 * (1 + xi - 5e-4), om0 * (1 + xi + 5e-4),
+                        1e-3 * abs(xi) + 1e-6, 8)
+    return Q, om / om0 - 1.0, ps
 
 
-def at_state(case, ws, tr, angle, fn, f_long, normal):
+def at_state(case, ws, tr, angle, fn, f_long, normal, xi=None):
     """The module's tread contact at the contact angle ``angle`` [deg], normal force ``fn``
-    and longitudinal force ``f_long`` [N]: the shift, the vertical load (iterated until the
-    module's Fn is ``fn``), the relative angular velocity and the patch."""
+    and longitudinal force ``f_long`` [N] (or creepage ``xi``, see :func:`solve`): the
+    shift, the vertical load (iterated until the module's Fn is ``fn``), the relative
+    angular velocity and the patch."""
     shift, got = shift_at_angle(ws, tr, angle)
     Q = fn * np.cos(np.radians(got))
     for _ in range(3):
-        _, dom, ps = solve(case, shift, 0.0, normal, Q=Q, f_long=f_long)
+        _, dom, ps = solve(case, shift, 0.0, normal, Q=Q, f_long=f_long, xi=xi)
         p = max(ps, key=lambda q: q.Fn)
         Q *= fn / p.Fn
     return shift, got, Q, dom, p
