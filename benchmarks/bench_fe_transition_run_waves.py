@@ -76,12 +76,12 @@ def fit(rec, band, side, comp):
         return None
 
 
-def table(rec, label, key, rows):
+def table(rec, label, key, rows, bands):
     """One printed line per side and component: the speed (accepted share) per band."""
     for side in ("ahead", "behind"):
         for comp in ("z", "n"):
             cells = []
-            for band in BANDS:
+            for band in bands:
                 r = fit(rec, band, side, comp)
                 cells.append("      —      " if r is None else
                              f"{r['speed']:6.0f} ({r['accepted']:.2f})")
@@ -101,9 +101,8 @@ def main():
     ap.add_argument("--out")
     ap.add_argument("--figure")
     a = ap.parse_args()
-    if a.bands:
-        global BANDS
-        BANDS = tuple((lo * 1e3, hi * 1e3) for lo, hi in zip(a.bands[::2], a.bands[1::2]))
+    a.bands = (tuple((lo * 1e3, hi * 1e3) for lo, hi in zip(a.bands[::2], a.bands[1::2]))
+               if a.bands else BANDS)
     buf = io.StringIO()
     with contextlib.redirect_stdout(buf) if a.out else contextlib.nullcontext():
         run(a)
@@ -147,7 +146,7 @@ def run(a):
                 print(f"  {s_from * 1e3:.1f}-{s_to * 1e3:.1f} mm, patch {patch}: {e}")
                 continue
             table(wrec, f"{s_from * 1e3:5.1f}-{s_to * 1e3:5.1f} mm  source patch {patch}",
-                  (s_from, s_to, patch), rows)
+                  (s_from, s_to, patch), rows, a.bands)
     # the same bands on a clean pulse at the same line of the same mesh
     t0 = time.process_time()
     model = build_transition_model(case)
@@ -155,14 +154,14 @@ def run(a):
     print(f"clean Ricker pulse (60 kHz) at the {line} line, same mesh "
           f"({pulse.info['elements']} elements, {pulse.info['steps']} steps, "
           f"{time.process_time() - t0:.1f} s CPU):")
-    table(pulse, "pulse", ("pulse", None, None), rows)
-    print("bands [kHz]: " + ", ".join(f"{b[0] / 1e3:.0f}-{b[1] / 1e3:.0f}" for b in BANDS))
+    table(pulse, "pulse", ("pulse", None, None), rows, a.bands)
+    print("bands [kHz]: " + ", ".join(f"{b[0] / 1e3:.0f}-{b[1] / 1e3:.0f}" for b in a.bands))
     print(f"load average {os.getloadavg()[0]:.1f}")
     if a.figure:
-        plot(rows, sp, a.figure, a.name)
+        plot(rows, sp, a.figure, a.name, a.bands)
 
 
-def plot(rows, sp, path, name):
+def plot(rows, sp, path, name, bands):
     import matplotlib
 
     matplotlib.use("Agg")
@@ -175,11 +174,11 @@ def plot(rows, sp, path, name):
         ok = r["r2"] >= 0.9
         if s_from == "pulse":
             ax.plot(r["f"][ok] / 1e3, r["c"][ok], "k.", ms=3,
-                    label="clean pulse" if band == BANDS[0] and side == "ahead" else None)
+                    label="clean pulse" if band == bands[0] and side == "ahead" else None)
         else:
             lab = f"{s_from * 1e3:.0f}-{s_to * 1e3:.0f} mm, patch {patch}, {side}"
             ax.plot(r["f"][ok] / 1e3, r["c"][ok], ".", ms=4,
-                    label=lab if band == BANDS[0] else None)
+                    label=lab if band == bands[0] else None)
     for key, ls in (("c_R", "-"), ("c_s", "--")):
         ax.axhline(sp[key], color="grey", ls=ls, lw=0.8)
         ax.text(101, sp[key], key, va="center", fontsize=8)
