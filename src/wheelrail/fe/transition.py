@@ -350,7 +350,8 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     # tangential stiffness of the tread patch (circular, Johnson 1985 §7.2: δ = Q(2-ν)/(8Ga))
     G = case.material.E / (2 * (1 + case.material.nu))
     k_t = 8.0 * G * a_hz / (2.0 - case.material.nu)
-    # start creepage for the traction (Kalker's linear theory, C11 ≈ 4.2 at ν = 0.3, a ≈ b)
+    # start creepage: the prescribed one, or the traction's by Kalker's linear theory
+    # (C11 ≈ 4.2 at ν = 0.3, a ≈ b)
     xi0 = (case.creepage if fixed_rolling
            else case.traction * load / (G * np.pi * a_hz ** 2 * 4.2))
     c0 = np.array([0.0, pose["y0"], case.radius + pose["z0"] + sag - delta])
