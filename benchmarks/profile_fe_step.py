@@ -91,22 +91,28 @@ def instrumented_source() -> str:
     rs = _sub(rs, "def run_steps(", "def run_steps_t(")
     rs = _sub(rs, "totals, nthr):", "totals, nthr, T, TA, TB):")
     rs = _sub(rs, "    for w in prange(nthr):\n", "    T[k0, 0] = rdtsc()\n    for w in prange(nthr):\n")
-    pad = " " * 20
-    pub = pad + "    _atomic_store(ctl, _PHASE, p + 1)\n"
-    # per phase: its task index, task record, task count and the slot of T at its last task
-    for var, rec, count, slot in (("t", "TA", "n_tasks", 1), ("g", "TB", "n_groups", 3)):
-        loop = f"                while {var} >= 0:\n"
-        rs = _sub(rs, loop, loop + pad + f"{rec}[k, {var}, 0] = rdtsc()\n")
-        last = f"if _atomic_add(ctl, _DONE, 1) == {count} - 1:"
-        rs = _sub(rs, pad + last, pad + f"{rec}[k, {var}, 1] = rdtsc()\n" + pad
-                  + f"{rec}[k, {var}, 2] = numba.get_thread_id()\n" + pad + last)
-        i = rs.index(last)
-        rs = rs[:i] + _sub(rs[i:], "\n", "\n" + pad + f"    T[k, {slot}] = rdtsc()\n")
-        if var == "t":      # the second phase opens after the first phase's serial part
-            rs = _sub(rs, pub, pad + "    T[k, 2] = rdtsc()\n" + pub)
+    # one task loop for both phases (``first``: the element and contact tasks, TA; else the
+    # node groups, TB); T[k] slots 1 and 3 at the phases' last tasks, 2 and 4 when the next
+    # phase opens
+    body = " " * 16
+    loop = "            while t >= 0:\n"
+    rs = _sub(rs, loop, loop + body + "if first:\n" + body + "    TA[k, t, 0] = rdtsc()\n"
+              + body + "else:\n" + body + "    TB[k, t, 0] = rdtsc()\n")
+    last = body + "if _atomic_add(ctl, _DONE, 1) == n_open - 1:"
+    rs = _sub(rs, last, body + "R = TA if first else TB\n" + body + "R[k, t, 1] = rdtsc()\n"
+              + body + "R[k, t, 2] = numba.get_thread_id()\n" + last)
+    branch = body + "    if first:\n"
+    i = rs.index(last)
+    rs = rs[:i] + _sub(rs[i:], branch, branch + body + "        T[k, 1] = rdtsc()\n")
+    other = body + "    else:\n" + body + "        _step_end("
+    rs = _sub(rs, other, body + "    else:\n" + body + "        T[k, 3] = rdtsc()\n" + body
+              + "        _step_end(")
+    pub = body + "        _atomic_store(ctl, _PHASE, p + 1)\n"
+    rs = _sub(rs, pub, body + "        T[k, 2] = rdtsc()\n" + pub)      # the first one
     i = rs.index("ctl[_CUR] = new")
-    rs = rs[:i] + _sub(rs[i:], pub, pad + "    T[k, 4] = rdtsc()\n" + pad + "    if k + 1 < k1:\n"
-                       + pad + "        T[k + 1, 0] = T[k, 4]\n" + pub)
+    rs = rs[:i] + _sub(rs[i:], pub, body + "        T[k, 4] = rdtsc()\n" + body
+                       + "        if k + 1 < k1:\n" + body + "            T[k + 1, 0] = T[k, 4]\n"
+                       + pub)
     return _HEADER + rs
 
 

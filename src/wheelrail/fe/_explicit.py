@@ -734,14 +734,22 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
             k = k0 + p // 2
             old = ctl[_CUR]
             new = 1 - old
-            if p % 2 == 0:
-                t = _take_task(ctl, p, back)
-                while t >= 0:
-                    if tasks[t, 0] == 0:
-                        _element_chunk(2 * tasks[t, 1], bounds, u, conn, dNdx, wdet, gamma, khg,
-                                       has_hg, lam, G, plastic, bbar, hp, tp, ts, st_in, st_out,
-                                       f, energy, echunk, ue, eps, sig, D, bb)
-                    else:
+            first = p % 2 == 0               # phase 1 (element and contact tasks) or 2
+            n_open = n_tasks if first else n_groups
+            t = _take_task(ctl, p, back)
+            while t >= 0:
+                # one call site of the (inlined) element chunk for both phases: a second
+                # one doubled the compile time of this function
+                if first:
+                    ch = 2 * tasks[t, 1] if tasks[t, 0] == 0 else -1
+                else:
+                    ch = 2 * t + 1 if 2 * t + 1 < nc else -1
+                if ch >= 0:
+                    _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam, G,
+                                   plastic, bbar, hp, tp, ts, st_in, st_out, f, energy, echunk,
+                                   ue, eps, sig, D, bb)
+                if first:
+                    if tasks[t, 0] != 0:
                         j = tasks[t, 1]
                         z = z_axle + ax[0]
                         xs = xsb[new]
@@ -751,25 +759,18 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                             _slave(s, xs, dxs, area, kn, kn, mu, ftb[old], xmb[new], nm, dxm,
                                    x_ref, y_ref, sx[k], reach, g0, cdamp, inv_dt, cenergy, fs,
                                    gap, pn, ftb[new], status, cell, rt, normal, slip, c4, q, dq)
-                    if _atomic_add(ctl, _DONE, 1) == n_tasks - 1:       # the phase's last task
+                else:
+                    _update_nodes(t, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
+                                  mass, cmap, fcon, dt, partial)
+                if _atomic_add(ctl, _DONE, 1) == n_open - 1:        # the phase's last task
+                    if first:
                         scatter_to_grid(status, cell, rt, fs, fm)
                         contact_to_nodes(fs, fm, pn, ftb[new], slip, cenergy, cps[k], sps[k],
                                          fcon, sums)
                         _atomic_store(ctl, _DONE, 0)
                         _atomic_store(ctl, _TAKE, _open_tasks(p + 1, n_groups))
                         _atomic_store(ctl, _PHASE, p + 1)
-                    t = _take_task(ctl, p, back)
-            else:
-                g = _take_task(ctl, p, back)
-                while g >= 0:
-                    ch = 2 * g + 1
-                    if ch < nc:
-                        _element_chunk(ch, bounds, u, conn, dNdx, wdet, gamma, khg, has_hg, lam,
-                                       G, plastic, bbar, hp, tp, ts, st_in, st_out, f, energy,
-                                       echunk, ue, eps, sig, D, bb)
-                    _update_nodes(g, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
-                                  mass, cmap, fcon, dt, partial)
-                    if _atomic_add(ctl, _DONE, 1) == n_groups - 1:      # the step's last task
+                    else:
                         _step_end(k, relax, every, n_steps, ax, E, hist, rows, nrow, sx, tt,
                                   loads, axle, sums, echunk, partial, totals, has_beta, plastic,
                                   dt)
@@ -780,7 +781,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                         _atomic_store(ctl, _DONE, 0)
                         _atomic_store(ctl, _TAKE, _open_tasks(p + 1, n_tasks))
                         _atomic_store(ctl, _PHASE, p + 1)
-                    g = _take_task(ctl, p, back)
+                t = _take_task(ctl, p, back)
             p = _wait_phase(ctl, p)
     if ctl[_PHASE] != n_phases:      # a thread left the region early: a task raised
         raise RuntimeError("run_steps: a task of the explicit step raised an exception (a "
