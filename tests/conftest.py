@@ -14,6 +14,16 @@ Hypothesis profiles
 
 ``HYPOTHESIS_PROFILE`` names the profile explicitly and wins over ``CI``.
 
+One xdist worker for the finite-element tests
+---------------------------------------------
+The FE tests (``tests/fe/``, ``tests/reference/test_fe_*.py``) share numba kernels whose
+first compile takes minutes (the explicit time loop alone about 90 s). With ``-n 2`` and
+xdist's default scheduling both workers compiled them at the same time. Under that default
+(``--dist load``) the scheduler here sends them to one worker as one unit, which compiles
+them once while the other worker runs the rest of the suite one test at a time.
+(``--dist loadgroup`` with ``xdist_group`` marks would say the same, but with pytest 9 the
+group suffix xdist puts on the test ids does not reach the scheduler.)
+
 Shared data
 -----------
 ``../shared/data`` (a sibling of the checkout) holds measured profiles and benchmark
@@ -71,6 +81,23 @@ def require_shared(path) -> Path:
         pytest.fail(f"{what}; CI must provide it (tests that need it skip only outside CI, "
                     "where the environment variable CI is unset)", pytrace=False)
     pytest.skip(what)
+
+
+def _runs_fe_kernels(nodeid: str) -> bool:
+    return nodeid.startswith(("tests/fe/", "tests/reference/test_fe_"))
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """xdist's load scheduling with the FE tests as one unit (see the module docstring)."""
+    if config.getoption("dist") != "load":
+        return None                                   # another mode asked for: xdist's own
+    from xdist.scheduler import LoadScopeScheduling
+
+    class FEOnOneWorker(LoadScopeScheduling):
+        def _split_scope(self, nodeid):
+            return "fe" if _runs_fe_kernels(nodeid) else nodeid
+
+    return FEOnOneWorker(config, log)
 
 
 @pytest.fixture
