@@ -14,7 +14,10 @@ medians over bins of ``--bin`` seconds of the flange and tread normal forces, th
 its adhering fraction and its utilisation F_long/(μFn), and the first times at which a
 running median of θ over one bin reaches 30°, 40°, ... 70°; where the run recorded its
 surface fields, also the tread patch's mean micro-slip along and across the rail and its
-direction (:func:`wheelrail.fe.transition_analysis.slip_direction`).
+direction (:func:`wheelrail.fe.transition_analysis.slip_direction`); where it recorded the
+rail's tread line (``--wave TRAVEL TIME tread``), the rail head's lateral velocity under the
+wheel over the approach speed V sin α; for a run at a prescribed rolling (``--set
+creepage=``), the rigid longitudinal creepage at the tread's contact angle before the onset.
 
 ``after`` asks the same theory what the onset can do to θ: at each pre-onset state
 (contact angle; F_long = traction × Q at the static load; the wheel moving along its
@@ -44,6 +47,12 @@ velocity at which the longitudinal force is traction × Q. Usage::
         a25_h4_c7_t50 a25_h4_c7_t45 \
         --bin 1.2e-4 --before 2.4e-4 --after 2e-3 \
         --out results/fe_transition/theta_jump_a25.txt
+    python benchmarks/bench_fe_transition.py --aoa 0.025 --travel 0.34 --clearance 0.007 \
+        --set creepage=0.0038 --output-interval 1e-5 --wave 0.272 3.2e-3 tread \
+        --results a25_h4_c7_xi38_wave
+    python benchmarks/bench_fe_transition_theta.py jump a25_h4_c7_xi38_hold \
+        a25_h4_c7_xi38_wave a20_h4_c7_xi38_hold --bin 1.2e-4 --before 4.8e-4 --after 2.4e-3 \
+        --out results/fe_transition/theta_jump_xi38.txt
     for c in 0.0015 0.003 0.006 0.012; do python benchmarks/bench_fe_transition.py \
         --aoa 0 --mesh 0.004 --travel 0.06 --clearance 0.003 --preload 1e-3 \
         --output-interval 1e-5 --set creepage=$c --fields 0.035 0.06 \
@@ -74,6 +83,7 @@ from bench_fe_transition_crosscheck import module_jump_shift
 import wheelrail as wr
 from wheelrail.contact.wheelrail import WheelRailPosition, solve_wheelrail
 from wheelrail.fe.transition_analysis import onset_travel, shear_direction, slip_direction
+from wheelrail.fe.transition_model import flange_contact_offset
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results", "fe_transition")
 S1002 = wr.profiles.load("S1002")
@@ -95,6 +105,30 @@ def tread_slip(name):
         return None
     with xr.open_dataset(fpath) as fields:
         return slip_direction(fields.load(), patch=1)
+
+
+def rail_lateral(name, half=6e-3):
+    """The rail head's lateral velocity under the wheel from a run's wave record.
+
+    ``NAME_wave.npz`` (``bench_fe_transition.py --wave TRAVEL TIME tread``) holds the
+    velocities of the rail's surface line through the start contact every step. Returns
+    ``(t, v_y)``: the times [s] and the mean lateral velocity [m/s] of the line's nodes
+    within ``half`` of the wheel centre's position along the rail, or None without a
+    record. The tread patch at the onset lies 15–16 mm further towards the gauge corner
+    on the same head.
+    """
+    path = os.path.join(RESULTS, f"{name}_wave.npz")
+    if not os.path.exists(path):
+        return None
+    w = np.load(path)
+    if str(w["line"]) != "tread":
+        return None
+    t, x, vy = w["t"], w["x"], w["v"][:, :, 1]
+    t0 = float(w["travel"]) / float(w["speed"])            # the wheel centre at x = 0
+    xc = float(w["speed"]) * (t - t0)
+    near = np.abs(x[None, :] - xc[:, None]) < half
+    v = np.where(near, vy, 0.0).sum(axis=1) / np.maximum(near.sum(axis=1), 1)
+    return t, np.where(near.any(axis=1), v, np.nan)
 
 
 def windows(onset, start, end):
@@ -225,8 +259,14 @@ def jump(name, width, before, after, first=500.0):
     # the tread patch's mean micro-slip from the surface fields, where they were recorded
     slip = tread_slip(name)
     slip_tau = None if slip is None else slip.time.values - t[k0]
+    # the rail head's lateral velocity under the wheel, where the run recorded it, over the
+    # wheel's approach speed V sin α: the share of the approach the rail head takes up (with
+    # the lateral path prescribed, the tread's lateral creepage is the rail's velocity)
+    rail = rail_lateral(name)
+    approach = ref.speed * np.sin(case["angle_of_attack"])
     print("  time [µs]       outputs  flange Fn [kN]  tread Fn  tread θ  adhering  "
           "F_long/(μFn)  tread |F_long| |F_lat| [kN]  bottom v_y/V [%]"
+          + ("  rail v_y/(V sin α)" if rail is not None else "")
           + ("  tread slip long, lat [m/s], angle" if slip is not None else ""))
     edges = np.arange(-before, after + 0.5 * width, width)
     for a, b in zip(edges[:-1], edges[1:]):
@@ -238,6 +278,7 @@ def jump(name, width, before, after, first=500.0):
               f"       {med(fn[:, 0]) / 1e3:6.1f}   {med(th):5.1f}°    {med(ad):4.2f}"
               f"       {med(ut):4.2f}          {med(fl) / 1e3:5.1f}  {med(ft) / 1e3:5.1f}"
               f"         {100 * med(v_bot):+6.2f}"
+              + (rail_column(rail, t[k0], a, b, approach) if rail is not None else "")
               + (slip_columns(slip, slip_tau, a, b) if slip is not None else ""))
     n = max(int(round(width / dt)), 1)
     run = np.array([np.nanmedian(th[max(i - n + 1, 0):i + 1]) for i in range(th.size)])
@@ -250,6 +291,38 @@ def jump(name, width, before, after, first=500.0):
                 else "not reached")
         print(f"    {lim:3d}°  {when}")
     print(f"  run ends {tau[-1] * 1e6:.0f} µs after the flange's first force")
+    if case.get("creepage") is not None:
+        ang = float(np.degrees(np.nanmedian(p.contact_angle.values[(tau < 0)
+                                                                    & (tau >= -width), 0])))
+        xi, dr = rigid_creepage(case, ang)
+        print(f"  prescribed rolling, nominal creepage {100 * case['creepage']:.2f} % (on the "
+              f"start contact's radius): at the tread's contact angle {ang:.1f}° of the last "
+              f"{width * 1e6:.0f} µs before the flange's first force the rigid contact's "
+              f"radius is {dr * 1e3:+.2f} mm larger, its longitudinal creepage "
+              f"{100 * xi:.2f} %")
+
+
+def rigid_creepage(case, angle_deg):
+    """Longitudinal creepage of a prescribed rolling at a tread contact angle.
+
+    The wheel turns at ω = (1 + c) V / r0 (r0 the rolling radius of the rigid start
+    contact); the rigid yawed contact whose rail slope is closest to ``angle_deg`` has the
+    radius r, so the creepage there is (1 + c) r / r0 − 1. Returns that and r − r0 [m].
+    The radius is the height of the axle over the contact point (the contact's angle about
+    the axle, its lead over r, is below 0.03 rad here).
+    """
+    ref = wr.fe.seed004_case(**{k: case[k] for k in ("angle_of_attack", "flange_clearance")
+                                if k in case})
+    y_flange = flange_contact_offset(ref)
+
+    def radius(y_off, yaw):
+        c = wr.fe.yawed_contact(ref, y_off, yaw)
+        return c["z_off"] + ref.radius - c["tread"]["z"], np.degrees(c["tread"]["angle"])
+
+    r0, _ = radius(y_flange - ref.flange_clearance, 0.0)
+    rows = [radius(y_flange - d, ref.angle_of_attack) for d in np.arange(0.0, 3e-3, 1e-4)]
+    r, _ = min(rows, key=lambda ra: abs(ra[1] - angle_deg))
+    return (1.0 + case["creepage"]) * r / r0 - 1.0, r - r0
 
 
 def creep(name, start, normal):
@@ -284,6 +357,14 @@ def creep(name, start, normal):
     *_, r = at_state(c, ws, tr, ang, fn, fl, normal)
     print(f"  Kalker  : same F_long: creepage {100 * -r.xi:.2f} %, F_lat {abs(r.Fs) / 1e3:6.2f}"
           f" kN, θ {theta_of(r):5.1f}°; {time.process_time() - t0:.0f} s CPU", flush=True)
+
+
+def rail_column(rail, t_first, a, b, approach):
+    """Median of the rail head's lateral velocity over the bin [a, b) from the flange's
+    first force, over the approach speed (empty where the record does not cover it)."""
+    t, v = rail
+    m = (t - t_first >= a) & (t - t_first < b) & np.isfinite(v)
+    return f"   {np.median(v[m]) / approach:+7.2f}      " if m.any() else " " * 22
 
 
 def slip_columns(slip, tau, a, b):
