@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import io
 import json
 import os
@@ -39,6 +40,7 @@ def build_case(kw):
     [stiffness, damping] of the wheel's lateral and roll restraints, the rest
     ``TransitionCase`` fields)."""
     kw = dict(kw)
+    track = kw.pop("track", None)
     susp = {}
     for key in ("lateral", "roll"):
         val = kw.pop(key, None)
@@ -46,7 +48,10 @@ def build_case(kw):
             susp.update({f"{key}_stiffness": float(val[0]), f"{key}_damping": float(val[1])})
     if susp:
         kw["suspension"] = wr.fe.Suspension(**susp)
-    return wr.fe.seed004_case(**kw)
+    case = wr.fe.seed004_case(**kw)
+    if track:                                 # changes to the size's own track structure
+        case = case.replace(track=dataclasses.replace(case.track, **track))
+    return case
 
 
 def report(run):
@@ -211,6 +216,9 @@ def main():
                     help="the wheel's roll restraint about its heading [N m/rad] "
                          "[N m s/rad] (default: no roll; the half-axle's bending: "
                          "Suspension.half_axle_roll_stiffness() = 1.44e7)")
+    ap.add_argument("--track", nargs="+", default=[], metavar="FIELD=VALUE",
+                    help="TrackStructure fields with a number, changed from the case's own, "
+                         "e.g. n_sleepers=4 pad_shear_stiffness=2.8e9")
     ap.add_argument("--set", nargs="+", default=[], metavar="FIELD=VALUE",
                     help="any other TransitionCase field with a number, e.g. "
                          "section_h_max=6e-3 x_h_max=0.012 theta_h_max=0.012 (1 mm meshes)")
@@ -235,6 +243,14 @@ def main():
         if not sep:
             ap.error(f"--set takes FIELD=VALUE, got {item!r}")
         extra[key] = float(val)
+    track = {}
+    for item in a.track:
+        key, sep, val = item.partition("=")
+        if not sep:
+            ap.error(f"--track takes FIELD=VALUE, got {item!r}")
+        track[key] = int(val) if key == "n_sleepers" else float(val)
+    if track:
+        extra["track"] = track
     if a.lateral:
         extra["lateral"] = list(a.lateral)
     if a.roll:
