@@ -87,6 +87,7 @@ def _runs_fe_kernels(nodeid: str) -> bool:
     return nodeid.startswith(("tests/fe/", "tests/reference/test_fe_"))
 
 
+@pytest.hookimpl(optionalhook=True)     # xdist's hook: without xdist it is not called
 def pytest_xdist_make_scheduler(config, log):
     """xdist's load scheduling with the FE tests as one unit (see the module docstring)."""
     if config.getoption("dist") != "load":

@@ -65,3 +65,21 @@ def test_the_loaded_profile_follows_the_environment():
     profile = settings.get_profile(name)
     assert settings.default.derandomize is profile.derandomize
     assert settings.default.database == profile.database
+
+
+def test_suite_starts_without_xdist_and_groups_the_fe_tests_with_it():
+    """The conftest's FE scheduler is xdist's optional hook: a plain ``pytest`` without xdist
+    collects (it failed with 'unknown hook' before), and with xdist the FE tests form one
+    unit while the others are scheduled one by one."""
+    import subprocess
+    import sys
+
+    from conftest import _runs_fe_kernels
+
+    r = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:xdist", "--co", "-q",
+                        "tests/unit/test_layers.py"], cwd=ROOT, capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert _runs_fe_kernels("tests/fe/test_transition.py::test_x")
+    assert _runs_fe_kernels("tests/reference/test_fe_hertz.py::test_x")
+    assert not _runs_fe_kernels("tests/reference/test_fastsim.py::test_x")
