@@ -238,17 +238,17 @@ def main():
                                ("settle", a.settle), ("output_interval", a.output_interval),
                                ("traction", a.traction))
              if v is not None}
-    for item in a.set:
-        key, sep, val = item.partition("=")
-        if not sep:
-            ap.error(f"--set takes FIELD=VALUE, got {item!r}")
-        extra[key] = float(val)
-    track = {}
-    for item in a.track:
-        key, sep, val = item.partition("=")
-        if not sep:
-            ap.error(f"--track takes FIELD=VALUE, got {item!r}")
-        track[key] = int(val) if key == "n_sleepers" else float(val)
+    def assignments(flag, items):
+        out = {}
+        for item in items:
+            key, sep, val = item.partition("=")
+            if not sep:
+                ap.error(f"--{flag} takes FIELD=VALUE, got {item!r}")
+            out[key] = int(val) if key == "n_sleepers" else float(val)
+        return out
+
+    extra.update(assignments("set", a.set))
+    track = assignments("track", a.track)
     if track:
         extra["track"] = track
     if a.lateral:
