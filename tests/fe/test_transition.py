@@ -1,6 +1,8 @@
 """The one- to two-point contact transition model: meshes with flange and gauge face, the
 general contact search, the track and suspension inputs (tiny meshes, seconds each)."""
 
+import dataclasses
+
 import numpy as np
 import pytest
 
@@ -198,6 +200,38 @@ def test_track_and_suspension_inputs_are_validated():
         seed004_case(0.02, traction=0.7)
     with pytest.raises(InputError, match="size"):
         seed004_case(0.02, size="huge")
+
+
+def test_railpad_lateral_stiffness_is_separate_from_the_longitudinal(tiny_transition):
+    """Each rail seat's pad is spread over the seat's foot nodes; the springs of one
+    direction add up to the seat's stiffness per sleeper. A lateral value of its own
+    (a fastening's 15 MN/m, Huo & Dai 2019, Table 2) changes only the lateral springs."""
+    from wheelrail.fe.transition_model import build_transition_model
+
+    case, model = tiny_transition
+    t = TrackStructure()
+    assert t.pad_springs()[1] == (t.pad_shear_stiffness, t.pad_shear_damping)
+    # unset, the lateral values follow the shear ones, also through a replace
+    assert dataclasses.replace(t, pad_shear_stiffness=1e8).pad_springs()[1][0] == 1e8
+    track = dataclasses.replace(case.track, pad_lateral_stiffness=1.5e7,
+                                pad_lateral_damping=5e4)
+    soft = build_transition_model(case.replace(track=track))
+
+    def sums(m):
+        sp = m.springs
+        pad = np.diff(sp.B.indptr) > 1           # pads tie a foot node to a sleeper face
+        return [(sp.kv[pad & (sp.d == d)].sum(), sp.cv[pad & (sp.d == d)].sum())
+                for d in range(3)]
+
+    n = case.track.n_sleepers
+    (kx0, cx0), (ky0, cy0), (kz0, cz0) = sums(model)
+    (kx1, cx1), (ky1, cy1), (kz1, cz1) = sums(soft)
+    assert ky0 == pytest.approx(n * case.track.pad_shear_stiffness, rel=1e-12)
+    assert kz0 == pytest.approx(n * case.track.pad_stiffness, rel=1e-12)
+    assert (ky1, cy1) == pytest.approx((n * 1.5e7, n * 5e4), rel=1e-12)
+    assert (kx1, cx1, kz1, cz1) == (kx0, cx0, kz0, cz0)
+    with pytest.raises(InputError, match="pad_lateral_stiffness"):
+        TrackStructure(pad_lateral_stiffness=0.0)
 
 
 def test_tread_and_flange_nodes_that_touch_on_the_grid_are_split_by_contact_angle():

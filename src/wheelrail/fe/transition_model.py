@@ -632,9 +632,7 @@ def build_transition_model(case: TransitionCase) -> TransitionModel:
             sn = [sl_index(s, i, j, ez), sl_index(s, i + 1, j, ez), sl_index(s, i + 1, j + 1, ez),
                   sl_index(s, i, j + 1, ez)]
             sw = [-(1 - r) * (1 - t), -r * (1 - t), -r * t, -(1 - r) * t]
-            for d, (k, c) in enumerate(((track.pad_shear_stiffness, track.pad_shear_damping),
-                                        (track.pad_shear_stiffness, track.pad_shear_damping),
-                                        (track.pad_stiffness, track.pad_damping))):
+            for d, (k, c) in enumerate(track.pad_springs()):
                 springs.add([a] + sn, [1.0] + sw, d, k * share, c * share)
         # ballast: bottom nodes, tributary shares of the bottom face
         wx = np.full(ex + 1, 1.0 / ex)

@@ -31,6 +31,8 @@ References
 .. [3] X. Zhao, Z. Li, "The solution of frictional wheel-rail rolling contact with a 3D
    transient finite element model: validation and error analysis", Wear 271 (2011)
    444-452.
+.. [4] F. Huo, H. Dai, "Formulation of a linearized model for vehicle-track
+   interactions", Shock and Vibration 2019, 2015465.
 """
 
 from __future__ import annotations
@@ -69,8 +71,14 @@ class TrackStructure:
     pad_stiffness, pad_damping : float
         Railpad vertical stiffness [N/m] and damping [N s/m] per rail seat.
     pad_shear_stiffness, pad_shear_damping : float
-        Railpad lateral and longitudinal stiffness [N/m] and damping [N s/m] (the
-        fastening's hold of the rail foot).
+        Railpad longitudinal stiffness [N/m] and damping [N s/m] per rail seat (the
+        fastening's hold of the rail foot), and its lateral ones unless
+        ``pad_lateral_stiffness`` / ``pad_lateral_damping`` are given.
+    pad_lateral_stiffness, pad_lateral_damping : float or None
+        Railpad lateral stiffness [N/m] and damping [N s/m] per rail seat; ``None``
+        (default): the ``pad_shear_*`` values. Vehicle–track models give a fastening
+        15 MN/m and 50 kN s/m laterally (Huo & Dai 2019, Table 2), far less than the
+        default shear stiffness.
     ballast_stiffness, ballast_damping : float
         Vertical ballast stiffness [N/m] and damping [N s/m] under one (half) sleeper.
     pad_length : float
@@ -99,6 +107,8 @@ class TrackStructure:
     pad_damping: float = 4.5e4
     pad_shear_stiffness: float = 2.8e8
     pad_shear_damping: float = 4.5e4
+    pad_lateral_stiffness: float | None = None
+    pad_lateral_damping: float | None = None
     ballast_stiffness: float = 4.5e7
     ballast_damping: float = 3.2e4
     pad_length: float = 0.18
@@ -113,6 +123,10 @@ class TrackStructure:
         _check(self, ("sleeper_spacing", "pad_stiffness", "ballast_stiffness", "pad_length",
                       "sleeper_E", "sleeper_density", "pad_shear_stiffness"),
                ("pad_damping", "ballast_damping", "overhang", "pad_shear_damping"))
+        # None stays None (follows pad_shear_*, also through dataclasses.replace)
+        _check(self, ("pad_lateral_stiffness",) if self.pad_lateral_stiffness is not None
+               else (), ("pad_lateral_damping",) if self.pad_lateral_damping is not None
+               else ())
         if int(self.n_sleepers) != self.n_sleepers or self.n_sleepers < 2:
             raise InputError(f"n_sleepers must be an integer >= 2, got {self.n_sleepers!r}")
         object.__setattr__(self, "n_sleepers", int(self.n_sleepers))
@@ -134,6 +148,16 @@ class TrackStructure:
         if self.pad_length > self.sleeper_size[0] * 1.5 or self.pad_length >= self.sleeper_spacing:
             raise InputError(f"pad_length {self.pad_length!r} m does not fit the sleeper "
                              f"({self.sleeper_size[0]} m) and spacing ({self.sleeper_spacing} m)")
+
+    def pad_springs(self) -> tuple:
+        """One rail seat's railpad as ((k, c) longitudinal, lateral, vertical) [N/m],
+        [N s/m]: the lateral values fall back to the shear ones when not given."""
+        k_lat = (self.pad_shear_stiffness if self.pad_lateral_stiffness is None
+                 else self.pad_lateral_stiffness)
+        c_lat = (self.pad_shear_damping if self.pad_lateral_damping is None
+                 else self.pad_lateral_damping)
+        return ((self.pad_shear_stiffness, self.pad_shear_damping), (k_lat, c_lat),
+                (self.pad_stiffness, self.pad_damping))
 
     @property
     def length(self) -> float:
