@@ -14,7 +14,7 @@ mass, ≈ 2 Hz, taken as still). Usage::
         --preload 0.001 --results a20_h4_c7_pre
     python benchmarks/bench_fe_transition_balance.py a25_h4_c7_pre a20_h4_c7_pre \\
         a15_h4_c7_pre --out results/fe_transition/balance_c7_pre.txt
-    python benchmarks/bench_fe_transition_balance.py a25_h4_c7_t55_hold_pre \
+    python benchmarks/bench_fe_transition_balance.py a25_h4_c7_t55_hold_pre \\
         --windows 0.03 0.09 0.09 0.15 0.15 0.21 0.21 0.27 0.03 0.27 --fe-climb 0.03 0.272 4
 """
 

@@ -76,9 +76,9 @@ class TrackStructure:
         ``pad_lateral_stiffness`` / ``pad_lateral_damping`` are given.
     pad_lateral_stiffness, pad_lateral_damping : float or None
         Railpad lateral stiffness [N/m] and damping [N s/m] per rail seat; ``None``
-        (default): the ``pad_shear_*`` values. Vehicle–track models give a fastening
-        15 MN/m and 50 kN s/m laterally (Huo & Dai 2019, Table 2), far less than the
-        default shear stiffness.
+        (default): the ``pad_shear_*`` values. A vehicle–slab-track model gives a
+        fastening 15 MN/m and 50 kN s/m laterally (Huo & Dai 2019, Table 2), far less
+        than the default shear stiffness.
     ballast_stiffness, ballast_damping : float
         Vertical ballast stiffness [N/m] and damping [N s/m] under one (half) sleeper.
     pad_length : float
