@@ -244,7 +244,7 @@ def main():
             key, sep, val = item.partition("=")
             if not sep:
                 ap.error(f"--{flag} takes FIELD=VALUE, got {item!r}")
-            out[key] = int(val) if key == "n_sleepers" else float(val)
+            out[key] = float(val)         # the dataclasses check and convert (n_sleepers)
         return out
 
     extra.update(assignments("set", a.set))
