@@ -47,14 +47,15 @@ def one(name, windows, wheel_mass, fe_climb=None):
         k = (s >= lo) & (s <= hi) & (t > 0)
         p = np.polyfit(t[k], h.w.values[k], int(deg))
         w_fit = np.polyval(p, t)
+        w0 = w_fit[k][0]
         susp = case.suspension
         fe = ((susp.axle_mass + wheel_mass) * np.polyval(np.polyder(p, 2), t)
-              + susp.stiffness * (w_fit - np.polyval(p, t[k][0]))
+              + susp.stiffness * (w_fit - w0)
               + susp.damping * np.polyval(np.polyder(p, 1), t))
         rms = np.sqrt(np.mean((h.w.values[k] - w_fit[k]) ** 2))
         lines.append(f"  FE axle climb: w fitted over {lo * 1e3:.0f}-{hi * 1e3:.0f} mm by degree "
                      f"{int(deg)} in time (rms residual {rms * 1e6:.1f} µm; w rises "
-                     f"{(w_fit[k][-1] - w_fit[k][0]) * 1e6:.0f} µm)")
+                     f"{(w_fit[k][-1] - w0) * 1e6:.0f} µm)")
     for a, b in windows:
         m = (s >= a) & (s <= b) & (t > 0)
         if not m.any():
