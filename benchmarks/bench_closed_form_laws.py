@@ -17,6 +17,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import os
 import time
 
 import numpy as np
@@ -79,6 +80,7 @@ def main(argv=None):
          best_time(lambda: kalker_coefficients(a / b, contact.nu), rep)),
     ]
     print(f"batch size n = {n}, best of {rep} runs, numpy {np.__version__}")
+    print(f"machine load (1-min average): {os.getloadavg()[0]:.2f}")
     print(f"{'what':48s} {'time [ms]':>10s} {'evaluations/s':>15s}")
     for what, t in rows:
         print(f"{what:48s} {1e3 * t:10.2f} {n / t:15.3e}")

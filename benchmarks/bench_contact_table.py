@@ -6,6 +6,7 @@ jumps of the contact point, plus single calls of ``contact_points`` and
 ``equivalent_conicity``. Run: ``python benchmarks/bench_contact_table.py``.
 """
 
+import os
 import time
 
 import numpy as np
@@ -31,6 +32,7 @@ def main():
     print(f"set-up (profiles, splines, numba cache): {time.perf_counter() - t0:.3f} s")
     grid = int(np.ceil((ws.wheel.y_max - ws.wheel.y_min) / 2e-4))
     print(f"problem: {y.size} lateral positions x 2 wheels, search grid {grid} points / wheel")
+    print(f"machine load (1-min average): {os.getloadavg()[0]:.2f}")
     t, tab = best_of(lambda: wr.contact_table(ws, tr, y))
     print(f"contact_table (201 y, jumps bisected 6x): {t:.3f} s   "
           f"[target < 0.5 s]  jumps at {np.round(tab.jump_y.values * 1e3, 3).tolist()} mm")

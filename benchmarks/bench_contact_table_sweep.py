@@ -5,7 +5,7 @@ profile in ``../shared/data/profiles`` (every wheel on every rail), at the incli
 files are rotated as well: the sweep tests robustness, not track design), 101
 lateral shifts each. Prints per table the wall time and the number of rows per
 status (ok, flange_climb, derailed, no_contact, not_converged); a table that
-raises is reported as ABORTED (issue 11 requires none, except a rail without a
+raises is reported as ABORTED (none may, except a rail without a
 gauge face, which is refused when the track is built). Machine load is printed
 (other processes share the CPU).
 

@@ -8,7 +8,7 @@ rolling run (``wheelrail.cli.fe``: steps × (fixed + elements × cost), after an
 before the mesh is built) — three sizes are run, each in a fresh subprocess
 after one warm-up run that compiles the kernels, and the estimate is printed
 beside the measured wall time, CPU time and peak resident memory
-(``ru_maxrss``), with the problem size and the machine load. Issue 23 asks for
+(``ru_maxrss``), with the problem size and the machine load. The goal is
 estimates within a factor 2 of the measured time. The estimates are of the
 time on an unloaded core (CPU time, column e/cpu); e/wall compares them with
 the wall time, eL/wall the estimate at the current load

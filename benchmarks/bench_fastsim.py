@@ -26,6 +26,7 @@ def main(n=20000, repeats=3):
     cr = np.column_stack([rng.uniform(-3e-3, 3e-3, n), rng.uniform(-3e-3, 3e-3, n),
                           rng.uniform(-1.0, 1.0, n)])
     print(f"FASTSIM batch, {n} cases, a/b = 1.5, one thread (numba {numba.__version__})")
+    print(f"machine load (1-min average): {os.getloadavg()[0]:.2f}")
     for bound in ("parabolic", "elliptic"):
         for grid in (20, 40):
             kw = dict(method="fastsim", nx=grid, ny=grid, bound=bound, fields=False)

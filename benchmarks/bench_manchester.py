@@ -97,6 +97,7 @@ def main(argv=None):
                     help="extra method options key=value[,key=value] for the non-BEM pairs, "
                          "e.g. fastsim_flexibility=three (Kik-Piotrowski patches)")
     args = ap.parse_args(argv)
+    say(f"machine load (1-min average): {os.getloadavg()[0]:.2f}")
     extra = {}
     for kv in filter(None, args.options.split(",")):
         k, v = kv.split("=", 1)

@@ -68,9 +68,8 @@ HELP = "finite-element rolling contact (or static indentation) of an [fe] case f
 #: (:func:`wheelrail.fe._explicit.run_steps`: element forces and plasticity, contact, node
 #: update, bookkeeping) of Toumi et al.'s case on the 1 mm mesh (47 736 reduced hex8 x 7 533
 #: steps), measured on the idle 2-core machine on 2026-11-27 (load 1.0–1.9; ``python
-#: benchmarks/bench_fe_plastic.py speed --mesh 1e-3 --travel 0.004``, "time loop only" of
-#: benchmarks/results/fe19_session5/speed_interleaved_1mm_idle.log; docs/fe_plastic.md,
-#: "Cost", gives the whole runs: 163.7 / 214.7 ns on one thread, 106.3 / 127.3 ns on two):
+#: benchmarks/bench_fe_plastic.py speed --mesh 1e-3 --travel 0.004``, its "time loop only"
+#: line; the whole runs: 163.7 / 214.7 ns on one thread, 106.3 / 127.3 ns on two):
 #: 160.7 ns elastic and 212.1 ns plastic on one thread, 102.9 and 123.9 ns on two. Full hex8
 #: (8 points): 2.5 times the reduced element (2.3–2.9 measured on the rolling case of
 #: tests/fe/test_fe_cli.py at 1.5 and 1 mm, 2 904 and 8 370 elements, one thread, CPU time,
@@ -80,7 +79,7 @@ HELP = "finite-element rolling contact (or static indentation) of an [fe] case f
 #: scatter and sums, axle, one Python call per block of steps): the intercept of the
 #: one-thread CPU time per step against the elements, rolling case of tests/fe/test_fe_cli.py
 #: at 2, 1.5 and 1 mm (952, 2 904 and 8 370 elements: 0.246, 0.694 and 1.79 ms per step;
-#: load 3.6–3.8, 2026-11-27). The time loop before the one-region kernel (issue 19) cost
+#: load 3.6–3.8, 2026-11-27). The time loop before the one-region kernel cost
 #: 1.4 ms per step and 230 ns per element.
 STEP_COST = 5e-5
 COST_PER_ELEMENT_STEP = {"full": 2.5 * 160.7e-9, "reduced": 160.7e-9}
