@@ -26,7 +26,7 @@ import sys
 
 #: The rolling case of tests/fe/test_fe_cli.py (reduced hex8, mass scaling 400, 6 mm), as
 #: [fe] keys of a case file (the mesh size is the benchmark's size).
-FE_KEYS = {"wheel": "cylinder", "rail": "60E1", "radius": 0.46, "load": 7500.0, "mu": 0.2,
+FE_KEYS = {"wheel": "cylinder", "rail": "60E1", "radius": 0.46, "Fn": 7500.0, "mu": 0.2,
            "creepage": [7e-4, 0.0, 0.0], "element": "reduced", "mass_scaling": 400.0,
            "depth": 3.0, "half_width": 3.0, "half_length": 3.0, "travel": 0.006}
 FE_CASE = "[fe]\n" + "".join(f"{k} = {json.dumps(v)}\n" for k, v in FE_KEYS.items()) \

@@ -79,7 +79,7 @@ def implicit_solvers(h, repeats=2):
         for mode in ("pivoted", "symmetric", "reuse"):
             N.SYMMETRIC_FACTOR = mode != "pivoted"
             case = RollingCase(wheel=wheel, rail=wr.profiles.load("60E1"), radius=0.46,
-                               load=7500.0, mu=0.2, creepage=(7e-4, 0, 0), mesh_size=h,
+                               Fn=7500.0, mu=0.2, creepage=(7e-4, 0, 0), mesh_size=h,
                                integrator="implicit-hht", travel=0.002,
                                linear_solver="reuse" if mode == "reuse" else "direct", **SMALL)
             t = time.perf_counter()
@@ -107,7 +107,7 @@ def lateral(h):
     print(f"\nlateral creepage, mesh {h * 1e3:g} mm, explicit, mass scaling 400")
     for cr in ((0.0, 4e-4, 0.0), (0.0, 7e-4, 0.0), (7e-4, 4e-4, 0.0)):
         case = RollingCase(wheel=wr.fe.cone_wheel(0.0), rail=wr.profiles.load("60E1"),
-                           radius=0.46, load=7500.0, mu=0.2, creepage=cr, mesh_size=h,
+                           radius=0.46, Fn=7500.0, mu=0.2, creepage=cr, mesh_size=h,
                            mass_scaling=400, travel=0.02, **SMALL)
         t = time.perf_counter()
         r = solve(case, progress=False)
@@ -171,7 +171,7 @@ def creep_curve(h):
     print(f"\ncreep curve, mesh {h * 1e3:g} mm, explicit, mass scaling 400, 20 mm travel")
     for xi in (-2e-3, -7e-4, 2e-4, 5e-4, 1e-3, 2e-3):
         case = RollingCase(wheel=wr.fe.cone_wheel(0.0), rail=wr.profiles.load("60E1"),
-                           radius=0.46, load=7500.0, mu=0.2, creepage=(xi, 0, 0), mesh_size=h,
+                           radius=0.46, Fn=7500.0, mu=0.2, creepage=(xi, 0, 0), mesh_size=h,
                            mass_scaling=400, travel=0.02, **SMALL)
         t = time.perf_counter()
         r = solve(case, progress=False)
@@ -204,7 +204,7 @@ def main():
     wheel = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     print(f"load average before: {load():.2f} (2-core machine shared with other agents)")
     for element in ("reduced", "full"):
-        case = RollingCase(wheel=wheel, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+        case = RollingCase(wheel=wheel, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0,
                            creepage=(7e-4, 0, 0), mu=0.2, mesh_size=args.mesh, element=element)
         t = time.perf_counter()
         model = build_model(case)

@@ -72,7 +72,7 @@ def describe(r, cpu, wall):
             f"    steady window {st['window'][0] * 1e3:.1f}-{st['window'][1] * 1e3:.1f} mm ({st['n']} "
             f"steps): Fx {st['Fx']:.1f} N (scatter {st['Fx_scatter']:.2%}), Fy_contact "
             f"{st['Fy_contact']:.1f} N ({st['Fy_contact_scatter']:.2%}), Fz {st['Fz']:.1f} N "
-            f"({st['Fz'] / r.model.case.load - 1:+.2%} of the load, scatter {st['Fz_scatter']:.2%}),"
+            f"({st['Fz'] / r.model.case.Fn - 1:+.2%} of the load, scatter {st['Fz_scatter']:.2%}),"
             f" Fn_contact {st['Fn_contact']:.1f} N ({st['Fn_contact'] / g['normal_load'] - 1:+.2%} "
             f"of load/cos δ)")
 
@@ -98,7 +98,7 @@ def cmd_mass_scaling(a):
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
     for ms in (1.0, 25.0, 100.0, 400.0):
         case = wr.fe.RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46,
-                                 load=7500.0, mu=0.2, creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3,
+                                 Fn=7500.0, mu=0.2, creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3,
                                  mass_scaling=ms, travel=0.02, **BODIES)
         r, cpu, wall = timed(case, progress=False)
         print(f"cylinder on 60E1 crown, 7.5 kN, xi = 7e-4, 2 mm, mass scaling {ms:g}: "
@@ -130,7 +130,7 @@ def cmd_table3(a):
     hz = g["hertz"]
     bem = wr.solve(hz, creepage=(-7e-4, 0, 0), mu=0.2, normal="bem", tangential="fastsim",
                    element_size=2.5e-4).patches[0]
-    print(f"Table 3, load {case.load:.1f} N vertical ({g['normal_load']:.1f} N normal), "
+    print(f"Table 3, load {case.Fn:.1f} N vertical ({g['normal_load']:.1f} N normal), "
           f"mesh {a.mesh * 1e3:g} mm")
     print(f"  seed rows (a mm, b mm, p_max MPa): {json.dumps(SEED_TABLE3)}")
     print(f"  Hertz (this geometry): a {hz.a * 1e3:.2f}, b {hz.b * 1e3:.2f}, p0 {hz.p0 / 1e6:.0f}")

@@ -47,6 +47,31 @@ def to_jsonable(value: Any):
     return value
 
 
+def _short(value, unit: str = "") -> str:
+    """A value for a one-line repr: a scalar with 4 significant digits, an array as its
+    shape and range (never its elements)."""
+    if isinstance(value, enum.Enum):
+        return value.name.lower()
+    if isinstance(value, str) or value is None or isinstance(value, bool):
+        return repr(value)
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return type(value).__name__
+    u = f" {unit}" if unit else ""
+    if a.ndim == 0:
+        return f"{float(a):.4g}{u}"
+    if a.size == 0:
+        return f"array{a.shape}"
+    return f"array{a.shape} {np.nanmin(a):.4g}..{np.nanmax(a):.4g}{u}"
+
+
+def short_repr(obj, items) -> str:
+    """``Name(key=value, ...)`` of (key, value, unit) items, each value by :func:`_short`."""
+    body = ", ".join(f"{k}={_short(v, u)}" for k, v, u in items)
+    return f"{type(obj).__name__}({body})"
+
+
 @dataclass(frozen=True)
 class CreepForcesResult:
     """Tangential contact forces on the wheel (Kalker's sign convention).
@@ -85,6 +110,13 @@ class CreepForcesResult:
     iterations: Any = None
     fields: Any = None
     info: dict = field(default_factory=dict)
+
+    def __repr__(self):
+        return short_repr(self, [("method", self.method, ""), ("Fx", self.Fx, "N"),
+                                 ("Fy", self.Fy, "N"), ("Mz", self.Mz, "N m"),
+                                 ("Fn", self.Fn, "N"), ("mu", self.mu, ""),
+                                 ("status", self.status, ""),
+                                 ("iterations", self.iterations, "")])
 
     @property
     def Ft(self):
@@ -137,6 +169,12 @@ class PatchResult:
     eta: float
     phi: float
     side: str | None = None
+
+    def __repr__(self):
+        return short_repr(self, [("side", self.side, ""), ("Fn", self.Fn, "N"),
+                                 ("Fx", self.Fx, "N"), ("Fs", self.Fs, "N"),
+                                 ("xi", self.xi, ""), ("eta", self.eta, ""),
+                                 ("phi", self.phi, "1/m")])
 
     @property
     def Fn(self) -> float:
@@ -243,6 +281,13 @@ class ContactResult:
     def _sum(self, name):
         return float(sum(getattr(p, name) for p in self.patches))
 
+    def __repr__(self):
+        return short_repr(self, [("normal", self.normal, ""),
+                                 ("tangential", self.tangential, ""),
+                                 ("patches", len(self.patches), ""), ("Fn", self.Fn, "N"),
+                                 ("Fx", self.Fx, "N"), ("Fy", self.Fy, "N"),
+                                 ("Mz", self.Mz, "N m"), ("status", self.status, "")])
+
     @property
     def Fn(self) -> float:
         return self._sum("Fn")
@@ -327,6 +372,13 @@ class NormalResult:
     materials: MaterialPair
     info: dict = field(default_factory=dict)
 
+    def __repr__(self):
+        return short_repr(self, [("grid", f"{self.grid.nx}x{self.grid.ny}", ""),
+                                 ("Fn", self.Fn, "N"), ("p_max", self.p_max, "Pa"),
+                                 ("penetration", self.penetration, "m"),
+                                 ("area", self.area, "m^2"), ("iterations", self.iterations, ""),
+                                 ("status", self.status, "")])
+
     @property
     def centroid(self) -> tuple[float, float]:
         """Centre of pressure (x, y) [m]."""
@@ -410,6 +462,13 @@ class TangentialResult:
     residual: float
     info: dict = field(default_factory=dict)
 
+    def __repr__(self):
+        return short_repr(self, [("kind", self.kind, ""), ("Fx", self.Fx, "N"),
+                                 ("Fy", self.Fy, "N"), ("Mz", self.Mz, "N m"),
+                                 ("mu", self.mu, ""), ("creepage", self.creepage, ""),
+                                 ("iterations", self.iterations, ""),
+                                 ("converged", self.converged, "")])
+
     @property
     def contact(self) -> np.ndarray:
         """Elements with positive pressure, shape (nx, ny)."""
@@ -471,6 +530,11 @@ class GapResult:
     tangential: object
     outer_iterations: int
     outer_change: float
+
+    def __repr__(self):
+        return short_repr(self, [("Fn", self.Fn, "N"), ("Fx", self.Fx, "N"),
+                                 ("Fy", self.Fy, "N"), ("Mz", self.Mz, "N m"),
+                                 ("outer_iterations", self.outer_iterations, "")])
 
     # convenient views (grid, pressure, contact, Fn from the normal solution; tractions,
     # slip, adhesion, tangential displacements and forces from the tangential one) ---------

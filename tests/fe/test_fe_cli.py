@@ -12,7 +12,7 @@ CASE = """
 wheel = "cylinder"
 rail = "60E1"
 radius = 0.46
-load = 7500.0
+Fn = 7500.0
 mesh_size = 2e-3
 depth = 3.0
 half_width = 3.0
@@ -94,7 +94,7 @@ ROLL = """
 wheel = "cylinder"
 rail = "60E1"
 radius = 0.46
-load = 7500.0
+Fn = 7500.0
 mu = 0.2
 creepage = [7e-4, 0.0, 0.0]
 mesh_size = 2e-3
@@ -204,13 +204,13 @@ def test_fe_named_case_keys_old_names_warn_and_plastic_is_kept(tmp_path):
     f = tmp_path / "toumi.toml"
     f.write_text('[fe]\ntoumi2016 = "printed"\nplastic = true\n')
     case, _ = case_from_toml(f)
-    assert case.load == pytest.approx(7500.0) and case.material.yield_stress == 489e6
+    assert case.Fn == pytest.approx(7500.0) and case.material.yield_stress == 489e6
     f.write_text('[fe]\ntoumi2016 = "printed"\n')
     assert not hasattr(case_from_toml(f)[0].material, "yield_stress")
     f.write_text('[fe]\nseed000 = "printed"\n')
     with pytest.warns(DeprecationWarning, match="'seed000' is deprecated, use 'toumi2016'"):
         case, _ = case_from_toml(f)
-    assert case.load == pytest.approx(7500.0)
+    assert case.Fn == pytest.approx(7500.0)
     f.write_text('[fe]\nseed004 = "reduced"\ntransition = "reduced"\n')
     with pytest.raises(CaseFileError, match="'transition' and its old name 'seed004'"):
         case_from_toml(f)
@@ -223,7 +223,7 @@ def test_fe_toumi2016_table3_case_file_and_bad_material(tmp_path, capsys):
     f = tmp_path / "seed.toml"
     f.write_text('[fe]\ntoumi2016 = "table3"\nmaterial = "r900a"\nmesh_size = 2e-3\n')
     case, _ = case_from_toml(f)
-    assert case.load == pytest.approx(toumi2016_load()) and case.material.yield_stress == 489e6
+    assert case.Fn == pytest.approx(toumi2016_load()) and case.material.yield_stress == 489e6
     f.write_text('[fe]\ntoumi2016 = "printed"\nmaterial = "steel"\n')
     assert main(["fe", str(f)]) == 2
     assert "material must be 'r900a'" in capsys.readouterr().err

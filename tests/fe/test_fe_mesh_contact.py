@@ -15,7 +15,7 @@ FLAT_WHEEL = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
 @pytest.fixture(scope="module")
 def model():
     case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
-                       load=7500.0, mesh_size=2e-3, depth=4, half_width=3, half_length=3)
+                       Fn=7500.0, mesh_size=2e-3, depth=4, half_width=3, half_length=3)
     return build_model(case, rolling=False)
 
 
@@ -56,7 +56,7 @@ def test_tributary_areas_sum_to_surface_area(model):
 def test_mesh_larger_than_patch_is_rejected():
     with pytest.raises(InputError, match="mesh_size 0.005"):
         build_model(RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
-                                load=7500.0, mesh_size=5e-3), rolling=False)
+                                Fn=7500.0, mesh_size=5e-3), rolling=False)
 
 
 @pytest.mark.parametrize("kw, match", [({"creepage": (0.0, 0.0, 0.1)}, "phi = 0.1"),
@@ -66,9 +66,9 @@ def test_mesh_larger_than_patch_is_rejected():
                                         "alpha = 10.0"),
                                        ({"linear_solver": "lu"}, "linear_solver"),
                                        ({"integrator": "rk4"}, "integrator"),
-                                       ({"load": -1.0}, "load")])
+                                       ({"Fn": -1.0}, "Fn")])
 def test_bad_case_input_named(kw, match):
-    args = dict(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0)
+    args = dict(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0)
     args.update(kw)
     with pytest.raises(InputError, match=match):
         RollingCase(**args)
@@ -136,7 +136,7 @@ def test_real_profiles_s1002_on_inclined_60e1_mesh():
     """S1002 on 60E1 at 1:40: contact point where the gap between the profiles is smallest."""
     rail = wr.profiles.load("60E1").rotated(np.arctan(1 / 40))
     wheel = wr.profiles.load("S1002")
-    case = RollingCase(wheel=wheel, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+    case = RollingCase(wheel=wheel, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0,
                        inclination=np.arctan(1 / 40), mesh_size=1.5e-3, depth=4, half_width=4,
                        half_length=4)
     m = build_model(case, rolling=False)
@@ -157,7 +157,7 @@ def test_saturation_creepage_closed_form_and_warning():
     from wheelrail.tangential.linear import kalker_coefficients
 
     case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
-                       load=7500.0, mu=0.2, creepage=(0.01, 0.0, 0.0), mesh_size=2e-3,
+                       Fn=7500.0, mu=0.2, creepage=(0.01, 0.0, 0.0), mesh_size=2e-3,
                        element="reduced", depth=3, half_width=3, half_length=3, time_step=1.0)
     hz = build_model(case, rolling=False).geometry["hertz"]
     G = 2.1e11 / (2 * 1.28)
@@ -175,7 +175,7 @@ def test_implicit_step_too_long_warns_naming_it(tmp_path):
     from wheelrail.fe import solve
 
     case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
-                       load=7500.0, mu=0.2, creepage=(1e-3, 0.0, 0.0), mesh_size=2e-3,
+                       Fn=7500.0, mu=0.2, creepage=(1e-3, 0.0, 0.0), mesh_size=2e-3,
                        element="reduced", depth=3, half_width=3, half_length=3,
                        integrator="implicit-qs", time_step=4e-4)
     with pytest.warns(UserWarning, match="time_step 0.0004 s"):

@@ -457,7 +457,7 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
     with np.load(part / "restart.npz") as z:
         assert int(z["step"]) == part_summary["stopped_at"] - 1
     plain = tmp_path / "plain.toml"
-    plain.write_text('[fe]\nwheel = "cylinder"\nrail = "60E1"\nradius = 0.46\nload = 7500.0\n'
+    plain.write_text('[fe]\nwheel = "cylinder"\nrail = "60E1"\nradius = 0.46\nFn = 7500.0\n'
                      'creepage = [7e-4, 0.0, 0.0]\nmu = 0.2\n')
     assert main(["fe", str(plain), "--out", str(part), "--stop-travel", "0.01"]) != 0
     assert "--stop-travel" in capsys.readouterr().err

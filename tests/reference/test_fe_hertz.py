@@ -17,7 +17,7 @@ FLAT_WHEEL = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
 
 def _errors(h):
     case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
-                       load=7500.0, mesh_size=h, depth=4, half_width=4, half_length=4)
+                       Fn=7500.0, mesh_size=h, depth=4, half_width=4, half_length=4)
     r = indent(case)
     hz = r.hertz
     assert r.Fn == pytest.approx(7500.0, rel=1e-3)          # equilibrium with the load

@@ -46,3 +46,20 @@ def test_the_checker_sees_a_retired_name():
         return contact, load
 
     assert [p for p in _names(f) if p in RETIRED_NAMES] == ["load"]
+
+
+def test_fe_rolling_case_takes_Fn_and_the_old_name_with_a_warning():
+    """``RollingCase`` names the wheel load ``Fn`` like the rest of the library; the old
+    ``load=`` still works for one release, with a DeprecationWarning, and gives the same case."""
+    import pytest
+
+    kw = dict(wheel=wr.fe.cone_wheel(0.1), rail=wr.fe.head_arc_rail(0.3), radius=0.46)
+    new = wr.fe.RollingCase(Fn=7500.0, **kw)
+    assert [p for p in _names(wr.fe.RollingCase) if p in RETIRED_NAMES] == []
+    with pytest.warns(DeprecationWarning, match="Fn"):
+        old = wr.fe.RollingCase(load=7500.0, **kw)
+    assert old.Fn == new.Fn == 7500.0
+    with pytest.warns(DeprecationWarning, match="Fn"):
+        assert old.load == 7500.0
+    with pytest.raises(wr.InputError, match="Fn"):
+        wr.fe.RollingCase(Fn=7500.0, load=7500.0, **kw)

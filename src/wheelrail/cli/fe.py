@@ -46,7 +46,7 @@ Example::
     wheel = "cylinder"
     rail = "60E1"
     radius = 0.46
-    load = 7500.0
+    Fn = 7500.0
     creepage = [7e-4, 0.0, 0.0]
     mu = 0.2
     mesh_size = 1.5e-3
@@ -220,6 +220,9 @@ def case_from_toml(path):
         except TypeError as exc:
             raise CaseFileError(f"{path}: [fe] {exc}") from exc
     seed = _case_key(t, "toumi2016", "seed000", path)
+    fn = _case_key(t, "Fn", "load", path)
+    if fn is not None:
+        t["Fn"] = fn
     taper = float(t.pop("wheel_taper", 0.1))
     head = float(t.pop("rail_head_radius", 0.3))
     if seed is None:
@@ -562,7 +565,7 @@ def demo_step(ctx):
     from ..fe.plots import plot_patch_comparison, plot_section
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
-    kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
+    kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0, mu=0.2,
               creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3, element="reduced", mass_scaling=400,
               depth=4, half_width=3, half_length=3, travel=0.008)
     el = solve(RollingCase(**kw), progress=False)

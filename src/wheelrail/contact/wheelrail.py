@@ -270,7 +270,7 @@ class WheelProblem:
                             float(sig * u_c), float(z_c), f.x, float(ang), r)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class WheelRailResult(ContactResult):
     """Result of :func:`wheelrail.solve` for a :class:`WheelRailPosition` (frozen, SI).
 

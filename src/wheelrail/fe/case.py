@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -33,8 +35,9 @@ class RollingCase:
         ``inclination`` before meshing.
     radius : float
         Wheel rolling radius [m] at the wheel profile's origin (tape circle).
-    load : float
-        Vertical wheel load [N] (> 0).
+    Fn : float
+        Vertical wheel load [N] (> 0). The old name ``load=`` is still accepted, with a
+        ``DeprecationWarning``, for one release.
     creepage : (float, float, float)
         (ξ [-], η [-], φ [1/m]). ξ is prescribed through the wheel's angular
         velocity (Toumi et al. eq. 1), η through a lateral drift −η V(t) of the
@@ -114,7 +117,7 @@ class RollingCase:
     wheel: object
     rail: object
     radius: float
-    load: float
+    Fn: float
     creepage: tuple = (0.0, 0.0, 0.0)
     mu: float = 0.3
     material: object = STEEL
@@ -151,7 +154,7 @@ class RollingCase:
         s = object.__setattr__
         s(self, "radius", float(positive("radius", self.radius)))
         check_rolling_radius(self.radius, "radius")
-        s(self, "load", float(positive("load", self.load)))
+        s(self, "Fn", float(positive("Fn", self.Fn)))
         c = as_float_array("creepage", self.creepage)
         if c.shape != (3,):
             raise InputError(f"creepage must be (xi, eta, phi), got shape {c.shape}")
@@ -218,6 +221,32 @@ class RollingCase:
     @property
     def xi(self) -> float:
         return self.creepage[0]
+
+    @property
+    def load(self) -> float:
+        """Deprecated name of :attr:`Fn` [N] (kept for one release)."""
+        warnings.warn("RollingCase.load is deprecated, use RollingCase.Fn",
+                      DeprecationWarning, stacklevel=2)
+        return self.Fn
+
+
+def _accept_old_load(init):
+    """``RollingCase(load=...)``: the old name of ``Fn``, with a DeprecationWarning."""
+
+    @functools.wraps(init)
+    def __init__(self, *args, load=None, **kwargs):
+        if load is not None:
+            if "Fn" in kwargs or len(args) >= 4:
+                raise InputError("RollingCase: give the wheel load as Fn (not also as load)")
+            warnings.warn("RollingCase(load=...) is deprecated, use Fn=...",
+                          DeprecationWarning, stacklevel=2)
+            kwargs["Fn"] = load
+        init(self, *args, **kwargs)
+
+    return __init__
+
+
+RollingCase.__init__ = _accept_old_load(RollingCase.__init__)
 
 
 def cone_wheel(taper: float = 0.1, half_width: float = 0.04, n: int = 17):
@@ -321,7 +350,7 @@ def seed000_case(load="table3", plastic: bool = False, **changes) -> RollingCase
         material = r900a()
     else:
         material = Material(E=2.1e11, nu=0.28)
-    args = dict(wheel=cone_wheel(0.1), rail=head_arc_rail(0.3), radius=0.46, load=load,
+    args = dict(wheel=cone_wheel(0.1), rail=head_arc_rail(0.3), radius=0.46, Fn=load,
                 creepage=(-7e-4, 0.0, 0.0), mu=0.2, material=material,
                 inclination=TOUMI2016_CONTACT_ANGLE, speed=50 / 3.6)
     args.update(changes)

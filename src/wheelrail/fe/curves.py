@@ -118,7 +118,7 @@ def creep_curve(case, creepages, component: str = "xi", *, linear_fraction: floa
     ds["window_end"] = ("creepage", w[:, 1], {"units": "m"})
     ds["steady_steps"] = ("creepage", w[:, 2].astype(np.int64))
     ds["cpu_seconds"] = ("creepage", np.array(cpu), {"units": "s"})
-    ds.attrs.update({"component": component, "force": force, "load": case.load,
+    ds.attrs.update({"component": component, "force": force, "load": case.Fn,
                      "normal_load": float(contact_geometry(case)["normal_load"]),
                      "mu": case.mu, "mesh_size": case.mesh_size, "integrator": case.integrator,
                      "material": repr(case.material), "linear_fraction": float(linear_fraction)})

@@ -162,7 +162,7 @@ def solve_explicit(case, progress, output_every, io):
     inv_m[model.fixed] = 0.0
     M_w = float(m[:model.nw].sum())
     alpha, beta = case.rayleigh
-    load, mu = case.load, case.mu
+    load, mu = case.Fn, case.mu
     R = model.geometry["r_c"]
     n1, a_dr = relaxation_steps(case, model, dt)
     speed, t_end = speed_profile(case, travel)

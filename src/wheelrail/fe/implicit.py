@@ -160,7 +160,7 @@ def solve_implicit_qs(case, progress, io):
         if beta_r > 0:
             dyn = _rayleigh_force(K, beta_r / dt, q_n)
         u, w, c, it = newton(model, Kff_eff, free, u, w, psi, s, c["xs"], c["xm"], ft, case.mu,
-                             case.load, dyn=dyn, solver=solver, state=state, tangent=tangent)
+                             case.Fn, dyn=dyn, solver=solver, state=state, tangent=tangent)
         if state is not None:
             state.commit()
         iters += it
@@ -173,7 +173,7 @@ def solve_implicit_qs(case, progress, io):
         if beta_r > 0:
             E["damping"] += (beta_r / dt) * float(dq @ (K @ dq))
         E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-        E["external"] += -case.load * dq[-1]
+        E["external"] += -case.Fn * dq[-1]
         e_int, e_pl = _internal_energy(model, u, state)
         rows.append([t, s, *_forces_row(c), 0.0, e_int - e_int0, float(c["energy"].sum()),
                      E["friction"], E["damping"], E["external"], E["contact_work"], e_pl])
@@ -211,7 +211,7 @@ def solve_implicit_hht(case, progress, io):
     def static_residual(q, c):
         f_int, _ = model.internal_force(q[:-1].reshape(-1, 3), state=state)
         fc, fcw = model.generalized_contact_force(c, psi)
-        return np.concatenate([(f_int - fc).ravel(), [case.load - fcw]])
+        return np.concatenate([(f_int - fc).ravel(), [case.Fn - fcw]])
 
     if io["restart"] is not None:
         st = read_restart(io["restart"], model, dt)
@@ -255,7 +255,7 @@ def solve_implicit_hht(case, progress, io):
             return r
 
         u1, w1, c, it = newton(model, Kff_eff, free, q[:-1].reshape(-1, 3), q[-1], psi, s,
-                               c["xs"], c["xm"], ft, case.mu, case.load, dyn=dyn,
+                               c["xs"], c["xm"], ft, case.mu, case.Fn, dyn=dyn,
                                static_scale=1.0 + al, diag=diag, solver=solver, state=state,
                                tangent=tangent)
         if state is not None:
@@ -276,7 +276,7 @@ def solve_implicit_hht(case, progress, io):
         fdamp = fd_new
         ft = c["ft"]
         E["friction"] += float(np.sum(np.linalg.norm(ft, axis=1) * c["slip"]))
-        E["external"] += -case.load * dq[-1]
+        E["external"] += -case.Fn * dq[-1]
         e_int, e_pl = _internal_energy(model, u1, state)
         rows.append([t, s, *_forces_row(c), 0.5 * float(np.sum(mvec * v * v)), e_int - e_int0,
                      float(c["energy"].sum()), E["friction"], E["damping"], E["external"],

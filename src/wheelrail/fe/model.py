@@ -124,12 +124,12 @@ def contact_geometry(case):
     mat = as_fe_material(case.material, case.density)
     # the vertical wheel load acts along the contact normal with Fn = load / cos(contact angle)
     delta = float(np.arctan(rail.slope(y_c)))
-    hz = hertz(case.load / np.cos(delta), A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
+    hz = hertz(case.Fn / np.cos(delta), A, B, Material(mat.E, mat.nu)) if B > 1e-9 else None
     return {"y_c": float(y_c), "z_axle": float(z_axle), "r_c": r_c, "radius_of_y": radius_of_y,
             "rail": rail, "hertz": hz, "A": A, "B": B, "delta": delta,
             "lateral": np.array([0.0, np.cos(delta), np.sin(delta)]),
             "normal": np.array([0.0, -np.sin(delta), np.cos(delta)]),
-            "normal_load": case.load / float(np.cos(delta))}
+            "normal_load": case.Fn / float(np.cos(delta))}
 
 
 @dataclass(frozen=True, eq=False)

@@ -33,7 +33,7 @@ def fingerprint(model, dt: float) -> dict:
     case = model.case
     return {"integrator": case.integrator, "mesh_size": case.mesh_size,
             "n_elements": model.n_elements, "n_nodes": model.n_nodes, "time_step": float(dt),
-            "load": case.load, "xi": case.creepage[0], "eta": case.creepage[1], "mu": case.mu,
+            "load": case.Fn, "xi": case.creepage[0], "eta": case.creepage[1], "mu": case.mu,
             "speed": case.speed, "travel": float(model.geometry["travel"]),
             "element": case.element, "mass_scaling": case.mass_scaling,
             "rayleigh_alpha": case.rayleigh[0], "rayleigh_beta": case.rayleigh[1],

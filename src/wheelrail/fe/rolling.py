@@ -343,7 +343,7 @@ def history_dataset(rows, case, model, extra):
     for name in ("Fy_contact", "Fn_contact"):
         ds[name].attrs["units"] = "N"
     attrs = {"integrator": case.integrator, "creepage_xi": case.xi,
-             "creepage_eta": case.creepage[1], "mu": case.mu, "load": case.load,
+             "creepage_eta": case.creepage[1], "mu": case.mu, "load": case.Fn,
              "speed": case.speed, "n_elements": model.n_elements, "mesh_size": case.mesh_size,
              "material": type(model.material).__name__}
     for k, v in extra.items():

@@ -102,7 +102,7 @@ def static_equilibrium(model, K=None, psi=0.0, s=0.0, state=None, increments=Non
         w0 = -float(hz.penetration) if hz is not None else -0.01 * case.mesh_size
         xs = model.slave_positions(u, w0, psi)
         xm = model.master_positions(u, s)
-        return newton(model, Kff, free, u, w0, psi, s, xs, xm, ft0, 0.0, case.load)
+        return newton(model, Kff, free, u, w0, psi, s, xs, xm, ft0, 0.0, case.Fn)
 
     def tangent(q):
         return model.stiffness(q[:-1].reshape(-1, 3), state)[free][:, free].tocsr()
@@ -111,7 +111,7 @@ def static_equilibrium(model, K=None, psi=0.0, s=0.0, state=None, increments=Non
     iters = 0
     w = None
     for i in range(1, n_inc + 1):
-        load = case.load * i / n_inc
+        load = case.Fn * i / n_inc
         if w is None:
             w = -float(hz.penetration) * (i / n_inc) ** (2 / 3) if hz is not None \
                 else -0.01 * case.mesh_size
@@ -125,7 +125,7 @@ def static_equilibrium(model, K=None, psi=0.0, s=0.0, state=None, increments=Non
 
 
 def indent(case, *, increments: int | None = None) -> IndentResult:
-    """Static indentation of the wheel into the rail under ``case.load``.
+    """Static indentation of the wheel into the rail under ``case.Fn``.
 
     Parameters
     ----------

@@ -116,7 +116,7 @@ def _fe_errors(h):
     wr = _wr()
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
-    case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+    case = RollingCase(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0,
                        mesh_size=h, depth=4, half_width=4, half_length=4)
     r = indent(case)
     hz = r.hertz
@@ -160,7 +160,7 @@ def fe_rolling(quick):
     wr = _wr()
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
-    kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
+    kw = dict(wheel=flat, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0, mu=0.2,
               mesh_size=2e-3, element="reduced", mass_scaling=400, depth=4, half_width=3,
               half_length=3, travel=0.02)
     r = solve(RollingCase(creepage=(7e-4, 0.0, 0.0), **kw), progress=False)
