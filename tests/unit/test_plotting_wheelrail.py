@@ -107,3 +107,12 @@ def test_sweep_forces_marks_failed_rows(setup, tmp_path):
               and ln.get_linestyle() == ":"]
     assert vlines, "the failed position is marked"
     assert "failed" in fig._suptitle.get_text()
+
+
+def test_sweep_figure_names_the_status_of_rows_that_are_not_ok():
+    """A flange climb is a result, not a failure: the sweep figure's title says which
+    status its dotted positions have."""
+    from wheelrail.plotting.wheelrail import _status_note
+
+    note = _status_note(["flange_climb", "flange_climb", "not_converged"])
+    assert note == "3 positions: 2 flange climb, 1 not converged" and "failed" not in note

@@ -325,6 +325,9 @@ def run(args, console) -> int:
     console.print(f"dynamics: {type(model).__name__} ({model.n_wheelsets} wheelset(s)), "
                   f"{case['normal'].name} × {case['tangential'].name}, μ = {case['mu']:g}, "
                   f"V = {sim['speed']:g} m/s, {sim['duration']:g} s, {sim['integrator']!r}")
+    if not _kernels_cached():
+        console.print("first run: compiling the dynamics kernels (about 50 s on a 2-core "
+                      "machine, once; later runs load them from the cache)")
     res = dyn.simulate(model, case["layout"], sim.pop("speed"), sim.pop("duration"),
                        case["normal"], case["tangential"], mu=case["mu"],
                        progress=not args.no_progress, **sim)
@@ -355,3 +358,16 @@ def run(args, console) -> int:
 
     console.print(f"wrote {', '.join(written)} to {esc(out)}")
     return 0
+
+
+def _kernels_cached() -> bool:
+    """Whether the compiled time loops of the dynamics have a valid numba cache (else the
+    first simulation compiles them, about 50 s)."""
+    try:
+        from .._numba_cache import is_cached
+        from ..dynamics import _motion
+
+        loops = [getattr(_motion, name, None) for name in ("run_fixed", "rhs_fast")]
+        return all(is_cached(f) for f in loops if f is not None)
+    except Exception:  # pragma: no cover - numba internals moved: assume cached
+        return True

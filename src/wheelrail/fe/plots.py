@@ -118,7 +118,7 @@ def _figure(path):
     return plt
 
 
-def plot_patch_comparison(elastic, plastic, mu: float, path=None):
+def plot_patch_comparison(elastic, plastic, mu: float, path=None, title=None):
     """Pressure and |q|/(μp) of an elastic and an elasto-plastic patch side by side (in the
     manner of Toumi, Chollet & Yin 2016, Figs. 5, 6, 10, 11).
 
@@ -130,9 +130,13 @@ def plot_patch_comparison(elastic, plastic, mu: float, path=None):
         Friction coefficient [-].
     path : str or Path, optional
         Save the figure there.
+    title : str, optional
+        A title over the whole figure (e.g. the mesh size and the yield stress).
     """
     plt = _figure(path)
     fig, ax = plt.subplots(2, 3, figsize=(15, 8.5))
+    if title:
+        fig.suptitle(title)
     pmax = max(float(elastic.pressure.max()), float(plastic.pressure.max())) / 1e6
     for row, (name, patch) in enumerate((("elastic", elastic), ("elasto-plastic", plastic))):
         x = patch.x.values * 1e3
@@ -229,10 +233,11 @@ def plot_passes(passes, path=None):
     return fig
 
 
-def plot_section(fields, quantity="rail_von_mises", y=0.0, path=None, depth_max=None):
+def plot_section(fields, quantity="rail_von_mises", y=0.0, path=None, depth_max=None,
+                 title=None):
     """A longitudinal section (x, depth) of an element field of the rail (Toumi et al. 2016,
     Figs. 2 and 9): ``rail_von_mises`` [Pa], ``rail_equivalent_plastic_strain`` or a stress
-    component ``rail_stress:xx``."""
+    component ``rail_stress:xx``; ``title`` over the figure."""
     plt = _figure(path)
     name, _, comp = quantity.partition(":")
     da = fields[name].sel(y=y, method="nearest")
@@ -248,6 +253,8 @@ def plot_section(fields, quantity="rail_von_mises", y=0.0, path=None, depth_max=
     ax.invert_yaxis()
     ax.set_xlabel("x [mm] (rail)")
     ax.set_ylabel("depth [mm]")
+    if title:
+        ax.set_title(title)
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=110)

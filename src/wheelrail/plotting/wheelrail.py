@@ -282,6 +282,15 @@ def adhesion_maps(result, *, path=None, title=None):
     return finish(fig, path, title)
 
 
+def _status_note(statuses) -> str:
+    """"2 positions flange climb, 1 not converged": the rows of a sweep whose status is not
+    ``ok``, by status (a flange climb is a result, not a failure)."""
+    names, counts = np.unique(np.asarray(statuses, dtype=str), return_counts=True)
+    parts = [f"{n} {name.replace('_', ' ')}" for name, n in zip(names, counts)]
+    total = int(counts.sum())
+    return f"{total} position{'s' if total != 1 else ''}: " + ", ".join(parts)
+
+
 def sweep_forces(ds, *, path=None, title=None):
     """Forces and patch positions over a lateral-shift sweep.
 
@@ -343,5 +352,5 @@ def sweep_forces(ds, *, path=None, title=None):
     if title is None:
         title = (f"wheelset sweep: {ds.attrs.get('normal', '')} + "
                  f"{ds.attrs.get('tangential', '')}, μ = {ds.attrs.get('mu', '')}"
-                 + (f" ({int(bad.sum())} positions failed, dotted)" if bad.any() else ""))
+                 + (f" ({_status_note(ds['status'].values[bad])}, dotted)" if bad.any() else ""))
     return finish(fig, path, title)
