@@ -151,26 +151,21 @@ def _relative(qc, vc, pc, qp, vp, pp, d, v):
 
 
 @njit(cache=True)
-def _bump(P, d):
-    """Bump-stop force (odd piecewise-linear table, last slope beyond) at deflection d."""
-    n = int(P[_V_BSN])
+def _bump(P, vb, d):
+    """Bump-stop force (odd piecewise-linear table, last slope beyond) at deflection d;
+    ``vb`` the start of the vehicle parameters in P."""
+    n = int(P[vb + _V_BSN])
+    xs = P[vb + _V_BSD:vb + _V_BSD + n]
+    fs = P[vb + _V_BSF:vb + _V_BSF + n]
     a = abs(d)
-    xs0 = P[_V_BSD]
-    if n < 2 or a <= xs0:
+    if n < 2 or a <= xs[0]:
         return 0.0
-    f = 0.0
     last = n - 1
-    if a >= P[_V_BSD + last]:
-        slope = (P[_V_BSF + last] - P[_V_BSF + last - 1]) / (P[_V_BSD + last]
-                                                               - P[_V_BSD + last - 1])
-        f = P[_V_BSF + last] + slope * (a - P[_V_BSD + last])
+    if a >= xs[last]:
+        f = fs[last] + (fs[last] - fs[last - 1]) / (xs[last] - xs[last - 1]) * (a - xs[last])
     else:
-        for k in range(last):
-            x0 = P[_V_BSD + k]
-            x1 = P[_V_BSD + k + 1]
-            if a <= x1:
-                f = P[_V_BSF + k] + (a - x0) / (x1 - x0) * (P[_V_BSF + k + 1] - P[_V_BSF + k])
-                break
+        k = np.searchsorted(xs, a) - 1
+        f = fs[k] + (a - xs[k]) / (xs[k + 1] - xs[k]) * (fs[k + 1] - fs[k])
     return f if d > 0 else -f
 
 
@@ -371,7 +366,7 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
                 pp[2] = h2 - hb
                 _relative(qc, vc, pc, q[nf], qd[nf], pp, d, v)
                 F[0] = 0.0
-                F[1] = -_bump(P, d[1])
+                F[1] = -_bump(P, vb, d[1])
                 F[2] = 0.0
                 _apply(F, pc, 1.0, Qc)
                 _apply(F, pp, -1.0, Qp)

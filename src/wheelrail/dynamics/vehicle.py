@@ -442,13 +442,14 @@ def manchester_vehicle1(spin: str = "fixed", rail=None, *, yaw_damper: YawDamper
 
 # --------------------------------------------------------------------------- assembly
 #: Vehicle parameters after the wheelset blocks (see :class:`VehicleAssembly`).
-VP = {n: i for i, n in enumerate(("n_frames", "body_m", "body_Ix", "body_Iy", "body_Iz", "body_h", "frame_h", "prim_h",
+VP = {n: i for i, n in enumerate((
+    "n_frames", "body_m", "body_Ix", "body_Iy", "body_Iz", "body_h", "frame_h", "prim_h",
     "fm0", "fIx0", "fIy0", "fIz0", "fm1", "fIx1", "fIy1", "fIz1", "xf0", "xf1",
     "s_kx", "s_ky", "s_kz", "s_cx", "s_cy", "s_cz", "s_b", "s_h", "s_kpsi", "s_arb", "s_pre",
     "yd", "yd_c", "yd_k", "yd_b", "bs_n",
     "par0", "par1", "par2", "par3", "xr0", "xr1", "xr2", "xr3",
-    "off_body", "off_yd") + tuple(f"bs_d{k}" for k in range(BUMP_MAX))
-    + tuple(f"bs_f{k}" for k in range(BUMP_MAX)))}
+    "off_body", "off_yd")
+    + tuple(f"bs_d{k}" for k in range(BUMP_MAX)) + tuple(f"bs_f{k}" for k in range(BUMP_MAX)))}
 NVP = len(VP)
 
 
