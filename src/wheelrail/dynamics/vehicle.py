@@ -574,10 +574,12 @@ class VehicleAssembly:
     def _bodies(self):
         return [self.off_frame + 10 * j for j in range(self.n_frames)] + [self.off_body]
 
-    def quasi_static(self, spin: bool = False):
-        """As :meth:`wheelrail.dynamics.model.Assembly.quasi_static`: heights, rolls and
-        pitches of wheelsets, frames and car body, the yaw dampers' elongations, the rail
-        deflections (and with ``spin`` the free wheelsets' Ω)."""
+    def quasi_static(self, spin: bool = False, linear: bool = False):
+        """As :meth:`wheelrail.dynamics.model.Assembly.quasi_static`: heights and rolls of
+        the wheelsets, heights, rolls and pitches of frames and car body, the rail
+        deflections (and with ``spin`` the free wheelsets' Ω). With ``linear`` (the states
+        :func:`~wheelrail.dynamics.linearise` condenses) the frames' and car body's are
+        left out: their modes are as slow as the lateral ones."""
         cols, rows, steps, scales = [], [], [], []
 
         def add(c, r, h, s):
@@ -591,11 +593,10 @@ class VehicleAssembly:
             add(9 * i + 2, 9 * i + 6, 1e-8, 1e-4)
             if spin and self.model.spin == "free":
                 add(9 * i + 8, 9 * i + 8, 1e-5, 0.02)
-        for ob in self._bodies():
-            for k in (1, 2, 3):
-                add(ob + k, ob + 5 + k, 1e-8, 1e-3)
-        for k in range(self.n_yd):
-            add(self.off_yd + k, self.off_yd + k, 1e-8, 1e-3)
+        if not linear:
+            for ob in self._bodies():
+                for k in (1, 2, 3):
+                    add(ob + k, ob + 5 + k, 1e-8, 1e-3)
         if self.rails:
             for i in range(self.n_ws):
                 for side in range(2):
@@ -622,6 +623,11 @@ class VehicleAssembly:
                 rows.append(r)
                 steps.append(1e-7)
                 scales.append(2e-2)
+        for k in range(self.n_yd):                  # the yaw dampers at rest: u = d
+            cols.append(self.off_yd + k)
+            rows.append(self.off_yd + k)
+            steps.append(1e-8)
+            scales.append(1e-2)
         return cols, rows, np.array(steps), np.array(scales)
 
     def index(self, name: str) -> int:
