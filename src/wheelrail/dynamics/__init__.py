@@ -1,6 +1,7 @@
 """Wheelset and bogie dynamics with online multi-point contact.
 
-Vehicle models (:class:`WheelsetModel`, :class:`BogieModel` with their
+Vehicle models (:class:`WheelsetModel`, :class:`BogieModel`, the whole
+:class:`VehicleModel` — car body on two bogies or two wheelsets — with their
 :class:`Suspension` and :class:`RailSupport`) run on a :class:`TrackLayout`
 (curves with cant and transitions, lateral :class:`Irregularity`) with the
 contact forces of every wheel evaluated by any normal × tangential method of
@@ -25,10 +26,14 @@ from .quasistatic import (CurvingResult, FlangeClimbResult, cant_deficiency, fla
 from .reference import cone_track, klingel_wavelength
 from .simulate import Adaptive, FixedStep, SimulationResult, System, simulate
 from .stability import CriticalSpeedResult, critical_speed
+from .vehicle import (BumpStop, CarBody, SecondarySuspension, VehicleModel, YawDamper,
+                      manchester_vehicle1)
 
 __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", "Irregularity",
            "TrackLayout", "simulate", "FixedStep", "Adaptive", "SimulationResult", "System",
            "FastContact", "GenericContact", "contact_model", "configured_methods",
            "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
            "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",
-           "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength"]
+           "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength",
+           "VehicleModel", "CarBody", "SecondarySuspension", "YawDamper", "BumpStop",
+           "manchester_vehicle1"]

@@ -39,6 +39,7 @@ import numpy as np
 from numba import njit
 
 from ._fastcontact import wheel_contact
+from ._vehicle_motion import vehicle_derivative
 from .model import GP, NGP, NWP, WP
 
 __all__ = ["layout_at", "heading_at", "wheel_inputs", "derivative", "rhs_fast", "run_fixed",
@@ -63,6 +64,7 @@ _G_RAIL = (GP["rail_lat_k1"], GP["rail_ver_k1"])
 _G_FM = GP["frame_m"]
 _G_SEC = GP["sec_kx"]
 _G_BODY = GP["body_m"]
+_G_VEHICLE = GP["vehicle"]
 _WP_IX = WP["Ix"]
 _WP_IY = WP["Iy"]
 _WP_IZ = WP["Iz"]
@@ -180,6 +182,9 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
     each wheel's patches [m] (creep relaxation).
     """
     ks, kk, kp, kh, is0, ids, iy = L
+    if P[_G_VEHICLE] > 0:      # car body on bogies or wheelsets (_vehicle_motion)
+        vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
+        return
     nw = int(P[_G_NWS])
     frame = P[_G_FRAME] > 0
     rails = P[_G_RAILS] > 0

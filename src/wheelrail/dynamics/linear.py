@@ -195,7 +195,10 @@ def linearise(system, *, y=0.0, steps=None):
     asm = system.asm
     given = {f"ws{i}.y": y for i in range(asm.n_ws)}
     x0 = system.initial_state(given)
-    cols, rows, _, _ = asm.quasi_static(spin=False)
+    if getattr(asm, "vehicle", False):      # frames and car body stay dynamic
+        cols, rows, _, _ = asm.quasi_static(spin=False, linear=True)
+    else:
+        cols, rows, _, _ = asm.quasi_static(spin=False)
     fast_vel = set()
     for c, r in zip(cols, rows):
         if r != c:

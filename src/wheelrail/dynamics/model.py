@@ -341,7 +341,7 @@ GP = {n: i for i, n in enumerate((
     "rail_lat_k2", "rail_lat_c2", "rail_lat_m", "rail_ver_k1", "rail_ver_c1", "rail_ver_k2",
     "rail_ver_c2", "rail_ver_m", "frame_m", "frame_Ix", "frame_Iy", "frame_Iz", "sec_kx",
     "sec_ky", "sec_kz", "sec_cx", "sec_cy", "sec_cz", "sec_b", "body_m", "off_frame",
-    "off_rails", "off_relax", "relax_floor"))}
+    "off_rails", "off_relax", "relax_floor", "vehicle"))}
 #: Per-wheelset parameters (block of :data:`NWP` after the global part).
 WP = {n: i for i, n in enumerate((
     "m", "Ix", "Iy", "Iz", "kx", "ky", "kz", "cx", "cy", "cz", "b", "x", "preload", "carried_m"))}

@@ -331,6 +331,8 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
 def _curving_unknowns(asm):
     """Unknowns of the steady curving equilibrium (state indices, finite-difference steps,
     largest Newton steps) and the equations (rows of the state derivative)."""
+    if hasattr(asm, "curving_unknowns"):        # VehicleAssembly
+        return asm.curving_unknowns()
     cols, rows, steps, scales = asm.quasi_static(spin=True)
     cols, rows = list(cols), list(rows)
     steps, scales = list(steps), list(scales)

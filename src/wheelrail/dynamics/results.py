@@ -83,6 +83,11 @@ def to_dataset(result) -> xr.Dataset:
         for s in FRAME_STATES:
             data[f"frame_{s}"] = ("time", X[:, names.index(f"frame.{s}")],
                                   {"units": _WS_UNITS[s]})
+    for body in ("frame0", "frame1", "body"):          # VehicleModel
+        if f"{body}.y" in names:
+            for s in FRAME_STATES:
+                data[f"{body}_{s}"] = ("time", X[:, names.index(f"{body}.{s}")],
+                                       {"units": _WS_UNITS[s]})
     if any(n.startswith("rail0.") for n in names):
         coords["direction"] = ["lateral", "vertical"]
         for s, unit in (("head", "m"), ("head_velocity", "m/s"), ("support", "m")):

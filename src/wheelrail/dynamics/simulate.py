@@ -47,6 +47,7 @@ from .contact import FastContact, contact_model
 from .layout import as_layout
 from .model import GP, Assembly, BogieModel, WheelsetModel
 from .results import to_dataset
+from .vehicle import VehicleAssembly, VehicleModel
 
 __all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System"]
 
@@ -154,8 +155,8 @@ class System:
     def __init__(self, model, track, speed, normal="kik-piotrowski", tangential="fastsim", *,
                  mu=0.3, deceleration=0.0, creep_relaxation=False, contact="auto", start=0.0,
                  min_speed=0.5, contact_options=None, method_options=None):
-        if not isinstance(model, (WheelsetModel, BogieModel)):
-            raise InputError(f"model must be a WheelsetModel or BogieModel, got "
+        if not isinstance(model, (WheelsetModel, BogieModel, VehicleModel)):
+            raise InputError(f"model must be a WheelsetModel, BogieModel or VehicleModel, got "
                              f"{type(model).__name__}")
         self.model = model
         self.layout = as_layout(track)
@@ -174,7 +175,8 @@ class System:
                 and math.isfinite(creep_relaxation) and creep_relaxation >= 0)):
             raise InputError(f"creep_relaxation must be True, False or a relaxation length "
                              f"in semi-axes a (a number > 0), got {creep_relaxation!r}")
-        self.asm = Assembly(model, relax=creep_relaxation)
+        self.asm = (VehicleAssembly if isinstance(model, VehicleModel) else Assembly)(
+            model, relax=creep_relaxation)
         self.contact = contact_model(model.wheelset, self.layout.track, model.material, normal,
                                      tangential, contact=contact, method_options=method_options,
                                      **(contact_options or {}))
