@@ -2,7 +2,8 @@
 
 Vehicle models (:class:`WheelsetModel`, :class:`BogieModel` with their
 :class:`Suspension` and :class:`RailSupport`) run on a :class:`TrackLayout`
-(curves with cant and transitions, lateral :class:`Irregularity`) with the
+(curves with cant and transitions, :class:`TrackIrregularity` in alignment, level,
+cross level and gauge) with the
 contact forces of every wheel evaluated by any normal × tangential method of
 the library at every evaluation (:func:`simulate`). Linear analysis and
 critical speeds: :func:`critical_speed`; quasi-static flange climb:
@@ -16,7 +17,9 @@ References
 
 from __future__ import annotations
 
+from ._spectra import TrackSpectrum, track_spectrum
 from .contact import FastContact, GenericContact, configured_methods, contact_model
+from .irregularity import TrackIrregularity
 from .layout import Curve, Irregularity, TrackLayout
 from .linear import LinearBogie, LinearWheelset, eigenvalues_over_speed, linearise
 from .model import BogieModel, RailSupport, Suspension, WheelsetModel
@@ -31,4 +34,5 @@ __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", 
            "FastContact", "GenericContact", "contact_model", "configured_methods",
            "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
            "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",
-           "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength"]
+           "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength",
+           "TrackIrregularity", "TrackSpectrum", "track_spectrum"]
