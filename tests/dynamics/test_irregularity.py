@@ -226,3 +226,62 @@ def test_bad_inputs_are_refused(tmp_path):
         D.TrackIrregularity.from_psd("erri-low", -1.0, 1)
     with pytest.raises(InputError, match="irregularity must be"):
         D.TrackLayout(wr.Track(wr.profiles.load("60E1")), irregularity="erri-low")
+
+
+# --------------------------------------------------------------------------- wiring
+@pytest.fixture(scope="module")
+def wheelset_model():
+    ws = wr.Wheelset(wr.profiles.load("S1002"))
+    tr = wr.Track(wr.profiles.load("60E1"))
+    model = D.WheelsetModel(ws, 1813.0, (1120.0, 100.0, 1120.0), axle_load=80e3,
+                            primary=D.Suspension(kx=1e6, ky=1e6, half_spacing=1.0))
+    return ws, tr, model
+
+
+def test_wheel_inputs_see_each_rail_offset(wheelset_model):
+    """The wheel's pose relative to its rail (the contact's input) moves by that rail's
+    offset: lateral a ∓ g/2, vertical v ∓ c/2 (left/right), rates V d/ds of them."""
+    from wheelrail.dynamics._motion import N_IN, wheel_inputs
+    from wheelrail.dynamics.simulate import System
+    ws, tr, model = wheelset_model
+    s = np.arange(0.0, 40.0, 0.2)
+    irr = D.TrackIrregularity(s, alignment=0.002 * np.sin(2 * np.pi * s / 10),
+                              level=0.003 * np.sin(2 * np.pi * s / 13),
+                              cross_level=0.004 * np.cos(2 * np.pi * s / 11),
+                              gauge=0.001 * np.cos(2 * np.pi * s / 7))
+    flat = System(model, tr, 20.0, "hertz", "fastsim")
+    rough = System(model, D.TrackLayout(tr, irregularity=irr), 20.0, "hertz", "fastsim")
+    x = np.zeros(flat.asm.n)
+    W0, W1 = np.empty((1, 2, N_IN)), np.empty((1, 2, N_IN))
+    at = 17.3
+    wheel_inputs(0.0, x, flat.asm.P, flat.layout.arrays, 20.0, at, W0)
+    wheel_inputs(0.0, x, rough.asm.P, rough.layout.arrays, 20.0, at, W1)
+    val, der = irr.rails(at, slope=True)
+    for side in range(2):
+        assert W1[0, side, 0] - W0[0, side, 0] == pytest.approx(-val[side, 0], abs=1e-15)
+        assert W1[0, side, 1] - W0[0, side, 1] == pytest.approx(-val[side, 1], abs=1e-15)
+        assert W1[0, side, 6] - W0[0, side, 6] == pytest.approx(-20.0 * der[side, 0], abs=1e-13)
+        assert W1[0, side, 7] - W0[0, side, 7] == pytest.approx(-20.0 * der[side, 1], abs=1e-13)
+    # left rail: a - g/2, v - c/2, written out
+    a, v, c, g = (irr.at(at)[k] for k in ("alignment", "level", "cross_level", "gauge"))
+    assert val[0, 0] == pytest.approx(a - g / 2) and val[1, 1] == pytest.approx(v + c / 2)
+
+
+def test_wheelset_follows_level_and_cross_level(wheelset_model):
+    """Long waves of level and cross level at 20 m/s: the (vertically free) wheelset's height
+    follows the level one to one, its roll the cross level over the distance of the contact
+    points, c/(2 e) with e ≈ 0.75 m (within 3 %: the contact points are not exactly at the
+    tape circles)."""
+    ws, tr, model = wheelset_model
+    s = np.arange(-5.0, 40.0, 0.2)
+    lev = 0.002 * np.sin(2 * np.pi * s / 8.0)
+    cl = 0.003 * np.sin(2 * np.pi * (s - 3.0) / 11.0)
+    layout = D.TrackLayout(tr, irregularity=D.TrackIrregularity(s, level=lev, cross_level=cl))
+    res = D.simulate(model, layout, 20.0, 1.0, "hertz", "fastsim", output_step=2e-3)
+    pos = res.position
+    m = pos > 4.0
+    A = np.column_stack([np.interp(pos, s, lev), np.interp(pos, s, cl), np.ones(pos.size)])[m]
+    kz = np.linalg.lstsq(A, res.state("ws0.z")[m], rcond=None)[0]
+    kr = np.linalg.lstsq(A, res.state("ws0.roll")[m], rcond=None)[0]
+    assert kz[0] == pytest.approx(1.0, abs=0.01) and abs(kz[1]) < 0.01
+    assert kr[1] == pytest.approx(1 / (2 * ws.e_tape), rel=0.03) and abs(kr[0]) < 0.03

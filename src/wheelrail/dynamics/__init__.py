@@ -7,7 +7,8 @@ cross level and gauge) with the
 contact forces of every wheel evaluated by any normal × tangential method of
 the library at every evaluation (:func:`simulate`). Linear analysis and
 critical speeds: :func:`critical_speed`; quasi-static flange climb:
-:func:`flange_climb`; steady curving: :func:`steady_curving`.
+:func:`flange_climb`; steady curving: :func:`steady_curving`; running-safety,
+track-loading and ride assessment (EN 14363, Sperling): :func:`assess`.
 
 References
 ----------
@@ -17,7 +18,9 @@ References
 
 from __future__ import annotations
 
+from ._filters import bandpass, lowpass, sliding_mean, sperling_weighting, sperling_wz
 from ._spectra import TrackSpectrum, track_spectrum
+from .assess import assess
 from .contact import FastContact, GenericContact, configured_methods, contact_model
 from .irregularity import TrackIrregularity
 from .layout import Curve, Irregularity, TrackLayout
@@ -35,4 +38,5 @@ __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", 
            "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
            "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",
            "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength",
-           "TrackIrregularity", "TrackSpectrum", "track_spectrum"]
+           "TrackIrregularity", "TrackSpectrum", "track_spectrum", "assess", "lowpass", "bandpass",
+           "sliding_mean", "sperling_wz", "sperling_weighting"]
