@@ -6,7 +6,7 @@ Plain array functions (public through :mod:`wheelrail.dynamics`):
   transform with the edge frequencies pre-warped, so the −3 dB points are
   exactly at the given frequencies), applied causally as a measuring chain
   would (started in the steady state of the first sample) or zero-phase
-  (forward and backward: gain |H|², no delay);
+  (forward and backward: the gain squared, no delay);
 * :func:`sliding_mean` — mean over a window of distance (not time), exact for
   the piecewise-linear interpolant of the samples;
 * :func:`sperling_wz` — Sperling's ride index from the amplitude spectrum of an
