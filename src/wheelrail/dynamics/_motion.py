@@ -41,8 +41,8 @@ from numba import njit
 from ._fastcontact import wheel_contact
 from .model import GP, NGP, NWP, WP
 
-__all__ = ["layout_at", "rail_offsets", "heading_at", "wheel_inputs", "derivative", "rhs_fast",
-           "run_fixed", "N_IN"]
+__all__ = ["layout_at", "heading_at", "wheel_inputs", "derivative", "rhs_fast", "run_fixed",
+           "N_IN"]
 
 #: Per-wheel contact inputs of :func:`wheel_inputs`.
 IN_FIELDS = ("y", "zc", "roll", "yaw", "V", "omega", "vy", "vz", "yaw_rate", "roll_rate")

@@ -184,8 +184,8 @@ def assess(result, *, cutoff: float = 20.0, window: float = 2.0, step: float = 0
         model = getattr(result, "model", None)
         P0 = getattr(model, "axle_load", None) if model is not None else None
         if P0 is None:
-            P0 = float(np.mean(Q[:, :, 0] + Q[:, :, 1]))
-            attrs["axle_load_source"] = "mean of Q_left + Q_right over the run"
+            P0 = np.mean(Q[:, :, 0] + Q[:, :, 1], axis=0)
+            attrs["axle_load_source"] = "mean of Q_left + Q_right of each wheelset over the run"
         else:
             attrs["axle_load_source"] = "model.axle_load"
     else:
