@@ -3,11 +3,13 @@
 Vehicle models (:class:`WheelsetModel`, :class:`BogieModel`, the whole
 :class:`VehicleModel` — car body on two bogies or two wheelsets — with their
 :class:`Suspension` and :class:`RailSupport`) run on a :class:`TrackLayout`
-(curves with cant and transitions, lateral :class:`Irregularity`) with the
+(curves with cant and transitions, :class:`TrackIrregularity` in alignment, level,
+cross level and gauge) with the
 contact forces of every wheel evaluated by any normal × tangential method of
 the library at every evaluation (:func:`simulate`). Linear analysis and
 critical speeds: :func:`critical_speed`; quasi-static flange climb:
-:func:`flange_climb`; steady curving: :func:`steady_curving`.
+:func:`flange_climb`; steady curving: :func:`steady_curving`; running-safety,
+track-loading and ride assessment (EN 14363, Sperling): :func:`assess`.
 
 References
 ----------
@@ -17,7 +19,11 @@ References
 
 from __future__ import annotations
 
+from ._filters import bandpass, lowpass, sliding_mean, sperling_weighting, sperling_wz
+from ._spectra import TrackSpectrum, track_spectrum
+from .assess import assess
 from .contact import FastContact, GenericContact, configured_methods, contact_model
+from .irregularity import TrackIrregularity
 from .layout import Curve, Irregularity, TrackLayout
 from .linear import LinearBogie, LinearWheelset, eigenvalues_over_speed, linearise
 from .model import BogieModel, RailSupport, Suspension, WheelsetModel
@@ -36,4 +42,6 @@ __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", 
            "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",
            "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength",
            "VehicleModel", "CarBody", "SecondarySuspension", "YawDamper", "BumpStop",
-           "manchester_vehicle1"]
+           "manchester_vehicle1",
+           "TrackIrregularity", "TrackSpectrum", "track_spectrum", "assess", "lowpass", "bandpass",
+           "sliding_mean", "sperling_wz", "sperling_weighting"]

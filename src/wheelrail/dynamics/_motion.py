@@ -83,8 +83,30 @@ _WP_X = WP["x"]
 
 # --------------------------------------------------------------------------- layout
 @njit(cache=True)
+def _hermite(u, j, row, iy):
+    """Catmull–Rom cubic Hermite value and d/du of ``iy[row]`` at ``u`` in [j, j + 1)."""
+    n = iy.shape[1]
+    tt = u - j
+    y0 = iy[row, j]
+    y1 = iy[row, j + 1]
+    m0 = 0.5 * (y1 - (iy[row, j - 1] if j > 0 else 0.0))
+    m1 = 0.5 * ((iy[row, j + 2] if j + 2 < n else 0.0) - y0)
+    t2 = tt * tt
+    t3 = t2 * tt
+    y = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + tt) * m0 + (-2 * t3 + 3 * t2) * y1 \
+        + (t3 - t2) * m1
+    dy = ((6 * t2 - 6 * tt) * y0 + (3 * t2 - 4 * tt + 1) * m0 + (-6 * t2 + 6 * tt) * y1
+          + (3 * t2 - 2 * tt) * m1)
+    return y, dy
+
+
+@njit(cache=True)
 def layout_at(s, ks, kk, kp, kh, is0, ids, iy):
-    """κ [1/m], cant angle φ [rad], lateral irregularity [m] and its slope d/ds at ``s``."""
+    """κ [1/m], cant angle φ [rad], alignment irregularity [m] and its slope d/ds at ``s``.
+
+    ``iy`` (4, n): irregularity samples (alignment, level, cross level, gauge) from
+    ``is0`` with spacing ``ids`` (:meth:`wheelrail.dynamics.TrackIrregularity.kernel_arrays`).
+    """
     i = np.searchsorted(ks, s) - 1
     if i < 0:
         i = 0
@@ -93,23 +115,39 @@ def layout_at(s, ks, kk, kp, kh, is0, ids, iy):
     t = (s - ks[i]) / (ks[i + 1] - ks[i])
     kappa = kk[i] + t * (kk[i + 1] - kk[i])
     phi = kp[i] + t * (kp[i + 1] - kp[i])
-    n = iy.shape[0]
+    n = iy.shape[1]
     u = (s - is0) / ids
     j = int(math.floor(u))
     if j < 0 or j >= n - 1:
         return kappa, phi, 0.0, 0.0
-    tt = u - j
-    y0 = iy[j]
-    y1 = iy[j + 1]
-    m0 = 0.5 * (y1 - (iy[j - 1] if j > 0 else 0.0))
-    m1 = 0.5 * ((iy[j + 2] if j + 2 < n else 0.0) - y0)
-    t2 = tt * tt
-    t3 = t2 * tt
-    y = (2 * t3 - 3 * t2 + 1) * y0 + (t3 - 2 * t2 + tt) * m0 + (-2 * t3 + 3 * t2) * y1 \
-        + (t3 - t2) * m1
-    dy = ((6 * t2 - 6 * tt) * y0 + (3 * t2 - 4 * tt + 1) * m0 + (-6 * t2 + 6 * tt) * y1
-          + (3 * t2 - 2 * tt) * m1) / ids
-    return kappa, phi, y, dy
+    y, dy = _hermite(u, j, 0, iy)
+    return kappa, phi, y, dy / ids
+
+
+@njit(cache=True)
+def rail_offsets(s, is0, ids, iy, out):
+    """Irregular offsets of the rails at ``s``: ``out`` (2, 4) per side (left, right) the
+    lateral offset [m] (to the right), its d/ds, the vertical offset [m] (up), its d/ds.
+
+    Left rail: alignment − gauge/2, level − cross level/2; right rail: alignment +
+    gauge/2, level + cross level/2 (:mod:`wheelrail.dynamics.irregularity`).
+    """
+    out[:] = 0.0
+    n = iy.shape[1]
+    u = (s - is0) / ids
+    j = int(math.floor(u))
+    if j < 0 or j >= n - 1:
+        return
+    a, da = _hermite(u, j, 0, iy)
+    v, dv = _hermite(u, j, 1, iy)
+    c, dc = _hermite(u, j, 2, iy)
+    g, dg = _hermite(u, j, 3, iy)
+    for side in range(2):
+        sg = -0.5 if side == 0 else 0.5
+        out[side, 0] = a + sg * g
+        out[side, 1] = (da + sg * dg) / ids
+        out[side, 2] = v + sg * c
+        out[side, 3] = (dv + sg * dc) / ids
 
 
 @njit(cache=True)
@@ -143,11 +181,13 @@ def wheel_inputs(t, x, P, L, V, s_ref, W):
     rails = P[_G_RAILS] > 0
     r0 = P[_G_R0]
     orl = int(P[_G_OR])
+    ro = np.empty((2, 4))
     for i in range(nw):
         b = 9 * i
         xi = P[NGP + NWP * i + _WP_X]
         si = s_ref + xi
-        kappa, phi, yi, dyi = layout_at(si, ks, kk, kp, kh, is0, ids, iy)
+        kappa, phi, _, _ = layout_at(si, ks, kk, kp, kh, is0, ids, iy)
+        rail_offsets(si, is0, ids, iy, ro)
         om = x[b + 8] if P[_G_SPIN] > 0 else V / r0
         for side in range(2):
             ul = 0.0
@@ -161,14 +201,14 @@ def wheel_inputs(t, x, P, L, V, s_ref, W):
                 uv = x[rb + 4]
                 vv = x[rb + 5]
             w = W[i, side]
-            w[0] = x[b] - yi - ul
-            w[1] = r0 + x[b + 1] - uv
+            w[0] = x[b] - ro[side, 0] - ul
+            w[1] = r0 + x[b + 1] - ro[side, 2] - uv
             w[2] = x[b + 2]
             w[3] = x[b + 3]
             w[4] = V
             w[5] = om
-            w[6] = x[b + 4] - V * dyi - vl
-            w[7] = x[b + 5] - vv
+            w[6] = x[b + 4] - V * ro[side, 1] - vl
+            w[7] = x[b + 5] - V * ro[side, 3] - vv
             w[8] = x[b + 7] + V * kappa
             w[9] = x[b + 6]
 

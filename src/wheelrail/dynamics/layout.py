@@ -1,15 +1,17 @@
-"""Track layout for the time integration: curves with cant and transitions, lateral irregularity.
+"""Track layout for the time integration: curves with cant and transitions, irregularities.
 
 A :class:`TrackLayout` is a cross-section (:class:`wheelrail.Track`: rail
 profiles, gauge, inclination) laid along a line: tangent track, circular
 :class:`Curve` s entered and left through clothoid transitions (curvature and
-cant linear in the distance s along the track), and a lateral alignment
-:class:`Irregularity` of both rails. The equations of motion are written in a
-frame that follows the track centre line (see :mod:`wheelrail.dynamics.model`);
-the layout gives, at every s, the curvature κ [1/m] (positive in a curve to the
-right), the cant angle φ [rad] (positive with the right rail higher; a curve
-to the right raises the left rail, φ < 0) and the lateral displacement of the
-rails [m] with its derivative along s.
+cant linear in the distance s along the track), and irregularities of the rails
+(:class:`~wheelrail.dynamics.TrackIrregularity`: alignment, level, cross level,
+gauge; or a lateral alignment :class:`Irregularity` of both rails). The
+equations of motion are written in a frame that follows the track centre line
+(see :mod:`wheelrail.dynamics.model`); the layout gives, at every s, the
+curvature κ [1/m] (positive in a curve to the right), the cant angle φ [rad]
+(positive with the right rail higher; a curve to the right raises the left
+rail, φ < 0) and the lateral and vertical displacement of each rail [m] with
+their derivatives along s.
 
 References
 ----------
@@ -26,7 +28,8 @@ import numpy as np
 
 from ..errors import InputError
 from ..geometry import Track
-from ._motion import layout_at
+from ._motion import layout_at, rail_offsets
+from .irregularity import TrackIrregularity
 
 __all__ = ["Curve", "Irregularity", "TrackLayout", "as_layout"]
 
@@ -164,8 +167,10 @@ class TrackLayout:
         The cross-section (:class:`wheelrail.Track`).
     curves : sequence of Curve
         Non-overlapping curves (tangent track elsewhere).
-    irregularity : Irregularity or None
-        Lateral alignment of both rails.
+    irregularity : TrackIrregularity or Irregularity or None
+        Irregularities of the rails: alignment, level, cross level and gauge
+        (:class:`~wheelrail.dynamics.TrackIrregularity`), or the lateral
+        alignment of both rails only (:class:`Irregularity`).
     cant_base : float
         Distance between the rails' running circles used to turn cant heights
         into angles [m] (1.5 m for standard gauge).
@@ -191,9 +196,10 @@ class TrackLayout:
                 raise InputError(f"curves overlap: one ends at s = {end!r} m, the next starts at "
                                  f"{b.start!r} m")
         object.__setattr__(self, "curves", curves)
-        if self.irregularity is not None and not isinstance(self.irregularity, Irregularity):
-            raise InputError(f"irregularity must be a wheelrail.dynamics.Irregularity, got "
-                             f"{type(self.irregularity).__name__}")
+        if self.irregularity is not None and not isinstance(self.irregularity,
+                                                            (Irregularity, TrackIrregularity)):
+            raise InputError(f"irregularity must be a wheelrail.dynamics.TrackIrregularity or "
+                             f"Irregularity, got {type(self.irregularity).__name__}")
         if not self.cant_base > 0:
             raise InputError(f"cant_base must be > 0 m, got {self.cant_base!r}")
         s, k, h = [-1e9], [0.0], [0.0]
@@ -214,22 +220,42 @@ class TrackLayout:
                 s[i] = s[i - 1] + 1e-9
         phi = np.arcsin(np.clip(h / self.cant_base, -1.0, 1.0))
         head = np.concatenate([[0.0], np.cumsum(0.5 * (k[1:] + k[:-1]) * np.diff(s))])
-        if self.irregularity is not None:
-            irr = self.irregularity
-            ir = (float(irr.s[0]), float(irr.s[1] - irr.s[0]), irr.lateral.copy())
+        irr = self.irregularity
+        if isinstance(irr, TrackIrregularity):
+            ir = irr.kernel_arrays()
+        elif irr is not None:           # lateral alignment only
+            samples = np.zeros((4, irr.s.size))
+            samples[0] = irr.lateral
+            ir = (float(irr.s[0]), float(irr.s[1] - irr.s[0]), samples)
         else:
-            ir = (0.0, 1.0, np.zeros(4))
+            ir = (0.0, 1.0, np.zeros((4, 4)))
         object.__setattr__(self, "_arrays", (s, k, phi, head, *ir))
 
     @property
     def arrays(self) -> tuple:
-        """(knots s, κ, cant angle, heading, irregularity s0, ds, samples) for the kernels."""
+        """(knots s, κ, cant angle, heading, irregularity s0, ds, samples (4, n)) for the
+        kernels (samples: alignment, level, cross level, gauge)."""
         return self._arrays
 
     def at(self, s):
-        """κ [1/m], cant angle [rad], lateral irregularity [m] and its slope at ``s`` [m]."""
+        """κ [1/m], cant angle [rad], alignment irregularity [m] and its slope at ``s`` [m]."""
         out = np.array([layout_at(float(v), *self._arrays) for v in np.atleast_1d(s)])
         return out[:, 0], out[:, 1], out[:, 2], out[:, 3]
+
+    def rails(self, s) -> np.ndarray:
+        """Irregular offsets of the rails at ``s`` [m] as the equations of motion see them.
+
+        Returns
+        -------
+        ndarray, shape (n, 2, 4)
+            Per side (left, right): lateral offset [m], its d/ds, vertical offset [m],
+            its d/ds (zero without an irregularity).
+        """
+        _, _, _, _, s0, ds, iy = self._arrays
+        out = np.empty((np.atleast_1d(s).size, 2, 4))
+        for k, v in enumerate(np.atleast_1d(s)):
+            rail_offsets(float(v), s0, ds, iy, out[k])
+        return out
 
 
 def as_layout(track) -> TrackLayout:

@@ -286,8 +286,11 @@ class System:
                              W)
                 try:
                     _, th, _ = solve_rigid(self.model.wheelset, self.layout.track,
-                                           np.array([W[i, 0, 0]]), np.array([x[9 * i + 3]]))
-                    x[9 * i + 2] = float(th[0])
+                                           np.array([0.5 * (W[i, 0, 0] + W[i, 1, 0])]),
+                                           np.array([x[9 * i + 3]]))
+                    # plus the roll of the rails' cross level (right rail higher: W[.., 1] lower)
+                    x[9 * i + 2] = float(th[0]) + (W[i, 0, 1] - W[i, 1, 1]) / (
+                        2.0 * self.model.wheelset.e_tape)
                 except WheelrailError:
                     pass
             if 9 * i + 1 not in given:
