@@ -45,15 +45,16 @@ def test_klingel_wavelength_from_free_undamped_wheelset():
     """Klingel (1883): a free conical wheelset oscillates with the wavelength
     2π √(r0 l0/λ) = 8.252 m for r0 = 0.46 m, l0 = 0.75 m, λ = 0.2 (kinematic
     motion, valid at low speed where the inertia is negligible: the 2-DOF
-    theory moves it by 1e-5 at 5 m/s). The rails are nearly knife edges (crown
-    radius 20 mm) so that the contact points stay at ±l0 on the rails (a crown R
-    changes the effective conicity by about Rλ/l0 = 0.5 %).
+    theory moves it by 1e-5 at 5 m/s). The rails of ``cone_track`` are nearly
+    knife edges (crown radius 1 mm) so that the contact points stay at ±l0 on the
+    rails (a crown R changes the effective conicity by about Rλ/l0: 0.03 %; the
+    300 mm crown it once had gave −3.7 %, a 20 mm one −0.25 %).
 
     The wheelset's roll moves its wheels at rail level by r0 θ; the conicity that
     relates the rolling-radius difference to that lateral shift at rail level is
     exactly λ, and the shift at rail level is what the lateral creepage sees —
     so the time-domain wheelset with roll must give Klingel's wavelength."""
-    ws, tr = cone_track(LAM, R0, L0, crown_radius=0.02)
+    ws, tr = cone_track(LAM, R0, L0)
     model = WheelsetModel(ws, 1813.0, (1120.0, 100.0, 1120.0), primary=Suspension(),
                           spin="fixed")
     V = 5.0
@@ -63,7 +64,7 @@ def test_klingel_wavelength_from_free_undamped_wheelset():
     wavelength = V * periods
     ref = klingel_wavelength(R0, L0, LAM)
     assert ref == pytest.approx(8.2523, abs=1e-4)
-    np.testing.assert_allclose(wavelength, ref, rtol=0.01)
+    np.testing.assert_allclose(wavelength, ref, rtol=1e-3)
     # the motion is a kinematic oscillation: no flange contact, amplitude kept (undamped)
     y = res.state("ws0.y")
     assert 0.9e-3 < np.max(np.abs(y[res.t > 1.5])) < 1.2e-3
@@ -119,14 +120,14 @@ def test_pure_rolling_offset_in_a_600_m_curve():
     As in the Klingel test, the cone's shift is the wheelset's shift at rail level,
     y + r0 θ (the roll θ moves the wheels at the contact by r0 θ; the rolling
     radii follow the cone there with the slope λ exactly)."""
-    ws, tr = cone_track(LAM, R0, L0, crown_radius=0.02)
+    ws, tr = cone_track(LAM, R0, L0)
     model = WheelsetModel(ws, 1813.0, (1120.0, 100.0, 1120.0), primary=Suspension())
     radius = 600.0
     ref = R0 * L0 / (LAM * radius)
     for direction, outward in (("right", -1.0), ("left", 1.0)):
         r = steady_curving(model, tr, radius, 5.0, "hertz", "fastsim", direction=direction)
         y, roll = float(r.y[0]), float(r.state[r.names.index("ws0.roll")])
-        assert outward * (y + R0 * roll) == pytest.approx(ref, rel=0.01)
+        assert outward * (y + R0 * roll) == pytest.approx(ref, rel=2e-3)
         rr = PATCH_FIELDS.index("rolling_radius")
         radii = {s: r.patches[0, k, 0, rr] for k, s in enumerate(("left", "right"))}
         outer, inner = (radii["left"], radii["right"]) if direction == "right" else (

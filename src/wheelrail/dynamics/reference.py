@@ -1,10 +1,10 @@
 """Reference geometries and closed forms for checking the dynamics.
 
 * :func:`cone_track` — a conical wheelset (rolling radius r0 − λ y, no flange)
-  on rails with a circular crown, laid so that the contact points lie ``l0``
-  from the centre: the geometry of Klingel's kinematic oscillation and of the
-  linear wheelset theory (constant conicity, negligible gravitational
-  stiffness);
+  on nearly knife-edge rails (a 1 mm crown), laid so that the contact points lie
+  ``l0`` from the centre: the geometry of Klingel's kinematic oscillation and of
+  the linear wheelset theory (constant conicity, contact points fixed on the
+  rails, negligible gravitational stiffness);
 * :func:`klingel_wavelength` — Klingel's kinematic wavelength
   2π √(r0 l0 / λ) (Klingel 1883; Wickens 2003, §2.2).
 
@@ -45,7 +45,7 @@ def klingel_wavelength(nominal_radius: float, half_distance: float, conicity: fl
 
 
 def cone_track(conicity: float = 0.2, nominal_radius: float = 0.46, half_distance: float = 0.75,
-               crown_radius: float = 0.3, flange_back: float = 1.36):
+               crown_radius: float = 0.001, flange_back: float = 1.36):
     """A conical wheelset and a track on which it touches at ±``half_distance`` when centred.
 
     The wheel profile is the cone z = λ y (rolling radius r0 − λ y, y towards the
@@ -54,6 +54,13 @@ def cone_track(conicity: float = 0.2, nominal_radius: float = 0.46, half_distanc
     profile's origin (the rail given in its inclined position), so that a centred
     wheelset touches each rail there, on its tape circle; the gauge is set so that
     this point lies ``half_distance`` from the centre line.
+
+    The crown radius R sets how far the contact point moves on the rail when the
+    wheelset rolls by θ (R θ, with θ ≈ λ y / l0 for a shift y): the effective
+    conicity is λ (1 + O(R λ / l0)). The default R = 1 mm makes the rail a knife
+    edge to 0.03 % (Klingel's wavelength within 0.01 %, the pure-rolling offset
+    in a curve within 0.03 %); a railway crown of 300 mm would change them by
+    −3.7 % and −7.3 %.
 
     Parameters
     ----------
@@ -64,7 +71,7 @@ def cone_track(conicity: float = 0.2, nominal_radius: float = 0.46, half_distanc
     half_distance : float
         l0 [m]: half the distance between the contact points at the centred position.
     crown_radius : float
-        Radius of the rail crown [m].
+        Radius of the rail crown [m] (default 1 mm: nearly a knife edge).
     flange_back : float
         Distance between the wheels' inner faces [m] (the tape circle lies
         ``half_distance − flange_back/2`` from the inner face).
