@@ -1,17 +1,22 @@
-"""``wheelrail dynamics CASE.toml --out DIR``: a wheelset or bogie running along a track.
+"""``wheelrail dynamics CASE.toml --out DIR``: a wheelset, bogie or whole vehicle on a track.
 
 Reads a case file with a ``[model]``, an optional ``[track]``, ``[method]``,
-``[friction]`` and ``[simulation]`` table (see :func:`read_dynamics_case` and
-``docs/examples/dynamics_wheelset.toml``), runs
-:func:`wheelrail.dynamics.simulate` with a progress bar and writes to DIR:
+``[friction]`` and ``[simulation]`` table (see :func:`read_dynamics_case`,
+``docs/examples/dynamics_wheelset.toml`` and ``docs/examples/dynamics_vehicle.toml``),
+runs :func:`wheelrail.dynamics.simulate` with a progress bar, assesses the run
+(:func:`wheelrail.dynamics.assess`) and writes to DIR:
 
 * ``result.nc`` — the time histories (``SimulationResult.dataset``: states,
   per-patch forces, creepages, contact angles, Y/Q, wear number);
 * ``summary.json`` — the settings, maxima of Y/Q and of the lateral force,
-  contact-configuration changes, CPU time and real-time factor;
+  contact-configuration changes, CPU time, real-time factor and the assessment's verdicts;
+* ``assessment.nc`` and ``assessment.csv`` — EN 14363 (Y/Q)2m and (ΣY)2m with their
+  limits, Y and Q extremes, wear number per wheel; car-body accelerations and
+  Sperling's Wz for a vehicle;
 * ``lateral.png`` (lateral shift and yaw of every wheelset), ``forces.png``
   (Y/Q and the vertical load of every wheel) and ``contact.png`` (the contact
-  points on the wheel profiles over time) — unless ``--no-figures``.
+  points on the wheel profiles over time), ``assessment.png`` and, for a vehicle,
+  ``carbody.png`` — unless ``--no-figures``.
 """
 
 from __future__ import annotations
@@ -19,11 +24,13 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-HELP = "wheelset / bogie dynamics of a [model] case file: NetCDF + figures"
+from ._vehicle_case import VEHICLE_KEYS, read_irregularity, read_vehicle
+
+HELP = "wheelset / bogie / vehicle dynamics of a [model] case file: NetCDF, assessment, figures"
 
 _MODEL_KEYS = ("kind", "wheel", "rail", "gauge", "inclination", "nominal_radius", "mass",
                "inertia", "axle_load", "spin", "primary", "secondary", "rail_support",
-               "frame_mass", "frame_inertia", "semi_wheelbase")
+               "frame_mass", "frame_inertia", "semi_wheelbase") + VEHICLE_KEYS
 _SUSPENSION_KEYS = ("kx", "ky", "kz", "cx", "cy", "cz", "half_spacing")
 _RAIL_KEYS = ("lateral_stiffness", "vertical_stiffness", "lateral_damping", "vertical_damping",
               "mass")
@@ -101,13 +108,30 @@ def _suspension(r, table, tbl):
 
 def _read_model(r, data, base):
     from .. import dynamics as dyn
+    from .. import profiles
     from ..geometry import Track, Wheelset
 
     m = _table(r, data, "model", required=True)
     r.unknown("model", m, _MODEL_KEYS)
     kind = r.string("model", m, "kind", "wheelset")
-    if kind not in ("wheelset", "bogie"):
-        r.fail("model", "kind", f"must be 'wheelset' or 'bogie', got {kind!r}")
+    if kind not in ("wheelset", "bogie", "vehicle"):
+        r.fail("model", "kind", f"must be 'wheelset', 'bogie' or 'vehicle', got {kind!r}")
+    if kind != "vehicle":
+        for k in VEHICLE_KEYS:
+            if k in m:
+                r.fail("model", k, "belongs to a vehicle (kind = 'vehicle')")
+    rail_support = None
+    if "rail_support" in m:
+        rs = m["rail_support"]
+        if not isinstance(rs, Mapping):
+            r.fail("model.rail_support", None, f"must be a table, got {rs!r}")
+        r.unknown("model.rail_support", rs, _RAIL_KEYS)
+        vals = {k: _numbers(r, "model.rail_support", rs, k, 2) for k in _RAIL_KEYS if k in rs}
+        rail_support = _construct(r, "model.rail_support", lambda: dyn.RailSupport(**vals))
+    if kind == "vehicle" and "vehicle" in m:          # a built-in vehicle: its own profiles
+        model = read_vehicle(r, m, None, rail_support, _numbers)
+        track = Track(profiles.load("60E1"), gauge=1.435, inclination=1 / 40)
+        return model, track
     wheel = _profile(r, base, m, "wheel", "S1002")
     rail = _profile(r, base, m, "rail", "60E1")
     ws_kw = {"nominal_radius": r.number("model", m, "nominal_radius", positive=True)} if (
@@ -116,32 +140,37 @@ def _read_model(r, data, base):
     tr_kw = {k: r.number("model", m, k, positive=k == "gauge", lo=None if k == "gauge" else 0.0)
              for k in ("gauge", "inclination") if k in m}
     track = _construct(r, "model", lambda: Track(rail, **tr_kw))
-    common = {"wheelset": ws, "mass": r.number("model", m, "mass", positive=True),
-              "inertia": _numbers(r, "model", m, "inertia", 3),
-              "primary": _suspension(r, "model.primary", m.get("primary", {})),
-              "spin": r.string("model", m, "spin", "free")}
-    if "axle_load" in m:
-        common["axle_load"] = r.number("model", m, "axle_load", positive=True)
-    if "rail_support" in m:
-        rs = m["rail_support"]
-        if not isinstance(rs, Mapping):
-            r.fail("model.rail_support", None, f"must be a table, got {rs!r}")
-        r.unknown("model.rail_support", rs, _RAIL_KEYS)
-        vals = {k: _numbers(r, "model.rail_support", rs, k, 2) for k in _RAIL_KEYS if k in rs}
-        common["rail"] = _construct(r, "model.rail_support", lambda: dyn.RailSupport(**vals))
+
+    def common():
+        c = {"wheelset": ws, "mass": r.number("model", m, "mass", positive=True),
+             "inertia": _numbers(r, "model", m, "inertia", 3),
+             "primary": _suspension(r, "model.primary", m.get("primary", {})),
+             "spin": r.string("model", m, "spin", "free")}
+        if "axle_load" in m:
+            c["axle_load"] = r.number("model", m, "axle_load", positive=True)
+        if rail_support is not None:
+            c["rail"] = rail_support
+        return c
+
+    def bogie():
+        return dict(common(), frame_mass=r.number("model", m, "frame_mass", positive=True),
+                    frame_inertia=_numbers(r, "model", m, "frame_inertia", 3),
+                    semi_wheelbase=r.number("model", m, "semi_wheelbase", positive=True))
+
     if kind == "wheelset":
         for k in ("secondary", "frame_mass", "frame_inertia", "semi_wheelbase"):
             if k in m:
                 r.fail("model", k, "belongs to a bogie (kind = 'bogie')")
-        return _construct(r, "model", lambda: dyn.WheelsetModel(**common)), track
-    bogie = dict(common, frame_mass=r.number("model", m, "frame_mass", positive=True),
-                 frame_inertia=_numbers(r, "model", m, "frame_inertia", 3),
-                 semi_wheelbase=r.number("model", m, "semi_wheelbase", positive=True),
-                 secondary=_suspension(r, "model.secondary", m.get("secondary", {})))
-    return _construct(r, "model", lambda: dyn.BogieModel(**bogie)), track
+        return _construct(r, "model", lambda: dyn.WheelsetModel(**common())), track
+    if kind == "vehicle":
+        if "axle_load" in m:
+            r.fail("model", "axle_load", "a vehicle's axle load follows from its masses")
+        return read_vehicle(r, m, bogie, rail_support, _numbers), track
+    kw = dict(bogie(), secondary=_suspension(r, "model.secondary", m.get("secondary", {})))
+    return _construct(r, "model", lambda: dyn.BogieModel(**kw)), track
 
 
-def _read_layout(r, data, track):
+def _read_layout(r, data, track, base):
     from .. import dynamics as dyn
 
     t = _table(r, data, "track")
@@ -165,12 +194,16 @@ def _read_layout(r, data, track):
         kind = r.string("track.irregularity", g, "kind", "sine")
         keys = {"sine": ("amplitude", "wavelength", "start", "cycles", "step"),
                 "bump": ("amplitude", "length", "start", "step")}
-        if kind not in keys:
-            r.fail("track.irregularity", "kind", f"must be 'sine' or 'bump', got {kind!r}")
-        r.unknown("track.irregularity", g, ("kind", *keys[kind]))
-        vals = {k: r.number("track.irregularity", g, k) for k in keys[kind] if k in g}
-        make = dyn.Irregularity.sine if kind == "sine" else dyn.Irregularity.bump
-        irr = _construct(r, "track.irregularity", lambda: make(**vals))
+        if kind in ("file", "psd"):
+            irr = read_irregularity(r, g, base)
+        elif kind not in keys:
+            r.fail("track.irregularity", "kind",
+                   f"must be 'sine', 'bump', 'file' or 'psd', got {kind!r}")
+        else:
+            r.unknown("track.irregularity", g, ("kind", *keys[kind]))
+            vals = {k: r.number("track.irregularity", g, k) for k in keys[kind] if k in g}
+            make = dyn.Irregularity.sine if kind == "sine" else dyn.Irregularity.bump
+            irr = _construct(r, "track.irregularity", lambda: make(**vals))
     extra = {"cant_base": r.number("track", t, "cant_base", positive=True)} if (
         "cant_base" in t) else {}
     return _construct(r, "track", lambda: dyn.TrackLayout(track, curves=tuple(curves),
@@ -182,7 +215,15 @@ def read_dynamics_case(path_or_str):
 
     Tables::
 
-        [model]                      # kind = "wheelset" (default) or "bogie"
+        [model]                      # kind = "wheelset" (default), "bogie" or "vehicle"
+                                     # vehicle: vehicle = "manchester1" (built in; with
+                                     #   spin, rail_support, [model.yaw_damper]) or the
+                                     #   bogie keys + [model.carbody] (mass, inertia,
+                                     #   height) + [model.secondary] (kx ... cz,
+                                     #   half_spacing, height, yaw_stiffness, anti_roll,
+                                     #   [..yaw_damper] damping/stiffness/half_spacing,
+                                     #   [..bumpstop] displacement/force lists),
+                                     #   bogie_semi_spacing, frame_height, primary_height
         wheel = "S1002"              # built-in name or a profile file (relative to the case)
         rail = "60E1"
         mass = 1813.0                # [kg] (each wheelset)
@@ -192,6 +233,8 @@ def read_dynamics_case(path_or_str):
         [model.rail_support]         # optional flexible rails: (k1, k2) pairs, ...
         [track]                      # optional: curves = [{radius, start, length, transition, cant,
                                      #   direction}], irregularity = {kind = "sine", amplitude, ...}
+                                     #   or {kind = "psd", spectrum = "erri-low", length, seed}
+                                     #   or {kind = "file", path = "measured.csv", units = "mm"}
         [method]                     # normal, tangential and [method.<name>] options
         [friction]
         mu = 0.3
@@ -218,7 +261,7 @@ def read_dynamics_case(path_or_str):
     r.unknown("", data, ("model", "track", "method", "friction", "simulation"))
     base = Path(source).parent if Path(str(source)).exists() else Path.cwd()
     model, track = _read_model(r, data, base)
-    layout = _read_layout(r, data, track)
+    layout = _read_layout(r, data, track, base)
     normal, tangential, _ = read_methods(r, _table(r, data, "method"))
     mu = read_friction(r, data)
     s = _table(r, data, "simulation", required=True)
@@ -303,6 +346,54 @@ def _figures(ds, out):
     return written
 
 
+def _vehicle_figures(ds, table, out):
+    """``carbody.png`` (the car body's lateral shift, yaw and bounce) when the run has a car
+    body, and ``assessment.png`` ((Y/Q)2m and (ΣY)2m along the track against their limits)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    written = []
+    if "body_y" in ds:
+        t = ds["time"].values
+        fig, ax = plt.subplots(3, 1, sharex=True, figsize=(7, 6))
+        for a, (v, scale, label) in zip(ax, (("body_y", 1e3, "lateral shift [mm]"),
+                                             ("body_yaw", 1e3, "yaw [mrad]"),
+                                             ("body_z", 1e3, "bounce [mm]"))):
+            a.plot(t, ds[v].values * scale)
+            a.set_ylabel(label)
+        ax[0].set_title("car body (relative to the track-following frame)")
+        ax[-1].set_xlabel("time [s]")
+        fig.tight_layout()
+        fig.savefig(out / "carbody.png", dpi=120)
+        plt.close(fig)
+        written.append("carbody.png")
+    if table is not None:
+        d = table["distance"].values
+        fig, ax = plt.subplots(2, 1, sharex=True, figsize=(7, 5.5))
+        for i in table["wheelset"].values:
+            for side in table["side"].values:
+                ax[0].plot(d, table["Y_over_Q_2m"].sel(wheelset=i, side=side),
+                           label=f"ws{i} {side}")
+            ax[1].plot(d, table["sum_Y_2m"].sel(wheelset=i) * 1e-3, label=f"ws{i}")
+        ax[0].axhline(float(table["Y_over_Q_limit"]), color="k", ls="--", lw=1)
+        ax[0].axhline(-float(table["Y_over_Q_limit"]), color="k", ls="--", lw=1)
+        lim = float(table["sum_Y_limit"].min()) * 1e-3
+        ax[1].axhline(lim, color="k", ls="--", lw=1)
+        ax[1].axhline(-lim, color="k", ls="--", lw=1)
+        ax[0].set_ylabel("(Y/Q) 2 m [-]")
+        ax[1].set_ylabel("(ΣY) 2 m [kN]")
+        ax[1].set_xlabel("distance [m]")
+        ax[0].legend(fontsize="x-small", ncol=4)
+        ax[0].set_title("EN 14363 sliding means; dashed: limits (0.8, Prud'homme)")
+        fig.tight_layout()
+        fig.savefig(out / "assessment.png", dpi=120)
+        plt.close(fig)
+        written.append("assessment.png")
+    return written
+
+
 # --------------------------------------------------------------------------- run
 def run(args, console) -> int:
     import json
@@ -345,10 +436,14 @@ def run(args, console) -> int:
                "max_lateral_shift_m": float(np.max(np.abs(ds["y"].values))),
                "contact_changes": len(res.events),
                "units": {"time": "s", "y": "m", "yaw": "rad", "Fn": "N", "Y_over_Q": "1"}}
-    (out / "summary.json").write_text(json.dumps(summary, indent=2))
     written = ["result.nc", "summary.json"]
+    table = _assessment(res, out, console, summary)
+    if table is not None:
+        written += ["assessment.nc", "assessment.csv"]
+    (out / "summary.json").write_text(json.dumps(summary, indent=2))
     if not args.no_figures:
         written += _figures(ds, out)
+        written += _vehicle_figures(ds, table, out)
     console.print(f"{summary['simulated_s']:.3f} s simulated in {summary['cpu_time_s']:.2f} s "
                   f"CPU (real-time factor {summary['real_time_factor']:.2f}); max |Y/Q| = "
                   f"{summary['max_Y_over_Q']:.3f}, max |y| = "
@@ -358,6 +453,57 @@ def run(args, console) -> int:
 
     console.print(f"wrote {', '.join(written)} to {esc(out)}")
     return 0
+
+
+def _assessment(res, out, console, summary):
+    """EN 14363 / Sperling assessment of the run (:func:`wheelrail.dynamics.assess`): writes
+    ``assessment.nc`` and ``assessment.csv`` (one row per wheel), prints the table and adds
+    its verdicts to ``summary``; ``None`` (with a note) when the run is too short for it."""
+    import numpy as np
+
+    from .. import dynamics as dyn
+    from ..errors import InputError
+    from ._output import esc
+
+    try:
+        table = dyn.assess(res)
+    except InputError as exc:
+        console.print(f"no assessment: {esc(str(exc))}")
+        return None
+    table.to_netcdf(out / "assessment.nc")
+    rows = ["wheelset,side,Y_over_Q_2m_max,Y_over_Q_limit,sum_Y_2m_max_N,sum_Y_limit_N,"
+            "Y_max_N,Q_max_N,Q_min_N,wear_number_mean_N"]
+    lines = []
+    for i in table["wheelset"].values:
+        for side in table["side"].values:
+            w = {"wheelset": i}
+            ws = {"wheelset": i, "side": side}
+            vals = (float(table["Y_over_Q_2m_max"].sel(**ws)), float(table["Y_over_Q_limit"]),
+                    float(table["sum_Y_2m_max"].sel(**w)), float(table["sum_Y_limit"].sel(**w)),
+                    float(table["Y_max"].sel(**ws)), float(table["Q_max"].sel(**ws)),
+                    float(table["Q_min"].sel(**ws)), float(table["wear_number_mean"].sel(**ws)))
+            rows.append(f"{i},{side}," + ",".join(f"{v:.6g}" for v in vals))
+            lines.append(f"  ws{i} {side:5s}  (Y/Q)2m {vals[0]:6.3f} / {vals[1]:.2f}   "
+                         f"(ΣY)2m {vals[2] / 1e3:7.2f} / {vals[3] / 1e3:6.2f} kN   "
+                         f"Y max {vals[4] / 1e3:6.2f} kN   Q {vals[6] / 1e3:6.1f}–"
+                         f"{vals[5] / 1e3:6.1f} kN   Tγ {vals[7]:6.1f} N")
+    (out / "assessment.csv").write_text("\n".join(rows) + "\n")
+    ok_yq = bool(np.all(table["Y_over_Q_ok"].values))
+    ok_sy = bool(np.all(table["sum_Y_ok"].values))
+    summary["assessment"] = {"Y_over_Q_2m_ok": ok_yq, "sum_Y_2m_ok": ok_sy}
+    console.print("assessment (EN 14363 2 m sliding means of the low-passed forces; "
+                  "limits after the slash):")
+    for line in lines:
+        console.print(esc(line))
+    if "sperling_lateral" in table:
+        wl, wv = float(table["sperling_lateral"]), float(table["sperling_vertical"])
+        summary["assessment"].update(sperling_lateral=wl, sperling_vertical=wv)
+        console.print(f"  car body: Sperling Wz lateral {wl:.2f}, vertical {wv:.2f}; "
+                      f"acceleration rms lateral {float(table['body_lateral_acc_rms']):.3f}, "
+                      f"vertical {float(table['body_vertical_acc_rms']):.3f} m/s²")
+    console.print(f"  running safety: (Y/Q)2m {'within' if ok_yq else 'BEYOND'} the limit, "
+                  f"(ΣY)2m {'within' if ok_sy else 'BEYOND'} Prud'homme's limit")
+    return table
 
 
 def _kernels_cached() -> bool:
