@@ -80,7 +80,8 @@ with _resources.limit(None), _resources.time_limit_set(None):
         wr.solve_normal(g, h, hc.materials, Fn=7500.0)
     elif kind == "fe":
         from wheelrail.cli.fe import _steps_before_build, case_from_toml, estimate, seconds_estimate
-        from wheelrail.fe import build_model, solve
+        from wheelrail.fe import solve
+        from wheelrail.fe.model import build_model
         from wheelrail.fe.model import mesh_size_estimate
         import os, tempfile
         fd, path = tempfile.mkstemp(suffix=".toml")

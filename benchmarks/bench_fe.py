@@ -24,7 +24,8 @@ import time
 import numpy as np
 
 import wheelrail as wr
-from wheelrail.fe import RollingCase, build_model
+from wheelrail.fe import RollingCase
+from wheelrail.fe.model import build_model
 from wheelrail.fe.rolling import _speed_profile, stable_time_step
 
 

@@ -236,7 +236,8 @@ def with_hardening(case, hardening):
     Q (1 − e^(−b p)); name "kinematic")."""
     if hardening == "r900a":
         return "plastic", case
-    from wheelrail.fe import R900A_HARDENING, r900a
+    from wheelrail.fe import r900a
+    from wheelrail.fe.materials import R900A_HARDENING
 
     if hardening == "kinematic":
         h = R900A_HARDENING

@@ -32,7 +32,7 @@ import time
 import numpy as np
 
 import wheelrail as wr
-from wheelrail.fe.transition_analysis import onset_travel
+from wheelrail.fe.transition.analysis import onset_travel
 
 
 def build_case(kw):
@@ -47,7 +47,7 @@ def build_case(kw):
         if val is not None:
             susp.update({f"{key}_stiffness": float(val[0]), f"{key}_damping": float(val[1])})
     if susp:
-        kw["suspension"] = wr.fe.Suspension(**susp)
+        kw["suspension"] = wr.fe.WheelSuspension(**susp)
     case = wr.fe.seed004_case(**kw)
     if track:                                 # changes to the size's own track structure
         case = case.replace(track=dataclasses.replace(case.track, **track))
@@ -123,9 +123,9 @@ def save_results(run, name, directory=None):
 def from_restart(kw, path, results=None):
     """Report (and save) the outputs of a run up to its last restart file (a run stopped
     before its end): the CPU time is not stored there (NaN)."""
-    patches, history, prog = wr.fe.read_transition_restart(path)
+    patches, history, prog = wr.fe.transition.read_transition_restart(path)
     case = build_case(kw)
-    model = wr.fe.build_transition_model(case)
+    model = wr.fe.transition.build_transition_model(case)
     est = wr.fe.transition.transition_time_estimate(model)
     nan = float("nan")
     info = {"time_step": est["time_step"], "steps": prog["step"] + 1, "cpu_s": nan,
@@ -151,7 +151,7 @@ def one(kw, save=None, figure=None, results=None, restart=None, restart_file=Non
         restart_every=0, stop=None):
     case = build_case(kw)
     t0 = time.process_time()
-    model = wr.fe.build_transition_model(case)
+    model = wr.fe.transition.build_transition_model(case)
     t_build = time.process_time() - t0
     load0 = os.getloadavg()[0]
     r = wr.fe.run_transition(case, model=model, progress=True, restart=restart,
@@ -215,7 +215,7 @@ def main():
     ap.add_argument("--roll", type=float, nargs=2, metavar=("K", "C"),
                     help="the wheel's roll restraint about its heading [N m/rad] "
                          "[N m s/rad] (default: no roll; the half-axle's bending: "
-                         "Suspension.half_axle_roll_stiffness() = 1.44e7)")
+                         "WheelSuspension.half_axle_roll_stiffness() = 1.44e7)")
     ap.add_argument("--track", nargs="+", default=[], metavar="FIELD=VALUE",
                     help="TrackStructure fields with a number, changed from the case's own, "
                          "e.g. n_sleepers=4 pad_shear_stiffness=2.8e9")

@@ -11,7 +11,7 @@ import os, sys, time, resource, json
 t0c, t0w = time.process_time(), time.perf_counter()
 import wheelrail as wr
 from wheelrail.fe.transition import run_transition, transition_time_estimate
-from wheelrail.fe.transition_model import build_transition_model
+from wheelrail.fe.transition.model import build_transition_model
 import numba
 
 RES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "results", "fe_transition")

@@ -1,4 +1,4 @@
-"""Surface-wave speed on the transition model's rail (wheelrail.fe.transition_wave).
+"""Surface-wave speed on the transition model's rail (wheelrail.fe.transition.wave).
 
 A Ricker force pulse strikes the running surface of the one- to two-point transition case's
 rail and track mesh (the wheel held and left out); the pulse's arrivals along the surface
@@ -28,8 +28,8 @@ import time
 import numpy as np
 
 from wheelrail.fe.transition import seed004_case
-from wheelrail.fe.transition_model import build_transition_model
-from wheelrail.fe.transition_wave import (
+from wheelrail.fe.transition.model import build_transition_model
+from wheelrail.fe.transition.wave import (
     elastic_wave_speeds,
     pulse_arrivals,
     pulse_phase,

@@ -3,7 +3,7 @@
 For runs of ``bench_fe_transition.py --results NAME`` (``results/fe_transition/NAME_*``)
 prints, over travel windows after the settle, the mean and scatter of the total vertical
 contact force against the static wheel load Q, the part the prescribed climb of the axle
-needs by the rigid profiles (:func:`wheelrail.fe.transition_analysis.climb_load`: the
+needs by the rigid profiles (:func:`wheelrail.fe.transition.analysis.climb_load`: the
 unsprung mass's M_u (V sin α)² z″ and the primary suspension), and the remainder. With
 ``--fe-climb FROM TO DEG`` it also fits a polynomial of degree DEG in time to the FE axle's
 own height w over that travel (the 180-220 Hz unsprung-mass mode averaged out) and takes
@@ -28,7 +28,7 @@ import numpy as np
 import xarray as xr
 
 import wheelrail as wr
-from wheelrail.fe.transition_analysis import climb_load
+from wheelrail.fe.transition.analysis import climb_load
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "benchmarks", "results", "fe_transition")
 

@@ -25,8 +25,8 @@ import numpy as np
 import scipy.linalg as sla
 
 import wheelrail as wr
-from wheelrail.fe.transition import _static_approach
-from wheelrail.fe.transition_model import build_transition_model
+from wheelrail.fe.transition.run import _static_approach
+from wheelrail.fe.transition.model import build_transition_model
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "benchmarks", "results", "fe_transition")
 EI = 2.1e11 * 2.346e-5          # 54E1, EN 13674-1

@@ -5,9 +5,9 @@ the velocities of one rail surface line (the tread contact's or the flange conta
 step in ``results/fe_transition/NAME_wave.npz``. This script cuts that record into windows
 of travel, takes the contact patch's position from ``NAME_patches.nc`` as the source, and
 measures the phase velocity of the motion travelling away from it over frequency bands
-(:func:`wheelrail.fe.phase_velocity`: the slope of the Fourier phase over the stations).
+(:func:`wheelrail.fe.transition.phase_velocity`: the slope of the Fourier phase over the stations).
 For comparison it measures the same bands on a clean Ricker pulse struck at the same line
-of the same mesh (:func:`wheelrail.fe.rail_pulse`) and prints the Rayleigh speed of the
+of the same mesh (:func:`wheelrail.fe.transition.rail_pulse`) and prints the Rayleigh speed of the
 steel. Usage::
 
     python benchmarks/bench_fe_transition.py --aoa 0.025 --travel 0.13 \
@@ -30,9 +30,9 @@ import xarray as xr
 
 from wheelrail.errors import InputError
 from wheelrail.fe.transition import seed004_case
-from wheelrail.fe.transition_analysis import onset_travel
-from wheelrail.fe.transition_model import build_transition_model
-from wheelrail.fe.transition_wave import elastic_wave_speeds, phase_velocity, rail_pulse
+from wheelrail.fe.transition.analysis import onset_travel
+from wheelrail.fe.transition.model import build_transition_model
+from wheelrail.fe.transition.wave import elastic_wave_speeds, phase_velocity, rail_pulse
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "benchmarks", "results", "fe_transition")
 BANDS = ((10e3, 20e3), (20e3, 40e3), (40e3, 70e3), (60e3, 100e3))

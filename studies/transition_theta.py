@@ -5,7 +5,7 @@ FROM TO --results NAME`` (``results/fe_transition/NAME_fields.nc``) and prints, 
 windows before and after the onset of two-point contact, the medians of the tread patch's
 θ as the angle of its mean shear stress (the patch histories' ``theta``), as the
 area-weighted mean of the nodes' signed angles and as the mean of their absolute angles
-(:func:`wheelrail.fe.transition_analysis.shear_direction`), with the patch's contact angle
+(:func:`wheelrail.fe.transition.analysis.shear_direction`), with the patch's contact angle
 and forces.
 
 ``jump NAME ...`` resolves the tread θ in time around the onset from a run with fine outputs
@@ -14,7 +14,7 @@ medians over bins of ``--bin`` seconds of the flange and tread normal forces, th
 its adhering fraction and its utilisation F_long/(μFn), and the first times at which a
 running median of θ over one bin reaches 30°, 40°, ... 70°; where the run recorded its
 surface fields, also the tread patch's mean micro-slip along and across the rail and its
-direction (:func:`wheelrail.fe.transition_analysis.slip_direction`); where it recorded the
+direction (:func:`wheelrail.fe.transition.analysis.slip_direction`); where it recorded the
 rail's tread line (``--wave TRAVEL TIME tread``), the rail head's lateral velocity under the
 wheel over the approach speed V sin α; for a run at a prescribed rolling (``--set
 creepage=``), the rigid longitudinal creepage at the tread's contact angle before the onset.
@@ -82,8 +82,8 @@ from transition_crosscheck import module_jump_shift
 
 import wheelrail as wr
 from wheelrail.contact.wheelrail import WheelRailPosition, solve_wheelrail
-from wheelrail.fe.transition_analysis import onset_travel, shear_direction, slip_direction
-from wheelrail.fe.transition_model import flange_contact_offset
+from wheelrail.fe.transition.analysis import onset_travel, shear_direction, slip_direction
+from wheelrail.fe.transition.model import flange_contact_offset
 
 RESULTS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "benchmarks", "results", "fe_transition")
 S1002 = wr.profiles.load("S1002")
@@ -316,7 +316,7 @@ def rigid_creepage(case, angle_deg):
     y_flange = flange_contact_offset(ref)
 
     def radius(y_off, yaw):
-        c = wr.fe.yawed_contact(ref, y_off, yaw)
+        c = wr.fe.transition.yawed_contact(ref, y_off, yaw)
         return c["z_off"] + ref.radius - c["tread"]["z"], np.degrees(c["tread"]["angle"])
 
     r0, _ = radius(y_flange - ref.flange_clearance, 0.0)

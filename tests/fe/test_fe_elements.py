@@ -132,7 +132,7 @@ def test_quality_check_rejects_inverted_element():
     nodes[6] = [-0.01, -0.01, -0.01]                   # fold a corner through the element
     body = Body("test", nodes, conn, (2, 2, 2), (None, None, None), np.zeros((1, 1, 4), int),
                 np.zeros(0, int))
-    from wheelrail.fe import MeshQualityError
+    from wheelrail.fe.mesh import MeshQualityError
     with pytest.raises(MeshQualityError, match="non-positive Jacobian"):
         check_quality(body)
 

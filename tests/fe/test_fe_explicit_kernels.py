@@ -185,7 +185,8 @@ def test_creep_curve_reports_the_steady_window_of_each_point():
     its definition (from the end of the speed ramp plus 4 a, at most the last quarter of
     the travel, to the end)."""
     import wheelrail as wr
-    from wheelrail.fe import RollingCase, build_model, creep_curve, solve
+    from wheelrail.fe import RollingCase, creep_curve, solve
+    from wheelrail.fe.model import build_model
     from wheelrail.fe.rolling import steady_window
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")

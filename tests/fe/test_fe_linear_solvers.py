@@ -20,7 +20,7 @@ from wheelrail.fe import _newton as nw
 
 FLAT_WHEEL = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
 #: a 2 mm mesh, 7.5 kN on 60E1, two implicit steps of 72 µs (tests/reference/test_fe_rolling.py)
-IMPLICIT = dict(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0,
+IMPLICIT = dict(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0,
                 mu=0.2, mesh_size=2e-3, element="reduced", mass_scaling=1.0, depth=3,
                 half_width=3, half_length=3, travel=0.0015, creepage=(7e-4, 0.0, 0.0))
 

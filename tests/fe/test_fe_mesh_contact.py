@@ -5,7 +5,8 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.errors import InputError
-from wheelrail.fe import RollingCase, build_model
+from wheelrail.fe import RollingCase
+from wheelrail.fe.model import build_model
 from wheelrail.fe import _kernels as K
 from wheelrail.fe.mesh import graded_axis
 
@@ -153,7 +154,8 @@ def test_real_profiles_s1002_on_inclined_60e1_mesh():
 def test_saturation_creepage_closed_form_and_warning():
     """Full sliding beyond 3 μ Fn / (G c² C11) (Vermeulen & Johnson's cubic law on Kalker's
     linear theory): the run warns naming the creepage; the bad explicit step then stops it."""
-    from wheelrail.fe import saturation_creepage, solve
+    from wheelrail.fe import solve
+    from wheelrail.fe.rolling import saturation_creepage
     from wheelrail.tangential.linear import kalker_coefficients
 
     case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
@@ -181,3 +183,15 @@ def test_implicit_step_too_long_warns_naming_it(tmp_path):
     with pytest.warns(UserWarning, match="time_step 0.0004 s"):
         with pytest.raises(InputError, match="does not exist"):
             solve(case, progress=False, restart=tmp_path / "none.npz")
+
+
+def test_solve_in_indent_mode_is_the_static_indentation():
+    """``wr.fe.solve(case, mode="indent")`` is ``wr.fe.indent(case)`` (one entry for every
+    FE case); a bad mode is refused by name."""
+    case = RollingCase(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46,
+                       Fn=7500.0, mesh_size=2e-3, depth=3, half_width=3, half_length=3)
+    a = wr.fe.solve(case, mode="indent")
+    b = wr.fe.indent(case)
+    assert type(a).__name__ == "IndentResult" and a.p_max == b.p_max and a.a == b.a
+    with pytest.raises(InputError, match="mode"):
+        wr.fe.solve(case, mode="rolling")

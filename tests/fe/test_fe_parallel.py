@@ -9,7 +9,8 @@ import numba
 import numpy as np
 
 import wheelrail as wr
-from wheelrail.fe import R900A_HARDENING, J2Plastic, RollingCase, solve
+from wheelrail.fe import J2Plastic, RollingCase, solve
+from wheelrail.fe.materials import R900A_HARDENING
 
 
 def test_rolling_is_bitwise_identical_on_one_and_two_threads():

@@ -10,15 +10,15 @@ import wheelrail as wr
 from wheelrail.errors import InputError
 from wheelrail.fe.mesh import MeshQualityError
 from wheelrail.fe.transition import pose_contact, seed004_case
-from wheelrail.fe.transition_mesh import (
+from wheelrail.fe.transition.mesh import (
     extrude_section,
     rail_section,
     spacing_axis,
     sweep_section,
     wheel_section,
 )
-from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose, yawed_contact
-from wheelrail.fe.transition_track import Suspension, TrackStructure
+from wheelrail.fe.transition.model import flange_contact_offset, rigid_pose, yawed_contact
+from wheelrail.fe.transition.track import WheelSuspension, TrackStructure
 
 S1002 = wr.profiles.load("S1002")
 R54 = wr.profiles.load("54E1")
@@ -176,26 +176,26 @@ def test_track_and_suspension_inputs_are_validated():
         TrackStructure(pad_length=0.7)
     with pytest.raises(InputError, match="sleeper_hold"):
         TrackStructure(sleeper_hold="top")
-    s = Suspension()
+    s = WheelSuspension()
     assert s.wheel_load(200.0) == pytest.approx((8000 + 300 + 200) * 9.81)
     with pytest.raises(InputError, match="torque"):
-        Suspension(torque=float("nan"))
+        WheelSuspension(torque=float("nan"))
     with pytest.raises(InputError, match="lateral_stiffness"):
-        Suspension(lateral_stiffness=-1.0)
+        WheelSuspension(lateral_stiffness=-1.0)
     with pytest.raises(InputError, match="roll_stiffness"):
-        Suspension(roll_stiffness=float("nan"))
+        WheelSuspension(roll_stiffness=float("nan"))
     with pytest.raises(InputError, match="roll_damping"):
-        Suspension(roll_damping=-1.0)
+        WheelSuspension(roll_damping=-1.0)
     with pytest.raises(InputError, match="axle_roll_inertia"):
-        Suspension(axle_roll_inertia=float("inf"))
+        WheelSuspension(axle_roll_inertia=float("inf"))
     with pytest.raises(InputError, match="diameter"):
-        Suspension.half_axle_roll_stiffness(diameter=0.0)
+        WheelSuspension.half_axle_roll_stiffness(diameter=0.0)
     # E I / L, I = π d⁴/64 = 5.153e-5 m⁴ for a 180 mm solid shaft (Timoshenko & Gere)
-    assert Suspension.half_axle_roll_stiffness(0.18, 0.75, 2.1e11) == pytest.approx(
+    assert WheelSuspension.half_axle_roll_stiffness(0.18, 0.75, 2.1e11) == pytest.approx(
         2.1e11 * 5.153e-5 / 0.75, rel=1e-3)
     with pytest.raises(InputError, match="lateral_damping"):
-        Suspension(lateral_damping=float("inf"))
-    assert Suspension(lateral_stiffness=0.0).lateral_stiffness == 0.0
+        WheelSuspension(lateral_damping=float("inf"))
+    assert WheelSuspension(lateral_stiffness=0.0).lateral_stiffness == 0.0
     with pytest.raises(InputError, match="traction"):
         seed004_case(0.02, traction=0.7)
     with pytest.raises(InputError, match="size"):
@@ -206,7 +206,7 @@ def test_railpad_lateral_stiffness_is_separate_from_the_longitudinal(tiny_transi
     """Each rail seat's pad is spread over the seat's foot nodes; the springs of one
     direction add up to the seat's stiffness per sleeper. A lateral value of its own
     (a fastening's 15 MN/m, Huo & Dai 2019, Table 2) changes only the lateral springs."""
-    from wheelrail.fe.transition_model import build_transition_model
+    from wheelrail.fe.transition.model import build_transition_model
 
     case, model = tiny_transition
     t = TrackStructure()
@@ -237,7 +237,7 @@ def test_railpad_lateral_stiffness_is_separate_from_the_longitudinal(tiny_transi
 def test_tread_and_flange_nodes_that_touch_on_the_grid_are_split_by_contact_angle():
     """On a coarse wheel-surface grid the flange-root (tread) and flange contacts are
     neighbours: 8-connectivity merges them, the contact-angle split keeps them apart."""
-    from wheelrail.fe.transition_contact import patches, split_patches
+    from wheelrail.fe.transition.contact import patches, split_patches
 
     status = np.zeros((6, 8), np.int64)
     status[1:5, 2:6] = 1                       # one connected block of closed nodes
@@ -262,7 +262,7 @@ def test_a_patch_closed_without_pressure_is_reported_empty_not_nan():
     summary reports an empty patch (Fn 0, no centre) instead of NaN forces and warnings."""
     import warnings
 
-    from wheelrail.fe.transition_contact import patch_summary
+    from wheelrail.fe.transition.contact import patch_summary
 
     n = 4
     xs = np.zeros((n, 3))
@@ -281,7 +281,7 @@ def test_a_patch_closed_without_pressure_is_reported_empty_not_nan():
 
 @pytest.fixture(scope="module")
 def tiny_transition():
-    from wheelrail.fe.transition_model import build_transition_model
+    from wheelrail.fe.transition.model import build_transition_model
 
     case = seed004_case(0.025, mesh_size=5e-3, travel=1.2e-3, settle=0.5e-3,
                         flange_clearance=3e-3, output_interval=6e-6)
@@ -464,7 +464,7 @@ def test_cli_runs_a_tiny_transition_case_with_estimate_restart_and_figure(tmp_pa
 
 
 def test_case_file_suspension_and_track_tables(tmp_path, capsys):
-    """[fe.suspension] and [fe.track] tables become Suspension / TrackStructure fields; an
+    """[fe.suspension] and [fe.track] tables become WheelSuspension / TrackStructure fields; an
     unknown field is refused with its name."""
     from wheelrail.cli.fe import case_from_toml
     from wheelrail.cli.main import main
@@ -526,7 +526,7 @@ def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transit
         assert np.all(np.abs(vn) <= 0.02 * v.max() + 1e-12)
     # the patch's shear direction from the fields: the mean stress's angle is the patch
     # history's theta (from the contact forces), up to its sign
-    from wheelrail.fe.transition_analysis import shear_direction
+    from wheelrail.fe.transition.analysis import shear_direction
 
     sd = shear_direction(f, patch=1)
     k = [int(np.flatnonzero(P.time.values == tt)[0]) for tt in f.time.values]
@@ -535,7 +535,7 @@ def test_contact_fields_of_a_tiny_run_add_up_to_the_patch_histories(tiny_transit
     assert (sd.n_nodes.values == P.n_nodes.values[k, 0]).all()
     assert np.isnan(shear_direction(f, patch=2).mean_angle.values).all()
     # the patch's mean micro-slip on the same nodes (its direction: a sliding patch's θ)
-    from wheelrail.fe.transition_analysis import slip_direction
+    from wheelrail.fe.transition.analysis import slip_direction
 
     sl = slip_direction(f, patch=1)
     assert (sl.n_nodes.values == sd.n_nodes.values).all()
@@ -558,8 +558,8 @@ def test_full_size_wheel_plate_passes_the_aspect_check():
     """The 1 mm case's wheel plate (radial size from ``plate_size``) swept over the fine
     arc at h/R: every element passes ``check_quality`` (aspect ≤ 60; with the former
     30 mm radial size the hub elements had 84.7)."""
-    from wheelrail.fe.transition_mesh import wheel_plate_rows
-    from wheelrail.fe.transition_model import PLATE_HUB, plate_size
+    from wheelrail.fe.transition.mesh import wheel_plate_rows
+    from wheelrail.fe.transition.model import PLATE_HUB, plate_size
 
     case = seed004_case(0.025, size="full")
     assert plate_size(case) < 0.03
@@ -580,7 +580,7 @@ def test_sleepers_are_held_in_x_and_y_at_every_node_or_at_their_bottom(tiny_tran
     with the default 2 x 3 x 2 elements)."""
     from dataclasses import replace as dc_replace
 
-    from wheelrail.fe.transition_model import build_transition_model
+    from wheelrail.fe.transition.model import build_transition_model
 
     case, model = tiny_transition
     ex, ey, ez = case.track.sleeper_elements
@@ -760,8 +760,8 @@ def test_climb_load_follows_the_contact_slope_of_the_rigid_pose():
     (envelope theorem: z′ = tan of the contact angle, the rail's slope at the contact point
     of :func:`rigid_pose`, computed independently of the heights), and the climbing
     inertia is M_u (V sin α)² z″ with z″ the change of that slope."""
-    from wheelrail.fe.transition_analysis import climb_load
-    from wheelrail.fe.transition_model import flange_contact_offset, rigid_pose
+    from wheelrail.fe.transition.analysis import climb_load
+    from wheelrail.fe.transition.model import flange_contact_offset, rigid_pose
 
     case = seed004_case(0.025, flange_clearance=7e-3, travel=0.33)
     s = np.linspace(0.02, 0.16, 8)           # on the tread (contact angle 4-7 degrees)
@@ -787,7 +787,7 @@ def test_shear_direction_averages_of_a_turning_shear():
     0 deg, their mean |angle| 60 deg; a uniform 30 deg shear gives 30 deg three times."""
     import xarray as xr
 
-    from wheelrail.fe.transition_analysis import shear_direction
+    from wheelrail.fe.transition.analysis import shear_direction
 
     nt, nr, nc = 2, 4, 6
     ang = np.radians(np.where(np.arange(nc) < 3, 60.0, -60.0))[None, None, :] * np.ones((nt, nr, 1))
@@ -817,7 +817,7 @@ def test_slip_direction_of_a_sliding_patch():
     drags the rail with; a node of another patch and an open time do not count."""
     import xarray as xr
 
-    from wheelrail.fe.transition_analysis import shear_direction, slip_direction
+    from wheelrail.fe.transition.analysis import shear_direction, slip_direction
 
     nt, nr, nc = 2, 3, 4
     phi = np.radians(20.0)              # the lateral tangent (0, cos φ, sin φ)
@@ -845,3 +845,22 @@ def test_slip_direction_of_a_sliding_patch():
         slip_direction(ds.drop_vars("slip_y"))
     with pytest.raises(InputError, match="patch"):
         slip_direction(ds, patch=0)
+
+
+def test_fe_solve_runs_a_transition_case(tiny_transition):
+    """One entry for every FE case: ``wr.fe.solve`` of a TransitionCase is
+    ``run_transition`` of it (the same histories to the last digit), and its result prints
+    as one line."""
+    from wheelrail.fe.transition import run_transition
+
+    case, model = tiny_transition
+    a = wr.fe.solve(case, progress=False)
+    b = run_transition(case, model=model)
+    np.testing.assert_array_equal(a.u, b.u)
+    np.testing.assert_array_equal(a.history["Fz_total"].values, b.history["Fz_total"].values)
+    text = repr(a)
+    assert text.startswith("TransitionResult(") and "\n" not in text and len(text) < 200
+    with pytest.raises(wr.InputError, match="only rolls"):
+        wr.fe.solve(case, mode="indent")
+    with pytest.raises(wr.InputError, match="RollingCase or TransitionCase"):
+        wr.fe.solve("case.toml")

@@ -1,13 +1,13 @@
 """Surface-wave speed on the transition model's rail from a clean force pulse
-(wheelrail.fe.transition_wave), against the Rayleigh speed of the steel."""
+(wheelrail.fe.transition.wave), against the Rayleigh speed of the steel."""
 
 import numpy as np
 import pytest
 
 from wheelrail.errors import InputError
 from wheelrail.fe.transition import seed004_case
-from wheelrail.fe.transition_model import build_transition_model
-from wheelrail.fe.transition_wave import (
+from wheelrail.fe.transition.model import build_transition_model
+from wheelrail.fe.transition.wave import (
     elastic_wave_speeds,
     force_pulse,
     phase_velocity,

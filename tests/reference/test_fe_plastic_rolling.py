@@ -17,12 +17,13 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.fe import R900A_HARDENING, J2Plastic, RollingCase, solve
+from wheelrail.fe import J2Plastic, RollingCase, solve
+from wheelrail.fe.materials import R900A_HARDENING
 
 FLAT = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
 P0 = 517.6e6
 PLASTIC = J2Plastic(2.1e11, 0.28, P0 / 3.0, hardening=R900A_HARDENING)
-KW = dict(wheel=FLAT, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
+KW = dict(wheel=FLAT, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0, mu=0.2,
           creepage=(7e-4, 0.0, 0.0), mesh_size=2e-3, element="reduced", mass_scaling=400,
           depth=4, half_width=3, half_length=3, travel=0.016)
 

@@ -18,7 +18,7 @@ import wheelrail as wr
 from wheelrail.fe import RollingCase, solve
 
 FLAT_WHEEL = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")
-KW = dict(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46, load=7500.0, mu=0.2,
+KW = dict(wheel=FLAT_WHEEL, rail=wr.profiles.load("60E1"), radius=0.46, Fn=7500.0, mu=0.2,
           mesh_size=2e-3, element="reduced", mass_scaling=400, depth=4, half_width=3,
           half_length=3, travel=0.02)
 

@@ -63,3 +63,34 @@ def test_fe_rolling_case_takes_Fn_and_the_old_name_with_a_warning():
         assert old.load == 7500.0
     with pytest.raises(wr.InputError, match="Fn"):
         wr.fe.RollingCase(Fn=7500.0, load=7500.0, **kw)
+
+
+def test_no_two_public_classes_share_a_name():
+    """One name per concept: a class exported (``__all__``) by any module of the package is
+    the only public class of that name (the FE transition's suspension is
+    ``WheelSuspension``; ``wr.dynamics.Suspension`` is the vehicle model's)."""
+    import importlib
+    import pkgutil
+
+    seen = {}
+    for info in pkgutil.walk_packages(wr.__path__, "wheelrail."):
+        if info.name.rsplit(".", 1)[-1].startswith("_") or ".cli" in info.name:
+            continue
+        module = importlib.import_module(info.name)
+        for name in getattr(module, "__all__", ()):
+            obj = getattr(module, name, None)
+            if inspect.isclass(obj):
+                seen.setdefault(name, set()).add(f"{obj.__module__}.{obj.__qualname__}")
+    assert {k: v for k, v in seen.items() if len(v) > 1} == {}
+
+
+def test_fe_namespace_is_curated_and_old_names_warn():
+    import pytest
+
+    assert len(wr.fe.__all__) <= 25 and set(wr.fe.__all__) <= set(dir(wr.fe))
+    with pytest.warns(DeprecationWarning, match="WheelSuspension"):
+        assert wr.fe.Suspension is wr.fe.WheelSuspension
+    with pytest.warns(DeprecationWarning, match="wheelrail.fe.transition"):
+        assert wr.fe.rail_pulse is wr.fe.transition.rail_pulse
+    with pytest.raises(AttributeError):
+        wr.fe.no_such_name  # noqa: B018

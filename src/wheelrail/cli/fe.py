@@ -26,12 +26,12 @@ The case file holds one ``[fe]`` table; every key is a
   :class:`wheelrail.fe.TransitionCase` field, e.g. ``angle_of_attack = 0.025``,
   ``mesh_size = 4e-3``, ``travel = 0.1``; ``wheel``/``rail`` optional; ``[fe.track]`` and
   ``[fe.suspension]`` tables give :class:`wheelrail.fe.TrackStructure` and
-  :class:`wheelrail.fe.Suspension` fields, e.g. ``lateral_stiffness = 0.0`` for free
+  :class:`wheelrail.fe.WheelSuspension` fields, e.g. ``lateral_stiffness = 0.0`` for free
   lateral motion, ``roll_stiffness = 1.44e7`` for the wheel's roll on its half-axle).
   Writes
   patches.nc (per-patch histories), history.nc, summary.json, transition.png, restart.npz
   and, with ``wave_time`` > 0, wave.png and wave.npz (``x``, ``t``, ``v`` of the rail line
-  ``wave_line`` from ``wave_travel``: :func:`wheelrail.fe.phase_velocity` reads it as a
+  ``wave_line`` from ``wave_travel``: :func:`wheelrail.fe.transition.phase_velocity` reads it as a
   dict); with ``field_travel = [FROM, TO]`` (m of
   travel) also contact_fields.nc (pressure, shear, micro-slip, adhesion/slip per wheel
   surface node at every ``field_stride``-th output) and contact_fields_stress.png /
@@ -206,14 +206,14 @@ def case_from_toml(path):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
     seed4 = _case_key(t, "transition", "seed004", path)
     if seed4 is not None:
-        from ..fe import Suspension, TrackStructure, seed004_case
+        from ..fe import TrackStructure, WheelSuspension, seed004_case
 
         for key, kind in (("wheel", "wheel"), ("rail", "rail")):
             if key in t:
                 t[key] = _profile(t[key], kind, path.parent)
         try:
-            # [fe.track] and [fe.suspension] tables: TrackStructure / Suspension fields
-            for key, cls in (("track", TrackStructure), ("suspension", Suspension)):
+            # [fe.track] and [fe.suspension] tables: TrackStructure / WheelSuspension fields
+            for key, cls in (("track", TrackStructure), ("suspension", WheelSuspension)):
                 if isinstance(t.get(key), dict):
                     t[key] = cls(**t[key])
             return seed004_case(size=seed4, **t), "transition"
@@ -388,7 +388,8 @@ def run(args, console) -> int:
     import json
     from pathlib import Path
 
-    from ..fe import build_model, indent, solve, write_vtu
+    from ..fe import indent, solve, write_vtu
+    from ..fe.model import build_model
 
     case, mode = case_from_toml(args.case)
     if mode == "transition":
@@ -487,7 +488,8 @@ def _run_transition(case, args, console) -> int:
     from pathlib import Path
 
     from .. import _resources
-    from ..fe import build_transition_model, run_transition
+    from ..fe import run_transition
+    from ..fe.transition import build_transition_model
 
     out = Path(args.out)
     model = build_transition_model(case)
@@ -521,7 +523,7 @@ def _run_transition(case, args, console) -> int:
                **{k: float(v) for k, v in info.items() if v is not None}}
     fit = None
     if r.info.get("wave") is not None:
-        from ..fe.transition_analysis import wave_speed
+        from ..fe.transition.analysis import wave_speed
 
         try:
             fit = wave_speed(r.info["wave"])
@@ -563,7 +565,8 @@ def demo_step(ctx):
     import numpy as np
 
     import wheelrail as wr
-    from ..fe import R900A_HARDENING, J2Plastic, RollingCase, solve
+    from ..fe import J2Plastic, RollingCase, solve
+    from ..fe.materials import R900A_HARDENING
     from ..fe.plots import plot_patch_comparison, plot_section
 
     flat = wr.Profile(np.linspace(-0.04, 0.04, 9), np.zeros(9), kind="wheel")

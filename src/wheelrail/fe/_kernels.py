@@ -132,6 +132,40 @@ def _bilinear_tangents(c, r, t):
 
 
 @njit(cache=True, inline="always")
+def closest_point_step(c, r, t, x0, x1, x2):
+    """One Newton step of the closest-point projection of (x0, x1, x2) on the bilinear quad
+    ``c`` (4, 3) from (r, t): the corrections (dr, dt) and the determinant of the 2×2
+    system (the Gram matrix of the tangents); (0, 0, det) when det <= 0 (a degenerate
+    quad). Both contact searches use it: the tensor-grid search of :func:`node_to_surface`
+    and the bucket search of :func:`wheelrail.fe.transition.contact.node_to_segment`.
+
+    References
+    ----------
+    .. [1] P. Wriggers, *Computational Contact Mechanics*, 2nd ed., Springer 2006, §4.1
+       (closest-point projection onto a surface).
+    """
+    q0 = ((1 - r) * (1 - t) * c[0, 0] + r * (1 - t) * c[1, 0] + r * t * c[2, 0]
+          + (1 - r) * t * c[3, 0])
+    q1 = ((1 - r) * (1 - t) * c[0, 1] + r * (1 - t) * c[1, 1] + r * t * c[2, 1]
+          + (1 - r) * t * c[3, 1])
+    q2 = ((1 - r) * (1 - t) * c[0, 2] + r * (1 - t) * c[1, 2] + r * t * c[2, 2]
+          + (1 - r) * t * c[3, 2])
+    tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
+    d0 = x0 - q0
+    d1 = x1 - q1
+    d2 = x2 - q2
+    a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
+    a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
+    a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
+    b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
+    b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
+    det = a11 * a22 - a12 * a12
+    if det <= 0.0:
+        return 0.0, 0.0, det
+    return (a22 * b1 - a12 * b2) / det, (a11 * b2 - a12 * b1) / det, det
+
+
+@njit(cache=True, inline="always")
 def scatter_to_grid(status, cell, rt, fs, fm):
     """Subtract the slaves' contact forces ``fs`` (ns, 3) [N] from the master grid's
     nodal forces ``fm`` (nx, ny, 3) with the bilinear weights of each active slave's
@@ -255,20 +289,7 @@ def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shif
         r = 0.5
         t = 0.5
         for it in range(6):
-            _bilinear(c, r, t, q)
-            # tangents
-            tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
-            d0 = xs[s, 0] - q[0]
-            d1 = xs[s, 1] - q[1]
-            d2 = xs[s, 2] - q[2]
-            a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
-            a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
-            a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
-            b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
-            b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
-            det = a11 * a22 - a12 * a12
-            drr = (a22 * b1 - a12 * b2) / det
-            dtt = (a11 * b2 - a12 * b1) / det
+            drr, dtt, det = closest_point_step(c, r, t, xs[s, 0], xs[s, 1], xs[s, 2])
             r += drr
             t += dtt
             if abs(drr) < 1e-12 and abs(dtt) < 1e-12:

@@ -39,7 +39,7 @@ import numpy as np
 from ..errors import InputError
 from ._explicit import node_groups, phase_one_tasks, run_steps
 from .model import build_model
-from .patch import patch_from_contact
+from .patch_dataset import patch_from_contact
 from .restart import read_restart
 from .rolling import (
     COLUMNS,

@@ -32,7 +32,7 @@ import numpy as np
 
 from ._newton import make_solver, newton
 from .model import build_model
-from .patch import patch_from_contact
+from .patch_dataset import patch_from_contact
 from .restart import read_restart
 from .rolling import (
     COLUMNS,

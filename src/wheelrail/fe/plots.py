@@ -384,7 +384,7 @@ def plot_wave(wave, fit=None, path=None):
     wave : dict
         ``TransitionResult.info["wave"]``.
     fit : dict, optional
-        :func:`wheelrail.fe.transition_analysis.wave_speed` of it.
+        :func:`wheelrail.fe.transition.analysis.wave_speed` of it.
     path : str or Path, optional
     """
     plt = _figure(path)

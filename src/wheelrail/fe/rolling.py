@@ -80,7 +80,7 @@ class RollingResult:
         and energy_error = kinetic + internal + damping − external − contact_work [J],
         counted from the start of the rolling step.
     patch : xarray.Dataset
-        Contact nodes at the end (see :func:`wheelrail.fe.patch.patch_from_contact`).
+        Contact nodes at the end (see :func:`wheelrail.fe.patch_dataset.patch_from_contact`).
     Fx, Fy : float
         Steady longitudinal and lateral (global y) force on the wheel [N]: the means over
         the steady window (:attr:`steady`); :attr:`Fy_contact` is the lateral force in

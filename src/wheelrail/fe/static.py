@@ -15,7 +15,7 @@ import numpy as np
 
 from ._newton import newton
 from .model import build_model
-from .patch import patch_from_contact
+from .patch_dataset import patch_from_contact
 from .rolling import plastic_fields
 
 __all__ = ["IndentResult", "indent", "static_equilibrium"]

@@ -4,7 +4,7 @@
 spring–dampers between the rail foot and the sleeper top, the ballast as vertical
 spring–dampers under the sleeper, the sleepers held laterally and longitudinally
 (every node by default: they move only vertically; Zhao, Li & Liu 2012).
-:class:`Suspension` — the sprung mass (car body and bogie lumped, per wheel) on the
+:class:`WheelSuspension` — the sprung mass (car body and bogie lumped, per wheel) on the
 primary suspension, the half-axle's mass and inertia, the driving torque.
 
 Default values
@@ -41,10 +41,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._validation import non_negative, positive
-from ..errors import InputError
+from ..._validation import non_negative, positive
+from ...errors import InputError
 
-__all__ = ["TrackStructure", "Suspension", "SpringSet"]
+__all__ = ["TrackStructure", "WheelSuspension", "SpringSet"]
 
 GRAVITY = 9.81
 
@@ -170,7 +170,7 @@ class TrackStructure:
 
 
 @dataclass(frozen=True)
-class Suspension:
+class WheelSuspension:
     """Sprung mass on the primary suspension, the half-axle and the drive (one wheel).
 
     Parameters

@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import _bilinear_tangents, coulomb_update
+from .._kernels import closest_point_step, coulomb_update
 
 __all__ = ["BucketGrid", "build_buckets", "nodal_normals_quads", "node_to_segment", "patches",
            "split_patches", "patch_summary", "SPLIT_ANGLE"]
@@ -96,30 +96,14 @@ def nodal_normals_quads(xm: np.ndarray, quads: np.ndarray) -> np.ndarray:
 
 @njit(cache=True, inline="always")
 def _project(xs0, xs1, xs2, c, out):
-    """Closest point of (xs) on the bilinear quad c (4, 3): returns r, t (Newton)."""
+    """Closest point of (xs) on the bilinear quad c (4, 3): r, t into ``out`` (Newton,
+    the step of :func:`~wheelrail.fe._kernels.closest_point_step`)."""
     r = 0.5
     t = 0.5
     for it in range(8):
-        q0 = ((1 - r) * (1 - t) * c[0, 0] + r * (1 - t) * c[1, 0] + r * t * c[2, 0]
-              + (1 - r) * t * c[3, 0])
-        q1 = ((1 - r) * (1 - t) * c[0, 1] + r * (1 - t) * c[1, 1] + r * t * c[2, 1]
-              + (1 - r) * t * c[3, 1])
-        q2 = ((1 - r) * (1 - t) * c[0, 2] + r * (1 - t) * c[1, 2] + r * t * c[2, 2]
-              + (1 - r) * t * c[3, 2])
-        tr0, tr1, tr2, tt0, tt1, tt2 = _bilinear_tangents(c, r, t)
-        d0 = xs0 - q0
-        d1 = xs1 - q1
-        d2 = xs2 - q2
-        a11 = tr0 * tr0 + tr1 * tr1 + tr2 * tr2
-        a12 = tr0 * tt0 + tr1 * tt1 + tr2 * tt2
-        a22 = tt0 * tt0 + tt1 * tt1 + tt2 * tt2
-        b1 = tr0 * d0 + tr1 * d1 + tr2 * d2
-        b2 = tt0 * d0 + tt1 * d1 + tt2 * d2
-        det = a11 * a22 - a12 * a12
+        drr, dtt, det = closest_point_step(c, r, t, xs0, xs1, xs2)
         if det <= 0.0:
             break
-        drr = (a22 * b1 - a12 * b2) / det
-        dtt = (a11 * b2 - a12 * b1) / det
         r += drr
         t += dtt
         if abs(drr) < 1e-10 and abs(dtt) < 1e-10:

@@ -32,8 +32,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
-from .mesh import Body, MeshQualityError, check_quality
+from ...errors import InputError
+from ..mesh import Body, MeshQualityError, check_quality
 
 __all__ = ["spacing_axis", "SectionCurve", "section_rows", "rail_section", "wheel_section",
            "block_rows", "rail_web_foot_rows", "wheel_plate_rows", "line_tie",
@@ -415,7 +415,7 @@ def extrude_section(rows: np.ndarray, x_axis: np.ndarray, *, name: str = "rail",
     """The rail body: the section ``rows`` (n_r, n_s, 2) extruded along ``x_axis``.
 
     Nodes are in the track frame at rest (x along the rail, y, z). ``fixed`` is empty:
-    the rail is held by its supports (:mod:`wheelrail.fe.transition_track`).
+    the rail is held by its supports (:mod:`wheelrail.fe.transition.track`).
     """
     n_r, n_s, _ = rows.shape
     X = np.broadcast_to(x_axis[:, None, None], (x_axis.size, n_s, n_r))

@@ -3,7 +3,7 @@
 The start of a transition run is a poor source for a wave-speed measurement: the wheel
 settles, bounces and rolls, and late motion at every distance masks the surface pulse
 (docs/fe_transition.md). :func:`rail_pulse` strikes the *same* rail and track mesh
-(:func:`~wheelrail.fe.transition_model.build_transition_model`: rail head, web and foot,
+(:func:`~wheelrail.fe.transition.model.build_transition_model`: rail head, web and foot,
 pads, sleepers, ballast; the wheel left out, its nodes held) with a short vertical force
 pulse on a few running-surface nodes and records the velocities of the running-surface
 line through the source every step; :func:`pulse_arrivals` picks the arrival of the pulse at
@@ -43,11 +43,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import InputError
-from . import _solid as S
-from ._explicit import NCHUNK, advance
-from .transition_analysis import surface_stations
-from .transition_model import (TransitionCase, _group, build_transition_model,
+from ...errors import InputError
+from .. import _solid as S
+from .._explicit import NCHUNK, advance
+from .analysis import surface_stations
+from .model import (TransitionCase, _group, build_transition_model,
                                check_surface_line, rail_surface_line)
 
 __all__ = ["RailPulseResult", "elastic_wave_speeds", "rail_pulse", "pulse_arrivals",
@@ -148,7 +148,7 @@ def rail_pulse(case: TransitionCase, *, model=None, at: str = "tread", pulse: st
     """Strike the rail of a transition case with a vertical force pulse; record the surface.
 
     The rail head, web, foot, pads, sleepers and ballast of
-    :func:`~wheelrail.fe.transition_model.build_transition_model` (the same mesh, masses,
+    :func:`~wheelrail.fe.transition.model.build_transition_model` (the same mesh, masses,
     ties and springs as :func:`~wheelrail.fe.transition.run_transition`) start at rest; the
     wheel's nodes are held and its elements left out. A force ``force`` ×
     :func:`force_pulse` along the inward surface normal at the source point (within a few

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..errors import InputError
-from .transition_model import flange_contact_offset, rigid_pose
+from ...errors import InputError
+from .model import flange_contact_offset, rigid_pose
 
 __all__ = ["wave_speed", "rayleigh_speed", "settled_vertical_balance", "onset_travel",
            "surface_stations", "climb_load", "shear_direction", "slip_direction"]
@@ -53,8 +53,8 @@ def wave_speed(wave: dict, d_min: float = 0.015, d_max: float = 0.1,
 
     The start of a run is not a clean impulse (the wheel settles and bounces; 1.5–1.9 km/s
     on the 4 mm runs): for a clean measurement on the same rail mesh see
-    :func:`wheelrail.fe.transition_wave.rail_pulse` and
-    :func:`~wheelrail.fe.transition_wave.pulse_arrivals`.
+    :func:`wheelrail.fe.transition.wave.rail_pulse` and
+    :func:`~wheelrail.fe.transition.wave.pulse_arrivals`.
 
     Parameters
     ----------
@@ -119,7 +119,7 @@ def climb_load(case, travel, wheel_mass: float, dy: float = 1e-4,
 
     The axle moves laterally at V sin α (its heading is yawed by α), so its rigid height
     z(y) over the rail — the height of the wheel profile's origin where the unyawed wheel
-    touches the rail (:func:`~wheelrail.fe.transition_model.rigid_pose`) — changes at
+    touches the rail (:func:`~wheelrail.fe.transition.model.rigid_pose`) — changes at
     ż = V sin α z′(y) and z̈ = (V sin α)² z″(y). The unsprung mass M_u (the half-axle and
     the wheel) then needs M_u z̈ more contact force, and the primary suspension pushes
     with k (z − z(y₀)) + c ż more while the sprung mass (≈ 2 Hz) has not moved. By the
@@ -134,7 +134,7 @@ def climb_load(case, travel, wheel_mass: float, dy: float = 1e-4,
     travel : array_like
         Travel s [m] along the heading from the start (lateral offset y₀ = y_f − the
         flange clearance; y_f from
-        :func:`~wheelrail.fe.transition_model.flange_contact_offset`).
+        :func:`~wheelrail.fe.transition.model.flange_contact_offset`).
     wheel_mass : float
         Mass of the (FE) wheel [kg]; the unsprung mass is it plus
         ``case.suspension.axle_mass``.

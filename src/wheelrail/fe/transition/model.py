@@ -7,7 +7,7 @@ at its inner end, so the wheel approaches the gauge corner at V sin α and the f
 into contact (the boundary condition of explicit FE studies of the one- to two-point
 contact transition; track and vehicle after Zhao & Li 2011).
 The rail (head meshed from its profile with the gauge face, web and foot tied to it) lies
-on solid sleepers through railpads; the sleepers on ballast (:mod:`.transition_track`).
+on solid sleepers through railpads; the sleepers on ballast (:mod:`.track`).
 
 Kinematics of the wheel (small strain in its own frame)
 -------------------------------------------------------
@@ -31,14 +31,14 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .._validation import in_range, non_negative, positive
-from ..errors import InputError
-from ..profiles import Profile
-from ._solid import element_chunks
-from .elements import Hex8
-from .materials import LinearElastic
-from .transition_contact import build_buckets, nodal_normals_quads
-from .transition_mesh import (
+from ..._validation import in_range, non_negative, positive
+from ...errors import InputError
+from ...profiles import Profile
+from .._solid import element_chunks
+from ..elements import Hex8
+from ..materials import LinearElastic
+from .contact import build_buckets, nodal_normals_quads
+from .mesh import (
     extrude_section,
     line_tie,
     rail_section,
@@ -48,7 +48,7 @@ from .transition_mesh import (
     wheel_plate_rows,
     wheel_section,
 )
-from .transition_track import SpringSet, Suspension, TrackStructure
+from .track import SpringSet, WheelSuspension, TrackStructure
 
 __all__ = ["TransitionCase", "TransitionModel", "build_transition_model", "rigid_pose",
            "yawed_contact", "rail_surface_line", "SURFACE_LINES",
@@ -97,7 +97,7 @@ class TransitionCase:
     section_h_max, x_h_max, theta_h_max : float
         Largest sizes in the cross-sections, along the rail and along the wheel's
         circumference [m].
-    track, suspension : TrackStructure, Suspension
+    track, suspension : TrackStructure, WheelSuspension
     material : LinearElastic
         Wheel and rail steel.
     penalty : float
@@ -165,7 +165,7 @@ class TransitionCase:
     x_h_max: float = 0.02
     theta_h_max: float = 0.04
     track: TrackStructure = field(default_factory=lambda: TrackStructure(n_sleepers=2))
-    suspension: Suspension = field(default_factory=Suspension)
+    suspension: WheelSuspension = field(default_factory=WheelSuspension)
     material: LinearElastic = field(default_factory=lambda: LinearElastic(2.1e11, 0.3, 7850.0))
     penalty: float = 1.0
     contact_damping: float = 0.2
@@ -221,8 +221,8 @@ class TransitionCase:
                              f"contact patch (use <= 5 mm)")
         if not isinstance(self.track, TrackStructure):
             raise InputError(f"track must be a TrackStructure, got {type(self.track).__name__}")
-        if not isinstance(self.suspension, Suspension):
-            raise InputError(f"suspension must be a Suspension, got "
+        if not isinstance(self.suspension, WheelSuspension):
+            raise InputError(f"suspension must be a WheelSuspension, got "
                              f"{type(self.suspension).__name__}")
         if self.settle >= self.travel:
             raise InputError(f"settle {self.settle!r} m must be shorter than travel "

@@ -4,7 +4,7 @@ Reuses the engine's parts without changing them: the element-force kernel
 (:func:`wheelrail.fe._solid.element_forces`), the central-difference node update
 (:func:`wheelrail.fe._explicit.advance`; all external forces are passed as its "contact"
 forces with every node mapped) and the stiffness triplets for the static track solve.
-New here: the general contact (:mod:`.transition_contact`), ties, spring–dampers, the
+New here: the general contact (:mod:`.contact`), ties, spring–dampers, the
 axle's vertical and rolling dofs, and per-patch outputs.
 
 Step
@@ -16,9 +16,9 @@ Step
 2. Explicit rolling over ``travel`` at the speed V along the wheel's heading (yawed by α):
    the element forces, the contact, the springs, the axle (vertical: M ẅ = F_z − load
    terms; rolling: J ψ̈ = T − M_contact; optionally lateral along the axle and roll about
-   the heading, see :class:`.transition_track.Suspension`), the node update, the ties.
+   the heading, see :class:`.track.WheelSuspension`), the node update, the ties.
    An axle dashpot (critical on the Hertz stiffness) damps the start transient over ``settle``.
-   Outputs every ``output_interval``: the patches (:func:`.transition_contact.patch_summary`).
+   Outputs every ``output_interval``: the patches (:func:`.contact.patch_summary`).
 
 References
 ----------
@@ -31,14 +31,14 @@ import time
 
 import numpy as np
 
-from ..errors import InputError
-from ..materials import Material
-from ..normal.hertz import hertz
-from ..profiles import load as load_profile
-from . import _solid as S
-from ._explicit import NCHUNK, advance
-from .transition_analysis import onset_travel
-from .transition_contact import (
+from ...errors import InputError
+from ...materials import Material
+from ...normal.hertz import hertz
+from ...profiles import load as load_profile
+from .. import _solid as S
+from .._explicit import NCHUNK, advance
+from .analysis import onset_travel
+from .contact import (
     adhering,
     build_buckets,
     nodal_normals_quads,
@@ -48,16 +48,16 @@ from .transition_contact import (
     scatter_master,
     split_patches,
 )
-from .transition_mesh import (
+from .mesh import (
     extrude_section,
     rail_section,
     spacing_axis,
     sweep_section,
     wheel_section,
 )
-from .transition_model import (TransitionCase, build_transition_model, rail_surface_line,
+from .model import (TransitionCase, build_transition_model, rail_surface_line,
                                rigid_pose)
-from .transition_track import GRAVITY, Suspension, TrackStructure
+from .track import GRAVITY, WheelSuspension, TrackStructure
 
 __all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_time_estimate",
            "pose_contact", "read_transition_restart",
@@ -137,7 +137,7 @@ class TransitionResult:
         rail's outward normal (negative: approaching) [m/s]; ``contact_angle`` [rad];
         ``patch`` (0 open, 1 tread, 2 flange, 3 other); ``state`` (0 open, 1 slip,
         2 adhesion: μ p − |q| above the tolerance of
-        :func:`~wheelrail.fe.transition_contact.adhering`); ``travel`` over ``time``.
+        :func:`~wheelrail.fe.transition.contact.adhering`); ``travel`` over ``time``.
         Only the outputs of this call (a restart continues the record after its step).
     """
 
@@ -148,6 +148,14 @@ class TransitionResult:
         self.u = u
         self.info = info
         self.contact_fields = contact_fields
+
+    def __repr__(self):
+        onset = self.info.get("onset_travel", float("nan"))
+        travel = (float(self.patches["travel"].values[-1]) if "travel" in self.patches
+                  and self.patches["travel"].size else float("nan"))
+        return (f"TransitionResult(elements={self.model.n_elements}, outputs="
+                f"{self.history.sizes.get('time', 0)}, travel={travel * 1e3:.1f} mm, "
+                f"onset={onset * 1e3:.1f} mm, cpu_s={self.info.get('cpu_s', float('nan')):.1f})")
 
 
 def stable_step(model) -> float:
@@ -833,12 +841,12 @@ def seed004_case(angle_of_attack=0.020, size="reduced", **changes) -> Transition
         base.update(mesh_size=4e-3, flange_clearance=3e-3, traction=0.3, settle=0.03,
                     travel=0.03 + clearance / a if a > 5e-3 else 0.1,
                     track=TrackStructure(n_sleepers=2, overhang=0.25),
-                    suspension=Suspension())
+                    suspension=WheelSuspension())
     elif size == "full":
         base.update(mesh_size=1e-3, travel=0.67, flange_clearance=6e-3, settle=0.25, traction=0.3,
                     section_h_max=6e-3, x_h_max=0.012, theta_h_max=0.012,
                     track=TrackStructure(n_sleepers=5),
-                    suspension=Suspension())
+                    suspension=WheelSuspension())
     else:
         raise InputError(f"size must be 'reduced' or 'full', got {size!r}")
     base.update(changes)
@@ -857,7 +865,7 @@ def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
     Returns
     -------
     list of dict
-        :func:`~wheelrail.fe.transition_contact.patch_summary` of every patch, ordered
+        :func:`~wheelrail.fe.transition.contact.patch_summary` of every patch, ordered
         from the flange side of the wheel profile.
     """
     h = case.mesh_size
