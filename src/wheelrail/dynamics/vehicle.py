@@ -32,7 +32,11 @@ the track frames' lateral offset, heading and cant differences between the
 two bodies' positions added to the child body (the bogie or wheelset).
 Heights are measured above the rail top; each body's centre of mass is at its
 height, the primary springs act at the primary height (default the axle) and
-the secondary elements at the secondary height.
+the secondary elements at the secondary height. The springs' vertical preloads
+(the weights they carry) turn with the bodies they act on: the overturning
+moments of the weights carried above the springs (−p_z θ P in roll and pitch)
+are in the equations; the car body has no longitudinal degree of freedom (the
+longitudinal springs act on its pitch and yaw only).
 
 References
 ----------
