@@ -54,7 +54,7 @@ def test_dataset_has_body_and_frame_states(runs):
 def test_two_axle_vehicle_runs_and_curves():
     """A two-axle vehicle (wheelsets under the body through the primary) runs in the
     compiled path and in a 400 m curve carries M V²/R on its four wheels (Newton's law,
-    0.5 %), its body on the chord between the axles."""
+    0.5 %), its body, on the chord between the axles, m V²/R on its primary springs."""
     from wheelrail.dynamics import CarBody, Suspension, VehicleModel, WheelsetModel
     from wheelrail.dynamics._fastcontact import WHEEL_FIELDS
     from wheelrail.dynamics.quasistatic import steady_curving
@@ -74,5 +74,13 @@ def test_two_axle_vehicle_runs_and_curves():
     W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
     assert r.wheels[..., W["Fy"]].sum() == pytest.approx(model.mass * speed ** 2 / radius,
                                                           rel=5e-3)
-    body_y = r.state[r.names.index("body.y")]
-    assert body_y == pytest.approx(4.0 ** 2 / (2 * radius), abs=0.003)
+    # the body's balance: the primary lateral springs, deflected by the relative shift of
+    # axle and body at the axle height (axles on the centre line, the body on the chord:
+    # versine a²/(2R)), carry its unbalanced force
+    st = {n: r.state[r.names.index(n)] for n in r.names}
+    carried = 0.0
+    for i, xi in enumerate((4.0, -4.0)):
+        body_pt = st["body.y"] + xi * st["body.yaw"] - (0.46 - 1.4) * st["body.roll"]
+        carried += 2 * prim.ky * (st[f"ws{i}.y"] + xi ** 2 / (2 * radius) - body_pt)
+    assert carried == pytest.approx(12000.0 * speed ** 2 / radius, rel=5e-3)
+    assert 0.0 < xi ** 2 / (2 * radius) - st["body.y"] < 0.005
