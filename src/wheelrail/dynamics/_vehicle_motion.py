@@ -46,9 +46,23 @@ import numpy as np
 from numba import njit
 
 from .model import GP, NGP, NWP, WP
-from .vehicle import VP
 
-__all__ = ["vehicle_derivative"]
+__all__ = ["vehicle_derivative", "VP", "NVP", "BUMP_MAX"]
+
+#: Largest number of points of a bump-stop table.
+BUMP_MAX = 24
+#: Vehicle parameters after the wheelset blocks (see
+#: :class:`wheelrail.dynamics.vehicle.VehicleAssembly`; defined here, beside the kernel, so
+#: that a change of the layout recompiles it).
+VP = {n: i for i, n in enumerate((
+    "n_frames", "body_m", "body_Ix", "body_Iy", "body_Iz", "body_h", "frame_h", "prim_h",
+    "fm0", "fIx0", "fIy0", "fIz0", "fm1", "fIx1", "fIy1", "fIz1", "xf0", "xf1",
+    "s_kx", "s_ky", "s_kz", "s_cx", "s_cy", "s_cz", "s_b", "s_h", "s_kpsi", "s_arb", "s_pre",
+    "yd", "yd_c", "yd_k", "yd_b", "bs_n",
+    "par0", "par1", "par2", "par3", "xr0", "xr1", "xr2", "xr3",
+    "off_body", "off_yd")
+    + tuple(f"bs_d{k}" for k in range(BUMP_MAX)) + tuple(f"bs_f{k}" for k in range(BUMP_MAX)))}
+NVP = len(VP)
 
 _G_NWS = GP["n_ws"]
 _G_RAILS = GP["rails"]
