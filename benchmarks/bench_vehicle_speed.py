@@ -52,7 +52,8 @@ def main():
     section = wr.Track(wr.profiles.load("60E1"))
     curve = D.TrackLayout(section, curves=(D.Curve(600.0, start=20.0, length=math.inf,
                                                    cant=0.1, transition=50.0),))
-    print(f"Manchester vehicle 1: {len(D.System(model, section, 30.0, 'hertz', 'fastsim').asm.names)}"
+    n_states = len(D.System(model, section, 30.0, "hertz", "fastsim").asm.names)
+    print(f"Manchester vehicle 1: {n_states}"
           f" states, 8 wheels, RK4 1 ms, {args.duration} s simulated, best of {args.repeat}")
     print(f"NUMBA_NUM_THREADS={os.environ.get('NUMBA_NUM_THREADS', '(unset)')}, "
           f"load before: {os.getloadavg()}")

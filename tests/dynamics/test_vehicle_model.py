@@ -7,7 +7,9 @@ rotational yaw stiffness k_r per set — has the undamped frequencies
 (Timoshenko's rigid body on springs; Wickens 2003, ch. 6; Iwnicki (ed.) 2006, ch. 5)
 
 * bounce ω² = 4 kz / m,
-* pitch ω² = 4 (kz a_b² + kx (h − h_b)²) / I_y,
+* pitch ω² = (4 kz a_b² + 4 kx (h − h_b)² − m g (h_b − h)) / I_y (the last term the
+  overturning of the body's weight, carried at the springs' height h below its
+  centre of mass h_b),
 * yaw ω² = 4 (ky a_b² + kx b² + k_r) / I_z,
 
 and the two-axle vehicle's body bounces on its four primary spring sets with
@@ -105,7 +107,8 @@ def test_carbody_bounce_pitch_yaw_frequencies_bogies_held(track):
     a_b, b, dh = model.bogie_semi_spacing, sec.half_spacing, sec.height - body.height
     Ix, Iy, Iz = body.inertia
     ref = {"bounce": math.sqrt(4 * sec.kz / body.mass),
-           "pitch": math.sqrt(4 * (sec.kz * a_b ** 2 + sec.kx * dh ** 2) / Iy),
+           "pitch": math.sqrt((4 * (sec.kz * a_b ** 2 + sec.kx * dh ** 2)
+                               + body.mass * 9.81 * dh) / Iy),
            "yaw": math.sqrt(4 * (sec.ky * a_b ** 2 + sec.kx * b ** 2 + sec.yaw_stiffness) / Iz)}
     got = {"bounce": math.sqrt(-J[1, 1]), "pitch": math.sqrt(-J[3, 3]),
            "yaw": math.sqrt(-J[4, 4])}
@@ -134,6 +137,6 @@ def test_two_axle_vehicle_bounce_on_the_primary(track):
     system = System(model, track, 10.0, "hertz", "fastsim")
     J = _body_frequencies(system)
     assert math.sqrt(-J[1, 1]) == pytest.approx(math.sqrt(4 * 0.6e6 / 12000.0), rel=0.01)
-    # pitch: 4 kz a² + 4 kx (h_axle − h_body)²
-    ky_pitch = 4 * 0.6e6 * 16.0 + 4 * 5e6 * (0.46 - 1.4) ** 2
+    # pitch: 4 kz a² + 4 kx (h_axle − h_body)² − m g (h_body − h_axle)
+    ky_pitch = 4 * 0.6e6 * 16.0 + 4 * 5e6 * (0.46 - 1.4) ** 2 + 12000.0 * 9.81 * (0.46 - 1.4)
     assert math.sqrt(-J[3, 3]) == pytest.approx(math.sqrt(ky_pitch / 1.2e5), rel=0.01)

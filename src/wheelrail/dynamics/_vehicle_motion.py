@@ -23,8 +23,11 @@ parent's tangent (Simpson's rule on the heading), the heading and the cant
 differences added; its force F on the child acts on the child's coordinates
 (y, z, θ, χ, ψ) as (F_y, F_z, −p_z F_y + p_y F_z, −p_z F_x + p_x F_z,
 −p_y F_x + p_x F_y) and the opposite on the parent's (virtual work).
-Elements: spring–damper sets (F = −K d − C ḋ, the vertical preload carrying
-the weight above), rotational yaw springs and the anti-roll bar (moments on
+Elements: spring–damper sets (F = −K d − C ḋ, the vertical preload P carrying
+the weight above; its lever arm turns with the body it acts on, adding the
+moments −p_z θ P and −p_z χ P — the overturning of a weight carried below its
+centre of mass; the same terms of the lateral and longitudinal forces are of
+second order and left out), rotational yaw springs and the anti-roll bar (moments on
 the relative yaw and roll), yaw dampers (Maxwell: F = −k (d_x − u),
 u̇ = k (d_x − u)/c) and lateral bump stops (F_y = −f(d_y), f the odd
 piecewise-linear table).
@@ -43,9 +46,23 @@ import numpy as np
 from numba import njit
 
 from .model import GP, NGP, NWP, WP
-from .vehicle import VP
 
-__all__ = ["vehicle_derivative"]
+__all__ = ["vehicle_derivative", "VP", "NVP", "BUMP_MAX"]
+
+#: Largest number of points of a bump-stop table.
+BUMP_MAX = 24
+#: Vehicle parameters after the wheelset blocks (see
+#: :class:`wheelrail.dynamics.vehicle.VehicleAssembly`; defined here, beside the kernel, so
+#: that a change of the layout recompiles it).
+VP = {n: i for i, n in enumerate((
+    "n_frames", "body_m", "body_Ix", "body_Iy", "body_Iz", "body_h", "frame_h", "prim_h",
+    "fm0", "fIx0", "fIy0", "fIz0", "fm1", "fIx1", "fIy1", "fIz1", "xf0", "xf1",
+    "s_kx", "s_ky", "s_kz", "s_cx", "s_cy", "s_cz", "s_b", "s_h", "s_kpsi", "s_arb", "s_pre",
+    "yd", "yd_c", "yd_k", "yd_b", "bs_n",
+    "par0", "par1", "par2", "par3", "xr0", "xr1", "xr2", "xr3",
+    "off_body", "off_yd")
+    + tuple(f"bs_d{k}" for k in range(BUMP_MAX)) + tuple(f"bs_f{k}" for k in range(BUMP_MAX)))}
+NVP = len(VP)
 
 _G_NWS = GP["n_ws"]
 _G_RAILS = GP["rails"]
@@ -133,6 +150,14 @@ def _apply(F, p, sgn, Q):
     Q[2] += sgn * (-p[2] * F[1] + p[1] * F[2])
     Q[3] += sgn * (-p[2] * F[0] + p[0] * F[2])
     Q[4] += sgn * (-p[1] * F[0] + p[0] * F[1])
+
+
+@njit(cache=True)
+def _pendulum(Fz, pz, q, Q):
+    """Roll and pitch moments of a vertical force Fz at height pz of a body rolled and
+    pitched by q[2], q[3] (its lever arm turned with the body: the weights' overturning)."""
+    Q[2] -= pz * q[2] * Fz
+    Q[3] -= pz * q[3] * Fz
 
 
 @njit(cache=True)
@@ -271,6 +296,7 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
             F[2] = -kz * d[2] - cz * v[2] - pre
             _apply(F, pc, 1.0, Qw)
             _apply(F, pp, -1.0, Qb[jp])
+            _pendulum(pre, pp[2], q[jp], Qb[jp])
         Q[0] += Qw[0]
         Q[1] += Qw[1]
         Q[2] += Qw[2]
@@ -337,6 +363,8 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
                 F[2] = -skz * d[2] - scz * v[2] - spre
                 _apply(F, pc, 1.0, Qc)
                 _apply(F, pp, -1.0, Qp)
+                _pendulum(-spre, pc[2], q[j], Qc)
+                _pendulum(spre, pp[2], q[nf], Qp)
                 if has_yd:
                     pc[1] = sg * ydb
                     pp[1] = sg * ydb

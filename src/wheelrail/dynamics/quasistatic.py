@@ -221,7 +221,7 @@ def steady_curving(model, track, radius, speed, normal="hertz", tangential="fast
 
     Parameters
     ----------
-    model : WheelsetModel or BogieModel
+    model : WheelsetModel, BogieModel or VehicleModel
     track : Track or TrackLayout
         The cross-section.
     radius : float

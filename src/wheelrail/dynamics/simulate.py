@@ -130,7 +130,7 @@ class System:
 
     Parameters
     ----------
-    model : WheelsetModel or BogieModel
+    model : WheelsetModel, BogieModel or VehicleModel
     track : Track or TrackLayout
     speed : float
         Speed at t = 0 [m/s].
@@ -586,7 +586,7 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
 
     Parameters
     ----------
-    model : WheelsetModel or BogieModel
+    model : WheelsetModel, BogieModel or VehicleModel
     track : Track or TrackLayout
         A cross-section (tangent track) or a :class:`~wheelrail.dynamics.TrackLayout`
         with curves and an irregularity.

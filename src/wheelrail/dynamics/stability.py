@@ -84,7 +84,7 @@ def critical_speed(model, track, normal="hertz", tangential="fastsim", *, method
 
     Parameters
     ----------
-    model : WheelsetModel or BogieModel
+    model : WheelsetModel, BogieModel or VehicleModel
     track : Track or TrackLayout
         Its cross-section is used (tangent track, no irregularity).
     normal, tangential : str or configured method

@@ -32,7 +32,11 @@ the track frames' lateral offset, heading and cant differences between the
 two bodies' positions added to the child body (the bogie or wheelset).
 Heights are measured above the rail top; each body's centre of mass is at its
 height, the primary springs act at the primary height (default the axle) and
-the secondary elements at the secondary height.
+the secondary elements at the secondary height. The springs' vertical preloads
+(the weights they carry) turn with the bodies they act on: the overturning
+moments of the weights carried above the springs (−p_z θ P in roll and pitch)
+are in the equations; the car body has no longitudinal degree of freedom (the
+longitudinal springs act on its pitch and yaw only).
 
 References
 ----------
@@ -53,14 +57,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ._vehicle_motion import BUMP_MAX, NVP, VP
 from .model import (FRAME_STATES, GP, GRAVITY, NGP, NWP, RAIL_STATES, RELAX_STATES,
                     WHEELSET_STATES, WP, BogieModel, Suspension, WheelsetModel, _inertia, _number)
 
 __all__ = ["CarBody", "SecondarySuspension", "YawDamper", "BumpStop", "VehicleModel",
            "manchester_vehicle1", "VehicleAssembly"]
 
-#: Largest number of points of a bump-stop table.
-BUMP_MAX = 24
 #: Names of the car body's states.
 BODY_STATES = FRAME_STATES
 
@@ -296,8 +299,9 @@ class VehicleModel:
                                  f"got {type(sec).__name__}")
             object.__setattr__(self, "secondary", sec)
             b0, b1 = bg
-            if b1.wheelset is not b0.wheelset and b1.wheelset != b0.wheelset:
-                raise InputError("both bogies must run on the same Wheelset (profiles)")
+            if b1.wheelset is not b0.wheelset:
+                raise InputError("both bogies must run on the same Wheelset object (the "
+                                 "profiles of all wheels)")
             object.__setattr__(self, "bogie_semi_spacing", _number(
                 "VehicleModel", "bogie_semi_spacing", self.bogie_semi_spacing, open_lo=True))
             if self.bogie_semi_spacing <= max(b.semi_wheelbase for b in bg):
@@ -441,16 +445,6 @@ def manchester_vehicle1(spin: str = "fixed", rail=None, *, yaw_damper: YawDamper
 
 
 # --------------------------------------------------------------------------- assembly
-#: Vehicle parameters after the wheelset blocks (see :class:`VehicleAssembly`).
-VP = {n: i for i, n in enumerate((
-    "n_frames", "body_m", "body_Ix", "body_Iy", "body_Iz", "body_h", "frame_h", "prim_h",
-    "fm0", "fIx0", "fIy0", "fIz0", "fm1", "fIx1", "fIy1", "fIz1", "xf0", "xf1",
-    "s_kx", "s_ky", "s_kz", "s_cx", "s_cy", "s_cz", "s_b", "s_h", "s_kpsi", "s_arb", "s_pre",
-    "yd", "yd_c", "yd_k", "yd_b", "bs_n",
-    "par0", "par1", "par2", "par3", "xr0", "xr1", "xr2", "xr3",
-    "off_body", "off_yd")
-    + tuple(f"bs_d{k}" for k in range(BUMP_MAX)) + tuple(f"bs_f{k}" for k in range(BUMP_MAX)))}
-NVP = len(VP)
 
 
 class VehicleAssembly:
