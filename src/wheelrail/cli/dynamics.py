@@ -141,7 +141,9 @@ def _read_model(r, data, base):
     return _construct(r, "model", lambda: dyn.BogieModel(**bogie)), track
 
 
-def _read_layout(r, data, track):
+def _read_layout(r, data, track, base=None):
+    from pathlib import Path
+
     from .. import dynamics as dyn
 
     t = _table(r, data, "track")
@@ -164,13 +166,36 @@ def _read_layout(r, data, track):
             r.fail("track.irregularity", None, f"must be a table, got {g!r}")
         kind = r.string("track.irregularity", g, "kind", "sine")
         keys = {"sine": ("amplitude", "wavelength", "start", "cycles", "step"),
-                "bump": ("amplitude", "length", "start", "step")}
+                "bump": ("amplitude", "length", "start", "step"),
+                "file": ("path", "units"),
+                "psd": ("spectrum", "length", "seed", "start", "ramp", "step")}
         if kind not in keys:
-            r.fail("track.irregularity", "kind", f"must be 'sine' or 'bump', got {kind!r}")
+            r.fail("track.irregularity", "kind",
+                   f"must be 'sine', 'bump', 'file' or 'psd', got {kind!r}")
         r.unknown("track.irregularity", g, ("kind", *keys[kind]))
-        vals = {k: r.number("track.irregularity", g, k) for k in keys[kind] if k in g}
-        make = dyn.Irregularity.sine if kind == "sine" else dyn.Irregularity.bump
-        irr = _construct(r, "track.irregularity", lambda: make(**vals))
+        if kind == "file":          # measured: distance [m], alignment, level, cross level, gauge
+            path = Path(r.string("track.irregularity", g, "path", ""))
+            if not str(path):
+                r.fail("track.irregularity", "path", "missing (required)")
+            if not path.is_absolute():
+                path = (base or Path.cwd()) / path
+            units = r.string("track.irregularity", g, "units", "mm")
+            irr = _construct(r, "track.irregularity",
+                             lambda: dyn.TrackIrregularity.from_file(path, units=units))
+        elif kind == "psd":         # a standard spectrum, reproducibly from the seed
+            spec = r.string("track.irregularity", g, "spectrum", "")
+            seed = g.get("seed", 0)
+            if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+                r.fail("track.irregularity", "seed", f"must be an integer >= 0, got {seed!r}")
+            vals = {k: r.number("track.irregularity", g, k) for k in ("start", "ramp", "step")
+                    if k in g}
+            length = r.number("track.irregularity", g, "length", positive=True)
+            irr = _construct(r, "track.irregularity", lambda: dyn.TrackIrregularity.from_psd(
+                spec, length, seed, **vals))
+        else:
+            vals = {k: r.number("track.irregularity", g, k) for k in keys[kind] if k in g}
+            make = dyn.Irregularity.sine if kind == "sine" else dyn.Irregularity.bump
+            irr = _construct(r, "track.irregularity", lambda: make(**vals))
     extra = {"cant_base": r.number("track", t, "cant_base", positive=True)} if (
         "cant_base" in t) else {}
     return _construct(r, "track", lambda: dyn.TrackLayout(track, curves=tuple(curves),
@@ -192,6 +217,8 @@ def read_dynamics_case(path_or_str):
         [model.rail_support]         # optional flexible rails: (k1, k2) pairs, ...
         [track]                      # optional: curves = [{radius, start, length, transition, cant,
                                      #   direction}], irregularity = {kind = "sine", amplitude, ...}
+                                     #   or {kind = "psd", spectrum = "erri-low", length, seed}
+                                     #   or {kind = "file", path = "track.csv", units = "mm"}
         [method]                     # normal, tangential and [method.<name>] options
         [friction]
         mu = 0.3
@@ -218,7 +245,7 @@ def read_dynamics_case(path_or_str):
     r.unknown("", data, ("model", "track", "method", "friction", "simulation"))
     base = Path(source).parent if Path(str(source)).exists() else Path.cwd()
     model, track = _read_model(r, data, base)
-    layout = _read_layout(r, data, track)
+    layout = _read_layout(r, data, track, base)
     normal, tangential, _ = read_methods(r, _table(r, data, "method"))
     mu = read_friction(r, data)
     s = _table(r, data, "simulation", required=True)
