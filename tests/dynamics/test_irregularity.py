@@ -19,7 +19,8 @@ CH = ("alignment", "level", "cross_level", "gauge")
 
 # the spectra written out here again from the literature (independent of _spectra)
 def erri(channel, w, level):
-    Aa, Av, Ag = {"low": (2.119e-7, 4.032e-7, 5.32e-8), "high": (6.125e-7, 1.080e-6, 1.032e-7)}[level]
+    Aa, Av, Ag = {"low": (2.119e-7, 4.032e-7, 5.32e-8),
+                  "high": (6.125e-7, 1.080e-6, 1.032e-7)}[level]
     c, r, s = 0.8246, 0.0206, 0.4380
     b = 0.75                                   # half distance of the contact points [m]
     base = c**2 / ((w**2 + r**2) * (w**2 + c**2))
