@@ -19,7 +19,8 @@ CH = ("alignment", "level", "cross_level", "gauge")
 
 # the spectra written out here again from the literature (independent of _spectra)
 def erri(channel, w, level):
-    Aa, Av, Ag = {"low": (2.119e-7, 4.032e-7, 5.32e-8), "high": (6.125e-7, 1.080e-6, 1.032e-7)}[level]
+    Aa, Av, Ag = {"low": (2.119e-7, 4.032e-7, 5.32e-8),
+                  "high": (6.125e-7, 1.080e-6, 1.032e-7)}[level]
     c, r, s = 0.8246, 0.0206, 0.4380
     b = 0.75                                   # half distance of the contact points [m]
     base = c**2 / ((w**2 + r**2) * (w**2 + c**2))
@@ -285,3 +286,47 @@ def test_wheelset_follows_level_and_cross_level(wheelset_model):
     kr = np.linalg.lstsq(A, res.state("ws0.roll")[m], rcond=None)[0]
     assert kz[0] == pytest.approx(1.0, abs=0.01) and abs(kz[1]) < 0.01
     assert kr[1] == pytest.approx(1 / (2 * ws.e_tape), rel=0.03) and abs(kr[0]) < 0.03
+
+
+# --------------------------------------------------------------------------- case files
+CASE = """
+[model]
+wheel = "S1002"
+rail = "60E1"
+mass = 1813.0
+inertia = [1120.0, 100.0, 1120.0]
+axle_load = 80e3
+[model.primary]
+kx = 1e6
+ky = 1e6
+[track]
+irregularity = {IRR}
+[friction]
+mu = 0.3
+[simulation]
+speed = 20.0
+duration = 0.1
+"""
+
+
+def test_case_file_irregularity_from_spectrum_and_file(tmp_path):
+    from wheelrail.cli.dynamics import read_dynamics_case
+    case = tmp_path / "psd.toml"
+    case.write_text(CASE.replace("{IRR}", '{kind = "psd", spectrum = "fra-5", length = 300.0, '
+                                          'seed = 4, ramp = 5.0}'))
+    irr = read_dynamics_case(case)["layout"].irregularity
+    ref = D.TrackIrregularity.from_psd("fra-5", 300.0, 4, ramp=5.0)
+    np.testing.assert_array_equal(irr.level, ref.level)
+    ref.to_file(tmp_path / "measured.csv")
+    case = tmp_path / "file.toml"
+    case.write_text(CASE.replace("{IRR}", '{kind = "file", path = "measured.csv"}'))
+    irr = read_dynamics_case(case)["layout"].irregularity
+    np.testing.assert_allclose(irr.gauge, ref.gauge, atol=1e-12)
+    for bad, msg in (('{kind = "psd", spectrum = "erri-mid", length = 100.0}', "unknown track"),
+                     ('{kind = "psd", spectrum = "erri-low", length = 100.0, seed = 1.5}',
+                      "seed"),
+                     ('{kind = "file", path = "nowhere.csv"}', "cannot read"),
+                     ('{kind = "wave"}', "'sine', 'bump', 'file' or 'psd'")):
+        case.write_text(CASE.replace("{IRR}", bad))
+        with pytest.raises(wr.WheelrailError, match=msg):
+            read_dynamics_case(case)

@@ -3,8 +3,7 @@
 ``[model] kind = "vehicle"`` builds a :class:`wheelrail.dynamics.VehicleModel`, either
 a built-in vehicle by name (``vehicle = "manchester1"``) or from the bogie keys of
 ``kind = "bogie"`` plus ``[model.carbody]`` and ``[model.secondary]``;
-``[track.irregularity] kind = "file"`` or ``"psd"`` builds a
-:class:`wheelrail.dynamics.TrackIrregularity`. Every refusal names the file, the
+Every refusal names the file, the
 table, the key and the value (:class:`wheelrail._toml.Reader`).
 """
 
@@ -12,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-__all__ = ["VEHICLE_KEYS", "BUILT_IN_VEHICLES", "read_vehicle", "read_irregularity"]
+__all__ = ["VEHICLE_KEYS", "BUILT_IN_VEHICLES", "read_vehicle"]
 
 #: Keys of ``[model]`` that only a vehicle takes.
 VEHICLE_KEYS = ("vehicle", "carbody", "bogie_semi_spacing", "frame_height", "primary_height",
@@ -141,32 +140,3 @@ def read_vehicle(r, m, bogie_kw, rail, numbers):
            for k in ("bogie_semi_spacing", "frame_height", "primary_height") if k in m}
     return _construct(r, "model", lambda: dyn.VehicleModel(carbody=body, bogies=bogie,
                                                            secondary=sec, **vkw))
-
-
-def read_irregularity(r, g, base):
-    """A ``[track.irregularity]`` of ``kind = "file"`` (``path``, optional ``units``) or
-    ``kind = "psd"`` (``spectrum``, ``length``, ``seed``, optional ``start``, ``step``,
-    ``ramp``) → :class:`~wheelrail.dynamics.TrackIrregularity`."""
-    from pathlib import Path
-
-    from ..dynamics import TrackIrregularity
-
-    table = "track.irregularity"
-    kind = _required_string(r, table, g, "kind")
-    if kind == "file":
-        r.unknown(table, g, ("kind", "path", "units"))
-        path = Path(_required_string(r, table, g, "path"))
-        if not path.is_absolute():
-            path = base / path
-        units = r.string(table, g, "units", "mm")
-        return _construct(r, table, lambda: TrackIrregularity.from_file(path, units=units))
-    r.unknown(table, g, ("kind", "spectrum", "length", "seed", "start", "step", "ramp"))
-    spectrum = _required_string(r, table, g, "spectrum")
-    length = r.number(table, g, "length", positive=True)
-    seed = g.get("seed", 0)
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        r.fail(table, "seed", f"must be a non-negative integer, got {seed!r}")
-    kw = {k: r.number(table, g, k, lo=0.0, positive=k == "step") for k in ("start", "step",
-                                                                             "ramp") if k in g}
-    return _construct(r, table, lambda: TrackIrregularity.from_psd(spectrum, length, seed,
-                                                                   **kw))

@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from ._vehicle_case import VEHICLE_KEYS, read_irregularity, read_vehicle
+from ._vehicle_case import VEHICLE_KEYS, read_vehicle
 
 HELP = "wheelset / bogie / vehicle dynamics of a [model] case file: NetCDF, assessment, figures"
 
@@ -170,7 +170,9 @@ def _read_model(r, data, base):
     return _construct(r, "model", lambda: dyn.BogieModel(**kw)), track
 
 
-def _read_layout(r, data, track, base):
+def _read_layout(r, data, track, base=None):
+    from pathlib import Path
+
     from .. import dynamics as dyn
 
     t = _table(r, data, "track")
@@ -193,14 +195,33 @@ def _read_layout(r, data, track, base):
             r.fail("track.irregularity", None, f"must be a table, got {g!r}")
         kind = r.string("track.irregularity", g, "kind", "sine")
         keys = {"sine": ("amplitude", "wavelength", "start", "cycles", "step"),
-                "bump": ("amplitude", "length", "start", "step")}
-        if kind in ("file", "psd"):
-            irr = read_irregularity(r, g, base)
-        elif kind not in keys:
+                "bump": ("amplitude", "length", "start", "step"),
+                "file": ("path", "units"),
+                "psd": ("spectrum", "length", "seed", "start", "ramp", "step")}
+        if kind not in keys:
             r.fail("track.irregularity", "kind",
                    f"must be 'sine', 'bump', 'file' or 'psd', got {kind!r}")
+        r.unknown("track.irregularity", g, ("kind", *keys[kind]))
+        if kind == "file":          # measured: distance [m], alignment, level, cross level, gauge
+            path = Path(r.string("track.irregularity", g, "path", ""))
+            if not str(path):
+                r.fail("track.irregularity", "path", "missing (required)")
+            if not path.is_absolute():
+                path = (base or Path.cwd()) / path
+            units = r.string("track.irregularity", g, "units", "mm")
+            irr = _construct(r, "track.irregularity",
+                             lambda: dyn.TrackIrregularity.from_file(path, units=units))
+        elif kind == "psd":         # a standard spectrum, reproducibly from the seed
+            spec = r.string("track.irregularity", g, "spectrum", "")
+            seed = g.get("seed", 0)
+            if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+                r.fail("track.irregularity", "seed", f"must be an integer >= 0, got {seed!r}")
+            vals = {k: r.number("track.irregularity", g, k) for k in ("start", "ramp", "step")
+                    if k in g}
+            length = r.number("track.irregularity", g, "length", positive=True)
+            irr = _construct(r, "track.irregularity", lambda: dyn.TrackIrregularity.from_psd(
+                spec, length, seed, **vals))
         else:
-            r.unknown("track.irregularity", g, ("kind", *keys[kind]))
             vals = {k: r.number("track.irregularity", g, k) for k in keys[kind] if k in g}
             make = dyn.Irregularity.sine if kind == "sine" else dyn.Irregularity.bump
             irr = _construct(r, "track.irregularity", lambda: make(**vals))
@@ -234,7 +255,7 @@ def read_dynamics_case(path_or_str):
         [track]                      # optional: curves = [{radius, start, length, transition, cant,
                                      #   direction}], irregularity = {kind = "sine", amplitude, ...}
                                      #   or {kind = "psd", spectrum = "erri-low", length, seed}
-                                     #   or {kind = "file", path = "measured.csv", units = "mm"}
+                                     #   or {kind = "file", path = "track.csv", units = "mm"}
         [method]                     # normal, tangential and [method.<name>] options
         [friction]
         mu = 0.3

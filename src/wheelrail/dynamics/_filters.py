@@ -94,7 +94,8 @@ def bandpass(x, fs: float, low: float, high: float, order: int = 4, *,
     """Butterworth band-pass filter (−3 dB at ``low`` and ``high`` [Hz]).
 
     ``order`` is that of the low-pass prototype: the band-pass has 2·order poles,
-    gain 1/√(1 + ((Ω² − Ω_l Ω_h)/(Ω (Ω_h − Ω_l)))^(2·order)) with Ω = 2 fs tan(π f/fs).
+    gain 1/√(1 + ((Ω² − Ω_l Ω_h)/(Ω (Ω_h − Ω_l)))^(2·order)) with
+    Ω = 2 fs tan(π f/fs).
     Other parameters as :func:`lowpass`.
     """
     _check_rate(fs, low, high)

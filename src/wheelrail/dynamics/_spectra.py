@@ -15,7 +15,8 @@ disturbance), with Ωc = 0.8246, Ωr = 0.0206, Ωs = 0.4380 rad/m::
 
     alignment    S_a(Ω) = A_a Ωc² / ((Ω² + Ωr²)(Ω² + Ωc²))
     level        S_v(Ω) = A_v Ωc² / ((Ω² + Ωr²)(Ω² + Ωc²))
-    cross level  S_c(Ω) = (A_v / b²) Ωc² Ω² / ((Ω² + Ωr²)(Ω² + Ωc²)(Ω² + Ωs²))   [rad²/(rad/m)]
+    cross level  S_c(Ω) = (A_v / b²) Ωc² Ω² / ((Ω² + Ωr²)(Ω² + Ωc²)(Ω² + Ωs²))
+                 [rad²/(rad/m), the angle between the rails]
     gauge        S_g(Ω) = A_g Ωc² Ω² / ((Ω² + Ωr²)(Ω² + Ωc²)(Ω² + Ωs²))
 
 with A_a = 2.119e-7 (low) / 6.125e-7 (high), A_v = 4.032e-7 / 1.080e-6,

@@ -155,8 +155,12 @@ def assess(result, *, cutoff: float = 20.0, window: float = 2.0, step: float = 0
     if t.size < 4:
         raise InputError(f"assess: at least 4 outputs needed, got {t.size}")
     body = _body_channels(result, ds)
-    extra = [] if body is None else [body[1], body[2]]
-    tu, h, arrs = _uniform(t, pos, V, Fy, Y, Q, *( [Tg] if Tg is not None else []), *extra)
+    series = [pos, V, Fy, Y, Q]
+    if Tg is not None:
+        series.append(Tg)
+    if body is not None:
+        series += [body[1], body[2]]
+    tu, h, arrs = _uniform(t, *series)
     pos, V, Fy, Y, Q = arrs[:5]
     k = 5
     if Tg is not None:

@@ -50,7 +50,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ._spectra import CHANNELS, TrackSpectrum, track_spectrum
+from ._spectra import CHANNELS, track_spectrum
 
 __all__ = ["TrackIrregularity", "hermite"]
 
