@@ -325,9 +325,16 @@ def run(args, console) -> int:
     console.print(f"dynamics: {type(model).__name__} ({model.n_wheelsets} wheelset(s)), "
                   f"{case['normal'].name} × {case['tangential'].name}, μ = {case['mu']:g}, "
                   f"V = {sim['speed']:g} m/s, {sim['duration']:g} s, {sim['integrator']!r}")
-    res = dyn.simulate(model, case["layout"], sim.pop("speed"), sim.pop("duration"),
-                       case["normal"], case["tangential"], mu=case["mu"],
-                       progress=not args.no_progress, **sim)
+    from ..dynamics.simulate import SimulationInterrupted
+
+    interrupted = None
+    try:
+        res = dyn.simulate(model, case["layout"], sim.pop("speed"), sim.pop("duration"),
+                           case["normal"], case["tangential"], mu=case["mu"],
+                           progress=not args.no_progress, **sim)
+    except SimulationInterrupted as exc:
+        # Ctrl-C: keep what was simulated (a valid result.nc marked interrupted), then 130
+        res, interrupted = exc.result, exc
     ds = res.dataset
     ds.attrs["case"] = str(args.case)
     ds.to_netcdf(out / "result.nc")
@@ -341,9 +348,18 @@ def run(args, console) -> int:
                "max_Y_over_Q": float(np.nanmax(np.abs(yq.values))),
                "max_lateral_shift_m": float(np.max(np.abs(ds["y"].values))),
                "contact_changes": len(res.events),
+               "interrupted": bool(res.info.get("interrupted")),
+               "derailment": res.info.get("derailment"),
+               "substeps": res.info.get("substeps", 1),
                "units": {"time": "s", "y": "m", "yaw": "rad", "Fn": "N", "Y_over_Q": "1"}}
     (out / "summary.json").write_text(json.dumps(summary, indent=2))
     written = ["result.nc", "summary.json"]
+    if interrupted is not None:
+        from ._output import esc
+
+        console.print(f"interrupted at t = {summary['simulated_s']:.4g} s: wrote result.nc "
+                      f"(marked interrupted) and summary.json to {esc(out)}")
+        raise KeyboardInterrupt from None
     if not args.no_figures:
         written += _figures(ds, out)
     console.print(f"{summary['simulated_s']:.3f} s simulated in {summary['cpu_time_s']:.2f} s "
@@ -351,6 +367,12 @@ def run(args, console) -> int:
                   f"{summary['max_Y_over_Q']:.3f}, max |y| = "
                   f"{summary['max_lateral_shift_m'] * 1e3:.2f} mm, "
                   f"{summary['contact_changes']} contact-configuration changes")
+    d = summary["derailment"]
+    if d:
+        console.print(f"DERAILMENT: Y/Q = {d['max_Y_over_Q']:.3g} beyond Nadal's limit "
+                      f"{d['nadal_limit']:.3g} (wheelset {d['wheelset']}, {d['side']} wheel, "
+                      f"from t = {d['t']:.4g} s); the motion after it is not physical",
+                      markup=False, highlight=False)
     from ._output import esc
 
     console.print(f"wrote {', '.join(written)} to {esc(out)}")
