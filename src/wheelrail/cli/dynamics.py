@@ -196,7 +196,7 @@ def read_dynamics_case(path_or_str):
         [friction]
         mu = 0.3
         [simulation]
-        speed = 30.0                 # [m/s]
+        speed = 30.0                 # [m/s] (0: from rest, with deceleration < 0)
         duration = 2.0               # [s]
         integrator = "rk4"           # "rk4" / "heun" (fixed step = step) or a solve_ivp method
         step = 1e-3
@@ -223,7 +223,7 @@ def read_dynamics_case(path_or_str):
     mu = read_friction(r, data)
     s = _table(r, data, "simulation", required=True)
     r.unknown("simulation", s, _SIM_KEYS)
-    sim = {"speed": r.number("simulation", s, "speed", positive=True),
+    sim = {"speed": r.number("simulation", s, "speed", lo=0.0),
            "duration": r.number("simulation", s, "duration", positive=True),
            "start": r.number("simulation", s, "start", default=0.0),
            "deceleration": r.number("simulation", s, "deceleration", default=0.0)}

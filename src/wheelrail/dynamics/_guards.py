@@ -28,6 +28,7 @@ import numpy as np
 from .. import _resources
 from ..errors import ConvergenceError, InputError
 from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
+from ._motion import rhs_fast
 
 __all__ = ["RunWarning", "SimulationInterrupted", "MIN_RADIUS", "MAX_SPEED", "HIGH_SPEED",
            "ABSURD", "check_speed", "check_states", "estimate", "flange_angle", "nadal_limit",
@@ -85,7 +86,7 @@ def check_states(system, T, X, dt):
     else:
         what = "a state is not finite"
     step = (f"with the fixed step {dt!r} s: the step is too long for the stiffest mode; try "
-            f"FixedStep(dt={dt / 4:.2g}) or an implicit Adaptive('Radau')") if dt else \
+            f"FixedStep(dt={min(dt / 4, 1e-3):.2g}) or an implicit Adaptive('Radau')") if dt else \
         "(the integration diverged)"
     raise ConvergenceError(f"the simulation diverged at t = {float(T[k]):.6g} s: {what} {step}")
 
@@ -112,16 +113,34 @@ def output_bytes(system):
     return 8.0 * (1 + system.asm.n + nw * 2 * (KMAX * len(PATCH_FIELDS) + len(WHEEL_FIELDS)))
 
 
+def _eval_cost(system, x0, compiled, n=20):
+    """CPU time of one evaluation of the right-hand side [s] (median of ``n``)."""
+    times = []
+    if compiled:
+        c = system.contact
+        dx = np.empty_like(x0)
+        for _ in range(n):
+            t0 = time.process_time()
+            rhs_fast(0.0, x0, system.asm.P, system.layout.arrays, system.speed, system.aV,
+                     system.start, system.min_speed, c.geometry["left"], c.geometry["right"],
+                     c.method, system.mu, system.OP, system.OW, dx)
+            times.append(time.process_time() - t0)
+    else:
+        for _ in range(max(3, n // 4)):
+            t0 = time.process_time()
+            system.rhs(0.0, x0)
+            times.append(time.process_time() - t0)
+    return float(np.median(times))
+
+
 def estimate(system, x0, duration, integ, out_dt):
     """CPU time and output memory of the run, refused past the limits (see
     :func:`wheelrail._resources.check`; long runs are announced)."""
     n_out = duration / out_dt + 2
     memory = n_out * output_bytes(system) + 200e6
-    # cost of one evaluation of the right-hand side, measured
-    c0 = time.perf_counter()
-    for _ in range(5):
-        system.rhs(0.0, x0)
-    per_eval = (time.perf_counter() - c0) / 5
+    # cost of one evaluation of the right-hand side, measured (CPU time; the compiled
+    # kernel directly where the run's loop is compiled)
+    per_eval = _eval_cost(system, x0, compiled=hasattr(integ, "dt") and system.fast)
     if hasattr(integ, "dt"):
         n_sub, _, _ = system.substeps(0.0, x0, integ.dt)
         steps = duration / integ.dt * n_sub
@@ -133,7 +152,10 @@ def estimate(system, x0, duration, integ, out_dt):
                                              else 4 + system.asm.n)
         what = (f"dynamics run of {duration:.6g} s (solve_ivp {integ.method}, at least "
                 f"{duration / integ.max_step:.3g} steps, {n_out:.3g} outputs)")
-    seconds = evals * per_eval
+    # × 1.2: the step halvings at contact changes and the loop's own work (measured
+    # estimate / CPU time 0.75–0.92 without it, benchmarks/bench_dynamics_estimate.py)
+    seconds = 1.2 * evals * per_eval
+    system.estimate_seconds = seconds
     system.estimate = _resources.check(what, seconds, memory,
                                        f"{per_eval * 1e3:.3g} ms per contact evaluation, "
                                        f"measured; {output_bytes(system) / 1e3:.3g} kB per "

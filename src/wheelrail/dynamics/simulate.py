@@ -904,6 +904,7 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     if isinstance(integ, FixedStep):
         info["substeps"] = int(getattr(system, "substeps_max", 1))
     info["interrupted"] = int(bool(system.interrupted))
+    info["estimated_cpu_time"] = float(getattr(system, "estimate_seconds", math.nan))
     info["derailment"] = nadal_check(system, T, OW)
     speed_t = np.maximum(system.speed + system.aV * T, system.min_speed)
     pos = system.start + system.speed * T + 0.5 * system.aV * T * T
