@@ -1,10 +1,9 @@
-"""The vehicle and measured/generated-irregularity parts of a dynamics case file (private).
+"""The vehicle part of a dynamics case file (private).
 
 ``[model] kind = "vehicle"`` builds a :class:`wheelrail.dynamics.VehicleModel`, either
 a built-in vehicle by name (``vehicle = "manchester1"``) or from the bogie keys of
-``kind = "bogie"`` plus ``[model.carbody]`` and ``[model.secondary]``;
-Every refusal names the file, the
-table, the key and the value (:class:`wheelrail._toml.Reader`).
+``kind = "bogie"`` plus ``[model.carbody]`` and ``[model.secondary]``. Every refusal
+names the file, the table, the key and the value (:class:`wheelrail._toml.Reader`).
 """
 
 from __future__ import annotations

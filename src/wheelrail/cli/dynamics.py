@@ -260,7 +260,7 @@ def read_dynamics_case(path_or_str):
         [friction]
         mu = 0.3
         [simulation]
-        speed = 30.0                 # [m/s]
+        speed = 30.0                 # [m/s] (0: from rest, with deceleration < 0)
         duration = 2.0               # [s]
         integrator = "rk4"           # "rk4" / "heun" (fixed step = step) or a solve_ivp method
         step = 1e-3
@@ -287,7 +287,7 @@ def read_dynamics_case(path_or_str):
     mu = read_friction(r, data)
     s = _table(r, data, "simulation", required=True)
     r.unknown("simulation", s, _SIM_KEYS)
-    sim = {"speed": r.number("simulation", s, "speed", positive=True),
+    sim = {"speed": r.number("simulation", s, "speed", lo=0.0),
            "duration": r.number("simulation", s, "duration", positive=True),
            "start": r.number("simulation", s, "start", default=0.0),
            "deceleration": r.number("simulation", s, "deceleration", default=0.0)}
@@ -440,9 +440,16 @@ def run(args, console) -> int:
     if not _kernels_cached():
         console.print("first run: compiling the dynamics kernels (about 50 s on a 2-core "
                       "machine, once; later runs load them from the cache)")
-    res = dyn.simulate(model, case["layout"], sim.pop("speed"), sim.pop("duration"),
-                       case["normal"], case["tangential"], mu=case["mu"],
-                       progress=not args.no_progress, **sim)
+    from ..dynamics.simulate import SimulationInterrupted
+
+    interrupted = None
+    try:
+        res = dyn.simulate(model, case["layout"], sim.pop("speed"), sim.pop("duration"),
+                           case["normal"], case["tangential"], mu=case["mu"],
+                           progress=not args.no_progress, **sim)
+    except SimulationInterrupted as exc:
+        # Ctrl-C: keep what was simulated (a valid result.nc marked interrupted), then 130
+        res, interrupted = exc.result, exc
     ds = res.dataset
     ds.attrs["case"] = str(args.case)
     ds.to_netcdf(out / "result.nc")
@@ -456,8 +463,18 @@ def run(args, console) -> int:
                "max_Y_over_Q": float(np.nanmax(np.abs(yq.values))),
                "max_lateral_shift_m": float(np.max(np.abs(ds["y"].values))),
                "contact_changes": len(res.events),
+               "interrupted": bool(res.info.get("interrupted")),
+               "derailment": res.info.get("derailment"),
+               "substeps": res.info.get("substeps", 1),
                "units": {"time": "s", "y": "m", "yaw": "rad", "Fn": "N", "Y_over_Q": "1"}}
     written = ["result.nc", "summary.json"]
+    if interrupted is not None:
+        from ._output import esc
+
+        (out / "summary.json").write_text(json.dumps(summary, indent=2))
+        console.print(f"interrupted at t = {summary['simulated_s']:.4g} s: wrote result.nc "
+                      f"(marked interrupted) and summary.json to {esc(out)}")
+        raise KeyboardInterrupt from None
     table = _assessment(res, out, console, summary)
     if table is not None:
         written += ["assessment.nc", "assessment.csv"]
@@ -470,6 +487,12 @@ def run(args, console) -> int:
                   f"{summary['max_Y_over_Q']:.3f}, max |y| = "
                   f"{summary['max_lateral_shift_m'] * 1e3:.2f} mm, "
                   f"{summary['contact_changes']} contact-configuration changes")
+    d = summary["derailment"]
+    if d:
+        console.print(f"DERAILMENT: Y/Q = {d['max_Y_over_Q']:.3g} beyond Nadal's limit "
+                      f"{d['nadal_limit']:.3g} (wheelset {d['wheelset']}, {d['side']} wheel, "
+                      f"from t = {d['t']:.4g} s); the motion after it is not physical",
+                      markup=False, highlight=False)
     from ._output import esc
 
     console.print(f"wrote {', '.join(written)} to {esc(out)}")

@@ -43,7 +43,7 @@ from ._vehicle_motion import vehicle_derivative
 from .model import GP, NGP, NWP, WP
 
 __all__ = ["layout_at", "heading_at", "wheel_inputs", "derivative", "rhs_fast", "run_fixed",
-           "N_IN"]
+           "relax_gains", "relax_derivative", "relax_decay", "relax_stage", "N_IN"]
 
 #: Per-wheel contact inputs of :func:`wheel_inputs`.
 IN_FIELDS = ("y", "zc", "roll", "yaw", "V", "omega", "vy", "vz", "yaw_rate", "roll_rate")
@@ -218,8 +218,9 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
     """State derivative ``dx`` from the contact's generalised forces (see the module docstring).
 
     ``Qn``, ``Qt``: (n_ws, 2, 5) normal and tangential generalised forces of each
-    wheel (y, z, roll, yaw, spin); ``amean``: (n_ws, 2) load-weighted semi-axis a of
-    each wheel's patches [m] (creep relaxation).
+    wheel (y, z, roll, yaw, spin) — with creep relaxation, ``Qt`` are the relaxed
+    forces (the relaxation states); their own rates are :func:`relax_derivative`'s.
+    ``amean`` is not used here (kept for the signature).
     """
     ks, kk, kp, kh, is0, ids, iy = L
     if P[_G_VEHICLE] > 0:      # car body on bogies or wheelsets (_vehicle_motion)
@@ -228,12 +229,10 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
     nw = int(P[_G_NWS])
     frame = P[_G_FRAME] > 0
     rails = P[_G_RAILS] > 0
-    relax = P[_G_RELAX] > 0
     g = P[_G_G]
     r0 = P[_G_R0]
     of = int(P[_G_OF])
     orl = int(P[_G_OR])
-    ox = int(P[_G_OX])
     dx[:] = 0.0
     # frame pose (zero for the wheelset model: the reference follows the track)
     kf, phf, _, _ = layout_at(s_ref, ks, kk, kp, kh, is0, ids, iy)
@@ -328,12 +327,6 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
                     dx[rb] = wd
                     dx[rb + 1] = v
                     dx[rb + 2] = (Fr - k1 * (u - w) - c1 * (v - wd)) / mr
-        if relax:
-            for side in range(2):
-                xb = ox + 10 * i + 5 * side
-                a = P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR])
-                for k in range(5):
-                    dx[xb + k] = (Qt[i, side, k] - x[xb + k]) * V / a
     if frame:
         mf = P[_G_FM]
         Ifx, Ify, Ifz = P[_G_FM + 1], P[_G_FM + 2], P[_G_FM + 3]
@@ -363,6 +356,70 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
         dx[of + 7] = Qf[2] / Ifx
         dx[of + 8] = Qf[3] / Ify
         dx[of + 9] = Qf[4] / Ifz - (V * V * dkf + aV * kf)
+
+
+# --------------------------------------------------------------------------- creep relaxation
+@njit(cache=True)
+def relax_gains(P, V, amean, k):
+    """Rates k = V/L [1/s] of the creep relaxation of every wheel, ``k`` (n_ws, 2).
+
+    L = ``P[relax]`` · max(a, floor): the relaxation length in semi-axes a (the
+    load-weighted semi-axis of the wheel's patches along the rolling direction).
+    """
+    nw = amean.shape[0]
+    for i in range(nw):
+        for side in range(2):
+            k[i, side] = V / (P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR]))
+
+
+@njit(cache=True)
+def relax_derivative(x, P, V, Qt, amean, dx):
+    """The creep-relaxation law: dq/dt = (Q_t − q) V/L for the relaxation states q of
+    every wheel (first-order lag in the distance rolled; Q_t the steady creep forces,
+    (n_ws, 2, 5)). Writes the relaxation rows of ``dx``."""
+    nw = Qt.shape[0]
+    ox = int(P[_G_OX])
+    k = np.empty((nw, 2))
+    relax_gains(P, V, amean, k)
+    for i in range(nw):
+        for side in range(2):
+            for c in range(5):
+                j = ox + 10 * i + 5 * side + c
+                dx[j] = (Qt[i, side, c] - x[j]) * k[i, side]
+
+
+@njit(cache=True)
+def _steady_forces(OW, F):
+    """The steady creep forces Q_t of every wheel from the contact outputs, F (n_ws·10,)."""
+    nw = OW.shape[0]
+    for i in range(nw):
+        for side in range(2):
+            for c in range(5):
+                F[10 * i + 5 * side + c] = OW[i, side, 6 + c]
+
+
+@njit(cache=True)
+def relax_decay(P, V, OW, h, E):
+    """exp(−k h) of every relaxation state (k from the contact outputs ``OW``), E (n_ws·10,)."""
+    nw = OW.shape[0]
+    am = np.empty((nw, 2))
+    for i in range(nw):
+        for side in range(2):
+            am[i, side] = OW[i, side, 17]
+    k = np.empty((nw, 2))
+    relax_gains(P, V, am, k)
+    for i in range(nw):
+        for side in range(2):
+            for c in range(5):
+                E[10 * i + 5 * side + c] = math.exp(-k[i, side] * h)
+
+
+@njit(cache=True)
+def relax_stage(xt, x, F, E, ox):
+    """The relaxation states of a stage or step end, exact for the steady force F held
+    over the interval: q = F + (q0 − F) exp(−k h) (``E`` = exp(−k h))."""
+    for j in range(F.shape[0]):
+        xt[ox + j] = F[j] + (x[ox + j] - F[j]) * E[j]
 
 
 @njit(cache=True)
@@ -416,13 +473,7 @@ def rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
                 for k in range(5):
                     Qr[i, side, k] = x[ox + 10 * i + 5 * side + k]
         derivative(t, x, P, L, V, aV, s_ref, Qn, Qr, amean, dx)
-        # the relaxation states move towards the steady creep forces
-        for i in range(nw):
-            for side in range(2):
-                a = P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR])
-                for k in range(5):
-                    j = ox + 10 * i + 5 * side + k
-                    dx[j] = (Qt[i, side, k] - x[j]) * V / a
+        relax_derivative(x, P, V, Qt, amean, dx)
     else:
         derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx)
     return total
@@ -447,7 +498,14 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
               scheme, max_halvings, T_out, X_out, OP_out, OW_out, events):
     """Fixed-step explicit integration with the compiled contact (real-time path).
 
-    ``scheme`` 4: classical Runge–Kutta; 2: Heun. A step across which the contact
+    ``scheme`` 4: classical Runge–Kutta; 2: Heun. The creep-relaxation states (a
+    stiff first-order lag, time constant L/V, often shorter than the step) are not
+    stepped by the scheme: each stage and the step end take the exact solution of
+    dq/dt = k (F − q) for the steady force F of the stage before held over the
+    interval, q = F + (q0 − F) exp(−k h), and the step end the scheme's weighted
+    mean of the stages' F (k from the step's start). Stable at any k h, exact for a
+    constant F (step response exp(−V t/L)), and the same fixed point as without
+    relaxation. A step across which the contact
     configuration (number of patches of a wheel) changes is redone in halves, down
     to ``dt / 2**max_halvings``, so that no step of more than that size straddles a
     contact jump (the configuration is checked at every step end; this costs no extra
@@ -477,6 +535,15 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
     kn = np.empty(n)
     sig = np.zeros(2 * nw, np.int64)
     sign = np.zeros(2 * nw, np.int64)
+    relax = P[_G_RELAX] > 0
+    ox = int(P[_G_OX])
+    nr = 10 * nw
+    F1 = np.empty(nr)
+    F2 = np.empty(nr)
+    F3 = np.empty(nr)
+    F4 = np.empty(nr)
+    Eh = np.empty(nr)
+    Ef = np.empty(nr)
     t = t0
     rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, k1)
     nev = 1
@@ -495,30 +562,58 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
         h = dt
         while t < t_end - 1e-12 * dt:
             hh = min(h, t_end - t)
-            # one step from (t, x) with slope k1
+            # one step from (t, x) with slope k1; the relaxation states by the exact
+            # exponential update over each stage (stiff: time constant L/V)
+            if relax:
+                Vt = max(V0 + aV * t, vmin)
+                relax_decay(P, Vt, OW, 0.5 * hh, Eh)
+                relax_decay(P, Vt, OW, hh, Ef)
+                _steady_forces(OW, F1)
             if scheme == 4:
                 for j in range(n):
                     xt[j] = x[j] + 0.5 * hh * k1[j]
+                if relax:
+                    relax_stage(xt, x, F1, Eh, ox)
                 rhs_fast(t + 0.5 * hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn,
                          OWn, k2)
+                if relax:
+                    _steady_forces(OWn, F2)
                 for j in range(n):
                     xt[j] = x[j] + 0.5 * hh * k2[j]
+                if relax:
+                    relax_stage(xt, x, F2, Eh, ox)
                 rhs_fast(t + 0.5 * hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn,
                          OWn, k3)
+                if relax:
+                    _steady_forces(OWn, F3)
                 for j in range(n):
                     xt[j] = x[j] + hh * k3[j]
+                if relax:
+                    relax_stage(xt, x, F3, Ef, ox)
                 rhs_fast(t + hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
                          k4)
                 for j in range(n):
                     xn[j] = x[j] + hh / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
+                if relax:
+                    _steady_forces(OWn, F4)
+                    for j in range(nr):
+                        F1[j] = (F1[j] + 2.0 * F2[j] + 2.0 * F3[j] + F4[j]) / 6.0
+                    relax_stage(xn, x, F1, Ef, ox)
                 nev += 3
             else:
                 for j in range(n):
                     xt[j] = x[j] + hh * k1[j]
+                if relax:
+                    relax_stage(xt, x, F1, Ef, ox)
                 rhs_fast(t + hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
                          k2)
                 for j in range(n):
                     xn[j] = x[j] + 0.5 * hh * (k1[j] + k2[j])
+                if relax:
+                    _steady_forces(OWn, F2)
+                    for j in range(nr):
+                        F1[j] = 0.5 * (F1[j] + F2[j])
+                    relax_stage(xn, x, F1, Ef, ox)
                 nev += 1
             rhs_fast(t + hh, xn, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn, kn)
             nev += 1

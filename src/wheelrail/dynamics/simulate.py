@@ -31,8 +31,10 @@ References
 
 from __future__ import annotations
 
+import contextlib
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -42,14 +44,30 @@ from ..errors import ConvergenceError, InputError, WheelrailError
 from ..geometry.contact_search import solve_rigid
 from ..geometry.touching import touching_heights
 from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
-from ._motion import N_IN, derivative, rhs_fast, run_fixed, wheel_inputs
+from ._guards import (ABSURD, MIN_RADIUS, RunWarning, SimulationInterrupted, check_speed,
+                      check_states, estimate, nadal_check)
+from ._motion import (N_IN, derivative, relax_decay, relax_derivative, relax_stage, rhs_fast,
+                      run_fixed, wheel_inputs)
 from .contact import FastContact, contact_model
 from .layout import as_layout
 from .model import GP, Assembly, BogieModel, WheelsetModel
 from .results import to_dataset
 from .vehicle import VehicleAssembly, VehicleModel
 
-__all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System"]
+__all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System", "StepWarning",
+           "RunWarning", "SimulationInterrupted", "ABSURD"]
+
+#: A fixed step is divided into sub-steps so that RK4 takes the creep damping's shortest
+#: time constant τ in steps of at most _TAU_STEPS τ (RK4 is stable to 2.79 τ on the real axis).
+_TAU_STEPS = 2.0
+#: Largest number of sub-steps per fixed step (beyond it the run is refused).
+_MAX_SUBSTEPS = 1000
+
+
+class StepWarning(UserWarning):
+    """The fixed step is too long for the stiffest creep-damped motion at the run's speed:
+    it is divided into sub-steps (the message gives the time constant and the cost)."""
+
 
 _W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
 _P = {n: i for i, n in enumerate(PATCH_FIELDS)}
@@ -160,11 +178,22 @@ class System:
                              f"{type(model).__name__}")
         self.model = model
         self.layout = as_layout(track)
-        for name, v in (("speed", speed), ("mu", mu)):
-            if not (isinstance(v, (int, float, np.floating)) and math.isfinite(v) and v > 0):
-                raise InputError(f"{name} must be a number > 0, got {v!r}")
-        if not (math.isfinite(deceleration)):
+        for c in self.layout.curves:
+            if c.radius < MIN_RADIUS:
+                raise InputError(f"curve radius = {c.radius!r} m is below {MIN_RADIUS:g} m "
+                                 f"(the tightest railway curves are about 60–80 m); a radius "
+                                 f"in km or mm?")
+        if not (isinstance(mu, (int, float, np.floating)) and math.isfinite(mu) and mu > 0):
+            raise InputError(f"mu must be a number > 0, got {mu!r}")
+        if not (isinstance(deceleration, (int, float, np.floating))
+                and math.isfinite(deceleration)):
             raise InputError(f"deceleration must be finite, got {deceleration!r}")
+        rest = deceleration < 0          # accelerating: may start from rest
+        if not (isinstance(speed, (int, float, np.floating)) and math.isfinite(speed)
+                and (speed > 0 or (rest and speed == 0))):
+            raise InputError(f"speed must be a number > 0 (or 0 with an acceleration, "
+                             f"deceleration < 0), got {speed!r}")
+
         self.speed = float(speed)
         self.mu = float(mu)
         self.aV = -float(deceleration)
@@ -223,17 +252,74 @@ class System:
         Qn = np.ascontiguousarray(self.OW[..., 1:6])
         Qt = np.ascontiguousarray(self.OW[..., 6:11])
         am = np.ascontiguousarray(self.OW[..., _W["a_mean"]])
-        if self.asm.relax:
+        if self.asm.P[GP["relax"]] > 0:
             ox = self.asm.off_relax
             Qr = x[ox:ox + 10 * nw].reshape(nw, 2, 5).copy()
             derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
                        Qn, Qr, am, dx)
-            a = self.asm.P[GP["relax"]] * np.maximum(am, self.asm.P[GP["relax_floor"]])
-            rel = (Qt - Qr) * V / a[..., None]
-            dx[ox:ox + 10 * nw] = rel.reshape(-1)
+            relax_derivative(x, self.asm.P, V, Qt, am, dx)
         else:
             derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
                        Qn, Qt, am, dx)
+
+    @contextlib.contextmanager
+    def steady(self):
+        """Within: the creep forces act at once, without relaxation (the relaxation states
+        are ignored and their rates zero) — for the static equilibrium and the step
+        control."""
+        j = GP["relax"]
+        keep = self.asm.P[j]
+        self.asm.P[j] = 0.0
+        self._last = None
+        try:
+            yield self
+        finally:
+            self.asm.P[j] = keep
+            self._last = None
+
+    def creep_rate(self, t, x):
+        """The fastest creep-damped motion at (t, x): (rate [1/s], its name).
+
+        The creep forces damp the lateral, yaw and (free) spin velocities of each
+        wheelset with time constants proportional to V (e.g. Iy V / (2 f11 r0²) for
+        the spin, f11 Kalker's longitudinal creep coefficient); the rate is the
+        largest diagonal entry |∂v̇/∂v| of those velocities, by finite differences
+        of the steady (unrelaxed) equations with a creepage of 1e-5.
+        """
+        nw = self.asm.n_ws
+        V = self.V(t)
+        r0 = self.asm.P[GP["r0"]]
+        l0 = 0.5 * float(self.layout.track.gauge) if hasattr(self.layout.track, "gauge") \
+            else 0.75
+        x = np.asarray(x, dtype=float)
+        best, which = 0.0, "lateral"
+        with self.steady():
+            f0 = self.rhs(t, x).copy()
+            dofs = [(4, 1e-5 * V, "lateral"), (7, 1e-5 * V / l0, "yaw")]
+            if self.model.spin == "free":
+                dofs.append((8, 1e-5 * V / r0, "spin"))
+            for off, d, name in dofs:
+                idx = [9 * i + off for i in range(nw)]
+                xp = x.copy()
+                xp[idx] += d
+                f1 = self.rhs(t, xp)
+                rate = float(np.max(np.abs(f1[idx] - f0[idx]))) / d
+                if rate > best:
+                    best, which = rate, name
+            self.rhs(t, x)
+        return best, which
+
+    def substeps(self, t, x, dt):
+        """Sub-steps per fixed step ``dt`` for the creep damping at (t, x): (n, rate, name)."""
+        rate, which = self.creep_rate(t, x)
+        n = max(1, int(math.ceil(dt * rate / _TAU_STEPS - 1e-9)))
+        if n > _MAX_SUBSTEPS:
+            raise InputError(
+                f"at V = {self.V(t):.3g} m/s the creep forces damp the {which} motion with a "
+                f"time constant of {1.0 / rate:.3g} s: a fixed step of {dt!r} s would need "
+                f"{n} sub-steps (more than {_MAX_SUBSTEPS}); use FixedStep(dt="
+                f"{_TAU_STEPS / rate:.2g}) or an implicit Adaptive('Radau'), or a higher speed")
+        return n, rate, which
 
     def signature(self, t, x):
         """Patch count of every wheel at (t, x) (reuses the last evaluation when it is there)."""
@@ -249,7 +335,7 @@ class System:
         nw = asm.n_ws
         r0 = asm.P[6]
         for i in range(nw):
-            x[9 * i + 8] = self.speed / r0
+            x[9 * i + 8] = self.V(0.0) / r0
         given = {}
         if initial is not None:
             if isinstance(initial, dict):
@@ -278,6 +364,22 @@ class System:
         keep = [k for k, c in enumerate(cols) if c not in given]
         cols, rows = [cols[k] for k in keep], [rows[k] for k in keep]
         steps, scales = steps[keep], scales[keep]
+        with self.steady():
+            x = self._static(x, given, cols, rows, steps, scales)
+        if self.asm.relax:
+            # relaxation states at their steady values (unless given)
+            with self.steady():
+                self.rhs(0.0, x)
+            ox = asm.off_relax
+            q = self.OW[..., 6:11].reshape(-1)
+            for j in range(10 * nw):
+                if ox + j not in given:
+                    x[ox + j] = q[j]
+        return x
+
+    def _static(self, x, given, cols, rows, steps, scales):
+        asm = self.asm
+        nw = asm.n_ws
         for i in range(nw):
             # start from the rigid contact (roll of both wheels touching), pressed in slightly
             if 9 * i + 2 not in given:
@@ -446,36 +548,72 @@ def _run_fixed_compiled(system, x0, duration, integ, every, prog):
     done, nout, ne, nev, rej = 0, 0, 0, 0, 0
     x, t = x0.copy(), 0.0
     scheme = 4 if integ.scheme == "rk4" else 2
+    sub = _Substeps(system, dt)
+    system.interrupted = False
     while done < nsteps:
-        k = min(chunk, nsteps - done)
-        To, Xo, OPo, OWo = _outputs(k // every + 2, system)
-        ev = np.zeros((1000, 3))
-        no, nei, nv, rj = run_fixed(x, t, dt, k, every, system.asm.P, system.layout.arrays,
-                                    system.speed, system.aV, system.start, system.min_speed,
-                                    c.geometry["left"], c.geometry["right"], c.method,
-                                    system.mu, scheme, integ.max_halvings, To, Xo, OPo, OWo, ev)
-        if c.table_raise and np.any(OWo[:no, ..., _W["fallbacks"]] > 0):
-            c._raise_outside(OWo[:no][np.any(OWo[:no, ..., _W["fallbacks"]] > 0,
-                                             axis=(1, 2))][0])
-        # the last output of a chunk is its end state: the next chunk starts there
-        keep = no - 1 if done + k < nsteps else no
-        take = min(keep, n_out - nout)
-        T[nout:nout + take], X[nout:nout + take] = To[:take], Xo[:take]
-        OP[nout:nout + take], OW[nout:nout + take] = OPo[:take], OWo[:take]
-        nout += take
-        events[ne:ne + nei] = ev[:nei]
-        ne += nei
-        nev += nv
-        rej += rj
-        x, t = Xo[no - 1].copy(), float(To[no - 1])
-        done += k
-        _advance(prog, t)
-        if not np.all(np.isfinite(x)):
-            raise ConvergenceError(f"the state became non-finite at t = {t!r} s (step too "
-                                   "large for the stiffest mode? try a smaller dt or an "
-                                   "implicit Adaptive('Radau'))")
+        try:
+            k = min(chunk, nsteps - done)
+            ns = sub.at(t, x)
+            To, Xo, OPo, OWo = _outputs(k // every + 2, system)
+            ev = np.zeros((1000, 3))
+            no, nei, nv, rj = run_fixed(x, t, dt / ns, k * ns, every * ns, system.asm.P,
+                                        system.layout.arrays,
+                                        system.speed, system.aV, system.start, system.min_speed,
+                                        c.geometry["left"], c.geometry["right"], c.method,
+                                        system.mu, scheme, integ.max_halvings, To, Xo, OPo, OWo, ev)
+            if c.table_raise and np.any(OWo[:no, ..., _W["fallbacks"]] > 0):
+                c._raise_outside(OWo[:no][np.any(OWo[:no, ..., _W["fallbacks"]] > 0,
+                                                 axis=(1, 2))][0])
+            # the last output of a chunk is its end state: the next chunk starts there
+            keep = no - 1 if done + k < nsteps else no
+            take = min(keep, n_out - nout)
+            T[nout:nout + take], X[nout:nout + take] = To[:take], Xo[:take]
+            OP[nout:nout + take], OW[nout:nout + take] = OPo[:take], OWo[:take]
+            nout += take
+            events[ne:ne + nei] = ev[:nei]
+            ne += nei
+            nev += nv
+            rej += rj
+            x, t = Xo[no - 1].copy(), float(To[no - 1])
+            done += k
+            _advance(prog, t)
+            check_states(system, To[:no], Xo[:no], dt)
+            last = (To[no - 1], Xo[no - 1], OPo[no - 1], OWo[no - 1])
+        except KeyboardInterrupt:
+            system.interrupted = True
+            if done > 0 and done < nsteps and nout < n_out:
+                # the end state of the last finished chunk
+                T[nout], X[nout], OP[nout], OW[nout] = last
+                nout += 1
+            break
     system.n_eval += nev
+    sub.report(system)
     return T[:nout], X[:nout], OP[:nout], OW[:nout], events[:ne], rej
+
+
+class _Substeps:
+    """Sub-steps of a fixed step for the creep damping, re-estimated along the run (every
+    50 ms of simulated time); warns once when the step is divided."""
+
+    def __init__(self, system, dt):
+        self.system, self.dt = system, dt
+        self.max, self.warned = 1, False
+
+    def at(self, t, x):
+        n, rate, which = self.system.substeps(t, x, self.dt)
+        if n > 1 and not self.warned:
+            self.warned = True
+            warnings.warn(
+                f"at V = {self.system.V(t):.3g} m/s the creep forces damp the {which} motion "
+                f"with a time constant of {1e3 / rate:.3g} ms, too short for a fixed step of "
+                f"{self.dt * 1e3:g} ms (RK4 is stable to 2.8 time constants): each step is "
+                f"divided into {n} sub-steps (cost ×{n}; FixedStep(dt={self.dt / n:.2g}) "
+                f"would say so at once)", StepWarning, stacklevel=4)
+        self.max = max(self.max, n)
+        return n
+
+    def report(self, system):
+        system.substeps_max = self.max
 
 
 def _run_fixed_python(system, x0, duration, integ, every, prog):
@@ -490,23 +628,77 @@ def _run_fixed_python(system, x0, duration, integ, every, prog):
     sig = system.signature(t, x)
     cur = (system.OP.copy(), system.OW.copy())
     nout = 0
-    hmin = dt / 2.0 ** integ.max_halvings
+    sub = _Substeps(system, dt)
+    P = system.asm.P
+    relax = P[GP["relax"]] > 0
+    ox = system.asm.off_relax
+    nr = 10 * system.asm.n_ws
+
+    def stage(xs, F, E, x0):
+        # the relaxation states: exact for the steady force F held (as run_fixed)
+        if relax:
+            relax_stage(xs, x0, F, E, ox)
+        return xs
+
+    def forces():
+        return system.OW[..., 6:11].reshape(-1).copy()
+
+    system.interrupted = False
+    state = {"t": t, "x": x, "k1": k1, "sig": sig, "cur": cur, "nout": nout, "rej": rej,
+             "events": events}
+    try:
+        _python_steps(system, integ, dt, nsteps, every, sub, P, relax, ox, nr, prog, stage,
+                      forces, state, (T, X, OP, OW))
+    except KeyboardInterrupt:
+        system.interrupted = True
+    t, x, cur, nout, rej = state["t"], state["x"], state["cur"], state["nout"], state["rej"]
+    if not system.interrupted or (nout > 0 and T[nout - 1] < t):
+        T[nout], X[nout], OP[nout], OW[nout] = t, x, cur[0], cur[1]
+        nout += 1
+    sub.report(system)
+    return T[:nout], X[:nout], OP[:nout], OW[:nout], np.array(events).reshape(-1, 3), rej
+
+
+def _python_steps(system, integ, dt, nsteps, every, sub, P, relax, ox, nr, prog, stage, forces,
+                  st, out):
+    """The step loop of :func:`_run_fixed_python` (its progress kept in ``st``)."""
+    T, X, OP, OW = out
+    t, x, k1, sig, cur = st["t"], st["x"], st["k1"], st["sig"], st["cur"]
+    nout, rej, events = st["nout"], st["rej"], st["events"]
+    hcap = dt
     for step in range(nsteps):
         if step % every == 0:
             T[nout], X[nout], OP[nout], OW[nout] = t, x, cur[0], cur[1]
             nout += 1
+            st["nout"] = nout
+        if step % max(1, int(round(0.05 / dt))) == 0:
+            hcap = dt / sub.at(t, x)
+            system.rhs(t, x)
+        hmin = hcap / 2.0 ** integ.max_halvings
         t_end = (step + 1) * dt
-        h = dt
+        h = hcap
         while t < t_end - 1e-12 * dt:
             hh = min(h, t_end - t)
+            Eh, Ef = np.empty(nr), np.empty(nr)
+            F1 = None
+            if relax:
+                relax_decay(P, system.V(t), cur[1], 0.5 * hh, Eh)
+                relax_decay(P, system.V(t), cur[1], hh, Ef)
+                F1 = cur[1][..., 6:11].reshape(-1).copy()
             if integ.scheme == "rk4":
-                k2 = system.rhs(t + 0.5 * hh, x + 0.5 * hh * k1)
-                k3 = system.rhs(t + 0.5 * hh, x + 0.5 * hh * k2)
-                k4 = system.rhs(t + hh, x + hh * k3)
+                k2 = system.rhs(t + 0.5 * hh, stage(x + 0.5 * hh * k1, F1, Eh, x))
+                F2 = forces()
+                k3 = system.rhs(t + 0.5 * hh, stage(x + 0.5 * hh * k2, F2, Eh, x))
+                F3 = forces()
+                k4 = system.rhs(t + hh, stage(x + hh * k3, F3, Ef, x))
                 xn = x + hh / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+                if relax:
+                    stage(xn, (F1 + 2 * F2 + 2 * F3 + forces()) / 6.0, Ef, x)
             else:
-                k2 = system.rhs(t + hh, x + hh * k1)
+                k2 = system.rhs(t + hh, stage(x + hh * k1, F1, Ef, x))
                 xn = x + 0.5 * hh * (k1 + k2)
+                if relax:
+                    stage(xn, 0.5 * (F1 + forces()), Ef, x)
             kn = system.rhs(t + hh, xn)
             new = tuple(int(v) for v in system.OW[..., 0].reshape(-1))
             if new != sig and hh > hmin * (1 + 1e-9):
@@ -515,6 +707,7 @@ def _run_fixed_python(system, x0, duration, integ, every, prog):
                 continue
             t, x, k1 = t + hh, xn, kn
             cur = (system.OP.copy(), system.OW.copy())
+            st.update(t=t, x=x, cur=cur, rej=rej)
             if new != sig:
                 for j, (a, b) in enumerate(zip(sig, new)):
                     if a != b:
@@ -522,14 +715,11 @@ def _run_fixed_python(system, x0, duration, integ, every, prog):
                 sig = new
                 h = hmin
             else:
-                h = min(2 * hh, dt)
+                h = min(2 * hh, hcap)
         if step % 50 == 0:
             _advance(prog, t)
-        if not np.all(np.isfinite(x)):
-            raise ConvergenceError(f"the state became non-finite at t = {t!r} s")
-    T[nout], X[nout], OP[nout], OW[nout] = t, x, cur[0], cur[1]
-    nout += 1
-    return T[:nout], X[:nout], OP[:nout], OW[:nout], np.array(events).reshape(-1, 3), rej
+        check_states(system, np.array([t]), x[None, :], dt)
+    st.update(t=t, x=x, cur=cur, rej=rej)
 
 
 def _run_adaptive(system, x0, duration, integ, out_dt, prog):
@@ -541,40 +731,45 @@ def _run_adaptive(system, x0, duration, integ, out_dt, prog):
     t, x = 0.0, x0.copy()
     k = 0
     restarts = 0
-    while t < duration - 1e-12:
-        sig = system.signature(t, x)
+    system.interrupted = False
+    try:
+        while t < duration - 1e-12:
+            sig = system.signature(t, x)
 
-        def changed(tt, xx, sig=sig):
-            return 1.0 if system.signature(tt, xx) == sig else -1.0
+            def changed(tt, xx, sig=sig):
+                return 1.0 if system.signature(tt, xx) == sig else -1.0
 
-        changed.terminal = True
-        sol = solve_ivp(system.rhs, (t, duration), x, method=integ.method, rtol=integ.rtol,
-                        atol=integ.atol, max_step=integ.max_step, dense_output=True,
-                        events=changed)
-        if sol.status == -1:
-            raise ConvergenceError(f"solve_ivp failed at t = {sol.t[-1]!r} s: {sol.message}")
-        t_end = float(sol.t[-1])
-        if sol.status == 1:
-            t_ev = float(sol.t_events[0][0])
-            # continue just after the change (the dense output of the step that holds it)
-            t_new = min(t_ev + 1e-7, t_end)
-            x_new = sol.sol(t_new)
-            new = system.signature(t_new, x_new)
-            for j, (a, b) in enumerate(zip(sig, new)):
-                if a != b:
-                    events.append((t_ev, j, b))
-            restarts += 1
-            if restarts > 100000:
-                raise ConvergenceError("more than 100000 contact events: chattering contact")
-        else:
-            t_new, x_new = t_end, sol.y[:, -1]
-        while k < t_out.size and t_out[k] <= t_new + 1e-12:
-            xs = sol.sol(t_out[k]) if t_out[k] > t else x
-            system.rhs(t_out[k], xs)
-            T[k], X[k], OP[k], OW[k] = t_out[k], xs, system.OP, system.OW
-            k += 1
-        t, x = t_new, np.asarray(x_new, dtype=float)
-        _advance(prog, t)
+            changed.terminal = True
+            sol = solve_ivp(system.rhs, (t, duration), x, method=integ.method, rtol=integ.rtol,
+                            atol=integ.atol, max_step=integ.max_step, dense_output=True,
+                            events=changed)
+            if sol.status == -1:
+                raise ConvergenceError(f"solve_ivp failed at t = {sol.t[-1]!r} s: {sol.message}")
+            t_end = float(sol.t[-1])
+            if sol.status == 1:
+                t_ev = float(sol.t_events[0][0])
+                # continue just after the change (the dense output of the step that holds it)
+                t_new = min(t_ev + 1e-7, t_end)
+                x_new = sol.sol(t_new)
+                new = system.signature(t_new, x_new)
+                for j, (a, b) in enumerate(zip(sig, new)):
+                    if a != b:
+                        events.append((t_ev, j, b))
+                restarts += 1
+                if restarts > 100000:
+                    raise ConvergenceError("more than 100000 contact events: chattering contact")
+            else:
+                t_new, x_new = t_end, sol.y[:, -1]
+            while k < t_out.size and t_out[k] <= t_new + 1e-12:
+                xs = sol.sol(t_out[k]) if t_out[k] > t else x
+                system.rhs(t_out[k], xs)
+                T[k], X[k], OP[k], OW[k] = t_out[k], xs, system.OP, system.OW
+                check_states(system, T[k:k + 1], X[k:k + 1], None)
+                k += 1
+            t, x = t_new, np.asarray(x_new, dtype=float)
+            _advance(prog, t)
+    except KeyboardInterrupt:
+        system.interrupted = True
     return T[:k], X[:k], OP[:k], OW[:k], np.array(events).reshape(-1, 3), restarts
 
 
@@ -652,17 +847,36 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     integ = _integrator(integrator)
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise InputError(f"duration must be > 0 s, got {duration!r}")
+    check_speed(speed, deceleration, duration)
     system = System(model, track, speed, normal, tangential, mu=mu, deceleration=deceleration,
                     creep_relaxation=creep_relaxation, contact=contact, start=start,
                     contact_options=contact_options, method_options=options)
     x0 = system.initial_state(initial)
+    if output_step is not None and not (isinstance(output_step, (int, float, np.floating))
+                                        and math.isfinite(output_step) and output_step > 0):
+        raise InputError(f"output_step must be > 0 s, got {output_step!r}")
     if isinstance(integ, FixedStep):
         out_dt = integ.dt if output_step is None else float(output_step)
+        if out_dt < integ.dt * (1 - 1e-9):
+            raise InputError(f"output_step = {output_step!r} s is below the time step dt = "
+                             f"{integ.dt!r} s (outputs are states at step ends; give "
+                             f"FixedStep(dt={out_dt!r}) for outputs that dense)")
         every = max(1, int(round(out_dt / integ.dt)))
     else:
         out_dt = 1e-3 if output_step is None else float(output_step)
-    if not out_dt > 0:
-        raise InputError(f"output_step must be > 0 s, got {output_step!r}")
+    duration = float(duration)
+    if system.aV < 0 and system.speed + system.aV * duration < system.min_speed:
+        # decelerating past standstill: the run ends where the speed reaches its floor
+        t_stop = (system.speed - system.min_speed) / -system.aV
+        if t_stop <= 0:
+            raise InputError(f"speed = {speed!r} m/s is at or below the least speed "
+                             f"{system.min_speed:g} m/s of the creep model with a deceleration")
+        warnings.warn(f"the deceleration {deceleration!r} m/s² brings the speed to "
+                      f"{system.min_speed:g} m/s (standstill for the creep model) at t = "
+                      f"{t_stop:.4g} s, before the end {duration:g} s: the run ends there",
+                      RunWarning, stacklevel=2)
+        duration = t_stop
+    estimate(system, x0, duration, integ, out_dt)
     prog = _progress(progress, float(duration))
     n0 = system.n_eval
     cpu = time.process_time()
@@ -692,7 +906,15 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
             "rejected_steps" if isinstance(integ, FixedStep) else "restarts": int(rej),
             "real_time_factor": float(T[-1] - T[0]) / cpu if cpu > 0 else math.inf,
             "creep_relaxation": float(creep_relaxation)}
+    if isinstance(integ, FixedStep):
+        info["substeps"] = int(getattr(system, "substeps_max", 1))
+    info["interrupted"] = int(bool(system.interrupted))
+    info["estimated_cpu_time"] = float(getattr(system, "estimate_seconds", math.nan))
+    info["derailment"] = nadal_check(system, T, OW)
     speed_t = np.maximum(system.speed + system.aV * T, system.min_speed)
     pos = system.start + system.speed * T + 0.5 * system.aV * T * T
-    return SimulationResult(T, X, OW, OP, tuple(system.asm.names), speed_t, pos, events, info,
-                            model, system.layout)
+    result = SimulationResult(T, X, OW, OP, tuple(system.asm.names), speed_t, pos, events, info,
+                              model, system.layout)
+    if system.interrupted:
+        raise SimulationInterrupted(result)
+    return result
