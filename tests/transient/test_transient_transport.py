@@ -50,7 +50,7 @@ def test_transport_weights_reproduce_cubics(f):
 def test_contact_cattaneo_to_carter_history():
     """dx/h = 1 (CONTACT's DQ = dx): the first step is the Mindlin–Cattaneo shift and the ξ
     history follows CONTACT's published one step by step. Measured: shift −0.054 % from
-    the closed form (grid), history within 0.02 % of |ξ_end| (CONTACT prints 4 digits:
+    the closed form (grid), history within 0.016 % of |ξ_end| (CONTACT prints 4 digits:
     ±0.016 %), overshoot 9.75 % against CONTACT's 9.74 %."""
     hc, mat, mu, Fx = _contact_case()
     shift_ref, travel, xi_ref = _contact_reference()
@@ -62,7 +62,7 @@ def test_contact_cattaneo_to_carter_history():
     assert dx * r.xi[1] == pytest.approx(mindlin, rel=3e-3)      # measured 5.4e-4
     assert dx * r.xi[1] == pytest.approx(shift_ref, rel=1e-3)    # CONTACT's shift, 4 digits
     ours = r.xi[2:2 + len(xi_ref)]                               # our step k = CONTACT case k
-    assert np.abs(ours - xi_ref).max() / xi_ref[-1] < 1e-3       # measured 2e-4
+    assert np.abs(ours - xi_ref).max() / xi_ref[-1] < 8e-4       # measured 1.6e-4
     assert ours.max() / ours[-1] - 1 == pytest.approx(xi_ref.max() / xi_ref[-1] - 1, abs=1e-3)
 
 
