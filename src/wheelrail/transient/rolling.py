@@ -30,8 +30,11 @@ For ``h < dx`` the slip at the element centres alone (``scheme="centre"``,
 Baeza et al.'s eq. 2.10 as written) ends on a different steady problem, kernel
 ``(C − C_h)/h``, which tends to the centred derivative ``−∂C/∂x`` whose
 self-coefficient vanishes: ill-conditioned and off Kalker's solution (−1.9 %
-in ξ for Baeza et al. §3.1 at 30 elements). The default
-``scheme="interpolated"`` keeps the current displacement at the centre and
+in ξ for Baeza et al. §3.1 at 30 elements). The default ``scheme="transport"``
+takes the previous displacement at the particle's departure point ``x + h`` from the
+cubic through the four element centres around it (a semi-Lagrangian step, exact
+transport up to an interpolation error O(dx⁴) per step). ``scheme="interpolated"``
+keeps the current displacement at the centre and
 takes the previous one at ``x + h`` by linear interpolation between element
 centres (as Vollebregt's CONTACT shifts its displacement field by a rolled
 distance that is not a whole number of elements); held steady the run ends
@@ -63,6 +66,8 @@ References
    eqs. (2.5)–(2.13), (2.19)–(2.20), §3.1.
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, §5.2 (transient discretisation, steady state as its limit).
+.. [3] E.A.H. Vollebregt, CONTACT user guide and examples (github.com/eve70a/CONTACT,
+   examples/catt_to_cart), the transient example the default scheme is checked against.
 """
 
 from __future__ import annotations
@@ -424,9 +429,14 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         Number of traction fields stored (evenly spread, plus the last step).
     progress : bool
         Show a rich progress bar.
-    scheme : {"interpolated", "upwind2", "averaged", "centre"}
+    scheme : {"transport", "interpolated", "upwind2", "averaged", "centre"}
         Collocation of the slip (:func:`step_points`, :func:`step_kernels`):
-        ``"interpolated"`` (default) takes the previous displacement at
+        ``"transport"`` (default) takes the previous displacement at the
+        departure point ``x + h`` of the particle from the cubic through the four
+        element centres around it (a semi-Lagrangian step: the transient is carried
+        without the damping of linear interpolation at steps shorter than an
+        element; the exact shift, Kalker's scheme, at ``h = dx``);
+        ``"interpolated"`` takes the previous displacement at
         ``x + h`` by linear interpolation between element centres, so that a
         run held at constant loads ends on Kalker's steady discretisation for
         any step up to ``dx`` and the traction is carried without amplification;
