@@ -112,14 +112,14 @@ def test_averaged_step_kernel_telescopes_to_kalkers_rolling_kernel(m):
 
     g = Grid(0.0, 0.0, 2e-4, 3e-4, 7, 5)
     h = g.dx / m
-    now, old = step_kernels(g, wr.STEEL, h)
+    now, old = step_kernels(g, wr.STEEL, h, "averaged")
     M = rolling_kernel(g, wr.STEEL)
     assert np.allclose((now - old) / h, M, rtol=1e-9, atol=1e-12 * np.abs(M).max())
 
 
 def test_seed_time_step_ends_on_the_steady_exact_solver(table1):
     """Seed §3.1 with V·Δt/dx as in the seed (0.05 mm on 30 elements: dx/h = 3.70), on
-    12 elements: the averaged scheme ends on solve_rolling's creepage within 1 %
+    12 elements: the interpolated scheme ends on solve_rolling's creepage within 1 %
     (measured 0.12 %); the seed's centre scheme ends 4.1 % off on this grid (measured)."""
     n = 12
     grid, gap = hertz_grid(table1, elements=n)
@@ -129,7 +129,7 @@ def test_seed_time_step_ends_on_the_steady_exact_solver(table1):
     h = grid.dx / 3.7
     kw = dict(travel=12 * float(table1.a), step=h, mu=MU, Fx=2000.0,
               elements=n, frames=2)
-    avg = wr.transient_rolling(table1, **kw)
+    avg = wr.transient_rolling(table1, scheme="interpolated", **kw)
     assert avg.xi[-1] == pytest.approx(xi_st, rel=0.01)
     centre = wr.transient_rolling(table1, scheme="centre", **kw)
     assert abs(centre.xi[-1] / xi_st - 1) > 0.01  # the defect the averaged scheme removes

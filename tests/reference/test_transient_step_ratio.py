@@ -74,7 +74,7 @@ def test_interpolated_steady_limit_is_kalkers_rolling_kernel():
     M = rolling_kernel(g, wr.STEEL)
     for ratio in (1.84, 3.7, 1.0):
         h = g.dx / ratio
-        now, old = step_kernels(g, wr.STEEL, h)
+        now, old = step_kernels(g, wr.STEEL, h, "interpolated")
         assert np.allclose((now - old) / h, M, rtol=1e-8, atol=1e-10 * np.abs(M).max())
 
 

@@ -47,7 +47,7 @@ def load_transient_case(path_or_str) -> TransientCase:
         step = 5e-5              # V·Δt [m]
         elements = 30            # elements across 2a
         friction = "exact"       # or "regularised" (then epsilon = ... [-])
-        scheme = "interpolated"  # or "upwind2" (second order in dx), "averaged", "centre"
+        scheme = "transport"  # or "interpolated", "upwind2" (second order in dx), "averaged", "centre"
         discretisation = "uniform"   # "strips" (Paul–Hashemi; strips = 30) or "material"
         frames = 60              # traction fields stored
         Fn = 10000.0             # normal force [N] (default: [contact] Fn), or penetration = δ [m]
@@ -102,7 +102,7 @@ def load_transient_case(path_or_str) -> TransientCase:
         if isinstance(v, bool) or not isinstance(v, int) or v < 2:
             r.fail("transient", "strips", f"must be an integer >= 2, got {v!r}")
         s["strips"] = v
-    s["scheme"] = r.string("transient", t, "scheme", "interpolated")
+    s["scheme"] = r.string("transient", t, "scheme", "transport")
     if s["scheme"] not in SCHEMES:
         r.fail("transient", "scheme", f"must be one of {', '.join(map(repr, SCHEMES))}, "
                f"got {s['scheme']!r}")

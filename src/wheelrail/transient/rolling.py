@@ -30,8 +30,11 @@ For ``h < dx`` the slip at the element centres alone (``scheme="centre"``,
 Baeza et al.'s eq. 2.10 as written) ends on a different steady problem, kernel
 ``(C − C_h)/h``, which tends to the centred derivative ``−∂C/∂x`` whose
 self-coefficient vanishes: ill-conditioned and off Kalker's solution (−1.9 %
-in ξ for Baeza et al. §3.1 at 30 elements). The default
-``scheme="interpolated"`` keeps the current displacement at the centre and
+in ξ for Baeza et al. §3.1 at 30 elements). The default ``scheme="transport"``
+takes the previous displacement at the particle's departure point ``x + h`` from the
+cubic through the four element centres around it (a semi-Lagrangian step, exact
+transport up to an interpolation error O(dx⁴) per step). ``scheme="interpolated"``
+keeps the current displacement at the centre and
 takes the previous one at ``x + h`` by linear interpolation between element
 centres (as Vollebregt's CONTACT shifts its displacement field by a rolled
 distance that is not a whole number of elements); held steady the run ends
@@ -63,6 +66,8 @@ References
    eqs. (2.5)–(2.13), (2.19)–(2.20), §3.1.
 .. [2] J.J. Kalker, *Three-dimensional elastic bodies in rolling contact*,
    Kluwer 1990, §5.2 (transient discretisation, steady state as its limit).
+.. [3] E.A.H. Vollebregt, CONTACT user guide and examples (github.com/eve70a/CONTACT,
+   examples/catt_to_cart), the transient example the default scheme is checked against.
 """
 
 from __future__ import annotations
@@ -236,16 +241,42 @@ def step_weights(dx, step):
     return np.arange(K) * step, w
 
 
-SCHEMES = ("interpolated", "upwind2", "averaged", "centre")
+SCHEMES = ("transport", "interpolated", "upwind2", "averaged", "centre")
 
 
-def step_points(dx, step, scheme="interpolated"):
+def transport_weights(f):
+    """Weights of the cubic Lagrange interpolation at ``x_0 + f dx`` (``0 ≤ f < 1``) from the
+    four centres ``x_0 − dx, x_0, x_0 + dx, x_0 + 2 dx`` (they sum to one; ``f = 0``
+    gives ``(0, 1, 0, 0)``): the interpolation of the semi-Lagrangian step
+    (``scheme="transport"``), exact for cubic fields.
+
+    Returns
+    -------
+    ndarray, shape (4,)
+    """
+    return np.array([-f * (f - 1.0) * (f - 2.0) / 6.0, (f + 1.0) * (f - 1.0) * (f - 2.0) / 2.0,
+                     -(f + 1.0) * f * (f - 2.0) / 2.0, (f + 1.0) * f * (f - 1.0) / 6.0])
+
+
+def step_points(dx, step, scheme="transport"):
     """Where the two displacements of the slip relation of one element are taken.
 
     The slip of element I is ``Σ_k a_k u(x_I + s_k, t) − Σ_k b_k u(x_I + r_k, t − Δt)``
     over ``h``; this returns ``(s, a, r, b)`` (offsets [m] and weights).
 
-    * ``"interpolated"`` (default): the current displacement at the centre, the
+    * ``"transport"`` (default): the semi-Lagrangian step. The current displacement
+      at the centre, the previous one at the departure point ``x_I + h`` of the
+      particle, interpolated by the cubic through the four element centres around
+      it (:func:`transport_weights`; ``h = (n + f) dx``: the centres
+      ``x_I + (n − 1 … n + 2) dx``). The slip relation is the exact difference
+      along the particle path; in adhesion the displacement field is carried
+      with an interpolation error O(dx⁴) per step instead of linear
+      interpolation's O(dx² f (1 − f)), so the carried field is not diffused at
+      steps shorter than an element. ``h = dx`` (whole elements) is the exact
+      shift, Kalker's (and CONTACT's) scheme; held steady it ends on
+      ``(C − Σ w_k C_{(n−1+k) dx})/h``, which tends to Kalker's kernel as
+      ``h → dx`` and to the derivative of the cubic as ``h → 0``.
+    * ``"interpolated"``: the current displacement at the centre, the
       previous one at ``x_I + h`` linearly interpolated between the element
       centres ``x_I + n dx`` and ``x_I + (n + 1) dx`` (``h = (n + f) dx``),
       as Vollebregt's CONTACT shifts the previous displacement field by a step
@@ -278,6 +309,11 @@ def step_points(dx, step, scheme="interpolated"):
         f = step / dx
         return (np.array([0.0, dx, 2 * dx]), np.array([1.0 + 1.5 * f, -2.0 * f, 0.5 * f]),
                 np.zeros(1), np.ones(1))
+    if scheme == "transport":
+        n, f = _whole_and_fraction(step, dx)
+        if f == 0.0:
+            return np.zeros(1), np.ones(1), np.array([n * dx]), np.ones(1)
+        return np.zeros(1), np.ones(1), (n + np.arange(-1, 3)) * dx, transport_weights(f)
     if scheme == "interpolated":
         ratio = step / dx
         n = int(math.floor(ratio + 1e-9))
@@ -289,7 +325,7 @@ def step_points(dx, step, scheme="interpolated"):
     raise InputError(f"scheme must be one of {SCHEMES}, got {scheme!r}")
 
 
-def step_kernels(grid, materials, step, scheme="interpolated"):
+def step_kernels(grid, materials, step, scheme="transport"):
     """Influence kernels of one time step, each of shape (3, 3, 2nx−1, 2ny−1) [m/Pa].
 
     ``(now, old)``: the displacement difference at the collocation points of
@@ -344,7 +380,7 @@ def step_kernels(grid, materials, step, scheme="interpolated"):
 def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
                       Fx=None, friction="exact", epsilon=None, elements=30,
                       margin=1.25, tol=1e-8, maxiter=100, force_tol=1e-7, frames=100,
-                      progress=False, scheme="interpolated", penetration=None,
+                      progress=False, scheme="transport", penetration=None,
                       discretisation="uniform", strips=None, settle=1e-4) -> TransientResult:
     """Transient (instationary) rolling of a Hertzian contact by time stepping.
 
@@ -393,9 +429,14 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         Number of traction fields stored (evenly spread, plus the last step).
     progress : bool
         Show a rich progress bar.
-    scheme : {"interpolated", "upwind2", "averaged", "centre"}
+    scheme : {"transport", "interpolated", "upwind2", "averaged", "centre"}
         Collocation of the slip (:func:`step_points`, :func:`step_kernels`):
-        ``"interpolated"`` (default) takes the previous displacement at
+        ``"transport"`` (default) takes the previous displacement at the
+        departure point ``x + h`` of the particle from the cubic through the four
+        element centres around it (a semi-Lagrangian step: the transient is carried
+        without the damping of linear interpolation at steps shorter than an
+        element; the exact shift, Kalker's scheme, at ``h = dx``);
+        ``"interpolated"`` takes the previous displacement at
         ``x + h`` by linear interpolation between element centres, so that a
         run held at constant loads ends on Kalker's steady discretisation for
         any step up to ``dx`` and the traction is carried without amplification;
@@ -673,12 +714,15 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
     upwind = scheme != "upwind2"
     # where the spin's rigid slip is collocated: upstream of the centre for Kalker's
     # first-order difference (as the steady solver), at the centre for "upwind2"
-    spin_shift = 0.0 if scheme == "upwind2" else _SPIN_SHIFT
+    # (the transport scheme: Kalker's shift at h = dx, the centre as h -> 0)
+    spin_shift = (0.0 if scheme == "upwind2" else
+                  _SPIN_SHIFT * min(1.0, h / float(np.max(grid.dx))) if scheme == "transport"
+                  else _SPIN_SHIFT)
     krylov_conv = getattr(conv_now, "single", None)
     # interpolated scheme on the moving grid: the carried displacement is the previous
     # step's displacement field (its slip minus its rigid part) interpolated upstream,
     # no convolution needed
-    carry_u = scheme == "interpolated" and discretisation == "uniform"
+    carry_u = scheme in ("interpolated", "transport") and discretisation == "uniform"
     u_prev = u_box = None
     box_ops = {}
 
@@ -692,7 +736,10 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
         return box_ops[mx, my]
 
     if carry_u:
-        n_up, f_up = _whole_and_fraction(h, grid.dx)
+        # the previous displacement at x + h from the element centres x + o_k dx, weights w_k
+        _, _, up_s, up_w = step_points(grid.dx, h, scheme)
+        up_o = np.rint(up_s / grid.dx).astype(int)
+        up_lo, up_hi = int(up_o.min()), int(up_o.max())
     # the steady fixed point of the step (Kalker's steady rolling with the interpolated
     # scheme), tried once the tractions change little per step under constant loads; if
     # its Newton iteration fails (the centre scheme at large dx/h) the run steps on
@@ -752,15 +799,16 @@ def transient_rolling(contact, *, travel, step, mu, Fn=None, creepage=None,
             if carry_u and friction == "exact" and ci.size:
                 # the step's products on the box of the contact (and the rows upstream that
                 # the next step's carried displacement needs): a smaller FFT, same numbers
-                box = (slice(int(ci.min()), min(grid.nx, int(ci.max()) + n_up + 2)),
+                box = (slice(max(0, int(ci.min()) + min(0, up_lo)),
+                             min(grid.nx, int(ci.max()) + up_hi + 2)),
                        slice(int(cj.min()), int(cj.max()) + 1))
             if (u_prev is not None and ci.size
-                    and ci.min() + n_up >= u_box[0].start and ci.max() + n_up + 1 < u_box[0].stop
+                    and ci.min() + up_lo >= u_box[0].start and ci.max() + up_hi < u_box[0].stop
                     and cj.min() >= u_box[1].start and cj.max() < u_box[1].stop):
                 carried = np.zeros((2,) + nxy)
-                hi = grid.nx - n_up - 1
-                carried[:, :hi] = ((1.0 - f_up) * u_prev[:, n_up:n_up + hi]
-                                   + f_up * u_prev[:, n_up + 1:n_up + 1 + hi])
+                i0, i1 = max(0, -up_lo), grid.nx - max(0, up_hi)
+                for o, wk in zip(up_o, up_w):
+                    carried[:, i0:i1] += wk * u_prev[:, i0 + o:i1 + o]
             else:
                 carried = conv_old(np.concatenate((p, pn[None])))
             rigid = np.zeros((2,) + nxy)
