@@ -12,6 +12,9 @@ Wear on a patch:
 RCF:
     :func:`rcf` -> :class:`RCFResult` (Ekberg's FI_surf, shakedown-map
     position, Burstow's damage); :class:`Burstow`, :func:`surface_fatigue_index`.
+Profile evolution:
+    :func:`evolve` (model, :class:`Route` of :class:`RouteCase`, mileage, law) ->
+    :class:`EvolveResult` with ``.dataset`` and ``.profiles``.
 """
 
 from __future__ import annotations
@@ -20,10 +23,11 @@ from ._base import WearLaw, get, wear_laws
 from .archard import Archard
 from .energy import Energy
 from .kth import KTHMap
+from .loop import EvolveResult, Route, RouteCase, evolve
 from .patch import PatchWear, deposit, patch_wear
 from .rcf import Burstow, RCFResult, rcf, surface_fatigue_index
 from .usfd import USFD, usfd_rate
 
 __all__ = ["WearLaw", "wear_laws", "get", "Archard", "KTHMap", "USFD", "Energy", "usfd_rate",
            "patch_wear", "PatchWear", "deposit", "rcf", "RCFResult", "Burstow",
-           "surface_fatigue_index"]
+           "surface_fatigue_index", "Route", "RouteCase", "evolve", "EvolveResult"]
