@@ -25,7 +25,7 @@ from .energy import Energy
 from .kth import KTHMap
 from .loop import EvolveResult, Route, RouteCase, evolve
 from .patch import PatchWear, deposit, patch_wear
-from .rcf import Burstow, RCFResult, rcf, surface_fatigue_index
+from .fatigue import Burstow, RCFResult, rcf, surface_fatigue_index
 from .usfd import USFD, usfd_rate
 
 __all__ = ["WearLaw", "wear_laws", "get", "Archard", "KTHMap", "USFD", "Energy", "usfd_rate",

@@ -15,10 +15,10 @@ What an implementation must provide
 ``depth_rate(pressure, traction, slip, speed) -> ndarray``
     The local law: the wear depth removed from a surface point per metre it
     rolls through the contact, dz/dx [m/m], at every cell of a patch.
-    ``pressure`` p [Pa], ``traction`` |τ| [Pa], ``slip`` |s| [-] (slip
+    ``pressure`` p [Pa], ``traction`` ‖τ‖ [Pa], ``slip`` ‖s‖ [-] (slip
     velocity divided by the rolling speed, zero in adhesion) are arrays of one
     shape; ``speed`` is the rolling speed V [m/s] (only the KTH map needs it).
-    A surface point crossing a cell of length Δx slides |s| Δx over it, so
+    A surface point crossing a cell of length Δx slides ‖s‖ Δx over it, so
     its depth loss in the cell is ``depth_rate · Δx``; the worn volume per
     metre rolled is ``Σ depth_rate · ΔA``.
 ``per_patch`` : bool (class attribute)
@@ -48,7 +48,7 @@ class WearLaw(Method):
     _registry = _REGISTRY
     #: the law is stated for a whole patch (see the module docstring)
     per_patch: ClassVar[bool] = False
-    #: the law needs the rolling speed (sliding velocity = |s| V)
+    #: the law needs the rolling speed (sliding velocity = ‖s‖ V)
     needs_speed: ClassVar[bool] = False
 
     def depth_rate(self, pressure, traction, slip, speed=None):  # pragma: no cover - abstract

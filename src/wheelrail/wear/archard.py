@@ -8,8 +8,8 @@ removed where the pressure is p and the local sliding distance s_slip is
     Δz = k · p · s_slip / H.
 
 A surface point crossing a cell of length Δx with the dimensionless slip
-|s| (slip velocity / rolling speed) slides s_slip = |s| Δx, so the depth rate
-per metre rolled through the cell is dz/dx = k p |s| / H.
+‖s‖ (slip velocity / rolling speed) slides s_slip = ‖s‖ Δx, so the depth rate
+per metre rolled through the cell is dz/dx = k p ‖s‖ / H.
 """
 
 from __future__ import annotations
@@ -57,6 +57,6 @@ class Archard(WearLaw):
                              doc="hardness of the worn surface")
 
     def depth_rate(self, pressure, traction, slip, speed=None):
-        """dz/dx = k p |s| / H [m/m] per cell (arrays of one shape; ``traction`` unused)."""
+        """dz/dx = k p ‖s‖ / H [m/m] per cell (arrays of one shape; ``traction`` unused)."""
         p, _, s = _arrays(pressure, traction, slip)
         return self.k * np.clip(p, 0.0, None) * np.abs(s) / self.hardness

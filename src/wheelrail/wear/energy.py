@@ -1,13 +1,13 @@
 """Wear proportional to the frictional work (energy dissipation), per contact cell.
 
 The worn volume is proportional to the work of the friction forces: per unit
-area of a cell with traction |τ| and slip |s| (slip velocity / rolling speed),
-a surface point rolled through the cell dissipates |τ| |s| Δx, and
+area of a cell with traction ‖τ‖ and slip ‖s‖ (slip velocity / rolling speed),
+a surface point rolled through the cell dissipates ‖τ‖ ‖s‖ Δx, and
 
-    dz/dx = k_E · |τ| · |s|,
+    dz/dx = k_E · ‖τ‖ · ‖s‖,
 
 k_E the worn volume per dissipated energy [m³/J]. Summed over a patch,
-Σ |τ||s| ΔA is the wear number Tγ (frictional power per metre rolled, Pearce &
+Σ ‖τ‖‖s‖ ΔA is the wear number Tγ (frictional power per metre rolled, Pearce &
 Sherratt 1991), so the worn volume per metre rolled is k_E · Tγ.
 """
 
@@ -27,7 +27,7 @@ USFD_MILD_ENERGY_COEFFICIENT = 5.3e-9 / 7850.0
 
 @configured
 class Energy(WearLaw):
-    """Frictional-work (energy) law: dz/dx = k_E |τ| |s| per cell.
+    """Frictional-work (energy) law: dz/dx = k_E ‖τ‖ ‖s‖ per cell.
 
     Other Parameters
     ----------------
@@ -57,6 +57,6 @@ class Energy(WearLaw):
                                 doc="worn volume per dissipated frictional energy")
 
     def depth_rate(self, pressure, traction, slip, speed=None):
-        """dz/dx = k_E |τ| |s| [m/m] per cell (``pressure`` unused)."""
+        """dz/dx = k_E ‖τ‖ ‖s‖ [m/m] per cell (``pressure`` unused)."""
         _, t, s = _arrays(pressure, traction, slip)
         return self.coefficient * np.abs(t) * np.abs(s)

@@ -3,7 +3,7 @@
 Jendel (2002) applies Archard's law per contact element, Δz = k p s_slip / H,
 with a wear coefficient k read from a wear map of wheel and rail steel in
 dry contact (after Olofsson & Telliskivi) with four regions of the contact
-pressure p and the sliding velocity v = |s| V:
+pressure p and the sliding velocity v = ‖s‖ V:
 
 ====================  ==========================  =======================
 region                condition                   k (default, range)
@@ -98,7 +98,7 @@ class KTHMap(WearLaw):
         return self.scale * k
 
     def depth_rate(self, pressure, traction, slip, speed=None):
-        """dz/dx = k(p, |s|V) p |s| / H [m/m] per cell; ``speed`` V [m/s] is required."""
+        """dz/dx = k(p, ‖s‖V) p ‖s‖ / H [m/m] per cell; ``speed`` V [m/s] is required."""
         if speed is None:
             raise InputError("the KTH wear map needs the rolling speed (speed=... in m/s) "
                              "to turn the slip into a sliding velocity")

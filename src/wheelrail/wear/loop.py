@@ -168,8 +168,9 @@ class EvolveResult:
         the profile heights on the grid ``y``, ``wear_rate`` (step, case, wheelset,
         side, y) [m/m] per metre travelled of each case, ``rail_wear`` (step, case,
         wheelset, side, y_rail) [m per axle passage], ``Tgamma`` (step, case,
-        wheelset, side) [N] time-mean wear number; step 0 has the initial values and
-        the rates of the first simulation.
+        wheelset, side) [N] time-mean wear number, ``case_cpu`` (step) [s] CPU time of
+        the step's cases; step 0 has the initial values and the rates of the first
+        simulation.
     profiles : list of dict
         Per step ``{"left": Profile, "right": Profile}`` (the same object twice
         with ``profiles="mean"``).
@@ -497,6 +498,8 @@ def _result(records, route, rail_grid, ws, cpu) -> EvolveResult:
                       {"units": "m", "description": "rail wear depth per axle passage"}),
         "Tgamma": (("step", "case", "wheelset", "side"), np.stack([r["Tgamma"] for r in records]),
                    {"units": "N", "description": "time-mean wear number (FASTSIM fields)"}),
+        "case_cpu": ("step", np.array([float(r["cpu"]) for r in records]),
+                     {"units": "s", "description": "CPU time of the step's cases (workers)"}),
     }
     ds = xr.Dataset(data, coords=coords,
                     attrs={"cpu_time": cpu, "weights": list(map(float, route.weights))})

@@ -9,7 +9,7 @@ returns the wear-depth distribution across the patch per passage.
 Definitions (the patch moves over the surfaces in the rolling direction x):
 
 * a surface point (of the wheel or of the rail) rolled through a cell of
-  length Δx with the dimensionless slip |s| slides |s| Δx; the law gives the
+  length Δx with the dimensionless slip ‖s‖ slides ‖s‖ Δx; the law gives the
   depth rate dz/dx per cell (:class:`~wheelrail.wear._base.WearLaw`);
 * **depth per passage** at the lateral position y of a column of cells:
   d(y) = Σ_x dz/dx · Δx (sum along the rolling direction). Every point of
@@ -18,7 +18,7 @@ Definitions (the patch moves over the surfaces in the rolling direction x):
   travelled (r the rolling radius);
 * **worn volume per metre rolled** V' = Σ dz/dx ΔA = ∫ d(y) dy [m³/m] — the
   integral of the local law over the patch;
-* the wear number Tγ = Σ |τ||s| ΔA [N] (frictional power per metre rolled).
+* the wear number Tγ = Σ ‖τ‖‖s‖ ΔA [N] (frictional power per metre rolled).
 
 Both bodies are given the same depth (one law for the wheel and the rail
 steel, as in the USFD and KTH data); to wear them differently, call
@@ -27,7 +27,7 @@ steel, as in the USFD and KTH data); to wear them differently, call
 For a law stated per patch (USFD with ``application="patch"``) the patch's
 Tγ/A gives the worn volume per metre rolled V' = A · K(Tγ/A)/ρ, which is
 distributed over the cells in proportion to the local frictional work
-|τ||s| (so that the wear concentrates where the patch slides, and the local
+‖τ‖‖s‖ (so that the wear concentrates where the patch slides, and the local
 and patch applications coincide in the mild, linear regime).
 """
 
@@ -64,7 +64,7 @@ class PatchWear:
     volume_rate : float
         Worn volume per metre rolled Σ rate·area [m³/m].
     Tgamma : float
-        Wear number Σ |τ||s| ΔA [N].
+        Wear number Σ ‖τ‖‖s‖ ΔA [N].
     contact_area : float
         Area of the cells in contact [m²].
     law : str
@@ -210,7 +210,7 @@ def patch_wear(patch_result, law="archard", *, speed=None, **options) -> PatchWe
         A wear law by name (``"archard"``, ``"kth"``, ``"usfd"``, ``"energy"``)
         or a configured object (``wr.wear.USFD(application="patch")``).
     speed : float, optional
-        Rolling speed [m/s] (needed by the KTH map: sliding velocity = |s| V).
+        Rolling speed [m/s] (needed by the KTH map: sliding velocity = ‖s‖ V).
     **options
         Options of the law when given by name.
 

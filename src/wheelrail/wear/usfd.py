@@ -25,13 +25,13 @@ the three lines with the printed bounds (clipped at zero).
 Closed values: K(5) = 26.5, K(50) = 55.0, K(100) = 1411.3 with both rules.
 
 **Application.** ``application="local"`` (default; Braghin et al. 2006 apply
-the law to every FASTSIM cell): in a cell with traction |τ| and slip |s| the
-local x = |τ| |s| (the cell's frictional power per unit area per metre
+the law to every FASTSIM cell): in a cell with traction ‖τ‖ and slip ‖s‖ the
+local x = ‖τ‖ ‖s‖ (the cell's frictional power per unit area per metre
 rolled, in N/mm²), and a surface point rolled through the cell loses the
 depth K(x)·Δx/ρ (K in kg per metre rolled per m²: 1 µg/(m·mm²) = 10⁻³ kg/m³;
 ρ the density). ``application="patch"``: x = Tγ/A for the whole patch
-(Tγ = Σ |τ||s| ΔA, A its area), worn mass K(x)·A per metre rolled, spread
-over the patch in proportion to the local frictional work |τ||s| (see
+(Tγ = Σ ‖τ‖‖s‖ ΔA, A its area), worn mass K(x)·A per metre rolled, spread
+over the patch in proportion to the local frictional work ‖τ‖‖s‖ (see
 :func:`wheelrail.wear.patch_wear`).
 """
 
@@ -86,8 +86,8 @@ class USFD(WearLaw):
     Other Parameters
     ----------------
     application : {"local", "patch"}, default "local"
-        Tγ/A per cell (|τ||s|) or for the whole patch (distributed over it in
-        proportion to |τ||s|).
+        Tγ/A per cell (‖τ‖‖s‖) or for the whole patch (distributed over it in
+        proportion to ‖τ‖‖s‖).
     rule : {"continuous", "as_quoted"}, default "continuous"
         How the regimes join (module docstring).
     density : float, default 7850.0
@@ -141,6 +141,6 @@ class USFD(WearLaw):
         return 1e-3 * np.asarray(self.rate(np.asarray(x) * 1e-6)) / self.density
 
     def depth_rate(self, pressure, traction, slip, speed=None):
-        """dz/dx = K(|τ||s|)/ρ [m/m] per cell (``pressure`` unused; local application)."""
+        """dz/dx = K(‖τ‖‖s‖)/ρ [m/m] per cell (``pressure`` unused; local application)."""
         _, t, s = _arrays(pressure, traction, slip)
         return self.patch_rate(np.abs(t) * np.abs(s))

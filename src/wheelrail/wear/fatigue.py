@@ -83,7 +83,7 @@ class Burstow(Method):
                              f"{self.peak}, {self.zero}")
 
     def __call__(self, Tgamma):
-        """Damage per axle passage at wear number(s) ``Tgamma`` [N] (negative Tγ as |Tγ|)."""
+        """Damage per axle passage at wear number(s) ``Tgamma`` [N] (negative Tγ as abs(Tγ))."""
         t = np.abs(np.asarray(Tgamma, dtype=float))
         top = self.slope * (self.peak - self.threshold)
         rise = self.slope * (t - self.threshold)
