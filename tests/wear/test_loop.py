@@ -130,3 +130,22 @@ def test_bad_inputs(case):
         wr.wear.Route(("x",))
     with pytest.raises(InputError, match="speed"):
         wr.wear.RouteCase(route.cases[0].track, -3.0)
+
+
+def test_tangent_track_wears_tread_and_raises_conicity(case):
+    # tangent track with a 3 mm sine alignment: the wear lies on the tread around the
+    # tape circle (none on the flange) and the equivalent conicity rises (hollowing)
+    bogie, _ = case
+    tr = wr.Track(wr.profiles.load("60E1"))
+    irr = dy.Irregularity.sine(0.003, 20.0, start=2.0, cycles=3.0)
+    route = wr.wear.Route((wr.wear.RouteCase(dy.TrackLayout(tr, irregularity=irr), 30.0,
+                                             distance=60.0, run_in=2.0, name="tangent"),))
+    res = wr.wear.evolve(bogie, route, mileage=200e3, step_depth=0.05e-3,
+                         **dict(KW, conicity=True, profiles="mean", samples=30))
+    d = res.dataset
+    rate = d.wear_rate.isel(step=0, case=0).mean(("wheelset", "side")).values
+    y = d.y.values
+    centroid = np.sum(rate * y) / np.sum(rate)
+    assert abs(centroid) < 0.015
+    assert rate[y < -0.025].sum() < 0.01 * rate.sum()            # no flange wear
+    assert d.conicity.values[-1] > d.conicity.values[0]
