@@ -295,7 +295,7 @@ def _fingerprint(model, route, law, settings) -> str:
 def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e-3,
            resolution=0.25e-3, max_steps=200, profiles="mean", normal="kik-piotrowski",
            tangential="fastsim", samples=100, cells=12, conicity=True, executor="dask",
-           workers=None, scheduler=None, store=None, progress=False,
+           workers=None, scheduler=None, store=None, progress=False, on_step=None,
            **options) -> EvolveResult:
     """Evolve the wheel profiles of a wheelset or bogie model over a route by wear.
 
@@ -336,6 +336,13 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         started again with the same inputs continues after the last one.
     progress : bool
         Print one line per step.
+    on_step : callable or None
+        Called after every step computed in this call (not for the steps
+        read back from ``store``) as ``on_step(info)`` with a dict: ``step``,
+        ``mileage`` [m] reached, ``total`` [m], ``Sd`` [m] (left, right),
+        ``conicity``, ``cpu`` [s] of the step's cases and ``steps_left``, the
+        estimated number of remaining steps (remaining mileage × largest wear
+        rate / ``step_depth``, rounded up).
 
     Returns
     -------
@@ -422,6 +429,14 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
             if progress:
                 print(f"wear step {k}: {done / 1e3:.1f} km, Sd {dims['left'][1] * 1e3:.3f} / "
                       f"{dims['right'][1] * 1e3:.3f} mm, conicity {con:.4f}", flush=True)
+            if on_step is not None:
+                top = float(np.max(per_side))
+                left = float(mileage) - done
+                on_step({"step": k, "mileage": done, "total": float(mileage),
+                         "Sd": (dims["left"][1], dims["right"][1]), "conicity": con,
+                         "cpu": rec["cpu"],
+                         "steps_left": 0 if left <= 1e-9 * float(mileage) else
+                         (1 if top <= 0 else max(1, math.ceil(left * top / step_depth)))})
             if float(mileage) - done <= 1e-9 * float(mileage):
                 break
             current, done = _advance(model, current, per_side, grid, done, mileage, step_depth,
