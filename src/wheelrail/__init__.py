@@ -67,6 +67,7 @@ _LAZY = {
     "plausibility": ("wheelrail.plausibility", None),
     "fe": ("wheelrail.fe", None),
     "dynamics": ("wheelrail.dynamics", None),
+    "wear": ("wheelrail.wear", None),
     "Profile": ("wheelrail.profiles", "Profile"),
     "Wheelset": ("wheelrail.geometry", "Wheelset"),
     "Track": ("wheelrail.geometry", "Track"),

@@ -19,7 +19,7 @@ Layers, lowest first (a module may import its own layer and those below)::
     1 kernels   halfspace/*, numba kernel modules (*_kernel, *_kernels)
     2 core      options, results, patch (ContactPatch), hertzian (HertzContact)
     3 methods   profiles, geometry, normal, tangential
-    4 drivers   contact, transient, fe, sweeps, dynamics
+    4 drivers   contact, transient, fe, sweeps, dynamics, wear
     5 API       wheelrail (package), api, prescribed, cases
     6 leaves    cli, casefile, plotting, validation, citations, *.plot(s)
 
@@ -44,7 +44,7 @@ BASE = {"errors", "conventions", "_validation", "materials", "plausibility", "_t
         "_resources", "_version", "_numba_cache"}
 CORE = {"options", "results", "patch", "hertzian"}
 METHODS = {"profiles", "geometry", "normal", "tangential", "reference"}
-DRIVERS = {"contact", "transient", "fe", "sweeps", "dynamics"}
+DRIVERS = {"contact", "transient", "fe", "sweeps", "dynamics", "wear"}
 API = {"api", "prescribed", "cases"}
 LEAVES = {"cli", "casefile", "plotting", "validation", "citations", "__main__"}
 _KERNEL = re.compile(r"(^wheelrail\.halfspace(\.|$))|(_kernels?$)")

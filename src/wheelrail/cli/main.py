@@ -40,6 +40,7 @@ COMMANDS = [
     ("compare", "wheelrail.cli.compare"),
     ("transient", "wheelrail.cli.transient"),
     ("dynamics", "wheelrail.cli.dynamics"),
+    ("wear", "wheelrail.cli.wear"),
     ("validate", "wheelrail.cli.validate"),
     ("build-table", "wheelrail.cli.build_table"),
 ]

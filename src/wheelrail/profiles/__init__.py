@@ -10,6 +10,8 @@ Public names
     profile file (then as :func:`read`).
 ``available()``
     Names accepted by :func:`load`.
+``flange_dimensions(profile)``
+    Flange height Sh, flange thickness Sd and qR of a wheel (EN 15313).
 ``read(path, kind=None)`` / ``write(profile, path, fmt=None)``
     Profile files (Simpack ``.prr``/``.prw``, MiniProf ``.ban``/``.whl``,
     two-column text/CSV), converted to the profile-frame convention.
@@ -21,12 +23,14 @@ from pathlib import Path
 
 from ..errors import ProfileError
 from .core import Profile, ProfileWarning
+from .flange import FlangeDimensions, flange_dimensions
 from .io import read as _read
 from .io import write as _write
 from .standard import available as _available
 from .standard import load as _load
 
-__all__ = ["Profile", "ProfileWarning", "load", "available", "read", "write"]
+__all__ = ["Profile", "ProfileWarning", "load", "available", "read", "write",
+           "flange_dimensions", "FlangeDimensions"]
 
 
 def load(name, kind: str | None = None, **options) -> Profile:
