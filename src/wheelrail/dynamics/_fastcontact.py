@@ -18,17 +18,25 @@ of microseconds instead of milliseconds:
 2. **normal problem** — Hertz at every penetrating point (Hertz's unit-load
    solution interpolated in ln(A/B), :func:`wheelrail.normal._strips.hertz_shape`)
    or Kik–Piotrowski's virtual penetration on the profile separation of each
-   contact plane (Piotrowski & Chollet 2005, §3.2, eqs. 12–22; the separation
-   sampled in the plane and interpolated linearly on a uniform line, the regions,
-   strips and integrals by the library's own kernels
-   :func:`~wheelrail.normal._kp_kernel.kp_line_regions` and
-   :func:`~wheelrail.normal._patch_kernel.strip_patch`);
+   contact plane (Piotrowski & Chollet 2005, §3.2, eqs. 12–22), on the very
+   line of the library (``VirtualPenetration._wheel_lines``: the 1601 nodes of
+   :func:`~wheelrail.normal._fast_separation.separation_window` over the
+   monotone part of ±20 mm around the point, the same profile samples), of which
+   only the nodes around the interpenetration are evaluated; the regions, loads
+   and strip peaks by the library's kernel
+   :func:`~wheelrail.normal._kp_kernel.kp_line_regions`, the patch's contact
+   angle and position by :func:`~wheelrail.normal._patch_kernel.weighted_means`,
+   the strips as :func:`~wheelrail.normal._patch_kernel.strip_patch` makes them;
+   so the patches are those of :func:`wheelrail.solve` at the same vertical
+   approach (tests/dynamics/test_dynamics_contact_stack.py: every force within
+   1e-4 μQ on Manchester A-2.2 and at flange contacts);
 3. **creepages** at each patch from the wheelset's velocities (the formulas of
    :func:`wheelrail.geometry.kinematics.creepage_kernel`) and **creep forces** by
-   FASTSIM (Kalker 1982; the library's kernels
+   FASTSIM (Kalker 1982; the library's kernel
    :func:`~wheelrail.tangential._fastsim_kernel.fastsim_hertz_batch` for
-   ellipses and :func:`~wheelrail.tangential._fastsim_kernel.strip_patch_forces`
-   for strip patches) or by interpolation in the exact-theory table of
+   ellipses; on strip patches the resampling and weighted flexibility of
+   ``Fastsim.solve_patch`` and the march of
+   :func:`~wheelrail.dynamics._fastlaws.march_strips`, the same numbers) or by interpolation in the exact-theory table of
    :class:`wheelrail.tangential.Table` (multilinear, in the frame of the
    full-slip direction, as :class:`~wheelrail.tangential.table.TableData`);
 4. the forces in the track frame and their **generalised forces** on the
@@ -61,8 +69,8 @@ from numba import njit
 
 from ..normal._kp_kernel import kp_line_regions
 from ..normal._patch_kernel import weighted_means
-from ._fastlaws import (_interp, _kalker, creepage, fastsim_ellipse, kp_strips, linear_forces,
-                        march_strips, table_forces)
+from ._fastlaws import (_interp, _kalker, creepage, fastsim_ellipse, linear_forces, march_strips,
+                        table_forces)
 
 __all__ = ["wheel_contact", "PATCH_FIELDS", "WHEEL_FIELDS", "KMAX", "MP"]
 
@@ -615,7 +623,7 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
     eps_opt = mp[6]
     correct = mp[7] > 0
     strips = int(mp[8])
-    hl0 = mp[10]
+    cells = int(mp[9])
     half_min = mp[11]
     group_angle = mp[12]
     tangential = int(mp[1])
@@ -668,7 +676,7 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
         # widened while a region reaches a line end
         half = half_min
         cg_ = max(abs(math.cos(gam)), 0.2)
-        thr = cd[r] + 1.5 * d0 / cg_ + 2e-5
+        thr = cd[r] + 1.1 * d0 / cg_ + 2e-6
         k0 = int(round((cs[r] - sg[0]) / hs)) - i_lo
         ka = k0
         while ka > 0 and dgrid[ka - 1] < thr:
@@ -676,35 +684,63 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
         kb = k0
         while kb < dgrid.shape[0] - 1 and dgrid[kb + 1] < thr:
             kb += 1
-        ext = (max(cs[r] - (sg[0] + (i_lo + ka) * hs), (sg[0] + (i_lo + kb) * hs) - cs[r])
-               + hs) / cg_
+        ext_a = (cs[r] - (sg[0] + (i_lo + ka) * hs) + hs) / cg_
+        ext_b = ((sg[0] + (i_lo + kb) * hs) - cs[r] + hs) / cg_
         for q in range(nc):
             if ref[q] == r:
                 w_q = abs(PY[q] - PY[r]) / max(abs(math.cos(gam)), 0.2) + 0.003
                 if w_q > half:
                     half = w_q
-        # node spacing: ~100 nodes across the region's Hertzian estimate, not below line_step
-        hl = max(hl0, 0.02 * ext)
-        half = min(max(half, ext + 4 * hl), 0.02)
-        for _ in range(4):
-            nl = int(2.0 * half / hl) + 1
-            if nl < 5:
-                nl = 5
-            eta = np.empty(nl)
-            for i in range(nl):
-                eta[i] = -half + i * hl
-            f, Ax, slope, rw, ok = _plane_line(eta, PU[r], gam, cosf, cs[r], sg, wu, winv, wc,
-                                               ru, rinv, rc, r0, e_tape, sig, y, zc_t, st, ct,
-                                               sp, cp, R, ph0)
+        # the library's line of this plane (separation_window: 1601 nodes over the monotone
+        # part of ±20 mm), evaluated on the nodes of the window ±half only
+        t0g, t1g = math.cos(gam), math.sin(gam)
+        z_ref = _spline0(ru, rinv, rc, PU[r])
+        s_lo = max(wu[0], cs[r] - _SAMPLE_HALF)
+        s_hi = min(wu[wu.shape[0] - 1], cs[r] + _SAMPLE_HALF)
+        u_lo = max(ru[0], PU[r] - _SAMPLE_HALF)
+        u_hi = min(ru[ru.shape[0] - 1], PU[r] + _SAMPLE_HALF)
+        dsw = (s_hi - s_lo) / (_SAMPLES - 1)
+        dsr = (u_hi - u_lo) / (_SAMPLES - 1)
+        gw = (s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc_t, st, ct, sp, cp, R, ph0)
+        gr_ = (u_lo, dsr, ru, rinv, rc)
+        kcw = min(max(int(round((cs[r] - s_lo) / dsw)), 0), _SAMPLES - 1)
+        kcr = min(max(int(round((PU[r] - u_lo) / dsr)), 0), _SAMPLES - 1)
+        lw, kw0 = _run_end(True, kcw, -1, gw, gr_, PU[r], z_ref, t0g, t1g)
+        hw, kw1 = _run_end(True, kcw, 1, gw, gr_, PU[r], z_ref, t0g, t1g)
+        lr, kr0 = _run_end(False, kcr, -1, gw, gr_, PU[r], z_ref, t0g, t1g)
+        hr, kr1 = _run_end(False, kcr, 1, gw, gr_, PU[r], z_ref, t0g, t1g)
+        lo_l = max(max(-0.5 * _LINE_WIDTH, lw), lr)
+        hi_l = min(min(0.5 * _LINE_WIDTH, hw), hr)
+        if not hi_l > lo_l:
+            continue
+        step = (hi_l - lo_l) / (_LINE_NODES - 1)
+        h_l = (1 * step + lo_l) - lo_l
+        # the window [−w_a, w_b] (the region's extent on the search grid, the group's points)
+        w_a = min(max(half, ext_a) + 4 * h_l, _LINE_WIDTH)
+        w_b = min(max(half, ext_b) + 4 * h_l, _LINE_WIDTH)
+        ok = False
+        for _ in range(6):
+            ia = max(int(math.floor((-w_a - lo_l) / step)), 0)
+            ib = min(int(math.ceil((w_b - lo_l) / step)), _LINE_NODES - 1)
+            if ib - ia < 4:
+                break
+            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, lo_l, hi_l, step, cosf, d0, kcw, kw0, kw1,
+                                                  kcr, kr0, kr1, gw, gr_, PU[r], z_ref, t0g,
+                                                  t1g)
             if not ok:
                 break
-            reach = (d0 - f[0] > 0.0) or (d0 - f[nl - 1] > 0.0)
-            if not reach or half >= 0.02:
+            nl = eta.shape[0]
+            reach_a = ia > 0 and d0 - f[0] > 0.0
+            reach_b = ib < _LINE_NODES - 1 and d0 - f[nl - 1] > 0.0
+            if not (reach_a or reach_b):
                 break
-            half = min(2.0 * half, 0.02)
+            if reach_a:
+                w_a = min(2.0 * w_a, _LINE_WIDTH)
+            if reach_b:
+                w_b = min(2.0 * w_b, _LINE_WIDTH)
         if not ok or mp[21] == 2:
             continue
-        okr, meta, eta_c, xl_c, peak = kp_line_regions(f, Ax, eta, hl, d0, eps, E_star, correct,
+        okr, meta, eta_c, xl_c, peak = kp_line_regions(f, Ax, eta, h_l, d0, eps, E_star, correct,
                                                        hz_lam, hz_la, hz_lb, lam_max)
         if not okr or mp[21] == 3:
             continue
@@ -717,25 +753,21 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             if not N > 0:
                 continue
             wts = np.empty(i1 - i0)
-            angs = np.empty(i1 - i0)
             for i in range(i0, i1):
                 wts[i - i0] = d0 - f[i]
-                angs[i - i0] = math.atan(slope[i])
-            ang_m, eta_m = weighted_means(wts, angs, eta[i0:i1])
+            ang_m, eta_m = weighted_means(wts, ang[i0:i1], eta[i0:i1])
             e0, e1 = eta[i0], eta[i1 - 1]
             tt = (eta_m - e0) / (e1 - e0) if e1 > e0 else 0.0
-            eta_ref = eta_c[i0] + tt * (eta_c[i1 - 1] - eta_c[i0])
-            nxf = int(mp[14])
-            ys, dys, xls, spr, area, Lp, widthp, ycp = kp_strips(
-                eta_c[i0:i1].copy(), xl_c[i0:i1].copy(), peak[i0:i1].copy(), strips, nxf, N,
-                eta_ref, sig)
+            eta_ref = eta_c[i0] + tt * (eta_c[i1 - 1] - eta_c[i0]) if i1 - i0 > 1 else eta_c[i0]
+            ys_, xl_s, c_s, dy, widthp, area, Lp = _kp_strips(
+                eta_c[i0:i1], xl_c[i0:i1], peak[i0:i1], h_l, strips, cells, N, eta_ref, sig)
             if not area > 0 or mp[21] == 4:
                 continue
             ratio = Lp / widthp
             a = math.sqrt(area * ratio / math.pi)
             b = math.sqrt(area / (ratio * math.pi))
             # the patch frame (WheelProblem.frame_at): rail point at eta_m of the plane
-            u_p = PU[r] + eta_m * math.cos(gam)
+            u_p = PU[r] + eta_m * t0g
             z_p = _spline0(ru, rinv, rc, u_p)
             rad = _interp(eta_m, eta, rw)
             Yp = sig * u_p
@@ -748,26 +780,18 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             if tangential == 1 and not done:
                 fallbacks += 1
             if not done:
-                C11, C22, C23 = _kalker(a / b, kx, c11, c22, c23)
-                L1 = 8.0 * a / (3.0 * G * C11)
-                L2 = 8.0 * a / (3.0 * G * C22)
-                L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
-                c = math.sqrt(a * b)
-                cphi = c * abs(phi)
-                nrm = math.sqrt(xi * xi + eta_cr * eta_cr + cphi * cphi)
-                Lw = (L1 * abs(xi) + L2 * abs(eta_cr) + L3 * cphi) / nrm if nrm > 0 else L1
-                Fx, Fs, Mz0 = march_strips(ys, dys, xls, spr, mu, Lw, xi, eta_cr, phi,
-                                           mp[18] > 0)
-                if not (math.isfinite(Fx) and math.isfinite(Fs) and math.isfinite(Mz0)):
+                Fx, Fs, Mz = _strip_fastsim(ys_, dy, xl_s, c_s, cells, rs_i0, rs_i1, rs_w, a, b,
+                                            mu, G, kx, c11, c22, c23, xi, eta_cr, phi,
+                                            mp[18] > 0)
+                if not (math.isfinite(Fx) and math.isfinite(Fs) and math.isfinite(Mz)):
                     continue
-                Mz = Mz0 + ycp * Fx
             pmax = 0.0
             for i in range(i0, i1):
                 if peak[i] > pmax:
                     pmax = peak[i]
             ca, sa = math.cos(-angle), math.sin(-angle)
             _write_row(P[npt], N, Fx, Fs, Mz, ang_m, Yp, z_p, PX[r], cs[r] + (u_p - PU[r]),
-                       ca * (u_p - offset) - sa * (_spline0(ru, rinv, rc, u_p) + z_top), a, b,
+                       ca * (u_p - offset) - sa * (z_p + z_top), a, b,
                        xi, eta_cr, phi, pmax, rad,
                        d0 / eps - (cd[r] - dmin) * math.cos(gam) if r >= 0 else 0.0,
                        not done and tangential == 1)
@@ -775,93 +799,308 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
     return npt, fallbacks
 
 
+#: The library's wheel line (``VirtualPenetration._wheel_lines`` → ``separation_window``):
+#: nodes, extent [m], profile samples and their half range [m].
+_LINE_NODES = 1601
+_LINE_WIDTH = 0.04
+_SAMPLES = 2001
+_SAMPLE_HALF = 0.04
+#: samples kept beyond the outer nodes on each side (the cubic needs one)
+_MARGIN = 3
+_COARSE = 25          # samples per step of the walk along a silhouette
+
+
 @njit(cache=True, inline="always")
-def _quad(e, x, v, i, lo, hi):
-    """Quadratic (three-point Lagrange) interpolation of v(x) at e in [x_i, x_i+1]."""
-    j = i - 1 if i > lo else i
-    if j + 2 > hi:
-        j = hi - 2
-    x0, x1, x2 = x[j], x[j + 1], x[j + 2]
-    return (v[j] * (e - x1) * (e - x2) / ((x0 - x1) * (x0 - x2))
-            + v[j + 1] * (e - x0) * (e - x2) / ((x1 - x0) * (x1 - x2))
-            + v[j + 2] * (e - x0) * (e - x1) / ((x2 - x0) * (x2 - x1)))
+def _sample(wheel, k, gw, gr_, u_c, z_c, t0, t1):
+    """Tangential and normal coordinates in the contact plane (and the wheel circle radius)
+    of wheel sample ``k`` or rail sample ``k`` (``plane_samples`` of one sample)."""
+    if wheel:
+        s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0 = gw
+        s = k * dsw + s_lo
+        p, p1, _ = _spline(wu, winv, wc, s)
+        Y, Z, _, rr = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+        u = sig * Y
+    else:
+        u_lo, dsr, ru, rinv, rc = gr_
+        u = k * dsr + u_lo
+        Z = _spline0(ru, rinv, rc, u)
+        rr = 0.0
+    du = u - u_c
+    dz = Z - z_c
+    return du * t0 + dz * t1, -du * t1 + dz * t0, rr
 
 
 @njit(cache=True)
-def _plane_line(eta, u_c, gam, cosf, s_ref, sg, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig,
-                y, zc, st, ct, sp, cp, R, ph0):
-    """Profile separation along the contact plane of angle ``gam`` through the rail point
-    ``u_c`` (side-local), at the nodes ``eta`` (uniform): f [m], the longitudinal curvature
-    of the gap cosf/(2 r) [1/m], the rail's surface slope dZ/du [-] and the wheel radius [m].
+def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1):
+    """End of the monotone run of a silhouette's tangential coordinate from sample ``kc`` in
+    direction ``dirn`` (``_monotone_bounds``): (its coordinate, its sample) where the run
+    ends within the line's half width, else (∓inf, the last sample walked)."""
+    lim = 0.5 * _LINE_WIDTH + 1e-4
+    e_c, _, _ = _sample(wheel, kc, gw, gr_, u_c, z_c, t0, t1)
+    k = kc
+    e_k = e_c
+    while True:
+        k2 = k + dirn * _COARSE
+        if k2 < 0:
+            k2 = 0
+        elif k2 > _SAMPLES - 1:
+            k2 = _SAMPLES - 1
+        if k2 == k:
+            return e_k, k                         # the end of the samples
+        e2, _, _ = _sample(wheel, k2, gw, gr_, u_c, z_c, t0, t1)
+        if dirn * (e2 - e_k) <= 0.0:
+            break                                 # turned between k − step and k2
+        k, e_k = k2, e2
+        if dirn * e_k > lim:
+            return dirn * math.inf, k
+    # sample by sample from one coarse step back towards k2
+    j = k - dirn * _COARSE
+    if dirn * (j - kc) < 0:
+        j = kc
+    e_j, _, _ = _sample(wheel, j, gw, gr_, u_c, z_c, t0, t1)
+    while j != k2:
+        jn = j + dirn
+        e_n, _, _ = _sample(wheel, jn, gw, gr_, u_c, z_c, t0, t1)
+        if dirn * (e_n - e_j) <= 0.0:
+            return e_j, j
+        j, e_j = jn, e_n
+    return e_j, j
 
-    Both profiles are sampled at the nodes' spacing along the plane around the point,
-    rotated into the plane and interpolated quadratically onto the nodes (what
-    ``separation_at`` does with splines); ``ok`` is
-    False when a monotone window is too short.
-    """
-    nl = eta.shape[0]
-    hl = eta[1] - eta[0]
-    t0, t1 = math.cos(gam), math.sin(gam)
-    n0, n1 = -t1, t0
-    z_c = _spline0(ru, rinv, rc, u_c)
-    half = -eta[0]
-    ns = nl + 9
-    ew = np.empty(ns)
-    zw = np.empty(ns)
-    rw = np.empty(ns)
-    er = np.empty(ns)
-    zr = np.empty(ns)
-    slr = np.empty(ns)
-    span = (half + 4 * hl) * max(abs(t0), 0.15)
-    ds = 2.0 * span / (ns - 1)
-    for k in range(ns):
-        s = s_ref - span + k * ds
+
+@njit(cache=True)
+def _span(wheel, kc, k_end, dirn, target, gw, gr_, u_c, z_c, t0, t1):
+    """Sample index beyond which the silhouette passes ``target`` in direction ``dirn``
+    (walked from ``kc``, not past ``k_end``), plus the spline margin."""
+    k = kc
+    while dirn * (k_end - k) > 0:
+        k2 = k + dirn * 8
+        if dirn * (k2 - k_end) > 0:
+            k2 = k_end
+        e2, _, _ = _sample(wheel, k2, gw, gr_, u_c, z_c, t0, t1)
+        k = k2
+        if dirn * (e2 - target) > 0.0:
+            break
+    k = k + dirn * _MARGIN
+    if dirn * (k - k_end) > 0:
+        k = k_end
+    return k
+
+
+@njit(cache=True, inline="always")
+def _lagrange_den(x, j):
+    """Reciprocal denominators of the cubic Lagrange weights through x[j−1 … j+2]."""
+    x0, x1, x2, x3 = x[j - 1], x[j], x[j + 1], x[j + 2]
+    return (1.0 / ((x0 - x1) * (x0 - x2) * (x0 - x3)), 1.0 / ((x1 - x0) * (x1 - x2) * (x1 - x3)),
+            1.0 / ((x2 - x0) * (x2 - x1) * (x2 - x3)), 1.0 / ((x3 - x0) * (x3 - x1) * (x3 - x2)))
+
+
+@njit(cache=True)
+def _line_nodes(ia, ib, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw, gr_, u_c,
+                z_c, t0, t1):
+    """Nodes ia … ib of the library's separation line (``separation_kernel``): η [m], the
+    separation f [m], the longitudinal curvature cos/(2r) [1/m], the rail's surface angle
+    [rad] at u_c + η cos γ (where f < ``d0``; 0 elsewhere) and the wheel circle radius [m].
+
+    The library interpolates the profile samples (0.04 mm apart) by not-a-knot splines;
+    here the cubic through the four samples around each node, which differs from it by
+    far less than a nanometre on profile splines (both are exact for cubics; the samples
+    and the nodes are the library's)."""
+    n = ib - ia + 1
+    eta = np.empty(n)
+    for i in range(n):
+        eta[i] = (ia + i) * step + lo
+    if ib == _LINE_NODES - 1:
+        eta[n - 1] = hi
+    f = np.empty(n)
+    Ax = np.empty(n)
+    ang = np.zeros(n)
+    rw = np.empty(n)
+    # samples around [eta_0, eta_n-1] inside the monotone runs
+    a_w = _span(True, kcw, kw0, -1, eta[0], gw, gr_, u_c, z_c, t0, t1)
+    b_w = _span(True, kcw, kw1, 1, eta[n - 1], gw, gr_, u_c, z_c, t0, t1)
+    a_r = _span(False, kcr, kr0, -1, eta[0], gw, gr_, u_c, z_c, t0, t1)
+    b_r = _span(False, kcr, kr1, 1, eta[n - 1], gw, gr_, u_c, z_c, t0, t1)
+    mw = b_w - a_w + 1
+    mr = b_r - a_r + 1
+    if mw < 4 or mr < 4:
+        return eta, f, Ax, ang, rw, False
+    ew = np.empty(mw)
+    zw = np.empty(mw)
+    rr = np.empty(mw)
+    s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0 = gw
+    u_lo, dsr, ru, rinv, rc = gr_
+    for k in range(mw):             # (the arithmetic of _sample, arrays unpacked once)
+        s = (a_w + k) * dsw + s_lo
         p, p1, _ = _spline(wu, winv, wc, s)
-        Y, Z, _, r = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
-        uw = sig * Y
-        ew[k] = (uw - u_c) * t0 + (Z - z_c) * t1
-        zw[k] = (uw - u_c) * n0 + (Z - z_c) * n1
-        rw[k] = r
-        u = u_c - span + k * ds
-        z, z1, _ = _spline(ru, rinv, rc, u)
-        er[k] = (u - u_c) * t0 + (z - z_c) * t1
-        zr[k] = (u - u_c) * n0 + (z - z_c) * n1
-        slr[k] = z1
-    f = np.empty(nl)
-    Ax = np.empty(nl)
-    slope = np.empty(nl)
-    rad = np.empty(nl)
-    # monotone windows around the plane origin
-    kw = ns // 2
-    w0 = kw
-    while w0 > 0 and ew[w0 - 1] < ew[w0]:
-        w0 -= 1
-    w1 = kw
-    while w1 < ns - 1 and ew[w1 + 1] > ew[w1]:
-        w1 += 1
-    r0_ = kw
-    while r0_ > 0 and er[r0_ - 1] < er[r0_]:
-        r0_ -= 1
-    r1_ = kw
-    while r1_ < ns - 1 and er[r1_ + 1] > er[r1_]:
-        r1_ += 1
-    if w1 - w0 < 3 or r1_ - r0_ < 3:
-        return f, Ax, slope, rad, False
-    iw = w0
-    ir = r0_
-    for i in range(nl):
+        Y, Z, _, rk = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
+        du = sig * Y - u_c
+        dz = Z - z_c
+        ew[k] = du * t0 + dz * t1
+        zw[k] = -du * t1 + dz * t0
+        rr[k] = rk
+    er = np.empty(mr)
+    zr = np.empty(mr)
+    for k in range(mr):
+        u = (a_r + k) * dsr + u_lo
+        du = u - u_c
+        dz = _spline0(ru, rinv, rc, u) - z_c
+        er[k] = du * t0 + dz * t1
+        zr[k] = -du * t1 + dz * t0
+    if ew[0] > eta[0] or ew[mw - 1] < eta[n - 1] or er[0] > eta[0] or er[mr - 1] < eta[n - 1]:
+        return eta, f, Ax, ang, rw, False
+    jw = 1
+    jr = 1
+    dw0, dw1, dw2, dw3 = _lagrange_den(ew, jw)
+    dr0, dr1, dr2, dr3 = _lagrange_den(er, jr)
+    for i in range(n):
         e = eta[i]
-        outside = e < ew[w0] or e > ew[w1] or e < er[r0_] or e > er[r1_]
-        while iw < w1 - 1 and ew[iw + 1] < e:
-            iw += 1
-        while ir < r1_ - 1 and er[ir + 1] < e:
-            ir += 1
-        tw = min(max((e - ew[iw]) / (ew[iw + 1] - ew[iw]), 0.0), 1.0)
-        tr = min(max((e - er[ir]) / (er[ir + 1] - er[ir]), 0.0), 1.0)
-        zwi = _quad(e, ew, zw, iw, w0, w1)
-        zri = _quad(e, er, zr, ir, r0_, r1_)
-        rad[i] = rw[iw] + tw * (rw[iw + 1] - rw[iw])
-        slope[i] = slr[ir] + tr * (slr[ir + 1] - slr[ir])
-        f[i] = zwi - zri if not outside else _BIG
-        Ax[i] = cosf / (2.0 * rad[i])
-    return f, Ax, slope, rad, True
+        if jw < mw - 3 and ew[jw + 1] < e:
+            while jw < mw - 3 and ew[jw + 1] < e:
+                jw += 1
+            dw0, dw1, dw2, dw3 = _lagrange_den(ew, jw)
+        if jr < mr - 3 and er[jr + 1] < e:
+            while jr < mr - 3 and er[jr + 1] < e:
+                jr += 1
+            dr0, dr1, dr2, dr3 = _lagrange_den(er, jr)
+        a0, a1, a2, a3 = e - ew[jw - 1], e - ew[jw], e - ew[jw + 1], e - ew[jw + 2]
+        b0, b1, b2, b3 = e - er[jr - 1], e - er[jr], e - er[jr + 1], e - er[jr + 2]
+        w0 = a1 * a2 * a3 * dw0
+        w1 = a0 * a2 * a3 * dw1
+        w2 = a0 * a1 * a3 * dw2
+        w3 = a0 * a1 * a2 * dw3
+        f[i] = (w0 * zw[jw - 1] + w1 * zw[jw] + w2 * zw[jw + 1] + w3 * zw[jw + 2]
+                - (b1 * b2 * b3 * dr0 * zr[jr - 1] + b0 * b2 * b3 * dr1 * zr[jr]
+                   + b0 * b1 * b3 * dr2 * zr[jr + 1] + b0 * b1 * b2 * dr3 * zr[jr + 2]))
+        rw[i] = w0 * rr[jw - 1] + w1 * rr[jw] + w2 * rr[jw + 1] + w3 * rr[jw + 2]
+        Ax[i] = cosf / (2.0 * rw[i])
+        if d0 - f[i] > 0.0:
+            _, z1, _ = _spline(ru, rinv, rc, u_c + e * t0)
+            ang[i] = math.atan(z1)
+    return eta, f, Ax, ang, rw, True
+
+
+@njit(cache=True)
+def _kp_strips(eta_n, xl_n, pk_n, h_line, strips, cells, N, eta_ref, sign):
+    """The strips of a Kik–Piotrowski region as
+    :func:`~wheelrail.normal._patch_kernel.strip_patch` makes them (x_l² and the peaks
+    linear between the nodes and zero half a node beyond the ends, ``strips`` uniform
+    strips, a semi-ellipse of ``cells`` cells along each, scaled to the force N), without
+    the cell array: every strip's cells are its peak factor ``c`` times the semi-ellipse.
+
+    Returns
+    -------
+    y, xl, c : ndarray, shape (strips,)
+        Strip centres in the patch frame (sorted), half-lengths [m], pressure factors [Pa]
+        (cell i of strip k: c_k √(1 − s_i²), s_i = 1 − (2i + 1)/cells).
+    dy, width, area, length : float
+    """
+    n = eta_n.shape[0]
+    hn = eta_n[1] - eta_n[0] if n > 1 else h_line
+    lo = eta_n[0] - 0.5 * hn
+    hi = eta_n[n - 1] + 0.5 * hn
+    width = hi - lo
+    dy = width / strips
+    psum = 0.0
+    for i in range(cells):
+        s = 1.0 - (i + 0.5) * (2.0 / cells)
+        psum += math.sqrt(max(1.0 - s * s, 0.0))
+    ys = np.empty(strips)
+    xs = np.empty(strips)
+    cs_ = np.empty(strips)
+    got = 0.0
+    area = 0.0
+    lmax = 0.0
+    j = -1                    # interval of the extended nodes (lo, eta_n…, hi)
+    for k in range(strips):
+        e = lo + (k + 0.5) * dy
+        while j < n - 1 and eta_n[j + 1] <= e:
+            j += 1
+        if j < 0:
+            ea, x2a, pa = lo, 0.0, 0.0
+        else:
+            ea, x2a, pa = eta_n[j], xl_n[j] * xl_n[j], pk_n[j]
+        if j + 1 < n:
+            eb, x2b, pb = eta_n[j + 1], xl_n[j + 1] * xl_n[j + 1], pk_n[j + 1]
+        else:
+            eb, x2b, pb = hi, 0.0, 0.0
+        t = (e - ea) / (eb - ea) if eb > ea else 0.0
+        xk = math.sqrt(max(x2a + t * (x2b - x2a), 0.0))
+        pk = pa + t * (pb - pa)
+        ys[k] = e
+        xs[k] = xk
+        cs_[k] = pk
+        got += pk * psum * (2.0 * xk / cells) * dy
+        area += 2.0 * xk * dy
+        lmax = max(lmax, xk)
+    fac = N / got if got > 0 else 0.0
+    y = np.empty(strips)
+    xl = np.empty(strips)
+    c = np.empty(strips)
+    for k in range(strips):
+        src = k if sign > 0 else strips - 1 - k
+        y[k] = sign * (ys[src] - eta_ref)
+        xl[k] = xs[src]
+        c[k] = cs_[src] * fac
+    return y, xl, c, dy, width, area, 2.0 * lmax
+
+
+@njit(cache=True)
+def _strip_fastsim(y, dy, xl, c, cells, i0, i1, w, a, b, mu, G, kx, c11, c22, c23, xi, eta,
+                   phi, first_order):
+    """FASTSIM on a Kik–Piotrowski strip patch as ``Fastsim.solve_patch`` does it: Kalker's
+    weighted flexibility of the patch's equivalent ellipse, each strip's cells resampled
+    to FASTSIM's ``nx`` keeping the strip's force (indices ``i0``, ``i1``, weights ``w``;
+    with the cells c_k √(1 − s²) the resampled row is c_k times one fixed profile) and
+    marched with the one flexibility by :func:`~wheelrail.dynamics._fastlaws.march_strips`
+    (the equations of :func:`~wheelrail.tangential._fastsim_kernel.march_strip` with
+    L1 = L2 = L3, where its slip rule is the scaling onto the bound; the same numbers to
+    round-off, without the per-cell Newton set-up); ``Mz`` about the centre of pressure.
+    Returns (Fx, Fy, Mz)."""
+    C11, C22, C23 = _kalker(a / b, kx, c11, c22, c23)
+    L1 = 8.0 * a / (3.0 * G * C11)
+    L2 = 8.0 * a / (3.0 * G * C22)
+    L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
+    cc = math.sqrt(a * b)
+    cphi = cc * abs(phi)
+    nrm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
+    L = (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / nrm if nrm > 0 else L1
+    ny = y.shape[0]
+    nx = i0.shape[0]
+    # the resampled profile (strip_patch_forces: linear resampling, the mean kept)
+    prof = np.empty(cells)
+    msum = 0.0
+    for i in range(cells):
+        s = 1.0 - (i + 0.5) * (2.0 / cells)
+        prof[i] = math.sqrt(max(1.0 - s * s, 0.0))
+        msum += prof[i]
+    q = np.empty(nx)
+    qsum = 0.0
+    for i in range(nx):
+        q[i] = prof[i0[i]] * (1.0 - w[i]) + prof[i1[i]] * w[i]
+        qsum += q[i]
+    qf = (msum / cells) / (qsum / nx) if qsum > 0 else 0.0
+    reach = 0.0
+    for k in range(ny):
+        reach = max(reach, abs(y[k]) + dy, xl[k])
+    rate = max(abs(xi), abs(eta), abs(phi) * reach) / L
+    if not rate <= _RATE_CAP:
+        if not (rate > 0 and math.isfinite(rate)):
+            return math.nan, math.nan, math.nan
+        # huge creepages: scaled together (the same full-slip direction; ``_tame``)
+        fac = _RATE_CAP / rate
+        xi, eta, phi = xi * fac, eta * fac, phi * fac
+    p = np.empty((ny, nx))
+    W = 0.0
+    WY = 0.0
+    for k in range(ny):
+        for i in range(nx):
+            p[k, i] = c[k] * qf * q[i]
+        wk = c[k] * xl[k]
+        W += wk
+        WY += wk * y[k]
+    Fx, Fy, Mz = march_strips(y, dy, xl, p, mu, L, xi, eta, phi, first_order)
+    yc = WY / W if W > 0 else 0.0
+    return Fx, Fy, Mz + yc * Fx
+
+
+_RATE_CAP = 1e200

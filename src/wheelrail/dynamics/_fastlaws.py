@@ -3,9 +3,10 @@
 Scalar versions, for one patch, of what the library's laws do on arrays:
 the creepages of a point (:func:`wheelrail.geometry.kinematics.creepage_kernel`),
 FASTSIM on an ellipse (:class:`wheelrail.tangential.Fastsim`, with the library's
-batch kernel), FASTSIM on the strips of a Kik–Piotrowski region with one weighted
-flexibility per patch (Kik & Piotrowski's choice; Piotrowski & Chollet 2005,
-§3.2–3.3, eqs. 24–26) and the table law (:class:`wheelrail.tangential.Table`:
+batch kernel), the march of FASTSIM over strips with one weighted flexibility per
+patch (Kik & Piotrowski's choice; Piotrowski & Chollet 2005, §3.2–3.3, eqs.
+24–26; the equations of the library's ``march_strip`` with L1 = L2 = L3) and the
+table law (:class:`wheelrail.tangential.Table`:
 multilinear interpolation in the frame of the full-slip direction).
 
 References
@@ -27,7 +28,7 @@ from numba import njit
 from ..tangential._fastsim_kernel import fastsim_hertz_batch
 from ..tangential._table_kernel import point_forces
 
-__all__ = ["creepage", "table_forces", "fastsim_ellipse", "kp_strips", "march_strips",
+__all__ = ["creepage", "table_forces", "fastsim_ellipse", "march_strips",
            "linear_forces"]
 
 
@@ -131,80 +132,6 @@ def fastsim_ellipse(a, b, Fn, mu, xi, eta, phi, G, weighted, kx, c11, c22, c23, 
                                         arr[7], arr[8], arr[9], t, half, strip_peak, s_cells,
                                         first_order)
     return Fx[0], Fy[0], Mz[0]
-
-
-@njit(cache=True)
-def kp_strips(eta_n, xl_n, pk_n, strips, nx, N, eta_ref, sign):
-    """FASTSIM strips of a Kik–Piotrowski region (the strip description of
-    :func:`~wheelrail.normal._patch_kernel.strip_patch` sampled directly at FASTSIM's
-    ``nx`` cells per strip: strips uniform over the region, x_l² and the peaks
-    interpolated linearly, semi-elliptic pressure along x, scaled to the force N).
-
-    Returns
-    -------
-    y, dy, xl : ndarray, shape (strips,), float, ndarray
-        Strip centres in the patch frame (y = sign·(η − η_ref)), width, half-lengths [m].
-    p : ndarray, shape (strips, nx)
-        Cell pressures [Pa] (cell i at x = xl (1 − (2i + 1)/nx)).
-    area, length, width, yc : float
-        Area [m²], length 2 max x_l and width [m], lateral centre of pressure [m].
-    """
-    n = eta_n.shape[0]
-    hn = eta_n[1] - eta_n[0] if n > 1 else 1e-4
-    lo = eta_n[0] - 0.5 * hn
-    hi = eta_n[n - 1] + 0.5 * hn
-    width = hi - lo
-    dy = width / strips
-    prof = np.empty(nx)
-    psum = 0.0
-    for i in range(nx):
-        s = 1.0 - (i + 0.5) * (2.0 / nx)
-        prof[i] = math.sqrt(max(1.0 - s * s, 0.0))
-        psum += prof[i]
-    y = np.empty(strips)
-    xl = np.empty(strips)
-    p = np.empty((strips, nx))
-    tot = 0.0
-    area = 0.0
-    lmax = 0.0
-    j = 0
-    for k in range(strips):
-        e = lo + (k + 0.5) * dy
-        while j < n - 1 and eta_n[j + 1] < e:
-            j += 1
-        # x_l² and the peak, linear between the nodes, zero at the region's ends
-        if e <= eta_n[0]:
-            tt = (e - lo) / (eta_n[0] - lo)
-            x2 = tt * xl_n[0] ** 2
-            pk = tt * pk_n[0]
-        elif e >= eta_n[n - 1]:
-            tt = (hi - e) / (hi - eta_n[n - 1])
-            x2 = tt * xl_n[n - 1] ** 2
-            pk = tt * pk_n[n - 1]
-        else:
-            tt = (e - eta_n[j]) / (eta_n[j + 1] - eta_n[j])
-            x2 = xl_n[j] ** 2 + tt * (xl_n[j + 1] ** 2 - xl_n[j] ** 2)
-            pk = pk_n[j] + tt * (pk_n[j + 1] - pk_n[j])
-        xk = math.sqrt(max(x2, 0.0))
-        kk = k if sign > 0 else strips - 1 - k
-        y[kk] = sign * (e - eta_ref)
-        xl[kk] = xk
-        for i in range(nx):
-            p[kk, i] = pk * prof[i]
-        tot += pk * psum * (2.0 * xk / nx) * dy
-        area += 2.0 * xk * dy
-        lmax = max(lmax, xk)
-    f = N / tot if tot > 0 else 0.0
-    # scaled to N; centre of pressure Σ y F_strip / N
-    yc = 0.0
-    for k in range(strips):
-        fs = 0.0
-        for i in range(nx):
-            p[k, i] *= f
-            fs += p[k, i]
-        yc += y[k] * fs * (2.0 * xl[k] / nx) * dy
-    yc = yc / N if N > 0 else 0.0
-    return y, dy, xl, p, area, 2.0 * lmax, width, yc
 
 
 @njit(cache=True)

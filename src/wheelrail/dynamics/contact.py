@@ -29,6 +29,8 @@ References
 from __future__ import annotations
 
 import math
+import time
+import warnings
 
 import numpy as np
 
@@ -52,7 +54,18 @@ from ..tangential.table import Table, load_table
 from ._fastcontact import KMAX, MP, PATCH_FIELDS, WHEEL_FIELDS, wheel_contact
 
 __all__ = ["FastContact", "GenericContact", "contact_model", "PATCH_FIELDS", "WHEEL_FIELDS",
-           "KMAX", "SIDES"]
+           "KMAX", "SIDES", "SlowContactWarning"]
+
+#: CPU time of the compiled contact of one wheel [s] (Kik–Piotrowski + FASTSIM, S1002 on
+#: 60E1, tread and flange positions; ``benchmarks/bench_dynamics.py``), quoted when a
+#: method pair falls back to the generic path.
+COMPILED_WHEEL_TIME = 3.5e-5
+
+
+class SlowContactWarning(UserWarning):
+    """The configured methods have no compiled contact path: every contact evaluation of
+    the time integration goes through the library (:class:`GenericContact`), typically
+    100 times slower or more."""
 
 SIDES = ("left", "right")
 _SIGMA = {"left": -1.0, "right": 1.0}
@@ -111,11 +124,11 @@ class FastContact:
     search_step : float
         Grid step of the contact search along the wheel profile [m] (minima refined
         to ~1 µm).
-    line_step : float
-        Node spacing of Kik–Piotrowski's separation line [m].
     line_half_width : float
-        Smallest half width of that line [m] (widened to the group's points and the
-        patch).
+        Smallest half width of the part of Kik–Piotrowski's separation line that is
+        evaluated [m] (widened to the region's extent on the search grid and the
+        group's points, and while a region reaches its end); the line's nodes are the
+        library's, so this changes the cost, not the result.
     tolerance : float
         Largest undeformed separation of a candidate point [m] (as
         :class:`~wheelrail.contact.wheelrail.WheelRailPosition`).
@@ -133,7 +146,7 @@ class FastContact:
     kind = "compiled"
 
     def __init__(self, wheelset, track, material, normal, tangential, *, search_step=5e-4,
-                 line_step=1e-4, line_half_width=6e-3, tolerance=5e-4, connected="separate"):
+                 line_half_width=1e-3, tolerance=5e-4, connected="separate"):
         why = _fast_support(normal, tangential)
         if connected not in ("separate", "shared"):
             raise InputError(f"connected must be 'separate' or 'shared', got {connected!r}")
@@ -171,7 +184,6 @@ class FastContact:
             mp[MP["cells"]] = normal.cells
         else:
             mp[MP["strips"]] = mp[MP["cells"]] = 2
-        mp[MP["line_step"]] = float(line_step)
         mp[MP["line_half_width"]] = float(line_half_width)
         mp[MP["group_angle"]] = 0.2
         mp[MP["tolerance"]] = float(tolerance)
@@ -324,6 +336,42 @@ class GenericContact:
         return len(rows)
 
 
+def _generic_wheel_time(generic):
+    """CPU time [s] of one generic evaluation of a wheel: the centred wheelset pressed 30 µm
+    into its rails (the larger of the two wheels' times)."""
+    ws, tr = generic.wheelset, generic.track
+    r0 = ws.nominal_radius
+    zt, _ = touching_heights(ws, tr, np.zeros(1), np.zeros(1), np.zeros(1))
+    out_p = np.zeros((KMAX, len(PATCH_FIELDS)))
+    out_w = np.zeros(len(WHEEL_FIELDS))
+    worst = 0.0
+    for side in SIDES:
+        zc = r0 + float(zt[side][0]) - 3e-5
+        t0 = time.process_time()
+        try:
+            generic.wheel(side, 0.0, zc, 0.0, 0.0, 10.0, 10.0 / r0, 0.0, 0.0, 0.0, 0.0, 0.3,
+                          out_p, out_w)
+        except Exception:  # noqa: BLE001 - only an estimate; the run reports its own errors
+            return math.nan
+        worst = max(worst, time.process_time() - t0)
+    return worst
+
+
+def _warn_slow(generic, nimpl, timpl, why):
+    """Say once, when the generic path is chosen for lack of a compiled one, what it costs."""
+    t = _generic_wheel_time(generic)
+    cost = ("" if not math.isfinite(t) else
+            f"; one wheel costs about {t * 1e3:.3g} ms per evaluation here (measured on a "
+            f"centred wheelset) against about {COMPILED_WHEEL_TIME * 1e3:.2g} ms compiled "
+            f"(~{t / COMPILED_WHEEL_TIME:.0f}x)")
+    warnings.warn(
+        f"contact pair normal={nimpl.name!r}, tangential={timpl.name!r} has no compiled "
+        f"contact path ({why}): every evaluation goes through the library{cost}. Compiled "
+        "pairs: normal 'hertz' or 'kik-piotrowski' with tangential 'fastsim', 'table' or "
+        "'linear'; pass contact='generic' to choose this path without this warning",
+        SlowContactWarning, stacklevel=3)
+
+
 def configured_methods(normal, tangential, options=None):
     """The configured normal and tangential methods from names or objects and options.
 
@@ -350,14 +398,18 @@ def contact_model(wheelset, track, material, normal="kik-piotrowski", tangential
     method_options : dict or None
         Options of the two methods (:func:`configured_methods`).
     **options
-        Options of :class:`FastContact` (``search_step``, ``line_step``, ...); the
+        Options of :class:`FastContact` (``search_step``, ``line_half_width``, ...); the
         generic path takes ``tolerance`` only (``connected`` concerns the compiled
         multi-Hertz search and is not passed on).
     """
     nimpl, timpl = configured_methods(normal, tangential, method_options)
     if contact not in ("auto", "fast", "generic"):
         raise InputError(f"contact must be 'auto', 'fast' or 'generic', got {contact!r}")
-    if contact == "generic" or (contact == "auto" and _fast_support(nimpl, timpl)):
+    why = _fast_support(nimpl, timpl)
+    if contact == "generic" or (contact == "auto" and why):
         tol = options.get("tolerance", 5e-4)
-        return GenericContact(wheelset, track, material, nimpl, timpl, tolerance=tol)
+        generic = GenericContact(wheelset, track, material, nimpl, timpl, tolerance=tol)
+        if contact == "auto":
+            _warn_slow(generic, nimpl, timpl, why)
+        return generic
     return FastContact(wheelset, track, material, nimpl, timpl, **options)
