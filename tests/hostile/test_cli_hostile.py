@@ -88,7 +88,8 @@ def test_geometry_strict_flags_derailed_rows(tmp_path, capsys):
     summary = json.loads((tmp_path / "o" / "geometry_summary.json").read_text())
     assert summary["rows"]["counts"]["derailed"] >= 2
     code, out, err = run_cli([*argv, "--strict"], capsys)
-    assert code == 1 and "--strict" in out
+    assert code == 1 and len(err) == 1 and err[0].startswith("wheelrail: error: --strict")
+    assert "flagged row" in err[0]
 
 
 SOLVE_GOOD = SOLVE_CASE

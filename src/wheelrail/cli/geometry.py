@@ -41,6 +41,9 @@ def add_arguments(p) -> None:
     p.add_argument("--strict", action="store_true",
                    help="exit with code 1 if any row is flagged (flange climb, derailed, no "
                         "contact, not converged); by default flagged rows are only summarised")
+    p.add_argument("--lenient", action="store_true",
+                   help="read a profile file of a doubtful shape (gap, wall, head down, flange "
+                        "cut off or at +y, columns swapped) with a warning instead of refusing it")
     p.add_argument("--out", metavar="DIR", default="wheelrail-geometry",
                    help="output directory (default ./wheelrail-geometry)")
 
@@ -65,13 +68,13 @@ def parse_slope(text) -> float:
     return val
 
 
-def load_profile(spec: str, kind: str):
-    """A built-in profile by name or a profile file by path."""
+def load_profile(spec: str, kind: str, lenient: bool = False):
+    """A built-in profile by name or a profile file by path (``lenient``: see profiles.read)."""
     from .. import profiles
 
     path = Path(spec)
     if path.exists():
-        return profiles.read(path, kind=kind)
+        return profiles.read(path, kind=kind, **({"lenient": True} if lenient else {}))
     if any(c in spec for c in "/\\") or path.suffix:
         raise FileNotFoundError(2, "profile file not found", spec)
     return profiles.load(spec)
@@ -350,9 +353,10 @@ def run(args, console) -> int:
 
     ys = check_arguments(args)
     lo, hi = float(ys[0]), float(ys[-1])
-    ws = Wheelset(load_profile(args.wheel, "wheel"), nominal_radius=args.nominal_radius,
+    lenient = getattr(args, "lenient", False)
+    ws = Wheelset(load_profile(args.wheel, "wheel", lenient), nominal_radius=args.nominal_radius,
                   flange_back=args.flange_back)
-    tr = Track(load_profile(args.rail, "rail"), gauge=args.gauge,
+    tr = Track(load_profile(args.rail, "rail", lenient), gauge=args.gauge,
                inclination=parse_slope(args.inclination), canted=args.canted)
     out = Path(args.out)
     import contextlib
@@ -376,6 +380,9 @@ def run(args, console) -> int:
         console.print(f"  {esc(path)}  — {desc}")
     n_flagged = print_row_summary(console, summary["rows"])
     if n_flagged and args.strict:
-        console.print(f"[red]--strict: {n_flagged} flagged row(s)[/red]")
+        import sys
+
+        print(f"wheelrail: error: --strict: {n_flagged} flagged row(s) (flange climb, derailed, "
+              "no contact or not converged; see the table above)", file=sys.stderr)
         return 1
     return 0

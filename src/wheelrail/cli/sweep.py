@@ -52,6 +52,14 @@ def run(args, console) -> int:
         print(f"wheelrail: interrupted: the finished chunks are kept in {args.out}; continue "
               f"with: {again} --resume", file=sys.stderr)
         return 130
+    if info.failed:  # one line also under -q: the exit code alone says nothing
+        import sys
+
+        first = next((str(m) for m, st in zip(ds["message"].values.ravel(),
+                                               ds["status"].values.ravel()) if st == 3), "")
+        print(f"wheelrail: error: {info.failed} of {info.points} points failed (first: "
+              f"{' '.join(first.split())[:200]}); their messages are in the 'message' "
+              f"variable of {args.out}", file=sys.stderr)
     ds.close()
     if not args.quiet:
         t = Table(title=f"wheelrail sweep {esc(args.case)}", title_justify="left")

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .. import profiles, tangential
+from .. import plausibility, profiles, tangential
 from ..errors import InputError
 from ..geometry import Track, Wheelset, contact_points
 from ..hertzian import RADII_KEYS, hertz, hertz_from_radii, hertz_from_semiaxes
@@ -39,6 +39,37 @@ __all__ = ["EVALUATORS", "STATUS_CODES", "get_evaluator", "CreepEvaluator"]
 #: of a chunk that was never written).
 STATUS_CODES = {"pending": 0, "ok": 1, "not_converged": 2, "failed": 3}
 MESSAGE_LENGTH = 160  # characters kept of a failure message
+
+
+def _values(spec, name):
+    """The values of ``name`` in ``spec`` (its fixed value or its axis), or None."""
+    if name in spec.fixed:
+        return [spec.fixed[name]]
+    axes = dict(spec.axes)
+    return list(axes[name].tolist()) if name in axes else None
+
+
+def _check_numbers(spec, names, evaluator: str) -> None:
+    """Every quantity of ``names`` given in ``spec`` must be a number (not a name)."""
+    for name in names:
+        values = _values(spec, name)
+        if values is None:
+            continue
+        text = [v for v in values if isinstance(v, str)]
+        if text:
+            kind = "an axis" if name not in spec.fixed else "a value"
+            raise InputError(f"{name} must be numbers for the {evaluator} evaluator, got "
+                             f"{kind} with the name {text[0]!r}")
+
+
+def _check_friction(spec) -> None:
+    values = _values(spec, "mu")
+    if values is None:
+        return
+    mu = np.asarray(values, float)
+    if (mu <= 0).any():
+        raise InputError(f"mu must be > 0 (a friction coefficient), got {mu[mu <= 0][0]:g}")
+    plausibility.check_friction(mu)
 
 
 class CreepEvaluator:
@@ -119,6 +150,8 @@ class CreepEvaluator:
             raise InputError(f"give both {used[0]} (got only {sorted(groups[used[0]])})")
         if used[0] == "radii" and "wheel_rolling_radius" not in names:
             raise InputError("wheel_rolling_radius is required with radii")
+        _check_numbers(spec, [q for q in self.quantities if q != "method"], "creep")
+        _check_friction(spec)
         for m in self.methods(spec):
             tangential.get(m, self.options_for(spec, m))
 
@@ -246,6 +279,8 @@ class GeometryEvaluator:
         if extra:
             raise InputError(f"the geometry evaluator does not accept option(s) "
                              f"{', '.join(sorted(extra))}; allowed: tolerance, step")
+        _check_numbers(spec, [q for q in self.quantities if q not in ("wheel", "rail")],
+                       "geometry")
         for k in ("wheel", "rail"):
             values = [spec.fixed[k]] if k in spec.fixed else dict(spec.axes).get(k, [])
             for v in list(values):

@@ -20,6 +20,9 @@ Workers never write files; the caller does.
 
 from __future__ import annotations
 
+import math
+import os
+
 from ..errors import InputError
 
 __all__ = ["SerialExecutor", "ProcessExecutor", "DaskExecutor", "make_executor", "EXECUTORS"]
@@ -311,11 +314,24 @@ class _sigint_deferred:
 EXECUTORS = ("serial", "processes", "dask")
 
 
+def _max_workers() -> int:
+    """The most local workers accepted: 8 per core, at least 64 (beyond: a cluster)."""
+    return max(64, 8 * (os.cpu_count() or 1))
+
+
 def make_executor(executor=None, workers=None, scheduler=None, timeout=10.0):
     """The executor for the arguments of :func:`wheelrail.sweep` (see there)."""
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int)
                                 or workers < 1):
         raise InputError(f"workers must be an integer >= 1, got {workers!r}")
+    limit = _max_workers()
+    if workers is not None and workers > limit:
+        raise InputError(f"workers = {workers} is more than this machine can run "
+                         f"({os.cpu_count() or 1} cores; at most {limit} local workers); "
+                         "use a cluster (--scheduler) for more")
+    if (isinstance(timeout, bool) or not isinstance(timeout, (int, float))
+            or not math.isfinite(timeout) or timeout <= 0):
+        raise InputError(f"timeout must be a finite number of seconds > 0, got {timeout!r}")
     if scheduler is not None:
         if workers is not None:
             raise InputError("give workers (a local cluster) or scheduler (a running "

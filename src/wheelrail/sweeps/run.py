@@ -172,6 +172,8 @@ def sweep(spec, out=None, *, workers=None, scheduler=None, executor=None, resume
                               if methods else dict(spec.options))
             store = SweepStore.create(out, spec, prov).lock()
         blocks = spec.chunks()
+        if resume:
+            store.validate()  # a chunk is kept only if it reads back complete
         done = store.done()
         todo = [(i, (spec, b)) for i, b in enumerate(blocks) if i not in done]
         n_todo = sum(int(np.prod([s.stop - s.start for s in blocks[i]])) for i, _ in todo)

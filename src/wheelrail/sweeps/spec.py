@@ -107,6 +107,11 @@ def expand_range(name: str, value) -> np.ndarray:
         raise InputError(f"axis {name!r}: scale must be 'linear' or 'log', got {scale!r}")
     if isinstance(value, str):
         return np.array([value], dtype=object)
+    if isinstance(value, (list, tuple)):
+        kinds = {isinstance(v, str) for v in value}
+        if len(kinds) > 1:
+            raise InputError(f"axis {name!r} mixes names and numbers: {list(value)!r}; give "
+                             "only numbers (SI units) or only names")
     arr = np.asarray(value)
     if arr.ndim != 1:
         raise InputError(f"axis {name!r} must be one-dimensional, got shape {arr.shape}")

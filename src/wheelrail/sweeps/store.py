@@ -155,12 +155,95 @@ class SweepStore:
             attrs = dict(zarr.open_group(str(store.path), mode="r").attrs)
         except Exception as exc:  # noqa: BLE001 - anything unreadable is "not a sweep store"
             raise InputError(f"cannot resume {str(path)!r}: not a sweep store ({exc})") from None
+        if "spec_sha256" not in attrs:
+            raise InputError(f"cannot resume {str(path)!r}: its attributes (.zattrs) hold no "
+                             "sweep description (damaged, or not a wheelrail sweep); use "
+                             "another --out path")
         if attrs.get("spec_sha256") != spec.sha256:
             raise InputError(f"cannot resume {str(path)!r}: it holds a different sweep "
                              f"(spec hash {attrs.get('spec_sha256')!r}, this sweep "
                              f"{spec.sha256!r}); use another --out path")
         store.done_dir.mkdir(exist_ok=True)
         return store
+
+    # ------------------------------------------------------------------ checks
+    def validate(self) -> list[int]:
+        """Check every chunk marked complete; unmark (and clear) those that are not.
+
+        A marked chunk is kept only if every array of it can be read, no point of
+        it is still ``pending`` and no point marked ``ok`` lacks its first output
+        (a marker written without its data, a chunk file damaged on disk). The
+        chunks unmarked here are computed again by the resumed run. A missing
+        consolidated metadata file (``.zmetadata``) is rebuilt from the arrays.
+
+        Returns
+        -------
+        list of int
+            Ids of the chunks unmarked.
+
+        Raises
+        ------
+        InputError
+            An array's metadata or a coordinate cannot be read (the store cannot
+            be repaired by recomputing chunks).
+        """
+        import zarr
+
+        ev = get_evaluator(self.spec.evaluator)
+        names = [*ev.output_names(self.spec), "status", "message"]
+        try:
+            group = zarr.open_group(str(self.path), mode="r")
+            arrays = {n: group[n] for n in names}
+            for n in self.spec.dims:
+                if n in group:
+                    group[n][...]
+        except Exception as exc:  # noqa: BLE001 - any damage of the metadata is fatal
+            raise InputError(f"cannot resume {str(self.path)!r}: the store is damaged "
+                             f"({type(exc).__name__}: {' '.join(str(exc).split())[:160]}); "
+                             "start the sweep again with another --out path") from None
+        for name, arr in arrays.items():
+            if tuple(arr.shape) != tuple(self.spec.shape):
+                raise InputError(f"cannot resume {str(self.path)!r}: array {name!r} has shape "
+                                 f"{tuple(arr.shape)}, the sweep {tuple(self.spec.shape)}; "
+                                 "start the sweep again with another --out path")
+        blocks = self.spec.chunks()
+        first = names[0]
+        bad = []
+        for cid in sorted(self.done()):
+            if cid >= len(blocks):
+                bad.append(cid)
+                continue
+            block = blocks[cid]
+            try:
+                values = {n: np.asarray(arrays[n][block]) for n in names}
+            except Exception:  # noqa: BLE001 - a damaged chunk file: recompute it
+                bad.append(cid)
+                self._clear(block)
+                continue
+            status = values["status"]
+            ok = status == STATUS_CODES["ok"]
+            if ((status == STATUS_CODES["pending"]).any()
+                    or not np.isin(status, list(STATUS_CODES.values())).all()
+                    or (values[first].dtype.kind == "f" and np.isnan(values[first][ok]).any())):
+                bad.append(cid)
+        for cid in bad:
+            (self.done_dir / str(cid)).unlink(missing_ok=True)
+        if not (self.path / ".zmetadata").exists():
+            import warnings
+
+            with naming(self.path), warnings.catch_warnings():
+                warnings.simplefilter("ignore")  # the markers and lock are not Zarr objects
+                zarr.consolidate_metadata(str(self.path), zarr_format=2)
+        return bad
+
+    def _clear(self, block: tuple) -> None:
+        """Delete the chunk files of ``block`` in every array (they are rewritten)."""
+        cs = self.spec.chunk_shape()
+        key = ".".join(str(s.start // c) for s, c in zip(block, cs)) or "0"
+        for sub in self.path.iterdir():
+            f = sub / key
+            if sub.is_dir() and (sub / ".zarray").exists() and f.is_file():
+                f.unlink(missing_ok=True)
 
     # ------------------------------------------------------------------ chunks
     def done(self) -> set[int]:
@@ -211,9 +294,14 @@ def open_sweep(path):
     path = Path(path)
     if not path.exists():
         raise InputError(f"no sweep result at {str(path)!r}")
-    if _is_netcdf(path):
-        return xr.open_dataset(path)
-    return xr.open_dataset(path, engine="zarr", chunks=None, consolidated=True)
+    try:
+        if _is_netcdf(path):
+            return xr.open_dataset(path)
+        return xr.open_dataset(path, engine="zarr", chunks=None, consolidated=True)
+    except Exception as exc:  # noqa: BLE001 - a damaged file: one clear line, not a traceback
+        raise InputError(f"cannot read the sweep result {str(path)!r} ({type(exc).__name__}: "
+                         f"{' '.join(str(exc).split())[:160]}); it is damaged: run the sweep "
+                         "again with another --out path") from None
 
 
 def to_netcdf(zarr_path: Path, out: Path) -> None:

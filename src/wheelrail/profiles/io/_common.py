@@ -74,6 +74,16 @@ def append_row(rows: list, toks: list, ncol: int, where: str, hint: str = "") ->
     if len(toks) != ncol:
         raise ProfileError(f"{where}: row has {len(toks)} columns, expected {ncol}{hint}")
     rows.append([number(t, where, "column value") for t in toks])
+    if isinstance(rows, Rows):
+        rows.lines.append(int(where.rsplit("line ", 1)[-1]) if "line " in where else 0)
+
+
+class Rows(list):
+    """Data rows of a profile file with the file line of each (``lines``)."""
+
+    def __init__(self):
+        super().__init__()
+        self.lines: list[int] = []
 
 
 def check_row_count(rows: list, name: str) -> None:
@@ -137,8 +147,9 @@ def single_valued(y: np.ndarray, z: np.ndarray, name: str, *, point_dist_min: fl
     n = y.size
     if n < 2:
         raise ProfileError(f"{name}: needs at least 4 profile points, found {n}")
+    index = np.arange(n)
     if y[-1] < y[0]:
-        y, z = y[::-1], z[::-1]
+        y, z, index = y[::-1], z[::-1], index[::-1]
     keep = np.zeros(n, dtype=bool)
     keep[0] = True
     ly, lz = y[0], z[0]
@@ -157,7 +168,7 @@ def single_valued(y: np.ndarray, z: np.ndarray, name: str, *, point_dist_min: fl
             f"{name}: the contour is not single-valued as z(y) — {n_back} of {n} points would "
             f"have to be dropped (closed contour or zig-zag data?); pass only the running "
             f"surface (tread/flange or rail head)")
-    return y[keep], z[keep], {"n_close": n_close, "n_foldback": n_back}
+    return y[keep], z[keep], {"n_close": n_close, "n_foldback": n_back, "_index": index[keep]}
 
 
 #: A profile narrower than this [m] was almost certainly read in the wrong length unit.
@@ -207,6 +218,11 @@ FLANGE_UP_HEIGHT = 0.010
 #: spacing is reported (points missing from a measurement or a cut file).
 GAP_WIDTH = 0.003
 GAP_FACTOR = 10.0
+#: A wheel whose lowest point is an end of the profile this far [m] below the tread median
+#: has its flange cut off.
+FLANGE_CUT_DEPTH = 0.005
+#: A vertical step within this [m] of either end of a profile is its side face, not a wall.
+END_WIDTH = 0.002
 
 
 def check_orientation(y, z, kind: str, source: str) -> None:
@@ -231,25 +247,124 @@ def check_orientation(y, z, kind: str, source: str) -> None:
                            f"up a flange hangs below the tread) — {hint}")
 
 
-def check_gaps(y, z, kind: str, source: str) -> None:
-    """Warn (ProfileWarning) for a gap between points: a damaged or cut measurement."""
+class _Where:
+    """Names a stored point by its file line (when known) or its number in the file."""
+
+    def __init__(self, source, lines, index):
+        self.source, self.lines, self.index = source, lines, index
+
+    def __call__(self, i: int) -> str:
+        j = int(self.index[i]) if self.index is not None else int(i)
+        if self.lines is not None and j < len(self.lines) and self.lines[j] > 0:
+            return f"{self.source}, line {self.lines[j]}"
+        return f"{self.source}, point {j + 1}"
+
+    def span(self, i: int) -> str:
+        """The stored points ``i`` and ``i + 1`` (file lines or point numbers)."""
+        a, b = (self(k).rsplit(", ", 1)[-1] for k in (i, i + 1))
+        kind, a = a.split(" ", 1)
+        return f"{self.source}, {kind}s {a}–{b.split(' ', 1)[-1]}"
+
+
+def _refuse_or_warn(message: str, lenient: bool) -> None:
+    if lenient:
+        warnings.warn(message + " (accepted: lenient)", ProfileWarning, stacklevel=5)
+        return
+    raise ProfileError(message + "; if the file is right, read it with lenient=True "
+                       "(command line: --lenient)")
+
+
+def check_gaps(y, z, kind: str, source: str, *, where=None, lenient: bool = False) -> None:
+    """Refuse a gap or a vertical wall between neighbouring points (a damaged measurement).
+
+    The step between neighbouring stored points (arc length) is compared with
+    the median step: more than :data:`GAP_WIDTH` and :data:`GAP_FACTOR` × the
+    median is a gap (mostly along y: points missing from a measurement or a
+    cut file) or a wall (mostly along z: a vertical step in the surface).
+    With ``lenient`` a warning (:class:`ProfileWarning`) instead.
+    """
+    y = np.asarray(y, dtype=float)
+    z = np.asarray(z, dtype=float)
     if y.size < 8:
         return
-    ys = np.sort(np.asarray(y, dtype=float))
-    d = np.diff(ys)
+    where = where or _Where(source, None, None)
+    dy, dz = np.diff(y), np.diff(z)
+    d = np.hypot(dy, dz)
+    # a steep face at an end (a rail's gauge or field face, a wheel's flange back, whose
+    # hidden points the single-valued part dropped) is not a wall in the running surface
+    ends = (np.abs(dz) > np.abs(dy)) & ((y[1:] - y[0] < END_WIDTH) | (y[-1] - y[:-1] < END_WIDTH))
+    d = np.where(ends, 0.0, d)
     med = float(np.median(d[d > 0])) if np.any(d > 0) else 0.0
     i = int(np.argmax(d))
-    if med > 0 and d[i] > GAP_WIDTH and d[i] > GAP_FACTOR * med:
-        warnings.warn(f"{source}: no {kind} profile points between y = {ys[i] * 1e3:.2f} mm and "
-                      f"{ys[i + 1] * 1e3:.2f} mm (a gap of {d[i] * 1e3:.1f} mm, "
-                      f"{d[i] / med:.0f} × the median spacing of {med * 1e3:.2g} mm): points "
-                      f"missing from the measurement? The gap is bridged by a straight line",
-                      ProfileWarning, stacklevel=4)
+    if not (med > 0 and d[i] > GAP_WIDTH and d[i] > GAP_FACTOR * med):
+        return
+    if abs(dz[i]) > abs(dy[i]):
+        _refuse_or_warn(
+            f"{where.span(i)}: a vertical wall in the {kind} profile — z jumps "
+            f"{dz[i] * 1e3:+.1f} mm over {abs(dy[i]) * 1e3:.2f} mm of y at y = "
+            f"{y[i] * 1e3:.2f} mm ({d[i] / med:.0f} × the median spacing of {med * 1e3:.2g} mm): "
+            "a damaged or spliced measurement?", lenient)
+    else:
+        _refuse_or_warn(
+            f"{where.span(i)}: no {kind} profile points between y = {y[i] * 1e3:.2f} mm and "
+            f"{y[i + 1] * 1e3:.2f} mm (a gap of {d[i] * 1e3:.1f} mm, {d[i] / med:.0f} × the "
+            f"median spacing of {med * 1e3:.2g} mm): points missing from the measurement?",
+            lenient)
+
+
+def check_shape(y, z, kind: str, source: str, *, where, lenient: bool = False,
+                fmt: str = "") -> None:
+    """Refuse a profile of the wrong shape: head down, flange cut off, flange at +y.
+
+    Called on the single-valued points in the profile frame (y towards the
+    field side, z up):
+
+    * a rail whose largest excursion from the chord through its ends lies
+      below it: the head points down (z flipped);
+    * a wheel whose lowest point is an end point more than
+      :data:`FLANGE_CUT_DEPTH` below the tread: the flange is cut off (its tip
+      and back are missing);
+    * a wheel whose flange tip lies on the +y side (the convention puts it at
+      negative y): mirrored y.
+    """
+    if y.size < 8:
+        return
+    if kind == "rail" and fmt != "miniprof" and np.ptp(z) > 0.002 \
+            and chord_deviation_is_z_down(y, z, "rail"):
+        _refuse_or_warn(f"{source}: the rail head points down (the profile lies below the "
+                        "chord through its ends; with z up a rail head is a crown above it) — "
+                        "z pointing down in the file? Pass z_down=True (text files: a "
+                        "'# z: down' comment) or negate z", lenient)
+        return
+    if kind != "wheel":
+        return
+    i = int(np.argmin(z))
+    depth = float(np.median(z) - z[i])
+    if depth > FLANGE_CUT_DEPTH and (i <= 1 or i >= y.size - 2):
+        _refuse_or_warn(f"{where(i)}: the wheel's flange is cut off — the profile ends at its "
+                        f"lowest point (y = {y[i] * 1e3:.1f} mm, {depth * 1e3:.1f} mm below the "
+                        "tread) on the flange's flank; a wheel profile runs over the flange "
+                        "tip to the flange back", lenient)
+        return
+    frac = (y[i] - y[0]) / (y[-1] - y[0])
+    if frac > 0.6 and depth > 0.010:
+        _refuse_or_warn(f"{source}: the wheel's flange lies at +y (tip at y = "
+                        f"{y[i] * 1e3:.1f} mm); in the profile frame y points away from the "
+                        "flange, towards the field side — pass mirror_y=True", lenient)
+
+
+def check_swapped(y, z, kind: str, source: str, *, lenient: bool = False) -> None:
+    """Refuse a profile higher than it is wide: y and z columns swapped."""
+    w, h = float(np.ptp(y)), float(np.ptp(z))
+    if y.size >= 4 and h > 1.2 * w:
+        _refuse_or_warn(f"{source}: the {kind} profile is {h * 1e3:.1f} mm high and only "
+                        f"{w * 1e3:.1f} mm wide — the y and z columns swapped? (a wheel or rail "
+                        "profile is wider than high, with z(y) single-valued)", lenient)
 
 
 def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
                  point_dist_min=POINT_DIST_MIN, mirror_y=False, wheel_flange_check=True,
-                 tape_circle=None, auto_tape_circle=True):
+                 tape_circle=None, auto_tape_circle=True, lines=None, lenient=False):
     """Common tail of all readers: orientation, single-valued part, origin, Profile.
 
     Parameters
@@ -282,9 +397,11 @@ def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
         raise ProfileError(f"{source}: profile of {np.ptp(y):.4g} m x {np.ptp(z):.4g} m is "
                            f"implausible — wrong length unit? (give units='mm' or 'm')")
     check_damage(y, z, source)
+    check_swapped(y, z, kind, source, lenient=lenient)
     if mirror_y:
         y = -y
     y, z, info = single_valued(y, z, source, point_dist_min=point_dist_min)
+    where = _Where(source, lines, info.pop("_index"))
     meta.update(info)
     if info["n_foldback"]:
         warnings.warn(f"{source}: dropped {info['n_foldback']} point(s) to keep the "
@@ -292,14 +409,16 @@ def make_profile(y_m, z_up_m, *, kind, name, source, fmt, meta, smoothing=0.0,
                       ProfileWarning, stacklevel=4)
     if fmt != "miniprof":  # MiniProf's reader detects the z direction from the shape itself
         check_orientation(y, z, kind, source)
-    check_gaps(y, z, kind, source)
+    check_gaps(y, z, kind, source, where=where, lenient=lenient)
     if kind == "wheel" and wheel_flange_check and y.size >= 4 and np.ptp(y) > 0:
         i = int(np.argmin(z))
         frac = (y[i] - y[0]) / (y[-1] - y[0])
         depth = float(np.median(z) - z[i])
         if frac > 0.6 and depth > 0.010:  # flange found on the +y side: mirror
             y, z = -y[::-1], z[::-1]
+            where.index = where.index[::-1]
             meta["auto_mirrored"] = True
+    check_shape(y, z, kind, source, where=where, lenient=lenient, fmt=fmt)
     if (tape_circle is None and kind == "wheel" and auto_tape_circle and y.size >= 4
             and y[0] >= -0.001 and y[-1] > 0.080 and y[int(np.argmin(z))] < 0.035):
         # all y >= 0 with the flange tip near y = 0: the origin is on the back of the flange

@@ -37,6 +37,7 @@ from ...errors import ProfileError
 from ..core import Profile
 from ._common import (
     POINT_DIST_MIN,
+    Rows,
     append_row,
     check_row_count,
     chord_deviation_is_z_down,
@@ -101,7 +102,7 @@ def parse_miniprof(lines: list[str], name: str):
     """Return (keys dict, data (n, ncol), x column, y column)."""
     old = any("MINIPROF" in ln.upper() for ln in lines[:3])
     keys: dict[str, str] = {}
-    rows: list[list[float]] = []
+    rows = Rows()
     ncol = None
     in_data = not old
     for lineno, raw in enumerate(lines, start=1):
@@ -151,11 +152,11 @@ def parse_miniprof(lines: list[str], name: str):
     if max(ix, iy) >= ncol:
         raise ProfileError(f"{name}: ColumnDef names {len(cols)} columns but the data rows have "
                            f"{ncol}")
-    return keys, np.array(rows, dtype=float), ix, iy
+    return keys, np.array(rows, dtype=float), ix, iy, rows.lines
 
 
 def read_miniprof(path, kind=None, *, smoothing=0.0, mirror_y=None, z_down=None,
-                  tape_circle=None, point_dist_min=POINT_DIST_MIN) -> Profile:
+                  tape_circle=None, point_dist_min=POINT_DIST_MIN, lenient=False) -> Profile:
     """Read a MiniProf ``.ban``/``.whl`` profile (see the module docstring).
 
     Parameters
@@ -178,7 +179,7 @@ def read_miniprof(path, kind=None, *, smoothing=0.0, mirror_y=None, z_down=None,
     """
     name, lines = read_lines(path)
     kind = resolve_kind(kind, kind_from_extension(path), name)
-    keys, data, ix, iy = parse_miniprof(lines, name)
+    keys, data, ix, iy, row_lines = parse_miniprof(lines, name)
     x, yv = data[:, ix] * _MM, data[:, iy] * _MM
     if np.ptp(x) == 0.0:
         raise ProfileError(f"{name}: zero width (all X = {x[0] / _MM:g} mm)")
@@ -197,4 +198,5 @@ def read_miniprof(path, kind=None, *, smoothing=0.0, mirror_y=None, z_down=None,
                         source=name, fmt="miniprof", meta=meta, smoothing=smoothing,
                         point_dist_min=point_dist_min, mirror_y=False,
                         wheel_flange_check=mirror_y is None, tape_circle=tc,
-                        auto_tape_circle=tape_circle is not False)
+                        auto_tape_circle=tape_circle is not False, lines=row_lines,
+                        lenient=bool(lenient))

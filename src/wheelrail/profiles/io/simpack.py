@@ -209,7 +209,7 @@ def apply_spline_options(points: np.ndarray, opts: dict, name: str) -> tuple[np.
 
 
 def read_simpack(path, kind=None, *, smoothing=0.0, mirror_y=None, tape_circle=None,
-                 point_dist_min=POINT_DIST_MIN) -> Profile:
+                 point_dist_min=POINT_DIST_MIN, lenient=False) -> Profile:
     """Read a Simpack ``.prr``/``.prw`` profile (see the module docstring).
 
     Parameters
@@ -252,7 +252,8 @@ def read_simpack(path, kind=None, *, smoothing=0.0, mirror_y=None, tape_circle=N
                         name=name.rsplit("/", 1)[-1], source=name, fmt="simpack",
                         meta={**meta, "comment": label}, smoothing=smoothing,
                         point_dist_min=point_dist_min, mirror_y=bool(mirror_y),
-                        wheel_flange_check=mirror_y is None, tape_circle=tape_circle)
+                        wheel_flange_check=mirror_y is None, tape_circle=tape_circle,
+                        lenient=bool(lenient))
 
 
 def write_simpack(profile: Profile, path, *, comment: str | None = None) -> None:

@@ -32,6 +32,7 @@ from ...errors import ProfileError
 from ..core import Profile, ProfileWarning
 from ._common import (
     POINT_DIST_MIN,
+    Rows,
     append_row,
     check_row_count,
     kind_from_extension,
@@ -62,12 +63,12 @@ def _detect_delimiter(s: str) -> str:
 
 
 def parse_text(lines: list[str], name: str):
-    """Return (directives, header row or None, data (n, ncol))."""
+    """Return (directives, header row or None, data (n, ncol), file line of each row)."""
     directives: dict[str, str] = {}
     header = None
     delim = None
     ncol = None
-    rows: list[list[float]] = []
+    rows = Rows()
     for lineno, raw in enumerate(lines, start=1):
         where = f"{name}, line {lineno}"
         m = _DIRECTIVE.match(raw.strip())
@@ -99,11 +100,11 @@ def parse_text(lines: list[str], name: str):
         append_row(rows, toks, ncol, where,
                    f" (delimiter {'blank' if delim == 'ws' else repr(delim)})")
     check_row_count(rows, name)
-    return directives, header, np.array(rows, dtype=float)
+    return directives, header, np.array(rows, dtype=float), rows.lines
 
 
 def read_text(path, kind=None, *, units=None, z_down=None, mirror_y=False, smoothing=0.0,
-              tape_circle=None, point_dist_min=POINT_DIST_MIN) -> Profile:
+              tape_circle=None, point_dist_min=POINT_DIST_MIN, lenient=False) -> Profile:
     """Read a two-column text/CSV profile (see the module docstring).
 
     Parameters
@@ -116,9 +117,12 @@ def read_text(path, kind=None, *, units=None, z_down=None, mirror_y=False, smoot
     mirror_y : bool
     tape_circle : float or None
         Move the origin to this y [m] (after orientation) and z(0) to 0.
+    lenient : bool
+        Accept a profile of the wrong shape (gap, wall, head down, flange cut
+        off or at +y, columns swapped) with a warning instead of refusing it.
     """
     name, lines = read_lines(path)
-    directives, header, data = parse_text(lines, name)
+    directives, header, data, row_lines = parse_text(lines, name)
     kind = resolve_kind(kind, directives.get("kind", "").lower() or kind_from_extension(path),
                         name)
     if units is None:
@@ -147,7 +151,7 @@ def read_text(path, kind=None, *, units=None, z_down=None, mirror_y=False, smoot
                         source=name, fmt="text", meta={"units": units, "header": header},
                         smoothing=smoothing, point_dist_min=point_dist_min,
                         mirror_y=bool(mirror_y), wheel_flange_check=False,
-                        tape_circle=tape_circle)
+                        tape_circle=tape_circle, lines=row_lines, lenient=bool(lenient))
 
 
 def write_text(profile: Profile, path, *, units: str = "mm", delimiter: str = ",") -> None:
