@@ -180,7 +180,18 @@ def check_wheelset_dynamics(out, v):
     assert v["wavelength"] == pytest.approx(2 * math.pi * math.sqrt(0.46 * 0.75 / 0.2), rel=0.01)
 
 
+def check_vehicle_dynamics(out, v):
+    # Manchester vehicle 1 (Iwnicki 1998): car body 32 000 kg, two frames of 2615 kg, four
+    # wheelsets of 1813 kg -> each axle carries a quarter of the weight
+    assert v["axle_load"] == pytest.approx((32000 + 2 * 2615 + 4 * 1813) * 9.81 / 4, rel=1e-9)
+    # a coach near balanced cant in a 600 m curve on good track runs safely (EN 14363 limits)
+    assert 0.05 < v["Y_over_Q_2m_max"] < 0.8
+    assert 0.0 < v["sum_Y_2m_max"] < 10e3 + (32000 + 2 * 2615 + 4 * 1813) * 9.81 / 4 / 3
+    assert 0.0 < v["sperling_lateral"] < 4.5           # Sperling: 4.5 is "not operable"
+
+
 CHECKS = {
+    "vehicle_dynamics.py": check_vehicle_dynamics,
     "wheelset_dynamics.py": check_wheelset_dynamics,
     "nonhertzian_methods.py": check_nonhertzian_methods,
     "transient_cattaneo_to_carter.py": check_transient_cattaneo_to_carter,
