@@ -180,7 +180,15 @@ def check_wheelset_dynamics(out, v):
     assert v["wavelength"] == pytest.approx(2 * math.pi * math.sqrt(0.46 * 0.75 / 0.2), rel=0.01)
 
 
+def check_wear_evolution(out, v):
+    # curving wear thins the outer flange (Jendel, Wear 253 (2002) 89-99); tread wear on
+    # tangent track raises the equivalent conicity
+    assert v["Sd_loss_mm"] > 0.01
+    assert v["conicity_change"] > 0
+
+
 CHECKS = {
+    "wear_evolution.py": check_wear_evolution,
     "wheelset_dynamics.py": check_wheelset_dynamics,
     "nonhertzian_methods.py": check_nonhertzian_methods,
     "transient_cattaneo_to_carter.py": check_transient_cattaneo_to_carter,
