@@ -193,6 +193,59 @@ BIBLIOGRAPHY: dict[str, tuple[str, dict[str, str]]] = {
         "title": "Mechatronic Modeling of Real-Time Wheel-Rail Contact",
         "publisher": "Springer", "address": "Berlin, Heidelberg", "year": "2013",
         "note": "Chapter 2, Review of wheel-rail contact models"}),
+    # wear and rolling-contact fatigue (wheelrail.wear)
+    "Archard1953": ("article", {
+        "author": "Archard, J. F.",
+        "title": "Contact and rubbing of flat surfaces",
+        "journal": "Journal of Applied Physics",
+        "volume": "24", "pages": "981--988", "year": "1953"}),
+    "Jendel2002": ("article", {
+        "author": "Jendel, Tomas",
+        "title": "Prediction of wheel profile wear---comparisons with field measurements",
+        "journal": "Wear", "volume": "253", "pages": "89--99", "year": "2002"}),
+    "EnblomBerg2005": ("article", {
+        "author": "Enblom, Roger and Berg, Mats",
+        "title": "Simulation of railway wheel profile development due to wear---influence of "
+                 "disc braking and contact environment",
+        "journal": "Wear", "volume": "258", "pages": "1055--1063", "year": "2005"}),
+    "LewisDwyerJoyce2004": ("article", {
+        "author": "Lewis, R. and Dwyer-Joyce, R. S.",
+        "title": "Wear mechanisms and transitions in railway wheel steels",
+        "journal": "Proceedings of the Institution of Mechanical Engineers, Part J: Journal "
+                   "of Engineering Tribology",
+        "volume": "218", "pages": "467--478", "year": "2004"}),
+    "Braghin2006": ("article", {
+        "author": "Braghin, F. and Lewis, R. and Dwyer-Joyce, R. S. and Bruni, S.",
+        "title": "A mathematical model to predict railway wheel profile evolution due to wear",
+        "journal": "Wear", "volume": "261", "pages": "1253--1264", "year": "2006"}),
+    "Lewis2010": ("article", {
+        "author": "Lewis, R. and Dwyer-Joyce, R. S. and Olofsson, U. and Pombo, J. and "
+                  "Ambr{\\'o}sio, J. and Pereira, M. and Ariaudo, C. and Kuka, N.",
+        "title": "Mapping railway wheel material wear mechanisms and transitions",
+        "journal": "Proceedings of the Institution of Mechanical Engineers, Part F: Journal "
+                   "of Rail and Rapid Transit",
+        "volume": "224", "pages": "125--137", "year": "2010"}),
+    "PearceSherratt1991": ("article", {
+        "author": "Pearce, T. G. and Sherratt, N. D.",
+        "title": "Prediction of wheel profile wear",
+        "journal": "Wear", "volume": "144", "pages": "343--351", "year": "1991"}),
+    "Ekberg2002": ("article", {
+        "author": "Ekberg, A. and Kabo, E. and Andersson, H.",
+        "title": "An engineering model for prediction of rolling contact fatigue of railway "
+                 "wheels",
+        "journal": "Fatigue \\& Fracture of Engineering Materials \\& Structures",
+        "volume": "25", "pages": "899--909", "year": "2002"}),
+    "Burstow2004": ("techreport", {
+        "author": "Burstow, M.",
+        "title": "Whole life rail model application and development for RSSB---continued "
+                 "development of an RCF damage parameter",
+        "institution": "Rail Safety and Standards Board", "number": "AEATR-ES-2004-880",
+        "year": "2004"}),
+    "Johnson1989": ("article", {
+        "author": "Johnson, K. L.",
+        "title": "The strength of surfaces in rolling contact",
+        "journal": "Proceedings of the Institution of Mechanical Engineers, Part C",
+        "volume": "203", "pages": "151--163", "year": "1989"}),
 }
 
 #: method name -> keys of :data:`BIBLIOGRAPHY` (the papers it implements, first the main one).
@@ -220,6 +273,13 @@ METHOD_REFERENCES: dict[str, tuple[str, ...]] = {
     "halfspace": ("Johnson1985", "Kalker1990"),
     "cattaneo": ("Cattaneo1938", "Mindlin1949", "Johnson1985"),
     "manchester": ("Vollebregt2022", "VollebregtCONTACT"),
+    # wear laws (wr.wear.wear_laws()), RCF indices and the profile-evolution loop
+    "archard": ("Archard1953", "Jendel2002"),
+    "kth": ("Jendel2002", "EnblomBerg2005"),
+    "usfd": ("LewisDwyerJoyce2004", "Braghin2006", "Lewis2010"),
+    "energy": ("PearceSherratt1991", "Braghin2006"),
+    "rcf": ("Ekberg2002", "Burstow2004", "Johnson1989"),
+    "wear": ("Jendel2002", "Braghin2006", "EnblomBerg2005"),
 }
 
 _ALIASES = {
@@ -227,7 +287,8 @@ _ALIASES = {
     "shen_hedrick_elkins": "shen-hedrick-elkins", "kalker": "exact",
     "kik_piotrowski": "kik-piotrowski", "multi_hertz": "multi-hertz",
     "transient_rolling": "transient", "transient-rolling": "transient",
-    "contact": "manchester",
+    "contact": "manchester", "kth-map": "kth", "kthmap": "kth", "tgamma": "usfd",
+    "burstow": "rcf", "fatigue": "rcf",
 }
 
 
@@ -263,6 +324,10 @@ def _names_of(item) -> list[str]:
             names.append("fe")
         elif module.startswith("wheelrail.geometry"):
             names.append("geometry")
+        elif module.startswith("wheelrail.wear.fatigue"):
+            names.append("rcf")
+        elif module.startswith("wheelrail.wear"):
+            names.append("wear")
     if not names:
         raise InputError(f"cannot tell which methods made {type(item).__name__!r}; pass method "
                          "names (e.g. 'fastsim', 'kik-piotrowski') or a wheelrail result")
@@ -296,7 +361,8 @@ def citation(*items) -> str:
     *items : str, result or method object
         Method names (``"fastsim"``, ``"kik-piotrowski"``, ``"exact"``,
         ``"transient"``, ``"fe"``, ``"geometry"``, ...; aliases such as
-        ``"she"`` accepted), results (:class:`~wheelrail.results.ContactResult`,
+        ``"she"`` accepted; the wear laws ``"archard"``, ``"kth"``, ``"usfd"``,
+        ``"energy"``, ``"rcf"`` and the wear loop ``"wear"``), results (:class:`~wheelrail.results.ContactResult`,
         :class:`~wheelrail.contact.wheelrail.WheelRailResult`,
         :class:`~wheelrail.results.CreepForcesResult`, transient and FE results) or
         method objects. None: the references of every method of the package.

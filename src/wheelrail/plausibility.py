@@ -42,6 +42,9 @@ spin φ                     |φ| ≤ 20 1/m                      |φ| > 1000 1/m
 friction coefficient μ     μ ≥ 0.01                          —
 speed V                    0.1 … 150 m/s                     > 1000 m/s
 roller radius              0.1 … 2 m                         < 1 cm or > 10 m
+yaw angle ψ                |ψ| ≤ 0.05 rad                    |ψ| > 0.5 rad (degrees?)
+gauge − flange back        30 … 150 mm                       ≤ 0 or > 300 mm
+V/ω (implied radius)       0.05 … 2 m                        < 1 cm or > 10 m (rpm?)
 =========================  ===============================  =====================
 
 The relative radii are ``R_x = 1/(2A)`` and ``R_y = 1/(2B)`` (Johnson 1985,
@@ -68,7 +71,8 @@ from .errors import InputError
 __all__ = ["PlausibilityWarning", "ImplausibleInputError", "disabled", "enabled",
            "check_load", "check_modulus", "check_friction", "check_rolling_radius",
            "check_patch", "check_hertz", "check_semi_axes", "check_conformal",
-           "check_creepage", "check_speed", "check_roller_radius", "LIMITS"]
+           "check_creepage", "check_speed", "check_roller_radius", "check_yaw",
+           "check_flange_back", "check_omega", "LIMITS"]
 
 #: Limits used by the checks (SI units).
 LIMITS = {
@@ -84,6 +88,9 @@ LIMITS = {
     "mu_low_warn": 0.01,                                # -
     "speed_warn": (0.1, 150.0), "speed_refuse": 1000.0,  # m/s
     "roller_warn": (0.1, 2.0), "roller_refuse": (0.01, 10.0),  # m
+    "yaw_warn": 0.05, "yaw_refuse": 0.5,                # rad
+    "flange_room_warn": (0.03, 0.15), "flange_room_refuse": 0.3,  # gauge - flange back, m
+    "omega_radius_warn": (0.05, 2.0), "omega_radius_refuse": (0.01, 10.0),  # V/omega, m
 }
 
 _OVERRIDE_HINT = ("override with wheelrail.plausibility.disabled(), "
@@ -319,3 +326,75 @@ def check_roller_radius(r, name: str = "roller_radius") -> None:
                 + (")" if m < rlo else "; mm given?)"))
     if m < lo or m > hi:
         _warn(f"{name} = {_fmt(m)} m is outside {lo:g} … {hi:g} m, unusual for a roller rig")
+
+
+def check_yaw(yaw, name: str = "yaw") -> None:
+    """Warn for |ψ| > 0.05 rad, refuse |ψ| > 0.5 rad (degrees given?).
+
+    A wheelset's yaw in a track stays within a few milliradians: in a bogie of
+    wheelbase 2a it is about a/R against the curve radius R (0.008 rad for
+    a = 1.25 m in a 150 m curve), and the flange gap over the wheelbase bounds
+    it on straight track.
+    """
+    if not enabled():
+        return
+    m = _max(np.abs(np.asarray(yaw, dtype=float)))
+    if m > LIMITS["yaw_refuse"]:
+        _refuse(f"{name} = {_fmt(m)} rad ({np.degrees(m):.3g}°) is not a wheelset yaw angle "
+                f"(degrees given? {_fmt(m)}° = {np.radians(m):.4g} rad)")
+    if m > LIMITS["yaw_warn"]:
+        _warn(f"{name} = {_fmt(m)} rad ({np.degrees(m):.3g}°) is above "
+              f"{LIMITS['yaw_warn']:g} rad; a wheelset in track yaws by about 0.01 rad at most "
+              f"(degrees or mrad meant? {_fmt(m)}° = {np.radians(m):.4g} rad, {_fmt(m)} mrad = "
+              f"{m * 1e-3:.4g} rad)")
+
+
+def check_flange_back(flange_back, gauge, name: str = "flange_back") -> None:
+    """Refuse a flange back not fitting the gauge, warn for an unusual flange room.
+
+    ``gauge − flange_back`` is the room of both flanges and their play: about
+    75 mm for standard wheels on standard gauge (1.435 − 1.360 m, EN 13715).
+    Refused when the flange back is not smaller than the gauge or the room
+    exceeds 300 mm (a flange back for another gauge).
+    """
+    if not enabled():
+        return
+    fb, g = float(flange_back), float(gauge)
+    room = g - fb
+    if room <= 0:
+        _refuse(f"{name} = {_fmt(fb)} m is not smaller than the gauge {_fmt(g)} m: the wheels "
+                f"would sit outside the rails (standard: 1.360 m on 1.435 m)")
+    lo, hi = LIMITS["flange_room_warn"]
+    if room > LIMITS["flange_room_refuse"]:
+        _refuse(f"{name} = {_fmt(fb)} m with gauge = {_fmt(g)} m leaves {room * 1e3:.0f} mm for "
+                f"two flanges and their play (about 75 mm for standard wheels): a flange back "
+                f"for another gauge? (standard: 1.360 m on 1.435 m)")
+    if not lo <= room <= hi:
+        _warn(f"{name} = {_fmt(fb)} m with gauge = {_fmt(g)} m leaves {room * 1e3:.0f} mm for "
+              f"two flanges and their play, outside {lo * 1e3:.0f} … {hi * 1e3:.0f} mm "
+              f"(standard: 75 mm)")
+
+
+def check_omega(omega, speed, name: str = "omega") -> None:
+    """Check an axle angular velocity against the speed through the implied radius V/ω.
+
+    A rolling wheel has ω ≈ V/r with r of 0.05 … 2 m; ω in rpm (× 9.55) or
+    degrees per second (× 57.3) gives an implied radius far below that.
+    """
+    if not enabled() or omega is None:
+        return
+    w, v = float(omega), float(speed)
+    if not (w > 0 and v > 0):
+        return
+    r = v / w
+    lo, hi = LIMITS["omega_radius_refuse"]
+    wlo, whi = LIMITS["omega_radius_warn"]
+    hint = (f"free rolling at r0 = 0.46 m is V/r0 = {v / 0.46:.4g} rad/s; rpm or deg/s given? "
+            f"{_fmt(w)} rpm = {w * np.pi / 30:.4g} rad/s, {_fmt(w)} deg/s = "
+            f"{np.radians(w):.4g} rad/s")
+    if not lo <= r <= hi:
+        _refuse(f"{name} = {_fmt(w)} rad/s at speed {_fmt(v)} m/s means a rolling radius V/ω = "
+                f"{_fmt(r)} m, not a wheel ({hint})")
+    if not wlo <= r <= whi:
+        _warn(f"{name} = {_fmt(w)} rad/s at speed {_fmt(v)} m/s means a rolling radius V/ω = "
+              f"{_fmt(r)} m, outside {wlo:g} … {whi:g} m ({hint})")

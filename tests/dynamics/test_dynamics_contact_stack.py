@@ -28,7 +28,8 @@ import pytest
 
 import wheelrail as wr
 from wheelrail.dynamics._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
-from wheelrail.dynamics.contact import FastContact, GenericContact, SlowContactWarning, contact_model
+from wheelrail.dynamics.contact import (FastContact, GenericContact, SlowContactWarning,
+                                       contact_model)
 
 _W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
 TOL = 0.005                    # of mu Q
@@ -109,6 +110,13 @@ def test_the_comparison_sees_a_changed_method_option(s1002_60e1):
     pos = wr.WheelRailPosition(ws, tr, 0.008, 0.010, vertical_load=5e4)
     motion = wr.Motion(speed=20.0, omega=1.001 * 20.0 / ws.nominal_radius)
     assert _compare(other, pos, motion, 0.3, 5e4) > 10 * TOL
+
+
+def test_line_stride_is_checked(s1002_60e1):
+    ws, tr, _ = s1002_60e1
+    with pytest.raises(wr.errors.InputError, match="line_stride"):
+        FastContact(ws, tr, wr.STEEL, wr.normal.KikPiotrowski(), wr.tangential.Fastsim(),
+                    line_stride=0)
 
 
 # --------------------------------------------------------------------------- fallback warning

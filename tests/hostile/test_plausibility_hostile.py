@@ -162,7 +162,8 @@ def test_csv_wheel_z_down_on_the_command_line(tmp_path, capsys):
     assert_clean_failure(code, err, "wheel.csv", "flange points up")
 
 
-def test_rail_with_a_third_of_its_points_cut_out_warns(tmp_path):
+def test_rail_with_a_third_of_its_points_cut_out_is_refused(tmp_path):
+    from wheelrail.errors import ProfileError
     from wheelrail.profiles.core import ProfileWarning
 
     r = wr.profiles.load("60E1")
@@ -170,8 +171,12 @@ def test_rail_with_a_third_of_its_points_cut_out_warns(tmp_path):
     keep[r.y.size // 3: 2 * r.y.size // 3] = False
     f = tmp_path / "rail.csv"
     np.savetxt(f, np.c_[r.y[keep] * 1e3, r.z[keep] * 1e3], delimiter=",")
-    with pytest.warns(ProfileWarning, match=r"rail.csv: no rail profile points between y = "):
+    with pytest.raises(ProfileError, match=r"rail.csv, lines \d+–\d+: no rail profile points "
+                                           r"between y = .*lenient"):
         wr.profiles.read(f, kind="rail", units="mm")
+    with pytest.warns(ProfileWarning, match=r"rail.csv, lines \d+–\d+: no rail profile points "
+                                            r"between y = "):
+        wr.profiles.read(f, kind="rail", units="mm", lenient=True)
 
 
 def test_intact_rail_csv_has_no_gap_warning(tmp_path, recwarn):

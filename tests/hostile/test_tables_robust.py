@@ -81,7 +81,10 @@ def test_rows_that_cannot_be_solved_are_flagged_not_raised():
     rows = solve_rigid_rows(ws, tr, np.array([-0.01, 0.0, 0.01]), 0.0)
     assert np.all(rows.status == 3) and all("beside" in r or "no contact" in r for r in rows.reason)
     assert np.all(np.isnan(rows.z))
-    with pytest.raises(wr.errors.InputError, match="y = 0 m"):
+    with pytest.raises(wr.errors.InputError, match="y = 0 m"), wr.plausibility.disabled():
+        wr.contact_points(ws, tr, 0.0)
+    # checked before solving: a flange back not smaller than the gauge
+    with pytest.raises(wr.errors.InputError, match="flange_back = 1.36 m is not smaller"):
         wr.contact_points(ws, tr, 0.0)
 
 

@@ -190,8 +190,16 @@ def check_vehicle_dynamics(out, v):
     assert 0.0 < v["sperling_lateral"] < 4.5           # Sperling: 4.5 is "not operable"
 
 
+def check_wear_evolution(out, v):
+    # curving wear thins the outer flange (Jendel, Wear 253 (2002) 89-99); tread wear on
+    # tangent track raises the equivalent conicity
+    assert v["Sd_loss_mm"] > 0.01
+    assert v["conicity_change"] > 0
+
+
 CHECKS = {
     "vehicle_dynamics.py": check_vehicle_dynamics,
+    "wear_evolution.py": check_wear_evolution,
     "wheelset_dynamics.py": check_wheelset_dynamics,
     "nonhertzian_methods.py": check_nonhertzian_methods,
     "transient_cattaneo_to_carter.py": check_transient_cattaneo_to_carter,

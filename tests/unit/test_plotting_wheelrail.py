@@ -106,7 +106,7 @@ def test_sweep_forces_marks_failed_rows(setup, tmp_path):
     vlines = [ln for ln in fn_ax.get_lines() if np.allclose(ln.get_xdata(), 2.0)
               and ln.get_linestyle() == ":"]
     assert vlines, "the failed position is marked"
-    assert "failed" in fig._suptitle.get_text()
+    assert "1 position: 1 error" in fig._suptitle.get_text()
 
 
 def test_sweep_figure_names_the_status_of_rows_that_are_not_ok():

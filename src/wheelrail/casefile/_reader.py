@@ -12,7 +12,42 @@ from ..hertzian import RADII_KEYS
 from ..materials import STEEL, Material, MaterialPair
 
 __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_methods",
-           "read_forces", "read_friction", "configure", "check_plausible", "tomllib"]
+           "read_forces", "read_friction", "configure", "check_plausible", "tomllib",
+           "RenamedKeyWarning", "renamed_keys", "RENAMED_OPTIONS"]
+
+import warnings as _warnings
+
+
+class RenamedKeyWarning(DeprecationWarning):
+    """A case file uses a key's former name (read for now; the message names the new key)."""
+
+
+# shown once per place by default (a DeprecationWarning from a library is hidden otherwise):
+# files written before the renaming still read, and their users learn the new name
+_warnings.filterwarnings("default", category=RenamedKeyWarning)
+
+#: Options of methods renamed for one name per quantity: method -> {old: new}.
+RENAMED_OPTIONS = {"bem": {"elements": "grid_elements", "margin": "window_margin",
+                           "tol": "pressure_tol"}}
+
+
+def renamed_keys(r, table: str, tbl: Mapping, renames: Mapping) -> dict:
+    """``tbl`` with former key names replaced by the current ones (RenamedKeyWarning each).
+
+    Giving both names of one key is an error naming both.
+    """
+    out = dict(tbl)
+    for old, new in renames.items():
+        if old not in out:
+            continue
+        if new in out:
+            r.fail(table, old, f"is the former name of {new!r}, which is given too; keep only "
+                   f"{new} = ...")
+        _warnings.warn(f"{r.source}: [{table}] {old}: this key is now called {new!r}; write "
+                       f"{new} = {out[old]!r} (the former name is read for now)",
+                       RenamedKeyWarning, stacklevel=4)
+        out[new] = out.pop(old)
+    return out
 
 from .. import normal as normal_family
 from .. import tangential as tangential_family
@@ -55,6 +90,7 @@ def read_materials(r: Reader, tbl: Mapping) -> MaterialPair:
 
 def read_contact(r: Reader, tbl: Mapping) -> ContactSpec:
     allowed = ("Fn", "A", "B", "a", "b", *RADII_KEYS)
+    tbl = renamed_keys(r, "contact", tbl, {"load": "Fn"})
     r.unknown("contact", tbl, allowed)
     Fn = r.number("contact", tbl, "Fn", positive=True)
     groups = {"curvatures": [k for k in ("A", "B") if k in tbl],
@@ -144,6 +180,7 @@ def read_methods(r: Reader, tbl: Mapping):
 
 def configure(r: Reader, table: str, cls, opts: Mapping):
     """``cls`` configured from a case-file table; a bad key or value fails naming both."""
+    opts = renamed_keys(r, table, opts, RENAMED_OPTIONS.get(getattr(cls, "name", ""), {}))
     try:
         return cls.from_options(dict(opts))
     except OptionError as exc:

@@ -9,7 +9,7 @@ from ..cases.transient import TransientCase
 from ..errors import CaseFileError, InputError
 from ..transient.loads import KINDS, TravelFunction
 from ..transient.rolling import SCHEMES
-from ._reader import Reader, read_contact, read_friction, read_materials, read_toml
+from ._reader import Reader, read_contact, read_friction, read_materials, read_toml, renamed_keys
 
 __all__ = ["load_transient_case"]
 
@@ -73,7 +73,8 @@ def load_transient_case(path_or_str) -> TransientCase:
     materials = read_materials(r, data.get("material", {}))
     contact = read_contact(r, r.required_table(data, "contact"))
     mu = read_friction(r, data)
-    t = r.required_table(data, "transient")
+    t = renamed_keys(r, "transient", r.required_table(data, "transient"),
+                     {"normal_force": "Fn", "approach": "penetration", "tangential_force": "Fx"})
     r.unknown("transient", t, _TRANSIENT_KEYS)
     s: dict = {"travel": r.number("transient", t, "travel", positive=True),
                "step": r.number("transient", t, "step", positive=True)}

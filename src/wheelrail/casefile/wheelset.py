@@ -192,6 +192,9 @@ def wheelset_case_from_dict(r: Reader, data: Mapping) -> WheelsetCase:
             r.fail("track", "canted", f"must be true or false, got {tt['canted']!r}")
         tkw["canted"] = tt["canted"]
     tr = _construct(r, "track", lambda: Track(rail, rail_right=rail_r, **tkw))
+    from ..plausibility import check_flange_back
+
+    _construct(r, "wheelset", lambda: check_flange_back(ws.flange_back, tr.gauge))
 
     mt = r.required_table(data, "motion")
     r.unknown("motion", mt, _MOTION_KEYS)

@@ -130,6 +130,16 @@ def _select(labels):
         from ..errors import InputError
         raise InputError(f"--methods: unknown label(s) {', '.join(map(repr, bad))}; choose from "
                          + ", ".join(known))
+    if not want:
+        from ..errors import InputError
+        raise InputError(f"--methods is empty (got {labels!r}); give two or more labels to "
+                         f"compare, e.g. hertz,bem+exact (choose from {', '.join(known)})")
+    if len(want) == 1:
+        import warnings
+
+        warnings.warn(f"--methods {want[0]}: one method compares with nothing; add the exact "
+                      "reference (e.g. --methods hertz,bem+exact) for a comparison",
+                      UserWarning, stacklevel=2)
     return tuple(known[w] for w in want)
 
 

@@ -161,6 +161,13 @@ def run(args, console) -> int:
     vmax = DEFAULT_MAX[args.component] if args.max is None else args.max
     if not np.isfinite(vmax) or not np.isfinite(args.min) or vmax == args.min:
         raise InputError(f"--min and --max must be finite and differ, got {args.min!r}, {vmax!r}")
+    from ..plausibility import ImplausibleInputError, check_creepage
+
+    for flag, v in (("--max", vmax), ("--min", args.min)):  # a percentage given: refused
+        try:
+            check_creepage(**{args.component: v})
+        except ImplausibleInputError as exc:
+            raise ImplausibleInputError(f"{flag}: {exc}") from None
     methods = parse_methods(args.methods)
     from ._output import check_outputs
 

@@ -300,9 +300,12 @@ def run(args, console) -> int:
     from ._output import write_json
 
     steps = STEPS
-    if args.steps:
+    if args.steps is not None:
         wanted = [s.strip() for s in args.steps.split(",") if s.strip()]
         names = [s.name for s in STEPS]
+        if not wanted:
+            raise InputError(f"--steps is empty (got {args.steps!r}); give one or more of: "
+                             f"{', '.join(names)} (or leave --steps out for the whole demo)")
         bad = [w for w in wanted if w not in names]
         if bad:
             raise InputError(f"unknown demo step(s) {', '.join(bad)}; steps: {', '.join(names)}")
@@ -335,6 +338,6 @@ def run(args, console) -> int:
     t.add_column("content")
     for path, desc in ctx.files:
         if path.exists():
-            t.add_row(str(path), desc)
+            t.add_row(esc(str(path)), esc(desc))
     console.print(t)
     return 1 if failed else 0

@@ -30,7 +30,7 @@ _CASE_KEYS = ("name", "weight", "speed", "mu", "radius", "cant", "start", "trans
               "length", "direction", "distance", "run_in", "irregularity", "initial")
 _WEAR_KEYS = ("law", "options", "mileage", "step_depth", "smoothing", "resolution",
               "profiles", "samples", "cells", "conicity", "executor", "workers", "scheduler",
-              "max_steps")
+              "max_steps", "update_rail", "rail_passages")
 #: nominal CPU time per simulated second and wheelset (RK4, Kik–Piotrowski + FASTSIM; measured
 #: 0.45 s with docs/examples/wear_route.toml, a wheelset, process time at load 12 on 2 cores)
 _CPU_PER_SIMULATED_S = 0.5
@@ -131,6 +131,8 @@ def read_wear_case(path_or_str) -> dict:
         smoothing = 2e-3        # [m]
         profiles = "sides"      # or "mean"
         executor = "serial"     # or "dask", "processes"; workers, scheduler
+        update_rail = false     # true: wear the rails too, with
+        rail_passages = 0.01    # passages over each case's rail per metre of mileage [1/m]
         [output]
         dir = "wear_out"
 
@@ -193,6 +195,14 @@ def read_wear_case(path_or_str) -> dict:
     if not isinstance(con, bool):
         r.fail("wear", "conicity", f"must be true or false, got {con!r}")
     kw["conicity"] = con
+    upd = w.get("update_rail", False)
+    if not isinstance(upd, bool):
+        r.fail("wear", "update_rail", f"must be true or false, got {upd!r}")
+    if upd:
+        kw["update_rail"] = True
+        kw["rail_passages"] = r.number("wear", w, "rail_passages", positive=True)
+    elif "rail_passages" in w:
+        r.fail("wear", "rail_passages", "needs update_rail = true")
     if "workers" in w:
         kw["workers"] = _int(r, "wear", w, "workers", 1)
     if "scheduler" in w:

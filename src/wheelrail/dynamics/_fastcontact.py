@@ -36,7 +36,8 @@ of microseconds instead of milliseconds:
    :func:`~wheelrail.tangential._fastsim_kernel.fastsim_hertz_batch` for
    ellipses; on strip patches the resampling and weighted flexibility of
    ``Fastsim.solve_patch`` and the march of
-   :func:`~wheelrail.dynamics._fastlaws.march_strips`, the same numbers) or by interpolation in the exact-theory table of
+   :func:`~wheelrail.dynamics._fastlaws.march_strips`, the same numbers) or by
+   interpolation in the exact-theory table of
    :class:`wheelrail.tangential.Table` (multilinear, in the frame of the
    full-slip direction, as :class:`~wheelrail.tangential.table.TableData`);
 4. the forces in the track frame and their **generalised forces** on the
@@ -91,7 +92,7 @@ _KC = 8                # candidate minima kept per wheel
 #: Indices of the method parameters (the float array ``mp``).
 MP = {name: i for i, name in enumerate((
     "normal", "tangential", "E_star", "G", "nu", "K", "eps", "shape_correction", "strips",
-    "cells", "line_step", "line_half_width", "group_angle", "tolerance", "nx", "ny",
+    "cells", "line_stride", "line_half_width", "group_angle", "tolerance", "nx", "ny",
     "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop",
     "connected"))}
 
@@ -714,24 +715,27 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
         if not hi_l > lo_l:
             continue
         step = (hi_l - lo_l) / (_LINE_NODES - 1)
-        h_l = (1 * step + lo_l) - lo_l
+        stride = max(int(mp[10]), 1)
+        h_l = (stride * step + lo_l) - lo_l
+        last = (_LINE_NODES - 1) // stride
         # the window [−w_a, w_b] (the region's extent on the search grid, the group's points)
         w_a = min(max(half, ext_a) + 4 * h_l, _LINE_WIDTH)
         w_b = min(max(half, ext_b) + 4 * h_l, _LINE_WIDTH)
         ok = False
         for _ in range(6):
-            ia = max(int(math.floor((-w_a - lo_l) / step)), 0)
-            ib = min(int(math.ceil((w_b - lo_l) / step)), _LINE_NODES - 1)
+            ia = max(int(math.floor((-w_a - lo_l) / (stride * step))), 0)
+            ib = min(int(math.ceil((w_b - lo_l) / (stride * step))), last)
             if ib - ia < 4:
                 break
-            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, lo_l, hi_l, step, cosf, d0, kcw, kw0, kw1,
+            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf, d0, kcw,
+                                                  kw0, kw1,
                                                   kcr, kr0, kr1, gw, gr_, PU[r], z_ref, t0g,
                                                   t1g)
             if not ok:
                 break
             nl = eta.shape[0]
             reach_a = ia > 0 and d0 - f[0] > 0.0
-            reach_b = ib < _LINE_NODES - 1 and d0 - f[nl - 1] > 0.0
+            reach_b = ib < last and d0 - f[nl - 1] > 0.0
             if not (reach_a or reach_b):
                 break
             if reach_a:
@@ -868,7 +872,7 @@ def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1):
 
 
 @njit(cache=True)
-def _span(wheel, kc, k_end, dirn, target, gw, gr_, u_c, z_c, t0, t1):
+def _span(wheel, kc, k_end, dirn, target, margin, gw, gr_, u_c, z_c, t0, t1):
     """Sample index beyond which the silhouette passes ``target`` in direction ``dirn``
     (walked from ``kc``, not past ``k_end``), plus the spline margin."""
     k = kc
@@ -880,7 +884,7 @@ def _span(wheel, kc, k_end, dirn, target, gw, gr_, u_c, z_c, t0, t1):
         k = k2
         if dirn * (e2 - target) > 0.0:
             break
-    k = k + dirn * _MARGIN
+    k = k + dirn * margin
     if dirn * (k - k_end) > 0:
         k = k_end
     return k
@@ -895,7 +899,7 @@ def _lagrange_den(x, j):
 
 
 @njit(cache=True)
-def _line_nodes(ia, ib, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw, gr_, u_c,
+def _line_nodes(ia, ib, stride, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw, gr_, u_c,
                 z_c, t0, t1):
     """Nodes ia … ib of the library's separation line (``separation_kernel``): η [m], the
     separation f [m], the longitudinal curvature cos/(2r) [1/m], the rail's surface angle
@@ -908,20 +912,20 @@ def _line_nodes(ia, ib, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw
     n = ib - ia + 1
     eta = np.empty(n)
     for i in range(n):
-        eta[i] = (ia + i) * step + lo
-    if ib == _LINE_NODES - 1:
+        eta[i] = ((ia + i) * stride) * step + lo
+    if ib * stride == _LINE_NODES - 1:
         eta[n - 1] = hi
     f = np.empty(n)
     Ax = np.empty(n)
     ang = np.zeros(n)
     rw = np.empty(n)
     # samples around [eta_0, eta_n-1] inside the monotone runs
-    a_w = _span(True, kcw, kw0, -1, eta[0], gw, gr_, u_c, z_c, t0, t1)
-    b_w = _span(True, kcw, kw1, 1, eta[n - 1], gw, gr_, u_c, z_c, t0, t1)
-    a_r = _span(False, kcr, kr0, -1, eta[0], gw, gr_, u_c, z_c, t0, t1)
-    b_r = _span(False, kcr, kr1, 1, eta[n - 1], gw, gr_, u_c, z_c, t0, t1)
-    mw = b_w - a_w + 1
-    mr = b_r - a_r + 1
+    a_w = _span(True, kcw, kw0, -1, eta[0], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
+    b_w = _span(True, kcw, kw1, 1, eta[n - 1], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
+    a_r = _span(False, kcr, kr0, -1, eta[0], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
+    b_r = _span(False, kcr, kr1, 1, eta[n - 1], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
+    mw = (b_w - a_w) // stride + 1
+    mr = (b_r - a_r) // stride + 1
     if mw < 4 or mr < 4:
         return eta, f, Ax, ang, rw, False
     ew = np.empty(mw)
@@ -930,7 +934,7 @@ def _line_nodes(ia, ib, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw
     s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0 = gw
     u_lo, dsr, ru, rinv, rc = gr_
     for k in range(mw):             # (the arithmetic of _sample, arrays unpacked once)
-        s = (a_w + k) * dsw + s_lo
+        s = (a_w + k * stride) * dsw + s_lo
         p, p1, _ = _spline(wu, winv, wc, s)
         Y, Z, _, rk = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
         du = sig * Y - u_c
@@ -941,7 +945,7 @@ def _line_nodes(ia, ib, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw
     er = np.empty(mr)
     zr = np.empty(mr)
     for k in range(mr):
-        u = (a_r + k) * dsr + u_lo
+        u = (a_r + k * stride) * dsr + u_lo
         du = u - u_c
         dz = _spline0(ru, rinv, rc, u) - z_c
         er[k] = du * t0 + dz * t1

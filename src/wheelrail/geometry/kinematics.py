@@ -60,7 +60,7 @@ import numpy as np
 
 from .._validation import as_float_array, positive
 from ..errors import InputError
-from ..plausibility import check_roller_radius, check_speed
+from ..plausibility import check_omega, check_roller_radius, check_speed
 
 __all__ = ["Motion", "creepages", "creepage_kernel"]
 
@@ -102,6 +102,7 @@ class Motion:
             if not w > 0:
                 raise InputError(f"omega must be > 0 (rolling forwards, rad/s), got {w!r}")
             object.__setattr__(self, "omega", w)
+            check_omega(w, self.speed)  # rpm or deg/s given: a radius V/ω of no wheel
         for name in ("lateral_velocity", "vertical_velocity", "yaw_rate", "roll_rate"):
             object.__setattr__(self, name, float(as_float_array(name, getattr(self, name))))
         if self.roller_radius is not None:

@@ -17,6 +17,7 @@ import numpy as np
 
 from .._validation import as_float_array, non_negative, positive
 from ..errors import ConvergenceError, InputError
+from ..plausibility import check_flange_back, check_yaw
 from ._checks import SIDES, check_side
 from .contact_search import (
     _MAX_YAW,
@@ -172,8 +173,10 @@ def check_inputs(ws, tr, yaw, tolerance, step):
     yaw = as_float_array("yaw", yaw)
     if yaw.ndim != 0:
         raise InputError(f"yaw must be a scalar, got an array of shape {yaw.shape}")
+    check_yaw(yaw)  # degrees given: refused; beyond a wheelset's yaw in track: warned
     if np.any(np.abs(yaw) > _MAX_YAW):
         raise InputError(f"|yaw| must be <= {_MAX_YAW} rad, got {yaw!r}")
+    check_flange_back(ws.flange_back, tr.gauge)
     tolerance = float(non_negative("tolerance", tolerance))
     step = float(positive("step", step))
     if step > 2e-3:

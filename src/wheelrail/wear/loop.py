@@ -24,11 +24,13 @@
    normal, z ← z + d √(1 + z'²) (the wheel lies above its profile z(y));
    with ``profiles="mean"`` (default) one profile for all wheels (the mean
    of their wear), with ``"sides"`` a left and a right profile (each the
-   mean over the wheelsets);
+   mean over the wheelsets); with ``update_rail=True`` also every case's
+   rails (their wear per axle passage × ``rail_passages`` × ΔL, removed along
+   the normal, z ← z − d √(1 + z'²): the rail lies below its profile);
 5. **record** the profile, Sh, Sd, qR (:func:`wheelrail.profiles.flange_dimensions`),
    the equivalent conicity (EN 15302, on the case's rail), the wear rate
-   per wheel and the rail's wear per axle passage (the rail profile is not
-   updated), and **checkpoint** the step (``store``): a killed run resumes
+   per wheel and the rail's wear per axle passage (and the rail profiles
+   with ``update_rail``), and **checkpoint** the step (``store``): a killed run resumes
    from its last finished step with nothing lost or repeated.
 
 References
@@ -169,8 +171,9 @@ class EvolveResult:
         side, y) [m/m] per metre travelled of each case, ``rail_wear`` (step, case,
         wheelset, side, y_rail) [m per axle passage], ``Tgamma`` (step, case,
         wheelset, side) [N] time-mean wear number, ``case_cpu`` (step) [s] CPU time of
-        the step's cases; step 0 has the initial values and the rates of the first
-        simulation.
+        the step's cases; with ``update_rail``, ``rail_z`` (step, case, side, y_rail)
+        the rail profile heights [m]; step 0 has the initial values and the rates of
+        the first simulation.
     profiles : list of dict
         Per step ``{"left": Profile, "right": Profile}`` (the same object twice
         with ``profiles="mean"``).
@@ -296,7 +299,7 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
            resolution=0.25e-3, max_steps=200, profiles="mean", normal="kik-piotrowski",
            tangential="fastsim", samples=100, cells=12, conicity=True, executor="dask",
            workers=None, scheduler=None, store=None, progress=False, on_step=None,
-           **options) -> EvolveResult:
+           update_rail=False, rail_passages=None, **options) -> EvolveResult:
     """Evolve the wheel profiles of a wheelset or bogie model over a route by wear.
 
     Parameters
@@ -336,6 +339,19 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         started again with the same inputs continues after the last one.
     progress : bool
         Print one line per step.
+    update_rail : bool
+        Also wear the rails: each case's left and right rail profile loses its
+        wear per axle passage (summed over the model's wheelsets, smoothed) ×
+        ``rail_passages`` × the step's mileage, removed along the normal
+        (z ← z − d √(1 + z'²); the rail lies below its profile), and the next
+        step runs on the worn rails; the step control then takes the largest
+        depth change of wheels and rails. Default False: the rails keep their
+        profile (their wear is still recorded).
+    rail_passages : float
+        With ``update_rail``: passages of the model over each case's rail
+        section per metre of the model's mileage [1/m] (the traffic the rail
+        sees relative to the wheels' running; e.g. a fleet of N such vehicles
+        each running a route of length L_r: N / L_r).
     on_step : callable or None
         Called after every step computed in this call (not for the steps
         read back from ``store``) as ``on_step(info)`` with a dict: ``step``,
@@ -362,6 +378,13 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         raise InputError(f"smoothing must be >= 0 m, got {smoothing!r}")
     if profiles not in ("mean", "sides"):
         raise InputError(f"profiles must be 'mean' or 'sides', got {profiles!r}")
+    if not isinstance(update_rail, bool):
+        raise InputError(f"update_rail must be True or False, got {update_rail!r}")
+    if update_rail and not (isinstance(rail_passages, (int, float)) and not
+                            isinstance(rail_passages, bool) and math.isfinite(rail_passages)
+                            and rail_passages > 0):
+        raise InputError(f"update_rail=True needs rail_passages > 0 (passages over the rail "
+                         f"per metre of mileage), got {rail_passages!r}")
     if not (isinstance(max_steps, int) and max_steps >= 1):
         raise InputError(f"max_steps must be an integer >= 1, got {max_steps!r}")
 
@@ -377,6 +400,8 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                 "resolution": resolution, "profiles": profiles, "normal": str(normal),
                 "tangential": str(tangential), "samples": samples, "cells": cells,
                 "options": {k: repr(v) for k, v in options.items()}}
+    if update_rail:
+        settings["update_rail"] = float(rail_passages)
     key = _fingerprint(model, route, impl, settings)
     weights = route.weights
     store = None if store is None else Path(store)
@@ -384,16 +409,21 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
 
     current = model
     done = 0.0
+    rail = dict(update=update_rail, passages=rail_passages, grid=rail_grid,
+                smoothing=smoothing, resolution=resolution)
+    route0 = route
     if records:
         last = records[-1]
         current = _with_profiles(model, _profile_from(last["left_z"], last["grid"], ws.wheel),
                                  _profile_from(last["right_z"], last["grid"], ws.wheel_right))
+        if update_rail:
+            route = _route_with_rails(route0, last["rail_z"], rail_grid)
         done = float(last["mileage"])
         if float(mileage) - done > 1e-9 * float(mileage):
-            current, done = _advance(model, current, last["per_side"], grid, done, mileage,
-                                     step_depth, profiles)
+            current, route, done = _advance(model, current, route, last, grid, done, mileage,
+                                            step_depth, profiles, rail)
         else:
-            return _result(records, route, rail_grid, ws, 0.0)
+            return _result(records, route0, rail_grid, ws, 0.0)
     ex = make_executor(executor, workers, scheduler)
     t_start = time.process_time()
     with ex:
@@ -423,6 +453,8 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                    "Tgamma": np.stack([results[i]["Tgamma"] for i in range(len(route.cases))]),
                    "dims": np.array([dims["left"], dims["right"]]), "conicity": con,
                    "cpu": float(sum(results[i]["cpu"] for i in results))}
+            if update_rail:
+                rec["rail_z"] = _rail_heights(route, rail_grid)
             records.append(rec)
             if store is not None:
                 _save_record(store, key, rec)
@@ -439,20 +471,67 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                          (1 if top <= 0 else max(1, math.ceil(left * top / step_depth)))})
             if float(mileage) - done <= 1e-9 * float(mileage):
                 break
-            current, done = _advance(model, current, per_side, grid, done, mileage, step_depth,
-                                     profiles)
-    return _result(records, route, rail_grid, ws, time.process_time() - t_start)
+            current, route, done = _advance(model, current, route, rec, grid, done, mileage,
+                                            step_depth, profiles, rail)
+    return _result(records, route0, rail_grid, ws, time.process_time() - t_start)
 
 
-def _advance(model, current, per_side, grid, done, mileage, step_depth, profiles):
+def _rail_rate(rec, rail):
+    """Rail depth per metre of mileage (case, side, y_rail): the wear per axle passage summed
+    over the wheelsets, smoothed, × passages per metre."""
+    per_pass = np.asarray(rec["rail_wear"]).sum(axis=1)                 # (case, side, y)
+    return rail["passages"] * _smooth(per_pass, rail["resolution"], rail["smoothing"])
+
+
+def _advance(model, current, route, rec, grid, done, mileage, step_depth, profiles, rail):
     """Apply one wear step: ΔL = step_depth / max(rate), at most the remaining mileage."""
+    per_side = np.asarray(rec["per_side"])
     remaining = float(mileage) - done
     top = float(np.max(per_side))
+    rrate = _rail_rate(rec, rail) if rail["update"] else None
+    if rrate is not None:
+        top = max(top, float(np.max(rrate)))
     dL = remaining if top <= 0 else min(step_depth / top, remaining)
     left = _worn(current.wheelset.wheel, grid, per_side[0] * dL)
     right = left if profiles == "mean" else _worn(current.wheelset.wheel_right, grid,
                                                     per_side[1] * dL)
-    return _with_profiles(model, left, right), done + dL
+    if rrate is not None:
+        z = _rail_heights(route, rail["grid"])                            # (case, side, y)
+        route = _route_with_rails(route, _rail_worn(route, rail["grid"], z, rrate * dL),
+                                  rail["grid"])
+    return _with_profiles(model, left, right), route, done + dL
+
+
+def _rail_heights(route, rgrid):
+    """Heights of every case's left and right rail on ``rgrid`` (case, side, y_rail)."""
+    return np.stack([np.stack([np.asarray(c.rail_track.rail(rgrid), dtype=float),
+                               np.asarray(c.rail_track.rail_right(rgrid), dtype=float)])
+                     for c in route.cases])
+
+
+def _rail_worn(route, rgrid, z, depth):
+    """Rail heights with ``depth`` removed along the normal (the rail lies below z(y))."""
+    out = np.empty_like(z)
+    for i, c in enumerate(route.cases):
+        for j, prof in enumerate((c.rail_track.rail, c.rail_track.rail_right)):
+            dz = np.asarray(prof.slope(rgrid), dtype=float)
+            out[i, j] = z[i, j] - depth[i, j] * np.sqrt(1.0 + dz * dz)
+    return out
+
+
+def _route_with_rails(route, z, rgrid):
+    """The route with every case's rails replaced by the profiles of heights ``z``."""
+    cases = []
+    for i, c in enumerate(route.cases):
+        tr = c.rail_track
+        left = Profile(np.asarray(rgrid), np.asarray(z[i][0]), kind="rail", name=tr.rail.name,
+                       meta=dict(tr.rail.meta))
+        right = Profile(np.asarray(rgrid), np.asarray(z[i][1]), kind="rail",
+                        name=tr.rail_right.name, meta=dict(tr.rail_right.meta))
+        new = dataclasses.replace(tr, rail=left, rail_right=right)
+        track = new if isinstance(c.track, Track) else dataclasses.replace(c.track, track=new)
+        cases.append(dataclasses.replace(c, track=track))
+    return Route(tuple(cases))
 
 
 def _profile_from(z, grid, like):
@@ -516,6 +595,10 @@ def _result(records, route, rail_grid, ws, cpu) -> EvolveResult:
         "case_cpu": ("step", np.array([float(r["cpu"]) for r in records]),
                      {"units": "s", "description": "CPU time of the step's cases (workers)"}),
     }
+    if "rail_z" in records[0]:
+        data["rail_z"] = (("step", "case", "side", "y_rail"),
+                          np.stack([r["rail_z"] for r in records]),
+                          {"units": "m", "description": "rail profile heights (update_rail)"})
     ds = xr.Dataset(data, coords=coords,
                     attrs={"cpu_time": cpu, "weights": list(map(float, route.weights))})
     profs = []

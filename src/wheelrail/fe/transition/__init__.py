@@ -6,21 +6,21 @@ node update, the contact laws and the closest-point projection of
 :mod:`wheelrail.fe._kernels`); what is its own:
 
 =====================  ================================================================
-:mod:`.model`          :class:`TransitionCase` (frozen input), the rigid pose search, the
+``model``              :class:`TransitionCase` (frozen input), the rigid pose search, the
                        assembly of wheel, rail and sleepers (:func:`build_transition_model`)
-:mod:`.mesh`           profile-following sections with flange and gauge face, extruded
+``mesh``               profile-following sections with flange and gauge face, extruded
                        (rail) and swept (wheel), tied blocks for web, foot and plate
-:mod:`.contact`        node-to-segment contact against arbitrary quads (bucket search), the
+``contact``            node-to-segment contact against arbitrary quads (bucket search), the
                        split into tread and flange patches and the per-patch summary
-:mod:`.track`          :class:`TrackStructure` (railpads, sleepers, ballast) and
+``track``              :class:`TrackStructure` (railpads, sleepers, ballast) and
                        :class:`WheelSuspension` (sprung mass, primary suspension, half-axle,
                        drive, optional lateral and roll degrees of freedom)
-:mod:`.run`            :func:`run_transition` (the time loop, restart files, outputs) and
+``run``                :func:`run_transition` (the time loop, restart files, outputs) and
                        :func:`seed004_case` (the published set-up)
-:mod:`.wave`           surface-wave speed on the case's rail: a force pulse
+``wave``               surface-wave speed on the case's rail: a force pulse
                        (:func:`rail_pulse`, :func:`pulse_arrivals`) and phase spectra of any
                        record (:func:`phase_velocity`)
-:mod:`.analysis`       onset, shear and slip direction, vertical balance, climb load
+``analysis``           onset, shear and slip direction, vertical balance, climb load
 =====================  ================================================================
 
 ``wr.fe.solve(case)`` runs a :class:`TransitionCase` through :func:`run_transition`.

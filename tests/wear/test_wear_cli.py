@@ -91,3 +91,12 @@ def test_bad_key_exit_code_and_message(tmp_path, capsys):
     assert main(["wear", str(bad), "--out", str(tmp_path / "o")]) == 2
     err = capsys.readouterr().err
     assert "[wear]" in err and "smoothing_window" in err
+
+
+def test_rail_update_keys():
+    kw = read_wear_case(_case(extra_wear="update_rail = true\nrail_passages = 0.5"))["evolve"]
+    assert kw["update_rail"] is True and kw["rail_passages"] == 0.5
+    with pytest.raises(CaseFileError, match=r"\[wear\] rail_passages: missing"):
+        read_wear_case(_case(extra_wear="update_rail = true"))
+    with pytest.raises(CaseFileError, match=r"\[wear\] rail_passages: needs update_rail"):
+        read_wear_case(_case(extra_wear="rail_passages = 0.5"))
