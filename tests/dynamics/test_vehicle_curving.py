@@ -74,6 +74,7 @@ def test_whole_vehicle_force_balance_in_a_curve(case, radius, speed, cant):
     assert yaw[0] < yaw[1] and yaw[2] < yaw[3]
 
 
+@pytest.mark.slow
 def test_time_domain_run_settles_at_steady_curving(case):
     """R = 500 m, 100 mm cant, 25 m/s (bump stops engaged): after 11 s from the static
     state the compiled RK4 run is within 1 % of the steady-curving equilibrium (same

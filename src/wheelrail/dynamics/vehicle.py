@@ -57,6 +57,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..geometry import Wheelset
+from ..materials import STEEL
+from ..profiles import load as load_profile
 from ._vehicle_motion import BUMP_MAX, NVP, VP
 from .model import (FRAME_STATES, GP, GRAVITY, NGP, NWP, RAIL_STATES, RELAX_STATES,
                     WHEELSET_STATES, WP, BogieModel, Suspension, WheelsetModel, _inertia, _number)
@@ -424,11 +427,7 @@ def manchester_vehicle1(spin: str = "fixed", rail=None, *, yaw_damper: YawDamper
     .. [1] S. Iwnicki, Manchester benchmarks for rail vehicle simulation, Vehicle
        System Dynamics 30 (1998) 295–313.
     """
-    from ..geometry import Wheelset
-    from ..materials import STEEL
-    from ..profiles import load
-
-    ws = Wheelset(load("S1002"), nominal_radius=0.46, flange_back=1.360)
+    ws = Wheelset(load_profile("S1002"), nominal_radius=0.46, flange_back=1.360)
     prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
                       half_spacing=1.0)
     bogie = BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
