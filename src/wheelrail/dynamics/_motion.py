@@ -39,6 +39,7 @@ import numpy as np
 from numba import njit
 
 from ._fastcontact import wheel_contact
+from ._relaxation import relax_derivative, relax_gains
 from ._vehicle_motion import vehicle_derivative
 from .model import GP, NGP, NWP, WP
 
@@ -359,35 +360,6 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
 
 
 # --------------------------------------------------------------------------- creep relaxation
-@njit(cache=True)
-def relax_gains(P, V, amean, k):
-    """Rates k = V/L [1/s] of the creep relaxation of every wheel, ``k`` (n_ws, 2).
-
-    L = ``P[relax]`` · max(a, floor): the relaxation length in semi-axes a (the
-    load-weighted semi-axis of the wheel's patches along the rolling direction).
-    """
-    nw = amean.shape[0]
-    for i in range(nw):
-        for side in range(2):
-            k[i, side] = V / (P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR]))
-
-
-@njit(cache=True)
-def relax_derivative(x, P, V, Qt, amean, dx):
-    """The creep-relaxation law: dq/dt = (Q_t − q) V/L for the relaxation states q of
-    every wheel (first-order lag in the distance rolled; Q_t the steady creep forces,
-    (n_ws, 2, 5)). Writes the relaxation rows of ``dx``."""
-    nw = Qt.shape[0]
-    ox = int(P[_G_OX])
-    k = np.empty((nw, 2))
-    relax_gains(P, V, amean, k)
-    for i in range(nw):
-        for side in range(2):
-            for c in range(5):
-                j = ox + 10 * i + 5 * side + c
-                dx[j] = (Qt[i, side, c] - x[j]) * k[i, side]
-
-
 @njit(cache=True)
 def _steady_forces(OW, F):
     """The steady creep forces Q_t of every wheel from the contact outputs, F (n_ws·10,)."""

@@ -45,6 +45,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ._relaxation import relax_derivative
 from .model import GP, NGP, NWP, WP
 
 __all__ = ["vehicle_derivative", "VP", "NVP", "BUMP_MAX"]
@@ -72,8 +73,6 @@ _G_G = GP["g"]
 _G_R0 = GP["r0"]
 _G_OF = GP["off_frame"]
 _G_OR = GP["off_rails"]
-_G_OX = GP["off_relax"]
-_G_FLOOR = GP["relax_floor"]
 _G_RAIL = (GP["rail_lat_k1"], GP["rail_ver_k1"])
 _W = (WP["m"], WP["Ix"], WP["Iy"], WP["Iz"], WP["kx"], WP["ky"], WP["kz"], WP["cx"], WP["cy"],
       WP["cz"], WP["b"], WP["x"], WP["preload"])
@@ -208,7 +207,6 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
     r0 = P[_G_R0]
     of = int(P[_G_OF])
     orl = int(P[_G_OR])
-    ox = int(P[_G_OX])
     vb = NGP + NWP * nw
     nf = int(P[vb + _V_NF])
     ob = int(P[vb + _V_OB])
@@ -322,12 +320,8 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
                     dx[rb] = wd
                     dx[rb + 1] = vv
                     dx[rb + 2] = (Fr - k1 * (u - w) - c1 * (vv - wd)) / mr
-        if relax:
-            for side in range(2):
-                xb = ox + 10 * i + 5 * side
-                a = P[_G_RELAX] * max(amean[i, side], P[_G_FLOOR])
-                for k in range(5):
-                    dx[xb + k] = (Qt[i, side, k] - x[xb + k]) * V / a
+    if relax:
+        relax_derivative(x, P, V, Qt, amean, dx)
     # ---------------------------------------------------------------- secondary suspension
     if nf > 0:
         sv = vb + _V_SEC
