@@ -31,8 +31,9 @@ ALLOWED = {
         {"finish", "new_figure"},
         "the same figure helpers for the transient figures"),
     ("cli", "wheelrail.casefile._reader"): (
-        {"Reader", "read_friction", "read_methods", "read_toml"},
-        "the dynamics command reads its case file with the case-file package's reader"),
+        {"Reader", "read_friction", "read_methods", "read_toml", "configure"},
+        "the dynamics and wear commands read their case files with the case-file package's "
+        "reader (configure: the wear law's options as the methods' are)"),
     ("cli", "wheelrail.dynamics"): (
         {"_motion"},
         "the first-run notice asks numba whether the dynamics time loop is cached"),
