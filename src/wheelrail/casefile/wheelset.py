@@ -14,6 +14,7 @@ from ..cases.wheelset import WheelsetCase
 from ..errors import CaseFileError, InputError, ProfileError
 from ..geometry import Track, Wheelset
 from ..geometry.kinematics import Motion
+from ..plausibility import check_flange_back
 from ._reader import Reader, read_friction, read_materials, read_methods
 
 __all__ = ["wheelset_case_from_dict", "is_wheelset_case", "MAX_POSITIONS"]
@@ -192,8 +193,6 @@ def wheelset_case_from_dict(r: Reader, data: Mapping) -> WheelsetCase:
             r.fail("track", "canted", f"must be true or false, got {tt['canted']!r}")
         tkw["canted"] = tt["canted"]
     tr = _construct(r, "track", lambda: Track(rail, rail_right=rail_r, **tkw))
-    from ..plausibility import check_flange_back
-
     _construct(r, "wheelset", lambda: check_flange_back(ws.flange_back, tr.gauge))
 
     mt = r.required_table(data, "motion")
