@@ -24,7 +24,7 @@ import wheelrail
 
 ROOT = Path(__file__).resolve().parents[2]
 #: pages whose examples are long runs: checked statically only
-LONG = {"dynamics.md", "fe.md", "fe_plastic.md", "fe_transition.md"}
+LONG = {"dynamics.md", "fe.md", "fe_plastic.md", "fe_transition.md", "wear.md"}
 #: pages written by the docs build (docs/_ext/_methods_page.py; ignored by git): their
 #: blocks are call fragments (``wr.solve(problem, ...)``), checked statically only
 GENERATED = {"methods.md"}
