@@ -28,7 +28,8 @@ from numba import njit
 from ..tangential._fastsim_kernel import fastsim_hertz_batch
 from ..tangential._table_kernel import point_forces
 
-__all__ = ["creepage", "table_forces", "fastsim_ellipse", "march_strips",
+__all__ = ["creepage", "table_forces", "fastsim_ellipse", "march_strips", "kp_strips",
+           "kp_strip_fastsim",
            "linear_forces"]
 
 
@@ -202,3 +203,130 @@ def linear_forces(a, b, G, xi, eta, phi, kx, c11, c22, c23, c33):
     c = math.sqrt(c2)
     return (-G * c2 * C11 * xi, -G * c2 * (C22 * eta + c * C23 * phi),
             G * c2 * c * (C23 * eta - c * C33 * phi))
+
+
+@njit(cache=True)
+def kp_strips(eta_n, xl_n, pk_n, h_line, strips, cells, N, eta_ref, sign):
+    """The strips of a Kik–Piotrowski region as
+    :func:`~wheelrail.normal._patch_kernel.strip_patch` makes them (x_l² and the peaks
+    linear between the nodes and zero half a node beyond the ends, ``strips`` uniform
+    strips, a semi-ellipse of ``cells`` cells along each, scaled to the force N), without
+    the cell array: every strip's cells are its peak factor ``c`` times the semi-ellipse.
+
+    Returns
+    -------
+    y, xl, c : ndarray, shape (strips,)
+        Strip centres in the patch frame (sorted), half-lengths [m], pressure factors [Pa]
+        (cell i of strip k: c_k √(1 − s_i²), s_i = 1 − (2i + 1)/cells).
+    dy, width, area, length : float
+    """
+    n = eta_n.shape[0]
+    hn = eta_n[1] - eta_n[0] if n > 1 else h_line
+    lo = eta_n[0] - 0.5 * hn
+    hi = eta_n[n - 1] + 0.5 * hn
+    width = hi - lo
+    dy = width / strips
+    psum = 0.0
+    for i in range(cells):
+        s = 1.0 - (i + 0.5) * (2.0 / cells)
+        psum += math.sqrt(max(1.0 - s * s, 0.0))
+    ys = np.empty(strips)
+    xs = np.empty(strips)
+    cs_ = np.empty(strips)
+    got = 0.0
+    area = 0.0
+    lmax = 0.0
+    j = -1                    # interval of the extended nodes (lo, eta_n…, hi)
+    for k in range(strips):
+        e = lo + (k + 0.5) * dy
+        while j < n - 1 and eta_n[j + 1] <= e:
+            j += 1
+        if j < 0:
+            ea, x2a, pa = lo, 0.0, 0.0
+        else:
+            ea, x2a, pa = eta_n[j], xl_n[j] * xl_n[j], pk_n[j]
+        if j + 1 < n:
+            eb, x2b, pb = eta_n[j + 1], xl_n[j + 1] * xl_n[j + 1], pk_n[j + 1]
+        else:
+            eb, x2b, pb = hi, 0.0, 0.0
+        t = (e - ea) / (eb - ea) if eb > ea else 0.0
+        xk = math.sqrt(max(x2a + t * (x2b - x2a), 0.0))
+        pk = pa + t * (pb - pa)
+        ys[k] = e
+        xs[k] = xk
+        cs_[k] = pk
+        got += pk * psum * (2.0 * xk / cells) * dy
+        area += 2.0 * xk * dy
+        lmax = max(lmax, xk)
+    fac = N / got if got > 0 else 0.0
+    y = np.empty(strips)
+    xl = np.empty(strips)
+    c = np.empty(strips)
+    for k in range(strips):
+        src = k if sign > 0 else strips - 1 - k
+        y[k] = sign * (ys[src] - eta_ref)
+        xl[k] = xs[src]
+        c[k] = cs_[src] * fac
+    return y, xl, c, dy, width, area, 2.0 * lmax
+
+
+@njit(cache=True)
+def kp_strip_fastsim(y, dy, xl, c, cells, i0, i1, w, a, b, mu, G, kx, c11, c22, c23, xi, eta,
+                   phi, first_order):
+    """FASTSIM on a Kik–Piotrowski strip patch as ``Fastsim.solve_patch`` does it: Kalker's
+    weighted flexibility of the patch's equivalent ellipse, each strip's cells resampled
+    to FASTSIM's ``nx`` keeping the strip's force (indices ``i0``, ``i1``, weights ``w``;
+    with the cells c_k √(1 − s²) the resampled row is c_k times one fixed profile) and
+    marched with the one flexibility by :func:`~wheelrail.dynamics._fastlaws.march_strips`
+    (the equations of :func:`~wheelrail.tangential._fastsim_kernel.march_strip` with
+    L1 = L2 = L3, where its slip rule is the scaling onto the bound; the same numbers to
+    round-off, without the per-cell Newton set-up); ``Mz`` about the centre of pressure.
+    Returns (Fx, Fy, Mz)."""
+    C11, C22, C23 = _kalker(a / b, kx, c11, c22, c23)
+    L1 = 8.0 * a / (3.0 * G * C11)
+    L2 = 8.0 * a / (3.0 * G * C22)
+    L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
+    cc = math.sqrt(a * b)
+    cphi = cc * abs(phi)
+    nrm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
+    L = (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / nrm if nrm > 0 else L1
+    ny = y.shape[0]
+    nx = i0.shape[0]
+    # the resampled profile (strip_patch_forces: linear resampling, the mean kept)
+    prof = np.empty(cells)
+    msum = 0.0
+    for i in range(cells):
+        s = 1.0 - (i + 0.5) * (2.0 / cells)
+        prof[i] = math.sqrt(max(1.0 - s * s, 0.0))
+        msum += prof[i]
+    q = np.empty(nx)
+    qsum = 0.0
+    for i in range(nx):
+        q[i] = prof[i0[i]] * (1.0 - w[i]) + prof[i1[i]] * w[i]
+        qsum += q[i]
+    qf = (msum / cells) / (qsum / nx) if qsum > 0 else 0.0
+    reach = 0.0
+    for k in range(ny):
+        reach = max(reach, abs(y[k]) + dy, xl[k])
+    rate = max(abs(xi), abs(eta), abs(phi) * reach) / L
+    if not rate <= _RATE_CAP:
+        if not (rate > 0 and math.isfinite(rate)):
+            return math.nan, math.nan, math.nan
+        # huge creepages: scaled together (the same full-slip direction; ``_tame``)
+        fac = _RATE_CAP / rate
+        xi, eta, phi = xi * fac, eta * fac, phi * fac
+    p = np.empty((ny, nx))
+    W = 0.0
+    WY = 0.0
+    for k in range(ny):
+        for i in range(nx):
+            p[k, i] = c[k] * qf * q[i]
+        wk = c[k] * xl[k]
+        W += wk
+        WY += wk * y[k]
+    Fx, Fy, Mz = march_strips(y, dy, xl, p, mu, L, xi, eta, phi, first_order)
+    yc = WY / W if W > 0 else 0.0
+    return Fx, Fy, Mz + yc * Fx
+
+
+_RATE_CAP = 1e200
