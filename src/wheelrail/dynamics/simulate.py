@@ -829,6 +829,24 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     SimulationResult
         With ``.dataset`` (:class:`xarray.Dataset` over time).
 
+    Raises
+    ------
+    wheelrail._resources.ResourceLimitError
+        The run's estimated CPU time or output memory is past the limit (the
+        estimate in the message).
+    ConvergenceError
+        The states left the physical range (the time, the state and a step to try).
+    SimulationInterrupted
+        Ctrl-C (a ``KeyboardInterrupt``); its ``result`` holds what was simulated.
+
+    Warns
+    -----
+    StepWarning
+        The fixed step is divided into sub-steps for the creep damping at low speed.
+    RunWarning
+        A speed above 100 m/s (km/h meant?), a run ended at standstill, Y/Q
+        beyond Nadal's limit (``info["derailment"]``).
+
     Examples
     --------
     A conical wheelset on nearly knife-edge rails, released 1 mm off centre,
