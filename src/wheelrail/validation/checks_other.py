@@ -139,11 +139,11 @@ def transient_contact(quick):
                 "digits (a rounding of up to 1.6e-4 of xi_end)", **kw),
         abs_row("transient", ref + "; CONTACT's run at h = dx", "overshoot of xi [%] at "
                 "h = dx/1.84 (default scheme, no damping of the transient)",
-                100 * (xi2[2:].max() / xi2[-1] - 1), over_ref, 0.6,
+                100 * (xi2[2:].max() / xi2[-1] - 1), over_ref, 0.58,
                 tolerance_source=tsrc + ": 5x the measured 0.12 points (the linear "
                 "interpolation of scheme='interpolated' gives 5.18 %)", **kw),
         rel_row("transient", ref + "; CONTACT's run at h = dx", "final xi at h = dx/1.84 "
-                "(default scheme)", xi2[-1], xi_ref[-1], 3.3e-2,
+                "(default scheme)", xi2[-1], xi_ref[-1], 3.2e-2,
                 tolerance_source=tsrc + ": 5x the measured 0.66 % (steady kernel of the "
                 "step: CONTACT's first-order difference at h = dx, the cubic's derivative as "
                 "h -> 0)", **kw)]
