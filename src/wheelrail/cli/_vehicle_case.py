@@ -31,6 +31,7 @@ def _table(r, name, tbl):
 
 
 def _construct(r, table, make):
+    """``make()``, its InputError re-raised naming the case file and ``table``."""
     from ..errors import InputError
 
     try:

@@ -24,7 +24,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from ._vehicle_case import VEHICLE_KEYS, read_vehicle
+from ._vehicle_case import VEHICLE_KEYS, _construct, read_vehicle
 
 HELP = "wheelset / bogie / vehicle dynamics of a [model] case file: NetCDF, assessment, figures"
 
@@ -59,15 +59,6 @@ def _table(r, data, name, required=False):
     if not isinstance(tbl, Mapping):
         r.fail(name, None, f"must be a table, got {tbl!r}")
     return tbl
-
-
-def _construct(r, table, make):
-    from ..errors import InputError
-
-    try:
-        return make()
-    except InputError as exc:
-        r.fail(table, None, str(exc))
 
 
 def _numbers(r, table, tbl, key, n, default=None):
