@@ -349,6 +349,71 @@ NGP = len(GP)
 NWP = len(WP)
 
 
+def global_parameters(model, n_params, relax):
+    """The parameter vector (length ``n_params``) with the global part shared by every
+    model filled in: wheelset count, rails, relaxation, spin, gravity, r0 and the rail
+    support's spring–dampers (internal; :class:`Assembly`, ``VehicleAssembly``)."""
+    P = np.zeros(n_params)
+    P[GP["n_ws"]] = model.n_wheelsets
+    P[GP["rails"]] = 1.0 if model.rail is not None else 0.0
+    # relaxation length in semi-axes a (True: 1)
+    P[GP["relax"]] = (1.0 if relax is True else float(relax)) if relax else 0.0
+    P[GP["spin_free"]] = 1.0 if model.spin == "free" else 0.0
+    P[GP["g"]] = GRAVITY
+    P[GP["r0"]] = model.wheelset.nominal_radius
+    P[GP["relax_floor"]] = 1e-3
+    if model.rail is not None:
+        for d, key in ((0, "rail_lat"), (1, "rail_ver")):
+            k1, c1, k2, c2, m = model.rail.direction(d)
+            P[GP[key + "_k1"]], P[GP[key + "_c1"]] = k1, c1
+            P[GP[key + "_k2"]], P[GP[key + "_c2"]] = k2, c2
+            P[GP[key + "_m"]] = m
+    return P
+
+
+def wheelset_names(nw):
+    """State names of ``nw`` wheelsets, leading first (they start the state vector)."""
+    return [f"ws{i}.{s}" for i in range(nw) for s in WHEELSET_STATES]
+
+
+def append_rail_relax_names(names, nw, rails, relax):
+    """Append the rail and relaxation states of ``nw`` wheelsets to ``names``; returns
+    their offsets (off_rails, off_relax)."""
+    off_rails = len(names)
+    if rails:
+        for i in range(nw):
+            for side in ("left", "right"):
+                for d in ("lateral", "vertical"):
+                    names += [f"rail{i}.{side}.{d}.{s}" for s in RAIL_STATES]
+    off_relax = len(names)
+    if relax:
+        for i in range(nw):
+            for side in ("left", "right"):
+                names += [f"relax{i}.{side}.{s}" for s in RELAX_STATES]
+    return off_rails, off_relax
+
+
+def wheelset_rows(add, n_ws, free_spin):
+    """The settling positions of the wheelsets for ``quasi_static`` (height, roll; Ω with
+    ``free_spin``): ``add(col, row, step, scale)``."""
+    for i in range(n_ws):
+        add(9 * i + 1, 9 * i + 5, 1e-8, 1e-4)          # z
+        add(9 * i + 2, 9 * i + 6, 1e-8, 1e-4)          # roll
+        if free_spin:
+            add(9 * i + 8, 9 * i + 8, 1e-5, 0.02)      # Ω
+
+
+def rail_rows(add, n_ws, off_rails):
+    """The settling positions of the flexible rails for ``quasi_static`` (support point,
+    head): ``add(col, row, step, scale)``."""
+    for i in range(n_ws):
+        for side in range(2):
+            for d in range(2):
+                rb = off_rails + 12 * i + 6 * side + 3 * d
+                add(rb, rb, 1e-8, 1e-3)            # support point: ẇ = 0
+                add(rb + 1, rb + 2, 1e-8, 1e-3)    # head: v̇ = 0
+
+
 class Assembly:
     """The numbers the compiled equations need: parameter vector and state layout (internal).
 
@@ -367,25 +432,9 @@ class Assembly:
         nw = model.n_wheelsets
         frame = isinstance(model, BogieModel)
         rails = model.rail is not None
-        P = np.zeros(NGP + NWP * nw)
-        P[GP["n_ws"]] = nw
+        P = global_parameters(model, NGP + NWP * nw, relax)
         P[GP["has_frame"]] = 1.0 if frame else 0.0
-        P[GP["rails"]] = 1.0 if rails else 0.0
-        # relaxation length in semi-axes a (True: 1)
-        P[GP["relax"]] = (1.0 if relax is True else float(relax)) if relax else 0.0
-        P[GP["spin_free"]] = 1.0 if model.spin == "free" else 0.0
-        P[GP["g"]] = GRAVITY
-        P[GP["r0"]] = model.wheelset.nominal_radius
-        P[GP["relax_floor"]] = 1e-3
-        if rails:
-            for d, key in ((0, "rail_lat"), (1, "rail_ver")):
-                k1, c1, k2, c2, m = model.rail.direction(d)
-                P[GP[key + "_k1"]], P[GP[key + "_c1"]] = k1, c1
-                P[GP[key + "_k2"]], P[GP[key + "_c2"]] = k2, c2
-                P[GP[key + "_m"]] = m
-        names = []
-        for i in range(nw):
-            names += [f"ws{i}.{s}" for s in WHEELSET_STATES]
+        names = wheelset_names(nw)
         off_frame = len(names)
         if frame:
             names += [f"frame.{s}" for s in FRAME_STATES]
@@ -395,17 +444,7 @@ class Assembly:
             for k, v in zip(("kx", "ky", "kz", "cx", "cy", "cz", "b"), sec.values()):
                 P[GP["sec_" + k]] = v
             P[GP["body_m"]] = model.body_mass
-        off_rails = len(names)
-        if rails:
-            for i in range(nw):
-                for side in ("left", "right"):
-                    for d in ("lateral", "vertical"):
-                        names += [f"rail{i}.{side}.{d}.{s}" for s in RAIL_STATES]
-        off_relax = len(names)
-        if relax:
-            for i in range(nw):
-                for side in ("left", "right"):
-                    names += [f"relax{i}.{side}.{s}" for s in RELAX_STATES]
+        off_rails, off_relax = append_rail_relax_names(names, nw, rails, relax)
         P[GP["off_frame"]] = off_frame
         P[GP["off_rails"]] = off_rails
         P[GP["off_relax"]] = off_relax
@@ -449,22 +488,13 @@ class Assembly:
             steps.append(h)
             scales.append(s)
 
-        for i in range(self.n_ws):
-            add(9 * i + 1, 9 * i + 5, 1e-8, 1e-4)          # z
-            add(9 * i + 2, 9 * i + 6, 1e-8, 1e-4)          # roll
-            if spin and self.model.spin == "free":
-                add(9 * i + 8, 9 * i + 8, 1e-5, 0.02)      # Ω
+        wheelset_rows(add, self.n_ws, spin and self.model.spin == "free")
         if self.frame:
             of = self.off_frame
             for k in (1, 2, 3):                            # z, roll, pitch
                 add(of + k, of + 5 + k, 1e-8, 1e-3)
         if self.rails:
-            for i in range(self.n_ws):
-                for side in range(2):
-                    for d in range(2):
-                        rb = self.off_rails + 12 * i + 6 * side + 3 * d
-                        add(rb, rb, 1e-8, 1e-3)            # support point: ẇ = 0
-                        add(rb + 1, rb + 2, 1e-8, 1e-3)    # head: v̇ = 0
+            rail_rows(add, self.n_ws, self.off_rails)
         return cols, rows, np.array(steps), np.array(scales)
 
     def index(self, name: str) -> int:

@@ -61,8 +61,9 @@ from ..geometry import Wheelset
 from ..materials import STEEL
 from ..profiles import load as load_profile
 from ._vehicle_motion import BUMP_MAX, NVP, VP
-from .model import (FRAME_STATES, GP, GRAVITY, NGP, NWP, RAIL_STATES, RELAX_STATES,
-                    WHEELSET_STATES, WP, BogieModel, Suspension, WheelsetModel, _inertia, _number)
+from .model import (FRAME_STATES, GP, GRAVITY, NGP, NWP, WP, BogieModel, Suspension,
+                    WheelsetModel, _inertia, _number, append_rail_relax_names,
+                    global_parameters, rail_rows, wheelset_names, wheelset_rows)
 
 __all__ = ["CarBody", "SecondarySuspension", "YawDamper", "BumpStop", "VehicleModel",
            "manchester_vehicle1", "VehicleAssembly"]
@@ -460,27 +461,12 @@ class VehicleAssembly:
         nw = model.n_wheelsets
         nf = model.n_frames
         rails = model.rail is not None
-        P = np.zeros(NGP + NWP * nw + NVP)
-        P[GP["n_ws"]] = nw
+        P = global_parameters(model, NGP + NWP * nw + NVP, relax)
         P[GP["has_frame"]] = 0.0
         P[GP["vehicle"]] = 1.0
-        P[GP["rails"]] = 1.0 if rails else 0.0
-        P[GP["relax"]] = (1.0 if relax is True else float(relax)) if relax else 0.0
-        P[GP["spin_free"]] = 1.0 if model.spin == "free" else 0.0
-        P[GP["g"]] = GRAVITY
-        P[GP["r0"]] = model.wheelset.nominal_radius
-        P[GP["relax_floor"]] = 1e-3
-        if rails:
-            for d, key in ((0, "rail_lat"), (1, "rail_ver")):
-                k1, c1, k2, c2, m = model.rail.direction(d)
-                P[GP[key + "_k1"]], P[GP[key + "_c1"]] = k1, c1
-                P[GP[key + "_k2"]], P[GP[key + "_c2"]] = k2, c2
-                P[GP[key + "_m"]] = m
         vb = NGP + NWP * nw
         V = {k: vb + i for k, i in VP.items()}
-        names = []
-        for i in range(nw):
-            names += [f"ws{i}.{s}" for s in WHEELSET_STATES]
+        names = wheelset_names(nw)
         off_frame = len(names)
         for j in range(nf):
             names += [f"frame{j}.{s}" for s in FRAME_STATES]
@@ -491,17 +477,7 @@ class VehicleAssembly:
         if nf and sec.yaw_damper is not None:
             for j in range(nf):
                 names += [f"yawdamper{j}.left", f"yawdamper{j}.right"]
-        off_rails = len(names)
-        if rails:
-            for i in range(nw):
-                for side in ("left", "right"):
-                    for d in ("lateral", "vertical"):
-                        names += [f"rail{i}.{side}.{d}.{s}" for s in RAIL_STATES]
-        off_relax = len(names)
-        if relax:
-            for i in range(nw):
-                for side in ("left", "right"):
-                    names += [f"relax{i}.{side}.{s}" for s in RELAX_STATES]
+        off_rails, off_relax = append_rail_relax_names(names, nw, rails, relax)
         P[GP["off_frame"]] = off_frame
         P[GP["off_rails"]] = off_rails
         P[GP["off_relax"]] = off_relax
@@ -581,22 +557,13 @@ class VehicleAssembly:
             steps.append(h)
             scales.append(s)
 
-        for i in range(self.n_ws):
-            add(9 * i + 1, 9 * i + 5, 1e-8, 1e-4)
-            add(9 * i + 2, 9 * i + 6, 1e-8, 1e-4)
-            if spin and self.model.spin == "free":
-                add(9 * i + 8, 9 * i + 8, 1e-5, 0.02)
+        wheelset_rows(add, self.n_ws, spin and self.model.spin == "free")
         if not linear:
             for ob in self._bodies():
                 for k in (1, 2, 3):
                     add(ob + k, ob + 5 + k, 1e-8, 1e-3)
         if self.rails:
-            for i in range(self.n_ws):
-                for side in range(2):
-                    for d in range(2):
-                        rb = self.off_rails + 12 * i + 6 * side + 3 * d
-                        add(rb, rb, 1e-8, 1e-3)
-                        add(rb + 1, rb + 2, 1e-8, 1e-3)
+            rail_rows(add, self.n_ws, self.off_rails)
         return cols, rows, np.array(steps), np.array(scales)
 
     def curving_unknowns(self):
