@@ -49,6 +49,17 @@ def test_every_registered_method_has_a_row_that_ran(quick):
         assert name in ran, name
 
 
+def test_every_method_has_an_independent_row(quick):
+    """Every method is compared with at least one reference that is not wheelrail itself (a
+    closed form written in the check, a published table or figure, another code's published
+    output): a row counted as validation, which ran."""
+    report, _ = quick
+    validated = {r.method for r in report.rows if r.status != "skipped" and r.is_validation}
+    for name in [*wr.normal_methods(), *wr.tangential_methods(), "transient", "geometry",
+                 "halfspace"]:
+        assert name in validated, name
+
+
 def test_no_self_comparison_and_tolerances_stated(quick):
     report, _ = quick
     for r in report.rows:
@@ -142,12 +153,13 @@ LOOSE_WITHOUT_REASON: set[str] = set()
 
 
 def test_loose_tolerances_say_why(quick):
-    """A validation row whose tolerance exceeds 5x its measured error says why in its
-    tolerance source ("why: ..."), except the checks listed above (known, reported debt)."""
+    """A row (validation, consistency or convergence) whose tolerance exceeds 5x its measured
+    error says why in its tolerance source ("why: ..."), except the checks listed above
+    (known, reported debt)."""
     from wheelrail.validation._core import LOOSE_MARGIN
 
     report, _ = quick
     loose = {r.check for r in report.rows
-             if r.is_validation and r.status == "passed" and r.margin > LOOSE_MARGIN
+             if r.status == "passed" and r.margin > LOOSE_MARGIN
              and "why:" not in r.tolerance_source}
     assert loose <= LOOSE_WITHOUT_REASON, sorted(loose - LOOSE_WITHOUT_REASON)

@@ -203,7 +203,10 @@ def bem_convergence(quick):
                      figure=fig, kind="convergence", **kw),
             band_row("bem", ref, "observed order of the p_max error", q_p, 2.0, 1.5, 3.0,
                      kind="convergence", **kw),
-            abs_row("bem", ref, f"approach error at {ns[-1]} elements", e_d[-1], 0.0, 1e-3, **kw)]
+            abs_row("bem", ref, f"approach error at {ns[-1]} elements", e_d[-1], 0.0,
+                    1.1e-4 if quick else 2.3e-5,
+                    **dict(kw, tolerance_source="measured 2.4e-5 at 80 elements (quick), 5.0e-6 "
+                           "at 160 (full); 4.6x that"))]
 
 
 # --------------------------------------------------------------------------- non-Hertzian
@@ -244,11 +247,30 @@ def nonhertz_vs_hertz(quick):
                       "(exact, 1e-14, at a/b <= 1); tolerance 2 %",
               "p_max": "Sauvage's split into 3-4 ellipses at a/b >= 2 lowers p_max by up to "
                        "0.04 % (exact, 1e-14, at a/b <= 1); tolerance 0.1 %"}
+    # the other two variants, measured the same way: exact (1e-14) at a/b <= 1; at a/b = 2
+    # and 5 "sauvage-half" (h1 = delta/2) splits into 6 ellipses, summed area 3.0 / 3.3 % off,
+    # p_max 0.09 / 0.10 % low; "pascal" merges those into one equivalent ellipse with the
+    # same area, p_max 2.9 / 3.2 % low
+    half = "Sauvage's split with h1 = delta/2 into 6 ellipses at a/b >= 2: "
+    mh_src.update({
+        "half-area": half + "summed area 3.0 / 3.3 % off at a/b = 2 / 5 (exact, 1e-14, at a/b "
+                            "<= 1); tolerance 4 %",
+        "half-p_max": half + "p_max 0.09 / 0.10 % low at a/b = 2 / 5; tolerance 0.15 %",
+        "pascal-area": "Pascal's equivalent ellipse of the 6 ellipses of 'sauvage-half' at "
+                       "a/b >= 2: area 3.0 / 3.3 % off at a/b = 2 / 5 (exact, 1e-14, at a/b "
+                       "<= 1); tolerance 4 %",
+        "pascal-p_max": "Pascal's equivalent ellipse at a/b >= 2: p_max 2.9 / 3.2 % low at "
+                        "a/b = 2 / 5; tolerance 4 %"})
     tols = {"kik-piotrowski": (0.005, 0.005, strip_src, strip_src),
             "stripes": (0.005, 0.005, strip_src, strip_src),
-            "multi-hertz": (0.02, 0.001, mh_src["area"], mh_src["p_max"])}
+            "multi-hertz (sauvage)": (0.02, 0.001, mh_src["area"], mh_src["p_max"]),
+            "multi-hertz (sauvage-half)": (0.04, 0.0015, mh_src["half-area"],
+                                           mh_src["half-p_max"]),
+            "multi-hertz (pascal)": (0.04, 0.04, mh_src["pascal-area"], mh_src["pascal-p_max"])}
     for name, variant in (("kik-piotrowski", {}), ("stripes", {}),
-                          ("multi-hertz", {"variant": "sauvage"})):
+                          ("multi-hertz", {"variant": "sauvage"}),
+                          ("multi-hertz", {"variant": "sauvage-half"}),
+                          ("multi-hertz", {"variant": "pascal"})):
         area, pmax, carea, cp0 = [], [], [], []
         for ab in ratios:
             c = _hertz_contact(ab)
@@ -263,7 +285,7 @@ def nonhertz_vs_hertz(quick):
         src = {"kik-piotrowski": "PiotrowskiChollet2005,Hertz1882",
                "stripes": "AyasseChollet2005,Hertz1882",
                "multi-hertz": "PiotrowskiChollet2005,Hertz1882"}[name]
-        ta, tp, sa, sp = tols[name]
+        ta, tp, sa, sp = tols[label]
         kw = dict(source=src, reference_method="hertz")
         rows += [max_row(name, ref, f"{label}: area, a/b in {ratios}", area, carea, ta,
                          tolerance_source=sa, **kw),
@@ -280,7 +302,10 @@ def nonhertz_vs_hertz(quick):
     kw = dict(source="Linder1997,PiotrowskiChollet2005", reference_method="hertz",
               tolerance_source=("band of the delta0 = 0.55 delta methods, "
                                 "tests/reference/test_nonhertz_hertzian_gap.py::"
-                                "test_original_factor_is_biased; Piotrowski & Chollet (2005) §3.1"))
+                                "test_original_factor_is_biased; Piotrowski & Chollet (2005) §3.1; "
+                                "why: the constant factor 0.55 is a model bias, not an error that "
+                                "converges; the band is its documented range (measured 1.067 and "
+                                "0.859, near the bands' lower ends, so the rows can fail)"))
     ref = "Hertz closed form; bias of the constant penetration factor 0.55 (Piotrowski & Chollet (2005) §3.1)"
     rows += [band_row("linder", ref, f"area / Hertz area, worst of a/b in {ratios}",
                       max(ar, key=lambda v: abs(v - 1.125)), 1.1, 1.05, 1.2, **kw),
@@ -373,7 +398,9 @@ def influence_vs_closed_forms(quick):
     ux = (1 + nu) / (2 * np.pi * E * r) * (2 * (1 - nu) + 2 * nu * x**2 / r**2)
     uy = (1 + nu) / (2 * np.pi * E * r) * 2 * nu * x * y / r**2
     kw = dict(source="Johnson1985",
-              tolerance_source="tests/unit/test_halfspace_influence.py (rel 1e-14; here 1e-12)")
+              tolerance_source="tests/unit/test_halfspace_influence.py (rel 1e-14; here 1e-12); "
+                               "why: closed forms on both sides (measured 0 ... 2.2e-16): a "
+                               "round-off bound, a wrong formula would be off by 1e-3 or more")
     ref = "Boussinesq/Cerruti point load, Johnson (1985) §3.2 (two identical bodies)"
     rows = [rel_row("halfspace", ref, "normal displacement of a normal point load", A[2, 2],
                     2 * uz, 1e-12, **kw),

@@ -47,7 +47,7 @@ def transient_steady(quick):
     err = np.abs(res.px[-1] - st.px).max() / np.abs(st.px).max()
     ref = "steady rolling, exact theory on the same grid (Kalker 1990 §5.2; Baeza et al. eq. 2.19)"
     tsrc = "tests/reference/test_transient_steady.py"
-    bound = ("tests/reference/test_transient_steady.py; the bound the solver tolerances "
+    bound = ("tests/reference/test_transient_steady.py; why: the bound the solver tolerances "
              "guarantee (slip residual 1e-8 per step, steady reference 1e-10), not the "
              "measurement: the run ends on the steady fixed point (settle), measured ~1e-9")
     rows += [abs_row("transient", ref, "max traction difference / max abs(px) after 20 a, 12 el.",
@@ -64,8 +64,8 @@ def transient_steady(quick):
     sh = solve_shift(g2, pn2, wr.STEEL, MU, shift=(h * xi, h * eta), tol=1e-10)
     rows.append(rel_row("transient", "Cattaneo shift problem on the same grid (Baeza et al. §3.1)",
                         "Fy after the first step from rest, 10 el., scheme='centre'", r1.Fy[1], sh.Fy, 1e-6,
-                        tolerance_source=tsrc + " (the step is solved to 1e-8, the shift problem "
-                        "to 1e-10: a bound, measured 2e-9)", **kw))
+                        tolerance_source=tsrc + " (why: the step is solved to 1e-8, the shift "
+                        "problem to 1e-10: a bound, measured 2e-9)", **kw))
     # Cattaneo to Carter: final creepage for a prescribed force
     n3 = 10
     g3, gap3 = hertz_grid(hc, elements=n3)
@@ -80,7 +80,7 @@ def transient_steady(quick):
     rows.append(rel_row("transient", "steady exact theory at the same force (Baeza et al. §3.1, "
                         "'Cattaneo to Carter')", "final xi for Fx = 2 kN, 10 el.", r3.xi[-1],
                         xi_steady, 1e-4, tolerance_source=(
-                            "the run ends on the steady fixed point to the solver tolerances "
+                            "why: the run ends on the steady fixed point to the solver tolerances "
                             "(force 1e-7 mu Fn, slip 1e-8: measured 2e-6 when stepping "
                             "through, 1e-10 with the direct steady end state, settle=); "
                             "issue 22: 1 % could "
@@ -239,14 +239,29 @@ def fe_rolling(quick):
 LAM, R_RAIL, R0 = 1.0 / 20.0, 0.3, 0.46
 
 
+#: the cone case's wheelset and track data (EN 13715 wheel frame: tape circle 70 mm from the
+#: flange back; flange-back distance 1360 mm; gauge 1435 mm measured 1 mm below the top)
+FLANGE_BACK, TAPE_OFFSET, GAUGE, GAUGE_HEIGHT = 1.360, 0.070, 1.435, 0.001
+
+
 def _cone_case(inclination):
     wr = _wr()
     s = np.linspace(-0.05, 0.06, 221)
     wheel = wr.Profile(s, LAM * s, kind="wheel", name="cone 1:20")
     y = np.linspace(-0.035, 0.035, 281)
     rail = wr.Profile(y, np.sqrt(R_RAIL**2 - y * y) - R_RAIL, kind="rail", name="circle R0.3")
-    return (wr.Wheelset(wheel, nominal_radius=R0),
-            wr.Track(rail, inclination=inclination, gauge_height=0.001))
+    return (wr.Wheelset(wheel, nominal_radius=R0, flange_back=FLANGE_BACK,
+                        tape_circle_offset=TAPE_OFFSET),
+            wr.Track(rail, gauge=GAUGE, inclination=inclination, gauge_height=GAUGE_HEIGHT))
+
+
+def circle_rail_centre(gauge=GAUGE, gauge_height=GAUGE_HEIGHT, R=R_RAIL):
+    """Side-local position (U, Z) of the centre of a circular rail head, from the track data
+    alone (no library object): the rail, inclined by any angle about its profile origin, is
+    lifted so that its top is at z = 0, which puts the centre at Z = -R whatever the
+    inclination; its gauge point, ``gauge_height`` below the top on the track side, lies
+    sqrt(R^2 - (R - gauge_height)^2) inside the centre and at gauge/2 from the track centre."""
+    return 0.5 * gauge + np.sqrt(R * R - (R - gauge_height) ** 2), -R
 
 
 def cone_tangency(ws, tr, y, lam=LAM):
@@ -255,17 +270,17 @@ def cone_tangency(ws, tr, y, lam=LAM):
 
     The contact point is where the rolled generatrix is tangent to the circle; both
     tangency conditions are linear in the axle height, so the roll angle follows from
-    one scalar equation (brentq). Returns the roll [rad], the height ``z`` [m], per
-    side the wheel coordinate ``s``, contact angle ``gamma``, rolling radius ``r`` and
-    rail coordinate ``u`` of the tangent point [m], and ``delta_r`` [m].
+    one scalar equation (brentq). The rail's centre comes from :func:`circle_rail_centre`
+    and the tape circles from the flange-back distance and the tape-circle offset: only
+    the input data of ``ws`` and ``tr`` are read (gauge, gauge height, flange back, tape
+    offset, nominal radius), none of their derived placements. Returns the roll [rad], the
+    height ``z`` [m], per side the wheel coordinate ``s``, contact angle ``gamma``, rolling
+    radius ``r`` and rail coordinate ``u`` of the tangent point [m], and ``delta_r`` [m].
     """
     from scipy.optimize import brentq
 
-    pl = tr.placement("right")
-    a = tr.cant_angle
-    Uc = pl.offset + R_RAIL * np.sin(a)
-    Zc = -R_RAIL * np.cos(a) - pl.z_top
-    e, r0 = ws.e_tape, ws.nominal_radius
+    Uc, Zc = circle_rail_centre(tr.gauge, tr.gauge_height)
+    e, r0 = 0.5 * ws.flange_back + ws.tape_circle_offset, ws.nominal_radius
 
     def zc_side(th, sign):
         yy, tt = sign * y, sign * th
@@ -293,11 +308,10 @@ def cone_tangency(ws, tr, y, lam=LAM):
 def geometry_cone(quick):
     wr = _wr()
     rows = []
-    kw = dict(source="Bosso2013",
-              tolerance_source="tests/reference/test_geometry_cone.py; why: an exact "
-                               "comparison (closed-form tangency against the search converged "
-                               "to round-off, measured 3e-16 ... 5e-8): the tolerances are "
-                               "round-off bounds, not error estimates")
+    kw = dict(source="Bosso2013")
+    src = ("tests/reference/test_geometry_cone.py; the rail placed from the gauge data in "
+           "the reference (circle_rail_centre), not read from the Track; the search on the "
+           "spline of the sampled profiles against the exact circle and cone: measured ")
     ref = "closed-form tangency of a 1:20 cone on R 300 mm rail heads (Bosso et al. (2013), ch. 2 eqs. 2.1-2.3)"
     ys = (-0.005, 0.0, 0.0047) if quick else (-0.005, -0.0013, 0.0, 0.002, 0.0047)
     d_roll, d_dr, d_s, d_g = [], [], [], []
@@ -314,17 +328,23 @@ def geometry_cone(quick):
                 d_g.append(abs(pts.contact_angle[0] - ref_v[side]["gamma"]))
     what = f"y = {', '.join(f'{v * 1e3:g}' for v in ys)} mm, inclination 0 and 1:40"
     rows += [abs_row("geometry", ref, f"roll angle [rad], max over {what}", max(d_roll), 0.0,
-                     1e-10, **kw),
+                     1e-12, tolerance_source=src + "5.7e-14 (quick and full); why: the roll "
+                     "is converged to round-off (1e-12 is a round-off bound)", **kw),
              abs_row("geometry", ref, f"rolling-radius difference [m], {what}", max(d_dr), 0.0,
-                     1e-9, **kw),
+                     2.5e-11, tolerance_source=src + "5.4e-12 (quick and full); 5x that",
+                     **kw),
              abs_row("geometry", ref, f"contact point on the wheel [m], {what}", max(d_s), 0.0,
-                     1e-7, **kw),
-             abs_row("geometry", ref, f"contact angle [rad], {what}", max(d_g), 0.0, 1e-7, **kw)]
+                     8e-10, tolerance_source=src + "1.65e-10 quick, 1.78e-10 full; about 5x "
+                     "that", **kw),
+             abs_row("geometry", ref, f"contact angle [rad], {what}", max(d_g), 0.0, 1.9e-9,
+                     tolerance_source=src + "4.0e-10 quick, 4.9e-10 full; 4-5x that",
+                     **kw)]
     # equivalent conicity of the cone: slope of the closed-form delta_r
     ws, tr = _cone_case(0.0)
     lam_eff = cone_tangency(ws, tr, 1e-4)["delta_r"] / 2e-4
     lam_e = wr.equivalent_conicity(ws, tr, 0.003)
     rows.append(rel_row("geometry", "closed-form tangency: slope of delta_r / (2 y) (EN 15302 on "
-                        "a cone)", "equivalent conicity, amplitude 3 mm", lam_e, lam_eff, 1e-4,
-                        **kw))
+                        "a cone)", "equivalent conicity, amplitude 3 mm", lam_e, lam_eff, 2.5e-7,
+                        tolerance_source=src + "5.2e-8 (the closed form's slope at y = 0.1 "
+                        "mm against the fitted conicity at 3 mm); 5x that", **kw))
     return rows
