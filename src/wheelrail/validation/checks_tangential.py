@@ -71,10 +71,10 @@ def _carter_strip_reference(a, b, Fn, mu, G, nu, xi):
     def strip(t):
         w = np.sqrt(1.0 - t * t)
         u = min(abs(xi) / (xs0 * w), 1.0)
-        return mu * 0.5 * np.pi * a * p0 * w * w * (1.0 - (1.0 - u) ** 2) * b
+        return mu * 0.5 * np.pi * a * p0 * w * w * u * (2.0 - u) * b     # 1 - (1 - u)^2
 
     u0 = abs(xi) / xs0
-    pts = [-np.sqrt(1 - u0**2), np.sqrt(1 - u0**2)] if u0 < 1 else None
+    pts = [-np.sqrt(1 - u0**2), np.sqrt(1 - u0**2)] if 1e-3 < u0 < 1 else None
     val, _ = integrate.quad(strip, -1.0, 1.0, points=pts, epsabs=0.0, epsrel=1e-13, limit=200)
     return -np.sign(xi) * val
 
