@@ -50,14 +50,13 @@ from ._motion import (N_IN, derivative, relax_decay, relax_derivative, relax_sta
                       run_fixed, wheel_inputs)
 from .contact import FastContact, contact_model
 from .layout import as_layout
-from ._speed import profile_at, profile_eval
+from ._speed import falls_below, greatest_speed, least_speed, profile_at, profile_eval
 from .model import GP, Assembly, BogieModel, WheelsetModel
-from .speed import SpeedProfile, falls_below, greatest_speed, least_speed
+from .speed import SpeedProfile
 from .results import to_dataset
 from .vehicle import VehicleAssembly, VehicleModel
 
-__all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System", "SpeedProfile",
-           "StepWarning",
+__all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System", "StepWarning",
            "RunWarning", "SimulationInterrupted", "ABSURD"]
 
 #: A fixed step is divided into sub-steps so that RK4 takes the creep damping's shortest

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
-from ._speed import profile_at, profile_eval
+from ._speed import profile_eval
 
 __all__ = ["SpeedProfile"]
 
@@ -231,38 +231,3 @@ class SpeedProfile:
 
     def __repr__(self):
         return (f"SpeedProfile.from_{self.kind}({self.x.tolist()!r}, {self.v.tolist()!r})")
-
-
-# --------------------------------------------------------------------------- helpers on a table
-def least_speed(SP, t0, t1):
-    """Least speed [m/s] of the table ``SP`` over [t0, t1] (each segment is monotone: the
-    least is at an end or a breakpoint)."""
-    ts = [t0, t1] + [float(t) for t in SP[0] if t0 < t < t1]
-    return min(profile_at(SP, t)[0] for t in ts)
-
-
-def greatest_speed(SP, t0, t1):
-    """Greatest speed [m/s] of the table ``SP`` over [t0, t1]."""
-    ts = [t0, t1] + [float(t) for t in SP[0] if t0 < t < t1]
-    return max(profile_at(SP, t)[0] for t in ts)
-
-
-def falls_below(SP, vmin, t1, held=False):
-    """The first time in [0, t1) at which the speed falls to ``vmin`` while decreasing
-    (with ``held``: or is held at or below it), or None (closed form per segment; 0 for
-    a run that starts at or below ``vmin`` and does not accelerate)."""
-    n = SP.shape[1]
-    for i in range(n):
-        ta = float(SP[0, i])
-        tb = float(SP[0, i + 1]) if i + 1 < n else math.inf
-        if ta >= t1:
-            break
-        v, r, kind = float(SP[1, i]), float(SP[3, i]), float(SP[4, i])
-        if r > 0.0 or (r == 0.0 and not (held and v <= vmin)):
-            continue
-        if v <= vmin:
-            return ta
-        tc = ta + (math.log(vmin / v) / r if kind == 1.0 else (v - vmin) / -r)
-        if tc < tb and tc < t1:
-            return tc
-    return None
