@@ -52,7 +52,7 @@ from .contact import FastContact, contact_model
 from .layout import as_layout
 from ._speed import falls_below, greatest_speed, least_speed, profile_at, profile_eval
 from .model import GP, Assembly, BogieModel, WheelsetModel
-from .speed import SpeedProfile
+from .speed import SpeedProfile, _run_table
 from .results import to_dataset
 from .vehicle import VehicleAssembly, VehicleModel
 
@@ -194,22 +194,7 @@ class System:
             raise InputError(f"deceleration must be finite, got {deceleration!r}")
         if not (isinstance(start, (int, float, np.floating)) and math.isfinite(start)):
             raise InputError(f"start must be a finite position [m], got {start!r}")
-        if isinstance(speed, SpeedProfile):
-            if deceleration != 0:
-                raise InputError(f"deceleration = {deceleration!r} m/s² with a SpeedProfile: "
-                                 f"the profile gives the speed; put the ramp into it")
-            self.profile = speed
-            self.SP = speed.table(float(start))
-        else:
-            rest = deceleration < 0          # accelerating: may start from rest
-            if not (isinstance(speed, (int, float, np.floating)) and math.isfinite(speed)
-                    and (speed > 0 or (rest and speed == 0))):
-                raise InputError(f"speed must be a number > 0 (or 0 with an acceleration, "
-                                 f"deceleration < 0) or a SpeedProfile, got {speed!r}")
-            self.profile = None
-            # a constant acceleration from t = 0: one segment of the profile's table
-            self.SP = np.array([[0.0], [float(speed)], [float(start)], [-float(deceleration)],
-                                [0.0]])
+        self.profile, self.SP = _run_table(speed, deceleration, start)
         #: speed [m/s] and dV/dt [m/s²] at t = 0
         self.speed = float(self.SP[1, 0])
         self.aV = float(self.SP[3, 0])

@@ -231,3 +231,20 @@ class SpeedProfile:
 
     def __repr__(self):
         return (f"SpeedProfile.from_{self.kind}({self.x.tolist()!r}, {self.v.tolist()!r})")
+
+
+def _run_table(speed, deceleration, start):
+    """(profile or None, its table for a run at ``start`` at t = 0) of ``simulate``'s
+    ``speed`` (a SpeedProfile, or a float with a constant ``deceleration``: one segment)."""
+    if isinstance(speed, SpeedProfile):
+        if deceleration != 0:
+            raise InputError(f"deceleration = {deceleration!r} m/s² with a SpeedProfile: the "
+                             f"profile gives the speed; put the ramp into it")
+        return speed, speed.table(float(start))
+    rest = deceleration < 0          # accelerating: may start from rest
+    if not (isinstance(speed, (int, float, np.floating)) and math.isfinite(speed)
+            and (speed > 0 or (rest and speed == 0))):
+        raise InputError(f"speed must be a number > 0 (or 0 with an acceleration, "
+                         f"deceleration < 0) or a SpeedProfile, got {speed!r}")
+    return None, np.array([[0.0], [float(speed)], [float(start)], [-float(deceleration)],
+                           [0.0]])
