@@ -262,6 +262,30 @@ def test_case_file_speed_profile(tmp_path):
     assert p.kind == "time" and p.position(2.0) == pytest.approx(3.0)
 
 
+def test_cli_dynamics_runs_a_speed_profile(tmp_path):
+    """``wheelrail dynamics`` with a profile against distance: the summary and result.nc
+    report the speed V = 40 e^{−0.1 t} (40 → 30 m/s over 100 m, g = −0.1 1/s)."""
+    import json
+
+    import xarray as xr
+
+    from wheelrail.cli.main import main
+
+    case = _case(tmp_path, "speed_profile = {distance = [0.0, 100.0], speed = [40.0, 30]}")
+    out = tmp_path / "out"
+    assert main(["dynamics", str(case), "--out", str(out), "--duration", "0.05",
+                 "--no-figures", "--no-progress"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["speed_max_m_s"] == pytest.approx(40.0, rel=1e-12)
+    assert summary["speed_min_m_s"] == pytest.approx(40.0 * math.exp(-0.005), rel=1e-12)
+    with xr.open_dataset(out / "result.nc") as ds:
+        assert ds.attrs["speed_profile"].startswith("SpeedProfile.from_distance([0.0, 100.0]")
+        t = ds["time"].values
+        np.testing.assert_allclose(ds["speed"].values, 40.0 * np.exp(-0.1 * t), rtol=1e-12)
+        np.testing.assert_allclose(ds["position"].values, 400.0 * (1 - np.exp(-0.1 * t)),
+                                   rtol=1e-12, atol=1e-12)
+
+
 @pytest.mark.parametrize("lines, match", [
     ("speed_profile = {distance = [0.0, 100.0], speed = [40.0, -1]}",
      r"\[simulation.speed_profile\]: SpeedProfile.from_distance: v\[1\] = -1.0"),

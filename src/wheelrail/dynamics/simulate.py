@@ -977,6 +977,8 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     if isinstance(integ, FixedStep):
         info["substeps"] = int(getattr(system, "substeps_max", 1))
     info["interrupted"] = int(bool(system.interrupted))
+    if system.profile is not None:
+        info["speed_profile"] = repr(system.profile)
     info["estimated_cpu_time"] = float(getattr(system, "estimate_seconds", math.nan))
     info["derailment"] = nadal_check(system, T, OW)
     speed_t, accel, pos = np.empty(T.shape), np.empty(T.shape), np.empty(T.shape)
