@@ -48,12 +48,12 @@ from ._guards import (ABSURD, MIN_RADIUS, RunWarning, SimulationInterrupted, che
                       check_states, estimate, nadal_check)
 from ._motion import (N_IN, derivative, relax_decay, relax_derivative, relax_stage, rhs_fast,
                       run_fixed, wheel_inputs)
+from ._speed import falls_below, greatest_speed, least_speed, profile_at, profile_eval
 from .contact import FastContact, contact_model
 from .layout import as_layout
-from ._speed import falls_below, greatest_speed, least_speed, profile_at, profile_eval
 from .model import GP, Assembly, BogieModel, WheelsetModel
-from .speed import SpeedProfile, _run_table
 from .results import to_dataset
+from .speed import SpeedProfile, _run_table
 from .vehicle import VehicleAssembly, VehicleModel
 
 __all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System", "StepWarning",
@@ -831,6 +831,7 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
         the distance along the track, integrated exactly; its acceleration acts in
         the inertia terms; a profile against distance is read at the track
         position ``start`` at t = 0).
+    duration : float
         Simulated time [s].
     normal, tangential : str or configured method
         Any normal method × creep-force law of the library, by name or as a
