@@ -140,6 +140,18 @@ def test_profile_run_equals_the_constant_deceleration_run(cone):
     np.testing.assert_allclose(ref.speed, run.speed, atol=1e-12)
 
 
+def test_vehicle_profile_run_equals_the_constant_deceleration_run():
+    """The Manchester vehicle (car body on two bogies) braking at 1.5 m/s² from 30 m/s."""
+    model = D.manchester_vehicle1()
+    track = wr.Track(wr.profiles.load("60E1"))
+    kw = dict(normal="hertz", tangential=wr.tangential.Fastsim(nx=10),
+              initial={"ws0.y": 0.003})
+    ref = D.simulate(model, track, 30.0, 0.02, deceleration=1.5, **kw)
+    run = D.simulate(model, track, SP.from_time([0.0, 2.0], [30.0, 27.0]), 0.02, **kw)
+    np.testing.assert_allclose(run.states, ref.states, rtol=0, atol=1e-10)
+    np.testing.assert_allclose(run.speed, 30.0 - 1.5 * run.t, atol=1e-12)
+
+
 def test_generic_path_follows_the_profile_and_its_acceleration(cone):
     """The library's contact path: a profile equals the deceleration run's right-hand side
     (1e-10); at equal speed and position, the acceleration a adds −a κ to the yaw
