@@ -34,8 +34,8 @@ _MODEL_KEYS = ("kind", "wheel", "rail", "gauge", "inclination", "nominal_radius"
 _SUSPENSION_KEYS = ("kx", "ky", "kz", "cx", "cy", "cz", "half_spacing")
 _RAIL_KEYS = ("lateral_stiffness", "vertical_stiffness", "lateral_damping", "vertical_damping",
               "mass")
-_SIM_KEYS = ("speed", "duration", "integrator", "step", "output_step", "initial", "start",
-             "deceleration", "creep_relaxation")
+_SIM_KEYS = ("speed", "speed_profile", "duration", "integrator", "step", "output_step",
+             "initial", "start", "deceleration", "creep_relaxation")
 
 
 def add_arguments(p) -> None:
@@ -252,6 +252,9 @@ def read_dynamics_case(path_or_str):
         mu = 0.3
         [simulation]
         speed = 30.0                 # [m/s] (0: from rest, with deceleration < 0)
+                                     # or speed_profile = {distance = [...] (track position
+                                     #   [m]) or time = [...] ([s], from 0), speed = [...]
+                                     #   [m/s]}: piecewise linear (instead of speed)
         duration = 2.0               # [s]
         integrator = "rk4"           # "rk4" / "heun" (fixed step = step) or a solve_ivp method
         step = 1e-3
@@ -278,7 +281,7 @@ def read_dynamics_case(path_or_str):
     mu = read_friction(r, data)
     s = _table(r, data, "simulation", required=True)
     r.unknown("simulation", s, _SIM_KEYS)
-    sim = {"speed": r.number("simulation", s, "speed", lo=0.0),
+    sim = {"speed": _read_speed(r, s),
            "duration": r.number("simulation", s, "duration", positive=True),
            "start": r.number("simulation", s, "start", default=0.0),
            "deceleration": r.number("simulation", s, "deceleration", default=0.0)}
@@ -302,6 +305,41 @@ def read_dynamics_case(path_or_str):
     sim["creep_relaxation"] = cr
     return {"model": model, "layout": layout, "normal": normal, "tangential": tangential,
             "mu": mu, "simulate": sim, "source": source}
+
+
+def _read_speed(r, s):
+    """``speed`` [m/s] or ``speed_profile = {distance|time = [...], speed = [...]}`` of the
+    [simulation] table: a float or a :class:`~wheelrail.dynamics.SpeedProfile`."""
+    from ..dynamics import SpeedProfile
+    from ._vehicle_case import _list
+
+    if "speed_profile" not in s:
+        return r.number("simulation", s, "speed", lo=0.0)
+    for k in ("speed", "deceleration"):
+        if k in s:
+            r.fail("simulation", k, "given with speed_profile (the profile gives the speed)")
+    p = s["speed_profile"]
+    table = "simulation.speed_profile"
+    if not isinstance(p, Mapping):
+        r.fail("simulation", "speed_profile", f"must be a table {{distance = [...], speed = "
+                                             f"[...]}} or {{time = [...], speed = [...]}}, "
+                                             f"got {p!r}")
+    r.unknown(table, p, ("distance", "time", "speed"))
+    if ("distance" in p) == ("time" in p):
+        r.fail(table, None, "give either distance = [...] (track positions [m]) or time = "
+                            "[...] ([s]), with speed = [...] [m/s]")
+    key = "distance" if "distance" in p else "time"
+    x, v = _list(r, table, p, key), _list(r, table, p, "speed")
+    make = SpeedProfile.from_distance if key == "distance" else SpeedProfile.from_time
+    return _construct(r, table, lambda: make(x, v))
+
+
+def _speed_text(speed):
+    """The run's speed for the console: ``30 m/s`` or the profile's range."""
+    if isinstance(speed, (int, float)):
+        return f"V = {speed:g} m/s"
+    return (f"V = {min(speed.v):g}–{max(speed.v):g} m/s (profile against "
+            f"{speed.kind}, {len(speed.v)} points)")
 
 
 # --------------------------------------------------------------------------- figures
@@ -427,7 +465,7 @@ def run(args, console) -> int:
     model = case["model"]
     console.print(f"dynamics: {type(model).__name__} ({model.n_wheelsets} wheelset(s)), "
                   f"{case['normal'].name} × {case['tangential'].name}, μ = {case['mu']:g}, "
-                  f"V = {sim['speed']:g} m/s, {sim['duration']:g} s, {sim['integrator']!r}")
+                  f"{_speed_text(sim['speed'])}, {sim['duration']:g} s, {sim['integrator']!r}")
     if not _kernels_cached():
         console.print("first run: compiling the dynamics kernels (about 50 s on a 2-core "
                       "machine, once; later runs load them from the cache)")
@@ -454,6 +492,9 @@ def run(args, console) -> int:
                "max_Y_over_Q": float(np.nanmax(np.abs(yq.values))),
                "max_lateral_shift_m": float(np.max(np.abs(ds["y"].values))),
                "contact_changes": len(res.events),
+               "speed_min_m_s": float(np.min(res.speed)),
+               "speed_max_m_s": float(np.max(res.speed)),
+               "distance_m": float(res.position[-1] - res.position[0]),
                "interrupted": bool(res.info.get("interrupted")),
                "derailment": res.info.get("derailment"),
                "substeps": res.info.get("substeps", 1),

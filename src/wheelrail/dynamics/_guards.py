@@ -121,9 +121,9 @@ def _eval_cost(system, x0, compiled, n=20):
         dx = np.empty_like(x0)
         for _ in range(n):
             t0 = time.process_time()
-            rhs_fast(0.0, x0, system.asm.P, system.layout.arrays, system.speed, system.aV,
-                     system.start, system.min_speed, c.geometry["left"], c.geometry["right"],
-                     c.method, system.mu, system.OP, system.OW, dx)
+            rhs_fast(0.0, x0, system.asm.P, system.layout.arrays, system.SP, system.min_speed,
+                     c.geometry["left"], c.geometry["right"], c.method, system.mu, system.OP,
+                     system.OW, dx)
             times.append(time.process_time() - t0)
     else:
         for _ in range(max(3, n // 4)):
@@ -142,7 +142,7 @@ def estimate(system, x0, duration, integ, out_dt):
     # kernel directly where the run's loop is compiled)
     per_eval = _eval_cost(system, x0, compiled=hasattr(integ, "dt") and system.fast)
     if hasattr(integ, "dt"):
-        n_sub, _, _ = system.substeps(0.0, x0, integ.dt)
+        n_sub = system.mean_substeps(x0, integ.dt, duration)
         steps = duration / integ.dt * n_sub
         evals = steps * (4 if integ.scheme == "rk4" else 2)
         what = (f"dynamics run of {duration:.6g} s ({steps:.3g} {integ.scheme} steps of "

@@ -40,6 +40,7 @@ from numba import njit
 
 from ._fastcontact import wheel_contact
 from ._relaxation import relax_derivative, relax_gains
+from ._speed import profile_at
 from ._vehicle_motion import vehicle_derivative
 from .model import GP, NGP, NWP, WP
 
@@ -406,14 +407,16 @@ def _split(OW, Qn, Qt, amean, relax, x, ox):
 
 
 @njit(cache=True)
-def rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
+def rhs_fast(t, x, P, L, SP, vmin, geo_l, geo_r, meth, mu, OP, OW, dx):
     """State derivative with the compiled contact of every wheel (see ``wheel_contact``).
 
-    ``OP`` (n_ws, 2, KMAX, fields) and ``OW`` (n_ws, 2, fields) receive the contact
-    outputs. Returns the total number of patches.
+    ``SP`` (5, n) is the run's speed profile (:func:`~wheelrail.dynamics._speed.profile_at`:
+    speed V, dV/dt and position of the reference at ``t``), the speed floored at
+    ``vmin`` in the kinematics. ``OP`` (n_ws, 2, KMAX, fields) and ``OW`` (n_ws, 2,
+    fields) receive the contact outputs. Returns the total number of patches.
     """
-    V = max(V0 + aV * t, vmin)
-    s_ref = s0 + V0 * t + 0.5 * aV * t * t
+    V, aV, s_ref = profile_at(SP, t)
+    V = max(V, vmin)
     nw = int(P[_G_NWS])
     W = np.empty((nw, 2, N_IN))
     wheel_inputs(t, x, P, L, V, s_ref, W)
@@ -466,7 +469,7 @@ def _signature(OW, sig):
 
 
 @njit(cache=True)
-def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu,
+def run_fixed(x0, t0, dt, nsteps, every, P, L, SP, vmin, geo_l, geo_r, meth, mu,
               scheme, max_halvings, T_out, X_out, OP_out, OW_out, events):
     """Fixed-step explicit integration with the compiled contact (real-time path).
 
@@ -517,7 +520,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
     Eh = np.empty(nr)
     Ef = np.empty(nr)
     t = t0
-    rhs_fast(t, x, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OP, OW, k1)
+    rhs_fast(t, x, P, L, SP, vmin, geo_l, geo_r, meth, mu, OP, OW, k1)
     nev = 1
     _signature(OW, sig)
     nout = 0
@@ -537,7 +540,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
             # one step from (t, x) with slope k1; the relaxation states by the exact
             # exponential update over each stage (stiff: time constant L/V)
             if relax:
-                Vt = max(V0 + aV * t, vmin)
+                Vt = max(profile_at(SP, t)[0], vmin)
                 relax_decay(P, Vt, OW, 0.5 * hh, Eh)
                 relax_decay(P, Vt, OW, hh, Ef)
                 _steady_forces(OW, F1)
@@ -546,7 +549,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
                     xt[j] = x[j] + 0.5 * hh * k1[j]
                 if relax:
                     relax_stage(xt, x, F1, Eh, ox)
-                rhs_fast(t + 0.5 * hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn,
+                rhs_fast(t + 0.5 * hh, xt, P, L, SP, vmin, geo_l, geo_r, meth, mu, OPn,
                          OWn, k2)
                 if relax:
                     _steady_forces(OWn, F2)
@@ -554,7 +557,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
                     xt[j] = x[j] + 0.5 * hh * k2[j]
                 if relax:
                     relax_stage(xt, x, F2, Eh, ox)
-                rhs_fast(t + 0.5 * hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn,
+                rhs_fast(t + 0.5 * hh, xt, P, L, SP, vmin, geo_l, geo_r, meth, mu, OPn,
                          OWn, k3)
                 if relax:
                     _steady_forces(OWn, F3)
@@ -562,7 +565,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
                     xt[j] = x[j] + hh * k3[j]
                 if relax:
                     relax_stage(xt, x, F3, Ef, ox)
-                rhs_fast(t + hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
+                rhs_fast(t + hh, xt, P, L, SP, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
                          k4)
                 for j in range(n):
                     xn[j] = x[j] + hh / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j])
@@ -577,7 +580,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
                     xt[j] = x[j] + hh * k1[j]
                 if relax:
                     relax_stage(xt, x, F1, Ef, ox)
-                rhs_fast(t + hh, xt, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
+                rhs_fast(t + hh, xt, P, L, SP, vmin, geo_l, geo_r, meth, mu, OPn, OWn,
                          k2)
                 for j in range(n):
                     xn[j] = x[j] + 0.5 * hh * (k1[j] + k2[j])
@@ -587,7 +590,7 @@ def run_fixed(x0, t0, dt, nsteps, every, P, L, V0, aV, s0, vmin, geo_l, geo_r, m
                         F1[j] = 0.5 * (F1[j] + F2[j])
                     relax_stage(xn, x, F1, Ef, ox)
                 nev += 1
-            rhs_fast(t + hh, xn, P, L, V0, aV, s0, vmin, geo_l, geo_r, meth, mu, OPn, OWn, kn)
+            rhs_fast(t + hh, xn, P, L, SP, vmin, geo_l, geo_r, meth, mu, OPn, OWn, kn)
             nev += 1
             for j in range(2 * nw):
                 sign[j] = sig[j]

@@ -48,10 +48,12 @@ from ._guards import (ABSURD, MIN_RADIUS, RunWarning, SimulationInterrupted, che
                       check_states, estimate, nadal_check)
 from ._motion import (N_IN, derivative, relax_decay, relax_derivative, relax_stage, rhs_fast,
                       run_fixed, wheel_inputs)
+from ._speed import falls_below, greatest_speed, least_speed, profile_at, profile_eval
 from .contact import FastContact, contact_model
 from .layout import as_layout
 from .model import GP, Assembly, BogieModel, WheelsetModel
 from .results import to_dataset
+from .speed import SpeedProfile, _run_table
 from .vehicle import VehicleAssembly, VehicleModel
 
 __all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System", "StepWarning",
@@ -150,13 +152,15 @@ class System:
     ----------
     model : WheelsetModel, BogieModel or VehicleModel
     track : Track or TrackLayout
-    speed : float
-        Speed at t = 0 [m/s].
+    speed : float or SpeedProfile
+        Speed at t = 0 [m/s], or the speed over the run
+        (:class:`~wheelrail.dynamics.SpeedProfile`, its table in ``SP``).
     normal, tangential : str or configured method
     mu : float
         Friction coefficient.
     deceleration : float
-        dV/dt = −deceleration [m/s²] (a speed ramp), the speed floored at ``min_speed``.
+        dV/dt = −deceleration [m/s²] (a speed ramp) with a float ``speed``. The
+        speed of the kinematics is floored at ``min_speed``.
     creep_relaxation : bool or float
         First-order relaxation of the creep forces (time constant a/V, or
         ``creep_relaxation`` · a/V for a number).
@@ -188,15 +192,16 @@ class System:
         if not (isinstance(deceleration, (int, float, np.floating))
                 and math.isfinite(deceleration)):
             raise InputError(f"deceleration must be finite, got {deceleration!r}")
-        rest = deceleration < 0          # accelerating: may start from rest
-        if not (isinstance(speed, (int, float, np.floating)) and math.isfinite(speed)
-                and (speed > 0 or (rest and speed == 0))):
-            raise InputError(f"speed must be a number > 0 (or 0 with an acceleration, "
-                             f"deceleration < 0), got {speed!r}")
-
-        self.speed = float(speed)
+        if not (isinstance(start, (int, float, np.floating)) and math.isfinite(start)):
+            raise InputError(f"start must be a finite position [m], got {start!r}")
+        self.profile, self.SP = _run_table(speed, deceleration, start)
+        #: speed [m/s] and dV/dt [m/s²] at t = 0
+        self.speed = float(self.SP[1, 0])
+        self.aV = float(self.SP[3, 0])
+        if self.profile is not None and not (self.speed > 0 or self.aV > 0):
+            raise InputError(f"the speed profile starts at {self.speed!r} m/s and does not "
+                             f"accelerate: the run stands still")
         self.mu = float(mu)
-        self.aV = -float(deceleration)
         self.start = float(start)
         self.min_speed = float(min_speed)
         if not (isinstance(creep_relaxation, (bool, np.bool_)) or (
@@ -218,10 +223,20 @@ class System:
 
     # ---------------------------------------------------------------- evaluation
     def V(self, t):
-        return max(self.speed + self.aV * t, self.min_speed)
+        """Speed of the kinematics at ``t`` [m/s] (floored at ``min_speed``)."""
+        return max(profile_at(self.SP, float(t))[0], self.min_speed)
+
+    def dVdt(self, t):
+        """dV/dt of the run at ``t`` [m/s²]."""
+        return profile_at(self.SP, float(t))[1]
 
     def s_ref(self, t):
-        return self.start + self.speed * t + 0.5 * self.aV * t * t
+        """Position of the reference along the track at ``t`` [m]."""
+        return profile_at(self.SP, float(t))[2]
+
+    def least_speed(self, t0, t1):
+        """Least speed of the kinematics over [t0, t1] [m/s] (floored at ``min_speed``)."""
+        return max(least_speed(self.SP, float(t0), float(t1)), self.min_speed)
 
     def rhs(self, t, x):
         """dx/dt at (t, x); the contact outputs of this evaluation in ``OP``, ``OW``."""
@@ -230,9 +245,9 @@ class System:
         self.n_eval += 1
         if self.fast:
             c = self.contact
-            rhs_fast(float(t), x, self.asm.P, self.layout.arrays, self.speed, self.aV,
-                     self.start, self.min_speed, c.geometry["left"], c.geometry["right"],
-                     c.method, self.mu, self.OP, self.OW, dx)
+            rhs_fast(float(t), x, self.asm.P, self.layout.arrays, self.SP, self.min_speed,
+                     c.geometry["left"], c.geometry["right"], c.method, self.mu, self.OP,
+                     self.OW, dx)
             if c.table_raise and np.any(self.OW[..., _W["fallbacks"]] > 0):
                 c._raise_outside(self.OW)
         else:
@@ -242,9 +257,10 @@ class System:
 
     def _generic(self, t, x, dx):
         nw = self.asm.n_ws
-        V = self.V(t)
+        V, aV, s_ref = profile_at(self.SP, float(t))
+        V = max(V, self.min_speed)
         W = np.empty((nw, 2, N_IN))
-        wheel_inputs(float(t), x, self.asm.P, self.layout.arrays, V, self.s_ref(t), W)
+        wheel_inputs(float(t), x, self.asm.P, self.layout.arrays, V, s_ref, W)
         for i in range(nw):
             for side, name in enumerate(("left", "right")):
                 w = W[i, side]
@@ -255,12 +271,12 @@ class System:
         if self.asm.P[GP["relax"]] > 0:
             ox = self.asm.off_relax
             Qr = x[ox:ox + 10 * nw].reshape(nw, 2, 5).copy()
-            derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
-                       Qn, Qr, am, dx)
+            derivative(float(t), x, self.asm.P, self.layout.arrays, V, aV, s_ref, Qn, Qr, am,
+                       dx)
             relax_derivative(x, self.asm.P, V, Qt, am, dx)
         else:
-            derivative(float(t), x, self.asm.P, self.layout.arrays, V, self.aV, self.s_ref(t),
-                       Qn, Qt, am, dx)
+            derivative(float(t), x, self.asm.P, self.layout.arrays, V, aV, s_ref, Qn, Qt, am,
+                       dx)
 
     @contextlib.contextmanager
     def steady(self):
@@ -309,17 +325,39 @@ class System:
             self.rhs(t, x)
         return best, which
 
-    def substeps(self, t, x, dt):
-        """Sub-steps per fixed step ``dt`` for the creep damping at (t, x): (n, rate, name)."""
+    def substeps(self, t, x, dt, span=0.0):
+        """Sub-steps per fixed step ``dt`` for the creep damping over [t, t + span]:
+        (n, rate, name).
+
+        The rate is :meth:`creep_rate` at (t, x) scaled by V(t)/V_least, V_least the
+        least speed over the span (the creep damping rates go as 1/V: the creep
+        forces are f · creepage, the creepages velocity/V).
+        """
         rate, which = self.creep_rate(t, x)
+        V = self.V(t)
+        least = self.least_speed(t, t + span) if span > 0 else V
+        if least < V:
+            rate *= V / least
         n = max(1, int(math.ceil(dt * rate / _TAU_STEPS - 1e-9)))
         if n > _MAX_SUBSTEPS:
             raise InputError(
-                f"at V = {self.V(t):.3g} m/s the creep forces damp the {which} motion with a "
+                f"at V = {least:.3g} m/s the creep forces damp the {which} motion with a "
                 f"time constant of {1.0 / rate:.3g} s: a fixed step of {dt!r} s would need "
                 f"{n} sub-steps (more than {_MAX_SUBSTEPS}); use FixedStep(dt="
                 f"{_TAU_STEPS / rate:.2g}) or an implicit Adaptive('Radau'), or a higher speed")
+        self.substeps_speed = least
         return n, rate, which
+
+    def mean_substeps(self, x0, dt, duration):
+        """Sub-steps per fixed step ``dt`` on average over a run of ``duration`` from x0
+        (refused, as :meth:`substeps`, when the run's least speed needs too many)."""
+        n, rate, _ = self.substeps(0.0, x0, dt, duration)
+        if self.SP.shape[1] == 1 and self.SP[3, 0] == 0.0:
+            return n                                  # constant speed
+        rate0 = rate * self.substeps_speed / self.V(0.0)     # at the speed at t = 0
+        n_t = [max(1, math.ceil(dt * rate0 * self.V(0.0) / self.V(t) / _TAU_STEPS - 1e-9))
+               for t in np.linspace(0.0, duration, 201)]
+        return float(np.mean(n_t))
 
     def signature(self, t, x):
         """Patch count of every wheel at (t, x) (reuses the last evaluation when it is there)."""
@@ -553,12 +591,11 @@ def _run_fixed_compiled(system, x0, duration, integ, every, prog):
     while done < nsteps:
         try:
             k = min(chunk, nsteps - done)
-            ns = sub.at(t, x)
+            ns = sub.at(t, x, k * dt)
             To, Xo, OPo, OWo = _outputs(k // every + 2, system)
             ev = np.zeros((1000, 3))
             no, nei, nv, rj = run_fixed(x, t, dt / ns, k * ns, every * ns, system.asm.P,
-                                        system.layout.arrays,
-                                        system.speed, system.aV, system.start, system.min_speed,
+                                        system.layout.arrays, system.SP, system.min_speed,
                                         c.geometry["left"], c.geometry["right"], c.method,
                                         system.mu, scheme, integ.max_halvings, To, Xo, OPo, OWo, ev)
             if c.table_raise and np.any(OWo[:no, ..., _W["fallbacks"]] > 0):
@@ -599,16 +636,17 @@ class _Substeps:
         self.system, self.dt = system, dt
         self.max, self.warned = 1, False
 
-    def at(self, t, x):
-        n, rate, which = self.system.substeps(t, x, self.dt)
+    def at(self, t, x, span=0.0):
+        """Sub-steps for the steps over [t, t + span] (at the least speed there)."""
+        n, rate, which = self.system.substeps(t, x, self.dt, span)
         if n > 1 and not self.warned:
             self.warned = True
             warnings.warn(
-                f"at V = {self.system.V(t):.3g} m/s the creep forces damp the {which} motion "
-                f"with a time constant of {1e3 / rate:.3g} ms, too short for a fixed step of "
-                f"{self.dt * 1e3:g} ms (RK4 is stable to 2.8 time constants): each step is "
-                f"divided into {n} sub-steps (cost ×{n}; FixedStep(dt={self.dt / n:.2g}) "
-                f"would say so at once)", StepWarning, stacklevel=4)
+                f"at V = {self.system.substeps_speed:.3g} m/s the creep forces damp the {which} "
+                f"motion with a time constant of {1e3 / rate:.3g} ms, too short for a fixed "
+                f"step of {self.dt * 1e3:g} ms (RK4 is stable to 2.8 time constants): each "
+                f"step is divided into {n} sub-steps (cost ×{n}; FixedStep(dt="
+                f"{self.dt / n:.2g}) would say so at once)", StepWarning, stacklevel=4)
         self.max = max(self.max, n)
         return n
 
@@ -671,8 +709,9 @@ def _python_steps(system, integ, dt, nsteps, every, sub, P, relax, ox, nr, prog,
             T[nout], X[nout], OP[nout], OW[nout] = t, x, cur[0], cur[1]
             nout += 1
             st["nout"] = nout
-        if step % max(1, int(round(0.05 / dt))) == 0:
-            hcap = dt / sub.at(t, x)
+        every_check = max(1, int(round(0.05 / dt)))
+        if step % every_check == 0:
+            hcap = dt / sub.at(t, x, min(every_check, nsteps - step) * dt)
             system.rhs(t, x)
         hmin = hcap / 2.0 ** integ.max_halvings
         t_end = (step + 1) * dt
@@ -682,8 +721,9 @@ def _python_steps(system, integ, dt, nsteps, every, sub, P, relax, ox, nr, prog,
             Eh, Ef = np.empty(nr), np.empty(nr)
             F1 = None
             if relax:
-                relax_decay(P, system.V(t), cur[1], 0.5 * hh, Eh)
-                relax_decay(P, system.V(t), cur[1], hh, Ef)
+                Vt = system.V(t)
+                relax_decay(P, Vt, cur[1], 0.5 * hh, Eh)
+                relax_decay(P, Vt, cur[1], hh, Ef)
                 F1 = cur[1][..., 6:11].reshape(-1).copy()
             if integ.scheme == "rk4":
                 k2 = system.rhs(t + 0.5 * hh, stage(x + 0.5 * hh * k1, F1, Eh, x))
@@ -785,8 +825,12 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     track : Track or TrackLayout
         A cross-section (tangent track) or a :class:`~wheelrail.dynamics.TrackLayout`
         with curves and an irregularity.
-    speed : float
-        Forward speed at t = 0 [m/s].
+    speed : float or SpeedProfile
+        Forward speed at t = 0 [m/s], or a speed that varies along the run:
+        :class:`~wheelrail.dynamics.SpeedProfile` (piecewise linear in time or in
+        the distance along the track, integrated exactly; its acceleration acts in
+        the inertia terms; a profile against distance is read at the track
+        position ``start`` at t = 0).
     duration : float
         Simulated time [s].
     normal, tangential : str or configured method
@@ -805,7 +849,8 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     start : float
         Position along the track at t = 0 [m].
     deceleration : float
-        Constant deceleration [m/s²] (speed ramp; negative: acceleration).
+        Constant deceleration [m/s²] (speed ramp; negative: acceleration) of a
+        float ``speed`` (with a profile: 0).
     creep_relaxation : bool or float
         First-order relaxation of the creep forces with the time constant L/V,
         L = a (``True``) or L = ``creep_relaxation`` · a (a number), a the
@@ -842,7 +887,8 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     Warns
     -----
     StepWarning
-        The fixed step is divided into sub-steps for the creep damping at low speed.
+        The fixed step is divided into sub-steps for the creep damping at low speed
+        (at the least speed of every 50 ms of the run).
     RunWarning
         A speed above 100 m/s (km/h meant?), a run ended at standstill, Y/Q
         beyond Nadal's limit (``info["derailment"]``).
@@ -865,7 +911,10 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     integ = _integrator(integrator)
     if not (isinstance(duration, (int, float)) and math.isfinite(duration) and duration > 0):
         raise InputError(f"duration must be > 0 s, got {duration!r}")
-    check_speed(speed, deceleration, duration)
+    if isinstance(speed, SpeedProfile):
+        check_speed(greatest_speed(speed.table(start), 0.0, float(duration)), 0.0, duration)
+    else:
+        check_speed(speed, deceleration, duration)
     system = System(model, track, speed, normal, tangential, mu=mu, deceleration=deceleration,
                     creep_relaxation=creep_relaxation, contact=contact, start=start,
                     contact_options=contact_options, method_options=options)
@@ -883,16 +932,18 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     else:
         out_dt = 1e-3 if output_step is None else float(output_step)
     duration = float(duration)
-    if system.aV < 0 and system.speed + system.aV * duration < system.min_speed:
+    t_stop = falls_below(system.SP, system.min_speed, duration,
+                         held=system.profile is not None)
+    if t_stop is not None:
         # decelerating past standstill: the run ends where the speed reaches its floor
-        t_stop = (system.speed - system.min_speed) / -system.aV
         if t_stop <= 0:
-            raise InputError(f"speed = {speed!r} m/s is at or below the least speed "
+            raise InputError(f"speed = {system.speed!r} m/s is at or below the least speed "
                              f"{system.min_speed:g} m/s of the creep model with a deceleration")
-        warnings.warn(f"the deceleration {deceleration!r} m/s² brings the speed to "
-                      f"{system.min_speed:g} m/s (standstill for the creep model) at t = "
-                      f"{t_stop:.4g} s, before the end {duration:g} s: the run ends there",
-                      RunWarning, stacklevel=2)
+        why = (f"the deceleration {deceleration!r} m/s²" if system.profile is None else
+               "the speed profile")
+        warnings.warn(f"{why} brings the speed to {system.min_speed:g} m/s (standstill for the "
+                      f"creep model) at t = {t_stop:.4g} s, before the end {duration:g} s: "
+                      f"the run ends there", RunWarning, stacklevel=2)
         duration = t_stop
     estimate(system, x0, duration, integ, out_dt)
     prog = _progress(progress, float(duration))
@@ -927,10 +978,13 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     if isinstance(integ, FixedStep):
         info["substeps"] = int(getattr(system, "substeps_max", 1))
     info["interrupted"] = int(bool(system.interrupted))
+    if system.profile is not None:
+        info["speed_profile"] = repr(system.profile)
     info["estimated_cpu_time"] = float(getattr(system, "estimate_seconds", math.nan))
     info["derailment"] = nadal_check(system, T, OW)
-    speed_t = np.maximum(system.speed + system.aV * T, system.min_speed)
-    pos = system.start + system.speed * T + 0.5 * system.aV * T * T
+    speed_t, accel, pos = np.empty(T.shape), np.empty(T.shape), np.empty(T.shape)
+    profile_eval(system.SP, np.ascontiguousarray(T, dtype=float), speed_t, accel, pos)
+    speed_t = np.maximum(speed_t, system.min_speed)
     result = SimulationResult(T, X, OW, OP, tuple(system.asm.names), speed_t, pos, events, info,
                               model, system.layout)
     if system.interrupted:
