@@ -19,10 +19,12 @@ of microseconds instead of milliseconds:
    solution interpolated in ln(A/B), :func:`wheelrail.normal._strips.hertz_shape`)
    or Kik–Piotrowski's virtual penetration on the profile separation of each
    contact plane (Piotrowski & Chollet 2005, §3.2, eqs. 12–22), on the very
-   line of the library (``VirtualPenetration._wheel_lines``: the 1601 nodes of
+   line of the library (``VirtualPenetration._wheel_lines``: the
+   ``KikPiotrowski.line_nodes`` nodes of
    :func:`~wheelrail.normal._fast_separation.separation_window` over the
-   monotone part of ±20 mm around the point, the same profile samples), of which
-   only the nodes around the interpenetration are evaluated; the regions, loads
+   monotone part of ±20 mm around the point, the same profile samples and the
+   same local cubic interpolation), of which only the nodes around the
+   interpenetration are evaluated; the regions, loads
    and strip peaks by the library's kernel
    :func:`~wheelrail.normal._kp_kernel.kp_line_regions`, the patch's contact
    angle and position by :func:`~wheelrail.normal._patch_kernel.weighted_means`,
@@ -94,7 +96,7 @@ MP = {name: i for i, name in enumerate((
     "normal", "tangential", "E_star", "G", "nu", "K", "eps", "shape_correction", "strips",
     "cells", "line_stride", "line_half_width", "group_angle", "tolerance", "nx", "ny",
     "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop",
-    "connected"))}
+    "connected", "line_nodes", "samples"))}
 
 
 # --------------------------------------------------------------------------- small helpers
@@ -628,6 +630,9 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
     half_min = mp[11]
     group_angle = mp[12]
     tangential = int(mp[1])
+    n_nodes = int(mp[23])                 # the library's line (KikPiotrowski.line_nodes)
+    n_samp = int(mp[24])                  # and its profile samples per body
+    coarse = max(1, int(round(_COARSE * (n_samp - 1) / 2000)))
     # candidate points by increasing gap; groups by contact plane (WheelProblem.groups)
     idx = np.argsort(cd[:nc])
     ref = np.full(nc, -1, np.int64)
@@ -700,27 +705,31 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
         s_hi = min(wu[wu.shape[0] - 1], cs[r] + _SAMPLE_HALF)
         u_lo = max(ru[0], PU[r] - _SAMPLE_HALF)
         u_hi = min(ru[ru.shape[0] - 1], PU[r] + _SAMPLE_HALF)
-        dsw = (s_hi - s_lo) / (_SAMPLES - 1)
-        dsr = (u_hi - u_lo) / (_SAMPLES - 1)
+        dsw = (s_hi - s_lo) / (n_samp - 1)
+        dsr = (u_hi - u_lo) / (n_samp - 1)
         gw = (s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc_t, st, ct, sp, cp, R, ph0)
         gr_ = (u_lo, dsr, ru, rinv, rc)
-        kcw = min(max(int(round((cs[r] - s_lo) / dsw)), 0), _SAMPLES - 1)
-        kcr = min(max(int(round((PU[r] - u_lo) / dsr)), 0), _SAMPLES - 1)
-        lw, kw0 = _run_end(True, kcw, -1, gw, gr_, PU[r], z_ref, t0g, t1g)
-        hw, kw1 = _run_end(True, kcw, 1, gw, gr_, PU[r], z_ref, t0g, t1g)
-        lr, kr0 = _run_end(False, kcr, -1, gw, gr_, PU[r], z_ref, t0g, t1g)
-        hr, kr1 = _run_end(False, kcr, 1, gw, gr_, PU[r], z_ref, t0g, t1g)
+        kcw = min(max(int(round((cs[r] - s_lo) / dsw)), 0), n_samp - 1)
+        kcr = min(max(int(round((PU[r] - u_lo) / dsr)), 0), n_samp - 1)
+        lw, kw0 = _run_end(True, kcw, -1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
+        hw, kw1 = _run_end(True, kcw, 1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
+        lr, kr0 = _run_end(False, kcr, -1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
+        hr, kr1 = _run_end(False, kcr, 1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
         lo_l = max(max(-0.5 * _LINE_WIDTH, lw), lr)
         hi_l = min(min(0.5 * _LINE_WIDTH, hw), hr)
         if not hi_l > lo_l:
             continue
-        step = (hi_l - lo_l) / (_LINE_NODES - 1)
+        step = (hi_l - lo_l) / (n_nodes - 1)
         stride = max(int(mp[10]), 1)
         h_l = (stride * step + lo_l) - lo_l
-        last = (_LINE_NODES - 1) // stride
+        last = (n_nodes - 1) // stride
         # the window [−w_a, w_b] (the region's extent on the search grid, the group's points)
-        w_a = min(max(half, ext_a) + 4 * h_l, _LINE_WIDTH)
-        w_b = min(max(half, ext_b) + 4 * h_l, _LINE_WIDTH)
+        w_a = min(max(half, ext_a) + h_l, _LINE_WIDTH)
+        w_b = min(max(half, ext_b) + h_l, _LINE_WIDTH)
         ok = False
         for _ in range(6):
             ia = max(int(math.floor((-w_a - lo_l) / (stride * step))), 0)
@@ -730,7 +739,7 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf, d0, kcw,
                                                   kw0, kw1,
                                                   kcr, kr0, kr1, gw, gr_, PU[r], z_ref, t0g,
-                                                  t1g)
+                                                  t1g, n_nodes)
             if not ok:
                 break
             nl = eta.shape[0]
@@ -805,13 +814,11 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
 
 #: The library's wheel line (``VirtualPenetration._wheel_lines`` → ``separation_window``):
 #: nodes, extent [m], profile samples and their half range [m].
-_LINE_NODES = 1601
 _LINE_WIDTH = 0.04
-_SAMPLES = 2001
 _SAMPLE_HALF = 0.04
 #: samples kept beyond the outer nodes on each side (the cubic needs one)
 _MARGIN = 3
-_COARSE = 25          # samples per step of the walk along a silhouette
+_COARSE = 25          # samples per step of the walk along a silhouette (at 2001 samples: 1 mm)
 
 
 @njit(cache=True, inline="always")
@@ -835,7 +842,7 @@ def _sample(wheel, k, gw, gr_, u_c, z_c, t0, t1):
 
 
 @njit(cache=True)
-def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1):
+def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1, n_samp, coarse):
     """End of the monotone run of a silhouette's tangential coordinate from sample ``kc`` in
     direction ``dirn`` (``_monotone_bounds``): (its coordinate, its sample) where the run
     ends within the line's half width, else (∓inf, the last sample walked)."""
@@ -844,11 +851,11 @@ def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1):
     k = kc
     e_k = e_c
     while True:
-        k2 = k + dirn * _COARSE
+        k2 = k + dirn * coarse
         if k2 < 0:
             k2 = 0
-        elif k2 > _SAMPLES - 1:
-            k2 = _SAMPLES - 1
+        elif k2 > n_samp - 1:
+            k2 = n_samp - 1
         if k2 == k:
             return e_k, k                         # the end of the samples
         e2, _, _ = _sample(wheel, k2, gw, gr_, u_c, z_c, t0, t1)
@@ -858,7 +865,7 @@ def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1):
         if dirn * e_k > lim:
             return dirn * math.inf, k
     # sample by sample from one coarse step back towards k2
-    j = k - dirn * _COARSE
+    j = k - dirn * coarse
     if dirn * (j - kc) < 0:
         j = kc
     e_j, _, _ = _sample(wheel, j, gw, gr_, u_c, z_c, t0, t1)
@@ -900,7 +907,7 @@ def _lagrange_den(x, j):
 
 @njit(cache=True)
 def _line_nodes(ia, ib, stride, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw, gr_, u_c,
-                z_c, t0, t1):
+                z_c, t0, t1, n_nodes):
     """Nodes ia … ib of the library's separation line (``separation_kernel``): η [m], the
     separation f [m], the longitudinal curvature cos/(2r) [1/m], the rail's surface angle
     [rad] at u_c + η cos γ (where f < ``d0``; 0 elsewhere) and the wheel circle radius [m].
@@ -913,7 +920,7 @@ def _line_nodes(ia, ib, stride, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0,
     eta = np.empty(n)
     for i in range(n):
         eta[i] = ((ia + i) * stride) * step + lo
-    if ib * stride == _LINE_NODES - 1:
+    if ib * stride == n_nodes - 1:
         eta[n - 1] = hi
     f = np.empty(n)
     Ax = np.empty(n)
