@@ -43,7 +43,7 @@ from ..geometry.contact_search import _side_args
 from ..geometry.kinematics import Motion
 from ..geometry.touching import touching_heights
 from ..materials import as_material_pair
-from ..normal._strips import _LN_MAX, _hertz_table, line_samples
+from ..normal._strips import _LN_MAX, _hertz_table
 from ..normal.hertz import Hertz
 from ..normal.kik_piotrowski import KikPiotrowski
 from ..options import split_options
@@ -190,11 +190,11 @@ class FastContact:
             mp[MP["strips"]] = normal.strips
             mp[MP["cells"]] = normal.cells
             mp[MP["line_nodes"]] = normal.line_nodes
-            mp[MP["samples"]] = line_samples(normal.line_nodes)
+            mp[MP["samples"]] = normal.profile_samples
         else:
             mp[MP["strips"]] = mp[MP["cells"]] = 2
-            mp[MP["line_nodes"]] = 1601
-            mp[MP["samples"]] = line_samples(1601)
+            mp[MP["line_nodes"]] = 1601         # (unused by Hertz)
+            mp[MP["samples"]] = 2001
         if not (isinstance(line_stride, (int, np.integer)) and 1 <= line_stride <= 16):
             raise InputError(f"line_stride must be an integer in 1 … 16, got {line_stride!r}")
         mp[MP["line_stride"]] = int(line_stride)

@@ -57,6 +57,7 @@ from ._strips import (
     _hertz_table,
     hertz_ab,
     hertz_penetration_factor,
+    line_samples,
 )
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
@@ -180,6 +181,11 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
                                       doc="flexibility FASTSIM uses on these patches: Kalker's "
                                           "single weighted one (Kik & Piotrowski) or L1, L2, L3 "
                                           "of the equivalent ellipse")
+
+    @property
+    def profile_samples(self) -> int:
+        """Profile samples per body (on 80 mm) behind a wheel line of ``line_nodes`` nodes."""
+        return line_samples(self.line_nodes)
 
     def _solve_line(self, line, delta, opts):
         eps, how = self._eps(line, opts)
