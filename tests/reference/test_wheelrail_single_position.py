@@ -111,14 +111,17 @@ def test_solve_one_position_equals_old_numbers(s1002, case):
     r = wr.solve(wr.WheelRailPosition(ws, tr, y, yaw=yaw, vertical_load=(10e3, 11e3)), motion=m,
                  mu=0.3, normal=normal, vertical=vertical)
     pose, patches = OLD[case]
+    # Kik-Piotrowski's separation line interpolates the profile samples by local cubics
+    # since these numbers were printed (was a not-a-knot spline): forces < 1e-7 relative
+    rtol = 2e-7 if normal == "kik-piotrowski" else 1e-12
     np.testing.assert_allclose((r.pose["roll"], r.pose["z_left"], r.pose["z_right"]), pose,
-                               rtol=1e-12, atol=1e-17)
+                               rtol=rtol, atol=1e-17)
     assert [p.side for p in r.patches] == [p[0] for p in patches]
     got = np.array([(p.y_wheel, p.Fn, p.Fx, p.Fs, p.Mz) for p in r.patches])
     want = np.array([p[1:] for p in patches])
     for j, name in enumerate(("y_wheel", "Fn", "Fx", "Fs", "Mz")):
-        np.testing.assert_allclose(got[:, j], want[:, j], rtol=1e-12,
-                                   atol=1e-12 * np.abs(want[:, j]).max(), err_msg=name)
+        np.testing.assert_allclose(got[:, j], want[:, j], rtol=rtol,
+                                   atol=rtol * np.abs(want[:, j]).max(), err_msg=name)
 
 
 def test_search_cache_follows_the_profiles(s1002):

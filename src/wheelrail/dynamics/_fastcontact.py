@@ -19,10 +19,12 @@ of microseconds instead of milliseconds:
    solution interpolated in ln(A/B), :func:`wheelrail.normal._strips.hertz_shape`)
    or Kik–Piotrowski's virtual penetration on the profile separation of each
    contact plane (Piotrowski & Chollet 2005, §3.2, eqs. 12–22), on the very
-   line of the library (``VirtualPenetration._wheel_lines``: the 1601 nodes of
+   line of the library (``VirtualPenetration._wheel_lines``: the
+   ``KikPiotrowski.line_nodes`` nodes of
    :func:`~wheelrail.normal._fast_separation.separation_window` over the
-   monotone part of ±20 mm around the point, the same profile samples), of which
-   only the nodes around the interpenetration are evaluated; the regions, loads
+   monotone part of ±20 mm around the point, the same profile samples and the
+   same local cubic interpolation), of which only the nodes around the
+   interpenetration are evaluated; the regions, loads
    and strip peaks by the library's kernel
    :func:`~wheelrail.normal._kp_kernel.kp_line_regions`, the patch's contact
    angle and position by :func:`~wheelrail.normal._patch_kernel.weighted_means`,
@@ -70,6 +72,8 @@ from numba import njit
 
 from ..normal._kp_kernel import kp_line_regions
 from ..normal._patch_kernel import weighted_means
+from ._fastgeom import _BIG, _gap, _locus, _spline, _spline0
+from ._fastline import _COARSE, _LINE_WIDTH, _SAMPLE_HALF, _line_nodes, _run_end
 from ._fastlaws import (_interp, _kalker, creepage, fastsim_ellipse, kp_strip_fastsim,
                         kp_strips, linear_forces, table_forces)
 
@@ -86,84 +90,17 @@ WHEEL_FIELDS = ("patches", "Qn_y", "Qn_z", "Qn_roll", "Qn_yaw", "Qn_spin", "Qt_y
                 "Qt_roll", "Qt_yaw", "Qt_spin", "Fx", "Fy", "Fz", "vertical_approach",
                 "min_gap", "fallbacks", "a_mean", "candidates")
 _NP = len(PATCH_FIELDS)
-_BIG = 1.0
 _KC = 8                # candidate minima kept per wheel
+#: Golden-section levels of a minimum's refinement: the bracket ±0.5 mm shrinks to 3 µm
+#: (the gap's error at its minimum, ~κ Δs²/8 with κ ≲ 100 1/m, below 1e-10 m).
+_LEVELS = 12
 
 #: Indices of the method parameters (the float array ``mp``).
 MP = {name: i for i, name in enumerate((
     "normal", "tangential", "E_star", "G", "nu", "K", "eps", "shape_correction", "strips",
     "cells", "line_stride", "line_half_width", "group_angle", "tolerance", "nx", "ny",
     "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop",
-    "connected"))}
-
-
-# --------------------------------------------------------------------------- small helpers
-@njit(cache=True, inline="always")
-def _idx(u, inv_h, x):
-    if inv_h > 0.0:
-        i = int((x - u[0]) * inv_h)
-    else:
-        i = np.searchsorted(u, x) - 1
-    if i < 0:
-        i = 0
-    if i > u.shape[0] - 2:
-        i = u.shape[0] - 2
-    return i
-
-
-@njit(cache=True, inline="always")
-def _spline(u, inv_h, c, x):
-    """Value, slope and second derivative of a PiecewiseCubic at x."""
-    i = _idx(u, inv_h, x)
-    dx = x - u[i]
-    c0, c1, c2, c3 = c[0, i], c[1, i], c[2, i], c[3, i]
-    return (((c0 * dx + c1) * dx + c2) * dx + c3, (3.0 * c0 * dx + 2.0 * c1) * dx + c2,
-            6.0 * c0 * dx + 2.0 * c1)
-
-
-@njit(cache=True, inline="always")
-def _spline0(u, inv_h, c, x):
-    i = _idx(u, inv_h, x)
-    dx = x - u[i]
-    return ((c[0, i] * dx + c[1, i]) * dx + c[2, i]) * dx + c[3, i]
-
-
-@njit(cache=True, inline="always")
-def _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0):
-    """Contact locus point of wheel coordinate s: (Y, Z, x lead, r) (``silhouette``)."""
-    r = r0 - p
-    a = sig * (e_tape + s)
-    if sp == 0.0:
-        return y + (a * ct + r * st), zc + (a * st - r * ct), 0.0, r
-    # φ = asin(q) − φ0 with tan φ0 = B/cos ψ; sin φ and cos φ by the angle difference
-    # (no trigonometric call: cos φ0 = cos ψ / R, sin φ0 = B / R)
-    q = sig * p1 * ct * sp / R
-    if q > 1.0:
-        q = 1.0
-    elif q < -1.0:
-        q = -1.0
-    cq = math.sqrt(1.0 - q * q)
-    c0 = cp / R
-    s0 = -st * sp / R
-    sf = q * c0 - cq * s0
-    cf = cq * c0 + q * s0
-    xb = r * sf
-    yp = a * ct + r * cf * st
-    return y + xb * sp + yp * cp, zc + (a * st - r * cf * ct), xb * cp - r * cf * st * sp, r
-
-
-@njit(cache=True)
-def _gap(s, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0):
-    i = _idx(wu, winv, s)
-    dx = s - wu[i]
-    c0, c1, c2, c3 = wc[0, i], wc[1, i], wc[2, i], wc[3, i]
-    p = ((c0 * dx + c1) * dx + c2) * dx + c3
-    p1 = (3.0 * c0 * dx + 2.0 * c1) * dx + c2
-    Y, Z, _, _ = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
-    u = sig * Y
-    if u < ru[0] or u > ru[ru.shape[0] - 1]:
-        return _BIG
-    return Z - _spline0(ru, rinv, rc, u)
+    "connected", "line_nodes", "samples"))}
 
 
 @njit(cache=True)
@@ -198,6 +135,50 @@ def _refine(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, 
 
 
 # --------------------------------------------------------------------------- the wheel
+@njit(cache=True)
+def _grid_gap(sg, pg, p1g, i_lo, n, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R,
+              ph0):
+    """Vertical gap at grid points i_lo … i_lo + n − 1 of the wheel coordinate (``_BIG``
+    where the locus is beside the rail): the loci in one branch-free loop the compiler
+    vectorises, then the rail spline (uniform knots: ``rinv`` > 0) at each."""
+    Ys = np.empty(n)
+    d = np.empty(n)
+    if sp == 0.0:
+        for k in range(n):
+            r = r0 - pg[i_lo + k]
+            a = sig * (e_tape + sg[i_lo + k])
+            Ys[k] = y + (a * ct + r * st)
+            d[k] = zc + (a * st - r * ct)
+    else:
+        c0 = cp / R
+        s0 = -st * sp / R
+        f = sig * ct * sp / R
+        for k in range(n):
+            r = r0 - pg[i_lo + k]
+            a = sig * (e_tape + sg[i_lo + k])
+            q = min(max(f * p1g[i_lo + k], -1.0), 1.0)
+            cq = math.sqrt(1.0 - q * q)
+            sf = q * c0 - cq * s0
+            cf = cq * c0 + q * s0
+            Ys[k] = y + r * sf * sp + (a * ct + r * cf * st) * cp
+            d[k] = zc + (a * st - r * cf * ct)
+    u0 = ru[0]
+    u1 = ru[ru.shape[0] - 1]
+    last = ru.shape[0] - 2
+    for k in range(n):
+        u = sig * Ys[k]
+        if u < u0 or u > u1:
+            d[k] = _BIG
+        else:
+            if rinv > 0.0:
+                i = min(max(int((u - u0) * rinv), 0), last)
+            else:
+                i = min(max(np.searchsorted(ru, u) - 1, 0), last)
+            dx = u - ru[i]
+            d[k] -= ((rc[0, i] * dx + rc[1, i]) * dx + rc[2, i]) * dx + rc[3, i]
+    return d
+
+
 @njit(cache=True)
 def _depths(d, kk, cd, nc, shared):
     """Depth [m] of each minimum of the vertical gap for the multi-Hertz normal problem.
@@ -385,16 +366,10 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
     if n < 3:
         out_w[15] = _BIG
         return 0
-    d = np.empty(n)
+    d = _grid_gap(sg, pg, p1g, i_lo, n, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp,
+                  R, ph0)
     g = 0
-    for k in range(n):
-        i = i_lo + k
-        Y, Z, _, _ = _locus(sg[i], pg[i], p1g[i], r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
-        u = sig * Y
-        if u < ru[0] or u > ru[ru.shape[0] - 1]:
-            d[k] = _BIG
-        else:
-            d[k] = Z - _spline0(ru, rinv, rc, u)
+    for k in range(1, n):
         if d[k] < d[g]:
             g = k
     tol = mp[13]
@@ -429,7 +404,7 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
     for q in range(nc):
         if cand[q] == g:
             qg = q
-    cs[qg], cd[qg] = _refine(sg[i_lo + g], h, lo, hi, 18, wu, winv, wc, ru, rinv, rc, r0,
+    cs[qg], cd[qg] = _refine(sg[i_lo + g], h, lo, hi, _LEVELS, wu, winv, wc, ru, rinv, rc, r0,
                              e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
     dmin = cd[qg]
     kk = np.empty(nc, np.int64)           # grid index of each kept minimum
@@ -450,7 +425,7 @@ def wheel_contact(sg, pg, p1g, lo, hi, wu, winv, wc, ru, rinv, rc, r0, e_tape, s
             drop = max(drop, 1.5 * max(d[k - 1] - d[k], d[k + 1] - d[k]))
         if d[k] - drop >= 0.0:
             continue
-        s_r, d_r = _refine(sg[i_lo + cand[q]], h, lo, hi, 18, wu, winv, wc, ru, rinv, rc, r0,
+        s_r, d_r = _refine(sg[i_lo + cand[q]], h, lo, hi, _LEVELS, wu, winv, wc, ru, rinv, rc, r0,
                            e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
         cs[m_ok] = s_r
         cd[m_ok] = d_r
@@ -628,6 +603,9 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
     half_min = mp[11]
     group_angle = mp[12]
     tangential = int(mp[1])
+    n_nodes = int(mp[23])                 # the library's line (KikPiotrowski.line_nodes)
+    n_samp = int(mp[24])                  # and its profile samples per body
+    coarse = max(1, int(round(_COARSE * (n_samp - 1) / 2000)))
     # candidate points by increasing gap; groups by contact plane (WheelProblem.groups)
     idx = np.argsort(cd[:nc])
     ref = np.full(nc, -1, np.int64)
@@ -700,27 +678,31 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
         s_hi = min(wu[wu.shape[0] - 1], cs[r] + _SAMPLE_HALF)
         u_lo = max(ru[0], PU[r] - _SAMPLE_HALF)
         u_hi = min(ru[ru.shape[0] - 1], PU[r] + _SAMPLE_HALF)
-        dsw = (s_hi - s_lo) / (_SAMPLES - 1)
-        dsr = (u_hi - u_lo) / (_SAMPLES - 1)
+        dsw = (s_hi - s_lo) / (n_samp - 1)
+        dsr = (u_hi - u_lo) / (n_samp - 1)
         gw = (s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc_t, st, ct, sp, cp, R, ph0)
         gr_ = (u_lo, dsr, ru, rinv, rc)
-        kcw = min(max(int(round((cs[r] - s_lo) / dsw)), 0), _SAMPLES - 1)
-        kcr = min(max(int(round((PU[r] - u_lo) / dsr)), 0), _SAMPLES - 1)
-        lw, kw0 = _run_end(True, kcw, -1, gw, gr_, PU[r], z_ref, t0g, t1g)
-        hw, kw1 = _run_end(True, kcw, 1, gw, gr_, PU[r], z_ref, t0g, t1g)
-        lr, kr0 = _run_end(False, kcr, -1, gw, gr_, PU[r], z_ref, t0g, t1g)
-        hr, kr1 = _run_end(False, kcr, 1, gw, gr_, PU[r], z_ref, t0g, t1g)
+        kcw = min(max(int(round((cs[r] - s_lo) / dsw)), 0), n_samp - 1)
+        kcr = min(max(int(round((PU[r] - u_lo) / dsr)), 0), n_samp - 1)
+        lw, kw0 = _run_end(True, kcw, -1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
+        hw, kw1 = _run_end(True, kcw, 1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
+        lr, kr0 = _run_end(False, kcr, -1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
+        hr, kr1 = _run_end(False, kcr, 1, gw, gr_, PU[r], z_ref, t0g, t1g, n_samp,
+                           coarse)
         lo_l = max(max(-0.5 * _LINE_WIDTH, lw), lr)
         hi_l = min(min(0.5 * _LINE_WIDTH, hw), hr)
         if not hi_l > lo_l:
             continue
-        step = (hi_l - lo_l) / (_LINE_NODES - 1)
+        step = (hi_l - lo_l) / (n_nodes - 1)
         stride = max(int(mp[10]), 1)
         h_l = (stride * step + lo_l) - lo_l
-        last = (_LINE_NODES - 1) // stride
+        last = (n_nodes - 1) // stride
         # the window [−w_a, w_b] (the region's extent on the search grid, the group's points)
-        w_a = min(max(half, ext_a) + 4 * h_l, _LINE_WIDTH)
-        w_b = min(max(half, ext_b) + 4 * h_l, _LINE_WIDTH)
+        w_a = min(max(half, ext_a) + h_l, _LINE_WIDTH)
+        w_b = min(max(half, ext_b) + h_l, _LINE_WIDTH)
         ok = False
         for _ in range(6):
             ia = max(int(math.floor((-w_a - lo_l) / (stride * step))), 0)
@@ -730,7 +712,7 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf, d0, kcw,
                                                   kw0, kw1,
                                                   kcr, kr0, kr1, gw, gr_, PU[r], z_ref, t0g,
-                                                  t1g)
+                                                  t1g, n_nodes)
             if not ok:
                 break
             nl = eta.shape[0]
@@ -801,183 +783,3 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
                        not done and tangential == 1)
             npt += 1
     return npt, fallbacks
-
-
-#: The library's wheel line (``VirtualPenetration._wheel_lines`` → ``separation_window``):
-#: nodes, extent [m], profile samples and their half range [m].
-_LINE_NODES = 1601
-_LINE_WIDTH = 0.04
-_SAMPLES = 2001
-_SAMPLE_HALF = 0.04
-#: samples kept beyond the outer nodes on each side (the cubic needs one)
-_MARGIN = 3
-_COARSE = 25          # samples per step of the walk along a silhouette
-
-
-@njit(cache=True, inline="always")
-def _sample(wheel, k, gw, gr_, u_c, z_c, t0, t1):
-    """Tangential and normal coordinates in the contact plane (and the wheel circle radius)
-    of wheel sample ``k`` or rail sample ``k`` (``plane_samples`` of one sample)."""
-    if wheel:
-        s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0 = gw
-        s = k * dsw + s_lo
-        p, p1, _ = _spline(wu, winv, wc, s)
-        Y, Z, _, rr = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
-        u = sig * Y
-    else:
-        u_lo, dsr, ru, rinv, rc = gr_
-        u = k * dsr + u_lo
-        Z = _spline0(ru, rinv, rc, u)
-        rr = 0.0
-    du = u - u_c
-    dz = Z - z_c
-    return du * t0 + dz * t1, -du * t1 + dz * t0, rr
-
-
-@njit(cache=True)
-def _run_end(wheel, kc, dirn, gw, gr_, u_c, z_c, t0, t1):
-    """End of the monotone run of a silhouette's tangential coordinate from sample ``kc`` in
-    direction ``dirn`` (``_monotone_bounds``): (its coordinate, its sample) where the run
-    ends within the line's half width, else (∓inf, the last sample walked)."""
-    lim = 0.5 * _LINE_WIDTH + 1e-4
-    e_c, _, _ = _sample(wheel, kc, gw, gr_, u_c, z_c, t0, t1)
-    k = kc
-    e_k = e_c
-    while True:
-        k2 = k + dirn * _COARSE
-        if k2 < 0:
-            k2 = 0
-        elif k2 > _SAMPLES - 1:
-            k2 = _SAMPLES - 1
-        if k2 == k:
-            return e_k, k                         # the end of the samples
-        e2, _, _ = _sample(wheel, k2, gw, gr_, u_c, z_c, t0, t1)
-        if dirn * (e2 - e_k) <= 0.0:
-            break                                 # turned between k − step and k2
-        k, e_k = k2, e2
-        if dirn * e_k > lim:
-            return dirn * math.inf, k
-    # sample by sample from one coarse step back towards k2
-    j = k - dirn * _COARSE
-    if dirn * (j - kc) < 0:
-        j = kc
-    e_j, _, _ = _sample(wheel, j, gw, gr_, u_c, z_c, t0, t1)
-    while j != k2:
-        jn = j + dirn
-        e_n, _, _ = _sample(wheel, jn, gw, gr_, u_c, z_c, t0, t1)
-        if dirn * (e_n - e_j) <= 0.0:
-            return e_j, j
-        j, e_j = jn, e_n
-    return e_j, j
-
-
-@njit(cache=True)
-def _span(wheel, kc, k_end, dirn, target, margin, gw, gr_, u_c, z_c, t0, t1):
-    """Sample index beyond which the silhouette passes ``target`` in direction ``dirn``
-    (walked from ``kc``, not past ``k_end``), plus the spline margin."""
-    k = kc
-    while dirn * (k_end - k) > 0:
-        k2 = k + dirn * 8
-        if dirn * (k2 - k_end) > 0:
-            k2 = k_end
-        e2, _, _ = _sample(wheel, k2, gw, gr_, u_c, z_c, t0, t1)
-        k = k2
-        if dirn * (e2 - target) > 0.0:
-            break
-    k = k + dirn * margin
-    if dirn * (k - k_end) > 0:
-        k = k_end
-    return k
-
-
-@njit(cache=True, inline="always")
-def _lagrange_den(x, j):
-    """Reciprocal denominators of the cubic Lagrange weights through x[j−1 … j+2]."""
-    x0, x1, x2, x3 = x[j - 1], x[j], x[j + 1], x[j + 2]
-    return (1.0 / ((x0 - x1) * (x0 - x2) * (x0 - x3)), 1.0 / ((x1 - x0) * (x1 - x2) * (x1 - x3)),
-            1.0 / ((x2 - x0) * (x2 - x1) * (x2 - x3)), 1.0 / ((x3 - x0) * (x3 - x1) * (x3 - x2)))
-
-
-@njit(cache=True)
-def _line_nodes(ia, ib, stride, lo, hi, step, cosf, d0, kcw, kw0, kw1, kcr, kr0, kr1, gw, gr_, u_c,
-                z_c, t0, t1):
-    """Nodes ia … ib of the library's separation line (``separation_kernel``): η [m], the
-    separation f [m], the longitudinal curvature cos/(2r) [1/m], the rail's surface angle
-    [rad] at u_c + η cos γ (where f < ``d0``; 0 elsewhere) and the wheel circle radius [m].
-
-    The library interpolates the profile samples (0.04 mm apart) by not-a-knot splines;
-    here the cubic through the four samples around each node, which differs from it by
-    far less than a nanometre on profile splines (both are exact for cubics; the samples
-    and the nodes are the library's)."""
-    n = ib - ia + 1
-    eta = np.empty(n)
-    for i in range(n):
-        eta[i] = ((ia + i) * stride) * step + lo
-    if ib * stride == _LINE_NODES - 1:
-        eta[n - 1] = hi
-    f = np.empty(n)
-    Ax = np.empty(n)
-    ang = np.zeros(n)
-    rw = np.empty(n)
-    # samples around [eta_0, eta_n-1] inside the monotone runs
-    a_w = _span(True, kcw, kw0, -1, eta[0], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
-    b_w = _span(True, kcw, kw1, 1, eta[n - 1], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
-    a_r = _span(False, kcr, kr0, -1, eta[0], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
-    b_r = _span(False, kcr, kr1, 1, eta[n - 1], _MARGIN * stride, gw, gr_, u_c, z_c, t0, t1)
-    mw = (b_w - a_w) // stride + 1
-    mr = (b_r - a_r) // stride + 1
-    if mw < 4 or mr < 4:
-        return eta, f, Ax, ang, rw, False
-    ew = np.empty(mw)
-    zw = np.empty(mw)
-    rr = np.empty(mw)
-    s_lo, dsw, wu, winv, wc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0 = gw
-    u_lo, dsr, ru, rinv, rc = gr_
-    for k in range(mw):             # (the arithmetic of _sample, arrays unpacked once)
-        s = (a_w + k * stride) * dsw + s_lo
-        p, p1, _ = _spline(wu, winv, wc, s)
-        Y, Z, _, rk = _locus(s, p, p1, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
-        du = sig * Y - u_c
-        dz = Z - z_c
-        ew[k] = du * t0 + dz * t1
-        zw[k] = -du * t1 + dz * t0
-        rr[k] = rk
-    er = np.empty(mr)
-    zr = np.empty(mr)
-    for k in range(mr):
-        u = (a_r + k * stride) * dsr + u_lo
-        du = u - u_c
-        dz = _spline0(ru, rinv, rc, u) - z_c
-        er[k] = du * t0 + dz * t1
-        zr[k] = -du * t1 + dz * t0
-    if ew[0] > eta[0] or ew[mw - 1] < eta[n - 1] or er[0] > eta[0] or er[mr - 1] < eta[n - 1]:
-        return eta, f, Ax, ang, rw, False
-    jw = 1
-    jr = 1
-    dw0, dw1, dw2, dw3 = _lagrange_den(ew, jw)
-    dr0, dr1, dr2, dr3 = _lagrange_den(er, jr)
-    for i in range(n):
-        e = eta[i]
-        if jw < mw - 3 and ew[jw + 1] < e:
-            while jw < mw - 3 and ew[jw + 1] < e:
-                jw += 1
-            dw0, dw1, dw2, dw3 = _lagrange_den(ew, jw)
-        if jr < mr - 3 and er[jr + 1] < e:
-            while jr < mr - 3 and er[jr + 1] < e:
-                jr += 1
-            dr0, dr1, dr2, dr3 = _lagrange_den(er, jr)
-        a0, a1, a2, a3 = e - ew[jw - 1], e - ew[jw], e - ew[jw + 1], e - ew[jw + 2]
-        b0, b1, b2, b3 = e - er[jr - 1], e - er[jr], e - er[jr + 1], e - er[jr + 2]
-        w0 = a1 * a2 * a3 * dw0
-        w1 = a0 * a2 * a3 * dw1
-        w2 = a0 * a1 * a3 * dw2
-        w3 = a0 * a1 * a2 * dw3
-        f[i] = (w0 * zw[jw - 1] + w1 * zw[jw] + w2 * zw[jw + 1] + w3 * zw[jw + 2]
-                - (b1 * b2 * b3 * dr0 * zr[jr - 1] + b0 * b2 * b3 * dr1 * zr[jr]
-                   + b0 * b1 * b3 * dr2 * zr[jr + 1] + b0 * b1 * b2 * dr3 * zr[jr + 2]))
-        rw[i] = w0 * rr[jw - 1] + w1 * rr[jw] + w2 * rr[jw + 1] + w3 * rr[jw + 2]
-        Ax[i] = cosf / (2.0 * rw[i])
-        if d0 - f[i] > 0.0:
-            _, z1, _ = _spline(ru, rinv, rc, u_c + e * t0)
-            ang[i] = math.atan(z1)
-    return eta, f, Ax, ang, rw, True

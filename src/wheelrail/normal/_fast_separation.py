@@ -25,7 +25,7 @@ from numba import njit
 from ..geometry.contact_search import _SIGMA
 from ..geometry.separation import Separation, separation_at
 
-__all__ = ["spline_not_a_knot", "separation_fast", "plane_samples", "separation_kernel",
+__all__ = ["spline_not_a_knot", "local_cubic", "separation_fast", "plane_samples", "separation_kernel",
            "separation_window", "rail_slopes"]
 
 
@@ -123,6 +123,47 @@ def plane_samples(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta, 
     er = (ur - C0) * t0 + (zr - C1) * t1
     zrr = (ur - C0) * n0 + (zr - C1) * n1
     return ew, zw, rw, er, zrr
+
+
+@njit(cache=True)
+def local_cubic(x, Y, t):
+    """Cubic interpolants of the rows of ``Y`` at increasing ``t``, each through the four
+    samples around it (x[j−1] … x[j+2] for x[j] ≤ t < x[j+1]; pure kernel).
+
+    On profile samples 0.04 mm apart it differs from the not-a-knot spline through
+    all samples by far less than a nanometre (both are exact for cubics), and it is
+    what the compiled dynamics evaluates node by node, so both give one line at any
+    sample spacing.
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,)
+        Strictly increasing abscissae, n ≥ 4.
+    Y : ndarray, shape (k, n)
+    t : ndarray, shape (m,)
+        Increasing evaluation points.
+
+    Returns
+    -------
+    ndarray, shape (k, m)
+    """
+    n = x.shape[0]
+    k = Y.shape[0]
+    out = np.empty((k, t.shape[0]))
+    j = 1
+    for i in range(t.shape[0]):
+        e = t[i]
+        while j < n - 3 and x[j + 1] < e:
+            j += 1
+        x0, x1, x2, x3 = x[j - 1], x[j], x[j + 1], x[j + 2]
+        a0, a1, a2, a3 = e - x0, e - x1, e - x2, e - x3
+        w0 = a1 * a2 * a3 / ((x0 - x1) * (x0 - x2) * (x0 - x3))
+        w1 = a0 * a2 * a3 / ((x1 - x0) * (x1 - x2) * (x1 - x3))
+        w2 = a0 * a1 * a3 / ((x2 - x0) * (x2 - x1) * (x2 - x3))
+        w3 = a0 * a1 * a2 / ((x3 - x0) * (x3 - x1) * (x3 - x2))
+        for r in range(k):
+            out[r, i] = w0 * Y[r, j - 1] + w1 * Y[r, j] + w2 * Y[r, j + 1] + w3 * Y[r, j + 2]
+    return out
 
 
 @njit(cache=True)
@@ -314,7 +355,8 @@ def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, the
 
     :func:`plane_samples`, the monotone windows of both silhouettes around the
     plane origin, the uniform η grid (as ``numpy.linspace``) and the
-    not-a-knot splines of the wheel's distance and radius and of the rail.
+    local cubic interpolants (:func:`local_cubic`) of the wheel's distance and radius
+    and of the rail.
 
     Returns
     -------
@@ -345,11 +387,11 @@ def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, the
     for k in range(nw):
         Y[0, k] = zw[w0 + k]
         Y[1, k] = rw[w0 + k]
-    W = spline_not_a_knot(ew[w0:w1 + 1].copy(), Y, eta)
+    W = local_cubic(ew[w0:w1 + 1], Y, eta)
     Z = np.empty((1, r1_ - r0_ + 1))
     for k in range(r1_ - r0_ + 1):
         Z[0, k] = zrr[r0_ + k]
-    R = spline_not_a_knot(er[r0_:r1_ + 1].copy(), Z, eta)
+    R = local_cubic(er[r0_:r1_ + 1], Z, eta)
     f = np.empty(n)
     for i in range(n):
         f[i] = W[0, i] - R[0, i]
@@ -357,10 +399,12 @@ def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, the
 
 
 def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, contact_angle,
-                    width=0.04, n=401, point=-1):
+                    width=0.04, n=401, point=-1, samples=2001):
     """:func:`wheelrail.geometry.separation.separation_at` with the numba spline (same result).
 
-    Parameters and return value as there (SI units: m, rad).
+    Parameters and return value as there (SI units: m, rad); ``samples`` profile
+    samples of each body on ±2·``width`` (the reference implementation's 2001: 0.04 mm
+    on a 40 mm line).
     """
 
     sig = _SIGMA[side]
@@ -371,7 +415,7 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
     ok, eta, f, radius = separation_window(
         wc.u, wc.c, wc._h, rc.u, rc.c, rc._h, float(wheelset.nominal_radius),
         float(wheelset.e_tape), sig, float(y), float(wheelset.nominal_radius + z), float(roll),
-        float(yaw), gam, float(wheel_y), u_c, float(width), int(n), 2001)
+        float(yaw), gam, float(wheel_y), u_c, float(width), int(n), int(samples))
     if not ok:                           # degenerate window: the reference implementation
 
         return separation_at(wheelset, track, side, y=y, z=z, roll=roll, yaw=yaw,

@@ -52,6 +52,12 @@ __all__ = ["Line", "Region", "VirtualPenetration", "runs", "kp_integrals",
 
 _LINE_NODES = 801        # nodes of the refined lateral line of a gap problem
 _WHEEL_NODES = 1601      # nodes of a wheel's separation line (40 mm: 0.025 mm spacing)
+
+
+def line_samples(n):
+    """Profile samples per body (on 80 mm) for a wheel line of ``n`` nodes (on 40 mm): the
+    samples 1.6 node spacings apart (2001 for 1601 nodes: 0.04 mm)."""
+    return int(round(1.25 * (n - 1))) + 1
 _LOAD_TOL = 1e-9         # relative tolerance of the load iteration
 
 
@@ -187,18 +193,20 @@ def _rescale(regions, factor):
         r.peak = r.peak * factor
 
 
-def _separation(problem, k, width, n):
+def _separation(problem, k, width, n, samples=2001):
     """``problem.separation(k, width, n)`` computed by the numba-spline twin of
     :func:`~wheelrail.geometry.separation.separation_at` (same result to round-off,
-    :mod:`wheelrail.normal._fast_separation`) and stored in the problem's cache."""
+    :mod:`wheelrail.normal._fast_separation`; ``samples`` profile samples per body)
+    and stored in the problem's cache."""
     f = problem.frames[k]
-    key = ("separation", f, width, n)
+    key = ("separation", f, width, n, samples)
     if key not in problem.cache:
         pose = problem.pose
         problem.cache[key] = separation_fast(
             problem.wheelset, problem.track, problem.side, y=pose["y"], z=pose["z"],
             roll=pose["roll"], yaw=pose["yaw"], wheel_y=f.wheel_y, track_y=f.track_y,
-            contact_angle=f.contact_angle, width=width, n=n, point=k)
+            contact_angle=f.contact_angle, width=width, n=n, point=k,
+            samples=samples)
     return problem.cache[key]
 
 
@@ -463,8 +471,14 @@ class VirtualPenetration:
         return {}
 
     # ----------------------------------------------------------- wheel on rail
+    def _line_resolution(self):
+        """Nodes of a wheel's separation line (40 mm) and profile samples per body (80 mm)."""
+        n = int(getattr(self, "line_nodes", _WHEEL_NODES))
+        return n, line_samples(n)
+
     def _wheel_lines(self, problem, group_angle=0.2, width=0.04):
-        key = ("vp_lines", self.name, group_angle, width)
+        n, m = self._line_resolution()
+        key = ("vp_lines", self.name, group_angle, width, n)
         if key in problem.cache:
             return problem.cache[key]
 
@@ -474,7 +488,7 @@ class VirtualPenetration:
         lines = []
         for g in groups:
             r = g[0]
-            s = _separation(problem, r, width, _WHEEL_NODES)
+            s = _separation(problem, r, width, n, m)
             f = problem.frames[r]
             Ax = s.cos_factor / (2.0 * s.wheel_radius)
             if problem.roller_radius is not None:

@@ -57,6 +57,7 @@ from ._strips import (
     _hertz_table,
     hertz_ab,
     hertz_penetration_factor,
+    line_samples,
 )
 
 __all__ = ["KikPiotrowski", "penetration_factor"]
@@ -141,7 +142,11 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
         Kik & Piotrowski's correction of the length/width ratio (eqs. 17–22).
     strips, cells : int, default 40, 40
         Strips of each patch and cells per strip of the patch description
-        (the integrals use the full line resolution, 0.025 mm on a wheel).
+        (the integrals use the full line resolution).
+    line_nodes : int, default 1601
+        Nodes of a wheel's separation line, 40 mm wide (1601: 0.025 mm apart); the
+        profiles are sampled 1.6 node spacings apart. Coarser lines are faster
+        (``wr.dynamics`` uses 201 by default; see there for the measured difference).
 
     fastsim_flexibility : {"weighted", "three"}, default "weighted"
         Flexibility FASTSIM uses on these patches (``info["fastsim_flexibility"]``):
@@ -170,10 +175,17 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
     penetration_factor: Any = option("hertz", kind="any", check=_penetration_factor_option,
                                      doc="epsilon = delta0/delta: 'hertz' or a number in (0, 1]")
     shape_correction: bool = option(True, doc="Kik & Piotrowski's length/width correction")
+    line_nodes: int = option(1601, lo=101, hi=6401,
+                             doc="nodes of a wheel's separation line (40 mm wide)")
     fastsim_flexibility: str = option("weighted", choices=("weighted", "three"),
                                       doc="flexibility FASTSIM uses on these patches: Kalker's "
                                           "single weighted one (Kik & Piotrowski) or L1, L2, L3 "
                                           "of the equivalent ellipse")
+
+    @property
+    def profile_samples(self) -> int:
+        """Profile samples per body (on 80 mm) behind a wheel line of ``line_nodes`` nodes."""
+        return line_samples(self.line_nodes)
 
     def _solve_line(self, line, delta, opts):
         eps, how = self._eps(line, opts)
