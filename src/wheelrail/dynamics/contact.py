@@ -224,7 +224,7 @@ class FastContact:
         # the table's compiled form (the library's own kernel evaluates it); with another
         # law the default table's arrays only fill the slots of the compiled signature
         data = load_table(tangential.table if isinstance(tangential, Table) else None)
-        kernel = tuple(np.ascontiguousarray(k) for k in data.kernel)
+        kernel = tuple(np.ascontiguousarray(k) for k in data.kernel_at(float(pair.nu)))
         c_ = np.ascontiguousarray
         self.method = (mp, c_(lam), c_(la), c_(lb), c_(lp), c_(ld), c_(kx), c_(c11), c_(c22),
                        c_(c23), c_(c33), c_(t), c_(half), c_(strip_peak), c_(s_cells),
