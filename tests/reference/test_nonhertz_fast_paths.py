@@ -240,7 +240,7 @@ def test_stripes_read_nodes_cover_the_interpolation():
 def test_separation_kernel_equals_full_splines(s1002):
     """The separation's local cubics through the 0.04 mm profile samples (the samples around
     the η interval only) give the not-a-knot splines through the full monotone window
-    within 1 nm (both are exact for cubics), and are exact for a cubic."""
+    within 2 nm (both are exact for cubics), and are exact for a cubic."""
     from wheelrail.geometry.separation import _monotone_window
     from wheelrail.normal._fast_separation import (plane_samples, separation_fast,
                                                     spline_not_a_knot)
@@ -267,7 +267,7 @@ def test_separation_kernel_equals_full_splines(s1002):
         np.stack([zw[sw], rw[sw]])), sep.eta)
     R = spline_not_a_knot(np.ascontiguousarray(er[sr]), np.ascontiguousarray(zr[sr])[None, :],
                           sep.eta)
-    np.testing.assert_allclose(sep.f, W[0] - R[0], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(sep.f, W[0] - R[0], rtol=0, atol=2e-9)
     np.testing.assert_allclose(sep.wheel_radius, W[1], rtol=1e-9)
     from wheelrail.normal._fast_separation import local_cubic
 

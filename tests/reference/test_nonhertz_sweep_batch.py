@@ -133,7 +133,8 @@ def test_fast_separation_equals_separation_at(s1002):
             b = separation_at(ws, tr, side, **kw)
             np.testing.assert_array_equal(a.eta, b.eta)
             # local cubics (the kernel) against not-a-knot splines (the reference) through
-            # the same 0.04 mm samples: both exact for cubics, apart by < 1 nm
-            np.testing.assert_allclose(a.f, b.f, rtol=0, atol=1e-9)
+            # the same 0.04 mm samples: both exact for cubics, apart by < 2 nm (the most next
+            # to a jump of a profile's curvature)
+            np.testing.assert_allclose(a.f, b.f, rtol=0, atol=2e-9)
             np.testing.assert_allclose(a.wheel_radius, b.wheel_radius, rtol=1e-9)
             assert (a.cos_factor, a.point) == (b.cos_factor, b.point)

@@ -131,7 +131,8 @@ def local_cubic(x, Y, t):
     samples around it (x[j−1] … x[j+2] for x[j] ≤ t < x[j+1]; pure kernel).
 
     On profile samples 0.04 mm apart it differs from the not-a-knot spline through
-    all samples by far less than a nanometre (both are exact for cubics), and it is
+    all samples by less than 2 nm (mostly < 0.2 nm; the most next to a jump of a
+    profile's curvature; both are exact for cubics), and it is
     what the compiled dynamics evaluates node by node, so both give one line at any
     sample spacing.
 
