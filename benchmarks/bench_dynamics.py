@@ -21,11 +21,12 @@ CPU time (``time.process_time``) on one core; set ``NUMBA_NUM_THREADS=1``.
 The load of the machine (``os.getloadavg``) is printed with the numbers.
 
     python benchmarks/bench_dynamics.py [--repeat 5] [--duration 2.0] [--contact-only]
-        [--line-stride 1]
+        [--line-nodes 201]
 
-Kik–Piotrowski evaluates the library's own separation line (0.025 mm nodes) around
-each region, so that its forces are those of :func:`wheelrail.solve`; before it used a
-coarser line of its own (0.1 mm) and differed by up to 6.8 % of μQ.
+Kik–Piotrowski evaluates the library's separation line (``KikPiotrowski.line_nodes``;
+the dynamics' default by name: 201 nodes, 0.2 mm; the library's 1601: 0.025 mm) around
+each region, so that its forces are those of :func:`wheelrail.solve` with the same
+line.
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ import numpy as np
 
 import wheelrail as wr
 from wheelrail.dynamics._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
-from wheelrail.dynamics.contact import FastContact
+from wheelrail.dynamics.contact import LINE_NODES, FastContact
 from wheelrail.geometry.touching import touching_heights
 
 D = wr.dynamics
@@ -81,8 +82,8 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--duration", type=float, default=2.0, help="simulated time [s]")
-    ap.add_argument("--line-stride", type=int, default=1,
-                    help="Kik-Piotrowski line: every n-th node of the library's line")
+    ap.add_argument("--line-nodes", type=int, default=LINE_NODES,
+                    help="nodes of Kik-Piotrowski's separation line (40 mm)")
     ap.add_argument("--contact-only", action="store_true",
                     help="only the per-position contact time (section 1)")
     args = ap.parse_args(argv)
@@ -93,7 +94,7 @@ def main(argv=None):
     poses = positions(ws, tr, ys, yaw)
     print(f"load average {os.getloadavg()[0]:.2f}; NUMBA_NUM_THREADS="
           f"{os.environ.get('NUMBA_NUM_THREADS', 'unset')}")
-    print(f"Kik-Piotrowski line stride {args.line_stride}")
+    print(f"Kik-Piotrowski line: {args.line_nodes} nodes over 40 mm")
     print(f"S1002 / 60E1 1:40, {len(poses)} positions y = {ys[0] * 1e3:g} … {ys[-1] * 1e3:g} mm, "
           f"yaw {yaw * 1e3:g} mrad, approach 30 µm, V = {V:g} m/s, mu = 0.3")
     laws = [("kik-piotrowski", "fastsim"), ("hertz", "fastsim")]
@@ -108,8 +109,9 @@ def main(argv=None):
     print("\nper-position contact time, both wheels incl. contact search (compiled path):")
     print(f"{'normal':>16} {'tangential':>12} {'ms/position':>12} {'patches':>8}")
     for normal, tang in laws:
-        nm, tm = D.configured_methods(normal, tang)
-        fc = FastContact(ws, tr, wr.STEEL, nm, tm, line_stride=args.line_stride)
+        opts = {"line_nodes": args.line_nodes} if normal == "kik-piotrowski" else {}
+        nm, tm = D.configured_methods(normal, tang, opts)
+        fc = FastContact(ws, tr, wr.STEEL, nm, tm)
         t = contact_time(fc, poses, yaw, V, ws.nominal_radius, args.repeat)
         op = np.zeros((KMAX, len(PATCH_FIELDS)))
         ow = np.zeros(len(WHEEL_FIELDS))
@@ -129,7 +131,8 @@ def main(argv=None):
         D.simulate(model, tr, V, 0.01, normal, tang, initial={"ws0.y": 0.003})   # warm-up
         res = D.simulate(model, tr, V, args.duration, normal, tang,
                          integrator=D.FixedStep(dt=1e-3), initial={"ws0.y": 0.003},
-                         contact_options={"line_stride": args.line_stride})
+                         method_options=({"line_nodes": args.line_nodes}
+                                         if normal == "kik-piotrowski" else None))
         info = res.info
         print(f"{info['normal']:>16} {info['tangential']:>12} {info['real_time_factor']:8.2f} "
               f"{info['contact_evaluations']:8d} "

@@ -141,13 +141,6 @@ def test_the_dynamics_default_line_differs_from_the_converged_line_by_its_measur
     assert d.max() > 1e-5         # the lines do differ: the comparison is not of a line with itself
 
 
-def test_line_stride_is_checked(s1002_60e1):
-    ws, tr, _ = s1002_60e1
-    with pytest.raises(wr.errors.InputError, match="line_stride"):
-        FastContact(ws, tr, wr.STEEL, wr.normal.KikPiotrowski(), wr.tangential.Fastsim(),
-                    line_stride=0)
-
-
 # --------------------------------------------------------------------------- fallback warning
 def test_a_pair_without_compiled_path_is_announced_once_with_its_cost(s1002_60e1):
     ws, tr, _ = s1002_60e1

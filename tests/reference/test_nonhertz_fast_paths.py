@@ -239,11 +239,12 @@ def test_stripes_read_nodes_cover_the_interpolation():
 
 def test_separation_kernel_equals_full_splines(s1002):
     """The separation's local cubics through the 0.04 mm profile samples (the samples around
-    the η interval only) give the not-a-knot splines through the full monotone window
-    within 0.2 nm (both are exact for cubics), and are exact for a cubic."""
+    the η interval only) give scipy's not-a-knot splines through the full monotone window
+    within 2 nm (both are exact for cubics), and are exact for a cubic."""
+    from scipy.interpolate import CubicSpline
+
     from wheelrail.geometry.separation import _monotone_window
-    from wheelrail.normal._fast_separation import (plane_samples, separation_fast,
-                                                    spline_not_a_knot)
+    from wheelrail.normal._fast_separation import local_cubic, plane_samples, separation_fast
 
     ws, tr = s1002
     prob = _problem(s1002, 0.003)
@@ -263,14 +264,10 @@ def test_separation_kernel_equals_full_splines(s1002):
     sw = _monotone_window(ew, int(np.argmin(np.abs(ew))))
     sr = _monotone_window(er, int(np.argmin(np.abs(er))))
     assert sw.stop - sw.start > 1500      # the kernel cuts about half of these samples
-    W = spline_not_a_knot(np.ascontiguousarray(ew[sw]), np.ascontiguousarray(
-        np.stack([zw[sw], rw[sw]])), sep.eta)
-    R = spline_not_a_knot(np.ascontiguousarray(er[sr]), np.ascontiguousarray(zr[sr])[None, :],
-                          sep.eta)
-    np.testing.assert_allclose(sep.f, W[0] - R[0], rtol=0, atol=2e-10)
-    np.testing.assert_allclose(sep.wheel_radius, W[1], rtol=1e-9)
-    from wheelrail.normal._fast_separation import local_cubic
-
+    W = CubicSpline(ew[sw], np.stack([zw[sw], rw[sw]]).T)(sep.eta).T
+    R = CubicSpline(er[sr], zr[sr])(sep.eta)
+    np.testing.assert_allclose(sep.f, W[0] - R, rtol=0, atol=2e-9)
+    np.testing.assert_allclose(sep.wheel_radius, W[1], rtol=0, atol=2e-9)
     x = np.sort(np.random.default_rng(3).uniform(-1.0, 2.0, 40))
     t = np.linspace(x[1], x[-2], 333)
     cubic = lambda v: 0.3 * v**3 - 1.1 * v**2 + 0.5 * v - 2.0          # noqa: E731

@@ -200,3 +200,30 @@ def test_any_spin_is_inside_and_tends_to_full_sliding():
     assert r.info["outside"] is False
     assert abs(r.Fx) < 1e-3 * 3e3
     assert r.Mz == pytest.approx(-3.0 * np.pi / 16.0 * 3e3 * 5e-3, rel=0.01)
+
+
+def test_kernel_at_one_poisson_ratio_gives_the_full_kernels_forces():
+    """``TableData.kernel_at(nu)`` (the ν axis collapsed for a fixed material, as the
+    dynamics uses it) gives the forces and flags of the full kernel to round-off, and an
+    ν outside the table keeps the full kernel."""
+    from wheelrail.tangential._table_kernel import evaluate
+    from wheelrail.tangential.table import load_table
+
+    d = load_table(None)
+    rng = np.random.default_rng(7)
+    m = 2000
+    a = rng.uniform(2e-3, 8e-3, m)
+    b = a / np.exp(rng.uniform(-3.5, 3.5, m))          # inside and beyond the a/b range
+    Fn = rng.uniform(1e4, 1e5, m)
+    xi, eta, phi = rng.normal(0, 2e-3, m), rng.normal(0, 2e-3, m), rng.normal(0, 2.0, m)
+    lo, hi = d.domain["nu"]
+    for nu in (lo, 0.5 * (lo + hi), hi):
+        res = []
+        for k in (d.kernel, d.kernel_at(nu)):
+            out, fl = np.empty((m, 3)), np.empty(m, np.int8)
+            evaluate(a, b, np.full(m, 8e10), np.full(m, nu), xi, eta, phi, np.full(m, 0.3),
+                     Fn, *k, out, fl)
+            res.append((out, fl))
+        assert np.array_equal(res[0][1], res[1][1])
+        assert np.max(np.abs(res[0][0] - res[1][0]) / (0.3 * Fn[:, None])) < 1e-13
+    assert d.kernel_at(hi + 0.05) is d.kernel

@@ -91,9 +91,10 @@ WHEEL_FIELDS = ("patches", "Qn_y", "Qn_z", "Qn_roll", "Qn_yaw", "Qn_spin", "Qt_y
                 "min_gap", "fallbacks", "a_mean", "candidates")
 _NP = len(PATCH_FIELDS)
 _KC = 8                # candidate minima kept per wheel
-#: Golden-section levels of a minimum's refinement: the bracket ±0.5 mm shrinks to 3 µm
-#: (the gap's error at its minimum, ~κ Δs²/8 with κ ≲ 100 1/m, below 1e-10 m).
-_LEVELS = 12
+#: Golden-section levels of a minimum's refinement: the bracket ±0.5 mm shrinks to 0.2 µm.
+#: Fewer (12: 3 µm) leave the gap accurate but not smooth enough in the pose for the
+#: finite-difference Jacobians of the equilibria (steady curving stops converging).
+_LEVELS = 18
 
 #: Indices of the method parameters (the float array ``mp``).
 MP = {name: i for i, name in enumerate((

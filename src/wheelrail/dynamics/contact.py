@@ -124,13 +124,6 @@ class FastContact:
     search_step : float
         Grid step of the contact search along the wheel profile [m] (minima refined
         to ~1 µm).
-    line_stride : int
-        Kik–Piotrowski's separation line: every ``line_stride``-th node of the library's
-        line (1, the default: the library's 0.025 mm nodes, the forces of
-        :func:`wheelrail.solve`; 2 or 4: 0.05 or 0.1 mm, about 1.6 times faster on
-        40 kN patches (``benchmarks/bench_dynamics.py --line-stride``), with the
-        discretisation error of the coarser line: up to 1.8 % (2) or 6 % (4) of μQ
-        from :func:`wheelrail.solve` on Manchester A-2.2 and flange contacts).
     line_half_width : float
         Smallest half width of the part of Kik–Piotrowski's separation line that is
         evaluated [m] (widened to the region's extent on the search grid and the
@@ -153,7 +146,7 @@ class FastContact:
     kind = "compiled"
 
     def __init__(self, wheelset, track, material, normal, tangential, *, search_step=5e-4,
-                 line_stride=1, line_half_width=1e-3, tolerance=5e-4, connected="separate"):
+                 line_half_width=1e-3, tolerance=5e-4, connected="separate"):
         why = _fast_support(normal, tangential)
         if connected not in ("separate", "shared"):
             raise InputError(f"connected must be 'separate' or 'shared', got {connected!r}")
@@ -195,9 +188,7 @@ class FastContact:
             mp[MP["strips"]] = mp[MP["cells"]] = 2
             mp[MP["line_nodes"]] = 1601         # (unused by Hertz)
             mp[MP["samples"]] = 2001
-        if not (isinstance(line_stride, (int, np.integer)) and 1 <= line_stride <= 16):
-            raise InputError(f"line_stride must be an integer in 1 … 16, got {line_stride!r}")
-        mp[MP["line_stride"]] = int(line_stride)
+        mp[MP["line_stride"]] = 1        # every node of the method's line (its line_nodes)
         mp[MP["line_half_width"]] = float(line_half_width)
         mp[MP["group_angle"]] = 0.2
         mp[MP["tolerance"]] = float(tolerance)
@@ -224,7 +215,7 @@ class FastContact:
         # the table's compiled form (the library's own kernel evaluates it); with another
         # law the default table's arrays only fill the slots of the compiled signature
         data = load_table(tangential.table if isinstance(tangential, Table) else None)
-        kernel = tuple(np.ascontiguousarray(k) for k in data.kernel)
+        kernel = tuple(np.ascontiguousarray(k) for k in data.kernel_at(float(pair.nu)))
         c_ = np.ascontiguousarray
         self.method = (mp, c_(lam), c_(la), c_(lb), c_(lp), c_(ld), c_(kx), c_(c11), c_(c22),
                        c_(c23), c_(c33), c_(t), c_(half), c_(strip_peak), c_(s_cells),

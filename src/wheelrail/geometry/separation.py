@@ -42,6 +42,7 @@ from scipy.interpolate import CubicSpline
 from .._validation import as_float_array, non_negative, positive
 from ..errors import InputError
 from ._checks import check_side
+from ._local_cubic import local_cubic
 from .contact_search import _SIGMA, silhouette
 from .points import contact_points
 
@@ -197,7 +198,7 @@ def separation(wheelset, track, y, yaw=0.0, *, side="right", point=None, width=0
 
 
 def separation_at(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, contact_angle,
-                  width=0.04, n=401, point=-1) -> Separation:
+                  width=0.04, n=401, point=-1, samples=2001) -> Separation:
     """Separation around a point of a wheelset at a given pose (kernel of :func:`separation`).
 
     Parameters
@@ -217,6 +218,10 @@ def separation_at(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, c
         Extent [m] and number of η samples.
     point : int
         Index stored in the result (−1: not a point of ``contact_points``).
+    samples : int
+        Profile samples of each body on ±``width`` (2001: 0.04 mm for the default
+        width), interpolated at the η nodes by the cubic through the four samples
+        around each (:func:`wheelrail.geometry._local_cubic.local_cubic`).
 
     Returns
     -------
@@ -232,7 +237,7 @@ def separation_at(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, c
     u_c = sig * float(track_y)
     C = np.array([u_c, float(rc.eval(u_c, 0)[0])])
     # dense samples of both curves around the point (0.04 mm apart for the default width)
-    m = 2001
+    m = int(samples)
     wc = wheelset.curve(side)
     s = np.linspace(max(wc.u_min, wheel_y - width), min(wc.u_max, wheel_y + width), m)
     p, p1 = wc.eval(s, 1)
@@ -250,9 +255,11 @@ def separation_at(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, c
     lo = max(-0.5 * width, ew[sw][0], er[sr][0])
     hi = min(0.5 * width, ew[sw][-1], er[sr][-1])
     eta = np.linspace(lo, hi, n)
-    fw = CubicSpline(ew[sw], zw[sw])(eta)
-    fr = CubicSpline(er[sr], zrr[sr])(eta)
-    r = CubicSpline(ew[sw], rw[sw])(eta)
+    W = local_cubic(np.ascontiguousarray(ew[sw]), np.ascontiguousarray(
+        np.stack([zw[sw], rw[sw]])), eta)
+    fw, r = W[0], W[1]
+    fr = local_cubic(np.ascontiguousarray(er[sr]), np.ascontiguousarray(zrr[sr])[None, :],
+                     eta)[0]
     cosf = float(np.cos(gam - sig * roll))
     return Separation(eta, fw - fr, r, cosf, gam, side, float(y), float(yaw), int(point))
 

@@ -1,20 +1,19 @@
-"""Profile separation of a contact plane for the strip methods, with a numba spline (private).
+"""Profile separation of a contact plane for the strip methods, compiled (private).
 
 :func:`separation_fast` computes exactly what
 :func:`wheelrail.geometry.separation.separation_at` computes (dense samples
 of both profiles around the point, rotated into the contact plane, restricted
-to the monotone part, interpolated onto a uniform η grid by not-a-knot cubic
-splines), but builds the splines in one numba kernel instead of three
-``scipy.interpolate.CubicSpline`` objects, which take two thirds of the time
-of a separation. The not-a-knot cubic interpolant is unique, so the two agree
-to round-off (a test checks it); the strip methods call this per wheel problem
-and store the result in the problem's cache, where
+to the monotone part, interpolated onto a uniform η grid by the cubic through
+the four samples around each node,
+:func:`~wheelrail.geometry._local_cubic.local_cubic`) in one numba kernel; the
+two agree to round-off (a test checks it). The strip methods call this per wheel
+problem and store the result in the problem's cache, where
 :meth:`~wheelrail.contact.wheelrail.WheelProblem.separation` finds it.
 
 References
 ----------
-.. [1] C. de Boor, *A practical guide to splines*, Springer 1978, ch. IV
-   (cubic spline interpolation, not-a-knot end condition).
+.. [1] C. de Boor, *A practical guide to splines*, Springer 1978, ch. I
+   (polynomial interpolation).
 """
 
 from __future__ import annotations
@@ -22,10 +21,12 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..geometry._local_cubic import local_cubic
+
 from ..geometry.contact_search import _SIGMA
 from ..geometry.separation import Separation, separation_at
 
-__all__ = ["spline_not_a_knot", "local_cubic", "separation_fast", "plane_samples", "separation_kernel",
+__all__ = ["local_cubic", "separation_fast", "plane_samples", "separation_kernel",
            "separation_window", "rail_slopes"]
 
 
@@ -123,148 +124,6 @@ def plane_samples(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, theta, 
     er = (ur - C0) * t0 + (zr - C1) * t1
     zrr = (ur - C0) * n0 + (zr - C1) * n1
     return ew, zw, rw, er, zrr
-
-
-@njit(cache=True)
-def local_cubic(x, Y, t):
-    """Cubic interpolants of the rows of ``Y`` at increasing ``t``, each through the four
-    samples around it (x[j−1] … x[j+2] for x[j] ≤ t < x[j+1]; pure kernel).
-
-    On profile samples 0.04 mm apart it differs from the not-a-knot spline through
-    all samples by far less than a nanometre (both are exact for cubics), and it is
-    what the compiled dynamics evaluates node by node, so both give one line at any
-    sample spacing.
-
-    Parameters
-    ----------
-    x : ndarray, shape (n,)
-        Strictly increasing abscissae, n ≥ 4.
-    Y : ndarray, shape (k, n)
-    t : ndarray, shape (m,)
-        Increasing evaluation points.
-
-    Returns
-    -------
-    ndarray, shape (k, m)
-    """
-    n = x.shape[0]
-    k = Y.shape[0]
-    out = np.empty((k, t.shape[0]))
-    j = 1
-    for i in range(t.shape[0]):
-        e = t[i]
-        while j < n - 3 and x[j + 1] < e:
-            j += 1
-        x0, x1, x2, x3 = x[j - 1], x[j], x[j + 1], x[j + 2]
-        a0, a1, a2, a3 = e - x0, e - x1, e - x2, e - x3
-        w0 = a1 * a2 * a3 / ((x0 - x1) * (x0 - x2) * (x0 - x3))
-        w1 = a0 * a2 * a3 / ((x1 - x0) * (x1 - x2) * (x1 - x3))
-        w2 = a0 * a1 * a3 / ((x2 - x0) * (x2 - x1) * (x2 - x3))
-        w3 = a0 * a1 * a2 / ((x3 - x0) * (x3 - x1) * (x3 - x2))
-        for r in range(k):
-            out[r, i] = w0 * Y[r, j - 1] + w1 * Y[r, j] + w2 * Y[r, j + 1] + w3 * Y[r, j + 2]
-    return out
-
-
-@njit(cache=True)
-def spline_not_a_knot(x, Y, t):
-    """Not-a-knot cubic spline interpolants of the rows of ``Y`` at ``t`` (pure kernel).
-
-    Parameters
-    ----------
-    x : ndarray, shape (n,)
-        Strictly increasing abscissae, n ≥ 4.
-    Y : ndarray, shape (k, n)
-        Ordinates (one interpolant per row).
-    t : ndarray, shape (m,)
-        Evaluation points, increasing, inside [x[0], x[-1]].
-
-    Returns
-    -------
-    ndarray, shape (k, m)
-
-    Notes
-    -----
-    The node slopes s solve the tridiagonal system of C² continuity with the
-    not-a-knot end rows (third derivative continuous at x[1] and x[-2]),
-    by Gaussian elimination without pivoting (the eliminated diagonal stays
-    ≥ its off-diagonal neighbours for the near-uniform spacing of profile
-    samples); each interval is then the cubic Hermite polynomial of its end
-    values and slopes.
-    """
-    n = x.shape[0]
-    k = Y.shape[0]
-    m = t.shape[0]
-    dx = np.empty(n - 1)
-    idx = np.empty(n - 1)                # 1/dx: multiplications instead of divisions
-    for i in range(n - 1):
-        dx[i] = x[i + 1] - x[i]
-        idx[i] = 1.0 / dx[i]
-    # matrix rows: sub[i] s[i-1] + dia[i] s[i] + sup[i] s[i+1] = rhs[i]; the forward
-    # elimination factors w, c (and 1/c) are shared by all rows of Y
-    sup = np.zeros(n)
-    c = np.empty(n)
-    w = np.empty(n)
-    ic = np.empty(n)
-    c[0] = dx[1]
-    sup[0] = x[2] - x[0]
-    for i in range(1, n - 1):
-        sup[i] = dx[i - 1]
-    ic[0] = 1.0 / c[0]
-    for i in range(1, n):
-        if i < n - 1:
-            sub = dx[i]
-            dia = 2.0 * (dx[i - 1] + dx[i])
-        else:
-            sub = x[n - 1] - x[n - 3]
-            dia = dx[n - 3]
-        w[i] = sub * ic[i - 1]
-        c[i] = dia - w[i] * sup[i - 1]
-        ic[i] = 1.0 / c[i]
-    jj = np.empty(m, np.int64)           # interval of each evaluation point (all rows)
-    j = 0
-    for q in range(m):
-        while j < n - 2 and t[q] > x[j + 1]:
-            j += 1
-        jj[q] = j
-    out = np.empty((k, m))
-    slope = np.empty((k, n - 1))
-    rhs = np.empty((k, n))
-    s = np.empty((k, n))
-    d0 = x[2] - x[0]
-    d1 = x[n - 1] - x[n - 3]
-    for r in range(k):
-        for i in range(n - 1):
-            slope[r, i] = (Y[r, i + 1] - Y[r, i]) * idx[i]
-        rhs[r, 0] = ((dx[0] + 2.0 * d0) * dx[1] * slope[r, 0]
-                     + dx[0] * dx[0] * slope[r, 1]) / d0
-        for i in range(1, n - 1):
-            rhs[r, i] = 3.0 * (dx[i] * slope[r, i - 1] + dx[i - 1] * slope[r, i])
-        rhs[r, n - 1] = ((dx[n - 2] * dx[n - 2] * slope[r, n - 3]
-                          + (2.0 * d1 + dx[n - 2]) * dx[n - 3] * slope[r, n - 2]) / d1)
-    # the eliminations are chains along i: the rows run side by side (independent chains
-    # overlap in the processor), each row with exactly its own operations
-    for i in range(1, n):
-        wi = w[i]
-        for r in range(k):
-            rhs[r, i] -= wi * rhs[r, i - 1]
-    for r in range(k):
-        s[r, n - 1] = rhs[r, n - 1] * ic[n - 1]
-    for i in range(n - 2, -1, -1):
-        su = sup[i]
-        ci = ic[i]
-        for r in range(k):
-            s[r, i] = (rhs[r, i] - su * s[r, i + 1]) * ci
-    for r in range(k):
-        for q in range(m):
-            j = jj[q]
-            ih = idx[j]
-            tt = (s[r, j] + s[r, j + 1] - 2.0 * slope[r, j]) * ih
-            c0 = tt * ih
-            c1 = (slope[r, j] - s[r, j]) * ih - tt
-            u = t[q] - x[j]
-            out[r, q] = ((c0 * u + c1) * u + s[r, j]) * u + Y[r, j]
-    return out
 
 
 @njit(cache=True)
@@ -379,7 +238,7 @@ def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, the
     for i in range(n):
         eta[i] = i * step + lo
     eta[n - 1] = hi
-    # the splines on the samples around [lo, hi] only (_SPLINE_MARGIN beyond each end)
+    # the interpolation on the samples around [lo, hi] only (_SPLINE_MARGIN beyond each end)
     w0, w1 = _knot_range(ew, w0, w1, lo, hi)
     r0_, r1_ = _knot_range(er, r0_, r1_, lo, hi)
     nw = w1 - w0 + 1
@@ -400,7 +259,7 @@ def separation_kernel(s, wu, wc, wh, ur, ru, rc, rh, r0, e_tape, sig, y, zc, the
 
 def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y, contact_angle,
                     width=0.04, n=401, point=-1, samples=2001):
-    """:func:`wheelrail.geometry.separation.separation_at` with the numba spline (same result).
+    """:func:`wheelrail.geometry.separation.separation_at` compiled (same result).
 
     Parameters and return value as there (SI units: m, rad); ``samples`` profile
     samples of each body on ±2·``width`` (the reference implementation's 2001: 0.04 mm
@@ -420,6 +279,6 @@ def separation_fast(wheelset, track, side, *, y, z, roll, yaw, wheel_y, track_y,
 
         return separation_at(wheelset, track, side, y=y, z=z, roll=roll, yaw=yaw,
                              wheel_y=wheel_y, track_y=track_y, contact_angle=contact_angle,
-                             width=width, n=n, point=point)
+                             width=width, n=n, point=point, samples=samples)
     cosf = float(np.cos(gam - sig * roll))
     return Separation(eta, f, radius, cosf, gam, side, float(y), float(yaw), int(point))

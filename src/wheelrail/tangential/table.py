@@ -306,6 +306,29 @@ class TableData:
                 np.array(n, np.int64), np.array(CUBIC, np.bool_), c_x0, c_dx, c_n,
                 np.ascontiguousarray(coef))
 
+    def kernel_at(self, nu):
+        """``kernel`` for one Poisson's ratio ``nu`` (a material fixed over many calls).
+
+        The ν axis (linear) is collapsed to the interpolated plane, stored at ν = ``nu``
+        with spacing 1 so that the kernel's ν weights are (1, 0): one plane of
+        coefficients is read instead of two, the same forces to round-off. A ``nu``
+        outside the table returns the full ``kernel`` (whose flags then say so).
+        """
+        values, x0, dx, n, cubic, c_x0, c_dx, c_n, coef = self.kernel
+        lo = x0[4]
+        hi = x0[4] + (n[4] - 1) * dx[4]
+        if not (lo - 1e-12 <= nu <= hi + 1e-12) or n[4] < 2:
+            return self.kernel
+        u = min(max((nu - lo) / dx[4], 0.0), n[4] - 1.0)
+        i = min(int(u), int(n[4]) - 2)
+        t = u - i
+        # padded ν axis: ghost, nodes 0 … n−1, ghost (node k at index k + 1)
+        plane = (1.0 - t) * values[:, :, :, :, i + 1] + t * values[:, :, :, :, i + 2]
+        one = np.ascontiguousarray(np.repeat(plane[:, :, :, :, None], 4, axis=4))
+        x0n, dxn, nn = x0.copy(), dx.copy(), n.copy()
+        x0n[4], dxn[4], nn[4] = float(nu), 1.0, 2
+        return (one, x0n, dxn, nn, cubic, c_x0, c_dx, c_n, coef)
+
     @property
     def domain(self) -> dict:
         """Ranges of the inputs: ``phi_hat`` (|φ̂| max, ``inf`` when s = ±1 is tabulated),
