@@ -46,6 +46,10 @@ ALLOWED = {
     ("cli", "wheelrail.validation._report"): (
         {"_err", "_tol"},
         "the command prints the report's errors and tolerances as the report formats them"),
+    ("normal", "wheelrail.geometry._local_cubic"): (
+        {"local_cubic"},
+        "the separation line's interpolation: one kernel for the reference separation "
+        "(geometry) and its compiled twin (normal), so both give one line"),
     ("contact", "wheelrail.geometry.contact_search"): (
         {"_Pose"},
         "the wheel-rail drivers take the contact search's pose record as it is"),
