@@ -311,7 +311,8 @@ class TableData:
 
         The ν axis (linear) is collapsed to the interpolated plane, stored at ν = ``nu``
         with spacing 1 so that the kernel's ν weights are (1, 0): one plane of
-        coefficients is read instead of two, the same forces to round-off. A ``nu``
+        coefficients is read instead of two, from an array half as large, the same forces
+        to round-off. A ``nu``
         outside the table returns the full ``kernel`` (whose flags then say so).
         """
         values, x0, dx, n, cubic, c_x0, c_dx, c_n, coef = self.kernel
@@ -324,7 +325,9 @@ class TableData:
         t = u - i
         # padded ν axis: ghost, nodes 0 … n−1, ghost (node k at index k + 1)
         plane = (1.0 - t) * values[:, :, :, :, i + 1] + t * values[:, :, :, :, i + 2]
-        one = np.ascontiguousarray(np.repeat(plane[:, :, :, :, None], 4, axis=4))
+        # the kernel reads index 1 of the ν axis only (weights 0, 1, 0, 0): two slots, the
+        # plane in both, so the a/b neighbours lie 6 values apart instead of 12
+        one = np.ascontiguousarray(np.repeat(plane[:, :, :, :, None], 2, axis=4))
         x0n, dxn, nn = x0.copy(), dx.copy(), n.copy()
         x0n[4], dxn[4], nn[4] = float(nu), 1.0, 2
         return (one, x0n, dxn, nn, cubic, c_x0, c_dx, c_n, coef)
