@@ -131,8 +131,8 @@ def main(argv=None):
         D.simulate(model, tr, V, 0.01, normal, tang, initial={"ws0.y": 0.003})   # warm-up
         res = D.simulate(model, tr, V, args.duration, normal, tang,
                          integrator=D.FixedStep(dt=1e-3), initial={"ws0.y": 0.003},
-                         method_options=({"line_nodes": args.line_nodes}
-                                         if normal == "kik-piotrowski" else None))
+                         **({"line_nodes": args.line_nodes} if normal == "kik-piotrowski"
+                            else {}))
         info = res.info
         print(f"{info['normal']:>16} {info['tangential']:>12} {info['real_time_factor']:8.2f} "
               f"{info['contact_evaluations']:8d} "
