@@ -8,7 +8,7 @@ V = 30 m/s, yaw 1 mrad, lateral shifts −6 … +7 mm (tread and flange contact)
    compiled path used by :func:`wheelrail.dynamics.simulate`, for
    Kik–Piotrowski + FASTSIM and Hertz + FASTSIM (and the table law when its
    data are installed): mean CPU time over the positions, best of ``--repeat``
-   rounds, after a warm-up (numba cache load). Issue 21's goals: ≤ 0.1 ms (KP)
+   rounds, after a warm-up (numba cache load). Goals: ≤ 0.1 ms (KP)
    and ≤ 0.05 ms (Hertz).
 2. **Real-time factor** (simulated seconds per CPU second) of a suspended
    wheelset with the fixed-step RK4 scheme at a 1 ms step (4 contact
@@ -139,11 +139,7 @@ def main(argv=None):
               f"{info['cpu_time'] / info['contact_evaluations'] * 1e3:8.4f}")
     print("\nsteady curving, Manchester vehicle 1 bogie (Iwnicki 1998), R = 300 m, 100 mm cant, "
           "Hertz + FASTSIM (CPU per equilibrium, first one with warm-up):")
-    prim = D.Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, half_spacing=1.0)
-    sec = D.Suspension(kx=0.16e6, ky=0.16e6, kz=0.43e6, half_spacing=1.0)
-    bogie = D.BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
-                         (1722.0, 1476.0, 3067.0), 1.28, sec,
-                         axle_load=(8000.0 + 2615.0 / 2 + 1813.0) * 9.81, spin="fixed")
+    bogie = D.manchester_bogie()
     print(f"{'V m/s':>6} {'yaw lead mrad':>14} {'flange Fn kN':>13} {'CPU s':>7}")
     for speed in (10.0, 15.0, 20.0, 25.0):
         t0 = time.process_time()

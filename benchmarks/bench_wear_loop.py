@@ -1,6 +1,6 @@
 """Benchmark: the wear loop on a bogie over a route of five curve classes and tangent track.
 
-The Manchester benchmark vehicle's bogie (as in tests/dynamics) on S1002 / 60E1
+The Manchester benchmark vehicle's bogie (``wr.dynamics.manchester_bogie()``) on S1002 / 60E1
 runs curves of radius 300, 500, 800, 1500 and 3000 m (cant 100 … 30 mm, speeds
 near balance + a cant deficiency of ~50 mm) and tangent track with a sine
 alignment, weights 0.05 / 0.1 / 0.1 / 0.15 / 0.2 / 0.4; USFD law, wear step
@@ -28,17 +28,10 @@ for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
 def build():
     import wheelrail as wr
     from wheelrail import dynamics as dy
-    from wheelrail.dynamics import BogieModel, Suspension
 
     G = 9.81
-    ws = wr.Wheelset(wr.profiles.load("S1002"))
+    bogie = dy.manchester_bogie()
     tr = wr.Track(wr.profiles.load("60E1"))
-    prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
-                      half_spacing=1.0)
-    sec = Suspension(kx=0.16e6, ky=0.16e6, kz=0.43e6, cy=32e3, cz=20e3, half_spacing=1.0)
-    axle_load = (32000.0 / 4 + 2615.0 / 2 + 1813.0) * G
-    bogie = BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
-                       (1722.0, 1476.0, 3067.0), 1.28, sec, axle_load=axle_load, spin="fixed")
     cases = []
     for R, cant, w, direction in ((300.0, 0.10, 0.05, "right"), (500.0, 0.10, 0.10, "left"),
                                   (800.0, 0.08, 0.10, "right"), (1500.0, 0.05, 0.15, "left"),

@@ -13,14 +13,11 @@ import matplotlib.pyplot as plt
 
 import wheelrail as wr
 
-D, W, S = wr.dynamics, wr.wear, wr.dynamics.Suspension
+D, W = wr.dynamics, wr.wear
 out = Path(sys.argv[1] if len(sys.argv) > 1 else os.environ.get("WHEELRAIL_OUT", "."))
 out.mkdir(parents=True, exist_ok=True)
-ws, tr = wr.Wheelset(wr.profiles.load("S1002")), wr.Track(wr.profiles.load("60E1"))
-bogie = D.BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), S(kx=31.391e6, ky=3.884e6, kz=1.22e6,
-                     cx=15e3, cy=2e3, cz=4e3, half_spacing=1.0), 2615.0, (1722.0, 1476.0, 3067.0),
-                     1.28, S(kx=0.16e6, ky=0.16e6, kz=0.43e6, cy=32e3, cz=20e3, half_spacing=1.0),
-                     axle_load=109.1e3, spin="fixed")      # the Manchester benchmark bogie
+tr = wr.Track(wr.profiles.load("60E1"))
+bogie = D.manchester_bogie()            # the Manchester benchmark vehicle's bogie (Iwnicki 1998)
 curve = D.TrackLayout(tr, curves=(D.Curve(300.0, start=5.0, transition=20.0, cant=0.1),))
 tangent = D.TrackLayout(tr, irregularity=D.Irregularity.sine(0.002, 25.0, start=2.0, cycles=2))
 route = W.Route((W.RouteCase(curve, 15.0, weight=0.8, distance=5.0, run_in=30.0, name="R300"),

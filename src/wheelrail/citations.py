@@ -163,7 +163,7 @@ BIBLIOGRAPHY: dict[str, tuple[str, dict[str, str]]] = {
         "title": "Improved accuracy for FASTSIM using one or three flexibility values",
         "journal": "Vehicle System Dynamics", "year": "2023",
         "note": "FASTSIM with three flexibilities saturating in the slip direction; cited "
-                "in wheelrail's issue 13, title and venue not confirmed against the paper"}),
+                "here, title and venue not confirmed against the paper"}),
     "Vollebregt2022": ("article", {
         "author": "Vollebregt, Edwin A. H.",
         "title": "Detailed wheel/rail geometry processing using the planar contact approach",

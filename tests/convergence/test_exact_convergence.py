@@ -41,7 +41,7 @@ def test_pure_spin_within_half_a_percent_at_40_elements():
     new40 = _fy(40, (0.0, 0.0, phi))
     err_new = abs(new40 / limit - 1)
     err_centre = abs(centre[40] / limit - 1)
-    assert err_new < 0.005, (new40, limit)          # issue 13: within 0.5 % at 40 elements
+    assert err_new < 0.005, (new40, limit)          # the target: within 0.5 % at 40 elements
     assert err_centre > 5 * err_new, (centre, new40, limit)
     # the same limit: the refined grids agree to the first-order remainder
     assert _fy(80, (0.0, 0.0, phi)) == pytest.approx(limit, rel=0.003)

@@ -1,6 +1,7 @@
 """Steady curving of a bogie with flange contact in a 300 m curve (Manchester vehicle 1).
 
-The bogie is that of vehicle 1 of the Manchester benchmarks (Iwnicki 1998:
+The bogie is that of vehicle 1 of the Manchester benchmarks (built in as
+``wr.dynamics.manchester_bogie()``; Iwnicki 1998:
 wheelset 1813 kg, primary stiffness per axlebox kx = 31.391 MN/m, ky =
 3.884 MN/m, kz = 1.22 MN/m at ±1 m, frame 2615 kg, semi-wheelbase 1.28 m,
 secondary per side kx = ky = 0.16 MN/m, kz = 0.43 MN/m; a quarter of the
@@ -28,7 +29,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.dynamics import BogieModel, Suspension, cant_deficiency, nadal, steady_curving
+from wheelrail.dynamics import cant_deficiency, manchester_bogie, nadal, steady_curving
 from wheelrail.errors import ConvergenceError
 
 R, CANT, G = 300.0, 0.1, 9.81
@@ -36,15 +37,8 @@ R, CANT, G = 300.0, 0.1, 9.81
 
 @pytest.fixture(scope="module")
 def manchester():
-    ws = wr.Wheelset(wr.profiles.load("S1002"))
     tr = wr.Track(wr.profiles.load("60E1"))
-    prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
-                      half_spacing=1.0)
-    sec = Suspension(kx=0.16e6, ky=0.16e6, kz=0.43e6, cy=32e3, cz=20e3, half_spacing=1.0)
-    axle_load = (32000.0 / 4 + 2615.0 / 2 + 1813.0) * G
-    bogie = BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
-                       (1722.0, 1476.0, 3067.0), 1.28, sec, axle_load=axle_load, spin="fixed")
-    return bogie, tr
+    return manchester_bogie(), tr
 
 
 def test_cant_deficiency_sweep_is_smooth_with_flange_contact(manchester):

@@ -1,4 +1,4 @@
-"""Shared checks of the hostile-input suite: one-line errors, no tracebacks, no debris."""
+"""Shared checks and cases of the hostile-input suite: one-line errors, no tracebacks, no debris."""
 
 from __future__ import annotations
 
@@ -19,6 +19,26 @@ mu = 0.3
 """
 #: The point contact solved with a small FASTSIM grid.
 SOLVE_CASE = POINT_CASE + "[method.fastsim]\nnx = 8\nny = 8\n"
+
+#: A small sweep: linear theory (Kalker 1967) at 4 × 2 creepages, stored in chunks of 2 rows.
+SWEEP_CASE = """
+[sweep]
+method = "linear"
+mu = 0.3
+Fn = 10000.0
+A = 1.087
+B = 1.667
+xi = {start = -0.003, stop = 0.003, num = 4}
+eta = [0.0, 0.001]
+chunk = 2
+"""
+
+
+def sweep_case(directory, text=SWEEP_CASE) -> Path:
+    """Write the sweep case ``text`` (default :data:`SWEEP_CASE`) to ``directory/s.toml``."""
+    path = Path(directory) / "s.toml"
+    path.write_text(text)
+    return path
 
 
 def wheelset_case(speed="20.0", y="0.002", motion="", position="") -> str:

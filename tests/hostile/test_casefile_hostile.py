@@ -1,7 +1,7 @@
 """Hostile case files: each mutation of a valid case is refused at read time with one line
 naming file, table, key and value — or solved with a documented PlausibilityWarning.
 
-Issue 11, failures 5 and 8: values in the wrong unit were solved as "converged";
+Failures once found: values in the wrong unit were solved as "converged";
 option errors did not name file and table and were only found at solve time; an
 exact-theory margin of −1 was silently clamped.
 """

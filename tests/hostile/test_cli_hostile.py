@@ -1,6 +1,6 @@
 """Hostile command lines: every case ends with one error line naming the bad value, or runs.
 
-Issue 11: an audit found tracebacks-free but misleading behaviour; here every
+An audit found traceback-free but misleading behaviour; here every
 bad argument must give exit code 2 (1 for --strict) and a single line
 ``wheelrail: error: ...`` that names the offending value — no traceback,
 no ``np.float64(...)``, no half-written output.
@@ -81,7 +81,7 @@ def test_geometry_wheel_is_a_directory(tmp_path, capsys):
 
 
 def test_geometry_strict_flags_derailed_rows(tmp_path, capsys):
-    """Issue 11, failure 3: ±50 mm derails; without --strict exit 0 with a summary."""
+    """±50 mm derails; without --strict exit 0 with a summary."""
     argv = [*GEO, "--y-range", "-0.05", "0.05", "--out", tmp_path / "o"]
     code, out, err = run_cli(argv, capsys)
     assert code == 0 and "derailed" in out and not err
@@ -173,7 +173,7 @@ def test_bad_memory_limit(value, good_case, capsys):
 
 
 def test_memory_guard_refuses_with_estimate(tmp_path, capsys):
-    """Issue 11, failure 6: a big BEM solve is refused before allocating, estimate named."""
+    """A big BEM solve is refused before allocating, estimate named."""
     p = tmp_path / "big.toml"
     p.write_text(SOLVE_GOOD + '[method]\nnormal = "bem"\ntangential = "fastsim"\n'
                  '[method.bem]\ngrid_elements = 400\n')
@@ -182,7 +182,7 @@ def test_memory_guard_refuses_with_estimate(tmp_path, capsys):
 
 
 def test_warnings_are_one_line_and_piped_output_is_not_wrapped(tmp_path, capsys):
-    """Issue 11, failure 10: no source lines of warnings, no 80-column wrapping in pipes."""
+    """No source lines of warnings, no 80-column wrapping in pipes."""
     p = tmp_path / ("a_rather_long_directory_name_" * 3) / "case.toml"
     p.parent.mkdir()
     p.write_text(SOLVE_GOOD.replace("7500.0", "7.5"))

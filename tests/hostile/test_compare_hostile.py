@@ -1,4 +1,4 @@
-"""``compare`` keeps every case setting and fits 80 columns (issue 23, items 4 and 6).
+"""``compare`` keeps every case setting and fits 80 columns.
 
 The campaign: ``compare --sweep --y …`` dropped the case's yaw (Fs = −69 N at
 y = 5 mm where ``wheelrail wheelset`` gives 2734 N); the time column charged

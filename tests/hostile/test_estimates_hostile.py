@@ -1,4 +1,4 @@
-"""Every long job estimated before it starts (issue 23, item 1).
+"""Every long job estimated before it starts.
 
 The campaign: a sweep with ``num = 1000000000`` sat 90 s and failed with
 ``MemoryError: Unable to allocate 7.45 GiB``; a sweep of 1e6 exact points

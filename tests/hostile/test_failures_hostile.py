@@ -1,7 +1,7 @@
-"""Clean failure everywhere (issue 23, item 3): every failure ends in one line naming the
+"""Clean failure everywhere: every failure ends in one line naming the
 file or value, and suggests the next step.
 
-The campaign of issue 23 found: names with rich markup (``c[/bold].toml``,
+A campaign of hostile inputs found: names with rich markup (``c[/bold].toml``,
 ``--out 'g[/bold]'``) ending in ``MarkupError`` after the outputs were written;
 an unreachable scheduler reported as ``MemoryError: Unable to allocate 3.07 EiB``
 followed by a traceback of the Dask client's destructor; about 75 lines of
@@ -24,21 +24,10 @@ import threading
 import time
 
 import pytest
-from _helpers import SOLVE_CASE, assert_clean_failure, run_cli, wheelset_case
+from _helpers import (SOLVE_CASE, SWEEP_CASE, assert_clean_failure, run_cli, sweep_case,
+                      wheelset_case)
 
 CASE = SOLVE_CASE
-
-SWEEP = """
-[sweep]
-method = "linear"
-mu = 0.3
-Fn = 10000.0
-A = 1.087
-B = 1.667
-xi = {start = -0.003, stop = 0.003, num = 4}
-eta = [0.0, 0.001]
-chunk = 2
-"""
 
 WHEELSET = wheelset_case()
 
@@ -64,7 +53,7 @@ def test_solve_echoes_markup_names_literally(tmp_path, capsys, monkeypatch):
 
 def test_sweep_echoes_markup_names_literally(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    case = _markup_file(tmp_path, SWEEP)
+    case = _markup_file(tmp_path, SWEEP_CASE)
     (tmp_path / "o[").mkdir()
     code, out, err = run_cli(["sweep", case.relative_to(tmp_path), "--out", "o[/bold].zarr",
                               "-q"], capsys)
@@ -142,8 +131,7 @@ def test_fifo_profile_file_refused(fifo, tmp_path, capsys):
 
 # --------------------------------------------------------------------------- distributed path
 def test_refused_scheduler_is_one_line_with_resume(tmp_path, capsys):
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     with socket.socket() as s:  # a free port nobody listens on
         s.bind(("127.0.0.1", 0))
         port = s.getsockname()[1]
@@ -179,8 +167,7 @@ def test_foreign_server_as_scheduler_no_memoryerror_no_destructor_noise(tmp_path
     t = threading.Thread(target=serve, daemon=True)
     t.start()
     try:
-        case = tmp_path / "s.toml"
-        case.write_text(SWEEP)
+        case = sweep_case(tmp_path)
         addr = f"tcp://127.0.0.1:{port}"
         code, _, err = run_cli(["sweep", case, "--out", tmp_path / "o.zarr", "--scheduler",
                                 addr, "--timeout", "2"], capsys)
@@ -199,8 +186,7 @@ def test_foreign_server_as_scheduler_no_memoryerror_no_destructor_noise(tmp_path
 def test_interrupt_suggests_resume_and_resume_completes(tmp_path, capsys, monkeypatch):
     from wheelrail.sweeps import executors
 
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     out = tmp_path / "o.zarr"
     real = executors.SerialExecutor.run
 
@@ -234,8 +220,8 @@ def test_interrupt_suggests_resume_and_resume_completes(tmp_path, capsys, monkey
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 def test_ctrl_c_with_worker_processes_is_one_line(tmp_path):
     """SIGINT to the whole process group (what a terminal's Ctrl-C does)."""
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP.replace("num = 4", "num = 4000").replace("chunk = 2", "chunk = 50"))
+    case = sweep_case(tmp_path, SWEEP_CASE.replace("num = 4", "num = 4000")
+                      .replace("chunk = 2", "chunk = 50"))
     argv = [sys.executable, "-m", "wheelrail", "sweep", str(case), "--out",
             str(tmp_path / "o.zarr"), "--executor", "processes", "--workers", "2", "-q"]
     p = subprocess.Popen(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -274,8 +260,7 @@ def test_concurrent_creation_loser_names_the_store(tmp_path):
     from wheelrail.sweeps import load_sweep
     from wheelrail.sweeps.store import SweepStore, provenance
 
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     spec = load_sweep(case)
     out = tmp_path / "o.zarr"
     SweepStore.create(out, spec, provenance(spec, ["linear"], {}))
@@ -288,8 +273,7 @@ def test_resume_of_a_store_being_written_is_refused(tmp_path, capsys):
     from wheelrail.sweeps import load_sweep
     from wheelrail.sweeps.store import SweepStore, provenance
 
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     spec = load_sweep(case)
     out = tmp_path / "o.zarr"
     store = SweepStore.create(out, spec, provenance(spec, ["linear"], {})).lock()
@@ -307,8 +291,7 @@ def test_resume_of_a_store_being_written_is_refused(tmp_path, capsys):
 def test_sweep_write_error_names_the_store(err_no, tmp_path, capsys, monkeypatch):
     import zarr
 
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     real = zarr.open_group
     calls = {"n": 0}
 

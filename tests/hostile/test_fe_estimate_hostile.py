@@ -1,4 +1,4 @@
-"""FE cases estimated before the mesh is allocated (issue 23, items 1 and 2).
+"""FE cases estimated before the mesh is allocated.
 
 The campaign: an FE case with ``mesh_size = 1e-6`` failed with ``MemoryError: Unable
 to allocate 2.80 TiB``, also with ``--estimate-only``; ``radius = 460`` (mm given as m)

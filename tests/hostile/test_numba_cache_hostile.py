@@ -1,4 +1,4 @@
-"""numba's kernel cache follows a change in a kernel of another file (issue 23, item 4).
+"""numba's kernel cache follows a change in a kernel of another file.
 
 numba (``cache=True``) keys a cached function on its own source file only: a caller
 compiled with a callee of another file kept the old callee after the callee's file

@@ -1,6 +1,6 @@
 """Crash-safe outputs: a full disk or a crash while writing leaves no half-written file.
 
-Issue 11, failure 9: with the disk full ``--json`` left a 0-byte invalid file. Every writer
+Once, with the disk full, ``--json`` left a 0-byte invalid file. Every writer
 goes through a temporary file that is renamed only when complete; here the write or the
 sync fails (ENOSPC) and the target must be absent (or unchanged) with no temporary left.
 """

@@ -1,4 +1,4 @@
-"""Wrong units and absurd values that still passed (issue 23, item 2).
+"""Wrong units and absurd values that once passed.
 
 The campaign: semi-axes ``a = 3.0, b = 2.3`` (mm given as m) solved a 3 m patch
 "converged"; BEM ``element_size = 0.4`` gave a 0.16 m² patch, exit 0;

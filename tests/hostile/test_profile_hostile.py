@@ -1,6 +1,6 @@
 """Damaged profile files: each is refused with one line naming the file and the likely cause.
 
-Issue 11, failure 7: values in metres inside a millimetre file were read as a
+Once, values in metres inside a millimetre file were read as a
 0.07 mm wide profile (then a misleading gauge message), truncated MiniProf
 files (50 of 147 declared points) and single spikes went undetected. Files are
 generated here from the built-in 60E1 and S1002 profiles (no shared data needed).

@@ -1,6 +1,6 @@
 """Property-based hostile inputs: random poses never abort a table; random spikes are found.
 
-Issue 11: a table's success depended on the sampling (11 points failed, 21 worked).
+A table's success once depended on the sampling (11 points failed, 21 worked).
 Here hypothesis draws lateral shift, yaw and rail inclination over the whole
 range the API accepts; every row must be solved or flagged, never raise.
 """

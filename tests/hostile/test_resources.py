@@ -1,6 +1,6 @@
 """Resource guards: estimates, refusal past the memory limit, progress for long solves.
 
-Issue 11, failure 6: an exact solve with 1000 elements ran 168 s at 2.7 GB printing
+An audit found an exact solve with 1000 elements running 168 s at 2.7 GB printing
 nothing; a BEM normal solve with 3000 elements passed 8 GB. The estimates are
 checked against those audit figures (within a factor of 2) and against
 ``benchmarks/bench_resources.py``.

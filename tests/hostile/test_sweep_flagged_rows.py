@@ -1,4 +1,4 @@
-"""Force sweeps flag the rows the contact table flags (issue 23, item 2).
+"""Force sweeps flag the rows the contact table flags.
 
 The campaign: force sweeps reported "ok" on rows that ``wr.contact_table`` flags as
 flange climb. Reference: the contact table's own status at the same rigid poses

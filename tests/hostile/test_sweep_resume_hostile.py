@@ -11,27 +11,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from _helpers import assert_clean_failure, run_cli
+from _helpers import assert_clean_failure, run_cli, sweep_case
 
 from wheelrail.sweeps import open_sweep
 
-SWEEP = """
-[sweep]
-method = "linear"
-mu = 0.3
-Fn = 10000.0
-A = 1.087
-B = 1.667
-xi = {start = -0.003, stop = 0.003, num = 4}
-eta = [0.0, 0.001]
-chunk = 2
-"""
-
-
 @pytest.fixture()
 def finished(tmp_path, capsys):
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     out = tmp_path / "o.zarr"
     code, _, err = run_cli(["sweep", case, "--out", out, "-q"], capsys)
     assert code == 0, err
@@ -98,8 +84,7 @@ def test_unreadable_result_is_one_line(tmp_path, capsys):
     ("--workers", "100000", ["workers = 100000", "cores", "--scheduler"]),
 ])
 def test_bad_executor_arguments_are_one_line(tmp_path, capsys, flag, value, names):
-    case = tmp_path / "s.toml"
-    case.write_text(SWEEP)
+    case = sweep_case(tmp_path)
     out = tmp_path / "x.zarr"
     code, _, err = run_cli(["sweep", case, "--out", out, flag, value, "-q"], capsys)
     assert_clean_failure(code, err, *names)

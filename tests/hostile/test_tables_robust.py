@@ -2,7 +2,7 @@
 profiles of ../shared/data/profiles, y = −50 … 50 mm (subsampled here; the full sweep is
 ``benchmarks/bench_contact_table_sweep.py``).
 
-Issue 11, failures 1–4: 60E1/54E1 failed at 1:20; an 11-point table failed at an ordinary
+Failures once found: 60E1/54E1 failed at 1:20; an 11-point table failed at an ordinary
 tread position; a wheel on its flange tip at y = −50 mm was reported as normal contact; one
 bad row of a measured wheel aborted the whole table.
 """

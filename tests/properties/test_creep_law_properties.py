@@ -105,7 +105,7 @@ def test_odd_symmetry(name, i, xi, eta, phi, mu):
 @PROP
 @given(i=contact_index, xi=creep, eta=creep, phi=spin, mu=frict,
        dxi=st.floats(-1e-6, 1e-6), deta=st.floats(-1e-6, 1e-6), dphi=st.floats(-1e-4, 1e-4))
-# regressions (issue 18): a symmetry plane against a subnormal neighbour. Fx is odd in ξ, so
+# regressions: a symmetry plane against a subnormal neighbour. Fx is odd in ξ, so
 # Fx(0, η, φ) = 0 and Fx(5e-324, η, φ) must be as small; (Fy, Mz) are odd in (η, φ), so
 # Fy(ξ, 0, 0) = 0 and Fy(ξ, 5e-324, 0) likewise (Kalker 1990, ch. 1-2). The table law once
 # zeroed the exact symmetry point only: a jump of ~1e-7 μFn to its neighbours.

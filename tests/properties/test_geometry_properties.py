@@ -37,7 +37,7 @@ def test_mirror_symmetry(y, yaw):
 
 @settings(max_examples=10, deadline=None)
 @given(y=st.floats(-0.008, 0.008))
-# regressions (issue 18), S1002/60E1 at the jump of the contact point to the flange root: the
+# regressions, S1002/60E1 at the jump of the contact point to the flange root: the
 # parabolic refinement left the minimum 0.1 mm away (y = 6.253 mm, 0.9 µm rigid penetration),
 # and two minima 0.13 mm apart in one grid cell (y = 6.2522 mm, the lower one missed)
 @example(y=0.006253)

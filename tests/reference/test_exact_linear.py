@@ -56,7 +56,7 @@ def test_creep_coefficients(ab):
     assert got["C23_eta"] == pytest.approx(C23, rel=0.02)
     # reciprocity of the coupling (Kalker's linear theory: the same C23 in Fy and Mz). The
     # spin's rigid slip is evaluated dx/6 upstream of the element centre (CONTACT's FACPHI,
-    # see wheelrail.tangential.exact; issue 13), which adds the lateral creepage φ·dx/6
+    # see wheelrail.tangential.exact), which adds the lateral creepage φ·dx/6
     # on the grid: C23 from Fy(φ) is +1.2 … +1.4 % above C23 from Mz(η) at 64 elements
     # (measured; first order, 0.6 % at 128), the element-centre placement gave equality.
     assert got["C23_phi"] == pytest.approx(got["C23_eta"], rel=0.02)

@@ -203,7 +203,7 @@ def test_force_grows_monotonically_to_saturation(contact):
 # L1 ≠ L2, Vollebregt & Voltr 2023) they move by ≈ 0.1 %: midpoint 200×200
 # −0.6487 / −0.5973, 400×400 −0.6483 / −0.5970; euler 200×200 −0.6389 /
 # −0.5959. The guide's own figure is two digits, −0.60, hence 3e-3 below.)
-# (Issue 22: ``scheme="euler"`` is CONTACT's FASTSIM, march and slip rule with the spin
+# (``scheme="euler"`` is CONTACT's FASTSIM, march and slip rule with the spin
 # scaled by L/L3 also in slip; the numbers above hold for it. The default "midpoint" now
 # opposes the true slip in slip elements and moves to −0.617 elliptic at 200×200, towards
 # the exact theory, −0.6162 on 80×80 elements (−0.6064 on 40×40), rows 1-2 below.)

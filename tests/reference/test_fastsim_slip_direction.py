@@ -1,6 +1,6 @@
 """FASTSIM with three flexibilities near full slip against Kalker's exact theory.
 
-Issue 13: with L1 ≠ L2 the traction of a sliding element must oppose the
+With L1 ≠ L2 the traction of a sliding element must oppose the
 element's slip (Coulomb), which is not the direction of the elastic
 predictor (Vollebregt & Voltr 2023, FASTSIM with three flexibilities).
 Scaling the predictor made the force of a nearly sliding patch point along
@@ -123,9 +123,9 @@ def test_huge_creepage_slides_at_mu_fn(contact, xi):
         assert -r.Fx == pytest.approx(MU * contact.Fn, rel=1e-3)
 
 
-# Issue 22: combined creepage and spin near full slip. Exact theory on 100 × 100 elements
-# (margin 1.1, tol 1e-6): Fx = −1990.57 N, Fy = −2185.24 N; the issue quotes −1991 / −2185
-# and CONTACT's FASTSIM −1985 / −2187. Case: a = b = 6 mm, Fn = 10 kN, G = 82 GPa,
+# Combined creepage and spin near full slip. Exact theory on 100 × 100 elements
+# (margin 1.1, tol 1e-6): Fx = −1990.57 N, Fy = −2185.24 N (to four digits −1991 / −2185);
+# CONTACT's FASTSIM gives −1985 / −2187. Case: a = b = 6 mm, Fn = 10 kN, G = 82 GPa,
 # ν = 0.28, μ = 0.3, ξ = η = 1e-3, φ = 0.1 1/m.
 EXACT_SPIN_100 = (-0.6635217933778564, -0.7284145436713888)
 

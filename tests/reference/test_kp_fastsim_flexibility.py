@@ -1,4 +1,4 @@
-"""Kik–Piotrowski + FASTSIM on Manchester A-2.2, case 2 right wheel (issue 22 item 6).
+"""Kik–Piotrowski + FASTSIM on Manchester A-2.2, case 2 right wheel.
 
 Reference: CONTACT's full (half-space) solution of the benchmark (eve70a/CONTACT
 ``examples/mbench_a22_right.ref_out``, tests/reference/data/contact_mbench_a22.csv; forces

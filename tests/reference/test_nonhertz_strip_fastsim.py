@@ -30,7 +30,7 @@ def test_hertz_consistent_patches_give_hertz_fastsim(ab, normal):
         ref = wr.solve(c, creepage=cr, mu=0.3, normal="hertz", bound="elliptic")
         r = wr.solve(c, creepage=cr, mu=0.3, normal=normal)
         # pure spin: the Hertzian FASTSIM's three flexibilities oppose the true slip in
-        # slip elements (issue 22), the patch's single weighted flexibility scales nothing:
+        # slip elements, the patch's single weighted flexibility scales nothing:
         # 4.7 % apart at a/b = 0.2 (measured), within 2.5 % otherwise
         rel = 0.05 if cr[2] else 0.025
         assert r.Fx == pytest.approx(ref.Fx, rel=rel, abs=1e-3 * abs(ref.Fy))

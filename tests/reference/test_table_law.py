@@ -1,4 +1,4 @@
-"""Table-interpolating creep-force law (issues 10, 22) against the exact solver it tabulates.
+"""Table-interpolating creep-force law against the exact solver it tabulates.
 
 References: the exact solver (:mod:`wheelrail.tangential.exact`, Kalker 1990 ch. 5) at points
 *not* in the table, extrapolated in the grid; Kalker's creep coefficient C11 (Kalker 1990,

@@ -22,13 +22,13 @@ import wheelrail as wr
 from wheelrail.geometry import contact_search as cs
 
 OLD = {
-    # Hertz cases: Fx, Fs, Mz (and Fn with vertical='total') regenerated in issue 22, when
-    # FASTSIM's sliding elements started to oppose the true slip (spin unscaled); the
+    # Hertz cases: Fx, Fs, Mz (and Fn with vertical='total') regenerated when FASTSIM's
+    # sliding elements started to oppose the true slip (spin unscaled); the
     # search quantities (pose, y_wheel, Fn with vertical='normal') are unchanged
     ('hertz', 0.0, 0.002, 'normal'): ((0.0, -0.000182174067782704, -0.000182174067782704), [('left', 0.0032612464891195805, 8484.60582116245, 577.762633402141, 2411.775899441752, -0.40585808481756946), ('left', -0.007686728097846419, 1520.9040351379826, 271.28444069234575, 366.5942208097959, -0.007771557898832235), ('right', 0.0032612464891195805, 9207.714548841426, 1447.630385718658, 2346.5520461661413, 0.158256333461198), ('right', -0.007686728097846419, 1798.5580506457507, 389.30420054563604, 373.3385777056906, 0.009328509531389072)]),
     ('hertz', 0.005, -0.004, 'total'): ((0.0003684944243475377, 3.084758929212105e-05, 3.084758929212105e-05), [('left', 0.013167526842829487, 9974.961602509315, 68.06779434309932, -2991.6702078968083, -0.017294425109758964), ('right', -0.01846885860426641, 1116.7192306041861, 247.41661240936165, -225.61460446012788, 0.006420848651969105), ('right', -0.028608162503465366, 10765.507749673327, 2970.777303551824, -1218.9730591440357, 0.6155786160164635)]),
     ('hertz', 0.0068, 0.002, 'normal'): ((0.005740713661017976, 0.0041094575111453304, 0.0041094575111453304), [('left', 0.01818270686573099, 10000.181891324562, -15.004940217743105, 2759.4135728089086, -0.4788895768363724), ('right', -0.040743095592718395, 24479.99944427747, 7166.109202226832, 1018.1738771828152, 4.546589380849945)]),
-    # the right patch since issue 18's fix of the parabolic refinement of the gap minimum (it
+    # the right patch since the fix of the parabolic refinement of the gap minimum (it
     # continues from its best point instead of losing the minimum); before: y_wheel
     # 0.018141175415075914, Fx 755.6402221283687, Fs 3038.6414227523396, Mz -0.40331829994212864
     # (the two points are 9.4e-13 m apart, their gaps differ by 2e-16 m: round-off)

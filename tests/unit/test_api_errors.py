@@ -1,4 +1,4 @@
-"""Bad input to the public entry functions gives a clear error naming the value (issue 2).
+"""Bad input to the public entry functions gives a clear error naming the value.
 
 Every registered creep-force law goes through the same validation in
 ``wheelrail.api.creep_forces``; these checks run for each of them.

@@ -1,5 +1,6 @@
 """Wheelset case files ([wheelset], [track], [motion], [position]) and the wr.solve routing
-of case files (wheelrail.casefile, issue 12: "case files only read and validate")."""
+of case files (wheelrail.casefile: case files are only read and validated there; the
+solvers run them)."""
 
 from __future__ import annotations
 

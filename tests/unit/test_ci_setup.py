@@ -1,6 +1,6 @@
 """The test setup itself: hypothesis profiles, shared-data policy, and the CI script.
 
-CI must be reproducible (issue 18): derandomised hypothesis examples, never a local example
+CI must be reproducible: derandomised hypothesis examples, never a local example
 database, and a missing ``../shared/data`` is a failure there, not a silent skip.
 """
 

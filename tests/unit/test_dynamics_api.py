@@ -1,4 +1,4 @@
-"""The public interface of wheelrail.dynamics and ``wheelrail dynamics CASE.toml`` (issue 21)."""
+"""The public interface of wheelrail.dynamics and ``wheelrail dynamics CASE.toml``."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""``import wheelrail`` stays light: heavy dependencies load on first use (issue 2, item 1)."""
+"""``import wheelrail`` stays light: heavy dependencies load on first use."""
 
 import subprocess
 import sys

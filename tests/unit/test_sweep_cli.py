@@ -1,4 +1,4 @@
-"""``wheelrail sweep CASE.toml --out OUT`` (issue 10), run in-process."""
+"""``wheelrail sweep CASE.toml --out OUT``, run in-process."""
 
 import socket
 

@@ -1,4 +1,4 @@
-"""Running sweeps (issue 10): results, per-point failures, stores, resume, executors, errors."""
+"""Running sweeps: results, per-point failures, stores, resume, executors, errors."""
 
 import signal
 import socket

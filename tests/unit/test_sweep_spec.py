@@ -1,4 +1,4 @@
-"""Sweep specification (issue 10): axes, ranges, chunks, TOML reading and its errors."""
+"""Sweep specification: axes, ranges, chunks, TOML reading and its errors."""
 
 import numpy as np
 import pytest

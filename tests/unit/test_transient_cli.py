@@ -1,4 +1,4 @@
-"""[transient] case files, travel functions and ``wheelrail transient`` (issue 8)."""
+"""[transient] case files, travel functions and ``wheelrail transient``."""
 
 import json
 

@@ -1,4 +1,4 @@
-"""The numbers and outputs the documentation quotes are what the commands print (issue 22).
+"""The numbers and outputs the documentation quotes are what the commands print.
 
 Doctest-style: every ```console block preceded by a ``<!-- checked: ... -->``
 marker in README.md or docs/*.md is run — each ``$ wheelrail ...`` line as a

@@ -1,4 +1,4 @@
-"""The Python examples of the documentation run as written (issue 22, item 7).
+"""The Python examples of the documentation run as written.
 
 Every ```python block of README.md and docs/*.md is checked in two ways:
 

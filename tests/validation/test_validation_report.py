@@ -125,7 +125,7 @@ def test_cli_validate_only_one_check(tmp_path, capsys):
 
 
 def test_rows_are_classified_by_reference_kind(quick):
-    """Issue 22: every row says what its reference is; a row whose reference value comes from
+    """Every row says what its reference is; a row whose reference value comes from
     another numerical wheelrail method (the exact solver, the BEM, the transient stepper, the
     linear theory's table …) is a consistency check and never counted as validation; only
     closed forms written in wheelrail (Hertz, Carter) may supply a validation reference."""
@@ -147,7 +147,7 @@ def test_rows_are_classified_by_reference_kind(quick):
 
 
 #: Checks allowed a tolerance more than LOOSE_MARGIN times the measured error without a
-#: "why:" (issue 22, item 1). Empty since every such tolerance was re-derived from a
+#: "why:". Empty since every such tolerance was re-derived from a
 #: refinement or the reference's uncertainty; it must stay empty.
 LOOSE_WITHOUT_REASON: set[str] = set()
 

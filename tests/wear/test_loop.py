@@ -1,8 +1,9 @@
 """The wear loop: step independence, checkpoints and resume, Dask, known behaviour.
 
-A bogie (the Manchester benchmark vehicle's bogie, as in tests/dynamics) runs a
-300 m curve with 100 mm cant at 15 m/s; the USFD law wears the wheels. Tiny
-settings (5 m simulated per step after 30 m run-in, 10 samples) keep each run to seconds.
+A bogie (the Manchester benchmark vehicle's, ``wr.dynamics.manchester_bogie()``) runs a
+300 m curve with 100 mm cant at 15 m/s (tests/wear/_wear_case.py); the USFD law wears the
+wheels. Tiny settings (5 m simulated per step after 30 m run-in, 10 samples) keep each run
+to seconds.
 Behaviour checked against what wear loops report (Jendel, Wear 253 (2002) 89–99;
 Braghin et al., Wear 261 (2006) 1253–1264): in a tight curve the leading
 wheelset's outer wheel wears most, on the flange side, and its flange thins.
@@ -10,35 +11,18 @@ wheelset's outer wheel wears most, on the flange side, and its flange thins.
 
 import numpy as np
 import pytest
+from _wear_case import KW, r300_case
 
 import wheelrail as wr
 from wheelrail import dynamics as dy
-from wheelrail.dynamics import BogieModel, Suspension
 from wheelrail.errors import InputError
 from wheelrail.sweeps.executors import DaskExecutor
 from wheelrail.wear import loop
 
-G = 9.81
-
 
 @pytest.fixture(scope="module")
 def case():
-    ws = wr.Wheelset(wr.profiles.load("S1002"))
-    tr = wr.Track(wr.profiles.load("60E1"))
-    prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
-                      half_spacing=1.0)
-    sec = Suspension(kx=0.16e6, ky=0.16e6, kz=0.43e6, cy=32e3, cz=20e3, half_spacing=1.0)
-    axle_load = (32000.0 / 4 + 2615.0 / 2 + 1813.0) * G
-    bogie = BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
-                       (1722.0, 1476.0, 3067.0), 1.28, sec, axle_load=axle_load, spin="fixed")
-    lay = dy.TrackLayout(tr, curves=(dy.Curve(radius=300.0, start=5.0, transition=20.0,
-                                              cant=0.1, direction="right"),))
-    route = wr.wear.Route((wr.wear.RouteCase(lay, 15.0, distance=5.0, run_in=30.0,
-                                             name="R300"),))
-    return bogie, route
-
-
-KW = dict(law="usfd", executor="serial", samples=10, cells=8, conicity=False, profiles="sides")
+    return r300_case()
 
 
 def _depth(res):

@@ -1,8 +1,8 @@
 """The wear loop with ``update_rail=True``: the rails wear too and the next step runs on them.
 
-Same bogie and 300 m right-hand curve as tests/wear/test_loop.py. Known behaviour
-(Enblom & Berg, Wear 258 (2005) 1055–1063; Braghin et al., Wear 261 (2006)
-1253–1264): the outer (left) rail wears at its gauge corner, the inner one on
+Same bogie and 300 m right-hand curve as tests/wear/test_loop.py (tests/wear/_wear_case.py).
+Known behaviour (Enblom & Berg, Wear 258 (2005) 1055–1063; Braghin et al., Wear 261
+(2006) 1253–1264): the outer (left) rail wears at its gauge corner, the inner one on
 the crown and less; material is only removed. The step control takes the
 largest depth change of wheels and rails: with a traffic ratio that makes the
 rail wear fastest, every full step removes ``step_depth`` at the rail's most-worn
@@ -11,32 +11,17 @@ point (its height change is that depth × √(1 + z'²), between 1 and 3 times i
 
 import numpy as np
 import pytest
+from _wear_case import KW, r300_case
 
 import wheelrail as wr
-from wheelrail import dynamics as dy
-from wheelrail.dynamics import BogieModel, Suspension
 from wheelrail.errors import InputError
 
-G = 9.81
 STEP = 0.05e-3
-KW = dict(law="usfd", executor="serial", samples=10, cells=8, conicity=False, profiles="sides")
 
 
 @pytest.fixture(scope="module")
 def case():
-    ws = wr.Wheelset(wr.profiles.load("S1002"))
-    tr = wr.Track(wr.profiles.load("60E1"))
-    prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
-                      half_spacing=1.0)
-    sec = Suspension(kx=0.16e6, ky=0.16e6, kz=0.43e6, cy=32e3, cz=20e3, half_spacing=1.0)
-    bogie = BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
-                       (1722.0, 1476.0, 3067.0), 1.28, sec,
-                       axle_load=(32000.0 / 4 + 2615.0 / 2 + 1813.0) * G, spin="fixed")
-    lay = dy.TrackLayout(tr, curves=(dy.Curve(radius=300.0, start=5.0, transition=20.0,
-                                              cant=0.1, direction="right"),))
-    route = wr.wear.Route((wr.wear.RouteCase(lay, 15.0, distance=5.0, run_in=30.0,
-                                             name="R300"),))
-    return bogie, route
+    return r300_case()
 
 
 @pytest.fixture(scope="module")

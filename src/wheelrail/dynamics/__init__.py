@@ -34,7 +34,7 @@ from .simulate import Adaptive, FixedStep, SimulationResult, System, simulate
 from .speed import SpeedProfile
 from .stability import CriticalSpeedResult, critical_speed
 from .vehicle import (BumpStop, CarBody, SecondarySuspension, VehicleModel, YawDamper,
-                      manchester_vehicle1)
+                      manchester_bogie, manchester_vehicle1)
 
 __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", "Irregularity",
            "TrackLayout", "simulate", "SpeedProfile", "FixedStep", "Adaptive", "SimulationResult", "System",
@@ -43,6 +43,6 @@ __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", 
            "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",
            "linearise", "eigenvalues_over_speed", "cone_track", "klingel_wavelength",
            "VehicleModel", "CarBody", "SecondarySuspension", "YawDamper", "BumpStop",
-           "manchester_vehicle1",
+           "manchester_bogie", "manchester_vehicle1",
            "TrackIrregularity", "TrackSpectrum", "track_spectrum", "assess", "lowpass", "bandpass",
            "sliding_mean", "sperling_wz", "sperling_weighting"]

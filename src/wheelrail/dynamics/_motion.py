@@ -39,10 +39,14 @@ import numpy as np
 from numba import njit
 
 from ._fastcontact import wheel_contact
+from ._motion_common import (_G_BODY, _G_FM, _G_FRAME, _G_G, _G_NWS, _G_OF, _G_OR, _G_OX,
+                             _G_R0, _G_RAILS, _G_RELAX, _G_SEC, _G_SPIN, _G_VEHICLE, _WP_B,
+                             _WP_CARRIED_M, _WP_CX, _WP_CY, _WP_CZ, _WP_IX, _WP_IY, _WP_IZ,
+                             _WP_KX, _WP_KY, _WP_KZ, _WP_M, _WP_PRELOAD, _WP_X, rail_rates)
 from ._relaxation import relax_derivative, relax_gains
 from ._speed import profile_at
 from ._vehicle_motion import vehicle_derivative
-from .model import GP, NGP, NWP, WP
+from .model import NGP, NWP
 
 __all__ = ["layout_at", "heading_at", "wheel_inputs", "derivative", "rhs_fast", "run_fixed",
            "relax_gains", "relax_derivative", "relax_decay", "relax_stage", "N_IN"]
@@ -50,37 +54,6 @@ __all__ = ["layout_at", "heading_at", "wheel_inputs", "derivative", "rhs_fast", 
 #: Per-wheel contact inputs of :func:`wheel_inputs`.
 IN_FIELDS = ("y", "zc", "roll", "yaw", "V", "omega", "vy", "vz", "yaw_rate", "roll_rate")
 N_IN = len(IN_FIELDS)
-
-_G_NWS = GP["n_ws"]
-_G_FRAME = GP["has_frame"]
-_G_RAILS = GP["rails"]
-_G_RELAX = GP["relax"]
-_G_SPIN = GP["spin_free"]
-_G_G = GP["g"]
-_G_R0 = GP["r0"]
-_G_OF = GP["off_frame"]
-_G_OR = GP["off_rails"]
-_G_OX = GP["off_relax"]
-_G_FLOOR = GP["relax_floor"]
-_G_RAIL = (GP["rail_lat_k1"], GP["rail_ver_k1"])
-_G_FM = GP["frame_m"]
-_G_SEC = GP["sec_kx"]
-_G_BODY = GP["body_m"]
-_G_VEHICLE = GP["vehicle"]
-_WP_IX = WP["Ix"]
-_WP_IY = WP["Iy"]
-_WP_IZ = WP["Iz"]
-_WP_B = WP["b"]
-_WP_CARRIED_M = WP["carried_m"]
-_WP_CX = WP["cx"]
-_WP_CY = WP["cy"]
-_WP_CZ = WP["cz"]
-_WP_KX = WP["kx"]
-_WP_KY = WP["ky"]
-_WP_KZ = WP["kz"]
-_WP_M = WP["m"]
-_WP_PRELOAD = WP["preload"]
-_WP_X = WP["x"]
 
 
 # --------------------------------------------------------------------------- layout
@@ -315,20 +288,7 @@ def derivative(t, x, P, L, V, aV, s_ref, Qn, Qt, amean, dx):
         dx[b + 8] = Q[4] / Iy if P[_G_SPIN] > 0 else aV / r0
         # rails under this wheelset
         if rails:
-            for side in range(2):
-                for d in range(2):
-                    rb = orl + 12 * i + 6 * side + 3 * d
-                    gb = _G_RAIL[d]
-                    k1, c1, k2, c2, mr = P[gb], P[gb + 1], P[gb + 2], P[gb + 3], P[gb + 4]
-                    w, u, v = x[rb], x[rb + 1], x[rb + 2]
-                    Fr = -(Qn[i, side, d] + Qt[i, side, d])
-                    if c1 + c2 > 0:
-                        wd = (k1 * (u - w) + c1 * v - k2 * w) / (c1 + c2)
-                    else:
-                        wd = k1 * v / (k1 + k2)
-                    dx[rb] = wd
-                    dx[rb + 1] = v
-                    dx[rb + 2] = (Fr - k1 * (u - w) - c1 * (v - wd)) / mr
+            rail_rates(i, orl, P, x, Qn, Qt, dx)
     if frame:
         mf = P[_G_FM]
         Ifx, Ify, Ifz = P[_G_FM + 1], P[_G_FM + 2], P[_G_FM + 3]

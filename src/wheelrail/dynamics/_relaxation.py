@@ -18,13 +18,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from .model import GP
+from ._motion_common import _G_FLOOR, _G_OX, _G_RELAX
 
 __all__ = ["relax_gains", "relax_derivative"]
-
-_G_RELAX = GP["relax"]
-_G_OX = GP["off_relax"]
-_G_FLOOR = GP["relax_floor"]
 
 
 @njit(cache=True)

@@ -45,8 +45,11 @@ import math
 import numpy as np
 from numba import njit
 
+from ._motion_common import (_G_G, _G_NWS, _G_OF, _G_OR, _G_R0, _G_RAILS, _G_RELAX, _G_SPIN,
+                             _WP_B, _WP_CX, _WP_CY, _WP_CZ, _WP_IX, _WP_IY, _WP_IZ, _WP_KX,
+                             _WP_KY, _WP_KZ, _WP_M, _WP_PRELOAD, _WP_X, rail_rates)
 from ._relaxation import relax_derivative
-from .model import GP, NGP, NWP, WP
+from .model import NGP, NWP
 
 __all__ = ["vehicle_derivative", "VP", "NVP", "BUMP_MAX"]
 
@@ -65,17 +68,6 @@ VP = {n: i for i, n in enumerate((
     + tuple(f"bs_d{k}" for k in range(BUMP_MAX)) + tuple(f"bs_f{k}" for k in range(BUMP_MAX)))}
 NVP = len(VP)
 
-_G_NWS = GP["n_ws"]
-_G_RAILS = GP["rails"]
-_G_RELAX = GP["relax"]
-_G_SPIN = GP["spin_free"]
-_G_G = GP["g"]
-_G_R0 = GP["r0"]
-_G_OF = GP["off_frame"]
-_G_OR = GP["off_rails"]
-_G_RAIL = (GP["rail_lat_k1"], GP["rail_ver_k1"])
-_W = (WP["m"], WP["Ix"], WP["Iy"], WP["Iz"], WP["kx"], WP["ky"], WP["kz"], WP["cx"], WP["cy"],
-      WP["cz"], WP["b"], WP["x"], WP["preload"])
 _V_NF = VP["n_frames"]
 _V_BODY = VP["body_m"]
 _V_BH = VP["body_h"]
@@ -249,12 +241,12 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
     for i in range(nw):
         b = 9 * i
         pb = NGP + NWP * i
-        m, Ix, Iy, Iz = P[pb + _W[0]], P[pb + _W[1]], P[pb + _W[2]], P[pb + _W[3]]
-        kx, ky, kz = P[pb + _W[4]], P[pb + _W[5]], P[pb + _W[6]]
-        cx, cy, cz = P[pb + _W[7]], P[pb + _W[8]], P[pb + _W[9]]
-        bs = P[pb + _W[10]]
-        xi = P[pb + _W[11]]
-        pre = P[pb + _W[12]]
+        m, Ix, Iy, Iz = P[pb + _WP_M], P[pb + _WP_IX], P[pb + _WP_IY], P[pb + _WP_IZ]
+        kx, ky, kz = P[pb + _WP_KX], P[pb + _WP_KY], P[pb + _WP_KZ]
+        cx, cy, cz = P[pb + _WP_CX], P[pb + _WP_CY], P[pb + _WP_CZ]
+        bs = P[pb + _WP_B]
+        xi = P[pb + _WP_X]
+        pre = P[pb + _WP_PRELOAD]
         par = int(P[vb + _V_PAR + i])
         jp = par if par >= 0 else nf
         xr = P[vb + _V_XR + i]
@@ -309,17 +301,7 @@ def vehicle_derivative(t, x, P, ks, kk, kp, kh, V, aV, s_ref, Qn, Qt, amean, dx)
         dx[b + 7] = (Q[3] - Iy * om * x[b + 6]) / Iz - (V * V * dki + aV * kappa)
         dx[b + 8] = Q[4] / Iy if spin_free else aV / r0
         if rails:
-            for side in range(2):
-                for dd in range(2):
-                    rb = orl + 12 * i + 6 * side + 3 * dd
-                    gb = _G_RAIL[dd]
-                    k1, c1, k2, c2, mr = P[gb], P[gb + 1], P[gb + 2], P[gb + 3], P[gb + 4]
-                    w, u, vv = x[rb], x[rb + 1], x[rb + 2]
-                    Fr = -(Qn[i, side, dd] + Qt[i, side, dd])
-                    wd = (k1 * (u - w) + c1 * vv - k2 * w) / (c1 + c2)
-                    dx[rb] = wd
-                    dx[rb + 1] = vv
-                    dx[rb + 2] = (Fr - k1 * (u - w) - c1 * (vv - wd)) / mr
+            rail_rates(i, orl, P, x, Qn, Qt, dx)
     if relax:
         relax_derivative(x, P, V, Qt, amean, dx)
     # ---------------------------------------------------------------- secondary suspension

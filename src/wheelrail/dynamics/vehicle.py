@@ -66,7 +66,7 @@ from .model import (FRAME_STATES, GP, GRAVITY, NGP, NWP, WP, BogieModel, Suspens
                     global_parameters, rail_rows, wheelset_names, wheelset_rows)
 
 __all__ = ["CarBody", "SecondarySuspension", "YawDamper", "BumpStop", "VehicleModel",
-           "manchester_vehicle1", "VehicleAssembly"]
+           "manchester_bogie", "manchester_vehicle1", "VehicleAssembly"]
 
 #: Names of the car body's states.
 BODY_STATES = FRAME_STATES
@@ -389,6 +389,51 @@ class VehicleModel:
         return out
 
 
+def manchester_bogie(spin: str = "fixed", rail=None, *, material=None) -> BogieModel:
+    """The bogie of vehicle 1 of the Manchester benchmarks, with its share of the car body.
+
+    Values (Iwnicki 1998, as compiled in ``manchester_vehicle1.md`` of the project's
+    benchmark data, see :func:`manchester_vehicle1`): two wheelsets of 1813 kg,
+    roll/spin/yaw inertia 1120/112/1120 kg m², S1002 wheels with a nominal rolling
+    radius of 0.46 m and 1.360 m back-to-back; primary per axlebox kx/ky/kz =
+    31.391/3.884/1.22 MN/m, cx/cy/cz = 15/2/4 kN s/m at ±1.0 m; frame 2615 kg,
+    1722/1476/3067 kg m²; semi-wheelbase 1.28 m; secondary per side kx/ky/kz =
+    0.160/0.160/0.430 MN/m, cy/cz = 32/20 kN s/m at ±1.0 m, to the car body. The car
+    body (32 000 kg) is not a degree of freedom of a bogie model: a quarter of it rests
+    on each axle, so the axle load is (32 000/4 + 2615/2 + 1813) kg × g = 109.09 kN.
+    The benchmark track is ``wr.Track(wr.profiles.load("60E1"))`` (1.435 m, 1:40).
+
+    Parameters
+    ----------
+    spin : {"fixed", "free"}
+        Wheelset spin: Ω = V/r0 or a degree of freedom.
+    rail : RailSupport or None
+        Flexible rails; None for a rigid track.
+    material : Material or MaterialPair or None
+        Default steel.
+
+    Returns
+    -------
+    BogieModel
+        The bogie, leading wheelset at +1.28 m. :func:`manchester_vehicle1` puts two of
+        them under the car body (replacing their ``secondary`` and ``axle_load`` by the
+        vehicle's).
+
+    References
+    ----------
+    .. [1] S. Iwnicki, Manchester benchmarks for rail vehicle simulation, Vehicle
+       System Dynamics 30 (1998) 295–313.
+    """
+    ws = Wheelset(load_profile("S1002"), nominal_radius=0.46, flange_back=1.360)
+    prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
+                      half_spacing=1.0)
+    sec = Suspension(kx=0.160e6, ky=0.160e6, kz=0.430e6, cy=32e3, cz=20e3, half_spacing=1.0)
+    axle_load = (32000.0 / 4 + 2615.0 / 2 + 1813.0) * GRAVITY
+    return BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
+                      (1722.0, 1476.0, 3067.0), 1.28, sec, rail=rail, axle_load=axle_load,
+                      spin=spin, material=STEEL if material is None else material)
+
+
 def manchester_vehicle1(spin: str = "fixed", rail=None, *, yaw_damper: YawDamper | None = None,
                         material=None) -> VehicleModel:
     """Vehicle 1 of the Manchester benchmarks (a passenger coach on two bogies).
@@ -428,12 +473,7 @@ def manchester_vehicle1(spin: str = "fixed", rail=None, *, yaw_damper: YawDamper
     .. [1] S. Iwnicki, Manchester benchmarks for rail vehicle simulation, Vehicle
        System Dynamics 30 (1998) 295–313.
     """
-    ws = Wheelset(load_profile("S1002"), nominal_radius=0.46, flange_back=1.360)
-    prim = Suspension(kx=31.391e6, ky=3.884e6, kz=1.22e6, cx=15e3, cy=2e3, cz=4e3,
-                      half_spacing=1.0)
-    bogie = BogieModel(ws, 1813.0, (1120.0, 112.0, 1120.0), prim, 2615.0,
-                       (1722.0, 1476.0, 3067.0), 1.28, rail=rail, spin=spin,
-                       material=STEEL if material is None else material)
+    bogie = manchester_bogie(spin, rail, material=material)
     bump = BumpStop((0.025, 0.030, 0.035, 0.040, 0.045, 0.050, 0.055, 0.060, 0.065),
                     (0.0, 600.0, 1760.0, 3730.0, 6870.0, 11580.0, 17170.0, 29200.0, 230000.0))
     sec = SecondarySuspension(kx=0.160e6, ky=0.160e6, kz=0.430e6, cy=32e3, cz=20e3,

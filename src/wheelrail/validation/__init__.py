@@ -13,7 +13,7 @@ Markdown summary (``report.md``) and BibTeX of the references.
 Every row compares a method with a reference that does not come from the
 same method (no self-comparison) and states the tolerance it is held to and
 where that tolerance comes from (the test that holds it, the paper, or the
-issue that set the target). Rows of known, reported defects have the status
+accuracy target it is held to). Rows of known, reported defects have the status
 ``known-failure``; they are listed, not hidden.
 
 The command line is ``wheelrail validate [--quick] [--out DIR]``.

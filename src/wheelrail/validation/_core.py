@@ -23,7 +23,7 @@ VALIDATION_KINDS = REFERENCE_KINDS[:3]
 CLOSED_FORM_METHODS = ("hertz", "carter")
 
 
-#: A tolerance more than this many times the measured error must say why (issue 22).
+#: A tolerance more than this many times the measured error must say why.
 LOOSE_MARGIN = 5.0
 
 

@@ -158,7 +158,7 @@ def bem_vs_hertz(quick):
         case = f"a/b = {aspect:g}, 60 elements"
         # tolerances: 3-5x the discretisation error measured on this grid (p_max 6e-5,
         # approach 3.5e-5, fitted semi-axes 6.9e-4, area 1.19e-2: the area counts whole
-        # elements, an O(dx) error), issue 22; they were 1 % for all but the area
+        # elements, an O(dx) error); they were 1 % for all but the area
         kw_d = dict(kw, tolerance_source="discretisation error on 60 elements measured 6e-5 "
                     "(p_max), 3.5e-5 (approach), 6.9e-4 (fitted semi-axes), 1.19e-2 (area, "
                     "whole elements: O(dx)); tolerance about 4x that (1.3x for the area)")

@@ -83,8 +83,7 @@ def transient_steady(quick):
                             "why: the run ends on the steady fixed point to the solver tolerances "
                             "(force 1e-7 mu Fn, slip 1e-8: measured 2e-6 when stepping "
                             "through, 1e-10 with the direct steady end state, settle=); "
-                            "issue 22: 1 % could "
-                            "not fail"), **kw))
+                            "a tolerance of 1 % could not fail"), **kw))
     return rows
 
 

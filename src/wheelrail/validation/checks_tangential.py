@@ -25,7 +25,7 @@ from ._figures import convergence_figure, new_figure, to_base64
 
 # Kalker (1990) Table E.3 (= Kalker 1967; Johnson 1985 Table 8.1), (a/b, nu) -> C11, C22, C23,
 # typed in independently of the package data file (as in tests/reference/
-# test_linear_coefficients.py; C23 at a/b = 0.8, nu = 0.25 is 1.25, see issue 13).
+# test_linear_coefficients.py; C23 at a/b = 0.8, nu = 0.25 is 1.25).
 KALKER_TABLE = {
     (0.1, 0.0): (2.51, 2.51, 0.334), (0.1, 0.25): (3.31, 2.52, 0.473), (0.1, 0.5): (4.85, 2.53, 0.731),
     (0.3, 0.0): (2.68, 2.68, 0.607), (0.3, 0.25): (3.44, 2.75, 0.715), (0.3, 0.5): (4.80, 2.81, 0.889),
@@ -328,7 +328,7 @@ def exact_spin(quick):
     wr = _wr()
     rows = []
     kw = dict(source="Kalker1990", kind="convergence", reference_method="exact",
-              tolerance_source="issue 13 target (pure-spin Fy within 0.5 % at 40 elements)")
+              tolerance_source="accuracy target (pure-spin Fy within 0.5 % at 40 elements)")
     # small spin (adhesion-dominated) on the default contact: Richardson from 40/80/160
     c, phi = _default_contact(), 0.5
     fy = [wr.creep_forces(c, (0.0, 0.0, phi), 0.3, method="exact", elements=n).Fy
@@ -339,7 +339,7 @@ def exact_spin(quick):
     rows.append(rel_row("exact", f"Richardson limit of 40/80/160 elements (observed order "
                         f"{q:.2f})", "pure spin phi = 0.5 1/m (default contact): Fy at 40 "
                         "elements", fy[0], limit, 0.005,
-                        known="Known limit (issue 13): with the spin's rigid slip a sixth of an "
+                        known="Known limit: with the spin's rigid slip a sixth of an "
                               "element upstream the error at 40 elements fell from 2.8 % "
                               "(element centre) to 1.1 % for this small, adhesion-dominated "
                               "spin; at phi = 3 1/m it is within 0.5 % (next row). A placement "
@@ -474,9 +474,9 @@ def fastsim_linear(quick):
     # ...): the rows check that construction to the discretisation error of the 50x50 grid
     # (midpoint rule, O(1/n^2): measured below 1e-3), not an independent reference
     kw["tolerance_source"] = ("construction of L1, L2, L3 (Kalker 1982): exact in the continuum, "
-                              "1e-3 for the 50x50 discretisation (issue 22: 1 % could not fail); "
-                              "why: one tolerance for the three rows, measured 2.0e-4 ... 2.3e-4 "
-                              "(5x that)")
+                              "1e-3 for the 50x50 discretisation (a tolerance of 1 % could not "
+                              "fail); why: one tolerance for the three rows, measured 2.0e-4 ... "
+                              "2.3e-4 (5x that)")
     return [rel_row("fastsim", ref, f"Fx = -G c^2 C11 xi, {case}", rx.Fx, -G * cc**2 * C11 * 1e-7,
                     1e-3, **kw),
             rel_row("fastsim", ref, f"Fy = -G c^2 C22 eta, {case}", ry.Fy,
@@ -566,11 +566,11 @@ def fastsim_combined(quick):
     # direction of the force opposing the creepage, measured from -x (45 deg for xi = eta)
     ang_f = np.degrees(np.arctan2(-f.Fy, -f.Fx))
     ang_e = np.degrees(np.arctan2(-e.Fy, -e.Fx))
-    known = ("Known defect (issue 13): FASTSIM with three flexibilities lets the slip-zone "
+    known = ("Known defect: FASTSIM with three flexibilities lets the slip-zone "
              "traction follow the elastic predictor instead of opposing the slip; being fixed "
              "(Vollebregt & Voltr 2023).")
     kw = dict(source="Kalker1990,VollebregtVoltr2023",
-              tolerance_source="issue 13 target (direction 1 %, magnitude 2 % at 100x100); "
+              tolerance_source="accuracy target (direction 1 %, magnitude 2 % at 100x100); "
                                "why: near full slip both laws give a force close to mu Fn "
                                "opposing the creepage (measured 0.07 % in direction, 0.003 % in "
                                "magnitude), so the agreement says little about the slip zone; "
@@ -609,11 +609,11 @@ def creep_curves(quick):
         # is 5.01 % below the exact theory at xi = -2e-3: a known limitation, reported as such
         tol = 0.05
         tol_src = ("docs/choosing_a_method.md (the fast laws within 5 % of the exact theory in "
-                   "pure xi up to saturation; issue 22: Polach's former 5.1 % sat just above "
-                   "its measured 5.01 %)")
+                   "pure xi up to saturation; Polach's law, 5.01 % below it, is reported as a "
+                   "known limitation, not given a wider tolerance)")
         known = ("Polach's 1999 law is 5.01 % below the exact theory at xi = -2e-3 (its "
                  "single-parameter shape cannot follow Kalker's curve there): a limitation "
-                 "of the law, not a defect of the implementation (issue 22)"
+                 "of the law, not a defect of the implementation"
                  if name == "polach" else "")
         rows.append(max_row(name, f"Kalker's exact theory ({n} elements, Kalker 1990)",
                             "Fx on the creep curve xi = -2e-4 ... -5e-3 (default contact)", fx, ex,
