@@ -8,6 +8,7 @@ types, only of numbers, strings and tables.
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 from typing import Mapping
 
@@ -18,7 +19,8 @@ try:  # Python >= 3.11
 except ModuleNotFoundError:  # pragma: no cover - Python 3.10
     import tomli as tomllib
 
-__all__ = ["Reader", "read_toml", "read_input", "tomllib", "MAX_INPUT_BYTES"]
+__all__ = ["Reader", "read_toml", "read_input", "tomllib", "MAX_INPUT_BYTES",
+           "RenamedKeyWarning", "renamed_keys"]
 
 #: Largest input file read [bytes] (a case with a 100 000-point table is about 10 MB).
 MAX_INPUT_BYTES = 64 * 2**20
@@ -81,6 +83,34 @@ def read_toml(path_or_str):
     except tomllib.TOMLDecodeError as exc:
         raise CaseFileError(f"{source}: malformed TOML: {exc}") from None
     return data, source
+
+class RenamedKeyWarning(DeprecationWarning):
+    """A case file uses a key's former name (read for now; the message names the new key)."""
+
+
+# shown once per place by default (a DeprecationWarning from a library is hidden otherwise):
+# files written before the renaming still read, and their users learn the new name
+warnings.filterwarnings("default", category=RenamedKeyWarning)
+
+
+def renamed_keys(r: "Reader", table: str, tbl: Mapping, renames: Mapping) -> dict:
+    """``tbl`` with former key names replaced by the current ones (RenamedKeyWarning each).
+
+    Giving both names of one key is an error naming both.
+    """
+    out = dict(tbl)
+    for old, new in renames.items():
+        if old not in out:
+            continue
+        if new in out:
+            r.fail(table, old, f"is the former name of {new!r}, which is given too; keep only "
+                   f"{new} = ...")
+        warnings.warn(f"{r.source}: [{table}] {old}: this key is now called {new!r}; write "
+                      f"{new} = {out[old]!r} (the former name is read for now)",
+                      RenamedKeyWarning, stacklevel=4)
+        out[new] = out.pop(old)
+    return out
+
 
 class Reader:
     """Typed access to the parsed tables with messages naming file, table, key, value."""

@@ -45,6 +45,7 @@ roller radius              0.1 … 2 m                         < 1 cm or > 10 m
 yaw angle ψ                |ψ| ≤ 0.05 rad                    |ψ| > 0.5 rad (degrees?)
 gauge − flange back        30 … 150 mm                       ≤ 0 or > 300 mm
 V/ω (implied radius)       0.05 … 2 m                        < 1 cm or > 10 m (rpm?)
+yield stress σ_y           100 MPa … 3 GPa                   < 1 MPa or > 10 GPa (MPa?)
 =========================  ===============================  =====================
 
 The relative radii are ``R_x = 1/(2A)`` and ``R_y = 1/(2B)`` (Johnson 1985,
@@ -72,7 +73,7 @@ __all__ = ["PlausibilityWarning", "ImplausibleInputError", "disabled", "enabled"
            "check_load", "check_modulus", "check_friction", "check_rolling_radius",
            "check_patch", "check_hertz", "check_semi_axes", "check_conformal",
            "check_creepage", "check_speed", "check_roller_radius", "check_yaw",
-           "check_flange_back", "check_omega", "LIMITS"]
+           "check_flange_back", "check_omega", "check_yield_stress", "LIMITS"]
 
 #: Limits used by the checks (SI units).
 LIMITS = {
@@ -91,6 +92,7 @@ LIMITS = {
     "yaw_warn": 0.05, "yaw_refuse": 0.5,                # rad
     "flange_room_warn": (0.03, 0.15), "flange_room_refuse": 0.3,  # gauge - flange back, m
     "omega_radius_warn": (0.05, 2.0), "omega_radius_refuse": (0.01, 10.0),  # V/omega, m
+    "yield_warn": (1.0e8, 3.0e9), "yield_refuse": (1.0e6, 1.0e10),  # Pa
 }
 
 _OVERRIDE_HINT = ("override with wheelrail.plausibility.disabled(), "
@@ -398,3 +400,36 @@ def check_omega(omega, speed, name: str = "omega") -> None:
     if not wlo <= r <= whi:
         _warn(f"{name} = {_fmt(w)} rad/s at speed {_fmt(v)} m/s means a rolling radius V/ω = "
               f"{_fmt(r)} m, outside {wlo:g} … {whi:g} m ({hint})")
+
+
+def check_yield_stress(sy, name: str = "yield_stress") -> None:
+    """Refuse a yield stress below 1 MPa or above 10 GPa, warn outside 100 MPa … 3 GPa [Pa].
+
+    Wheel and rail steels yield at 300 … 1200 MPa (489 MPa for the R900A rail steel of
+    Toumi, Chollet & Yin 2016); a value in MPa or kPa given as Pa is a factor 1e6 or 1e3
+    too small and makes every element yield at once. The message names the unit that
+    brings the value into the usual range.
+    """
+    if not enabled():
+        return
+    lo, hi = LIMITS["yield_warn"]
+    rlo, rhi = LIMITS["yield_refuse"]
+    m, M = _min(sy), _max(sy)
+
+    def hint(v):
+        for unit, f in (("MPa", 1e6), ("GPa", 1e9), ("kPa", 1e3)):
+            if lo <= v * f <= hi:
+                return f"; {unit} given? {_fmt(v)} {unit} = {v * f:.4g} Pa"
+        return ""
+
+    usual = "wheel and rail steels yield at 300 … 1200 MPa, i.e. 3e8 … 1.2e9 Pa"
+    if m < rlo:
+        _refuse(f"{name} = {_fmt(m)} Pa is not the yield stress of a steel ({usual}{hint(m)})")
+    if M > rhi:
+        _refuse(f"{name} = {_fmt(M)} Pa is above any yield stress ({usual}; a modulus given?)")
+    if m < lo:
+        _warn(f"{name} = {_fmt(m)} Pa is below {lo:g} Pa, softer than any wheel or rail "
+              f"steel ({usual}{hint(m)})")
+    if M > hi:
+        _warn(f"{name} = {_fmt(M)} Pa is above {hi:g} Pa, stronger than any wheel or rail "
+              f"steel ({usual})")

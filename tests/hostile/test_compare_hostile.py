@@ -91,3 +91,13 @@ def test_validate_table_at_80_columns_is_not_one_word_per_line(tmp_path, monkeyp
     assert len(table) >= 3  # each of the 3 rows starts on a line naming its method
     body = [ln for ln in lines if ln.strip() and not ln.startswith(("report:", "3 rows"))]
     assert len(body) <= 3 * 3 + 8, text  # not one word per line
+
+
+def test_a_label_given_twice_is_one_method():
+    """``--methods hertz,hertz`` compares Hertz with nothing: warned like one label."""
+    import pytest
+
+    with pytest.warns(UserWarning, match="one method compares with nothing"):
+        methods = compare._select("hertz, hertz")
+    assert [m[0] for m in methods] == ["hertz"]
+    assert [m[0] for m in compare._select("linder,hertz,linder")] == ["linder", "hertz"]

@@ -2,13 +2,15 @@
 
 Renamed for one name per quantity: ``[contact] load`` → ``Fn``; ``[transient]``
 ``normal_force`` → ``Fn``, ``approach`` → ``penetration``, ``tangential_force`` → ``Fx``;
-``[method.bem]`` ``elements`` → ``grid_elements`` (and ``margin``, ``tol``). The old file
+``[method.bem]`` ``elements`` → ``grid_elements`` (and ``margin``, ``tol``); ``[sweep]``
+and ``[sweep.points]`` ``load`` → ``Fn``. The old file
 must give the same case as the new one (compared field by field), and giving both names
 is refused naming both.
 """
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 from _helpers import POINT_CASE, SOLVE_CASE, assert_clean_failure, run_cli
 
@@ -98,3 +100,59 @@ def test_exact_elements_is_not_renamed():
         warnings.simplefilter("error", RenamedKeyWarning)
         case = load_contact_case(text)
     assert case.tangential.elements == 16
+
+
+SWEEP = """[sweep]
+method = "linear"
+mu = 0.3
+{fn}A = 1.087
+B = 1.667
+{axes}"""
+
+
+def test_sweep_load_reads_as_fn_with_a_warning():
+    """A sweep file written before the renaming (``load``) gives the same spec, hash
+    included, as one with ``Fn``: a store made from either resumes with the other."""
+    from wheelrail.sweeps import load_sweep
+
+    new = load_sweep(SWEEP.format(fn="Fn = 10000.0\n", axes="xi = [0.0, 0.001]\n"))
+    with pytest.warns(RenamedKeyWarning, match=r"\[sweep\] load: this key is now called 'Fn'"):
+        old = load_sweep(SWEEP.format(fn="load = 10000.0\n", axes="xi = [0.0, 0.001]\n"))
+    assert old.fixed["Fn"] == new.fixed["Fn"] == 10000.0 and "load" not in old.fixed
+    assert old.sha256 == new.sha256
+
+
+def test_sweep_points_load_column():
+    from wheelrail.sweeps import load_sweep
+
+    pts = "[sweep.points]\n{col} = [10000.0, 5000.0]\nxi = [0.0, 0.001]\n"
+    with pytest.warns(RenamedKeyWarning, match=r"\[sweep.points\] load: this key is now "
+                                               r"called 'Fn'"):
+        old = load_sweep(SWEEP.format(fn="", axes=pts.format(col="load")))
+    new = load_sweep(SWEEP.format(fn="", axes=pts.format(col="Fn")))
+    assert old.sha256 == new.sha256 and dict(old.axes)["Fn"].tolist() == [10000.0, 5000.0]
+
+
+def test_sweep_with_both_names_is_one_line(tmp_path, capsys):
+    p = tmp_path / "s.toml"
+    p.write_text(SWEEP.format(fn="Fn = 1e4\nload = 1e4\n", axes="xi = [0.0]\n"))
+    code, _, err = run_cli(["sweep", p, "--out", tmp_path / "o.zarr", "-q"], capsys)
+    assert_clean_failure(code, err, "s.toml", "[sweep] load", "former name of 'Fn'")
+    assert not (tmp_path / "o.zarr").exists()
+
+
+def test_sweep_command_runs_an_old_file(tmp_path, capsys):
+    """The old file runs to the same forces as the new one (linear theory, Kalker 1967)."""
+    from wheelrail.sweeps import open_sweep
+
+    for name, fn in (("old", "load"), ("new", "Fn")):
+        p = tmp_path / f"{name}.toml"
+        p.write_text(SWEEP.format(fn=f"{fn} = 10000.0\n", axes="xi = [0.0, 0.001]\n"))
+        code, _, err = run_cli(["sweep", p, "--out", tmp_path / f"{name}.zarr", "-q"], capsys)
+        assert code == 0, err
+        if name == "old":
+            assert any(ln.startswith("wheelrail: warning: ") and "now called 'Fn'" in ln
+                       for ln in err), err
+    old, new = (open_sweep(tmp_path / f"{n}.zarr") for n in ("old", "new"))
+    assert np.array_equal(old["Fx"].values, new["Fx"].values)
+    assert float(old["Fx"].values[1]) < 0.0       # Kalker's sign: xi > 0 gives Fx < 0

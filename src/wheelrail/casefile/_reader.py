@@ -15,43 +15,13 @@ __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_method
            "read_forces", "read_friction", "configure", "check_plausible", "tomllib",
            "RenamedKeyWarning", "renamed_keys", "RENAMED_OPTIONS"]
 
-import warnings as _warnings
-
-
-class RenamedKeyWarning(DeprecationWarning):
-    """A case file uses a key's former name (read for now; the message names the new key)."""
-
-
-# shown once per place by default (a DeprecationWarning from a library is hidden otherwise):
-# files written before the renaming still read, and their users learn the new name
-_warnings.filterwarnings("default", category=RenamedKeyWarning)
-
 #: Options of methods renamed for one name per quantity: method -> {old: new}.
 RENAMED_OPTIONS = {"bem": {"elements": "grid_elements", "margin": "window_margin",
                            "tol": "pressure_tol"}}
 
-
-def renamed_keys(r, table: str, tbl: Mapping, renames: Mapping) -> dict:
-    """``tbl`` with former key names replaced by the current ones (RenamedKeyWarning each).
-
-    Giving both names of one key is an error naming both.
-    """
-    out = dict(tbl)
-    for old, new in renames.items():
-        if old not in out:
-            continue
-        if new in out:
-            r.fail(table, old, f"is the former name of {new!r}, which is given too; keep only "
-                   f"{new} = ...")
-        _warnings.warn(f"{r.source}: [{table}] {old}: this key is now called {new!r}; write "
-                       f"{new} = {out[old]!r} (the former name is read for now)",
-                       RenamedKeyWarning, stacklevel=4)
-        out[new] = out.pop(old)
-    return out
-
 from .. import normal as normal_family
 from .. import tangential as tangential_family
-from .._toml import Reader, read_toml, tomllib
+from .._toml import Reader, RenamedKeyWarning, read_toml, renamed_keys, tomllib
 from ..plausibility import check_friction, check_semi_axes
 
 

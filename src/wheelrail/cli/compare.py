@@ -123,7 +123,7 @@ def yaw_at(case, ys):
 def _select(labels):
     if labels is None:
         return METHODS
-    want = [s.strip() for s in labels.split(",") if s.strip()]
+    want = list(dict.fromkeys(s.strip() for s in labels.split(",") if s.strip()))  # once each
     known = {m[0]: m for m in METHODS}
     bad = [w for w in want if w not in known]
     if bad:

@@ -133,6 +133,36 @@ def _kernels_cached() -> bool:
         return True
 
 
+def _steps_between_writes(text: str) -> int:
+    """``--restart-every N``: an integer >= 1 (argparse reports anything else in one line)."""
+    import argparse
+
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be a whole number of steps >= 1, got "
+                                         f"{text!r}") from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"must be a whole number of steps >= 1 (steps between "
+                                         f"restart writes; leave it out for a tenth of the "
+                                         f"steps), got {n}")
+    return n
+
+
+def _travel(text: str) -> float:
+    """``--stop-travel M``: a finite length > 0 [m]."""
+    import argparse
+    import math
+
+    try:
+        v = float(text)
+    except ValueError:
+        v = float("nan")
+    if not (math.isfinite(v) and v > 0):
+        raise argparse.ArgumentTypeError(f"must be a travel > 0 in metres, got {text!r}")
+    return v
+
+
 def add_arguments(p) -> None:
     p.add_argument("case", metavar="CASE.toml", help="case file with an [fe] table")
     p.add_argument("--out", metavar="DIR", default="fe_out",
@@ -149,33 +179,64 @@ def add_arguments(p) -> None:
     p.add_argument("--restart", metavar="FILE", default=None,
                    help="continue a rolling run from this restart file (DIR/restart.npz of "
                         "an earlier run of the same case)")
-    p.add_argument("--restart-every", metavar="N", type=int, default=None,
+    p.add_argument("--restart-every", metavar="N", type=_steps_between_writes, default=None,
                    help="write DIR/restart.npz every N rolling steps (default: a tenth of "
                         "the steps)")
-    p.add_argument("--stop-travel", metavar="M", type=float, default=None,
+    p.add_argument("--stop-travel", metavar="M", type=_travel, default=None,
                    help="transition cases: stop once the wheel has rolled M metres, writing "
                         "DIR/restart.npz there (continue with --restart; the output keys, "
                         "e.g. field_travel, may change in between)")
 
 
-def _profile(value, kind, base, param=0.0):
+def _profile(value, kind, base, param=0.0, source="case file"):
+    """The ``wheel`` or ``rail`` of an [fe] table: a standard name, a file (relative to the
+    case file), or the built-in shapes. A profile of the other body (a rail file given as
+    the wheel: its header, comment or extension says so, or it reads only as the other
+    body) is refused naming the file and why: wheel and rail swapped?"""
+    import warnings
+
     import numpy as np
 
     import wheelrail as wr
-    from ..errors import CaseFileError
+    from ..errors import CaseFileError, ProfileError
+    from ..profiles.io import declared_kind
 
     if not isinstance(value, str):
-        raise CaseFileError(f"[fe] {kind} must be a profile name or file, got {value!r}")
+        raise CaseFileError(f"{source}: [fe] {kind} must be a profile name or file, got "
+                            f"{value!r}")
     if kind == "wheel" and value.lower() in ("cylinder", "cone"):
         y = np.linspace(-0.04, 0.04, 17)
         return wr.Profile(y, param * y if value.lower() == "cone" else 0 * y, kind="wheel",
                           name=value)
     if kind == "rail" and value.lower() == "arc":
         return wr.fe.head_arc_rail(param)
+    other = "rail" if kind == "wheel" else "wheel"
+    where = f"{source}: [fe] {kind} = {value!r}"
+    swapped = f"give it as {other} = {value!r} (wheel and rail swapped?)"
     path = base / value
-    if path.is_file():
+    if not path.is_file():
+        p = wr.profiles.load(value)
+        if p.kind != kind:
+            raise CaseFileError(f"{where} is a standard {p.kind} profile, not a {kind} "
+                                f"profile; {swapped}")
+        return p
+    said, why = declared_kind(path)
+    if said is not None and said != kind:
+        raise CaseFileError(f"{where}: {path.name} is a {said} profile ({why}), not a "
+                            f"{kind} profile; {swapped}")
+    try:
         return wr.profiles.read(path, kind=kind)
-    return wr.profiles.load(value)
+    except ProfileError as exc:
+        if said is None:  # the file does not say: does it read as the other body?
+            try:
+                with warnings.catch_warnings():
+                    warnings.simplefilter("ignore")
+                    wr.profiles.read(path, kind=other)
+            except ProfileError:
+                raise exc from None
+            raise CaseFileError(f"{where}: {path.name} is not a {kind} profile but reads as "
+                                f"a {other} profile ({exc}); {swapped}") from None
+        raise
 
 
 def case_from_toml(path):
@@ -191,7 +252,7 @@ def case_from_toml(path):
     from ..errors import CaseFileError
     from ..fe import RollingCase
 
-    from .._toml import read_input
+    from .._toml import Reader, read_input
 
     path = Path(path)
     try:
@@ -200,29 +261,34 @@ def case_from_toml(path):
         raise CaseFileError(f"{path}: {exc}") from exc
     if "fe" not in doc:
         raise CaseFileError(f"{path}: no [fe] table")
+    r = Reader(str(path))
     t = dict(doc["fe"])
     mode = t.pop("mode", "roll")
     if mode not in ("roll", "indent"):
         raise CaseFileError(f"{path}: [fe] mode must be 'roll' or 'indent', got {mode!r}")
     seed4 = _case_key(t, "transition", "seed004", path)
     if seed4 is not None:
-        from ..fe import TrackStructure, WheelSuspension, seed004_case
+        from ..fe import TrackStructure, TransitionCase, WheelSuspension, seed004_case
 
+        r.unknown("fe", t, ("mode", "transition", *_init_fields(TransitionCase)))
         for key, kind in (("wheel", "wheel"), ("rail", "rail")):
             if key in t:
-                t[key] = _profile(t[key], kind, path.parent)
-        try:
-            # [fe.track] and [fe.suspension] tables: TrackStructure / WheelSuspension fields
-            for key, cls in (("track", TrackStructure), ("suspension", WheelSuspension)):
-                if isinstance(t.get(key), dict):
+                t[key] = _profile(t[key], kind, path.parent, source=path)
+        # [fe.track] and [fe.suspension] tables: TrackStructure / WheelSuspension fields
+        for key, cls in (("track", TrackStructure), ("suspension", WheelSuspension)):
+            if isinstance(t.get(key), dict):
+                r.unknown(f"fe.{key}", t[key], _init_fields(cls))
+                with _named(path, f"fe.{key}", cls, t[key]):
                     t[key] = cls(**t[key])
+        with _named(path, "fe"):
             return seed004_case(size=seed4, **t), "transition"
-        except TypeError as exc:
-            raise CaseFileError(f"{path}: [fe] {exc}") from exc
     seed = _case_key(t, "toumi2016", "seed000", path)
     fn = _case_key(t, "Fn", "load", path)
     if fn is not None:
         t["Fn"] = fn
+    r.unknown("fe", t, ("mode", "toumi2016", "transition", *_init_fields(RollingCase),
+                        *_FE_EXTRA_KEYS, *_PLASTIC_KEYS,
+                        *(("plastic",) if seed is not None else ())))
     taper = float(t.pop("wheel_taper", 0.1))
     head = float(t.pop("rail_head_radius", 0.3))
     if seed is None:
@@ -231,21 +297,62 @@ def case_from_toml(path):
                 raise CaseFileError(f"{path}: [fe] needs '{key}'")
     for key, kind, param in (("wheel", "wheel", taper), ("rail", "rail", head)):
         if key in t:
-            t[key] = _profile(t[key], kind, path.parent, param)
-    material = _material(t, path, case_default=seed is not None)
+            t[key] = _profile(t[key], kind, path.parent, param, source=path)
+    with _named(path, "fe"):
+        material = _material(t, path, case_default=seed is not None)
     if material is not None:
         t["material"] = material
     for key in ("creepage", "rayleigh"):
         if key in t:
             t[key] = tuple(t[key])
-    try:
+    with _named(path, "fe"):
         if seed is not None:
             from ..fe import seed000_case
 
             return seed000_case(load=seed, **t), mode
         return RollingCase(**t), mode
-    except TypeError as exc:
-        raise CaseFileError(f"{path}: [fe] {exc}") from exc
+
+
+#: Keys of an [fe] table of a rolling case besides the RollingCase fields.
+_FE_EXTRA_KEYS = ("wheel_taper", "rail_head_radius", "E", "nu")
+
+
+def _init_fields(cls) -> tuple:
+    """The keyword arguments of a case dataclass (its fields but ``meta``)."""
+    import dataclasses
+
+    return tuple(f.name for f in dataclasses.fields(cls) if f.init and f.name != "meta")
+
+
+class _named:
+    """Context: an :class:`InputError` (or a TypeError / ValueError of a value of the wrong
+    type) raised while a case is made from a table becomes a :class:`CaseFileError` naming
+    the file and the table; with ``cls`` and ``values`` (a sub-table made into ``cls``) also
+    the key whose value alone is refused."""
+
+    def __init__(self, path, table, cls=None, values=None):
+        self.where, self.cls, self.values = f"{path}: [{table}]", cls, values or {}
+
+    def __enter__(self):
+        return self
+
+    def _culprit(self) -> str:
+        for k, v in self.values.items():
+            try:
+                self.cls(**{k: v})
+            except Exception:  # noqa: BLE001 - any failure of the value alone names it
+                return f" {k} = {v!r}:"
+        return ""
+
+    def __exit__(self, typ, exc, tb):
+        from ..errors import CaseFileError, InputError
+
+        if exc is None or isinstance(exc, CaseFileError):
+            return False
+        if isinstance(exc, (InputError, TypeError, ValueError)):
+            key = self._culprit() if self.cls is not None else ""
+            raise CaseFileError(f"{self.where}{key} {exc}") from None
+        return False
 
 
 _PLASTIC_KEYS = ("yield_stress", "hardening", "hardening_saturation", "hardening_rate",
@@ -256,13 +363,14 @@ def _case_key(t, key, old, path):
     """Pop a named-case key of an [fe] table, accepting its deprecated old name."""
     import warnings
 
+    from .._toml import RenamedKeyWarning
     from ..errors import CaseFileError
 
     if old in t:
         if key in t:
             raise CaseFileError(f"{path}: [fe] gives both {key!r} and its old name {old!r}")
         warnings.warn(f"{path}: [fe] key {old!r} is deprecated, use {key!r}",
-                      DeprecationWarning, stacklevel=3)
+                      RenamedKeyWarning, stacklevel=3)
         return t.pop(old)
     return t.pop(key, None)
 

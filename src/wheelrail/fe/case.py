@@ -11,7 +11,7 @@ import numpy as np
 from .._validation import as_float_array, in_range, integer, non_negative, positive
 from ..errors import InputError
 from ..materials import STEEL, Material
-from ..plausibility import check_rolling_radius
+from ..plausibility import check_friction, check_rolling_radius, check_speed
 from ..profiles import Profile
 from ._newton import LINEAR_SOLVERS
 from .materials import J2Plastic, LinearElastic, r900a
@@ -169,6 +169,8 @@ class RollingCase:
                                  f"to resolve")
         s(self, "creepage", tuple(float(v) for v in c))
         s(self, "mu", float(non_negative("mu", self.mu)))
+        if self.mu > 0:  # mu = 0: a deliberately frictionless contact
+            check_friction(self.mu, "mu")
         if not isinstance(self.material, Material):
             if not isinstance(self.material, (LinearElastic, J2Plastic)):
                 raise InputError(f"material must be a wheelrail.Material, "
@@ -183,6 +185,7 @@ class RollingCase:
                                                          self.lateral_position)))
         s(self, "inclination", float(in_range("inclination", self.inclination, -0.2, 0.2)))
         s(self, "speed", float(positive("speed", self.speed)))
+        check_speed(self.speed, "speed")
         if self.travel is not None:
             s(self, "travel", float(positive("travel", self.travel)))
         s(self, "ramp", float(in_range("ramp", self.ramp, 0.0, 0.9)))

@@ -16,6 +16,7 @@ import numpy as np
 from .._validation import as_float_array, in_range, non_negative, positive
 from ..errors import InputError
 from ..materials import Material
+from ..plausibility import check_modulus, check_yield_stress
 
 __all__ = ["LinearElastic", "J2Plastic", "Voce", "TabulatedHardening", "R900A_HARDENING",
            "r900a", "as_fe_material"]
@@ -189,7 +190,9 @@ class J2Plastic:
         s = object.__setattr__
         s(self, "E", float(positive("E", self.E)))
         s(self, "nu", float(in_range("nu", self.nu, 0.0, 0.5, hi_open=True)))
+        check_modulus(self.E)
         s(self, "yield_stress", float(positive("yield_stress", self.yield_stress)))
+        check_yield_stress(self.yield_stress)
         s(self, "density", float(positive("density", self.density)))
         s(self, "kinematic", float(non_negative("kinematic", self.kinematic)))
         s(self, "kinematic_recovery", float(non_negative("kinematic_recovery",

@@ -6,6 +6,8 @@ transition (:mod:`wheelrail.fe.transition`)."""
 
 from __future__ import annotations
 
+import numbers
+
 from ..errors import InputError
 from .case import RollingCase
 from .explicit import solve_explicit
@@ -48,7 +50,7 @@ def solve(case, *, mode: str = "roll", progress: bool = True, output_every: int 
         :mod:`wheelrail.fe.restart`; ``{step}`` in the name is replaced by the step number
         (one file per write), otherwise the file is overwritten with the latest state.
     restart_every : int, optional
-        Steps between restart writes (default: a tenth of the rolling steps).
+        Steps between restart writes, >= 1 (default: a tenth of the rolling steps).
 
     stop_travel : float, optional
         A transition case: stop after this travel [m] (restart file written there).
@@ -64,6 +66,10 @@ def solve(case, *, mode: str = "roll", progress: bool = True, output_every: int 
         patch slides entirely and the force is μ F_n whatever the creepage; or an implicit
         ``time_step`` above h/(2V) (spurious slip, Toumi et al. 2016, §3).
     """
+    if restart_every is not None and (isinstance(restart_every, bool) or not isinstance(
+            restart_every, numbers.Integral) or restart_every < 1):
+        raise InputError(f"restart_every must be an integer >= 1 (steps between restart "
+                         f"writes; None: a tenth of the rolling steps), got {restart_every!r}")
     if isinstance(case, TransitionCase):
         if mode != "roll":
             raise InputError(f"mode {mode!r}: a transition case only rolls")

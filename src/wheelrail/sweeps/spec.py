@@ -54,7 +54,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from .._toml import Reader, read_input, tomllib
+from .._toml import Reader, read_input, renamed_keys, tomllib
 from ..errors import CaseFileError, InputError
 from .evaluators import get_evaluator
 
@@ -65,6 +65,10 @@ MAX_AXIS_VALUES = 10_000_000
 
 _MODES = ("grid", "points")
 _SPEC_KEYS = ("evaluator", "chunk", "options", "material", "points")
+#: Quantities renamed for one name per quantity: former name -> name. Sweep files that use
+#: a former name still read, with a :class:`~wheelrail._toml.RenamedKeyWarning` naming the
+#: new one.
+RENAMED_QUANTITIES = {"load": "Fn"}
 
 
 def expand_range(name: str, value) -> np.ndarray:
@@ -385,6 +389,8 @@ def sweep_from_dict(data: Mapping, source: str = "<dict>", sha256: str | None = 
         ev = get_evaluator(evaluator)
     except InputError as exc:
         r.fail("sweep", "evaluator", str(exc))
+    renames = {o: n for o, n in RENAMED_QUANTITIES.items() if n in ev.quantities}
+    tbl = renamed_keys(r, "sweep", tbl, renames)
     r.unknown("sweep", tbl, (*_SPEC_KEYS, *ev.quantities))
     chunk = tbl.get("chunk", 2000)
     if isinstance(chunk, bool) or not isinstance(chunk, int) or chunk < 1:
@@ -423,6 +429,7 @@ def sweep_from_dict(data: Mapping, source: str = "<dict>", sha256: str | None = 
     if points is not None:
         if not isinstance(points, Mapping) or not points:
             r.fail("sweep", "points", f"must be a table of equal-length columns, got {points!r}")
+        points = renamed_keys(r, "sweep.points", points, renames)
         r.unknown("sweep.points", points, ev.quantities)
         for name, value in points.items():
             if name in fixed:

@@ -33,6 +33,7 @@ import numpy as np
 
 from ..._validation import in_range, non_negative, positive
 from ...errors import InputError
+from ...plausibility import check_friction, check_rolling_radius, check_speed
 from ...profiles import Profile
 from .._solid import element_chunks
 from ..elements import Hex8
@@ -186,6 +187,9 @@ class TransitionCase:
         for name in ("radius", "speed", "mu", "travel", "mesh_size", "section_h_max",
                      "x_h_max", "theta_h_max", "penalty", "output_interval"):
             object.__setattr__(self, name, float(positive(name, getattr(self, name))))
+        check_friction(self.mu, "mu")
+        check_rolling_radius(self.radius, "radius")
+        check_speed(self.speed, "speed")
         object.__setattr__(self, "patch_split_angle",
                            float(in_range("patch_split_angle", self.patch_split_angle,
                                           np.radians(30.0), np.radians(60.0))))

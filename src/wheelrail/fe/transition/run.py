@@ -319,6 +319,10 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     -------
     TransitionResult
     """
+    if isinstance(restart_every, bool) or not isinstance(restart_every, (int, np.integer)) \
+            or restart_every < 0:
+        raise InputError(f"restart_every must be an integer >= 0 (steps between restart "
+                         f"files; 0: a tenth of the steps), got {restart_every!r}")
     m = model if model is not None else build_transition_model(case)
     if case.travel > m.case.travel * (1 + 1e-9):
         raise InputError(f"travel {case.travel!r} m is longer than the {m.case.travel!r} m the "

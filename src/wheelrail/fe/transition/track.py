@@ -127,7 +127,9 @@ class TrackStructure:
         _check(self, ("pad_lateral_stiffness",) if self.pad_lateral_stiffness is not None
                else (), ("pad_lateral_damping",) if self.pad_lateral_damping is not None
                else ())
-        if int(self.n_sleepers) != self.n_sleepers or self.n_sleepers < 2:
+        n = self.n_sleepers
+        if isinstance(n, bool) or not isinstance(n, (int, float, np.integer, np.floating)) \
+                or not np.isfinite(n) or int(n) != n or n < 2:
             raise InputError(f"n_sleepers must be an integer >= 2, got {self.n_sleepers!r}")
         object.__setattr__(self, "n_sleepers", int(self.n_sleepers))
         if not 0.0 <= self.sleeper_nu < 0.5:

@@ -28,12 +28,12 @@ from pathlib import Path
 
 from ...errors import ProfileError
 from ..core import Profile
-from ._common import read_lines
+from ._common import kind_from_extension, read_lines
 from .miniprof import looks_like_miniprof, read_miniprof
-from .simpack import looks_like_simpack, read_simpack, write_simpack
-from .text import read_text, write_text
+from .simpack import looks_like_simpack, parse_simpack, read_simpack, write_simpack
+from .text import parse_text, read_text, write_text
 
-__all__ = ["read", "write", "formats", "detect_format", "READERS", "WRITERS",
+__all__ = ["read", "write", "formats", "detect_format", "declared_kind", "READERS", "WRITERS",
            "read_simpack", "write_simpack", "read_miniprof", "read_text", "write_text"]
 
 #: format name -> (reader, extensions)
@@ -66,6 +66,42 @@ def detect_format(path) -> str:
         if ext in exts and fmt != "simpack":  # a .prr without sections is not Simpack
             return fmt
     return "text"
+
+
+def declared_kind(path) -> tuple[str | None, str]:
+    """The body a profile file says it holds, without reading its points.
+
+    Returns
+    -------
+    kind : {"wheel", "rail", None}
+        From the Simpack header ``type`` (0 rail, 1 wheel), a text file's ``# kind:``
+        comment, else the extension (``.prw``/``.whl`` wheel, ``.prr``/``.ban`` rail);
+        None when neither says.
+    why : str
+        Where the kind was found (``"its Simpack header type = 0"``, ``"its '# kind:
+        rail' comment"``, ``"its extension .prr"``), for messages; ``""`` for None.
+
+    Raises
+    ------
+    ProfileError
+        Unreadable file, or a malformed Simpack header.
+    """
+    name, lines = read_lines(path)
+    if looks_like_simpack(lines):
+        t = parse_simpack(lines, name)[0].get("type")
+        if t in (0, 1):
+            return ("wheel" if t == 1 else "rail"), f"its Simpack header type = {int(t)}"
+    elif not looks_like_miniprof(lines):
+        try:
+            k = parse_text(lines, name)[0].get("kind", "").strip().lower()
+        except ProfileError:  # damaged data: reading the file will say what is wrong
+            k = ""
+        if k in ("wheel", "rail"):
+            return k, f"its '# kind: {k}' comment"
+    k = kind_from_extension(path)
+    if k is not None:
+        return k, f"its extension {Path(os.fspath(path)).suffix.lower()}"
+    return None, ""
 
 
 def read(path, kind: str | None = None, *, fmt: str | None = None, **options) -> Profile:
