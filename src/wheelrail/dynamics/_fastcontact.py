@@ -91,10 +91,10 @@ WHEEL_FIELDS = ("patches", "Qn_y", "Qn_z", "Qn_roll", "Qn_yaw", "Qn_spin", "Qt_y
                 "min_gap", "fallbacks", "a_mean", "candidates")
 _NP = len(PATCH_FIELDS)
 _KC = 8                # candidate minima kept per wheel
-#: Golden-section levels of a minimum's refinement: the bracket ±0.5 mm shrinks to 0.2 µm.
-#: Fewer (12: 3 µm) leave the gap accurate but not smooth enough in the pose for the
-#: finite-difference Jacobians of the equilibria (steady curving stops converging).
-_LEVELS = 18
+#: Golden-section levels of a minimum's refinement before its parabolic step: the bracket
+#: ±0.5 mm shrinks to 8 µm (golden section alone needed 18 levels, 0.2 µm, for a gap
+#: smooth enough in the pose for the equilibria's finite-difference Jacobians).
+_LEVELS = 10
 
 #: Indices of the method parameters (the float array ``mp``).
 MP = {name: i for i, name in enumerate((
@@ -107,32 +107,54 @@ MP = {name: i for i, name in enumerate((
 @njit(cache=True)
 def _refine(s0, h, lo, hi, levels, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct,
             sp, cp, R, ph0):
-    """Minimum of the gap in [s0 − h, s0 + h] by golden-section search to h·0.618**levels.
+    """Minimum of the gap in [s0 − h, s0 + h]: golden-section search to h·0.618**levels,
+    then the vertex of the parabola through the bracket's best three evaluated points
+    (the best of it and the golden-section points is returned).
 
-    Robust where the gap has a kink (a jump of a profile's curvature at the contact
-    point), where parabolic interpolation from a coarse grid can stall.
+    The golden section is robust where the gap has a kink (a jump of a profile's
+    curvature at the contact point), where parabolic interpolation from a coarse grid
+    can stall; the final vertex makes the minimum a smooth function of the pose (the
+    equilibria's finite-difference Jacobians need it) with fewer evaluations.
     """
     gr = 0.6180339887498949
     a = max(s0 - h, lo)
     b = min(s0 + h, hi)
+    fa = math.inf
+    fb = math.inf
     c = b - gr * (b - a)
     d = a + gr * (b - a)
     fc = _gap(c, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
     fd = _gap(d, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R, ph0)
     for _ in range(levels):
         if fc < fd:
-            b, d, fd = d, c, fc
+            b, fb, d, fd = d, fd, c, fc
             c = b - gr * (b - a)
             fc = _gap(c, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R,
                       ph0)
         else:
-            a, c, fc = c, d, fd
+            a, fa, c, fc = c, fc, d, fd
             d = a + gr * (b - a)
             fd = _gap(d, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp, cp, R,
                       ph0)
     if fc < fd:
-        return c, fc
-    return d, fd
+        sb, fbest = c, fc
+    else:
+        sb, fbest = d, fd
+    # the parabola through the three evaluated points around the best one
+    if (fc < fd and fa < math.inf) or (fc >= fd and not fb < math.inf):
+        x1, f1, x2, f2, x3, f3 = a, fa, c, fc, d, fd
+    else:
+        x1, f1, x2, f2, x3, f3 = c, fc, d, fd, b, fb
+    if f1 < math.inf and f3 < math.inf:
+        den = (x2 - x1) * (f2 - f3) - (x2 - x3) * (f2 - f1)
+        if den != 0.0:
+            xv = x2 - 0.5 * ((x2 - x1) ** 2 * (f2 - f3) - (x2 - x3) ** 2 * (f2 - f1)) / den
+            if x1 < xv < x3:
+                fv = _gap(xv, wu, winv, wc, ru, rinv, rc, r0, e_tape, sig, y, zc, st, ct, sp,
+                          cp, R, ph0)
+                if fv < fbest:
+                    sb, fbest = xv, fv
+    return sb, fbest
 
 
 # --------------------------------------------------------------------------- the wheel
