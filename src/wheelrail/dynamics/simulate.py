@@ -314,8 +314,14 @@ class System:
             dofs = [(4, 1e-5 * V, "lateral"), (7, 1e-5 * V / l0, "yaw")]
             if self.model.spin == "free":
                 dofs.append((8, 1e-5 * V / r0, "spin"))
-            for off, d, name in dofs:
-                idx = [9 * i + off for i in range(nw)]
+            groups = [([9 * i + off for i in range(nw)], d, name) for off, d, name in dofs]
+            # flexible rails: the creep forces damp the rail heads' lateral motion too, on
+            # a mass far below the wheelset's (the stiffest creep-damped motion there)
+            heads = [k for k, n in enumerate(self.asm.names)
+                     if n.startswith("rail") and n.endswith(".lateral.head_velocity")]
+            if heads:
+                groups.append((heads, 1e-5 * V, "rail head lateral"))
+            for idx, d, name in groups:
                 xp = x.copy()
                 xp[idx] += d
                 f1 = self.rhs(t, xp)
