@@ -414,7 +414,23 @@ def rail_rows(add, n_ws, off_rails):
                 add(rb + 1, rb + 2, 1e-8, 1e-3)    # head: v̇ = 0
 
 
-class Assembly:
+class _Layout:
+    """State lookup and wheel load shared by :class:`Assembly` and the vehicle's assembly
+    (both have ``names`` and ``model.axle_load``)."""
+
+    def index(self, name: str) -> int:
+        """Index of a state variable by name."""
+        try:
+            return self.names.index(name)
+        except ValueError:
+            raise InputError(f"no state {name!r}; states: {', '.join(self.names)}") from None
+
+    def wheel_load(self) -> float:
+        """Static vertical force of each wheel [N]."""
+        return 0.5 * self.model.axle_load
+
+
+class Assembly(_Layout):
     """The numbers the compiled equations need: parameter vector and state layout (internal).
 
     Attributes
@@ -497,13 +513,3 @@ class Assembly:
             rail_rows(add, self.n_ws, self.off_rails)
         return cols, rows, np.array(steps), np.array(scales)
 
-    def index(self, name: str) -> int:
-        """Index of a state variable by name."""
-        try:
-            return self.names.index(name)
-        except ValueError:
-            raise InputError(f"no state {name!r}; states: {', '.join(self.names)}") from None
-
-    def wheel_load(self) -> float:
-        """Static vertical force of each wheel [N]."""
-        return 0.5 * self.model.axle_load

@@ -62,7 +62,7 @@ from ..materials import STEEL
 from ..profiles import load as load_profile
 from ._vehicle_motion import BUMP_MAX, NVP, VP
 from .model import (FRAME_STATES, GP, GRAVITY, NGP, NWP, WP, BogieModel, Suspension,
-                    WheelsetModel, _inertia, _number, append_rail_relax_names,
+                    WheelsetModel, _inertia, _Layout, _number, append_rail_relax_names,
                     global_parameters, rail_rows, wheelset_names, wheelset_rows)
 
 __all__ = ["CarBody", "SecondarySuspension", "YawDamper", "BumpStop", "VehicleModel",
@@ -487,7 +487,7 @@ def manchester_vehicle1(spin: str = "fixed", rail=None, *, yaw_damper: YawDamper
 # --------------------------------------------------------------------------- assembly
 
 
-class VehicleAssembly:
+class VehicleAssembly(_Layout):
     """Parameter vector and state layout of a :class:`VehicleModel` (internal; the
     interface of :class:`wheelrail.dynamics.model.Assembly`).
 
@@ -630,12 +630,3 @@ class VehicleAssembly:
             scales.append(1e-2)
         return cols, rows, np.array(steps), np.array(scales)
 
-    def index(self, name: str) -> int:
-        try:
-            return self.names.index(name)
-        except ValueError:
-            raise InputError(f"no state {name!r}; states: {', '.join(self.names)}") from None
-
-    def wheel_load(self) -> float:
-        """Static vertical force of each wheel [N]."""
-        return 0.5 * self.model.axle_load
