@@ -629,4 +629,3 @@ class VehicleAssembly(_Layout):
             steps.append(1e-8)
             scales.append(1e-2)
         return cols, rows, np.array(steps), np.array(scales)
-
