@@ -7,7 +7,10 @@ runs :func:`wheelrail.dynamics.simulate` with a progress bar, assesses the run
 (:func:`wheelrail.dynamics.assess`) and writes to DIR:
 
 * ``result.nc`` — the time histories (``SimulationResult.dataset``: states,
-  per-patch forces, creepages, contact angles, Y/Q, wear number);
+  per-patch forces, creepages, contact angles, Y/Q, wear number); a run of more
+  than :data:`STREAM_OUTPUTS` outputs, or any run with ``--store``, writes them
+  instead to ``result.zarr`` while it goes (its memory then does not grow with the
+  duration; read it with :func:`wheelrail.dynamics.open_result`);
 * ``summary.json`` — the settings, maxima of Y/Q and of the lateral force,
   contact-configuration changes, CPU time, real-time factor and the assessment's verdicts;
 * ``assessment.nc`` and ``assessment.csv`` — EN 14363 (Y/Q)2m and (ΣY)2m with their
@@ -38,6 +41,11 @@ _SIM_KEYS = ("speed", "speed_profile", "duration", "integrator", "step", "output
              "initial", "start", "deceleration", "creep_relaxation")
 
 
+#: Runs with more outputs than this write their histories to ``result.zarr`` as they go
+#: (200 s at the default output step of 1 ms: 0.3–1 GB in memory otherwise).
+STREAM_OUTPUTS = 200_000
+
+
 def add_arguments(p) -> None:
     p.add_argument("case", metavar="CASE.toml", help="case file with a [model] table")
     p.add_argument("--out", metavar="DIR", default="dynamics_out",
@@ -47,6 +55,10 @@ def add_arguments(p) -> None:
                    help="simulated time [s] (overrides [simulation] duration)")
     p.add_argument("--no-figures", action="store_true", help="skip the PNG figures")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--store", action="store_true",
+                   help="write the histories to result.zarr while the run goes (memory "
+                        "independent of the duration; automatic above "
+                        f"{STREAM_OUTPUTS:,} outputs)")
 
 
 # --------------------------------------------------------------------------- reading
@@ -472,16 +484,25 @@ def run(args, console) -> int:
     from ..dynamics.simulate import SimulationInterrupted
 
     interrupted = None
+    store = _store_path(args, sim, out, console)
     try:
         res = dyn.simulate(model, case["layout"], sim.pop("speed"), sim.pop("duration"),
                            case["normal"], case["tangential"], mu=case["mu"],
-                           progress=not args.no_progress, **sim)
+                           progress=not args.no_progress, store=store, **sim)
     except SimulationInterrupted as exc:
-        # Ctrl-C: keep what was simulated (a valid result.nc marked interrupted), then 130
+        # Ctrl-C: keep what was simulated (a valid result.nc or result.zarr marked
+        # interrupted), then 130
         res, interrupted = exc.result, exc
     ds = res.dataset
     ds.attrs["case"] = str(args.case)
-    ds.to_netcdf(out / "result.nc")
+    if store is None:
+        ds.to_netcdf(out / "result.nc")
+        result_name = "result.nc"
+    else:
+        import zarr
+
+        zarr.open_group(str(store), mode="r+").attrs["case"] = str(args.case)
+        result_name = "result.zarr"
     yq = ds["Y_over_Q"]
     summary = {"case": str(args.case), "model": type(model).__name__,
                "normal": res.info["normal"], "tangential": res.info["tangential"],
@@ -499,13 +520,13 @@ def run(args, console) -> int:
                "derailment": res.info.get("derailment"),
                "substeps": res.info.get("substeps", 1),
                "units": {"time": "s", "y": "m", "yaw": "rad", "Fn": "N", "Y_over_Q": "1"}}
-    written = ["result.nc", "summary.json"]
+    written = [result_name, "summary.json"]
     if interrupted is not None:
         from ._output import esc
 
         (out / "summary.json").write_text(json.dumps(summary, indent=2))
-        console.print(f"interrupted at t = {summary['simulated_s']:.4g} s: wrote result.nc "
-                      f"(marked interrupted) and summary.json to {esc(out)}")
+        console.print(f"interrupted at t = {summary['simulated_s']:.4g} s: wrote "
+                      f"{result_name} (marked interrupted) and summary.json to {esc(out)}")
         raise KeyboardInterrupt from None
     table = _assessment(res, out, console, summary)
     if table is not None:
@@ -529,6 +550,21 @@ def run(args, console) -> int:
 
     console.print(f"wrote {', '.join(written)} to {esc(out)}")
     return 0
+
+
+def _store_path(args, sim, out, console):
+    """``out/result.zarr`` when the run streams its outputs (``--store`` or more than
+    :data:`STREAM_OUTPUTS` outputs), else None (``result.nc`` at the end)."""
+    integ = sim.get("integrator")
+    dt = getattr(integ, "dt", 1e-3)
+    out_dt = sim.get("output_step") or dt
+    n_out = sim["duration"] / out_dt
+    if not (getattr(args, "store", False) or n_out > STREAM_OUTPUTS):
+        return None
+    path = out / "result.zarr"          # an earlier run's store is replaced
+    console.print(f"{n_out:,.0f} outputs: the histories go to result.zarr while the run goes "
+                  "(read it with wheelrail.dynamics.open_result)")
+    return path
 
 
 def _assessment(res, out, console, summary):

@@ -30,14 +30,16 @@ from .model import BogieModel, RailSupport, Suspension, WheelsetModel
 from .quasistatic import (CurvingResult, FlangeClimbResult, cant_deficiency, flange_climb, nadal,
                           steady_curving)
 from .reference import cone_track, klingel_wavelength
-from .simulate import Adaptive, FixedStep, SimulationResult, System, simulate
+from .results import SimulationResult
+from .simulate import Adaptive, FixedStep, System, simulate
+from .store import open_result
 from .speed import SpeedProfile
 from .stability import CriticalSpeedResult, critical_speed
 from .vehicle import (BumpStop, CarBody, SecondarySuspension, VehicleModel, YawDamper,
                       manchester_bogie, manchester_vehicle1)
 
 __all__ = ["Suspension", "RailSupport", "WheelsetModel", "BogieModel", "Curve", "Irregularity",
-           "TrackLayout", "simulate", "SpeedProfile", "FixedStep", "Adaptive", "SimulationResult", "System",
+           "TrackLayout", "simulate", "open_result", "SpeedProfile", "FixedStep", "Adaptive", "SimulationResult", "System",
            "FastContact", "GenericContact", "contact_model", "configured_methods",
            "critical_speed", "CriticalSpeedResult", "flange_climb", "FlangeClimbResult",
            "steady_curving", "CurvingResult", "cant_deficiency", "nadal", "LinearWheelset", "LinearBogie",

@@ -28,11 +28,12 @@ import numpy as np
 from .. import _resources
 from ..errors import ConvergenceError, InputError
 from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
+from . import store as _store
 from ._motion import rhs_fast
 
 __all__ = ["RunWarning", "SimulationInterrupted", "MIN_RADIUS", "MAX_SPEED", "HIGH_SPEED",
            "ABSURD", "check_speed", "check_states", "estimate", "flange_angle", "nadal_limit",
-           "nadal_check"]
+           "nadal_check", "nadal_scan", "nadal_merge", "nadal_warn"]
 
 _W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
 
@@ -133,11 +134,16 @@ def _eval_cost(system, x0, compiled, n=20):
     return float(np.median(times))
 
 
-def estimate(system, x0, duration, integ, out_dt):
+def estimate(system, x0, duration, integ, out_dt, store=None, streamed=False):
     """CPU time and output memory of the run, refused past the limits (see
-    :func:`wheelrail._resources.check`; long runs are announced)."""
+    :func:`wheelrail._resources.check`; long runs are announced). A run written to a
+    ``store`` needs the outputs' size on that disk; ``streamed``: only one chunk and the
+    time axis in memory."""
     n_out = duration / out_dt + 2
-    memory = n_out * output_bytes(system) + 200e6
+    if streamed:
+        memory = 8.0 * n_out + 2 * _store.BUFFER_BYTES + 200e6
+    else:
+        memory = n_out * output_bytes(system) + 200e6
     # cost of one evaluation of the right-hand side, measured (CPU time; the compiled
     # kernel directly where the run's loop is compiled)
     per_eval = _eval_cost(system, x0, compiled=hasattr(integ, "dt") and system.fast)
@@ -160,6 +166,21 @@ def estimate(system, x0, duration, integ, out_dt):
                                        f"{per_eval * 1e3:.3g} ms per contact evaluation, "
                                        f"measured; {output_bytes(system) / 1e3:.3g} kB per "
                                        f"output")
+    if store is not None:
+        import shutil
+        from pathlib import Path
+
+        disk = n_out * output_bytes(system)
+        where = Path(store).resolve().parent
+        while not where.exists():
+            where = where.parent
+        free = shutil.disk_usage(where).free
+        if disk > 0.9 * free:
+            raise _resources.ResourceLimitError(
+                f"store = {str(store)!r}: the outputs need about {_resources._human(disk)} "
+                f"(uncompressed, {n_out:.3g} outputs of {output_bytes(system) / 1e3:.3g} kB), "
+                f"more than the {_resources._human(free)} free on that disk; a larger "
+                f"output_step or another disk")
 
 
 def flange_angle(wheelset):
@@ -181,9 +202,9 @@ def nadal_limit(flange_angle, mu):
     return (t - mu) / (1.0 + mu * t)
 
 
-def nadal_check(system, T, OW):
-    """Y/Q beyond Nadal's limit (the wheel climbs the rail): None, or a dict naming the first
-    wheel and time, with a :class:`RunWarning`."""
+def nadal_scan(system, T, OW):
+    """Y/Q beyond Nadal's limit in outputs ``T``, ``OW``: None, or a dict naming the first
+    wheel and time (``t``, ``wheelset``, ``side``, ``max_Y_over_Q``, ``nadal_limit``)."""
     gamma = flange_angle(system.model.wheelset)
     if T.size == 0 or gamma < math.radians(45.0):
         return None                               # no flange: no climbing limit
@@ -196,14 +217,34 @@ def nadal_check(system, T, OW):
     if not np.any(over):
         return None
     k, i, side = (int(v[0]) for v in np.nonzero(over))
-    worst = float(np.max(yq))
-    V = system.V(float(T[k]))
+    return {"t": float(T[k]), "wheelset": i, "side": ("left", "right")[side],
+            "max_Y_over_Q": float(np.max(yq)), "nadal_limit": limit}
+
+
+def nadal_merge(first, later):
+    """Two scans of consecutive parts of a run as one (the first time, the largest Y/Q)."""
+    if first is None or later is None:
+        return first if later is None else later
+    return dict(first, max_Y_over_Q=max(first["max_Y_over_Q"], later["max_Y_over_Q"]))
+
+
+def nadal_warn(system, hit):
+    """Warn (:class:`RunWarning`) about a :func:`nadal_scan` hit; returns ``hit``."""
+    if hit is None:
+        return None
+    gamma = flange_angle(system.model.wheelset)
+    V = system.V(hit["t"])
     hint = (f"; speed {V:.4g} m/s = {V * 3.6:.0f} km/h — if km/h was meant: {V / 3.6:.4g} m/s"
             if V > 55.0 else "")
-    warnings.warn(f"Y/Q reaches {worst:.3g} (wheelset {i}, {('left', 'right')[side]} wheel, "
-                  f"first at t = {float(T[k]):.4g} s), beyond Nadal's limit {limit:.3g} "
-                  f"(flange angle {math.degrees(gamma):.1f}°, μ = {system.mu:g}): the wheel "
-                  f"climbs the rail — a derailment; the motion after it is not "
-                  f"physical{hint}", RunWarning, stacklevel=3)
-    return {"t": float(T[k]), "wheelset": i, "side": ("left", "right")[side],
-            "max_Y_over_Q": worst, "nadal_limit": limit}
+    warnings.warn(f"Y/Q reaches {hit['max_Y_over_Q']:.3g} (wheelset {hit['wheelset']}, "
+                  f"{hit['side']} wheel, first at t = {hit['t']:.4g} s), beyond Nadal's limit "
+                  f"{hit['nadal_limit']:.3g} (flange angle {math.degrees(gamma):.1f}°, μ = "
+                  f"{system.mu:g}): the wheel climbs the rail — a derailment; the motion after "
+                  f"it is not physical{hint}", RunWarning, stacklevel=3)
+    return hit
+
+
+def nadal_check(system, T, OW):
+    """Y/Q beyond Nadal's limit (the wheel climbs the rail): None, or a dict naming the first
+    wheel and time, with a :class:`RunWarning`."""
+    return nadal_warn(system, nadal_scan(system, T, OW))

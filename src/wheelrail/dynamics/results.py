@@ -21,14 +21,17 @@ References
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 import numpy as np
 import xarray as xr
 
 from .._version import __version__
+from ..errors import InputError
 from ._fastcontact import PATCH_FIELDS, WHEEL_FIELDS
 from .model import FRAME_STATES, WHEELSET_STATES
 
-__all__ = ["to_dataset"]
+__all__ = ["SimulationResult", "to_dataset"]
 
 _P = {n: i for i, n in enumerate(PATCH_FIELDS)}
 _W = {n: i for i, n in enumerate(WHEEL_FIELDS)}
@@ -55,6 +58,11 @@ _PATCH = {  # dataset name: (field, unit, description)
 }
 
 
+def _array(a):
+    """A NumPy array, or a Dask array as it is (a result read from a store stays lazy)."""
+    return a if hasattr(a, "dask") else np.asarray(a)
+
+
 def to_dataset(result) -> xr.Dataset:
     """The :class:`~wheelrail.dynamics.simulate.SimulationResult` as an xarray Dataset.
 
@@ -69,9 +77,9 @@ def to_dataset(result) -> xr.Dataset:
     """
     t = np.asarray(result.t)
     names = list(result.names)
-    X = np.asarray(result.states)
-    OW = np.asarray(result.wheels)
-    OP = np.asarray(result.patches)
+    X = _array(result.states)
+    OW = _array(result.wheels)
+    OP = _array(result.patches)
     nw = OW.shape[1]
     coords = {"time": t, "wheelset": np.arange(nw), "side": ["left", "right"],
               "patch": np.arange(OP.shape[3])}
@@ -91,11 +99,13 @@ def to_dataset(result) -> xr.Dataset:
     if any(n.startswith("rail0.") for n in names):
         coords["direction"] = ["lateral", "vertical"]
         for s, unit in (("head", "m"), ("head_velocity", "m/s"), ("support", "m")):
-            v = np.empty((t.size, nw, 2, 2))
-            for i in range(nw):
-                for k, side in enumerate(("left", "right")):
-                    for d, dn in enumerate(("lateral", "vertical")):
-                        v[:, i, k, d] = X[:, names.index(f"rail{i}.{side}.{dn}.{s}")]
+            def col(i, side, dn, s=s):
+                return X[:, names.index(f"rail{i}.{side}.{dn}.{s}")]
+
+            # (time, wheelset, side, direction)
+            v = np.stack([np.stack([np.stack([col(i, side, dn) for dn in ("lateral", "vertical")],
+                                             axis=1) for side in ("left", "right")], axis=1)
+                          for i in range(nw)], axis=1)
             data[f"rail_{s}"] = (("time", "wheelset", "side", "direction"), v, {"units": unit})
     sig = np.array([-1.0, 1.0])[None, None, :]
     Fy_w = OW[..., _W["Fy"]]
@@ -127,8 +137,8 @@ def to_dataset(result) -> xr.Dataset:
     data["patch_wear_number"] = (pdims, tg, {"units": "N", "description": "Tγ of the patch"})
     data["wear_number"] = (wheel_dims, tg.sum(axis=-1), {"units": "N", "description":
                                                          "Tγ summed over the wheel's patches"})
-    data["speed"] = ("time", np.asarray(result.speed), {"units": "m/s"})
-    data["position"] = ("time", np.asarray(result.position), {"units": "m"})
+    data["speed"] = ("time", _array(result.speed), {"units": "m/s"})
+    data["position"] = ("time", _array(result.position), {"units": "m"})
     attrs = {k: (v if isinstance(v, (str, int, float)) else repr(v))
              for k, v in result.info.items()}
     attrs["wheelrail_version"] = __version__
@@ -142,3 +152,59 @@ def to_dataset(result) -> xr.Dataset:
         data["event_side"] = ("event", np.where(ev[:, 2] > 0, "right", "left"))
         data["event_patches"] = ("event", ev[:, 3].astype(int))
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+@dataclass(frozen=True, eq=False)
+class SimulationResult:
+    """Result of :func:`simulate` (frozen).
+
+    Attributes
+    ----------
+    t : ndarray, shape (n,)
+        Output times [s].
+    states : ndarray, shape (n, n_states)
+        State vectors (names in ``names``).
+    wheels : ndarray, shape (n, n_wheelsets, 2, len(WHEEL_FIELDS))
+        Per-wheel contact outputs (left, right).
+    patches : ndarray, shape (n, n_wheelsets, 2, KMAX, len(PATCH_FIELDS))
+        Per-patch contact outputs (largest normal force first; zero rows unused).
+    names : tuple of str
+    speed : ndarray, shape (n,)
+        Speed at the output times [m/s].
+    position : ndarray, shape (n,)
+        Position of the model along the track [m].
+    events : tuple of dict
+        Contact-configuration changes: ``t``, ``wheelset``, ``side``, ``patches``.
+    info : dict
+        Methods, integrator, CPU time, contact evaluations, real-time factor, ...
+    model, layout
+
+    A result read from a store (``simulate(..., store=...)``,
+    :func:`~wheelrail.dynamics.open_result`) holds Dask arrays instead of NumPy arrays
+    (all but ``t``); ``info["store_status"]`` says whether the run completed.
+    """
+
+    t: np.ndarray
+    states: np.ndarray
+    wheels: np.ndarray
+    patches: np.ndarray
+    names: tuple
+    speed: np.ndarray
+    position: np.ndarray
+    events: tuple = ()
+    info: dict = field(default_factory=dict)
+    model: object = None
+    layout: object = None
+
+    def state(self, name: str) -> np.ndarray:
+        """Time series of one state (``"ws0.y"``, ``"frame.yaw"``, ...)."""
+        try:
+            return self.states[:, self.names.index(name)]
+        except ValueError:
+            raise InputError(f"no state {name!r}; states: {', '.join(self.names)}") from None
+
+    @property
+    def dataset(self):
+        """The result as an :class:`xarray.Dataset` over time
+        (:func:`wheelrail.dynamics.results.to_dataset`)."""
+        return to_dataset(self)

@@ -45,18 +45,20 @@ from ..geometry.contact_search import solve_rigid
 from ..geometry.touching import touching_heights
 from ._fastcontact import KMAX, PATCH_FIELDS, WHEEL_FIELDS
 from ._guards import (ABSURD, MIN_RADIUS, RunWarning, SimulationInterrupted, check_speed,
-                      check_states, estimate, nadal_check)
+                      check_states, estimate, nadal_scan, nadal_warn)
 from ._motion import (N_IN, derivative, relax_decay, relax_derivative, relax_stage, rhs_fast,
                       run_fixed, wheel_inputs)
 from ._speed import falls_below, greatest_speed, least_speed, profile_at, profile_eval
 from .contact import FastContact, contact_model
 from .layout import as_layout
 from .model import GP, Assembly, BogieModel, WheelsetModel
-from .results import to_dataset
+from .results import SimulationResult
 from .speed import SpeedProfile, _run_table
+from ._outputs import Memory, Stream, outputs, shapes
+from .store import StoreWriter, open_result
 from .vehicle import VehicleAssembly, VehicleModel
 
-__all__ = ["simulate", "FixedStep", "Adaptive", "SimulationResult", "System", "StepWarning",
+__all__ = ["simulate", "FixedStep", "Adaptive", "System", "StepWarning",
            "RunWarning", "SimulationInterrupted", "ABSURD"]
 
 #: A fixed step is divided into sub-steps so that RK4 takes the creep damping's shortest
@@ -502,66 +504,7 @@ class System:
         return best
 
 
-@dataclass(frozen=True, eq=False)
-class SimulationResult:
-    """Result of :func:`simulate` (frozen).
-
-    Attributes
-    ----------
-    t : ndarray, shape (n,)
-        Output times [s].
-    states : ndarray, shape (n, n_states)
-        State vectors (names in ``names``).
-    wheels : ndarray, shape (n, n_wheelsets, 2, len(WHEEL_FIELDS))
-        Per-wheel contact outputs (left, right).
-    patches : ndarray, shape (n, n_wheelsets, 2, KMAX, len(PATCH_FIELDS))
-        Per-patch contact outputs (largest normal force first; zero rows unused).
-    names : tuple of str
-    speed : ndarray, shape (n,)
-        Speed at the output times [m/s].
-    position : ndarray, shape (n,)
-        Position of the model along the track [m].
-    events : tuple of dict
-        Contact-configuration changes: ``t``, ``wheelset``, ``side``, ``patches``.
-    info : dict
-        Methods, integrator, CPU time, contact evaluations, real-time factor, ...
-    model, layout
-    """
-
-    t: np.ndarray
-    states: np.ndarray
-    wheels: np.ndarray
-    patches: np.ndarray
-    names: tuple
-    speed: np.ndarray
-    position: np.ndarray
-    events: tuple = ()
-    info: dict = field(default_factory=dict)
-    model: object = None
-    layout: object = None
-
-    def state(self, name: str) -> np.ndarray:
-        """Time series of one state (``"ws0.y"``, ``"frame.yaw"``, ...)."""
-        try:
-            return self.states[:, self.names.index(name)]
-        except ValueError:
-            raise InputError(f"no state {name!r}; states: {', '.join(self.names)}") from None
-
-    @property
-    def dataset(self):
-        """The result as an :class:`xarray.Dataset` over time
-        (:func:`wheelrail.dynamics.results.to_dataset`)."""
-        return to_dataset(self)
-
-
 # --------------------------------------------------------------------------- integration
-def _outputs(n_out, system):
-    nw = system.asm.n_ws
-    return (np.zeros(n_out), np.zeros((n_out, system.asm.n)),
-            np.zeros((n_out, nw, 2, KMAX, len(PATCH_FIELDS))),
-            np.zeros((n_out, nw, 2, len(WHEEL_FIELDS))))
-
-
 def _progress(enabled, duration):
     """A rich progress bar over simulated time (or a no-op)."""
     if not enabled:
@@ -580,16 +523,16 @@ def _advance(prog, t):
         prog.update(prog.task_ids[0], completed=t)
 
 
-def _run_fixed_compiled(system, x0, duration, integ, every, prog):
+def _run_fixed_compiled(system, x0, duration, integ, every, prog, sink=None):
     c = system.contact
     dt = integ.dt
     nsteps = int(round(duration / dt))
     n_out = nsteps // every + 2
-    T, X, OP, OW = _outputs(n_out, system)
+    out = Memory(n_out, system) if sink is None else sink
     events = np.zeros((10000, 3))
     chunk = max(1, int(round(0.05 / dt)))
     chunk = max(every, chunk - chunk % every)
-    done, nout, ne, nev, rej = 0, 0, 0, 0, 0
+    done, ne, nev, rej = 0, 0, 0, 0
     x, t = x0.copy(), 0.0
     scheme = 4 if integ.scheme == "rk4" else 2
     sub = _Substeps(system, dt)
@@ -598,7 +541,7 @@ def _run_fixed_compiled(system, x0, duration, integ, every, prog):
         try:
             k = min(chunk, nsteps - done)
             ns = sub.at(t, x, k * dt)
-            To, Xo, OPo, OWo = _outputs(k // every + 2, system)
+            To, Xo, OPo, OWo = outputs(k // every + 2, system)
             ev = np.zeros((1000, 3))
             no, nei, nv, rj = run_fixed(x, t, dt / ns, k * ns, every * ns, system.asm.P,
                                         system.layout.arrays, system.SP, system.min_speed,
@@ -609,10 +552,7 @@ def _run_fixed_compiled(system, x0, duration, integ, every, prog):
                                                  axis=(1, 2))][0])
             # the last output of a chunk is its end state: the next chunk starts there
             keep = no - 1 if done + k < nsteps else no
-            take = min(keep, n_out - nout)
-            T[nout:nout + take], X[nout:nout + take] = To[:take], Xo[:take]
-            OP[nout:nout + take], OW[nout:nout + take] = OPo[:take], OWo[:take]
-            nout += take
+            out.put(To[:keep], Xo[:keep], OPo[:keep], OWo[:keep])
             events[ne:ne + nei] = ev[:nei]
             ne += nei
             nev += nv
@@ -624,14 +564,15 @@ def _run_fixed_compiled(system, x0, duration, integ, every, prog):
             last = (To[no - 1], Xo[no - 1], OPo[no - 1], OWo[no - 1])
         except KeyboardInterrupt:
             system.interrupted = True
-            if done > 0 and done < nsteps and nout < n_out:
+            if done > 0 and done < nsteps and not out.full:
                 # the end state of the last finished chunk
-                T[nout], X[nout], OP[nout], OW[nout] = last
-                nout += 1
+                out.put(*(np.asarray(v)[None] for v in last))
             break
     system.n_eval += nev
     sub.report(system)
-    return T[:nout], X[:nout], OP[:nout], OW[:nout], events[:ne], rej
+    if sink is not None:
+        return None, events[:ne], rej
+    return (*out.arrays(), events[:ne], rej)
 
 
 class _Substeps:
@@ -665,7 +606,7 @@ def _run_fixed_python(system, x0, duration, integ, every, prog):
     dt = integ.dt
     nsteps = int(round(duration / dt))
     n_out = nsteps // every + 2
-    T, X, OP, OW = _outputs(n_out, system)
+    T, X, OP, OW = outputs(n_out, system)
     events, rej = [], 0
     x, t = x0.copy(), 0.0
     k1 = system.rhs(t, x)
@@ -772,7 +713,7 @@ def _run_adaptive(system, x0, duration, integ, out_dt, prog):
     """solve_ivp with the contact configuration as a terminal event (restart at each change)."""
     t_out = np.arange(0.0, duration + 0.5 * out_dt, out_dt)
     t_out[-1] = min(t_out[-1], duration)
-    T, X, OP, OW = _outputs(t_out.size, system)
+    T, X, OP, OW = outputs(t_out.size, system)
     events = []
     t, x = 0.0, x0.copy()
     k = 0
@@ -822,7 +763,7 @@ def _run_adaptive(system, x0, duration, integ, out_dt, prog):
 def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential="fastsim", *,
              mu=0.3, integrator="rk4", output_step=None, initial=None, start=0.0,
              deceleration=0.0, creep_relaxation=False, contact="auto", contact_options=None,
-             progress=False, **options) -> SimulationResult:
+             progress=False, store=None, **options) -> SimulationResult:
     """Integrate a wheelset or bogie model along a track in time.
 
     Parameters
@@ -870,6 +811,13 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
         Options of :class:`~wheelrail.dynamics.contact.FastContact`.
     progress : bool
         Show a progress bar (rich).
+    store : str or Path or None
+        Write the outputs to this Zarr store while the run goes (a buffer of about
+        16 MB is held, so the memory does not grow with the duration; the compiled
+        fixed-step loop streams, the other paths write at their end) and return the
+        result read back lazily (:func:`wheelrail.dynamics.open_result`). Ctrl-C
+        leaves everything up to the last finished chunk in the store, marked
+        interrupted. Needs ``wheelrail[sweep]`` (Zarr, Dask).
     **options
         Options of the two methods, each given to the one that declares it
         (``tangential="fastsim", nx=20`` is ``tangential=wr.tangential.Fastsim(nx=20)``;
@@ -951,12 +899,20 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
                       f"creep model) at t = {t_stop:.4g} s, before the end {duration:g} s: "
                       f"the run ends there", RunWarning, stacklevel=2)
         duration = t_stop
-    estimate(system, x0, duration, integ, out_dt)
+    streams = store is not None and isinstance(integ, FixedStep) and system.fast
+    estimate(system, x0, duration, integ, out_dt, store=store, streamed=streams)
+    sink = None
+    if store is not None:
+        sink = Stream(StoreWriter(store, system.asm.names, shapes(system)), system)
     prog = _progress(progress, float(duration))
     n0 = system.n_eval
     cpu = time.process_time()
     try:
-        if isinstance(integ, FixedStep) and system.fast:
+        if streams:
+            _, ev, rej = _run_fixed_compiled(system, x0, float(duration), integ, every, prog,
+                                             sink)
+            kind = f"fixed step {integ.scheme}, compiled loop"
+        elif isinstance(integ, FixedStep) and system.fast:
             T, X, OP, OW, ev, rej = _run_fixed_compiled(system, x0, float(duration), integ,
                                                         every, prog)
             kind = f"fixed step {integ.scheme}, compiled loop"
@@ -972,6 +928,13 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
         if prog is not None:
             prog.stop()
     cpu = time.process_time() - cpu
+    if sink is not None and not streams:
+        sink.put(T, X, OP, OW)
+    if sink is not None:
+        sink.flush()
+        t_span = sink.writer.t_last - sink.writer.t_first if sink.writer.n else 0.0
+    else:
+        t_span = float(T[-1] - T[0])
     events = tuple({"t": float(e[0]), "wheelset": int(e[1]) // 2,
                     "side": ("left", "right")[int(e[1]) % 2], "patches": int(e[2])} for e in ev)
     info = {"normal": system.contact.normal.name, "tangential": system.contact.tangential.name,
@@ -979,7 +942,7 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
             "integrator_options": repr(integ), "mu": system.mu, "cpu_time": cpu,
             "contact_evaluations": system.n_eval - n0,
             "rejected_steps" if isinstance(integ, FixedStep) else "restarts": int(rej),
-            "real_time_factor": float(T[-1] - T[0]) / cpu if cpu > 0 else math.inf,
+            "real_time_factor": t_span / cpu if cpu > 0 else math.inf,
             "creep_relaxation": float(creep_relaxation)}
     if isinstance(integ, FixedStep):
         info["substeps"] = int(getattr(system, "substeps_max", 1))
@@ -987,7 +950,14 @@ def simulate(model, track, speed, duration, normal="kik-piotrowski", tangential=
     if system.profile is not None:
         info["speed_profile"] = repr(system.profile)
     info["estimated_cpu_time"] = float(getattr(system, "estimate_seconds", math.nan))
-    info["derailment"] = nadal_check(system, T, OW)
+    if sink is not None:
+        info["derailment"] = nadal_warn(system, sink.derailment)
+        sink.writer.close(info, events, system.interrupted)
+        result = open_result(store, model=model, layout=system.layout)
+        if system.interrupted:
+            raise SimulationInterrupted(result)
+        return result
+    info["derailment"] = nadal_warn(system, nadal_scan(system, T, OW))
     speed_t, accel, pos = np.empty(T.shape), np.empty(T.shape), np.empty(T.shape)
     profile_eval(system.SP, np.ascontiguousarray(T, dtype=float), speed_t, accel, pos)
     speed_t = np.maximum(speed_t, system.min_speed)
