@@ -53,7 +53,7 @@ with _resources.limit(None), _resources.time_limit_set(None):
         wr.sweep(spec, progress=False)
         seconds, memory = est.seconds, est.memory
     elif kind == "transient":
-        from wheelrail.casefile import load_transient_case
+        from wheelrail.cases.files import load_transient_case
         from wheelrail.cli.transient import estimate
         text = open(sys.argv[3]).read()
         lines = []

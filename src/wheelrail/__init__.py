@@ -55,10 +55,10 @@ _LAZY = {
     "tangential": ("wheelrail.tangential", None),
     "options": ("wheelrail.options", None),
     "cases": ("wheelrail.cases", None),
-    "casefile": ("wheelrail.casefile", None),
+    "casefile": ("wheelrail.casefile", None),      # deprecated name of cases.files
     "transient_rolling": ("wheelrail.transient", "transient_rolling"),
     "kalker_coefficients": ("wheelrail.tangential.linear", "kalker_coefficients"),
-    "load_case": ("wheelrail.casefile", "load_case"),
+    "load_case": ("wheelrail.cases.files", "load_case"),
     "run_case": ("wheelrail.cases", "run_case"),
     "profiles": ("wheelrail.profiles", None),
     "geometry": ("wheelrail.geometry", None),

@@ -1,6 +1,6 @@
 """TOML input with messages that name the file, the table, the key and the value (private).
 
-Shared by the case-file reader (:mod:`wheelrail.casefile`) and the sweep
+Shared by the case-file reader (:mod:`wheelrail.cases.files`) and the sweep
 specification (:mod:`wheelrail.sweeps.spec`); it knows nothing of wheelrail's
 types, only of numbers, strings and tables.
 """

@@ -17,7 +17,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import wheelrail as wr
-from wheelrail.casefile import case_from_dict
+from wheelrail.cases.files import case_from_dict
 from wheelrail.cases import solve_case
 from wheelrail.errors import CaseFileError, WheelrailError
 from wheelrail.plausibility import PlausibilityWarning

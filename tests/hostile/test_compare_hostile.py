@@ -28,7 +28,7 @@ def test_sweep_over_y_keeps_the_case_yaw(tmp_path, capsys):
     rows = list(csv.DictReader(open(tmp_path / "o" / "compare.csv")))
     assert float(rows[0]["yaw"]) == 0.004
     # the same position solved directly (what `wheelrail wheelset` does)
-    from wheelrail.casefile import load_wheelset_case
+    from wheelrail.cases.files import load_wheelset_case
 
     case = load_wheelset_case(p)
     direct = compare.run_methods(case.position(0), case.motion, case.mu,

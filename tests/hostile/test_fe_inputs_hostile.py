@@ -213,7 +213,7 @@ def test_bad_value_in_a_sub_table_names_the_table(tmp_path):
 
 
 def test_old_load_key_is_a_renamed_key_warning(tmp_path):
-    from wheelrail.casefile._reader import RenamedKeyWarning
+    from wheelrail.cases.files._reader import RenamedKeyWarning
 
     f = tmp_path / "old.toml"
     f.write_text(STANDARD.replace("Fn = 7500.0", "load = 7500.0"))

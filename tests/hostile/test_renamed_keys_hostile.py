@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 from _helpers import POINT_CASE, SOLVE_CASE, assert_clean_failure, run_cli
 
-from wheelrail.casefile import load_contact_case, load_transient_case
-from wheelrail.casefile._reader import RenamedKeyWarning
+from wheelrail.cases.files import load_contact_case, load_transient_case
+from wheelrail.cases.files._reader import RenamedKeyWarning
 
 OLD_POINT = POINT_CASE.replace("Fn = 7500.0", "load = 7500.0")
 

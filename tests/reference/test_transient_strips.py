@@ -60,7 +60,7 @@ def test_strips_force_control_and_refusals(hc):
                              elements=8, strips=6, discretisation="strips", frames=2)
     assert r.Fx[1:] == pytest.approx(2000.0, rel=1e-6)
     assert r.grid.shape == (8, 6) and r.fields.X.shape == (8, 6)
-    from wheelrail.casefile import load_transient_case
+    from wheelrail.cases.files import load_transient_case
     from wheelrail.transient.plot import plot_centreline, plot_state
 
     assert plot_state(r, 1e-3).axes and plot_centreline(r).axes

@@ -1,4 +1,4 @@
-"""Case files: schema, validation messages and run_case (wheelrail.casefile)."""
+"""Case files: schema, validation messages and run_case (wheelrail.cases.files)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.casefile import case_from_dict, load_case
+from wheelrail.cases.files import case_from_dict, load_case
 from wheelrail.cases import Case, run_case, solve_case
 from wheelrail.errors import CaseFileError
 

@@ -1,5 +1,5 @@
 """Wheelset case files ([wheelset], [track], [motion], [position]) and the wr.solve routing
-of case files (wheelrail.casefile: case files are only read and validated there; the
+of case files (wheelrail.cases.files: case files are only read and validated there; the
 solvers run them)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.casefile import load_case, load_contact_case
+from wheelrail.cases.files import load_case, load_contact_case
 from wheelrail.cases import Case, WheelsetCase, run_case, solve_case, solve_wheelset_case
 from wheelrail.errors import CaseFileError, InputError
 

@@ -5,7 +5,7 @@ For every registered method and every declared option, values on and across its 
 (and of wrong types) are given to
 
 * the class itself, ``wr.tangential.Fastsim(nx=...)``;
-* a case file, ``[method.fastsim] nx = ...`` (:func:`wheelrail.casefile.case_from_dict`);
+* a case file, ``[method.fastsim] nx = ...`` (:func:`wheelrail.cases.files.case_from_dict`);
 * the command line, ``wheelrail solve case.toml`` (reading only: the solve is replaced);
 
 and the three must agree: accepted by all, or refused by all with a message that names the
@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.casefile import case_from_dict
+from wheelrail.cases.files import case_from_dict
 from wheelrail.errors import CaseFileError, InputError, OptionError
 
 sys.path.insert(0, str(__import__("pathlib").Path(__file__).resolve().parents[1] / "hostile"))

@@ -30,7 +30,7 @@ ALLOWED = {
     ("transient", "wheelrail.plotting._common"): (
         {"finish", "new_figure"},
         "the same figure helpers for the transient figures"),
-    ("cli", "wheelrail.casefile._reader"): (
+    ("cli", "wheelrail.cases.files._reader"): (
         {"Reader", "read_friction", "read_methods", "read_toml", "configure"},
         "the dynamics and wear commands read their case files with the case-file package's "
         "reader (configure: the wear law's options as the methods' are)"),

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import wheelrail as wr
-from wheelrail.casefile import load_transient_case
+from wheelrail.cases.files import load_transient_case
 from wheelrail.cli.main import main
 from wheelrail.transient.loads import TravelFunction
 

@@ -1,6 +1,6 @@
 """Cases: validated inputs of whole problems and their solution through the public API.
 
-A case is what a case file describes (:mod:`wheelrail.casefile` reads and
+A case is what a case file describes (:mod:`wheelrail.cases.files` reads and
 validates the files): a single Hertzian contact (:class:`Case`), a wheelset on
 a track (:class:`WheelsetCase`) or a transient rolling run
 (:class:`TransientCase`). The methods of a case are configured method objects

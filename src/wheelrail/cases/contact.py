@@ -4,7 +4,7 @@ A :class:`Case` holds validated inputs (materials, the Hertzian contact
 description, creepages, friction, configured methods, optional prescribed
 forces); :func:`solve_case` solves it through :func:`wheelrail.solve` and
 :func:`run_case` returns a JSON-ready dictionary in SI units. Case files are
-read by :mod:`wheelrail.casefile` (reading and validating only).
+read by :mod:`wheelrail.cases.files` (reading and validating only).
 """
 
 from __future__ import annotations
@@ -98,7 +98,7 @@ class ContactSpec:
 
 @dataclass(frozen=True)
 class Case:
-    """A validated contact case (the file format: :mod:`wheelrail.casefile`).
+    """A validated contact case (the file format: :mod:`wheelrail.cases.files`).
 
     Attributes
     ----------

@@ -194,7 +194,7 @@ def print_tables(console, res, side, title) -> None:
 def run(args, console) -> int:
     import numpy as np
 
-    from ..casefile import load_wheelset_case
+    from ..cases.files import load_wheelset_case
     from ..contact.wheelrail import WheelRailPosition
 
     case = load_wheelset_case(args.case)

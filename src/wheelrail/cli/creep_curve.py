@@ -32,7 +32,7 @@ def add_arguments(p) -> None:
 
 def default_case():
     """The built-in case (:data:`wheelrail.cases.DEFAULT_CASE`) with zero creepages."""
-    from ..casefile import case_from_dict
+    from ..cases.files import case_from_dict
     from ..cases import DEFAULT_CASE
 
     return case_from_dict(DEFAULT_CASE, source="<built-in case>").replace(creepage=(0.0, 0.0, 0.0))
@@ -152,7 +152,7 @@ def run_sweep_with_progress(console, case, component, values, methods, *, warn=T
 def run(args, console) -> int:
     import numpy as np
 
-    from ..casefile import load_contact_case as load_case
+    from ..cases.files import load_contact_case as load_case
     from ..errors import InputError
     from ..plotting import creep_curves
 

@@ -294,7 +294,7 @@ def add_arguments(p) -> None:
 def run(args, console) -> int:
     import time
 
-    from ..casefile import case_from_dict
+    from ..cases.files import case_from_dict
     from ..cases import DEFAULT_CASE
     from ..errors import InputError, WheelrailError
     from ._output import write_json

@@ -280,7 +280,7 @@ def read_dynamics_case(path_or_str):
     """
     from pathlib import Path
 
-    from ..casefile._reader import Reader, read_friction, read_methods, read_toml
+    from ..cases.files._reader import Reader, read_friction, read_methods, read_toml
     from ..dynamics import Adaptive, FixedStep
 
     data, source = read_toml(path_or_str)

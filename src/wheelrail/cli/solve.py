@@ -8,7 +8,7 @@ HELP = "solve a TOML case file (normal contact + creep forces)"
 
 
 def add_arguments(p) -> None:
-    p.add_argument("case", metavar="CASE.toml", help="case file (see wheelrail.casefile)")
+    p.add_argument("case", metavar="CASE.toml", help="case file (see wheelrail.cases.files)")
     p.add_argument("--json", metavar="OUT.json", help="write the results (SI units) as JSON")
     p.add_argument("--plot", metavar="OUT.png",
                    help="plot the traction/adhesion-slip fields (methods with fields, e.g. "
@@ -43,7 +43,7 @@ def plot_result(result, path) -> str:
 
 
 def run(args, console) -> int:
-    from ..casefile import load_contact_case as load_case
+    from ..cases.files import load_contact_case as load_case
     from ..cases import solve_case
     from ._output import check_outputs, summary_table, write_json
 

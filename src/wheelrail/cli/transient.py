@@ -1,6 +1,6 @@
 """``wheelrail transient CASE.toml --out DIR``: transient rolling of a ``[transient]`` case.
 
-Reads the case with :func:`wheelrail.casefile.load_transient_case`, runs
+Reads the case with :func:`wheelrail.cases.files.load_transient_case`, runs
 :func:`wheelrail.transient_rolling` with a progress bar and writes to DIR:
 
 * ``history.nc`` — the scalar histories over the travel (``TransientResult.dataset``);
@@ -58,7 +58,7 @@ def run(args, console) -> int:
     import time
     from pathlib import Path
 
-    from ..casefile import load_transient_case
+    from ..cases.files import load_transient_case
 
     from .._resources import check
 

@@ -145,7 +145,7 @@ def read_wear_case(path_or_str) -> dict:
     """
     from pathlib import Path
 
-    from ..casefile._reader import Reader, read_methods, read_toml
+    from ..cases.files._reader import Reader, read_methods, read_toml
     from ..wear import Route, wear_laws
     from ..wear import get as get_law
     from .dynamics import _construct, _read_model, _table
@@ -173,7 +173,7 @@ def read_wear_case(path_or_str) -> dict:
     opts = w.get("options", {})
     if not isinstance(opts, Mapping):
         r.fail("wear", "options", f"must be a table of the law's options, got {opts!r}")
-    from ..casefile._reader import configure
+    from ..cases.files._reader import configure
 
     law = configure(r, "wear.options", type(get_law(law_name)), opts)
     kw = {"law": law, "normal": normal, "tangential": tangential,

@@ -2,7 +2,7 @@
 
 The case file has ``[wheelset]``, ``[track]``, ``[motion]``, ``[position]``,
 ``[friction]`` and optionally ``[method]`` and ``[material]`` tables
-(:mod:`wheelrail.casefile`). With one lateral shift ``[position] y`` the
+(:mod:`wheelrail.cases.files`). With one lateral shift ``[position] y`` the
 command prints a table per patch and the track-frame forces per wheel and
 writes ``wheelset.json`` and the figures ``contact_profiles.png`` and
 ``adhesion.png``; with a range or list of shifts it solves the sweep
@@ -180,7 +180,7 @@ def sweep(case, out: Path, *, plots=True, csv=True, netcdf=True, progress=None):
 def run(args, console) -> int:
     import numpy as np
 
-    from ..casefile import load_wheelset_case
+    from ..cases.files import load_wheelset_case
     from ..errors import CaseFileError
 
     case = load_wheelset_case(args.case)

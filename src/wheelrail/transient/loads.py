@@ -4,7 +4,7 @@ A :class:`TravelFunction` is a frozen, callable description ``f(x)`` of a
 quantity along the travel ``x`` [m] of the contact (a force [N], a penetration
 [m] or a creepage [-] / [1/m]); :func:`transient_rolling` accepts it wherever
 it accepts a function. It is what the ``[transient]`` table of a case file
-describes (:func:`wheelrail.casefile.load_transient_case`).
+describes (:func:`wheelrail.cases.files.load_transient_case`).
 
 * ``constant``: ``value``;
 * ``step``: ``before`` for ``x < at``, ``after`` from ``at`` on;

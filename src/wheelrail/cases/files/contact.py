@@ -5,10 +5,10 @@ from __future__ import annotations
 from types import MappingProxyType
 from typing import Mapping
 
-from ..cases.contact import Case
-from ..cases.wheelset import WheelsetCase
-from ..errors import CaseFileError, InputError
-from ..plausibility import check_creepage
+from ..contact import Case
+from ..wheelset import WheelsetCase
+from ...errors import CaseFileError, InputError
+from ...plausibility import check_creepage
 from ._reader import (
     Reader,
     check_plausible,

@@ -6,10 +6,10 @@ import math
 from types import MappingProxyType
 from typing import Mapping
 
-from ..cases.contact import ContactSpec
-from ..errors import InputError, OptionError
-from ..hertzian import RADII_KEYS
-from ..materials import STEEL, Material, MaterialPair
+from ..contact import ContactSpec
+from ...errors import InputError, OptionError
+from ...hertzian import RADII_KEYS
+from ...materials import STEEL, Material, MaterialPair
 
 __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_methods",
            "read_forces", "read_friction", "configure", "check_plausible", "tomllib",
@@ -19,10 +19,10 @@ __all__ = ["Reader", "read_toml", "read_materials", "read_contact", "read_method
 RENAMED_OPTIONS = {"bem": {"elements": "grid_elements", "margin": "window_margin",
                            "tol": "pressure_tol"}}
 
-from .. import normal as normal_family
-from .. import tangential as tangential_family
-from .._toml import Reader, RenamedKeyWarning, read_toml, renamed_keys, tomllib
-from ..plausibility import check_friction, check_semi_axes
+from ... import normal as normal_family
+from ... import tangential as tangential_family
+from ..._toml import Reader, RenamedKeyWarning, read_toml, renamed_keys, tomllib
+from ...plausibility import check_friction, check_semi_axes
 
 
 def check_plausible(r, table: str, key: str, value, check=check_friction) -> None:

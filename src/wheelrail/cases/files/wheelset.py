@@ -9,12 +9,12 @@ from typing import Mapping
 
 import numpy as np
 
-from .. import profiles
-from ..cases.wheelset import WheelsetCase
-from ..errors import CaseFileError, InputError, ProfileError
-from ..geometry import Track, Wheelset
-from ..geometry.kinematics import Motion
-from ..plausibility import check_flange_back
+from ... import profiles
+from ..wheelset import WheelsetCase
+from ...errors import CaseFileError, InputError, ProfileError
+from ...geometry import Track, Wheelset
+from ...geometry.kinematics import Motion
+from ...plausibility import check_flange_back
 from ._reader import Reader, read_friction, read_materials, read_methods
 
 __all__ = ["wheelset_case_from_dict", "is_wheelset_case", "MAX_POSITIONS"]

@@ -5,10 +5,10 @@ from __future__ import annotations
 from types import MappingProxyType
 from typing import Mapping
 
-from ..cases.transient import TransientCase
-from ..errors import CaseFileError, InputError
-from ..transient.loads import KINDS, TravelFunction
-from ..transient.rolling import SCHEMES
+from ..transient import TransientCase
+from ...errors import CaseFileError, InputError
+from ...transient.loads import KINDS, TravelFunction
+from ...transient.rolling import SCHEMES
 from ._reader import Reader, read_contact, read_friction, read_materials, read_toml, renamed_keys
 
 __all__ = ["load_transient_case"]

@@ -83,7 +83,7 @@ error is a :class:`wheelrail.errors.CaseFileError` whose one-line message
 names the file, the table, the key and the bad value.
 """
 
-from .load import case_from_dict, load_case, load_contact_case, load_wheelset_case
+from .contact import case_from_dict, load_case, load_contact_case, load_wheelset_case
 from .transient import load_transient_case
 
 __all__ = ["load_case", "case_from_dict", "load_contact_case", "load_wheelset_case",
