@@ -334,3 +334,13 @@ def test_prescribed_force_with_exact_reports_creepage():
     out = run_case(load_case(text))
     assert out["Fx"] == pytest.approx(-600.0, rel=1e-4)
     assert out["xi"] > 0
+
+
+def test_old_package_name_is_a_deprecated_alias_of_cases_files():
+    import importlib
+
+    import wheelrail.cases.files as files
+
+    with pytest.warns(DeprecationWarning, match="wheelrail.cases.files"):
+        old = importlib.reload(importlib.import_module("wheelrail.casefile"))
+    assert old.load_case is files.load_case
