@@ -20,6 +20,8 @@ from wheelrail import _resources  # noqa: E402
 from wheelrail.dynamics import store as STORE  # noqa: E402
 from wheelrail.dynamics.reference import cone_track  # noqa: E402
 
+from _dynamics_case import wheelset_case  # noqa: E402
+
 D = wr.dynamics
 SIM = importlib.import_module("wheelrail.dynamics.simulate")
 
@@ -128,27 +130,7 @@ def test_a_disk_too_small_for_the_outputs_is_refused(setup, tmp_path, monkeypatc
     assert not (tmp_path / "run.zarr").exists()
 
 
-CASE = """[model]
-kind = "wheelset"
-wheel = "S1002"
-rail = "60E1"
-mass = 1813.0
-inertia = [1120.0, 112.0, 1120.0]
-spin = "fixed"
-[model.primary]
-kx = 1e6
-ky = 3.9e6
-kz = 1.2e6
-[method]
-normal = "hertz"
-tangential = "fastsim"
-[friction]
-mu = 0.3
-[simulation]
-speed = 20.0
-duration = 0.3
-initial = {"ws0.y" = 0.002}
-"""
+CASE = wheelset_case(0.3)
 
 
 def test_cli_store_writes_result_zarr_and_the_assessment(tmp_path, capsys):

@@ -5,20 +5,11 @@ import json
 import numpy as np
 import pytest
 
+from _fe_case import indent_case
+
 from wheelrail.cli.main import main
 
-CASE = """
-[fe]
-wheel = "cylinder"
-rail = "60E1"
-radius = 0.46
-Fn = 7500.0
-mesh_size = 2e-3
-depth = 3.0
-half_width = 3.0
-half_length = 3.0
-mode = "indent"
-"""
+CASE = indent_case()
 
 
 def test_fe_indent_writes_summary_vtu_patch_and_figure(tmp_path, capsys):

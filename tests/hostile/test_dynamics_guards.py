@@ -19,6 +19,7 @@ from wheelrail.dynamics import _guards as GUARDS
 from wheelrail.dynamics._fastcontact import WHEEL_FIELDS
 from wheelrail.dynamics.reference import cone_track
 
+from _dynamics_case import wheelset_case
 from _helpers import assert_clean_failure, run_cli
 
 D = wr.dynamics
@@ -148,27 +149,7 @@ def test_ctrl_c_keeps_the_simulated_seconds(setup, monkeypatch):
     assert res.t.size == 151
 
 
-CASE = """[model]
-kind = "wheelset"
-wheel = "S1002"
-rail = "60E1"
-mass = 1813.0
-inertia = [1120.0, 112.0, 1120.0]
-spin = "fixed"
-[model.primary]
-kx = 1e6
-ky = 3.9e6
-kz = 1.2e6
-[method]
-normal = "hertz"
-tangential = "fastsim"
-[friction]
-mu = 0.3
-[simulation]
-speed = 20.0
-duration = 1.0
-initial = {"ws0.y" = 0.002}
-"""
+CASE = wheelset_case(1.0)
 
 
 def test_cli_ctrl_c_writes_the_simulated_seconds_and_exits_130(tmp_path, capsys, monkeypatch):

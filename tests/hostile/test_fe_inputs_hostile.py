@@ -14,6 +14,7 @@ import warnings
 
 import numpy as np
 import pytest
+from _fe_case import INDENT_BASE, indent_case
 from _helpers import assert_clean_failure, run_cli
 
 import wheelrail as wr
@@ -24,16 +25,8 @@ from wheelrail.plausibility import ImplausibleInputError, PlausibilityWarning
 from wheelrail.profiles.io import declared_kind
 
 #: An indentation case on a coarse mesh (never meshed here: every check comes first).
-BASE = """[fe]
-radius = 0.46
-Fn = 7500.0
-mesh_size = 2e-3
-depth = 3.0
-half_width = 3.0
-half_length = 3.0
-mode = "indent"
-"""
-STANDARD = BASE + 'wheel = "cylinder"\nrail = "60E1"\n'
+BASE = INDENT_BASE
+STANDARD = indent_case()
 
 
 @pytest.fixture(autouse=True)
