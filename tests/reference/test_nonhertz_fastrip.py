@@ -26,6 +26,16 @@ def test_linear_slope_is_fastsim():
         assert a.Fy == pytest.approx(b.Fy, rel=0.01, abs=1e-9)
 
 
+def test_initial_slope_is_kalkers_linear_theory():
+    """At vanishing creepage the strip forces are the simplified theory's linear forces, whose
+    sum over the ellipse is Kalker's linear theory (C11, C22 of Kalker 1990, Table E.3): the
+    strip loads scaled to Fn must not scale the slope (they did: 0.12 % low here, 1.3 % low
+    on 8-cell strips)."""
+    for cr, k in (((1e-7, 0, 0), "Fx"), ((0, 1e-7, 0), "Fy")):
+        a, lin = _f(cr), _f(cr, "linear")
+        assert getattr(a, k) == pytest.approx(getattr(lin, k), rel=1e-3)
+
+
 def test_saturates_at_mu_fn():
     r = _f((0.05, 0.0, 0.0))
     assert np.hypot(r.Fx, r.Fy) == pytest.approx(0.3 * float(C.Fn), rel=1e-3)
