@@ -43,6 +43,7 @@ COMMANDS = [
     ("wear", "wheelrail.cli.wear"),
     ("validate", "wheelrail.cli.validate"),
     ("build-table", "wheelrail.cli.build_table"),
+    ("compile", "wheelrail.cli.compile"),
 ]
 
 EXIT_OK, EXIT_ERROR, EXIT_USAGE = 0, 1, 2
