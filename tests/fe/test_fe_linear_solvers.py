@@ -78,6 +78,14 @@ def test_pardiso_missing_is_named(monkeypatch):
 
 
 def test_unknown_linear_solver_lists_the_choices():
-    with pytest.raises(InputError, match="'direct', 'reuse' or 'pardiso'.*'mumps'"):
+    with pytest.raises(InputError, match="'auto', 'direct', 'reuse' or 'pardiso'.*'mumps'"):
         RollingCase(linear_solver="mumps", **{k: v for k, v in IMPLICIT.items()
                                                if k != "creepage"})
+
+
+def test_auto_is_pardiso_where_installed_else_superlu(monkeypatch):
+    solver = nw.make_solver("auto")
+    has = nw.pardiso_available()
+    assert isinstance(solver, nw.PardisoSolver) == has
+    monkeypatch.setitem(sys.modules, "pypardiso", None)       # not installed
+    assert type(nw.make_solver("auto")) is nw.DirectSolver

@@ -225,8 +225,8 @@ class ReusedFactorSolver(DirectSolver):
 class PardisoSolver(DirectSolver):
     """Newton-system solver: a fresh MKL PARDISO factorisation per call (optional extra).
 
-    PARDISO (real unsymmetric, ``mtype=11``; nested-dissection ordering, multithreaded by
-    ``MKL_NUM_THREADS``) factorises the 3-D hex meshes' Newton matrices 2.3-4.6x faster
+    PARDISO (real unsymmetric, ``mtype=11``; nested-dissection ordering; on one MKL thread,
+    so that runs and restarts are reproducible bit for bit) factorises the 3-D hex meshes' Newton matrices 2.3-4.6x faster
     than SuperLU on one thread (54 061 unknowns: 3.2 s against 14.7 s CPU,
     benchmarks/bench_fe_plastic.py ``linear-solvers``). Every solve is checked: a relative
     residual above 1e-10 (PARDISO perturbs tiny pivots) falls back to SuperLU.
@@ -263,9 +263,18 @@ class PardisoSolver(DirectSolver):
         self.factorizations += 1
         A = sp.csr_matrix(J)
         A.sort_indices()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
-            x = self._pardiso.solve(A, np.asarray(b, dtype=float))
+        # one MKL thread: a multithreaded factorisation is not reproducible bit for bit
+        # (a restart must continue a run exactly); the speed-up over SuperLU was measured
+        # on one thread
+        local = _mkl_threads_local(self._pardiso)
+        before = local(1) if local is not None else None
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", sp.SparseEfficiencyWarning)
+                x = self._pardiso.solve(A, np.asarray(b, dtype=float))
+        finally:
+            if local is not None:
+                local(before)
         res = np.linalg.norm(A @ x - b)
         if not np.isfinite(res) or res > 1e-10 * max(np.linalg.norm(b), 1e-300):
             self.fallbacks += 1
@@ -274,8 +283,34 @@ class PardisoSolver(DirectSolver):
         return x
 
 
+def _mkl_threads_local(pardiso):
+    """MKL's ``MKL_Set_Num_Threads_Local`` (C interface, int by value; returns the previous
+    thread-local setting, 0 = none) of the library pypardiso loaded, or None."""
+    import ctypes
+
+    f = getattr(getattr(pardiso, "libmkl", None), "MKL_Set_Num_Threads_Local", None)
+    if f is not None:
+        f.argtypes, f.restype = [ctypes.c_int], ctypes.c_int
+    return f
+
+
+def pardiso_available() -> bool:
+    """Whether MKL PARDISO (pypardiso, the ``pardiso`` extra) can be imported."""
+    try:
+        import pypardiso  # noqa: F401
+    except ImportError:
+        return False
+    return True
+
+
+def auto_solver():
+    """The fastest installed direct solver: PARDISO if pypardiso imports, else SuperLU."""
+    return PardisoSolver() if pardiso_available() else DirectSolver()
+
+
 #: The Newton-system solvers by their ``linear_solver`` name (the one list of the choices).
-LINEAR_SOLVERS = {"direct": DirectSolver, "reuse": ReusedFactorSolver, "pardiso": PardisoSolver}
+LINEAR_SOLVERS = {"auto": auto_solver, "direct": DirectSolver, "reuse": ReusedFactorSolver,
+                  "pardiso": PardisoSolver}
 
 
 def make_solver(name):

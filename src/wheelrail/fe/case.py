@@ -84,8 +84,10 @@ class RollingCase:
         Rayleigh damping C = α M + β K, α [1/s], β [s]: explicit and implicit-hht;
         implicit-qs takes only the stiffness part β (a viscous, Kelvin-Voigt term
         β K u̇ with u̇ = Δu/Δt; α > 0 is rejected there since it needs inertia).
-    linear_solver : {"direct", "reuse", "pardiso"}
-        Implicit Newton systems: ``"direct"`` factorises every iteration (SuperLU,
+    linear_solver : {"auto", "direct", "reuse", "pardiso"}
+        Newton systems of the static indentation and the implicit integrators:
+        ``"auto"`` (default) is ``"pardiso"`` where pypardiso is installed, else
+        ``"direct"``; ``"direct"`` factorises every iteration (SuperLU,
         symmetric mode); ``"reuse"`` keeps one factorisation as the GMRES preconditioner
         across iterations and steps and refactorises only when GMRES needs more than 40
         iterations (same results to 1e-10; not faster on the meshes measured, see
@@ -138,7 +140,7 @@ class RollingCase:
     time_step: float | None = None
     mass_scaling: float = 1.0
     rayleigh: tuple = (0.0, 0.0)
-    linear_solver: str = "direct"
+    linear_solver: str = "auto"
     hht_alpha: float = -0.05
     density: float = 7800.0
     contact_damping: float = 0.2

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._newton import newton
+from ._newton import make_solver, newton
 from .model import build_model
 from .patch_dataset import patch_from_contact
 from .rolling import plastic_fields
@@ -91,6 +91,7 @@ def static_equilibrium(model, K=None, psi=0.0, s=0.0, state=None, increments=Non
     one in one step.
     """
     case = model.case
+    solver = make_solver(getattr(case, "linear_solver", "direct"))
     if K is None:
         K = model.stiffness()
     free = free_dofs(model)
@@ -102,7 +103,8 @@ def static_equilibrium(model, K=None, psi=0.0, s=0.0, state=None, increments=Non
         w0 = -float(hz.penetration) if hz is not None else -0.01 * case.mesh_size
         xs = model.slave_positions(u, w0, psi)
         xm = model.master_positions(u, s)
-        return newton(model, Kff, free, u, w0, psi, s, xs, xm, ft0, 0.0, case.Fn)
+        return newton(model, Kff, free, u, w0, psi, s, xs, xm, ft0, 0.0, case.Fn,
+                      solver=solver)
 
     def tangent(q):
         return model.stiffness(q[:-1].reshape(-1, 3), state)[free][:, free].tocsr()
@@ -118,7 +120,7 @@ def static_equilibrium(model, K=None, psi=0.0, s=0.0, state=None, increments=Non
         xs = model.slave_positions(u, w, psi)
         xm = model.master_positions(u, s)
         u, w, c, it = newton(model, Kff, free, u, w, psi, s, xs, xm, ft0, 0.0, load,
-                             state=state, tangent=tangent)
+                             state=state, tangent=tangent, solver=solver)
         state.commit()
         iters += it
     return u, w, c, iters
