@@ -543,10 +543,11 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         xs = c + (Xw + u[m.slave]) @ R.T
         xm = xm_ref + u[k_master]
         nmn = nodal_normals_quads(xm, m.quads)
-        node_to_segment(xs, xs - xs_prev, m.slave_area, m.kn, m.kn, case.mu, ft, xm,
-                        xm - xm_prev, nmn, m.quads, b.origin, b.cell, b.dims, b.start, b.items,
-                        reach, m.g0, cdamp, 1.0 / dt, out["fs"], out["gap"], out["pn"],
-                        out["ft"], status, seg, out["rt"], out["normal"], out["slip"])
+        node_to_segment((xs, xs - xs_prev, m.slave_area, m.kn, m.kn, cdamp),
+                        (xm, xm - xm_prev, nmn, m.quads), b.record,
+                        (case.mu, reach, m.g0, 1.0 / dt), ft,
+                        (out["fs"], out["gap"], out["pn"], out["ft"], status, seg, out["rt"],
+                         out["normal"], out["slip"]))
         fm[:] = 0.0
         scatter_master(out["fs"], status, seg, out["rt"], m.quads, fm)
         if rec:
@@ -906,11 +907,11 @@ def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
                                           ("normal", (ns, 3)), ("slip", ns))}
     status = np.zeros(ns, np.int64)
     seg = np.zeros(ns, np.int64)
-    node_to_segment(xs, np.zeros((ns, 3)), area, kn, kn, 0.0, np.zeros((ns, 3)), xm,
-                    np.zeros_like(xm), nodal_normals_quads(xm, quads), quads, b.origin, b.cell,
-                    b.dims, b.start, b.items, 4 * h, 1e-7, np.zeros(ns), 1.0, out["fs"],
-                    out["gap"], out["pn"], out["ft"], status, seg, out["rt"], out["normal"],
-                    out["slip"])
+    node_to_segment((xs, np.zeros((ns, 3)), area, kn, kn, np.zeros(ns)),
+                    (xm, np.zeros_like(xm), nodal_normals_quads(xm, quads), quads), b.record,
+                    (0.0, 4 * h, 1e-7, 1.0), np.zeros((ns, 3)),
+                    (out["fs"], out["gap"], out["pn"], out["ft"], status, seg, out["rt"],
+                     out["normal"], out["slip"]))
     lab, npatch = patches(status.reshape(wheel.shape[0], wheel.shape[1]))
     lab = lab.ravel()
     return [patch_summary(lab == k, xs, out["fs"], out["pn"], out["ft"], out["normal"], area,
