@@ -92,11 +92,10 @@ def _contact(xs, dxs, ft_old, mu, kn=1e15, area=1e-6, g0=1e-9):
                ft=np.zeros((ns, 3)), status=np.zeros(ns, np.int64), cell=np.zeros((ns, 2), np.int64),
                rt=np.zeros((ns, 2)), normal=np.zeros((ns, 3)), slip=np.zeros(ns),
                energy=np.zeros(ns))
-    K.node_to_surface(xs, dxs, np.full(ns, area), np.full(ns, kn), np.full(ns, kn), mu, ft_old,
-                      xm, nm, np.zeros_like(xm), x, y, 0.0, 1e-3, g0, np.zeros(ns), 1.0,
-                      out["energy"], out["fs"],
-                      out["fm"], out["gap"], out["pn"], out["ft"], out["status"], out["cell"],
-                      out["rt"], out["normal"], out["slip"])
+    K.node_to_surface((xs, dxs, np.full(ns, area), np.full(ns, kn), np.full(ns, kn), np.zeros(ns)),
+                      (xm, nm, np.zeros_like(xm), x, y, 0.0), (mu, 1e-3, g0, 1.0), ft_old,
+                      (out["energy"], out["fs"], out["gap"], out["pn"], out["ft"], out["status"],
+                       out["cell"], out["rt"], out["normal"], out["slip"]), out["fm"])
     return out
 
 

@@ -582,16 +582,25 @@ def _step_end(k, relax, every, n_steps, ax, E, hist, rows, nrow, sx, tt, loads, 
 
 
 @njit(cache=True, parallel=True)
-def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, sx, sy, tt, loads,
-              axle, y_ref0, cur, xsb, xmb, ftb,
-              u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
-              st_in, st_out, f, energy, echunk, tasks, ref_s, snodes, z_axle, dxs,
-              ref_m, mnodes, dxm, nm, area, kn, mu, x_ref, y_ref, reach, g0, cdamp, inv_dt,
-              cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip,
-              fcon, sums, v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt,
-              gptr, gnodes, partial, totals, nthr):
+def run_steps(k0, k1, cur, relax, nthr, books, per_step, solid, contact, law, out, nodes, tasks):
     """Steps ``k0`` to ``k1 − 1`` of the explicit loop, with the axle's vertical motion and
     the energy bookkeeping of the rolling step, in one parallel region.
+
+    The arrays come in records (tuples, in this order; each name is described below):
+
+    * ``books`` = ``(every, n_steps, ax, E, hist, rows, nrow, axle)``: the axle and the
+      bookkeeping;
+    * ``per_step`` = ``(cps, sps, sx, sy, tt, loads)``: the values of each step;
+    * ``solid`` = ``(u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts,
+      st_in, st_out, f, energy, echunk)``: the bodies' elements;
+    * ``contact`` = ``(ref_s, snodes, z_axle, dxs, ref_m, mnodes, dxm, nm, area, kn, cdamp,
+      x_ref, y_ref, y_ref0, xsb, xmb, ftb)``: the contact surfaces and their buffers;
+    * ``law`` = ``(mu, reach, g0, inv_dt)``: the contact law (:func:`wheelrail.fe._kernels.
+      node_to_surface`);
+    * ``out`` = ``(cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip, fcon, sums)``:
+      the contact's outputs;
+    * ``nodes`` = ``(v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt, gptr, gnodes,
+      partial, totals)``: the node update.
 
     A step k has two parallel phases and serial parts between them:
 
@@ -700,6 +709,14 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
     """
     if k1 <= k0:
         return cur
+    every, n_steps, ax, E, hist, rows, nrow, axle = books
+    cps, sps, sx, sy, tt, loads = per_step
+    (u, conn, bounds, dNdx, wdet, gamma, khg, lam, G, plastic, hp, tp, ts, st_in, st_out, f,
+     energy, echunk) = solid
+    (ref_s, snodes, z_axle, dxs, ref_m, mnodes, dxm, nm, area, kn, cdamp, x_ref, y_ref, y_ref0,
+     xsb, xmb, ftb) = contact
+    cenergy, fs, fm, gap, pn, status, cell, rt, normal, slip, fcon, sums = out
+    v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt, gptr, gnodes, partial, totals = nodes
     ne = conn.shape[0]
     ng = dNdx.shape[1]
     has_hg = gamma.shape[0] == ne
@@ -725,9 +742,7 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
         sig = np.empty(6)
         D = np.empty((6, 6))
         bb = np.empty((8, 3))
-        c4 = np.empty((4, 3))
-        q = np.empty(3)
-        dq = np.empty(3)
+        scratch = (np.empty((4, 3)), np.empty(3), np.empty(3))
         back = w % 2 == 1                # odd threads take from the back of the task ranges
         p = _atomic_load(ctl, _PHASE)
         while p < n_phases:
@@ -753,12 +768,13 @@ def run_steps(k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, 
                         j = tasks[t, 1]
                         z = z_axle + ax[0]
                         xs = xsb[new]
+                        slaves = (xs, dxs, area, kn, kn, cdamp)
+                        master = (xmb[new], nm, dxm, x_ref, y_ref, sx[k])
+                        souts = (cenergy, fs, gap, pn, ftb[new], status, cell, rt, normal, slip)
                         for s in range(ns * j // ncc, ns * (j + 1) // ncc):
                             slave_position(s, snodes[s], ref_s, u, cps[k], sps[k], z, xsb[old],
                                            xs, dxs)
-                            _slave(s, xs, dxs, area, kn, kn, mu, ftb[old], xmb[new], nm, dxm,
-                                   x_ref, y_ref, sx[k], reach, g0, cdamp, inv_dt, cenergy, fs,
-                                   gap, pn, ftb[new], status, cell, rt, normal, slip, c4, q, dq)
+                            _slave(s, slaves, master, law, ftb[old], souts, scratch)
                 else:
                     _update_nodes(t, gptr, gnodes, u, v, f, fd_beta, has_beta, m_alpha, inv_m,
                                   mass, cmap, fcon, dt, partial)

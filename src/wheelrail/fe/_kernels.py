@@ -254,10 +254,14 @@ def coulomb_update(s, fn, s0, s1, s2, n0, n1, n2, A, kt, mu, cdamp, inv_dt, ft_o
 
 
 @njit(cache=True)
-def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift, reach, g0,
-           cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num,
-           c, q, dq):
-    """Contact of slave ``s`` (see :func:`node_to_surface`)."""
+def _slave(s, slaves, master, law, ft_old, out, scratch):
+    """Contact of slave ``s`` (the records of :func:`node_to_surface`); ``scratch`` =
+    ``(c, q, dq)``: arrays (4, 3), (3,), (3,) of the caller's thread."""
+    xs, dxs, area, kn, kt, cdamp = slaves
+    xm, nm, dxm, x_ref, y_ref, shift = master
+    mu, reach, g0, inv_dt = law
+    energy, fs, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num = out
+    c, q, dq = scratch
     nx = x_ref.shape[0]
     ny = y_ref.shape[0]
     status[s] = 0
@@ -368,13 +372,19 @@ def _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shif
 
 
 @njit(cache=True, parallel=True)
-def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
-                    reach, g0, cdamp, inv_dt, energy, fs, fm, gap, pn, ft_new, status, cell, rt,
-                    normal, slip_rate_num):
+def node_to_surface(slaves, master, law, ft_old, out, fm):
     """Penalty node-to-surface contact with Coulomb friction (return mapping).
 
     Slave nodes (wheel surface) against a structured master surface (rail,
-    bilinear quads over a reference grid ``x_ref`` x ``y_ref``).
+    bilinear quads over a reference grid ``x_ref`` x ``y_ref``). The arguments are
+    records (tuples, in this order):
+
+    * ``slaves`` = ``(xs, dxs, area, kn, kt, cdamp)``,
+    * ``master`` = ``(xm, nm, dxm, x_ref, y_ref, shift)``,
+    * ``law`` = ``(mu, reach, g0, inv_dt)``,
+    * ``ft_old``,
+    * ``out`` = ``(energy, fs, gap, pn, ft_new, status, cell, rt, normal, slip_rate_num)``,
+    * ``fm``.
 
     Parameters
     ----------
@@ -417,14 +427,11 @@ def node_to_surface(xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref
     Parallel over the slaves (chunks); the master forces are scattered afterwards in
     slave order, so the result does not depend on the number of threads.
     """
-    ns = xs.shape[0]
+    ns = slaves[0].shape[0]
+    status, cell, rt, fs = out[5], out[6], out[7], out[1]
     nch = min(64, max(1, ns // 64))
     for ch in prange(nch):
-        c = np.empty((4, 3))
-        q = np.empty(3)
-        dq = np.empty(3)
+        scratch = (np.empty((4, 3)), np.empty(3), np.empty(3))
         for s in range(ns * ch // nch, ns * (ch + 1) // nch):
-            _slave(s, xs, dxs, area, kn, kt, mu, ft_old, xm, nm, dxm, x_ref, y_ref, shift,
-                   reach, g0, cdamp, inv_dt, energy, fs, gap, pn, ft_new, status, cell, rt,
-                   normal, slip_rate_num, c, q, dq)
+            _slave(s, slaves, master, law, ft_old, out, scratch)
     scatter_to_grid(status, cell, rt, fs, fm)

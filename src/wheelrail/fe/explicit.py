@@ -408,20 +408,20 @@ class _ContactLoop:
         hg = ed.hx if ed.hx.shape[0] else ed.gamma          # compact hourglass data
         if E is None:
             E, hist, rows, nrow = _NO_E, _NO_HIST, _NO_HIST, _NO_ROW
-        cps, sps, sx, sy, tt, loads = per_step
         self.cur = run_steps(
-            k0, k1, relax, every, n_steps, ax, E, hist, rows, nrow, cps, sps, sx, sy, tt, loads,
-            axle, self.y_ref0, self.cur, self.xsb, self.xmb, self.ftb,
-            u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic,
-            hp, tp, ts, st, st, f, self.energy, self.echunk, self.tasks,
-            self.ref_s, self.slave, m.z_axle, self.dxs,
-            self.ref_m, self.master, self.dxm, self.nm,
-            m.slave_area, m.kn, mu, self.x_ref, self.y_ref, self.reach, m.g0,
-            self.cdamp, self.inv_dt, o["energy"], o["fs"], o["fm"], o["gap"],
-            o["pn"], o["status"], o["cell"], o["rt"], o["normal"], o["slip"],
-            self.fcon, self.sums, v, fd_beta, has_beta, m_alpha, inv_m, mass,
-            cmap, dt, self.gptr, self.gnodes, self.partial, self.totals,
-            numba.get_num_threads())
+            k0, k1, self.cur, relax, numba.get_num_threads(),
+            (every, n_steps, ax, E, hist, rows, nrow, axle), tuple(per_step),
+            (u, self.conn, m.chunks, ed.dNdx, ed.wdet, hg, ed.khg, lam, G, plastic, hp, tp, ts,
+             st, st, f, self.energy, self.echunk),
+            (self.ref_s, self.slave, m.z_axle, self.dxs, self.ref_m, self.master, self.dxm,
+             self.nm, m.slave_area, m.kn, self.cdamp, self.x_ref, self.y_ref, self.y_ref0,
+             self.xsb, self.xmb, self.ftb),
+            (mu, self.reach, m.g0, self.inv_dt),
+            (o["energy"], o["fs"], o["fm"], o["gap"], o["pn"], o["status"], o["cell"], o["rt"],
+             o["normal"], o["slip"], self.fcon, self.sums),
+            (v, fd_beta, has_beta, m_alpha, inv_m, mass, cmap, dt, self.gptr, self.gnodes,
+             self.partial, self.totals),
+            self.tasks)
         if plastic:                          # updated in place: nothing to commit
             state.energies = (float(self.sums[6]), float(self.sums[7]))
         return self.contact()

@@ -345,13 +345,14 @@ class Model:
             "normal": np.zeros((ns, 3)), "slip": np.zeros(ns), "energy": np.zeros(ns),
         }
         h = self.case.mesh_size
-        K.node_to_surface(xs, xs - xs_prev, self.slave_area, self.kn, self.kn, mu, ft_old,
-                          xm, nodal_normals(xm), xm - xm_prev, self.rail.axes[0],
-                          self.rail.axes[1] - self.lateral_shift(s), s,
-                          5.0 * h, self.g0,
-                          self.scratch.setdefault("no_damping", np.zeros(ns)) if damping is None
-                          else damping, 1.0 / dt, out["energy"], out["fs"], out["fm"], out["gap"], out["pn"], out["ft"],
-                          out["status"], out["cell"], out["rt"], out["normal"], out["slip"])
+        cdamp = self.scratch.setdefault("no_damping", np.zeros(ns)) if damping is None else damping
+        K.node_to_surface(
+            (xs, xs - xs_prev, self.slave_area, self.kn, self.kn, cdamp),
+            (xm, nodal_normals(xm), xm - xm_prev, self.rail.axes[0],
+             self.rail.axes[1] - self.lateral_shift(s), s),
+            (mu, 5.0 * h, self.g0, 1.0 / dt), ft_old,
+            (out["energy"], out["fs"], out["gap"], out["pn"], out["ft"], out["status"],
+             out["cell"], out["rt"], out["normal"], out["slip"]), out["fm"])
         out["xs"] = xs
         out["xm"] = xm
         return out

@@ -52,6 +52,11 @@ class BucketGrid:
         self.start = start
         self.items = items
 
+    @property
+    def record(self):
+        """``(origin, cell, dims, start, items)``: the grid as :func:`node_to_segment` takes it."""
+        return (self.origin, self.cell, self.dims, self.start, self.items)
+
 
 def build_buckets(xm: np.ndarray, quads: np.ndarray, cell: float, margin: float) -> BucketGrid:
     """Bucket grid of the quads ``quads`` (nq, 4) over master nodes ``xm`` (nm, 3).
@@ -113,10 +118,17 @@ def _project(xs0, xs1, xs2, c, out):
 
 
 @njit(cache=True, parallel=True)
-def node_to_segment(xs, dxs, area, kn, kt, mu, ft_old, xm, dxm, nmn, quads, b_origin, b_cell,
-                    b_dims, b_start, b_items, reach, g0, cdamp, inv_dt, fs, gap, pn, ft_new,
-                    status, seg, rt, normal, slip):
+def node_to_segment(slaves, master, buckets, law, ft_old, out):
     """Penalty node-to-segment contact with Coulomb friction against arbitrary quads.
+
+    The arguments are records (tuples, in this order):
+
+    * ``slaves`` = ``(xs, dxs, area, kn, kt, cdamp)``,
+    * ``master`` = ``(xm, dxm, nmn, quads)``,
+    * ``buckets`` = ``(b_origin, b_cell, b_dims, b_start, b_items)`` (:attr:`BucketGrid.record`),
+    * ``law`` = ``(mu, reach, g0, inv_dt)``,
+    * ``ft_old``,
+    * ``out`` = ``(fs, gap, pn, ft_new, status, seg, rt, normal, slip)``.
 
     Parameters
     ----------
@@ -145,6 +157,11 @@ def node_to_segment(xs, dxs, area, kn, kt, mu, ft_old, xm, dxm, nmn, quads, b_or
     (ns,) 0 open / 1 stick / 2 slip, seg (ns,) quad or −1, rt (ns, 2), normal (ns, 3),
     slip (ns,) slip increment length [m].
     """
+    xs, dxs, area, kn, kt, cdamp = slaves
+    xm, dxm, nmn, quads = master
+    b_origin, b_cell, b_dims, b_start, b_items = buckets
+    mu, reach, g0, inv_dt = law
+    fs, gap, pn, ft_new, status, seg, rt, normal, slip = out
     ns = xs.shape[0]
     nch = min(64, max(1, ns // 64))
     for ch in prange(nch):

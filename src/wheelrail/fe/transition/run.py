@@ -35,8 +35,12 @@ from ...errors import InputError
 from ...materials import Material
 from ...normal.hertz import hertz
 from ...profiles import load as load_profile
-from .. import _solid as S
-from .._explicit import NCHUNK, advance
+from .._explicit import NCHUNK
+from . import _loop
+from ._loop import FIELD_LEAD, MAX_PATCHES, PATCH_FIELDS  # noqa: F401  (FIELD_LEAD: named in the docs)
+from ._loop import STATE as _STATE
+from ._loop import STATE_DEFAULTS as _STATE_DEFAULTS
+from ._loop import rot as _rot
 from .analysis import onset_travel
 from .contact import (
     adhering,
@@ -45,8 +49,6 @@ from .contact import (
     node_to_segment,
     patch_summary,
     patches,
-    scatter_master,
-    split_patches,
 )
 from .mesh import (
     extrude_section,
@@ -68,28 +70,8 @@ __all__ = ["TransitionResult", "run_transition", "seed004_case", "transition_tim
 #: estimate before a run (see docs/fe_transition.md).
 NS_PER_ELEMENT_STEP = 400.0
 
-PATCH_FIELDS = ("Fn", "Fx", "Fy", "Fz", "F_long", "F_lat", "contact_angle", "x", "y", "z",
-                "area", "p_max", "q_max", "adhesion", "theta", "n_nodes")
-MAX_PATCHES = 3
-#: Rows of the wheel surface in the contact-field record: from 30 mm behind to 80 mm ahead
-#: of the axle (the yawed flange contact leads by up to ≈ 55 mm at 25 mrad).
-FIELD_LEAD = (-0.03, 0.08)
 _FIELD_VARS = ("x", "y", "z", "area", "pressure", "traction_x", "traction_y", "traction_z",
                "slip_x", "slip_y", "slip_z", "normal_velocity", "contact_angle", "patch", "state")
-
-
-def _rot(alpha, psi, phi=0.0):
-    """Wheel frame to global: yaw α about z, roll φ about the heading, rolling ψ about the
-    axle."""
-    ca, sa = np.cos(alpha), np.sin(alpha)
-    cp, sp = np.cos(psi), np.sin(psi)
-    Rz = np.array([[ca, -sa, 0.0], [sa, ca, 0.0], [0.0, 0.0, 1.0]])
-    Ry = np.array([[cp, 0.0, sp], [0.0, 1.0, 0.0], [-sp, 0.0, cp]])
-    if phi == 0.0:
-        return Rz @ Ry
-    cf, sf = np.cos(phi), np.sin(phi)
-    Rx = np.array([[1.0, 0.0, 0.0], [0.0, cf, -sf], [0.0, sf, cf]])
-    return Rz @ Rx @ Ry
 
 
 class TransitionResult:
@@ -275,13 +257,6 @@ def _static_approach(case, pose, load, model):
             + p_mean / float(np.median(model.kn)), float(np.sqrt(hz.a * hz.b)))
 
 
-_STATE = ("u", "v", "ft", "w", "vw", "zs", "vs", "omega", "omega_mean", "psi", "s", "t",
-          "fade", "xs_prev", "xm_prev", "y", "vy", "phi", "vphi", "m_roll0")
-# state added after the first restart files were written: their value in older files
-# (m_roll0 NaN: the roll spring's preload is taken at the next rolling step)
-_STATE_DEFAULTS = {"y": 0.0, "vy": 0.0, "phi": 0.0, "vphi": 0.0, "m_roll0": np.nan}
-
-
 def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                    estimate_only: bool = False, field_every: int = 0, restart=None,
                    restart_file=None, restart_every: int = 0, stop_travel=None):
@@ -335,6 +310,72 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
         if estimate_only:
             return est
         print(msg, flush=True)
+    P, st, sag = _prepare(case, m, dt, est, stop_travel, field_every, progress)
+    t_cpu = time.process_time()
+    t_wall = time.perf_counter()
+    k0 = 0
+    if restart is not None:
+        k0 = _restore(P, st, restart, stop_travel)
+    if restart_file is not None and restart_every <= 0:
+        restart_every = max(1, P.n_steps // 10)
+    if k0 < P.n_pre:
+        # the preload's fictitious masses and damping until the rolling starts
+        st.inv_m = P.inv_m_pre
+        st.m_alpha[:] = P.m_alpha_pre
+    for k in range(k0, P.n_end):
+        _loop.step(P, st, k, k0, t_wall)
+        if restart_file is not None and k + 1 < P.n_steps and (
+                (k + 1) % restart_every == 0 or k + 1 == P.n_end):
+            _loop.write_restart(restart_file, m.n_nodes, P.n_steps, k, st)
+    cpu = time.process_time() - t_cpu
+    wall = time.perf_counter() - t_wall
+    ds, hds = _histories(st.rows, st.hist)
+    # the cost per step of the steps run in this call (a restart continues at k0)
+    n_run = max(1, P.n_end - k0)
+    info = {"time_step": dt, "steps": P.n_steps, "steps_run": P.n_end - k0, "cpu_s": cpu,
+            "stopped_at": P.n_end if P.n_end < P.n_steps else None,
+            "wall_s": wall,
+            "ns_per_element_step": cpu / (n_run * m.n_elements) * 1e9,
+            "wall_ns_per_element_step": wall / (n_run * m.n_elements) * 1e9,
+            "elements": m.n_elements, "load": P.load, "torque": P.torque, "J": P.J,
+            "roll_inertia": P.I_roll, "static_sag": sag,
+            "fields": np.array(st.fields) if st.fields else None,
+            "onset_travel": _onset(ds),
+            "wave": _wave_record(m, P.line, P.wave_normal, st.wave_v, P.x_wave, dt, P.n_pre,
+                                 P.j_wave, k0, case)}
+    return TransitionResult(ds, hds, m, st.u, info,
+                            _fields_dataset(st.sf, st.sf_t) if st.sf else None)
+
+
+def _restore(P, st, restart, stop_travel):
+    """Continue from a restart file: the loop's state and outputs; the first step to run."""
+    n = P.m.n_nodes
+    with np.load(restart, allow_pickle=False) as z:
+        if int(z["n_nodes"]) != n or int(z["steps"]) != P.n_steps:
+            raise InputError(f"restart file {restart!s} belongs to another case "
+                             f"({int(z['n_nodes'])} nodes, {int(z['steps'])} steps; this "
+                             f"case {n} nodes, {P.n_steps} steps)")
+        saved = {k2: (z[k2] if k2 in z.files else _STATE_DEFAULTS[k2]) for k2 in _STATE}
+        k0 = int(z["step"]) + 1
+        if k0 >= P.n_end:
+            raise InputError(f"restart file {restart!s} is at step {k0}, at or past the "
+                             f"stop ({P.n_end} steps; stop_travel {stop_travel!r} m)")
+        st.rows = [r for r in z["rows"]]
+        st.hist = list(_full_history_rows(z["hist"]))
+    st.u[:], st.v[:], st.ft[:] = saved["u"], saved["v"], saved["ft"]
+    for k2 in ("w", "vw", "zs", "vs", "y", "vy", "phi", "vphi", "m_roll0", "omega",
+               "omega_mean", "psi", "s", "t", "fade"):
+        setattr(st, k2, float(saved[k2]))
+    st.xs_prev, st.xm_prev = saved["xs_prev"], saved["xm_prev"]
+    _loop.settle_damping(P, st, st.fade)
+    if P.progress:
+        print(f"  continued from {restart!s} at step {k0}", flush=True)
+    return k0
+
+
+def _prepare(case, m, dt, est, stop_travel, field_every, progress):
+    """``(P, st, sag)``: the prepared run (:class:`._loop.Transition`), its start state
+    (:class:`._loop.LoopState`: static track, the wheel on it) and the static rail sag [m]."""
     n = m.n_nodes
     nw = m.n_wheel
     susp = case.suspension
@@ -343,18 +384,17 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     pose = m.pose
     M_wheel = float(m.mass[:nw].sum())
     load = susp.wheel_load(M_wheel)
-    M_axle = susp.axle_mass + M_wheel
+    ax = dict(load=load, M_axle=susp.axle_mass + M_wheel)
     # rolling inertia: FE wheel about the axle + half-axle
     rho2 = m.nodes[:nw, 0] ** 2 + m.nodes[:nw, 2] ** 2
-    J = float(np.sum(m.mass[:nw] * rho2)) + susp.axle_inertia
-    r0 = pose["r0"]
-    fixed_rolling = case.creepage is not None
+    J = ax["J"] = float(np.sum(m.mass[:nw] * rho2)) + susp.axle_inertia
+    r0 = ax["r0"] = pose["r0"]
+    fixed_rolling = ax["fixed_rolling"] = case.creepage is not None
     # the driving torque; none when the rolling is prescribed (case.creepage)
-    torque = 0.0 if fixed_rolling else case.traction * load * r0 + susp.torque
+    ax["torque"] = 0.0 if fixed_rolling else case.traction * load * r0 + susp.torque
     # ---- static track and initial pose
     u = _static_track(m, load, (0.0, pose["rail_y_tread"]))
-    k_master = m.master
-    sag = float(np.min(u[k_master, 2]))
+    sag = float(np.min(u[m.master, 2]))
     # start at 60 % of the Hertz approach: a coarse mesh cannot resolve the narrow flange-root
     # patch and is stiffer at the same overlap; the axle dashpot absorbs the rest
     delta, a_hz = _static_approach(case, pose, load, m)
@@ -367,110 +407,87 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
     xi0 = (case.creepage if fixed_rolling
            else case.traction * load / (G * np.pi * a_hz ** 2 * 4.2))
     c0 = np.array([0.0, pose["y0"], case.radius + pose["z0"] + sag - delta])
-    v = np.zeros((n, 3))
-    acc = np.zeros((n, 3))
-    f_int = np.zeros((n, 3))
-    f_tmp = np.zeros((n, 3))
-    fext = np.zeros((n, 3))
-    energy = np.zeros((m.n_elements, 2))
-    e_buf = [np.zeros((g[0].shape[0], 2)) for g in m.groups]
-    partial = np.zeros((NCHUNK, 2))
-    cmap = np.arange(n, dtype=np.int64)
     mass_eff = m.mass.copy()
     np.add.at(mass_eff, m.tie_master.ravel(), (m.tie_weight * m.mass[m.tie_slave, None]).ravel())
     inv_m = 1.0 / mass_eff
     inv_m[m.fixed] = 0.0
     inv_m[m.tie_slave] = 0.0
     n_pre = est["preload_steps"]
+    inv_m_pre = m_alpha_pre = None
     if n_pre:
         # dynamic relaxation: fictitious masses and damping until the rolling starts
         mass_pre = _preload_masses(m, mass_eff, dt)
         inv_m_pre = np.where(inv_m > 0.0, 1.0 / mass_pre, 0.0)
         m_alpha_pre = case.preload_damping * mass_pre
         m_alpha_pre[m.fixed] = 0.0
-        inv_m_run = inv_m
-    m_alpha = np.zeros(n)
-
-    def settle_damping(f):
-        # mass-proportional damping α f m of the start transient (clamped nodes: none)
-        m_alpha[:] = alpha_m * f * m.mass
-        m_alpha[m.fixed] = 0.0
-
-    no_beta = np.zeros((1, 3))
-    # contact arrays
     ns = m.slave.size
-    ft = np.zeros((ns, 3))
-    out = {k: np.zeros(sh) for k, sh in (("fs", (ns, 3)), ("gap", ns), ("pn", ns),
-                                          ("ft", (ns, 3)), ("rt", (ns, 2)),
-                                          ("normal", (ns, 3)), ("slip", ns))}
-    status = np.zeros(ns, np.int64)
-    seg = np.zeros(ns, np.int64)
-    fm = np.zeros((m.master.size, 3))
-    ms = m.mass[m.slave]
-    cdamp = 2.0 * case.contact_damping * np.sqrt(m.kn * m.slave_area * 0.5 * ms)
-    reach = 4 * case.mesh_size
-    b = m.buckets
-    # axle and suspension states
-    w = 0.0
-    vw = 0.0
+    cdamp = 2.0 * case.contact_damping * np.sqrt(m.kn * m.slave_area * 0.5 * m.mass[m.slave])
     # lateral dof along the axle (only with a finite lateral_stiffness): y from the path
     # along the heading, driven by the contact forces' part along the axle
-    y = 0.0
-    vy = 0.0
-    lat_free = bool(np.isfinite(susp.lateral_stiffness))
+    ax["lat_free"] = bool(np.isfinite(susp.lateral_stiffness))
     # roll dof about the heading (only with a finite roll_stiffness), about the static
     # balance at the end of the preload (m_roll0: the contact moment then, the spring's
     # preload; without a preload the first steps' moment is the start transient's); a
     # critical dashpot fading over `settle`
-    phi = 0.0
-    vphi = 0.0
-    m_roll0 = np.nan
-    roll_free = bool(np.isfinite(susp.roll_stiffness))
+    roll_free = ax["roll_free"] = bool(np.isfinite(susp.roll_stiffness))
     if roll_free and not n_pre:
         raise InputError(f"a finite roll_stiffness ({susp.roll_stiffness!r} N m/rad) needs "
                          f"a static preload (case.preload > 0, e.g. 1e-3 s): the roll "
                          f"spring is balanced by the contact moment at its end")
-    I_roll = (float(np.sum(m.mass[:nw] * (m.nodes[:nw, 1] ** 2 + m.nodes[:nw, 2] ** 2)))
-              + susp.axle_roll_inertia)
-    c_roll0 = 2.0 * np.sqrt(susp.roll_stiffness * I_roll) if roll_free else 0.0
-    zs = -(susp.sprung_mass * GRAVITY) / susp.stiffness   # suspension deflection, static
-    vs = 0.0
-    omega_roll = V / r0 * (1.0 + xi0)
-    omega = omega_roll if not n_pre else 0.0
-    omega_mean = omega
-    psi = 0.0
+    I_roll = ax["I_roll"] = (float(np.sum(m.mass[:nw] * (m.nodes[:nw, 1] ** 2
+                                                         + m.nodes[:nw, 2] ** 2)))
+                             + susp.axle_roll_inertia)
+    ax["c_roll0"] = 2.0 * np.sqrt(susp.roll_stiffness * I_roll) if roll_free else 0.0
+    ax["omega_roll"] = V / r0 * (1.0 + xi0)
     # rolling dof against the patch's tangential stiffness: ω_n = r0 sqrt(k_t / J); a
     # dashpot on ω − ω̄ (ω̄ low-passed over a few periods, so the mean creepage is free),
     # critical, fading over `settle` like the axle dashpot
     w_rot = r0 * np.sqrt(k_t / J)
-    c_rot0 = 2.0 * J * w_rot
-    tau_rot = 4.0 / w_rot
-    # mass-proportional damping of the start transient, fading over `settle`
-    alpha_m = case.settle_damping
-    fade = 1.0 if case.settle > 0 else 0.0
-    settle_damping(fade)
-    s = 0.0
-    t = -n_pre * dt
+    ax["c_rot0"] = 2.0 * J * w_rot
+    ax["tau_rot"] = 4.0 / w_rot
     # Hertz-type axle dashpot over the settle distance: critical on k ≈ 1.5 Q / δ, δ ≈ 0.1 mm
-    c_axle0 = 2.0 * np.sqrt(1.5 * load / 1e-4 * M_axle)
+    ax["c_axle0"] = 2.0 * np.sqrt(1.5 * load / 1e-4 * ax["M_axle"])
     # the preload's axle dashpot: the massless axle's explicit update w += Δt F / c is
     # stable for c > Δt k / 2; 20 Δt k_Hertz keeps it so for a contact 10 × stiffer and
     # lets the axle follow the track's ≈ 0.1 GN/m within ≈ 0.1 ms
-    c_pre = 20.0 * dt * 1.5 * load / (delta / 0.6)
-    Xw = m.nodes[m.slave]
-    xm_ref = m.nodes[k_master]
-    xs_prev = c0 + (Xw + u[m.slave]) @ _rot(alpha, psi).T
-    xm_prev = xm_ref + u[k_master]
-    heading = np.array([np.cos(alpha), np.sin(alpha), 0.0])
-    e_axle = _rot(alpha, 0.0) @ np.array([0.0, 1.0, 0.0])
+    ax["c_pre"] = 20.0 * dt * 1.5 * load / (delta / 0.6)
+    P, n_wave = _windows(case, m, dt, est, stop_travel, n_pre, c0, dict(
+        ax, dt=dt, field_every=field_every, progress=progress, n_pre=n_pre,
+        alpha_m=case.settle_damping, c0=c0, heading=np.array([np.cos(alpha), np.sin(alpha), 0.0]),
+        e_axle=_rot(alpha, 0.0) @ np.array([0.0, 1.0, 0.0]), Xw=m.nodes[m.slave],
+        xm_ref=m.nodes[m.master], cdamp=cdamp, reach=4 * case.mesh_size, inv_m_run=inv_m,
+        inv_m_pre=inv_m_pre, m_alpha_pre=m_alpha_pre, cmap=np.arange(n, dtype=np.int64),
+        no_beta=np.zeros((1, 3)), fwin=case.field_travel,
+        shape2=(m.meta["band_i"].size, m.meta["rim_shape"][1])))
+    omega = P.omega_roll if not n_pre else 0.0
+    st = _loop.LoopState(
+        u=u, v=np.zeros((n, 3)), ft=np.zeros((ns, 3)),
+        xs_prev=c0 + (P.Xw + u[m.slave]) @ _rot(alpha, 0.0).T, xm_prev=P.xm_ref + u[m.master],
+        inv_m=inv_m, m_alpha=np.zeros(n), acc=np.zeros((n, 3)), f_int=np.zeros((n, 3)),
+        f_tmp=np.zeros((n, 3)), fext=np.zeros((n, 3)),
+        e_buf=[np.zeros((g[0].shape[0], 2)) for g in m.groups],
+        partial=np.zeros((NCHUNK, 2)),
+        out={k: np.zeros(sh) for k, sh in (("fs", (ns, 3)), ("gap", ns), ("pn", ns),
+                                            ("ft", (ns, 3)), ("rt", (ns, 2)),
+                                            ("normal", (ns, 3)), ("slip", ns))},
+        status=np.zeros(ns, np.int64), seg=np.zeros(ns, np.int64),
+        fm=np.zeros((m.master.size, 3)), wave_v=np.zeros((n_wave, P.line.size, 3)),
+        zs=-(susp.sprung_mass * GRAVITY) / susp.stiffness,   # suspension deflection, static
+        omega=omega, omega_mean=omega,
+        # mass-proportional damping of the start transient, fading over `settle`
+        fade=1.0 if case.settle > 0 else 0.0, t=-n_pre * dt,
+        rows=[], hist=[], fields=[], sf=[], sf_t=[])
+    _loop.settle_damping(P, st, st.fade)
+    return P, st, sag
+
+
+def _windows(case, m, dt, est, stop_travel, n_pre, c0, fields):
+    """The run's end (``stop_travel``), output interval and wave record window:
+    ``(P, n_wave)`` with ``P`` the :class:`._loop.Transition` of ``fields`` and these."""
+    alpha = case.angle_of_attack
+    V = case.speed
     n_steps = est["steps"]
     every = max(1, int(round(case.output_interval / dt)))
-    rows, hist, fields = [], [], []
-    fwin = case.field_travel
-    sf, sf_t, n_rec = [], [], 0
-    rim_shape = m.meta["rim_shape"]
-    band_i = m.meta["band_i"]
-    surf_rail = k_master
     # a rail surface line (along x) through the contact at the record's start, for the
     # wave analysis: all three velocity components every step over wave_time
     x_wave = c0[0] + case.wave_travel * np.cos(alpha)
@@ -487,190 +504,10 @@ def run_transition(case: TransitionCase, *, progress: bool = False, model=None,
                              f"{stop_travel!r}")
         n_end = min(n_steps, n_pre + int(np.ceil(stop_travel / (V * dt))))
     n_wave = max(0, min(n_wave, n_end - j_wave))          # not beyond the run's end
-    wave_v = np.zeros((n_wave, line.size, 3))
-    t_cpu = time.process_time()
-    t_wall = time.perf_counter()
-    k0 = 0
-    if restart is not None:
-        with np.load(restart, allow_pickle=False) as z:
-            if int(z["n_nodes"]) != n or int(z["steps"]) != n_steps:
-                raise InputError(f"restart file {restart!s} belongs to another case "
-                                 f"({int(z['n_nodes'])} nodes, {int(z['steps'])} steps; this "
-                                 f"case {n} nodes, {n_steps} steps)")
-            st = {k2: (z[k2] if k2 in z.files else _STATE_DEFAULTS[k2]) for k2 in _STATE}
-            k0 = int(z["step"]) + 1
-            if k0 >= n_end:
-                raise InputError(f"restart file {restart!s} is at step {k0}, at or past the "
-                                 f"stop ({n_end} steps; stop_travel {stop_travel!r} m)")
-            rows = [r for r in z["rows"]]
-            hist = list(_full_history_rows(z["hist"]))
-        u[:], v[:], ft[:] = st["u"], st["v"], st["ft"]
-        w, vw, zs, vs, y, vy, phi, vphi, m_roll0 = (
-            float(st[k2]) for k2 in ("w", "vw", "zs", "vs", "y", "vy", "phi", "vphi",
-                                     "m_roll0"))
-        omega, omega_mean, psi, s, t, fade = (float(st[k2]) for k2 in
-                                              ("omega", "omega_mean", "psi", "s", "t", "fade"))
-        xs_prev, xm_prev = st["xs_prev"], st["xm_prev"]
-        settle_damping(fade)
-        if progress:
-            print(f"  continued from {restart!s} at step {k0}", flush=True)
-    if restart_file is not None and restart_every <= 0:
-        restart_every = max(1, n_steps // 10)
-    if k0 < n_pre:
-        # the preload's fictitious masses and damping until the rolling starts
-        inv_m = inv_m_pre
-        m_alpha[:] = m_alpha_pre
-    for k in range(k0, n_end):
-        pre = k < n_pre
-        if n_pre and k == n_pre:
-            # the rolling starts: the real masses, the settle damping, the rolling speed
-            inv_m = inv_m_run
-            omega = omega_mean = omega_roll
-            settle_damping(fade)
-        R = _rot(alpha, psi, phi)
-        c = c0 + s * heading + np.array([0.0, 0.0, w]) + y * e_axle
-        # ---- element forces (both materials)
-        f_int[:] = 0.0
-        for g, (conn, chunks, ed, mat) in enumerate(m.groups):
-            S.element_forces(u, conn, chunks, ed.dNdx, ed.wdet, ed.gamma, ed.khg, mat.lam,
-                             mat.shear_modulus, False, np.zeros(6), np.zeros(0), np.zeros(0),
-                             np.zeros((0, 1, 14)), np.zeros((0, 1, 14)), f_tmp, e_buf[g])
-            f_int += f_tmp
-        # ---- contact
-        is_out = k % every == 0 or k == n_end - 1
-        rec = (is_out and not pre and fwin and fwin[0] <= s + dt * V <= fwin[1]
-               and n_rec % case.field_stride == 0)
-        xs = c + (Xw + u[m.slave]) @ R.T
-        xm = xm_ref + u[k_master]
-        nmn = nodal_normals_quads(xm, m.quads)
-        node_to_segment(xs, xs - xs_prev, m.slave_area, m.kn, m.kn, case.mu, ft, xm,
-                        xm - xm_prev, nmn, m.quads, b.origin, b.cell, b.dims, b.start, b.items,
-                        reach, m.g0, cdamp, 1.0 / dt, out["fs"], out["gap"], out["pn"],
-                        out["ft"], status, seg, out["rt"], out["normal"], out["slip"])
-        fm[:] = 0.0
-        scatter_master(out["fs"], status, seg, out["rt"], m.quads, fm)
-        if rec:
-            dxs, dxm = xs - xs_prev, xm - xm_prev
-        ft[:] = out["ft"]
-        xs_prev = xs
-        xm_prev = xm
-        fext[:] = 0.0
-        fext[m.slave] = out["fs"] @ R            # into the wheel frame
-        fext[k_master] += fm
-        m.springs.forces(u, v, fext)
-        # ties: the slaves' internal and external forces act on their masters
-        fs_t = fext[m.tie_slave] - f_int[m.tie_slave]
-        for col in range(2):
-            np.add.at(fext, m.tie_master[:, col], m.tie_weight[:, col, None] * fs_t)
-        advance(u, v, acc, f_int, no_beta, False, m_alpha, inv_m, cmap, fext, dt, partial)
-        u[m.tie_slave] = (m.tie_weight[:, :, None] * u[m.tie_master]).sum(axis=1)
-        v[m.tie_slave] = (m.tie_weight[:, :, None] * v[m.tie_master]).sum(axis=1)
-        u[m.held_xy, :2] = 0.0
-        v[m.held_xy, :2] = 0.0
-        # ---- axle: vertical (with the primary suspension) and rolling
-        Fc = out["fs"].sum(axis=0)
-        arm = xs - c
-        moments = np.cross(arm, out["fs"]).sum(axis=0)
-        M_c = float(moments @ R[:, 1])                 # about the (rolled) axle
-        m_roll = float(moments @ heading)
-        # primary suspension: zs its extension from free length (static: −M_s g / k)
-        f_sprung = -susp.stiffness * zs - susp.damping * (vs - vw)     # on the sprung mass
-        fade_now = max(0.0, 1.0 - s / case.settle) if case.settle > 0 else 0.0
-        c_axle = c_axle0 * fade_now
-        if pre:
-            # a massless axle on a dashpot: it creeps towards the vertical balance (the
-            # sprung mass and the rolling held); the dashpots that its own velocity
-            # loads (the closed contact nodes' normal dashpots, the suspension's) are
-            # taken implicitly, else a stiff patch's dashpots exceed c_pre and the
-            # explicit update flips sign every step
-            c_c = float(np.sum(cdamp[status > 0] * out["normal"][status > 0, 2] ** 2))
-            f_el = Fc[2] + c_c * vw + susp.stiffness * zs
-            c_tot = c_pre + c_c + susp.damping
-            vw = (f_el - M_axle * GRAVITY) / c_tot if k + 1 < n_pre else 0.0
-        else:
-            aw = (Fc[2] - f_sprung - M_axle * GRAVITY - c_axle * vw) / M_axle
-            a_s = (f_sprung - susp.sprung_mass * GRAVITY) / susp.sprung_mass
-            vw += dt * aw
-            vs += dt * a_s
-        w += dt * vw
-        zs += dt * (vs - vw)
-        if lat_free and not pre:
-            ay = (float(Fc @ e_axle) - susp.lateral_stiffness * y
-                  - susp.lateral_damping * vy) / M_axle
-            vy += dt * ay
-            y += dt * vy
-        if roll_free and not pre:
-            if np.isnan(m_roll0):
-                m_roll0 = m_roll
-            a_phi = (m_roll - m_roll0 - susp.roll_stiffness * phi
-                     - (susp.roll_damping + c_roll0 * fade_now) * vphi) / I_roll
-            vphi += dt * a_phi
-            phi += dt * vphi
-        if not pre:
-            if not fixed_rolling:
-                omega += dt * (torque + M_c - c_rot0 * fade_now * (omega - omega_mean)) / J
-                omega_mean += dt * (omega - omega_mean) / tau_rot
-            psi += dt * omega
-        # (re)set in steps of 2 % of the start value, and to exactly 0 at the settle distance
-        if not pre and fade > 0.0 and (fade_now < fade - 0.02 or fade_now == 0.0):
-            fade = fade_now
-            settle_damping(fade)
-        if not pre:
-            s += dt * V
-        t += dt
-        if 0 <= k - j_wave < n_wave:
-            wave_v[k - j_wave] = v[line]
-        if is_out:
-            shape2 = (band_i.size, rim_shape[1])
-            ang = np.arccos(np.minimum(1.0, np.abs(out["normal"][:, 2])))
-            lab, counts = split_patches(status.reshape(shape2), ang.reshape(shape2),
-                                        out["pn"].reshape(shape2), case.patch_split_angle)
-            npatch = int(min(counts[0], 1) + min(counts[1], 1))
-            lab = lab.ravel()
-            row = []
-            for p in range(1, MAX_PATCHES + 1):
-                d = patch_summary(lab == p, xs, out["fs"], out["pn"], out["ft"], out["normal"],
-                                  m.slave_area, status, case.mu)
-                row.append([d[f] for f in PATCH_FIELDS])
-            rows.append(row)
-            if fwin and not pre and fwin[0] <= s <= fwin[1]:
-                if rec:
-                    sf.append(_contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab,
-                                              m, case.mu, shape2))
-                    sf_t.append((t, s))
-                n_rec += 1
-            creep = (omega * r0 - V) / V if not pre else np.nan
-            hist.append([t, s, w, omega, creep, Fc[0], Fc[1], Fc[2], float(out["pn"].sum()),
-                         M_c, npatch, c[1], y, phi, m_roll])
-            if field_every and (len(rows) - 1) % field_every == 0:
-                fields.append(v[surf_rail].copy())
-            if progress and len(rows) % 20 == 1:
-                done = (k + 1 - k0) / max(1, n_end - k0)
-                el = time.perf_counter() - t_wall
-                print(f"  {100 * (k + 1) / n_steps:5.1f} %  t = {t * 1e3:7.3f} ms  "
-                      f"s = {s * 1e3:6.1f} mm  patches {npatch}  Fz = {Fc[2] / 1e3:7.2f} kN  "
-                      f"elapsed {el:6.0f} s, left ~{el * (1 - done) / max(done, 1e-9):6.0f} s",
-                      flush=True)
-        if restart_file is not None and k + 1 < n_steps and (
-                (k + 1) % restart_every == 0 or k + 1 == n_end):
-            _write_restart(restart_file, n, n_steps, k, rows, hist, locals())
-    cpu = time.process_time() - t_cpu
-    wall = time.perf_counter() - t_wall
-    ds, hds = _histories(rows, hist)
-    # the cost per step of the steps run in this call (a restart continues at k0)
-    run_steps = max(1, n_end - k0)
-    info = {"time_step": dt, "steps": n_steps, "steps_run": n_end - k0, "cpu_s": cpu,
-            "stopped_at": n_end if n_end < n_steps else None,
-            "wall_s": wall,
-            "ns_per_element_step": cpu / (run_steps * m.n_elements) * 1e9,
-            "wall_ns_per_element_step": wall / (run_steps * m.n_elements) * 1e9,
-            "elements": m.n_elements, "load": load, "torque": torque, "J": J,
-            "roll_inertia": I_roll, "static_sag": sag,
-            "fields": np.array(fields) if fields else None,
-            "onset_travel": _onset(ds),
-            "wave": _wave_record(m, line, wave_normal, wave_v, x_wave, dt, n_pre, j_wave,
-                                 k0, case)}
-    return TransitionResult(ds, hds, m, u, info, _fields_dataset(sf, sf_t) if sf else None)
+    P = _loop.Transition(case=case, m=m, n_steps=n_steps, n_end=n_end, every=every,
+                         line=line, wave_normal=wave_normal, x_wave=x_wave, j_wave=j_wave,
+                         n_wave=n_wave, **fields)
+    return P, n_wave
 
 
 def _wave_record(m, line, normal, wave_v, x_wave, dt, n_pre, j_wave, k0, case):
@@ -683,43 +520,6 @@ def _wave_record(m, line, normal, wave_v, x_wave, dt, n_pre, j_wave, k0, case):
     return {"x": m.nodes[line, 0] - x_wave, "t": t[first:], "v": v, "vz": v[:, :, 2],
             "normal": normal, "line": case.wave_line, "travel": case.wave_travel,
             "speed": case.speed * float(np.cos(case.angle_of_attack))}
-
-
-def _contact_fields(xs, c, dxs, dxm, dt, out, status, seg, lab, m, mu, shape2):
-    """One output of the contact's surface fields on the rows of the wheel's surface grid
-    within :data:`FIELD_LEAD` of the axle (see :class:`TransitionResult`)."""
-    nr, nc = shape2
-    h = m.case.mesh_size
-    n_keep = int(round((FIELD_LEAD[1] - FIELD_LEAD[0]) / h)) + 2
-    X = xs.reshape(nr, nc, 3)
-    lead = X[:, :, 0].mean(axis=1) - c[0]
-    mid = 0.5 * (FIELD_LEAD[0] + FIELD_LEAD[1])
-    keep = np.sort(np.argsort(np.abs(lead - mid))[:min(n_keep, nr)])
-    keep = keep[np.argsort(lead[keep])]
-    A = m.slave_area
-    closed = status > 0
-    pres = np.where(closed, out["pn"] / A, 0.0)
-    trac = np.where(closed[:, None], -out["ft"] / A[:, None], 0.0)
-    # micro-slip: the wheel node's velocity against the rail point under it, tangential part
-    r_, t_ = out["rt"][:, 0], out["rt"][:, 1]
-    w = np.stack(((1 - r_) * (1 - t_), r_ * (1 - t_), r_ * t_, (1 - r_) * t_), axis=1)
-    q = m.quads[np.maximum(seg, 0)]
-    vr = (dxs - np.einsum("sa,sad->sd", w, dxm[q])) / dt
-    nrm = out["normal"]
-    vn = (vr * nrm).sum(axis=1)
-    vt = vr - vn[:, None] * nrm
-    vt[~closed] = 0.0
-    vn[~closed] = 0.0
-    ang = np.where(closed, np.arccos(np.minimum(1.0, np.abs(nrm[:, 2]))), np.nan)
-    state = closed.astype(np.int64)
-    qn = np.linalg.norm(out["ft"], axis=1)
-    for p in range(1, MAX_PATCHES + 1):
-        sel = closed & (lab == p)
-        if sel.any():
-            state[np.flatnonzero(sel)[adhering(out["pn"][sel], qn[sel], mu)]] = 2
-    cols = [xs[:, 0], xs[:, 1], xs[:, 2], A, pres, trac[:, 0], trac[:, 1], trac[:, 2], vt[:, 0],
-            vt[:, 1], vt[:, 2], vn, ang, lab, state]
-    return [np.asarray(v).reshape(nr, nc)[keep] for v in cols]
 
 
 def _fields_dataset(sf, sf_t):
@@ -790,16 +590,6 @@ def read_transition_restart(path):
     with np.load(path, allow_pickle=False) as z:
         ds, hds = _histories(z["rows"], z["hist"])
         return ds, hds, {"step": int(z["step"]), "steps": int(z["steps"])}
-
-
-def _write_restart(path, n, n_steps, k, rows, hist, scope):
-    """State of the loop after step ``k`` (atomically: a temporary file renamed)."""
-    import os
-
-    tmp = str(path) + ".tmp.npz"
-    np.savez(tmp, n_nodes=n, steps=n_steps, step=k, rows=np.array(rows, float),
-             hist=np.array(hist, float), **{k2: np.asarray(scope[k2]) for k2 in _STATE})
-    os.replace(tmp, path)
 
 
 def _onset(ds, min_force=1000.0):
@@ -906,11 +696,11 @@ def pose_contact(case: TransitionCase, y_off: float, overlap: float = 5e-5,
                                           ("normal", (ns, 3)), ("slip", ns))}
     status = np.zeros(ns, np.int64)
     seg = np.zeros(ns, np.int64)
-    node_to_segment(xs, np.zeros((ns, 3)), area, kn, kn, 0.0, np.zeros((ns, 3)), xm,
-                    np.zeros_like(xm), nodal_normals_quads(xm, quads), quads, b.origin, b.cell,
-                    b.dims, b.start, b.items, 4 * h, 1e-7, np.zeros(ns), 1.0, out["fs"],
-                    out["gap"], out["pn"], out["ft"], status, seg, out["rt"], out["normal"],
-                    out["slip"])
+    node_to_segment((xs, np.zeros((ns, 3)), area, kn, kn, np.zeros(ns)),
+                    (xm, np.zeros_like(xm), nodal_normals_quads(xm, quads), quads), b.record,
+                    (0.0, 4 * h, 1e-7, 1.0), np.zeros((ns, 3)),
+                    (out["fs"], out["gap"], out["pn"], out["ft"], status, seg, out["rt"],
+                     out["normal"], out["slip"]))
     lab, npatch = patches(status.reshape(wheel.shape[0], wheel.shape[1]))
     lab = lab.ravel()
     return [patch_summary(lab == k, xs, out["fs"], out["pn"], out["ft"], out["normal"], area,
