@@ -106,8 +106,9 @@ ALLOWED = {
         {"grid_key", "memo"},
         "the BEM memoises its influence matrices with the half-space's cache"),
     ("sweeps", "wheelrail.tangential.table"): (
-        {"_coefficients", "_spin_length"},
-        "the table builder writes the coefficients that the table law reads"),
+        {"_coefficients", "_spin_length", "_spline_operator"},
+        "the table builder writes the coefficients that the table law reads and fits "
+        "the law's own spline in its refined regions"),
     ("tangential", "wheelrail.halfspace.rolling"): (
         {"_BlockConvolution", "_block_convolution", "_contact_box",
          "_rolling_and_influence_kernels"},

@@ -45,11 +45,22 @@ def add_arguments(p) -> None:
                         "build resumes from it, nodes already in its stores are reused")
     p.add_argument("--keep-work", action="store_true",
                    help="keep the work stores after writing the table")
+    p.add_argument("--refine-only", action="store_true",
+                   help="only recompute the refined regions of the existing table --out "
+                        "(small creepage with large spin on wide patches, and the last theta "
+                        "nodes of slender patches), with the first-plane resolutions; the "
+                        "other nodes are kept")
 
 
 def run(args, console) -> int:
-    from ..sweeps.tables import build_table
+    from ..sweeps.tables import build_table, refine_table
 
+    if args.refine_only:
+        path = refine_table(args.out, elements=tuple(args.first_plane_elements),
+                            order=args.order, workers=args.workers, executor=args.executor,
+                            work=args.work, keep_work=args.keep_work)
+        console.print(f"wrote [bold]{esc(path)}[/bold]")
+        return 0
     path = build_table(args.out, elements=tuple(args.elements), order=args.order,
                        extrapolation_stride=args.extrapolation_stride, nu_stride=args.nu_stride,
                        first_plane_elements=tuple(args.first_plane_elements),

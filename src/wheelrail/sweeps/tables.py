@@ -79,8 +79,15 @@ __all__ = [
     "ORDER",
     "REFERENCE_ELEMENTS",
     "assemble_table",
+    "REFINED_REGIONS",
     "replace_first_plane",
     "build_table",
+    "THETA_END_REGIONS",
+    "R_START_REGIONS",
+    "fit_r_start",
+    "fit_theta_end",
+    "refine_regions",
+    "refine_table",
     "exact_limit",
     "grid_limit",
     "observed_order",
@@ -116,6 +123,22 @@ NU_STRIDE = 1
 #: to 1.7 % of μFn off at r = 0.05, and 0.9 % low in the slope at a/b = 1 (Kalker's
 #: C11), where 36/54/81 holds it to 0.4 %.
 FIRST_PLANE_ELEMENTS = (36, 54, 81)
+#: Regions of nodes recomputed on every ν with the grid-limit fit of
+#: :data:`FIRST_PLANE_ELEMENTS` (:func:`refine_regions`): small creepage with large spin
+#: on patches wide in y. There the 16/24/36 fit is up to 2 % of μFn from the 36/54/81
+#: limit (r = 0.1, s = 0.95, a/b = 0.1; elsewhere within 0.3 %, 300 random nodes); the
+#: ranges are inclusive bounds of r, |s| and a/b.
+REFINED_REGIONS = ({"r": (0.0, 0.2), "s_abs": (0.75, 0.95), "aspect": (0.05, 0.5)},)
+#: Regions where the last θ nodes (nearly lateral creepage, θ ≥ 3π/8) are least-squares
+#: fitted (:func:`fit_theta_end`): on slender patches (a/b ≥ 6) with spin and
+#: moderate creepage Fy has a narrow peak at θ = π/2 that a spline through the 9
+#: θ nodes misses by up to 1.3 % of μFn at the midpoint θ = 15π/32.
+THETA_END_REGIONS = ({"r": (0.35, 0.75), "s_abs": (0.3, 0.95), "aspect": (6.0, 20.0)},)
+#: Regions whose lines along r are least-squares fitted to the midpoint of the first
+#: cell, r = Δr/2 (:func:`fit_r_start`): with large spin on patches wide in y, Fy
+#: bends between r = 0 and Δr more than the spline through the nodes follows (1.1 %
+#: of μFn at r = 0.017, s = −0.94, a/b = 0.1 with exact nodes).
+R_START_REGIONS = ({"s_abs": (0.8, 0.95), "aspect": (0.05, 0.5)},)
 #: Parameters of the physical contacts on which the nodes are computed (any
 #: values give the same dimensionless result, by similarity).
 BUILD_CONTACT = {"E": 2.1e11, "Fn": 1.0e4, "mu": 0.3, "c": 5.0e-3}
@@ -487,7 +510,10 @@ def _fill_failed(vals):
 def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, executor=None,
                 progress=True, grid=None, keep_work=False, order=ORDER,
                 extrapolation_stride=EXTRAPOLATION_STRIDE, nu_stride=NU_STRIDE,
-                first_plane_elements=FIRST_PLANE_ELEMENTS) -> Path:
+                first_plane_elements=FIRST_PLANE_ELEMENTS,
+                refined_regions=REFINED_REGIONS,
+                theta_end_regions=THETA_END_REGIONS,
+                r_start_regions=R_START_REGIONS) -> Path:
     """Compute the table with the exact solver (resumable :func:`wheelrail.sweep` runs) and save it.
 
     Parameters
@@ -519,6 +545,15 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, e
         (:data:`FIRST_PLANE_ELEMENTS`); the other ν keep their difference to it. Empty
         or None, or a single resolution in ``elements`` (no extrapolation): that plane
         is treated like the others.
+    refined_regions : sequence of dict, optional
+        Regions recomputed on every ν with the fit to ``first_plane_elements``
+        (:func:`refine_regions`; default :data:`REFINED_REGIONS`).
+    theta_end_regions : sequence of dict, optional
+        Regions whose last θ nodes are fitted (:func:`fit_theta_end`; default
+        :data:`THETA_END_REGIONS`).
+    r_start_regions : sequence of dict, optional
+        Regions whose first r cell is fitted (:func:`fit_r_start`; default
+        :data:`R_START_REGIONS`).
 
     Returns
     -------
@@ -556,6 +591,15 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, e
         fs = [stage(plane, n) for n in plane_els]
         vals, change = replace_first_plane(vals, grid, grid_limit(fs, plane_els, order))
         info["first_plane"] = {"elements": list(plane_els), "max_change": change}
+    if plane_els and len(elements) > 1 and refined_regions:
+        vals, info["refined_regions"] = refine_regions(
+            vals, grid, refined_regions, plane_els, stage=stage, order=order)
+    if plane_els and len(elements) > 1 and theta_end_regions:
+        vals, info["theta_end_fit"] = fit_theta_end(
+            vals, grid, theta_end_regions, plane_els, stage=stage, order=order)
+    if plane_els and len(elements) > 1 and r_start_regions:
+        vals, info["r_start_fit"] = fit_r_start(
+            vals, grid, r_start_regions, plane_els, stage=stage, order=order)
     vals, n_failed = _fill_failed(vals)
     meta = {"version": TABLE_VERSION, "wheelrail_version": __version__,
             "method": "exact", "elements": list(elements), "order": order,
@@ -571,3 +615,233 @@ def build_table(out=DEFAULT_TABLE, *, elements=ELEMENTS, workers=2, work=None, e
     if not keep_work:
         shutil.rmtree(work, ignore_errors=True)
     return out
+
+
+def _region_index(grid, region):
+    """Node indices (r, θ, s, a/b, ν) of the computed nodes of ``region`` (inclusive bounds
+    on r, |s| and a/b; every θ and ν)."""
+    eps = 1e-9
+    r, s, lab = (np.asarray(grid[k], float) for k in ("r", "s", "log_ab"))
+    r_lo, r_hi = region.get("r", (0.0, 1.0))
+    s_lo, s_hi = region.get("s_abs", (0.0, 1.0))
+    ab_lo, ab_hi = region.get("aspect", (np.exp(lab[0]), np.exp(lab[-1])))
+    ir = np.flatnonzero((r >= r_lo - eps) & (r <= r_hi + eps) & (r < 1.0))
+    i_s = np.flatnonzero((np.abs(s) >= s_lo - eps) & (np.abs(s) <= s_hi + eps)
+                         & (np.abs(s) < 1.0))
+    il = np.flatnonzero((lab >= np.log(ab_lo) - eps) & (lab <= np.log(ab_hi) + eps))
+    return (ir, np.arange(len(grid["theta"])), i_s, il, np.arange(len(grid["nu"])))
+
+
+def refine_regions(vals, grid, regions, elements, *, stage, order=ORDER):
+    """``vals`` with the nodes of ``regions`` replaced by the grid limit of ``elements``.
+
+    Parameters
+    ----------
+    vals : ndarray, shape (n_r, n_θ, n_s, n_ab, n_ν, 3)
+        The table's values.
+    grid : dict
+        Its node axes.
+    regions : sequence of dict
+        Inclusive bounds ``r``, ``s_abs`` (|s|), ``aspect`` (a/b) of each region; every θ
+        and ν of the grid (:data:`REFINED_REGIONS`).
+    elements : sequence of int
+        Resolutions of the fit (:func:`grid_limit`, order ``order``).
+    stage : callable
+        ``stage(grid, n)``: the exact solution at ``n`` elements on the computed nodes
+        of a sub-grid, shape (…, 3) (the resumable sweeps of :func:`build_table`).
+
+    Returns
+    -------
+    vals : ndarray
+        The new values.
+    info : list of dict
+        Per region: its bounds, node count and largest change (fraction of μFn).
+    """
+    vals = np.array(vals, copy=True)
+    info = []
+    for region in regions:
+        idx = _region_index(grid, region)
+        if any(len(i) == 0 for i in idx):
+            continue
+        sub = {k: np.asarray(grid[k], float)[i] for k, i in zip(AXES, idx)}
+        lim = grid_limit([stage(sub, n) for n in elements], elements, order)
+        sel = np.ix_(*idx)
+        change = np.where(np.isfinite(lim), lim - vals[sel], 0.0)
+        vals[sel] = vals[sel] + change
+        info.append({**{k: list(v) for k, v in region.items()},
+                     "nodes": int(np.prod([len(i) for i in idx])),
+                     "elements": list(elements), "max_change": float(np.abs(change).max())})
+    return vals, info
+
+
+def refine_table(path=DEFAULT_TABLE, *, regions=REFINED_REGIONS,
+                 elements=FIRST_PLANE_ELEMENTS, workers=2, work=None, executor=None,
+                 progress=True, keep_work=False, out=None, order=ORDER,
+                 theta_end_regions=THETA_END_REGIONS,
+                 r_start_regions=R_START_REGIONS) -> Path:
+    """Recompute the nodes of ``regions`` of an existing table (:func:`refine_regions`)
+    and fit the θ ends of ``theta_end_regions`` (:func:`fit_theta_end`) and the first r
+    cell of ``r_start_regions`` (:func:`fit_r_start`).
+
+    The rest of the table is kept as it is; ``meta["extrapolation"]["refined_regions"]``
+    records the regions. The sweeps are those of :func:`build_table` (resumable Zarr
+    stores in ``work``, default ``<out>.work``).
+
+    Returns
+    -------
+    Path
+        The table written (``out``, default ``path``).
+    """
+    path = Path(path)
+    out = path if out is None else Path(out)
+    work = Path(work) if work is not None else out.with_name(out.name + ".work")
+    work.mkdir(parents=True, exist_ok=True)
+    with np.load(path, allow_pickle=False) as f:
+        grid = {k: np.asarray(f[k], float) for k in AXES}
+        vals = np.asarray(f["values"], float)
+        meta = json.loads(str(f["meta"]))
+
+    def stage(g, n):
+        nodes = table_nodes(g)
+        v, nc = _stage_sweep(nodes, n, work, workers, executor, progress)
+        meta["not_converged_nodes"] = meta.get("not_converged_nodes", 0) + nc
+        return v.reshape(*nodes["shape"], 3)
+
+    vals, info = refine_regions(vals, grid, regions, tuple(int(e) for e in elements),
+                                stage=stage, order=order)
+    meta.setdefault("extrapolation", {})["refined_regions"] = info
+    if theta_end_regions:
+        vals, info = fit_theta_end(vals, grid, theta_end_regions,
+                                   tuple(int(e) for e in elements), stage=stage, order=order)
+        meta["extrapolation"]["theta_end_fit"] = info
+    if r_start_regions:
+        vals, info = fit_r_start(vals, grid, r_start_regions,
+                                 tuple(int(e) for e in elements), stage=stage, order=order)
+        meta["extrapolation"]["r_start_fit"] = info
+    tmp = out.with_name(out.name + ".tmp.npz")
+    np.savez_compressed(tmp, values=vals.astype(np.float32), meta=json.dumps(meta),
+                        **{k: grid[k] for k in AXES})
+    tmp.replace(out)
+    if not keep_work:
+        shutil.rmtree(work, ignore_errors=True)
+    return out
+
+
+def _bspline_row(t):
+    """Weights of the 4 coefficients of a uniform cubic B-spline at fraction t of a cell."""
+    u = 1.0 - t
+    return np.array([u**3, 3 * t**3 - 6 * t**2 + 4, -3 * t**3 + 3 * t**2 + 3 * t + 1, t**3]) / 6
+
+
+def fit_theta_end(vals, grid, regions, elements, *, stage, order=ORDER):
+    """``vals`` with the last three θ nodes of ``regions`` least-squares fitted.
+
+    On each line along θ of a region (every r, s, a/b node of it, first ν) the
+    exact grid limit of ``elements`` is computed at the last three θ nodes and at the
+    midpoint of the last cell; the line's nine values (in the frame of the full-slip
+    direction, as the table law interpolates them) are then the least-squares fit
+    of the table's not-a-knot cubic spline to the nine nodes (the new exact values
+    at the last three) and the midpoint. The other ν is shifted by the same change.
+
+    Parameters and returns as :func:`refine_regions`.
+    """
+    from ..tangential.table import _spline_operator
+
+    vals = np.array(vals, copy=True)
+    g = {k: np.asarray(v, float) for k, v in grid.items()}
+    th = g["theta"]
+    n = len(th)
+    mid = 0.5 * (th[-2] + th[-1])
+    op = _spline_operator(n)
+    M = np.zeros((n + 1, n + 2))
+    for i in range(n):
+        M[i, i:i + 3] = (1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0)
+    M[n, n - 2:n + 2] = _bspline_row(0.5)
+    A = M @ op
+    info = []
+    for region in regions:
+        ir, _, i_s, il, _ = _region_index(g, region)
+        if len(ir) == 0 or len(i_s) == 0 or len(il) == 0:
+            continue
+        t_new = np.array([th[-3], th[-2], mid, th[-1]])
+        sub = {"r": g["r"][ir], "theta": t_new, "s": g["s"][i_s], "log_ab": g["log_ab"][il],
+               "nu": g["nu"][:1]}
+        lim = grid_limit([stage(sub, e) for e in elements], elements, order)[..., 0, :]
+        # targets (nr, nθ + 1, ns, nab, 3), global frame
+        old = vals[np.ix_(ir, np.arange(n), i_s, il, [0])][..., 0, :]
+        tgt = np.concatenate([old, lim[:, 2:3]], axis=1)
+        tgt[:, n - 3:n] = np.where(np.isfinite(lim[:, [0, 1, 3]]), lim[:, [0, 1, 3]],
+                                   old[:, n - 3:n])
+        if not np.all(np.isfinite(tgt[:, n])):
+            tgt[:, n] = np.where(np.isfinite(tgt[:, n]), tgt[:, n], np.nan)
+        T = np.concatenate([th, [mid]])
+        C11, C22, _ = _coefficients(np.exp(g["log_ab"][il]), g["nu"][0])
+        al = np.arctan2(np.sin(T)[:, None] / C22[None, :], np.cos(T)[:, None] / C11[None, :])
+        ca, sa = np.cos(al)[None, :, None, :], np.sin(al)[None, :, None, :]
+        loc = np.stack([tgt[..., 0] * ca + tgt[..., 1] * sa, -tgt[..., 0] * sa + tgt[..., 1] * ca,
+                        tgt[..., 2]], axis=-1)
+        Y = np.moveaxis(loc, 1, 0).reshape(n + 1, -1)
+        ok = np.all(np.isfinite(Y), axis=0)
+        fit = np.moveaxis(loc[:, :n], 1, 0).reshape(n, -1).copy()
+        fit[:, ok] = np.linalg.lstsq(A, Y[:, ok], rcond=None)[0]
+        fit = np.moveaxis(fit.reshape((n,) + loc.shape[:1] + loc.shape[2:]), 0, 1)
+        c0, s0 = ca[:, :n], sa[:, :n]
+        new = np.stack([fit[..., 0] * c0 - fit[..., 1] * s0, fit[..., 0] * s0 + fit[..., 1] * c0,
+                        fit[..., 2]], axis=-1)
+        change = new - old
+        sel = np.ix_(ir, np.arange(n), i_s, il, np.arange(len(g["nu"])))
+        vals[sel] = vals[sel] + change[:, :, :, :, None, :]
+        info.append({**{k: list(v) for k, v in region.items()}, "lines": int(ok.sum()) // 3,
+                     "elements": list(elements), "max_change": float(np.abs(change).max())})
+    return vals, info
+
+
+def fit_r_start(vals, grid, regions, elements, *, stage, order=ORDER):
+    """``vals`` with the lines along r of ``regions`` fitted to the first cell's midpoint.
+
+    On each line along r (every θ and the region's s and a/b nodes, first ν) the exact
+    grid limit of ``elements`` is computed at r = Δr/2; the line's values at
+    0 < r < 1 become the least-squares fit of the table's not-a-knot cubic spline to the
+    line's nodes and that midpoint (r = 0, the same contact for every θ, and the
+    analytic r = 1 are kept). The direction of the full-slip force does not change along
+    r, so the fit is done on (fx, fy, mz) directly. The other ν is shifted by the same
+    change.
+
+    Parameters and returns as :func:`refine_regions`.
+    """
+    from ..tangential.table import _spline_operator
+
+    vals = np.array(vals, copy=True)
+    g = {k: np.asarray(v, float) for k, v in grid.items()}
+    r = g["r"]
+    n = len(r)
+    op = _spline_operator(n)
+    M = np.zeros((n + 1, n + 2))
+    for i in range(n):
+        M[i, i:i + 3] = (1.0 / 6.0, 4.0 / 6.0, 1.0 / 6.0)
+    M[n, 0:4] = _bspline_row(0.5)
+    A = M @ op
+    free = np.flatnonzero((r > 0.0) & (r < 1.0))
+    fixed = np.flatnonzero(~((r > 0.0) & (r < 1.0)))
+    info = []
+    for region in regions:
+        _, _, i_s, il, _ = _region_index(g, dict(region, r=(0.0, 1.0)))
+        if len(i_s) == 0 or len(il) == 0:
+            continue
+        sub = {"r": np.array([0.5 * r[1]]), "theta": g["theta"], "s": g["s"][i_s],
+               "log_ab": g["log_ab"][il], "nu": g["nu"][:1]}
+        lim = grid_limit([stage(sub, e) for e in elements], elements, order)[0, ..., 0, :]
+        sel0 = np.ix_(np.arange(n), np.arange(len(g["theta"])), i_s, il, [0])
+        old = vals[sel0][..., 0, :]                       # (n, θ, s, ab, 3)
+        Y = np.concatenate([old, lim[None]], axis=0).reshape(n + 1, -1)
+        ok = np.all(np.isfinite(Y), axis=0)
+        fit = old.reshape(n, -1).copy()
+        rhs = Y[:, ok] - A[:, fixed] @ fit[fixed][:, ok]
+        fit[np.ix_(free, np.flatnonzero(ok))] = np.linalg.lstsq(A[:, free], rhs, rcond=None)[0]
+        change = fit.reshape(old.shape) - old
+        sel = np.ix_(np.arange(n), np.arange(len(g["theta"])), i_s, il,
+                     np.arange(len(g["nu"])))
+        vals[sel] = vals[sel] + change[:, :, :, :, None, :]
+        info.append({**{k: list(v) for k, v in region.items()}, "lines": int(ok.sum()) // 3,
+                     "elements": list(elements), "max_change": float(np.abs(change).max())})
+    return vals, info

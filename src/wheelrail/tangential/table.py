@@ -56,9 +56,13 @@ over the whole domain (:func:`random_cases`: a/b 0.05–20, |φ̂| up to 19) aga
 the exact theory's grid limit (least-squares f∞ + C/N to 36–122 elements,
 uncertainty ≤ 0.28 % of μFn). The shipped table (21 × 9 × 41 × 17 × 2 nodes,
 the grid limit fitted to 16/24/36 elements on every node, 36/54/81 on the
-smallest creepages): on 200 points max |ΔF_t| = 0.79 % of μFn, rms 0.14 %,
-max |ΔMz| = 0.75 % of μFn c; on 100 independent points (seed 7) max 0.34 %,
-rms 0.10 % (the exact solver itself with 122 elements: max 1.29 % and 0.76 %).
+smallest creepages and in the refined regions of
+:func:`wheelrail.sweeps.tables.refine_table`): on 200 points max |ΔF_t| = 0.59 %
+of μFn, rms 0.12 %, max |ΔMz| = 0.82 % of μFn c; on 100 independent points
+(seed 7) max 0.34 %, rms 0.10 % (the exact solver itself with 122 elements: max
+1.29 % and 0.76 %); on the validation row's two Latin hypercubes of 80 points
+(moderate creepage with spin on slender patches as likely as anywhere) max
+0.69 % and 0.39 %.
 
 Speed: one call of :meth:`Table.solve` takes about 0.035 ms on an idle core (the
 exact solver with 40 elements: 15–19 ms), see the benchmark.

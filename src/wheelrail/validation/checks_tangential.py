@@ -844,6 +844,9 @@ def closed_laws_slope(quick):
 #: accuracy the documents claim for it (docs/sweeps.md: within 1 % of mu Fn over the domain)
 TABLE_TOL = 0.01
 TABLE_SEED = 20261207
+#: A second, independent draw (full run only): the table's refinement was located on the
+#: first draw's worst points, so the second shows it is not tuned to one draw
+TABLE_SEED_2 = 8128
 TABLE_ELEMENTS = {True: (36, 54, 81), False: (36, 54, 81, 122)}    # quick, full
 
 
@@ -894,6 +897,32 @@ def _exact_grid_limit(contact, creepage, mu, elements):
     return np.linalg.lstsq(A, F, rcond=None)[0][0]
 
 
+def _table_law_row(wr, npts, seed, N):
+    """One row: the table law's largest error over ``npts`` points of
+    :func:`table_law_points` (``seed``) against the exact grid limit from ``N``."""
+    errs, where = [], []
+    for contact, cr, mu, ab in table_law_points(npts, seed):
+        t = wr.creep_forces(contact, cr, mu, method="table")
+        ref = _exact_grid_limit(contact, cr, mu, N)
+        errs.append(max(abs(t.Fx - ref[0]), abs(t.Fy - ref[1])) / (mu * float(contact.Fn)))
+        where.append(f"a/b = {ab:.3g}, (xi, eta, phi) = ({cr[0]:.3g}, {cr[1]:.3g}, "
+                     f"{cr[2]:.3g} 1/m), mu = {mu:.2f}")
+    k = int(np.argmax(errs))
+    return abs_row("table", f"Kalker's exact theory at {npts} points of a Latin hypercube "
+                   f"drawn here (seed {seed}; not the table's sampler), grid limit "
+                   f"f_inf + C/N from {'/'.join(map(str, N))} elements",
+                   "max abs(F_table - F_exact) / (mu Fn) over Fx, Fy", errs[k], 0.0,
+                   TABLE_TOL, source="Kalker1990,Kalker1996", reference_method="exact",
+                   note=f"worst point: {where[k]}",
+                   tolerance_source=(
+                       "the accuracy claimed in docs/sweeps.md (1 % of mu Fn over the "
+                       "whole domain); measured 0.78 % (quick, 24 points), 0.69 % and "
+                       "0.39 % (full, the two draws of 80); the reference's "
+                       "uncertainty: the fits to 36-81 (quick) and 36-122 elements (full) "
+                       "differ by up to 0.11 % of mu Fn on the quick points, the finest "
+                       "grid is up to 0.6 % from the limit"))
+
+
 @register("table-law", ["table"], "Tabulated creep-force law vs Kalker's table and the exact theory",
           reference_kind="consistency")
 def table_checks(quick):
@@ -909,30 +938,7 @@ def table_checks(quick):
                                      "Table E.3's three digits (4.12: +-0.12 %) plus the "
                                      "grid error of the table's smallest-creepage plane "
                                      "(fitted to 36/54/81 elements; measured -0.33 %)")]
-    npts, N = (24 if quick else 80), TABLE_ELEMENTS[bool(quick)]
-    errs, where = [], []
-    for contact, cr, mu, ab in table_law_points(npts):
-        t = wr.creep_forces(contact, cr, mu, method="table")
-        ref = _exact_grid_limit(contact, cr, mu, N)
-        errs.append(max(abs(t.Fx - ref[0]), abs(t.Fy - ref[1])) / (mu * float(contact.Fn)))
-        where.append(f"a/b = {ab:.3g}, (xi, eta, phi) = ({cr[0]:.3g}, {cr[1]:.3g}, "
-                     f"{cr[2]:.3g} 1/m), mu = {mu:.2f}")
-    k = int(np.argmax(errs))
-    rows.append(abs_row("table", f"Kalker's exact theory at {npts} points of a Latin hypercube "
-                        f"drawn here (seed {TABLE_SEED}; not the table's sampler), grid limit "
-                        f"f_inf + C/N from {'/'.join(map(str, N))} elements",
-                        "max abs(F_table - F_exact) / (mu Fn) over Fx, Fy", errs[k], 0.0,
-                        TABLE_TOL, source="Kalker1990,Kalker1996", reference_method="exact",
-                        note=f"worst point: {where[k]}",
-                        tolerance_source=(
-                            "the accuracy claimed in docs/sweeps.md (1 % of mu Fn over the "
-                            "whole domain); the reference's uncertainty: the fits to 36-81 "
-                            "(quick) and 36-122 elements (full) differ by up to 0.11 % of mu "
-                            "Fn on the quick points, the finest grid is up to 0.6 % from the "
-                            "limit"),
-                        known=("Known limitation: on slender patches (a/b about 0.1 and "
-                               "about 16) with spin the table is up to 1.4 % of mu Fn from the "
-                               "exact theory (measured 1.06 % on the quick run's 24 points, "
-                               "1.38 % on the full run's 80), above the 1 % claimed: its nodes "
-                               "in a/b and spin are too coarse there.")))
+    N = TABLE_ELEMENTS[bool(quick)]
+    for npts, seed in ((24, TABLE_SEED),) if quick else ((80, TABLE_SEED), (80, TABLE_SEED_2)):
+        rows.append(_table_law_row(wr, npts, seed, N))
     return rows
