@@ -1,4 +1,4 @@
-"""Profile evolution: the wear loop over mileage on wheelset and bogie dynamics.
+"""Profile evolution: the wear loop over mileage on wheelset, bogie and vehicle dynamics.
 
 :func:`evolve` repeats, until the mileage is reached:
 
@@ -24,7 +24,12 @@
    normal, z ← z + d √(1 + z'²) (the wheel lies above its profile z(y));
    with ``profiles="mean"`` (default) one profile for all wheels (the mean
    of their wear), with ``"sides"`` a left and a right profile (each the
-   mean over the wheelsets); with ``update_rail=True`` also every case's
+   mean over the wheelsets); ``wheelsets`` declares which wheelsets' wear
+   sets the profile (default all; e.g. ``(0,)`` the leading one). The
+   dynamics run every wheelset of the model on the one
+   :class:`~wheelrail.Wheelset` (wheelset, bogie and whole vehicle alike), so
+   the wear is computed and recorded per wheel of every wheelset but all
+   wheelsets carry the same updated profile(s); with ``update_rail=True`` also every case's
    rails (their wear per axle passage × ``rail_passages`` × ΔL, removed along
    the normal, z ← z − d √(1 + z'²): the rail lies below its profile);
 5. **record** the profile, Sh, Sd, qR (:func:`wheelrail.profiles.flange_dimensions`),
@@ -66,6 +71,7 @@ from ..profiles import Profile, flange_dimensions
 from ..tangential import Fastsim
 from ..dynamics import TrackLayout, simulate
 from ..dynamics.model import BogieModel, WheelsetModel
+from ..dynamics.vehicle import VehicleModel
 from ..sweeps.executors import make_executor
 from ._base import WearLaw, get
 from .patch import deposit, patch_wear
@@ -260,7 +266,14 @@ def _worn(profile, grid, depth):
 
 
 def _with_profiles(model, left, right):
+    """The model with the wheel profiles ``left``, ``right`` on every wheelset."""
     ws = dataclasses.replace(model.wheelset, wheel=left, wheel_right=right)
+    if isinstance(model, VehicleModel):
+        if model.bogies is not None:     # both bogies run on the one Wheelset object
+            return dataclasses.replace(model, bogies=tuple(
+                dataclasses.replace(b, wheelset=ws) for b in model.bogies))
+        return dataclasses.replace(model, wheelsets=dataclasses.replace(model.wheelsets,
+                                                                        wheelset=ws))
     return dataclasses.replace(model, wheelset=ws)
 
 
@@ -299,13 +312,16 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
            resolution=0.25e-3, max_steps=200, profiles="mean", normal="kik-piotrowski",
            tangential="fastsim", samples=100, cells=12, conicity=True, executor="dask",
            workers=None, scheduler=None, store=None, progress=False, on_step=None,
-           update_rail=False, rail_passages=None, **options) -> EvolveResult:
-    """Evolve the wheel profiles of a wheelset or bogie model over a route by wear.
+           update_rail=False, rail_passages=None, wheelsets=None,
+           **options) -> EvolveResult:
+    """Evolve the wheel profiles of a wheelset, bogie or vehicle model over a route by wear.
 
     Parameters
     ----------
-    model : WheelsetModel or BogieModel
-        The vehicle model (its ``wheelset`` carries the profiles that wear).
+    model : WheelsetModel, BogieModel or VehicleModel
+        The vehicle model (its ``wheelset`` carries the profiles that wear; a
+        :class:`~wheelrail.dynamics.VehicleModel` has four wheelsets on two
+        bogies, or two, all on one :class:`~wheelrail.Wheelset`).
     route : Route or sequence of RouteCase
         The simulation cases and their shares of the mileage.
     mileage : float
@@ -322,6 +338,11 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         Refuse to run more steps than this (raise ``step_depth`` instead).
     profiles : {"mean", "sides"}
         One profile for all wheels or one per side (module docstring).
+    wheelsets : sequence of int or None
+        Indices of the wheelsets (0 the leading one) whose mean wear rate
+        updates the profile(s); default all. Every wheelset then runs on the
+        updated profile(s) (the dynamics have one Wheelset for all of them); the
+        wear of each wheel stays in ``dataset.wear_rate``.
     normal, tangential, **options
         The dynamics' contact methods and their options (:func:`wheelrail.dynamics.simulate`).
     samples : int
@@ -365,9 +386,9 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
     EvolveResult
         ``.dataset`` (:class:`xarray.Dataset` over steps) and ``.profiles``.
     """
-    if not isinstance(model, (WheelsetModel, BogieModel)):
-        raise InputError(f"model must be a dynamics.WheelsetModel or BogieModel, got "
-                         f"{type(model).__name__}")
+    if not isinstance(model, (WheelsetModel, BogieModel, VehicleModel)):
+        raise InputError(f"model must be a dynamics.WheelsetModel, BogieModel or VehicleModel, "
+                         f"got {type(model).__name__}")
     if not isinstance(route, Route):
         route = Route(tuple(route))
     impl = law if isinstance(law, WearLaw) else get(law)
@@ -387,6 +408,19 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                          f"per metre of mileage), got {rail_passages!r}")
     if not (isinstance(max_steps, int) and max_steps >= 1):
         raise InputError(f"max_steps must be an integer >= 1, got {max_steps!r}")
+    nws = int(model.n_wheelsets)
+    if wheelsets is None:
+        group = list(range(nws))
+    else:
+        try:
+            group = sorted({int(i) for i in wheelsets})
+            bad = [j for j in wheelsets if isinstance(j, bool) or int(j) != j
+                   or not 0 <= int(j) < nws]
+        except (TypeError, ValueError):
+            group, bad = [], [wheelsets]
+        if bad or not group:
+            raise InputError(f"wheelsets must be indices 0 … {nws - 1} of the model's "
+                             f"wheelsets, got {wheelsets!r}")
 
     ws = model.wheelset
     lo = max(ws.wheel.y_min, ws.wheel_right.y_min)
@@ -402,6 +436,8 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                 "options": {k: repr(v) for k, v in options.items()}}
     if update_rail:
         settings["update_rail"] = float(rail_passages)
+    if wheelsets is not None:
+        settings["wheelsets"] = group
     key = _fingerprint(model, route, impl, settings)
     weights = route.weights
     store = None if store is None else Path(store)
@@ -414,10 +450,15 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
     route0 = route
     if records:
         last = records[-1]
-        current = _with_profiles(model, _profile_from(last["left_z"], last["grid"], ws.wheel),
-                                 _profile_from(last["right_z"], last["grid"], ws.wheel_right))
-        if update_rail:
-            route = _route_with_rails(route0, last["rail_z"], rail_grid)
+        # step 0 ran on the given profiles (not their grid samples): resume from those, so
+        # that the next step is the one the uninterrupted run computes
+        if len(records) > 1:
+            current = _with_profiles(model,
+                                     _profile_from(last["left_z"], last["grid"], ws.wheel),
+                                     _profile_from(last["right_z"], last["grid"],
+                                                   ws.wheel_right))
+            if update_rail:
+                route = _route_with_rails(route0, last["rail_z"], rail_grid)
         done = float(last["mileage"])
         if float(mileage) - done > 1e-9 * float(mileage):
             current, route, done = _advance(model, current, route, last, grid, done, mileage,
@@ -437,7 +478,7 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                      for i, c in enumerate(route.cases)]
             ex.run(_case_wear, tasks, lambda i, v: results.__setitem__(i, v))
             rate = np.stack([results[i]["wear_rate"] for i in range(len(route.cases))])
-            mean = np.tensordot(weights, rate, axes=1)             # (nw, 2, ny)
+            mean = np.tensordot(weights, rate, axes=1)[group]      # (nw, 2, ny)
             if profiles == "mean":
                 per_side = np.repeat(mean.mean(axis=(0, 1))[None], 2, axis=0)
             else:
