@@ -50,6 +50,8 @@ def test_leading_outer_wheel_wears_most(lead):
     sd = d.Sd.values
     assert sd[-1, 0] < sd[0, 0] - 1e-6
     assert sd[0, 0] - sd[-1, 0] > 5 * abs(sd[0, 1] - sd[-1, 1])
+    # the CPU time of each case, per step, adds up to the step's
+    np.testing.assert_allclose(d.cpu_per_case.sum("case"), d.case_cpu, rtol=1e-12)
 
 
 def test_grouping_selects_the_wear_that_updates_the_profile(vehicle, route, lead):

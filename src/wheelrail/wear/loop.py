@@ -177,7 +177,8 @@ class EvolveResult:
         side, y) [m/m] per metre travelled of each case, ``rail_wear`` (step, case,
         wheelset, side, y_rail) [m per axle passage], ``Tgamma`` (step, case,
         wheelset, side) [N] time-mean wear number, ``case_cpu`` (step) [s] CPU time of
-        the step's cases; with ``update_rail``, ``rail_z`` (step, case, side, y_rail)
+        the step's cases and ``cpu_per_case`` (step, case) [s] that of each; with
+        ``update_rail``, ``rail_z`` (step, case, side, y_rail)
         the rail profile heights [m]; step 0 has the initial values and the rates of
         the first simulation.
     profiles : list of dict
@@ -377,7 +378,8 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         Called after every step computed in this call (not for the steps
         read back from ``store``) as ``on_step(info)`` with a dict: ``step``,
         ``mileage`` [m] reached, ``total`` [m], ``Sd`` [m] (left, right),
-        ``conicity``, ``cpu`` [s] of the step's cases and ``steps_left``, the
+        ``conicity``, ``cpu`` [s] of the step's cases, ``cpu_per_case`` [s] (one per
+        case) and ``steps_left``, the
         estimated number of remaining steps (remaining mileage × largest wear
         rate / ``step_depth``, rounded up).
 
@@ -493,7 +495,9 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                                           for i in range(len(route.cases))]),
                    "Tgamma": np.stack([results[i]["Tgamma"] for i in range(len(route.cases))]),
                    "dims": np.array([dims["left"], dims["right"]]), "conicity": con,
-                   "cpu": float(sum(results[i]["cpu"] for i in results))}
+                   "cpu": float(sum(results[i]["cpu"] for i in results)),
+                   "cpu_per_case": np.array([results[i]["cpu"]
+                                             for i in range(len(route.cases))])}
             if update_rail:
                 rec["rail_z"] = _rail_heights(route, rail_grid)
             records.append(rec)
@@ -507,7 +511,7 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                 left = float(mileage) - done
                 on_step({"step": k, "mileage": done, "total": float(mileage),
                          "Sd": (dims["left"][1], dims["right"][1]), "conicity": con,
-                         "cpu": rec["cpu"],
+                         "cpu": rec["cpu"], "cpu_per_case": rec["cpu_per_case"],
                          "steps_left": 0 if left <= 1e-9 * float(mileage) else
                          (1 if top <= 0 else max(1, math.ceil(left * top / step_depth)))})
             if float(mileage) - done <= 1e-9 * float(mileage):
@@ -636,6 +640,10 @@ def _result(records, route, rail_grid, ws, cpu) -> EvolveResult:
         "case_cpu": ("step", np.array([float(r["cpu"]) for r in records]),
                      {"units": "s", "description": "CPU time of the step's cases (workers)"}),
     }
+    if all("cpu_per_case" in r for r in records):
+        data["cpu_per_case"] = (("step", "case"),
+                                np.stack([np.atleast_1d(r["cpu_per_case"]) for r in records]),
+                                {"units": "s", "description": "CPU time of each case (worker)"})
     if "rail_z" in records[0]:
         data["rail_z"] = (("step", "case", "side", "y_rail"),
                           np.stack([r["rail_z"] for r in records]),
