@@ -1,7 +1,7 @@
 """``wheelrail wear CASE.toml``: wheel profile evolution by wear over a route.
 
 Reads a case file with a ``[model]`` table (as ``wheelrail dynamics``: a
-wheelset or a bogie, its profiles and suspension), an optional ``[method]``
+wheelset, a bogie or a whole vehicle, its profiles and suspension), an optional ``[method]``
 table, a ``[route]`` with its ``[[route.cases]]``, a ``[wear]`` table and an
 optional ``[output]`` table (see :func:`read_wear_case` and
 ``docs/examples/wear_route.toml``), prints an estimate, runs
@@ -30,7 +30,7 @@ _CASE_KEYS = ("name", "weight", "speed", "mu", "radius", "cant", "start", "trans
               "length", "direction", "distance", "run_in", "irregularity", "initial")
 _WEAR_KEYS = ("law", "options", "mileage", "step_depth", "smoothing", "resolution",
               "profiles", "samples", "cells", "conicity", "executor", "workers", "scheduler",
-              "max_steps", "update_rail", "rail_passages")
+              "max_steps", "update_rail", "rail_passages", "wheelsets")
 #: nominal CPU time per simulated second and wheelset (RK4, Kik–Piotrowski + FASTSIM; measured
 #: 0.45 s with docs/examples/wear_route.toml, a wheelset, process time at load 12 on 2 cores)
 _CPU_PER_SIMULATED_S = 0.5
@@ -111,7 +111,8 @@ def read_wear_case(path_or_str) -> dict:
 
     Tables::
 
-        [model]                 # as in `wheelrail dynamics`: kind = "wheelset" / "bogie",
+        [model]                 # as in `wheelrail dynamics`: kind = "wheelset" / "bogie" /
+                                # "vehicle" (vehicle = "manchester1" or bogie keys + carbody),
                                 # wheel, rail, mass, inertia, axle_load, [model.primary], ...
         [method]                # optional: normal, tangential and [method.<name>] options
         [[route.cases]]         # one table per case
@@ -130,6 +131,7 @@ def read_wear_case(path_or_str) -> dict:
         step_depth = 0.05e-3    # largest depth change per step [m]
         smoothing = 2e-3        # [m]
         profiles = "sides"      # or "mean"
+        wheelsets = [0]         # optional: whose wear sets the profile (default all)
         executor = "serial"     # or "dask", "processes"; workers, scheduler
         update_rail = false     # true: wear the rails too, with
         rail_passages = 0.01    # passages over each case's rail per metre of mileage [1/m]
@@ -203,6 +205,14 @@ def read_wear_case(path_or_str) -> dict:
         kw["rail_passages"] = r.number("wear", w, "rail_passages", positive=True)
     elif "rail_passages" in w:
         r.fail("wear", "rail_passages", "needs update_rail = true")
+    if "wheelsets" in w:
+        g = w["wheelsets"]
+        n = model.n_wheelsets
+        if (not isinstance(g, list) or not g or any(isinstance(i, bool) or not isinstance(i, int)
+                                                     or not 0 <= i < n for i in g)):
+            r.fail("wear", "wheelsets", f"must be a list of wheelset indices 0 … {n - 1} "
+                                        f"(0 the leading one), got {g!r}")
+        kw["wheelsets"] = tuple(g)
     if "workers" in w:
         kw["workers"] = _int(r, "wear", w, "workers", 1)
     if "scheduler" in w:

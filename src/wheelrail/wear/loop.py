@@ -1,4 +1,4 @@
-"""Profile evolution: the wear loop over mileage on wheelset and bogie dynamics.
+"""Profile evolution: the wear loop over mileage on wheelset, bogie and vehicle dynamics.
 
 :func:`evolve` repeats, until the mileage is reached:
 
@@ -24,7 +24,12 @@
    normal, z ← z + d √(1 + z'²) (the wheel lies above its profile z(y));
    with ``profiles="mean"`` (default) one profile for all wheels (the mean
    of their wear), with ``"sides"`` a left and a right profile (each the
-   mean over the wheelsets); with ``update_rail=True`` also every case's
+   mean over the wheelsets); ``wheelsets`` declares which wheelsets' wear
+   sets the profile (default all; e.g. ``(0,)`` the leading one). The
+   dynamics run every wheelset of the model on the one
+   :class:`~wheelrail.Wheelset` (wheelset, bogie and whole vehicle alike), so
+   the wear is computed and recorded per wheel of every wheelset but all
+   wheelsets carry the same updated profile(s); with ``update_rail=True`` also every case's
    rails (their wear per axle passage × ``rail_passages`` × ΔL, removed along
    the normal, z ← z − d √(1 + z'²): the rail lies below its profile);
 5. **record** the profile, Sh, Sd, qR (:func:`wheelrail.profiles.flange_dimensions`),
@@ -66,6 +71,7 @@ from ..profiles import Profile, flange_dimensions
 from ..tangential import Fastsim
 from ..dynamics import TrackLayout, simulate
 from ..dynamics.model import BogieModel, WheelsetModel
+from ..dynamics.vehicle import VehicleModel
 from ..sweeps.executors import make_executor
 from ._base import WearLaw, get
 from .patch import deposit, patch_wear
@@ -171,7 +177,8 @@ class EvolveResult:
         side, y) [m/m] per metre travelled of each case, ``rail_wear`` (step, case,
         wheelset, side, y_rail) [m per axle passage], ``Tgamma`` (step, case,
         wheelset, side) [N] time-mean wear number, ``case_cpu`` (step) [s] CPU time of
-        the step's cases; with ``update_rail``, ``rail_z`` (step, case, side, y_rail)
+        the step's cases and ``cpu_per_case`` (step, case) [s] that of each; with
+        ``update_rail``, ``rail_z`` (step, case, side, y_rail)
         the rail profile heights [m]; step 0 has the initial values and the rates of
         the first simulation.
     profiles : list of dict
@@ -260,7 +267,14 @@ def _worn(profile, grid, depth):
 
 
 def _with_profiles(model, left, right):
+    """The model with the wheel profiles ``left``, ``right`` on every wheelset."""
     ws = dataclasses.replace(model.wheelset, wheel=left, wheel_right=right)
+    if isinstance(model, VehicleModel):
+        if model.bogies is not None:     # both bogies run on the one Wheelset object
+            return dataclasses.replace(model, bogies=tuple(
+                dataclasses.replace(b, wheelset=ws) for b in model.bogies))
+        return dataclasses.replace(model, wheelsets=dataclasses.replace(model.wheelsets,
+                                                                        wheelset=ws))
     return dataclasses.replace(model, wheelset=ws)
 
 
@@ -299,13 +313,16 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
            resolution=0.25e-3, max_steps=200, profiles="mean", normal="kik-piotrowski",
            tangential="fastsim", samples=100, cells=12, conicity=True, executor="dask",
            workers=None, scheduler=None, store=None, progress=False, on_step=None,
-           update_rail=False, rail_passages=None, **options) -> EvolveResult:
-    """Evolve the wheel profiles of a wheelset or bogie model over a route by wear.
+           update_rail=False, rail_passages=None, wheelsets=None,
+           **options) -> EvolveResult:
+    """Evolve the wheel profiles of a wheelset, bogie or vehicle model over a route by wear.
 
     Parameters
     ----------
-    model : WheelsetModel or BogieModel
-        The vehicle model (its ``wheelset`` carries the profiles that wear).
+    model : WheelsetModel, BogieModel or VehicleModel
+        The vehicle model (its ``wheelset`` carries the profiles that wear; a
+        :class:`~wheelrail.dynamics.VehicleModel` has four wheelsets on two
+        bogies, or two, all on one :class:`~wheelrail.Wheelset`).
     route : Route or sequence of RouteCase
         The simulation cases and their shares of the mileage.
     mileage : float
@@ -322,6 +339,11 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         Refuse to run more steps than this (raise ``step_depth`` instead).
     profiles : {"mean", "sides"}
         One profile for all wheels or one per side (module docstring).
+    wheelsets : sequence of int or None
+        Indices of the wheelsets (0 the leading one) whose mean wear rate
+        updates the profile(s); default all. Every wheelset then runs on the
+        updated profile(s) (the dynamics have one Wheelset for all of them); the
+        wear of each wheel stays in ``dataset.wear_rate``.
     normal, tangential, **options
         The dynamics' contact methods and their options (:func:`wheelrail.dynamics.simulate`).
     samples : int
@@ -356,7 +378,8 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
         Called after every step computed in this call (not for the steps
         read back from ``store``) as ``on_step(info)`` with a dict: ``step``,
         ``mileage`` [m] reached, ``total`` [m], ``Sd`` [m] (left, right),
-        ``conicity``, ``cpu`` [s] of the step's cases and ``steps_left``, the
+        ``conicity``, ``cpu`` [s] of the step's cases, ``cpu_per_case`` [s] (one per
+        case) and ``steps_left``, the
         estimated number of remaining steps (remaining mileage × largest wear
         rate / ``step_depth``, rounded up).
 
@@ -365,9 +388,9 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
     EvolveResult
         ``.dataset`` (:class:`xarray.Dataset` over steps) and ``.profiles``.
     """
-    if not isinstance(model, (WheelsetModel, BogieModel)):
-        raise InputError(f"model must be a dynamics.WheelsetModel or BogieModel, got "
-                         f"{type(model).__name__}")
+    if not isinstance(model, (WheelsetModel, BogieModel, VehicleModel)):
+        raise InputError(f"model must be a dynamics.WheelsetModel, BogieModel or VehicleModel, "
+                         f"got {type(model).__name__}")
     if not isinstance(route, Route):
         route = Route(tuple(route))
     impl = law if isinstance(law, WearLaw) else get(law)
@@ -387,6 +410,19 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                          f"per metre of mileage), got {rail_passages!r}")
     if not (isinstance(max_steps, int) and max_steps >= 1):
         raise InputError(f"max_steps must be an integer >= 1, got {max_steps!r}")
+    nws = int(model.n_wheelsets)
+    if wheelsets is None:
+        group = list(range(nws))
+    else:
+        try:
+            group = sorted({int(i) for i in wheelsets})
+            bad = [j for j in wheelsets if isinstance(j, bool) or int(j) != j
+                   or not 0 <= int(j) < nws]
+        except (TypeError, ValueError):
+            group, bad = [], [wheelsets]
+        if bad or not group:
+            raise InputError(f"wheelsets must be indices 0 … {nws - 1} of the model's "
+                             f"wheelsets, got {wheelsets!r}")
 
     ws = model.wheelset
     lo = max(ws.wheel.y_min, ws.wheel_right.y_min)
@@ -402,6 +438,8 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                 "options": {k: repr(v) for k, v in options.items()}}
     if update_rail:
         settings["update_rail"] = float(rail_passages)
+    if wheelsets is not None:
+        settings["wheelsets"] = group
     key = _fingerprint(model, route, impl, settings)
     weights = route.weights
     store = None if store is None else Path(store)
@@ -414,10 +452,15 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
     route0 = route
     if records:
         last = records[-1]
-        current = _with_profiles(model, _profile_from(last["left_z"], last["grid"], ws.wheel),
-                                 _profile_from(last["right_z"], last["grid"], ws.wheel_right))
-        if update_rail:
-            route = _route_with_rails(route0, last["rail_z"], rail_grid)
+        # step 0 ran on the given profiles (not their grid samples): resume from those, so
+        # that the next step is the one the uninterrupted run computes
+        if len(records) > 1:
+            current = _with_profiles(model,
+                                     _profile_from(last["left_z"], last["grid"], ws.wheel),
+                                     _profile_from(last["right_z"], last["grid"],
+                                                   ws.wheel_right))
+            if update_rail:
+                route = _route_with_rails(route0, last["rail_z"], rail_grid)
         done = float(last["mileage"])
         if float(mileage) - done > 1e-9 * float(mileage):
             current, route, done = _advance(model, current, route, last, grid, done, mileage,
@@ -437,7 +480,7 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                      for i, c in enumerate(route.cases)]
             ex.run(_case_wear, tasks, lambda i, v: results.__setitem__(i, v))
             rate = np.stack([results[i]["wear_rate"] for i in range(len(route.cases))])
-            mean = np.tensordot(weights, rate, axes=1)             # (nw, 2, ny)
+            mean = np.tensordot(weights, rate, axes=1)[group]      # (nw, 2, ny)
             if profiles == "mean":
                 per_side = np.repeat(mean.mean(axis=(0, 1))[None], 2, axis=0)
             else:
@@ -452,7 +495,9 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                                           for i in range(len(route.cases))]),
                    "Tgamma": np.stack([results[i]["Tgamma"] for i in range(len(route.cases))]),
                    "dims": np.array([dims["left"], dims["right"]]), "conicity": con,
-                   "cpu": float(sum(results[i]["cpu"] for i in results))}
+                   "cpu": float(sum(results[i]["cpu"] for i in results)),
+                   "cpu_per_case": np.array([results[i]["cpu"]
+                                             for i in range(len(route.cases))])}
             if update_rail:
                 rec["rail_z"] = _rail_heights(route, rail_grid)
             records.append(rec)
@@ -466,7 +511,7 @@ def evolve(model, route, *, mileage, law="usfd", step_depth=0.1e-3, smoothing=2e
                 left = float(mileage) - done
                 on_step({"step": k, "mileage": done, "total": float(mileage),
                          "Sd": (dims["left"][1], dims["right"][1]), "conicity": con,
-                         "cpu": rec["cpu"],
+                         "cpu": rec["cpu"], "cpu_per_case": rec["cpu_per_case"],
                          "steps_left": 0 if left <= 1e-9 * float(mileage) else
                          (1 if top <= 0 else max(1, math.ceil(left * top / step_depth)))})
             if float(mileage) - done <= 1e-9 * float(mileage):
@@ -595,6 +640,10 @@ def _result(records, route, rail_grid, ws, cpu) -> EvolveResult:
         "case_cpu": ("step", np.array([float(r["cpu"]) for r in records]),
                      {"units": "s", "description": "CPU time of the step's cases (workers)"}),
     }
+    if all("cpu_per_case" in r for r in records):
+        data["cpu_per_case"] = (("step", "case"),
+                                np.stack([np.atleast_1d(r["cpu_per_case"]) for r in records]),
+                                {"units": "s", "description": "CPU time of each case (worker)"})
     if "rail_z" in records[0]:
         data["rail_z"] = (("step", "case", "side", "y_rail"),
                           np.stack([r["rail_z"] for r in records]),
