@@ -27,6 +27,10 @@ __all__ = ["k_minus_e", "kp_integrals_kernel", "kp_line_load", "kp_line_regions"
            "kpec_line_regions"]
 
 
+#: smallest height [m] of a hump of the separation (above the lowest node on either side)
+#: at which :func:`kpec_line_regions` splits a run of interpenetration into two regions
+_HUMP = 1e-8
+
 #: relative size of c at which the AGM of :func:`k_minus_e` has converged
 _AGM_TOL = 1e-15
 
@@ -344,81 +348,111 @@ def kpec_line_regions(f, Ax, eta, h, delta, E_star, lam, la, lb, ld, ln_max):
         i0 = i
         while i < n and delta - f[i] > 0:
             i += 1
-        i1 = i
-        if i1 - i0 < 3:
-            continue
-        j = i0
-        for q in range(i0, i1):
-            if f[q] < f[j]:
-                j = q
-        fmin = f[j]
-        pen = delta - fmin
-        A = Ax[j]
-        if not A > 0:
-            continue
-        thr = fmin + 0.5 * pen
-        q = j
-        while q > i0 and f[q - 1] <= thr:
-            q -= 1
-        if q > i0:
-            ysta = eta[q] - h * (thr - f[q]) / (f[q - 1] - f[q])
-        else:
-            ysta = eta[q] - 0.5 * h
-        q = j
-        while q < i1 - 1 and f[q + 1] <= thr:
-            q += 1
-        if q < i1 - 1:
-            yend = eta[q] + h * (thr - f[q]) / (f[q + 1] - f[q])
-        else:
-            yend = eta[q] + 0.5 * h
-        w = 0.5 * (yend - ysta)
-        ym = 0.5 * (ysta + yend)
-        B = 0.5 * pen / (w * w)
-        lnab = min(max(math.log(A / B), -ln_max), ln_max)
-        s = math.sqrt(A * B)
-        ia = np.interp(lnab, lam, la)
-        ib = np.interp(lnab, lam, lb)
-        idd = np.interp(lnab, lam, ld)
-        a2 = pen * math.exp(2.0 * ia - idd) / s
-        b2 = pen * math.exp(2.0 * ib - idd) / s
-        ex = A * a2
-        ey = B * b2
-        b = math.sqrt(b2)
-        b = max(b, 1.1 * abs(eta[j] - ym))
-        q0 = -1
-        q1 = -1
-        for q in range(i0, i1):
-            u = (eta[q] - ym) / b
-            t = min(max(ex - (ex - ey) * u * u, 0.0), pen)
-            g = t - (f[q] - fmin)
-            if g > 0 and Ax[q] > 0:
-                gw[q] = g
-                xl_c[q] = math.sqrt(g / Ax[q])
-                if q0 < 0:
-                    q0 = q
-                q1 = q + 1
-        if q0 < 0 or q1 - q0 < 3 or not xl_c[j] > 0:
-            for q in range(i0, i1):
-                gw[q] = 0.0
-                xl_c[q] = 0.0
-            continue
-        jj = j - q0
-        I1, I2 = kp_integrals_kernel(xl_c[q0:q1], h, jj)
-        N = math.pi * E_star * pen * I1 / I2
-        xj = xl_c[j]
-        p0 = N * xj / I1
-        for q in range(q0, q1):
-            peak[q] = p0 * xl_c[q] / xj
-        meta[k, 0] = q0
-        meta[k, 1] = q1
-        meta[k, 2] = jj
-        meta[k, 3] = N
-        meta[k, 4] = p0
-        meta[k, 5] = math.sqrt(a2) / b
-        meta[k, 6] = pen
-        meta[k, 7] = min(max(ex - (ex - ey) * ((eta[j] - ym) / b) ** 2, 0.0), pen) / pen
-        k += 1
+        r1 = i
+        # split the run at its humps (local maxima of f more than _HUMP above the lowest
+        # node on either side): one region per valley, so that the regions do not change
+        # when the approach rises above a hump (the load stays continuous in δ)
+        s0 = i0
+        while s0 < r1:
+            i0 = s0
+            i1 = r1
+            lo_l = f[i0]
+            for q in range(i0 + 1, r1 - 1):
+                lo_l = min(lo_l, f[q])
+                if f[q] >= f[q - 1] and f[q] > f[q + 1] and f[q] - lo_l > _HUMP:
+                    lo_r = f[q + 1]
+                    u = q + 1
+                    while u < r1 and f[u] <= f[q]:
+                        lo_r = min(lo_r, f[u])
+                        u += 1
+                    if f[q] - lo_r > _HUMP:
+                        i1 = q
+                        break
+            s0 = i1 + 1 if i1 < r1 else r1
+            k = _kpec_region(f, Ax, eta, h, delta, E_star, lam, la, lb, ld, ln_max, i0, i1,
+                             meta, k, xl_c, peak, gw)
     return True, meta[:k], eta_c, xl_c, peak, gw
+
+
+@njit(cache=True)
+def _kpec_region(f, Ax, eta, h, delta, E_star, lam, la, lb, ld, ln_max, i0, i1, meta, k, xl_c,
+                 peak, gw):
+    """One KPEC region on the nodes i0 … i1 − 1 (see :func:`kpec_line_regions`); returns
+    the new count of regions in ``meta``."""
+    if i1 - i0 < 3:
+        return k
+    j = i0
+    for q in range(i0, i1):
+        if f[q] < f[j]:
+            j = q
+    fmin = f[j]
+    pen = delta - fmin
+    A = Ax[j]
+    if not A > 0:
+        return k
+    thr = fmin + 0.5 * pen
+    q = j
+    while q > i0 and f[q - 1] <= thr:
+        q -= 1
+    if q > i0:
+        ysta = eta[q] - h * (thr - f[q]) / (f[q - 1] - f[q])
+    else:
+        ysta = eta[q] - 0.5 * h
+    q = j
+    while q < i1 - 1 and f[q + 1] <= thr:
+        q += 1
+    if q < i1 - 1:
+        yend = eta[q] + h * (thr - f[q]) / (f[q + 1] - f[q])
+    else:
+        yend = eta[q] + 0.5 * h
+    w = 0.5 * (yend - ysta)
+    ym = 0.5 * (ysta + yend)
+    B = 0.5 * pen / (w * w)
+    lnab = min(max(math.log(A / B), -ln_max), ln_max)
+    s = math.sqrt(A * B)
+    ia = np.interp(lnab, lam, la)
+    ib = np.interp(lnab, lam, lb)
+    idd = np.interp(lnab, lam, ld)
+    a2 = pen * math.exp(2.0 * ia - idd) / s
+    b2 = pen * math.exp(2.0 * ib - idd) / s
+    ex = A * a2
+    ey = B * b2
+    b = math.sqrt(b2)
+    b = max(b, 1.1 * abs(eta[j] - ym))
+    q0 = -1
+    q1 = -1
+    for q in range(i0, i1):
+        u = (eta[q] - ym) / b
+        t = min(max(ex - (ex - ey) * u * u, 0.0), pen)
+        g = t - (f[q] - fmin)
+        if g > 0 and Ax[q] > 0:
+            gw[q] = g
+            xl_c[q] = math.sqrt(g / Ax[q])
+            if q0 < 0:
+                q0 = q
+            q1 = q + 1
+    if q0 < 0 or q1 - q0 < 3 or not xl_c[j] > 0:
+        for q in range(i0, i1):
+            gw[q] = 0.0
+            xl_c[q] = 0.0
+        return k
+    jj = j - q0
+    I1, I2 = kp_integrals_kernel(xl_c[q0:q1], h, jj)
+    N = math.pi * E_star * pen * I1 / I2
+    xj = xl_c[j]
+    p0 = N * xj / I1
+    for q in range(q0, q1):
+        peak[q] = p0 * xl_c[q] / xj
+    meta[k, 0] = q0
+    meta[k, 1] = q1
+    meta[k, 2] = jj
+    meta[k, 3] = N
+    meta[k, 4] = p0
+    meta[k, 5] = math.sqrt(a2) / b
+    meta[k, 6] = pen
+    meta[k, 7] = min(max(ex - (ex - ey) * ((eta[j] - ym) / b) ** 2, 0.0), pen) / pen
+    k += 1
+    return k
 
 
 @njit(cache=True)
