@@ -736,7 +736,9 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             ib = min(int(math.ceil((w_b - lo_l) / (stride * step))), last)
             if ib - ia < 4:
                 break
-            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf, d0, kcw,
+            # (KPEC: the surface angles only where the regions are, after them, below)
+            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf,
+                                                  -1.0 if kpec else d0, kcw,
                                                   kw0, kw1,
                                                   kcr, kr0, kr1, gw, gr_, PU[r], z_ref, t0g,
                                                   t1g, n_nodes)
@@ -757,6 +759,10 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             okr, meta, eta_c, xl_c, peak, gk = kpec_line_regions(f, Ax, eta, h_l, d0, E_star,
                                                                  hz_lam, hz_la, hz_lb, hz_ld,
                                                                  lam_max)
+            for i in range(f.shape[0]):
+                if gk[i] > 0.0:
+                    _, z1, _ = _spline(ru, rinv, rc, PU[r] + eta[i] * t0g)
+                    ang[i] = math.atan(z1)
         else:
             okr, meta, eta_c, xl_c, peak = kp_line_regions(f, Ax, eta, h_l, d0, eps, E_star,
                                                            correct, hz_lam, hz_la, hz_lb,
