@@ -50,7 +50,7 @@ def say(text=""):
 def hertzian_gap():
     say("\n## 1. Hertzian gap: ratio to Hertz (load 100 kN, steel)\n")
     orig = {"ellipticity_correction": False}
-    cols = [("kik-piotrowski", {}), ("kik-piotrowski", orig),
+    cols = [("kik-piotrowski", {"ellipticity_correction": True}), ("kik-piotrowski", orig),
             ("kik-piotrowski", {**orig, "shape_correction": False}),
             ("kik-piotrowski", {**orig, "penetration_factor": 0.55}),
             ("kik-piotrowski", {**orig, "penetration_factor": 0.55, "shape_correction": False}),

@@ -95,6 +95,19 @@ def test_compiled_kp_fastsim_is_wr_solve_on_manchester_a22(manchester, case):
     assert _compare(fc, c.position, c.motion, c.mu, 1e4) <= TOL
 
 
+@pytest.mark.parametrize("case", [1, 2, 11, 14])
+def test_compiled_kpec_combined_is_wr_solve_on_manchester_a22(manchester, case):
+    """The same with Vollebregt's ellipticity correction and the combined flexibility
+    (the kernels of the library's options)."""
+    cases, fc0 = manchester
+    c = cases[case - 1]
+    p = c.position
+    fc = FastContact(p.wheelset, p.track, p.material, wr.normal.KikPiotrowski(
+        line_nodes=fc0.normal.line_nodes, ellipticity_correction=True,
+        fastsim_flexibility="combined"), wr.tangential.Fastsim())
+    assert _compare(fc, p, c.motion, c.mu, 1e4) <= TOL
+
+
 @pytest.mark.parametrize("y, yaw", [(0.007, 0.004), (0.008, 0.010), (0.0085, 0.020),
                                     (-0.0075, -0.005), (-0.0085, -0.015)])
 def test_compiled_kp_fastsim_is_wr_solve_at_flange_contact(s1002_60e1, y, yaw):

@@ -64,7 +64,8 @@ def test_kp_line_load_kernel_equals_regions(s1002):
 
     ws, tr = s1002
     kp = wr.normal.get("kik-piotrowski")
-    for y, opt in ((0.0, {}), (0.005, {}), (0.005, {"ellipticity_correction": False}),
+    for y, opt in ((0.0, {"ellipticity_correction": True}),
+                   (0.005, {"ellipticity_correction": True}), (0.005, {}),
                    (0.005, {"ellipticity_correction": False, "shape_correction": False})):
         wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=70e3)
         roll, zs = touching_poses(wp)
