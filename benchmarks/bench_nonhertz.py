@@ -49,9 +49,11 @@ def say(text=""):
 
 def hertzian_gap():
     say("\n## 1. Hertzian gap: ratio to Hertz (load 100 kN, steel)\n")
-    cols = [("kik-piotrowski", {}), ("kik-piotrowski", {"shape_correction": False}),
-            ("kik-piotrowski", {"penetration_factor": 0.55}),
-            ("kik-piotrowski", {"penetration_factor": 0.55, "shape_correction": False}),
+    orig = {"ellipticity_correction": False}
+    cols = [("kik-piotrowski", {"ellipticity_correction": True}), ("kik-piotrowski", orig),
+            ("kik-piotrowski", {**orig, "shape_correction": False}),
+            ("kik-piotrowski", {**orig, "penetration_factor": 0.55}),
+            ("kik-piotrowski", {**orig, "penetration_factor": 0.55, "shape_correction": False}),
             ("linder", {}), ("stripes", {}), ("multi-hertz", {"variant": "pascal"})]
     say("| method | a/b | area | p_max | Fn at Hertz δ | L/W (Hertz a/b) |")
     say("|---|---|---|---|---|---|")

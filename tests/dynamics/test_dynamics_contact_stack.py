@@ -95,6 +95,19 @@ def test_compiled_kp_fastsim_is_wr_solve_on_manchester_a22(manchester, case):
     assert _compare(fc, c.position, c.motion, c.mu, 1e4) <= TOL
 
 
+@pytest.mark.parametrize("case", [1, 2, 11, 14])
+def test_compiled_kpec_combined_is_wr_solve_on_manchester_a22(manchester, case):
+    """The same with Vollebregt's ellipticity correction and the combined flexibility
+    (the kernels of the library's options)."""
+    cases, fc0 = manchester
+    c = cases[case - 1]
+    p = c.position
+    fc = FastContact(p.wheelset, p.track, p.material, wr.normal.KikPiotrowski(
+        line_nodes=fc0.normal.line_nodes, ellipticity_correction=True,
+        fastsim_flexibility="combined"), wr.tangential.Fastsim())
+    assert _compare(fc, p, c.motion, c.mu, 1e4) <= TOL
+
+
 @pytest.mark.parametrize("y, yaw", [(0.007, 0.004), (0.008, 0.010), (0.0085, 0.020),
                                     (-0.0075, -0.005), (-0.0085, -0.015)])
 def test_compiled_kp_fastsim_is_wr_solve_at_flange_contact(s1002_60e1, y, yaw):
@@ -106,10 +119,12 @@ def test_compiled_kp_fastsim_is_wr_solve_at_flange_contact(s1002_60e1, y, yaw):
 
 
 def test_the_comparison_sees_a_changed_method_option(s1002_60e1):
-    """The comparison is sensitive: the compiled path with another penetration factor
-    (the original method's 0.55 instead of Hertz's) is far outside the tolerance."""
+    """The comparison is sensitive: the compiled path with another normal method (the
+    original method's constant factor 0.55 instead of the ellipticity correction) is far
+    outside the tolerance."""
     ws, tr, _ = s1002_60e1
-    other = FastContact(ws, tr, wr.STEEL, wr.normal.KikPiotrowski(penetration_factor=0.55),
+    other = FastContact(ws, tr, wr.STEEL, wr.normal.KikPiotrowski(penetration_factor=0.55,
+                                                                  ellipticity_correction=False),
                         wr.tangential.Fastsim())
     pos = wr.WheelRailPosition(ws, tr, 0.008, 0.010, vertical_load=5e4)
     motion = wr.Motion(speed=20.0, omega=1.001 * 20.0 / ws.nominal_radius)

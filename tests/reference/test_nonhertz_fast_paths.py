@@ -180,8 +180,11 @@ def _forces(ps):
 
 
 @pytest.mark.parametrize("normal, first, second", [
-    ("kik-piotrowski", {}, {"shape_correction": False}),
-    ("kik-piotrowski", {}, {"penetration_factor": 0.55}),
+    ("kik-piotrowski", {}, {"ellipticity_correction": False}),
+    ("kik-piotrowski", {"ellipticity_correction": False},
+     {"ellipticity_correction": False, "shape_correction": False}),
+    ("kik-piotrowski", {"ellipticity_correction": False},
+     {"ellipticity_correction": False, "penetration_factor": 0.55}),
     ("stripes", {}, {"smoothing": 0.004}),
     ("stripes", {"strips": 10}, {"strips": 40}),
 ])
@@ -307,8 +310,9 @@ def test_stripes_smoothing_kernels_equal_numpy():
     np.testing.assert_allclose(smooth_nodes(d2, krev, idx), ref[idx], rtol=1e-14)
 
 
-@pytest.mark.parametrize("opts", [{}, {"shape_correction": False},
-                                  {"penetration_factor": 0.55}])
+@pytest.mark.parametrize("opts", [{"ellipticity_correction": False},
+                                  {"ellipticity_correction": False, "shape_correction": False},
+                                  {"ellipticity_correction": False, "penetration_factor": 0.55}])
 def test_kp_region_kernel_equals_python_loop(s1002, opts, monkeypatch):
     """Kik–Piotrowski's regions from one kernel against the Python loop it replaces
     (still used beyond the Hertz table), on a wheel with two patches and a Hertzian gap."""

@@ -64,11 +64,13 @@ def test_kp_line_load_kernel_equals_regions(s1002):
 
     ws, tr = s1002
     kp = wr.normal.get("kik-piotrowski")
-    for y, corr in ((0.0, True), (0.005, True), (0.005, False)):
+    for y, opt in ((0.0, {"ellipticity_correction": True}),
+                   (0.005, {"ellipticity_correction": True}), (0.005, {}),
+                   (0.005, {"ellipticity_correction": False, "shape_correction": False})):
         wp = wr.WheelRailPosition(ws, tr, y, yaw=0.002, vertical_load=70e3)
         roll, zs = touching_poses(wp)
         prob = wheel_problem(wp, "right", roll, zs["right"])
-        m = kp.replace(shape_correction=corr)
+        m = kp.replace(**opt)
         opts = m.option_values()
         for line in m._wheel_lines(prob):
             for d in (2e-5, 8e-5):

@@ -67,7 +67,7 @@ ALLOWED = {
          "contact_patches", "potential_contact_grid"},
         "the automatic window is built on the gap-problem machinery of the BEM"),
     ("dynamics", "wheelrail.normal._kp_kernel"): (
-        {"kp_line_regions"},
+        {"kp_line_regions", "kpec_line_regions"},
         "the compiled dynamics contact calls the Kik-Piotrowski kernel itself (no copy)"),
     ("dynamics", "wheelrail.normal._patch_kernel"): (
         {"weighted_means"},

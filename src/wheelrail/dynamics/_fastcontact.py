@@ -70,7 +70,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..normal._kp_kernel import kp_line_regions
+from ..normal._kp_kernel import kp_line_regions, kpec_line_regions
 from ..normal._patch_kernel import weighted_means
 from ._fastgeom import _BIG, _gap, _locus, _spline, _spline0
 from ._fastline import _COARSE, _LINE_WIDTH, _SAMPLE_HALF, _line_nodes, _run_end
@@ -101,7 +101,7 @@ MP = {name: i for i, name in enumerate((
     "normal", "tangential", "E_star", "G", "nu", "K", "eps", "shape_correction", "strips",
     "cells", "line_stride", "line_half_width", "group_angle", "tolerance", "nx", "ny",
     "parabolic", "weighted", "first_order", "search_step", "table_fallback", "stop",
-    "connected", "line_nodes", "samples"))}
+    "connected", "line_nodes", "samples", "kpec", "combined"))}
 
 
 @njit(cache=True)
@@ -626,6 +626,8 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
     half_min = mp[11]
     group_angle = mp[12]
     tangential = int(mp[1])
+    kpec = mp[25] > 0                     # Vollebregt's ellipticity correction (KPEC)
+    combined = mp[26] > 0                 # FASTSIM's combined flexibility (else weighted)
     n_nodes = int(mp[23])                 # the library's line (KikPiotrowski.line_nodes)
     n_samp = int(mp[24])                  # and its profile samples per body
     coarse = max(1, int(round(_COARSE * (n_samp - 1) / 2000)))
@@ -660,7 +662,9 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
         cosf = math.cos(gam - sig * roll)
         delta = dz * cosf                    # approach along this plane's normal
         A_r, B_r = PA[r], PB[r]
-        if eps_opt > 0:
+        if kpec:
+            eps = 1.0                        # KPEC: the regions of real interpenetration
+        elif eps_opt > 0:
             eps = eps_opt
         elif A_r > 0 and B_r > 0:
             # Hertz's area for the curvatures at the point: ε = a b √(AB)/δ (unit load)
@@ -732,7 +736,9 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             ib = min(int(math.ceil((w_b - lo_l) / (stride * step))), last)
             if ib - ia < 4:
                 break
-            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf, d0, kcw,
+            # (KPEC: the surface angles only where the regions are, after them, below)
+            eta, f, Ax, ang, rw, ok = _line_nodes(ia, ib, stride, lo_l, hi_l, step, cosf,
+                                                  -1.0 if kpec else d0, kcw,
                                                   kw0, kw1,
                                                   kcr, kr0, kr1, gw, gr_, PU[r], z_ref, t0g,
                                                   t1g, n_nodes)
@@ -749,8 +755,19 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
                 w_b = min(2.0 * w_b, _LINE_WIDTH)
         if not ok or mp[21] == 2:
             continue
-        okr, meta, eta_c, xl_c, peak = kp_line_regions(f, Ax, eta, h_l, d0, eps, E_star, correct,
-                                                       hz_lam, hz_la, hz_lb, lam_max)
+        if kpec:
+            okr, meta, eta_c, xl_c, peak, gk = kpec_line_regions(f, Ax, eta, h_l, d0, E_star,
+                                                                 hz_lam, hz_la, hz_lb, hz_ld,
+                                                                 lam_max)
+            for i in range(f.shape[0]):
+                if gk[i] > 0.0:
+                    _, z1, _ = _spline(ru, rinv, rc, PU[r] + eta[i] * t0g)
+                    ang[i] = math.atan(z1)
+        else:
+            okr, meta, eta_c, xl_c, peak = kp_line_regions(f, Ax, eta, h_l, d0, eps, E_star,
+                                                           correct, hz_lam, hz_la, hz_lb,
+                                                           lam_max)
+            gk = d0 - f
         if not okr or mp[21] == 3:
             continue
         for kr in range(meta.shape[0]):
@@ -763,7 +780,7 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
                 continue
             wts = np.empty(i1 - i0)
             for i in range(i0, i1):
-                wts[i - i0] = d0 - f[i]
+                wts[i - i0] = gk[i]
             ang_m, eta_m = weighted_means(wts, ang[i0:i1], eta[i0:i1])
             e0, e1 = eta[i0], eta[i1 - 1]
             tt = (eta_m - e0) / (e1 - e0) if e1 > e0 else 0.0
@@ -791,7 +808,7 @@ def _kp_patches(dgrid, i_lo, hs, nc, keep, cd, cs, PY, PZ, PX, PG, PR, PA, PB, P
             if not done:
                 Fx, Fs, Mz = kp_strip_fastsim(ys_, dy, xl_s, c_s, cells, rs_i0, rs_i1, rs_w, a, b,
                                             mu, G, kx, c11, c22, c23, xi, eta_cr, phi,
-                                            mp[18] > 0)
+                                            mp[18] > 0, combined)
                 if not (math.isfinite(Fx) and math.isfinite(Fs) and math.isfinite(Mz)):
                     continue
             pmax = 0.0

@@ -272,9 +272,10 @@ def kp_strips(eta_n, xl_n, pk_n, h_line, strips, cells, N, eta_ref, sign):
 
 @njit(cache=True)
 def kp_strip_fastsim(y, dy, xl, c, cells, i0, i1, w, a, b, mu, G, kx, c11, c22, c23, xi, eta,
-                   phi, first_order):
-    """FASTSIM on a Kik–Piotrowski strip patch as ``Fastsim.solve_patch`` does it: Kalker's
-    weighted flexibility of the patch's equivalent ellipse, each strip's cells resampled
+                   phi, first_order, combined):
+    """FASTSIM on a Kik–Piotrowski strip patch as ``Fastsim.solve_patch`` does it: one
+    flexibility of the patch's equivalent ellipse (Vollebregt & Voltr's combined one if
+    ``combined``, else Kalker's weighted one), each strip's cells resampled
     to FASTSIM's ``nx`` keeping the strip's force (indices ``i0``, ``i1``, weights ``w``;
     with the cells c_k √(1 − s²) the resampled row is c_k times one fixed profile) and
     marched with the one flexibility by :func:`~wheelrail.dynamics._fastlaws.march_strips`
@@ -286,10 +287,16 @@ def kp_strip_fastsim(y, dy, xl, c, cells, i0, i1, w, a, b, mu, G, kx, c11, c22, 
     L1 = 8.0 * a / (3.0 * G * C11)
     L2 = 8.0 * a / (3.0 * G * C22)
     L3 = math.pi * a * math.sqrt(a / b) / (4.0 * G * C23)
-    cc = math.sqrt(a * b)
-    cphi = cc * abs(phi)
-    nrm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
-    L = (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / nrm if nrm > 0 else L1
+    if combined:
+        # Vollebregt & Voltr's combined flexibility (Fastsim.combined_flexibility)
+        s3 = 3.0 * math.pi * a * phi / 32.0
+        den = xi * xi / L1 + eta * eta / L2 + s3 * s3 / L3
+        L = (xi * xi + eta * eta + s3 * s3) / den if den > 0 else L1
+    else:
+        cc = math.sqrt(a * b)
+        cphi = cc * abs(phi)
+        nrm = math.sqrt(xi * xi + eta * eta + cphi * cphi)
+        L = (L1 * abs(xi) + L2 * abs(eta) + L3 * cphi) / nrm if nrm > 0 else L1
     ny = y.shape[0]
     nx = i0.shape[0]
     # the resampled profile (strip_patch_forces: linear resampling, the mean kept)

@@ -97,9 +97,9 @@ def _fast_support(nimpl, timpl) -> str:
         return f"tangential method {timpl.name!r} (compiled: 'fastsim', 'table', 'linear')"
     if isinstance(timpl, Table) and timpl.outside == "exact":
         return "the table law with outside='exact' (the exact solver is not compiled)"
-    if isinstance(nimpl, KikPiotrowski) and nimpl.fastsim_flexibility != "weighted":
+    if isinstance(nimpl, KikPiotrowski) and nimpl.fastsim_flexibility == "three":
         return (f"Kik-Piotrowski with fastsim_flexibility={nimpl.fastsim_flexibility!r} "
-                "(compiled: 'weighted')")
+                "(compiled: 'combined', 'weighted')")
     return ""
 
 
@@ -113,12 +113,13 @@ class FastContact:
     normal : Hertz or KikPiotrowski
         Configured normal method. Kik–Piotrowski's options ``penetration_factor``,
         ``shape_correction``, ``strips`` and ``cells`` are honoured;
-        ``fastsim_flexibility="three"`` is not compiled (refused here; ``contact="auto"``
+        ``ellipticity_correction`` and ``fastsim_flexibility`` "combined" or "weighted"
+        are honoured; "three" is not compiled (refused here; ``contact="auto"``
         takes the generic path for it).
     tangential : Fastsim, Table or Linear
         Configured law. FASTSIM's ``nx``, ``ny``, ``bound``, ``flexibility`` and
-        ``scheme`` are honoured (Kik–Piotrowski patches use one weighted flexibility
-        per patch, as in the library). The table law's points outside its domain are
+        ``scheme`` are honoured (Kik–Piotrowski patches use one flexibility per patch,
+        combined or weighted, as in the library). The table law's points outside its domain are
         refused (``outside="raise"``: :class:`~wheelrail.errors.InputError` naming the
         pose) or computed by FASTSIM with its defaults (``"fastsim"``).
     search_step : float
@@ -180,6 +181,10 @@ class FastContact:
             pf = normal.penetration_factor
             mp[MP["eps"]] = -1.0 if isinstance(pf, str) else float(pf)
             mp[MP["shape_correction"]] = 1.0 if normal.shape_correction else 0.0
+            mp[MP["kpec"]] = 1.0 if normal._kpec(
+                {k: getattr(normal, k) for k in ("ellipticity_correction", "penetration_factor",
+                                                 "shape_correction")}) else 0.0
+            mp[MP["combined"]] = 1.0 if normal.fastsim_flexibility == "combined" else 0.0
             mp[MP["strips"]] = normal.strips
             mp[MP["cells"]] = normal.cells
             mp[MP["line_nodes"]] = normal.line_nodes

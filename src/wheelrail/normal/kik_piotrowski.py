@@ -16,7 +16,18 @@ makes its load grow from zero as it appears (δ − f_min would start it with a
 finite load and a pressure peak on a sliver; a choice of this implementation). The inner x-integral of I2 is done in closed form with complete
 elliptic integrals (:func:`wheelrail.normal._strips.kp_integrals`).
 
-Penetration factor ε: the original method uses ε = 0.55; the default here
+Ellipticity correction (``ellipticity_correction=True``, not the default): Vollebregt's
+KPEC variant (CONTACT's user guide, "Fast or detailed solution"). Each region
+of real interpenetration gets its own penetration δ_r = δ − f_min and an
+equivalent Hertz ellipse (curvature A_x at the deepest node; B from the width w
+of the region where f − f_min ≤ δ_r/2, B = δ_r/(2w²)); the virtual penetration
+varies across the region, t(y) = A a² − (A a² − B b²)((y − y_m)/b)² (clipped to
+[0, δ_r]), so that a quadratic gap gives exactly Hertz's ellipse; the pressure
+is Kik & Piotrowski's (eqs. 12–16 below) with δ_r. It replaces the constant
+penetration factor and the shape correction described next (kernel:
+:func:`wheelrail.normal._kp_kernel.kpec_line_regions`).
+
+Penetration factor ε (``ellipticity_correction=False``, the default): the original method uses ε = 0.55; the default here
 (``penetration_factor="hertz"``) takes ε from Hertz's theory for the local
 curvatures A, B at the reference point, ε = a b √(AB)/δ, so that a Hertzian
 gap gives exactly Hertz's area. The shape correction (eqs. 17–22) stretches
@@ -35,6 +46,11 @@ References
 .. [3] J. Piotrowski, W. Kik, A simplified model of wheel/rail contact mechanics for
    non-Hertzian problems and its application in rail vehicle dynamic simulations,
    VSD 46 (2008) 27–48.
+.. [4] E.A.H. Vollebregt, User guide for CONTACT, rolling and sliding contact with
+   friction, VORtech technical report TR20-01 (open-source version), "Fast or detailed
+   solution" (KPEC) and "Modified FASTSIM" (flexibilities of the equivalent ellipse).
+.. [5] E.A.H. Vollebregt, P. Voltr, Improved accuracy for FASTSIM using one or three
+   flexibility values, Vehicle System Dynamics 61 (2023) 309–317.
 """
 
 from __future__ import annotations
@@ -148,14 +164,27 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
         profiles are sampled 1.6 node spacings apart. Coarser lines are faster
         (``wr.dynamics`` uses 201 by default; see there for the measured difference).
 
-    fastsim_flexibility : {"weighted", "three"}, default "weighted"
-        Flexibility FASTSIM uses on these patches (``info["fastsim_flexibility"]``):
-        Kalker's single weighted flexibility per patch (Kik & Piotrowski's choice) or
-        the three flexibilities L1, L2, L3 of the patch's equivalent ellipse (as
-        CONTACT's FASTSIM does with its KPEC patches). On Manchester A-2.2 against
-        CONTACT's full solution "three" halves the largest lateral-force error
-        (24.7 → 12.5 % of μFn, right wheel of case 2) and raises the largest
-        longitudinal one (11.5 → 12.9 %); see ``benchmarks/bench_manchester.py``.
+    ellipticity_correction : bool, default False
+        Vollebregt's KPEC (see the module docstring): a variable virtual penetration
+        from each region's equivalent Hertz ellipse. When True, ``penetration_factor``
+        and ``shape_correction`` do not apply (setting them to other than their
+        defaults is refused); False gives Kik & Piotrowski's method with them. Not the
+        default: in the quasi-static flange climb of S1002 on 60E1 (20 mrad, 100 kN
+        axle) its flange patch reports a contact angle of 88.6° instead of the
+        flange's 70° (an open defect).
+    fastsim_flexibility : {"weighted", "combined", "three"}, default "weighted"
+        Flexibility FASTSIM uses on these patches (``info["fastsim_flexibility"]``),
+        from the three flexibilities L1, L2, L3 of the patch's equivalent ellipse:
+        one combined flexibility (Vollebregt & Voltr 2023; the value CONTACT blends
+        to at large creepage), L = (ξ² + η² + s²)/(ξ²/L1 + η²/L2 + s²/L3) with
+        s = 3πaφ/32, the one flexibility that keeps the linear theory's
+        ξFx + η Fy + φ-part work (cross term ηφ left out); Kalker's weighted
+        L = (L1|ξ| + L2|η| + L3 c|φ|)/√(ξ² + η² + c²φ²) (Kik & Piotrowski's choice); or
+        L1, L2, L3 themselves. On Manchester A-2.2 against CONTACT's full solution
+        (``benchmarks/bench_manchester.py``), with the ellipticity correction: max
+        error 4.2 % of μFn in Fx and 11.05 % in Fs (combined); 7.0 / 22.2 % (weighted);
+        4.4 / 12.0 % (three). Without it (Kik & Piotrowski's patch, the default):
+        11.5 / 24.7 % (weighted), 13.6 / 12.0 % (combined), 12.9 / 12.5 % (three).
 
     Tangential: FASTSIM solves these patches strip by strip with the flexibility above.
 
@@ -177,17 +206,53 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
     shape_correction: bool = option(True, doc="Kik & Piotrowski's length/width correction")
     line_nodes: int = option(1601, lo=101, hi=6401,
                              doc="nodes of a wheel's separation line (40 mm wide)")
-    fastsim_flexibility: str = option("weighted", choices=("weighted", "three"),
-                                      doc="flexibility FASTSIM uses on these patches: Kalker's "
-                                          "single weighted one (Kik & Piotrowski) or L1, L2, L3 "
-                                          "of the equivalent ellipse")
+    ellipticity_correction: bool = option(False, doc="Vollebregt's KPEC: variable virtual "
+                                                    "penetration from Hertz's ellipse")
+    fastsim_flexibility: str = option("weighted", choices=("combined", "weighted", "three"),
+                                      doc="flexibility FASTSIM uses on these patches: one "
+                                          "combined (Vollebregt & Voltr), Kalker's weighted "
+                                          "(Kik & Piotrowski) or L1, L2, L3 of the equivalent "
+                                          "ellipse")
 
     @property
     def profile_samples(self) -> int:
         """Profile samples per body (on 80 mm) behind a wheel line of ``line_nodes`` nodes."""
         return line_samples(self.line_nodes)
 
+    def _kpec(self, opts):
+        """True for the ellipticity correction; refuses options it replaces."""
+        if not opts.get("ellipticity_correction", False):
+            return False
+        if opts["penetration_factor"] != "hertz" or not opts["shape_correction"]:
+            raise InputError("penetration_factor and shape_correction apply with "
+                             "ellipticity_correction=False only (got penetration_factor="
+                             f"{opts['penetration_factor']!r}, shape_correction="
+                             f"{opts['shape_correction']!r})")
+        return True
+
+    @staticmethod
+    def _line_arrays(line):
+        Ax = line.extra.get("Ax_array")
+        if Ax is None:
+            Ax = line.extra["Ax_array"] = np.ascontiguousarray(
+                np.broadcast_to(line.Ax, line.f.shape), dtype=float)
+        return Ax
+
     def _solve_line(self, line, delta, opts):
+        if self._kpec(opts):
+            lam, la, lb, _, ld = _hertz_table()
+            _, meta, eta_c, xl_c, peak, g = _kp_kernel.kpec_line_regions(
+                line.f, self._line_arrays(line), line.eta, float(line.h), float(delta),
+                line.extra["E_star"], lam, la, lb, ld, _LN_MAX)
+            out = []
+            for i0, i1, j, N, p0, alpha, pen, eps_j in meta.tolist():
+                i0, i1, j = int(i0), int(i1), int(j)
+                out.append(Region(slice(i0, i1), i0 + j, N, eta_c[i0:i1].copy(),
+                                  xl_c[i0:i1].copy(), peak[i0:i1].copy(), g[i0:i1].copy(),
+                                  info={"penetration_factor": eps_j, "factor_from": "kpec",
+                                        "virtual_penetration": eps_j * pen,
+                                        "shape_correction": False, "alpha": alpha, "p0": p0}))
+            return out
         eps, how = self._eps(line, opts)
         correct = bool(opts["shape_correction"])
         d0 = eps * delta
@@ -242,6 +307,21 @@ class KikPiotrowski(VirtualPenetration, NormalMethod, PatchDescription):
 
     def _line_loads(self, line, delta, opts):
         # the load iteration's hot path: the same equations as _solve_line in one kernel
+        if self._kpec(opts):
+            args = line.extra.get("kpec_load")
+            if args is None:
+                ang = line.angle
+                if ang is None:
+                    ang = np.zeros_like(line.f)
+                lam, la, lb, _, ld = _hertz_table()
+                args = line.extra["kpec_load"] = (
+                    self._line_arrays(line), np.ascontiguousarray(line.eta, dtype=float),
+                    np.ascontiguousarray(ang, dtype=float), float(line.h),
+                    line.extra["E_star"], lam, la, lb, ld)
+            Ax, eta, ang, h, E_star, lam, la, lb, ld = args
+            N, Nz = _kp_kernel.kpec_line_load(line.f, Ax, eta, ang, h, float(delta), E_star,
+                                              lam, la, lb, ld, _LN_MAX)
+            return float(N), float(Nz)
         key = ("kp_load", opts["penetration_factor"],
                bool(opts["shape_correction"]))
         args = line.extra.get(key)

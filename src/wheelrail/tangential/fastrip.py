@@ -48,7 +48,7 @@ from ..options import configured, option
 from ..patch import ContactPatch
 from ..results import CreepForcesResult, Status
 from ._base import TangentialMethod
-from .fastsim import flexibilities, weighted_flexibility
+from .fastsim import combined_flexibility, flexibilities, weighted_flexibility
 from .linear import kalker_coefficients
 
 __all__ = ["Fastrip", "fastrip_strips"]
@@ -149,6 +149,9 @@ class Fastrip(TangentialMethod):
         L1, L2, L3 = flexibilities(sa, sb, G, C11, C22, C23)
         if patch.info.get("fastsim_flexibility") == "weighted":
             L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi, np.sqrt(sa * sb))
+        elif patch.info.get("fastsim_flexibility") == "combined":
+            L1 = L2 = L3 = np.array([combined_flexibility(*v, xi, eta, phi, ak)
+                                     for *v, ak in zip(L1, L2, L3, sa)])
         length = np.clip(patch.x_lead - patch.x_trail, 0.0, None)
         P = patch.strip_pressure.sum(axis=1) * length / patch.cells
         # the strip loads sampled at the cells' midpoints differ slightly from Fn (on an

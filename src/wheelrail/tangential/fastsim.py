@@ -70,6 +70,7 @@ __all__ = [
     "fastsim_strips",
     "flexibilities",
     "weighted_flexibility",
+    "combined_flexibility",
     "hertz_strips",
     "strip_cell_centres",
 ]
@@ -234,6 +235,42 @@ def weighted_flexibility(L1, L2, L3, xi, eta, phi, c):
     num = L1 * np.abs(xi) + L2 * np.abs(eta) + L3 * cphi
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(norm > 0, num / np.where(norm > 0, norm, 1.0), L1)
+
+
+def combined_flexibility(L1, L2, L3, xi, eta, phi, a):
+    """Vollebregt & Voltr's single combined flexibility.
+
+    L = (ξ² + η² + s²) / (ξ²/L1 + η²/L2 + s²/L3), s = 3πaφ/32: FASTSIM's
+    linear-regime forces on an ellipse are Fx = −(8a²b/3) ξ/L1,
+    Fy = −(8a²b/3)(η/L2 + s/L3), so one flexibility L gives the same
+    ξ·Fx + η·Fy + s·(spin part of Fy) as the three when the cross term ηs is left
+    out. L = L1 when all creepages vanish.
+
+    Parameters
+    ----------
+    L1, L2, L3 : float
+        Flexibilities [m/Pa].
+    xi, eta, phi : float
+        Creepages [-], [-], [1/m].
+    a : float
+        Semi-axis along the rolling direction [m].
+
+    Returns
+    -------
+    L : float [m/Pa]
+
+    References
+    ----------
+    .. [1] E.A.H. Vollebregt, P. Voltr, Improved accuracy for FASTSIM using one or three
+       flexibility values, Vehicle System Dynamics 61 (2023) 309–317 (the combined
+       flexibility, CONTACT's L_crss).
+    """
+    s = 3.0 * math.pi * a * phi / 32.0
+    num = xi * xi + eta * eta + s * s
+    den = xi * xi / L1 + eta * eta / L2 + s * s / L3
+    if not den > 0:
+        return float(L1)
+    return num / den
 
 
 def _weighted_scalar(L1, L2, L3, xi, eta, phi, c):
@@ -732,6 +769,10 @@ class Fastsim(TangentialMethod):
                 if flexibility == "weighted":
                     L1 = L2 = L3 = weighted_flexibility(L1, L2, L3, xi, eta, phi,
                                                         np.sqrt(sa * sb))
+                elif flexibility == "combined":
+                    L1 = L2 = L3 = np.array([combined_flexibility(*v, float(xi), float(eta),
+                                                                  float(phi), ak)
+                                             for *v, ak in zip(L1, L2, L3, sa)])
                 Lrep = tuple(_median(v) for v in (L1, L2, L3))
         else:
             C11, C22, C23 = _kalker_scalar(a / b, patch.materials.nu)
@@ -742,6 +783,9 @@ class Fastsim(TangentialMethod):
             if flexibility == "weighted":
                 L1 = L2 = L3 = _weighted_scalar(L1, L2, L3, float(xi), float(eta), float(phi),
                                                 math.sqrt(a * b))
+            elif flexibility == "combined":
+                L1 = L2 = L3 = combined_flexibility(L1, L2, L3, float(xi), float(eta),
+                                                    float(phi), a)
             Lrep = (L1, L2, L3)
         # pressure resampled from the patch's m cells to nx cells per strip
         sp = np.asarray(patch.strip_pressure, dtype=float)
